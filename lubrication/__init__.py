@@ -1,0 +1,44 @@
+"""lubrication: lubricant films by finite elements (scikit-fem).
+
+=================  ==========================================================
+module             responsibility
+=================  ==========================================================
+``errors``         ``InputError`` (exit 2), ``ConvergenceError`` (exit 1)
+``lubricant``      viscosity (constant, Barus, Roelands) and density
+                   (incompressible, Dowson-Higginson) laws with d/dp
+``gaps``           film thickness h(x) of sliders, journals, spheres,
+                   cylinders, ellipsoids, pockets; rigid-body modes
+``mesh``           1-D, rectangle (periodic in x), disk meshes with named
+                   boundaries
+``reynolds``       the generalised Reynolds equation: forms, Newton and
+                   complementarity (Reynolds, JFO) solvers, film K and C
+``solution``       ``FilmSolution``: loads, moments, friction, flow, VTK, plots
+``closed_form``    analytic film results used for verification
+=================  ==========================================================
+
+Nothing here imports ``dynamics``; ``coupling`` joins the two.
+"""
+from .errors import ConvergenceError, InputError, LubedynError
+from .gaps import (
+    CylinderPlane,
+    EllipsoidPlane,
+    FunctionGap,
+    Gap,
+    InclinedSlider,
+    JournalBearing,
+    PocketedSlider,
+    SpherePlane,
+    SphereSphere,
+    StepSlider,
+)
+from .lubricant import Barus, ConstantViscosity, DowsonHigginson, Incompressible, Lubricant, Roelands
+from .reynolds import Cavitation, Film, SolverOptions, film_coefficients, solve
+from .solution import FilmSolution
+
+__all__ = [
+    "Barus", "Cavitation", "ConstantViscosity", "ConvergenceError", "CylinderPlane",
+    "DowsonHigginson", "EllipsoidPlane", "Film", "FilmSolution", "FunctionGap", "Gap",
+    "InclinedSlider", "Incompressible", "InputError", "JournalBearing", "LubedynError",
+    "Lubricant", "PocketedSlider", "Roelands", "SolverOptions", "SpherePlane",
+    "SphereSphere", "StepSlider", "film_coefficients", "solve",
+]

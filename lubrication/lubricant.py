@@ -1,0 +1,168 @@
+"""Lubricant laws: viscosity eta(p) and density rho(p), with their derivatives.
+
+All laws are frozen dataclasses in SI units, callable on numpy arrays of the
+*gauge* pressure ``p`` [Pa] above ambient (negative values are clipped to zero
+inside the pressure-dependent laws, so a Newton iterate that dips below
+ambient cannot overflow).  Each law has ``__call__(p)`` and ``derivative(p)``
+(d/dp) so that the Reynolds Newton solver can build its exact Jacobian.
+
+Viscosity
+---------
+- :class:`ConstantViscosity`  eta = eta0
+- :class:`Barus`              eta = eta0 exp(alpha p)
+- :class:`Roelands`           eta = eta0 exp[(ln eta0 + 9.67)((1 + p/p0)^z - 1)],
+  p0 = 1.96e8 Pa; ``z`` given, or chosen so that the low-pressure slope equals
+  a Barus ``alpha``: z = alpha p0 / (ln eta0 + 9.67)  (Roelands 1966; Venner &
+  Lubrecht 2000, eq. 2.12).
+
+Density
+-------
+- :class:`Incompressible`     rho = rho0
+- :class:`DowsonHigginson`    rho = rho0 (1 + a p / (1 + b p)),
+  a = 0.6e-9 1/Pa, b = 1.7e-9 1/Pa (Dowson & Higginson 1966).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InputError, require_positive
+
+ROELANDS_P0 = 1.96e8  # Pa
+
+
+def _pos(p):
+    return np.maximum(np.asarray(p, dtype=float), 0.0)
+
+
+@dataclass(frozen=True)
+class ConstantViscosity:
+    """Isoviscous lubricant. ``eta0`` [Pa s]."""
+
+    eta0: float
+
+    def __post_init__(self):
+        require_positive("viscosity eta0 [Pa s]", self.eta0)
+
+    is_constant = True
+
+    def __call__(self, p):
+        return np.full_like(np.asarray(p, dtype=float), self.eta0)
+
+    def derivative(self, p):
+        return np.zeros_like(np.asarray(p, dtype=float))
+
+
+@dataclass(frozen=True)
+class Barus:
+    """Barus law eta0 exp(alpha p). ``eta0`` [Pa s], ``alpha`` [1/Pa]."""
+
+    eta0: float
+    alpha: float
+
+    is_constant = False
+
+    def __post_init__(self):
+        require_positive("viscosity eta0 [Pa s]", self.eta0)
+        if self.alpha < 0:
+            raise InputError(f"pressure-viscosity alpha [1/Pa] = {self.alpha!r} must be >= 0")
+
+    def __call__(self, p):
+        return self.eta0 * np.exp(self.alpha * _pos(p))
+
+    def derivative(self, p):
+        p = np.asarray(p, dtype=float)
+        return np.where(p > 0, self.alpha * self(p), 0.0)
+
+
+@dataclass(frozen=True)
+class Roelands:
+    """Roelands law; give ``z`` directly or ``alpha`` [1/Pa] to match Barus at p -> 0."""
+
+    eta0: float
+    z: float | None = None
+    alpha: float | None = None
+    p0: float = ROELANDS_P0
+
+    is_constant = False
+
+    def __post_init__(self):
+        require_positive("viscosity eta0 [Pa s]", self.eta0)
+        if (self.z is None) == (self.alpha is None):
+            raise InputError("Roelands viscosity needs exactly one of 'z' or 'alpha'")
+        if self.z is None:
+            object.__setattr__(self, "z", self.alpha * self.p0 / (np.log(self.eta0) + 9.67))
+        require_positive("Roelands z", self.z)
+
+    @property
+    def _c(self):
+        return np.log(self.eta0) + 9.67
+
+    def __call__(self, p):
+        return self.eta0 * np.exp(self._c * ((1.0 + _pos(p) / self.p0) ** self.z - 1.0))
+
+    def derivative(self, p):
+        p = np.asarray(p, dtype=float)
+        q = _pos(p)
+        d = self(q) * self._c * self.z / self.p0 * (1.0 + q / self.p0) ** (self.z - 1.0)
+        return np.where(p > 0, d, 0.0)
+
+
+@dataclass(frozen=True)
+class Incompressible:
+    """Constant density ``rho0`` [kg/m^3]."""
+
+    rho0: float = 1.0
+
+    is_constant = True
+
+    def __post_init__(self):
+        require_positive("density rho0 [kg/m^3]", self.rho0)
+
+    def __call__(self, p):
+        return np.full_like(np.asarray(p, dtype=float), self.rho0)
+
+    def derivative(self, p):
+        return np.zeros_like(np.asarray(p, dtype=float))
+
+
+@dataclass(frozen=True)
+class DowsonHigginson:
+    """rho0 (1 + a p / (1 + b p)); ``rho0`` [kg/m^3], a, b [1/Pa]."""
+
+    rho0: float
+    a: float = 0.6e-9
+    b: float = 1.7e-9
+
+    is_constant = False
+
+    def __post_init__(self):
+        require_positive("density rho0 [kg/m^3]", self.rho0)
+
+    def __call__(self, p):
+        q = _pos(p)
+        return self.rho0 * (1.0 + self.a * q / (1.0 + self.b * q))
+
+    def derivative(self, p):
+        p = np.asarray(p, dtype=float)
+        q = _pos(p)
+        return np.where(p > 0, self.rho0 * self.a / (1.0 + self.b * q) ** 2, 0.0)
+
+
+@dataclass(frozen=True)
+class Lubricant:
+    """A Newtonian lubricant: a viscosity law and a density law."""
+
+    viscosity: ConstantViscosity | Barus | Roelands
+    density: Incompressible | DowsonHigginson = Incompressible()
+
+    @property
+    def is_constant(self) -> bool:
+        """True when neither law depends on pressure (the Reynolds problem is linear)."""
+        return bool(self.viscosity.is_constant and self.density.is_constant)
+
+    @classmethod
+    def newtonian(cls, eta0: float, rho0: float = 1.0) -> "Lubricant":
+        """Isoviscous, incompressible lubricant."""
+        return cls(ConstantViscosity(eta0), Incompressible(rho0))

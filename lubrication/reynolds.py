@@ -1,0 +1,590 @@
+r"""Generalised Reynolds equation on scikit-fem meshes, with cavitation.
+
+Equation (strong form, film plane x, gauge pressure p, fluid fraction theta)::
+
+    div( rho h^3/(12 eta) grad p ) = div( rho h theta u_m ) + rho theta dh/dt
+
+with u_m = (U_lower + U_upper)/2 the *mean* of the two surface velocities,
+eta(p), rho(p) from :mod:`lubrication.lubricant`, and dh/dt the local
+(Eulerian) rate of change of the gap, including rigid-mode velocities.  The
+squeeze term is quasi-steady (d(theta)/dt and d(rho)/dt are not carried).
+
+Weak form (test function v, natural boundary = zero total flux), residual::
+
+    R(p, r; v) = int k grad p . grad v  -  int rho h (1 - r) u_m . grad v
+                 + int rho (1 - r) dh/dt v  -  int tau rho h (u_m . grad r)(u_m . grad v)
+
+with k = rho h^3/(12 eta) and r = 1 - theta the *void fraction*.  The last
+term is streamline artificial diffusion (tau = h_K/(2 order |u_m|)) acting on
+r only: it turns the Galerkin transport of the cavitated fraction into an
+upwind one (exactly first-order upwind on uniform 1-D P1 meshes) and vanishes
+identically in the full film, so full-film solutions keep the Galerkin orders
+(2 for P1, 3 for P2 in L2).
+
+Cavitation models (``Cavitation.model``)
+---------------------------------------
+- ``"none"``: full Sommerfeld, r = 0, p free.
+- ``"half_sommerfeld"``: the Guembel approximation -- the full-Sommerfeld
+  solution with pressures below p_cav replaced by p_cav.  Not mass conserving
+  and not a solution of a complementarity problem; provided because classical
+  tables use it.
+- ``"reynolds"`` (Swift-Stieber): the complementarity problem
+  ``p - p_cav >= 0, R(p) >= 0, (p - p_cav) R(p) = 0`` solved as one by a
+  semismooth (primal-dual active set) Newton method on
+  ``min(p - p_cav, c R(p)) = 0``, c = 1/diag(J).
+- ``"jfo"``: mass-conserving Jakobsson-Floberg-Olsson, in the complementarity
+  form of Giacopini et al. (2010, J. Tribol. 132, 041702):
+  ``p - p_cav >= 0, r >= 0, (p - p_cav) r = 0`` with R(p, r) = 0, solved by
+  the same semismooth Newton on ``min(p - p_cav, c r) = 0``,
+  c = |diag(dR/dr)|/diag(dR/dp).
+
+Each Newton step solves one sparse linear system in the free nodes; a node is
+either a pressure unknown (full film) or a void-fraction unknown (cavitated).
+
+Convergence test: the active set is unchanged from the previous iteration,
+``||R||_2 <= rtol * ||R_0||_2`` (R_0: the residual at the initial full-film
+ambient-pressure state, i.e. the norm of the hydrodynamic sources) and the
+last pressure update ``<= rtol * max|p|``.  Otherwise, after ``max_iter``
+iterations, :class:`~lubrication.errors.ConvergenceError`.
+
+Linearised film coefficients
+----------------------------
+For a gap mode q_j (see :mod:`lubrication.gaps`), one extra linear solve with
+the converged Jacobian (same active set) gives dp/dq_j and dp/d(dq_j/dt);
+K_ij = -int (dp/dq_j) dh/dq_i dA and C_ij = -int (dp/d(dq_j/dt)) dh/dq_i dA.
+
+References: Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film
+Lubrication* (2004), ch. 7; Giacopini, Fowell, Dini & Strozzi (2010);
+Woloszynski, Podsiadlo & Stachowiak (2015, Tribol. Lett. 58:18).
+"""
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+import skfem
+from skfem import BilinearForm, LinearForm, asm
+from skfem.helpers import dot, grad
+
+from .errors import ConvergenceError, InputError, unknown_choice
+from .gaps import Gap
+from .lubricant import Lubricant
+
+log = logging.getLogger(__name__)
+
+CAVITATION_MODELS = ("none", "half_sommerfeld", "reynolds", "jfo")
+ELEMENT_ORDERS = ("P1", "P2")
+LINEAR_SOLVERS = ("auto", "direct", "amg")
+DIRECT_SOLVER_MAX_DOFS = 250_000
+
+
+@dataclass(frozen=True)
+class Cavitation:
+    """Cavitation model (one of :data:`CAVITATION_MODELS`) and pressure [Pa] (gauge)."""
+
+    model: str = "none"
+    pressure: float = 0.0
+
+    def __post_init__(self):
+        if self.model not in CAVITATION_MODELS:
+            raise unknown_choice("cavitation.model", self.model, CAVITATION_MODELS)
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Newton / active-set controls and the linear solver choice.
+
+    ``linear_solver``: ``"direct"`` (SuperLU), ``"amg"`` (pyamg smoothed
+    aggregation preconditioned CG; symmetric problems only) or ``"auto"``
+    (direct up to :data:`DIRECT_SOLVER_MAX_DOFS` unknowns, AMG above when the
+    system is symmetric).
+    """
+
+    rtol: float = 1e-10
+    max_iter: int = 60
+    linear_solver: str = "auto"
+    amg_tol: float = 1e-10
+
+    def __post_init__(self):
+        if self.linear_solver not in LINEAR_SOLVERS:
+            raise unknown_choice("solver.linear_solver", self.linear_solver, LINEAR_SOLVERS)
+        if not 0 < self.rtol < 1:
+            raise InputError(f"solver.rtol = {self.rtol!r} must be in (0, 1)")
+        if self.max_iter < 1:
+            raise InputError(f"solver.max_iter = {self.max_iter!r} must be >= 1")
+
+
+Field = float | tuple | Callable
+
+
+@dataclass(frozen=True)
+class Film:
+    """A lubricant film problem (SI units).
+
+    Parameters
+    ----------
+    mesh : skfem.Mesh
+        1-D (``MeshLine``) or 2-D (triangles, quadrilaterals; periodic in x
+        allowed) mesh of the film plane, with named boundaries.
+    gap : Gap
+        Film thickness h(x) [m] and its rigid-body modes.
+    lubricant : Lubricant
+    velocity_lower, velocity_upper : tuple or callable
+        Tangential velocity [m/s] of the surface at z = 0 and at z = h, each a
+        constant vector (length = mesh dimension) or ``f(x) -> (dim, ...)``.
+    squeeze : float or callable
+        Extra local dh/dt [m/s] (negative = approach), added to the mode
+        velocities ``mode_velocities`` (mode name -> dq/dt).
+    dirichlet : mapping, optional
+        Boundary name -> pressure [Pa].  ``None``: every boundary facet at
+        ``ambient_pressure``.  An empty mapping is allowed only together with
+        ``pressure_points``.
+    pressure_points : tuple of ((x, y...), value)
+        Extra nodes (nearest degree of freedom) held at a pressure, e.g. the
+        Sommerfeld condition p(theta = 0) = 0 of an infinitely long journal.
+    element : "P1" or "P2"
+    cavitation : Cavitation
+    ambient_pressure : float
+        Gauge reference [Pa]; loads integrate p - ambient_pressure.
+    """
+
+    mesh: skfem.Mesh
+    gap: Gap
+    lubricant: Lubricant
+    velocity_lower: Field = (0.0,)
+    velocity_upper: Field = (0.0,)
+    squeeze: Field = 0.0
+    mode_velocities: Mapping[str, float] = field(default_factory=dict)
+    dirichlet: Mapping[str, float] | None = None
+    pressure_points: tuple = ()
+    element: str = "P1"
+    cavitation: Cavitation = Cavitation()
+    ambient_pressure: float = 0.0
+    options: SolverOptions = SolverOptions()
+
+    def __post_init__(self):
+        if self.element not in ELEMENT_ORDERS:
+            raise unknown_choice("film.element", self.element, ELEMENT_ORDERS)
+        modes = self.gap.modes()
+        for name in self.mode_velocities:
+            if name not in modes:
+                raise unknown_choice("film.mode_velocities", name, modes)
+
+    def with_(self, **changes) -> "Film":
+        """A copy with some fields replaced."""
+        import dataclasses
+
+        return dataclasses.replace(self, **changes)
+
+    def solve(self, initial=None) -> "FilmSolution":
+        """Solve the film; see :func:`solve`."""
+        return solve(self, initial=initial)
+
+
+# --------------------------------------------------------------------------
+# small generic forms (coefficients are arrays at quadrature points)
+
+
+@BilinearForm
+def _diffusion(u, v, w):
+    return w["a"] * dot(grad(u), grad(v))
+
+
+@BilinearForm
+def _advection(u, v, w):
+    return u * dot(w["b"], grad(v))
+
+
+@BilinearForm
+def _mass(u, v, w):
+    return w["c"] * u * v
+
+
+@BilinearForm
+def _streamline(u, v, w):
+    return w["s"] * dot(w["beta"], grad(u)) * dot(w["beta"], grad(v))
+
+
+@LinearForm
+def _flux_load(v, w):
+    return dot(w["f"], grad(v))
+
+
+@LinearForm
+def _source_load(v, w):
+    return w["g"] * v
+
+
+_ELEMENTS = {
+    ("line", "P1"): skfem.ElementLineP1,
+    ("line", "P2"): skfem.ElementLineP2,
+    ("tri", "P1"): skfem.ElementTriP1,
+    ("tri", "P2"): skfem.ElementTriP2,
+    ("quad", "P1"): skfem.ElementQuad1,
+    ("quad", "P2"): skfem.ElementQuad2,
+}
+
+
+def _cell_kind(mesh) -> str:
+    if isinstance(mesh, skfem.MeshLine1):
+        return "line"
+    if isinstance(mesh, skfem.MeshTri1):
+        return "tri"
+    if isinstance(mesh, skfem.MeshQuad1):
+        return "quad"
+    raise InputError(f"mesh type {type(mesh).__name__} is not supported; use line, triangle or quad meshes")
+
+
+def make_basis(mesh, element: str = "P1") -> skfem.CellBasis:
+    """The scalar Lagrange basis (``P1``/``P2``) of ``mesh``."""
+    elem = _ELEMENTS[(_cell_kind(mesh), element)]()
+    intorder = 4 if element == "P2" else 3
+    return skfem.Basis(mesh, elem, intorder=intorder)
+
+
+def _as_vector_field(value, x, dim, key):
+    if callable(value):
+        out = np.asarray(value(x), dtype=float)
+    else:
+        arr = np.atleast_1d(np.asarray(value, dtype=float))
+        if arr.size == 1 and dim > 1 and float(arr[0]) == 0.0:
+            arr = np.zeros(dim)
+        if arr.shape != (dim,):
+            raise InputError(f"{key} = {value!r} must have {dim} component(s) for a {dim}-D film")
+        out = arr.reshape((dim,) + (1,) * (x.ndim - 1)) * np.ones(x.shape[1:])
+    if out.shape != x.shape:
+        raise InputError(f"{key} returned shape {out.shape}, expected {x.shape}")
+    return out
+
+
+def _as_scalar_field(value, x, key):
+    if callable(value):
+        out = np.asarray(value(x), dtype=float)
+    else:
+        out = float(value) * np.ones(x.shape[1:])
+    if out.shape != x.shape[1:]:
+        raise InputError(f"{key} returned shape {out.shape}, expected {x.shape[1:]}")
+    return out
+
+
+class _Problem:
+    """Everything about a Film that does not change during the Newton solve."""
+
+    def __init__(self, film: Film):
+        self.film = film
+        self.basis = make_basis(film.mesh, film.element)
+        b = self.basis
+        self.dim = film.mesh.p.shape[0]
+        self.x = b.global_coordinates().value  # (dim, nel, nqp)
+        self.h = np.asarray(film.gap(self.x), dtype=float)
+        if not np.all(np.isfinite(self.h)):
+            raise InputError("gap h is not finite everywhere on the film domain")
+        if np.min(self.h) <= 0.0:
+            where = np.unravel_index(np.argmin(self.h), self.h.shape)
+            xm = self.x[(slice(None),) + where]
+            raise InputError(
+                f"gap h = {np.min(self.h):.4g} m at x = {np.array2string(xm, precision=4)} m; "
+                "the film thickness must be > 0 everywhere (the surfaces touch or overlap)"
+            )
+        ul = _as_vector_field(film.velocity_lower, self.x, self.dim, "velocity_lower [m/s]")
+        uu = _as_vector_field(film.velocity_upper, self.x, self.dim, "velocity_upper [m/s]")
+        self.u_lower, self.u_upper = ul, uu
+        self.um = 0.5 * (ul + uu)
+        self.modes = {k: np.asarray(f(self.x), dtype=float) for k, f in film.gap.modes().items()}
+        hdot = _as_scalar_field(film.squeeze, self.x, "squeeze dh/dt [m/s]")
+        for k, qd in film.mode_velocities.items():
+            hdot = hdot + float(qd) * self.modes[k]
+        self.hdot = hdot
+        speed = np.sqrt(np.sum(self.um**2, axis=0))
+        order = 2.0 if film.element == "P2" else 1.0
+        hk = np.broadcast_to(self._element_size()[:, None], speed.shape)
+        self.tau = np.where(speed > 0, hk / (2.0 * order * np.where(speed > 0, speed, 1.0)), 0.0)
+        self.N = b.N
+        self._dirichlet()
+        self.linear = film.lubricant.is_constant
+        self.cav = film.cavitation
+
+    def _element_size(self):
+        m = self.film.mesh
+        if self.dim == 1:
+            return np.abs(np.diff(m.p[0, m.t], axis=0))[0]
+        # longest edge of each element
+        pts = m.p[:, m.t]  # (dim, nverts, nel)
+        nv = pts.shape[1]
+        hk = np.zeros(pts.shape[2])
+        for i in range(nv):
+            for j in range(i + 1, nv):
+                hk = np.maximum(hk, np.linalg.norm(pts[:, i] - pts[:, j], axis=0))
+        if isinstance(m, skfem.MeshQuad1):
+            hk = hk / np.sqrt(2.0)  # diagonal -> side length of a square cell
+        return hk
+
+    def _dirichlet(self):
+        film, b = self.film, self.basis
+        values = np.full(self.N, np.nan)
+        if film.dirichlet is None:
+            facets = film.mesh.boundary_facets()
+            dofs = b.get_dofs(facets).all()
+            values[dofs] = film.ambient_pressure
+        else:
+            names = film.mesh.boundaries or {}
+            for name, value in film.dirichlet.items():
+                if name not in names:
+                    raise unknown_choice("film.dirichlet boundary", name, list(names))
+                values[b.get_dofs(names[name]).all()] = float(value)
+        for point, value in film.pressure_points:
+            point = np.atleast_1d(np.asarray(point, dtype=float))
+            d = np.linalg.norm(b.doflocs - point[:, None], axis=0)
+            values[int(np.argmin(d))] = float(value)
+        self.fixed = ~np.isnan(values)
+        if not np.any(self.fixed):
+            raise InputError(
+                "the film has no Dirichlet boundary or pressure point: its pressure is "
+                "undetermined (give film.dirichlet, or pressure_points for a periodic film)"
+            )
+        self.p_fixed = np.where(self.fixed, values, 0.0)
+        self.free = ~self.fixed
+
+    # ------------------------------------------------------------------
+    def coefficients(self, p, r):
+        """Quadrature-point fields for the current iterate."""
+        lub = self.film.lubricant
+        pf = self.basis.interpolate(p)
+        pq = pf.value - self.film.ambient_pressure
+        gp = pf.grad
+        eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
+        rho, drho = lub.density(pq), lub.density.derivative(pq)
+        rf = self.basis.interpolate(r)
+        return dict(pq=pq, gp=gp, eta=eta, deta=deta, rho=rho, drho=drho, r=rf.value, gr=rf.grad)
+
+    def assemble(self, p, r, with_void: bool):
+        """Residual R, dR/dp and (if ``with_void``) dR/dr at (p, r).
+
+        For pressure-independent lubricants R is affine, R = A p + Jr r + R(0, 0):
+        the matrices are assembled once and reused.
+        """
+        if self.linear and getattr(self, "_cache", None) is not None and (self._cache[1] is not None or not with_void):
+            A, Jr, R0 = self._cache
+            R = A @ p + R0
+            if with_void:
+                R = R + Jr @ r
+            return R, A, Jr
+        b = self.basis
+        c = self.coefficients(p, r)
+        h, um, hdot = self.h, self.um, self.hdot
+        theta = 1.0 - c["r"]
+        k = c["rho"] * h**3 / (12.0 * c["eta"])
+        K0 = asm(_diffusion, b, a=k).tocsr()
+        A = K0
+        if not self.linear:
+            dk = h**3 / 12.0 * (c["drho"] / c["eta"] - c["rho"] * c["deta"] / c["eta"] ** 2)
+            bvec = dk * c["gp"] - c["drho"] * h * theta * um
+            A = (K0 + asm(_advection, b, b=bvec) + asm(_mass, b, c=c["drho"] * theta * hdot)).tocsr()
+        # R = k grad p . grad v - rho h theta um . grad v + rho theta hdot v - SU(r)
+        R = K0 @ p + asm(_flux_load, b, f=-c["rho"] * h * theta * um) + asm(_source_load, b, g=c["rho"] * theta * hdot)
+        Jr = None
+        if with_void:
+            S = asm(_streamline, b, s=self.tau * c["rho"] * h, beta=um)
+            Jr = (asm(_advection, b, b=c["rho"] * h * um) - asm(_mass, b, c=c["rho"] * hdot) - S).tocsr()
+            R = R - S @ r
+        if self.linear:
+            self._cache = (A, Jr, R - A @ p - (Jr @ r if Jr is not None else 0.0))
+        return R, A, Jr
+
+    def solve_linear(self, M, rhs, symmetric: bool):
+        opts = self.film.options
+        n = M.shape[0]
+        use_amg = opts.linear_solver == "amg" or (
+            opts.linear_solver == "auto" and symmetric and n > DIRECT_SOLVER_MAX_DOFS
+        )
+        if use_amg:
+            import pyamg
+
+            ml = pyamg.smoothed_aggregation_solver(M.tocsr())
+            x = ml.solve(rhs, tol=opts.amg_tol, accel="cg", maxiter=200)
+            self.linear_solver_used = "amg (pyamg smoothed aggregation + CG)"
+            return x
+        self.linear_solver_used = "direct (SuperLU)"
+        return spla.spsolve(M.tocsc(), rhs)
+
+
+def _select_columns(Jp, Jr, full_mask):
+    """Matrix whose column j is Jp[:, j] for full-film nodes and Jr[:, j] otherwise."""
+    Df = sp.diags(full_mask.astype(float))
+    if Jr is None:
+        return Jp @ Df
+    return Jp @ Df + Jr @ sp.diags((~full_mask).astype(float))
+
+
+def solve(film: Film, initial=None) -> "FilmSolution":
+    """Solve ``film``; return a :class:`~lubrication.solution.FilmSolution`.
+
+    ``initial`` may be a previous solution of a film on the same mesh and
+    element (continuation in a sweep).
+    """
+    from .solution import FilmSolution
+
+    t0 = time.perf_counter()
+    prob = _Problem(film)
+    model = prob.cav.model
+    pcav = prob.cav.pressure
+    jfo = model == "jfo"
+    complementarity = model in ("reynolds", "jfo")
+    N, free, fixed = prob.N, prob.free, prob.fixed
+
+    if initial is not None and initial.pressure_dofs.shape == (N,):
+        p = np.where(fixed, prob.p_fixed, initial.pressure_dofs)
+        r = np.where(fixed, 0.0, 1.0 - initial.fluid_fraction_dofs) if jfo else np.zeros(N)
+    else:
+        p = np.where(fixed, prob.p_fixed, film.ambient_pressure)
+        r = np.zeros(N)
+
+    R, Jp, Jr = prob.assemble(p, r, with_void=jfo)
+    ref = max(np.linalg.norm(R[free]), 1e-300)
+    full = np.ones(N, dtype=bool)  # full-film (pressure unknown) nodes
+    history = []
+    converged = False
+    prev_full = None
+    for it in range(1, film.options.max_iter + 1):
+        if complementarity and it > 1:
+            if jfo:
+                cscale = np.abs(Jr.diagonal()) / np.maximum(np.abs(Jp.diagonal()), 1e-300)
+                cscale = np.where(cscale > 0, cscale, 1.0)
+                full = (p - pcav) >= cscale * r
+            else:
+                cscale = 1.0 / np.maximum(np.abs(Jp.diagonal()), 1e-300)
+                full = (p - pcav) >= cscale * R
+            full |= fixed
+        # known increments: cavitated nodes go to p_cav, full-film nodes to r = 0
+        dp_known = np.where(~full & free, pcav - p, 0.0)
+        dr_known = np.where(full & free, -r, 0.0) if jfo else np.zeros(N)
+        rhs = -R - Jp @ dp_known - (Jr @ dr_known if jfo else 0.0)
+        M = _select_columns(Jp, Jr, full) if jfo else Jp
+        if jfo:
+            idx = np.flatnonzero(free)
+        else:
+            idx = np.flatnonzero(free & full)
+        symmetric = prob.linear and not jfo
+        Mred = M[idx][:, idx]
+        z = np.zeros(N)
+        if idx.size:
+            z[idx] = prob.solve_linear(Mred, rhs[idx], symmetric)
+        if not np.all(np.isfinite(z)):
+            raise ConvergenceError(
+                f"Reynolds Newton iteration {it}: the linear solve produced non-finite values "
+                "(singular Jacobian: check boundary conditions and the gap)"
+            )
+        dp = dp_known + np.where(full & free, z, 0.0)
+        dr = dr_known + (np.where(~full & free, z, 0.0) if jfo else 0.0)
+        # damped update for nonlinear laws (simple backtracking on ||R||)
+        step = 1.0
+        p_new, r_new = p + dp, r + dr
+        if not prob.linear and not complementarity:
+            for _ in range(8):
+                R_try = prob.assemble(p + step * dp, r, with_void=False)[0]
+                if np.linalg.norm(R_try[free]) <= max(np.linalg.norm(R[free]), 1e-300) * (1 - 1e-4 * step) or step < 0.02:
+                    break
+                step *= 0.5
+            p_new = p + step * dp
+        p, r = p_new, r_new
+        R, Jp, Jr = prob.assemble(p, r, with_void=jfo)
+        if complementarity:
+            res_mask = free & (full if not jfo else np.ones(N, dtype=bool))
+        else:
+            res_mask = free
+        rnorm = np.linalg.norm(R[res_mask]) / ref
+        pscale = max(np.max(np.abs(p - film.ambient_pressure)), 1e-300)
+        dnorm = step * np.max(np.abs(dp)) / pscale
+        history.append((rnorm, dnorm, int(np.sum(~full))))
+        log.debug("Reynolds iteration %d: |R|/|R0| = %.3e, |dp|/|p| = %.3e, cavitated nodes %d", it, rnorm, dnorm, np.sum(~full))
+        same_set = (not complementarity) or (prev_full is not None and np.array_equal(full, prev_full))
+        prev_full = full.copy()
+        if complementarity:
+            # is the complementarity system itself satisfied at the new iterate?
+            if jfo:
+                feasible = np.all(p[free] >= pcav - 1e-9 * pscale) and np.all(r[free] >= -1e-9)
+            else:
+                feasible = np.all(p[free] >= pcav - 1e-9 * pscale) and np.all(R[free & ~full] >= -1e-9 * ref)
+        else:
+            feasible = True
+        if same_set and feasible and rnorm <= film.options.rtol * 10 and dnorm <= max(film.options.rtol, 1e-8):
+            converged = True
+            break
+        if prob.linear and not complementarity and rnorm <= film.options.rtol * 10:
+            converged = True
+            break
+    if not converged:
+        raise ConvergenceError(
+            f"Reynolds solve ({model} cavitation) did not converge in {film.options.max_iter} "
+            f"iterations: |R|/|R0| = {history[-1][0]:.3e}, |dp|/|p| = {history[-1][1]:.3e} "
+            f"(solver.max_iter, solver.rtol; a very thin film or extreme pressures make it harder)"
+        )
+    if model == "half_sommerfeld":
+        p = np.maximum(p, pcav)
+        full = (p > pcav) | fixed
+    theta = 1.0 - r
+    info = dict(
+        iterations=len(history),
+        history=history,
+        wall_time=time.perf_counter() - t0,
+        linear_solver=getattr(prob, "linear_solver_used", "none"),
+        dofs=N,
+    )
+    log.info(
+        "Reynolds %s/%s: %d dofs, %d iterations, %.3f s, %s",
+        film.element, model, N, info["iterations"], info["wall_time"], info["linear_solver"],
+    )
+    return FilmSolution(film=film, problem=prob, pressure_dofs=p, fluid_fraction_dofs=theta, full_film=full, info=info)
+
+
+def film_coefficients(solution) -> tuple[list[str], np.ndarray, np.ndarray]:
+    """Linearised stiffness K and damping C of the film about ``solution``.
+
+    Returns ``(names, K, C)`` with ``names`` the gap's modes (e.g. ``["x", "y"]``
+    for a journal, ``["h0"]`` for planar films), ``K[i, j] = -dF_i/dq_j`` [N/m]
+    and ``C[i, j] = -dF_i/d(dq_j/dt)`` [N s/m], from the perturbation equations
+    (one linear solve with the converged Jacobian per mode and kind).  The
+    active set (cavitated nodes) is frozen: cavitated pressures do not vary.
+    """
+    prob: _Problem = solution.problem
+    film = prob.film
+    jfo = film.cavitation.model == "jfo"
+    p, r = solution.pressure_dofs, 1.0 - solution.fluid_fraction_dofs
+    _, Jp, Jr = prob.assemble(p, r, with_void=jfo)
+    c = prob.coefficients(p, r)
+    full = solution.full_film
+    M = _select_columns(Jp, Jr, full) if jfo else Jp
+    # half-Sommerfeld: p = max(p_full, p_cav), so dp = dp_full masked to the
+    # positive zone (solve on every free node); complementarity models freeze
+    # the active set.
+    gumbel = film.cavitation.model == "half_sommerfeld"
+    idx = np.flatnonzero(prob.free) if (jfo or gumbel) else np.flatnonzero(prob.free & full)
+    Mred = M[idx][:, idx].tocsc()
+    lu = spla.splu(Mred)
+    names = list(prob.modes)
+    n = len(names)
+    K = np.zeros((n, n))
+    C = np.zeros((n, n))
+    b = prob.basis
+    h, um, theta = prob.h, prob.um, 1.0 - c["r"]
+    rho, eta = c["rho"], c["eta"]
+    dk_dh = rho * 3.0 * h**2 / (12.0 * eta)
+    for j, name in enumerate(names):
+        g = prob.modes[name]
+        dR_dq = asm(_flux_load, b, f=dk_dh * g * c["gp"] - rho * g * theta * um)
+        if jfo:
+            dR_dq = dR_dq - asm(_flux_load, b, f=prob.tau * rho * g * dot(um, c["gr"]) * um)
+        dR_dqdot = asm(_source_load, b, g=rho * theta * g)
+        for kind, rhs, out in (("K", dR_dq, K), ("C", dR_dqdot, C)):
+            z = np.zeros(prob.N)
+            z[idx] = lu.solve(-rhs[idx])
+            dp = np.where(full & prob.free, z, 0.0)
+            dpq = b.interpolate(dp).value
+            for i, name_i in enumerate(names):
+                out[i, j] = -float(np.sum(dpq * prob.modes[name_i] * b.dx))
+    return names, K, C
