@@ -280,7 +280,7 @@ class _Problem:
         self.basis = make_basis(film.mesh, film.element)
         b = self.basis
         self.dim = film.mesh.p.shape[0]
-        self.x = b.global_coordinates().value  # (dim, nel, nqp)
+        self.x = np.asarray(b.global_coordinates())  # (dim, nel, nqp)
         self.h = np.asarray(film.gap(self.x), dtype=float)
         if not np.all(np.isfinite(self.h)):
             raise InputError("gap h is not finite everywhere on the film domain")
@@ -355,12 +355,12 @@ class _Problem:
         """Quadrature-point fields for the current iterate."""
         lub = self.film.lubricant
         pf = self.basis.interpolate(p)
-        pq = pf.value - self.film.ambient_pressure
+        pq = np.asarray(pf) - self.film.ambient_pressure
         gp = pf.grad
         eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
         rho, drho = lub.density(pq), lub.density.derivative(pq)
         rf = self.basis.interpolate(r)
-        return dict(pq=pq, gp=gp, eta=eta, deta=deta, rho=rho, drho=drho, r=rf.value, gr=rf.grad)
+        return dict(pq=pq, gp=gp, eta=eta, deta=deta, rho=rho, drho=drho, r=np.asarray(rf), gr=rf.grad)
 
     def assemble(self, p, r, with_void: bool):
         """Residual R, dR/dp and (if ``with_void``) dR/dr at (p, r).
@@ -425,7 +425,16 @@ def solve(film: Film, initial=None) -> "FilmSolution":
     """Solve ``film``; return a :class:`~lubrication.solution.FilmSolution`.
 
     ``initial`` may be a previous solution of a film on the same mesh and
-    element (continuation in a sweep).
+    element (continuation in a sweep): its pressure, fluid fraction and active
+    set start the iteration.
+
+    Well-posedness of JFO: the cavitated fraction is transported along the
+    mean velocity, so a JFO film needs lubricant supply -- a boundary whose
+    pressure is above the cavitation pressure, or an inflow boundary.  A
+    periodic film whose only boundaries sit *at* the cavitation pressure admits
+    starved solutions (theta h constant, p = p_cav everywhere) besides the
+    flooded one; the active-set iteration then cycles and stops with
+    :class:`ConvergenceError`.
     """
     from .solution import FilmSolution
 
@@ -451,7 +460,7 @@ def solve(film: Film, initial=None) -> "FilmSolution":
     converged = False
     prev_full = None
     for it in range(1, film.options.max_iter + 1):
-        if complementarity and it > 1:
+        if complementarity and (it > 1 or initial is not None):
             if jfo:
                 cscale = np.abs(Jr.diagonal()) / np.maximum(np.abs(Jp.diagonal()), 1e-300)
                 cscale = np.where(cscale > 0, cscale, 1.0)
@@ -486,13 +495,21 @@ def solve(film: Film, initial=None) -> "FilmSolution":
         p_new, r_new = p + dp, r + dr
         if not prob.linear and not complementarity:
             for _ in range(8):
-                R_try = prob.assemble(p + step * dp, r, with_void=False)[0]
+                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                    R_try = prob.assemble(p + step * dp, r, with_void=False)[0]
                 if np.linalg.norm(R_try[free]) <= max(np.linalg.norm(R[free]), 1e-300) * (1 - 1e-4 * step) or step < 0.02:
                     break
                 step *= 0.5
             p_new = p + step * dp
         p, r = p_new, r_new
-        R, Jp, Jr = prob.assemble(p, r, with_void=jfo)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            R, Jp, Jr = prob.assemble(p, r, with_void=jfo)
+        if not (np.all(np.isfinite(R)) and np.all(np.isfinite(p))):
+            raise ConvergenceError(
+                f"Reynolds Newton iteration {it}: the pressure diverged (non-finite residual; "
+                f"max pressure {np.nanmax(np.abs(p)):.3e} Pa). For pressure-dependent viscosity the "
+                "film may have no solution at this load and speed (e.g. beyond the Barus pole)"
+            )
         if complementarity:
             res_mask = free & (full if not jfo else np.ones(N, dtype=bool))
         else:
@@ -532,7 +549,7 @@ def solve(film: Film, initial=None) -> "FilmSolution":
         iterations=len(history),
         history=history,
         wall_time=time.perf_counter() - t0,
-        linear_solver=getattr(prob, "linear_solver_used", "none"),
+        linear_solver=getattr(prob, "linear_solver_used", "direct (SuperLU)"),
         dofs=N,
     )
     log.info(
@@ -584,7 +601,7 @@ def film_coefficients(solution) -> tuple[list[str], np.ndarray, np.ndarray]:
             z = np.zeros(prob.N)
             z[idx] = lu.solve(-rhs[idx])
             dp = np.where(full & prob.free, z, 0.0)
-            dpq = b.interpolate(dp).value
+            dpq = np.asarray(b.interpolate(dp))
             for i, name_i in enumerate(names):
                 out[i, j] = -float(np.sum(dpq * prob.modes[name_i] * b.dx))
     return names, K, C

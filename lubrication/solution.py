@@ -79,7 +79,7 @@ class FilmSolution:
         return np.asarray(self.film.gap(self.basis.doflocs), dtype=float)
 
     def _gauge_q(self):
-        return self.basis.interpolate(self.pressure_dofs).value - self.film.ambient_pressure
+        return np.asarray(self.basis.interpolate(self.pressure_dofs)) - self.film.ambient_pressure
 
     def integrate(self, values_q) -> float:
         """Integral over the film of an array given at quadrature points."""
@@ -123,8 +123,8 @@ class FilmSolution:
     def _shear(self):
         prob = self.problem
         pf = self.basis.interpolate(self.pressure_dofs)
-        eta = self.film.lubricant.viscosity(pf.value - self.film.ambient_pressure)
-        theta = self.basis.interpolate(self.fluid_fraction_dofs).value
+        eta = self.film.lubricant.viscosity(np.asarray(pf) - self.film.ambient_pressure)
+        theta = np.asarray(self.basis.interpolate(self.fluid_fraction_dofs))
         couette = theta * eta * (prob.u_upper - prob.u_lower) / prob.h
         poiseuille = -0.5 * prob.h * pf.grad
         return poiseuille, couette
@@ -146,11 +146,11 @@ class FilmSolution:
         if boundary not in names:
             raise InputError(f"boundary = {boundary!r} is unknown; the mesh has {sorted(names)}")
         fb = skfem.FacetBasis(mesh, self.basis.elem, facets=names[boundary], intorder=self.basis.intorder if hasattr(self.basis, "intorder") else 4)
-        x = fb.global_coordinates().value
+        x = np.asarray(fb.global_coordinates())
         pf = fb.interpolate(self.pressure_dofs)
-        theta = fb.interpolate(self.fluid_fraction_dofs).value
+        theta = np.asarray(fb.interpolate(self.fluid_fraction_dofs))
         h = np.asarray(self.film.gap(x), dtype=float)
-        eta = self.film.lubricant.viscosity(pf.value - self.film.ambient_pressure)
+        eta = self.film.lubricant.viscosity(np.asarray(pf) - self.film.ambient_pressure)
         from .reynolds import _as_vector_field
 
         dim = self.problem.dim
@@ -187,7 +187,7 @@ class FilmSolution:
             "Load [N]": self.load,
             "Maximum pressure [Pa]": self.p_max,
             "Minimum film thickness [m]": self.h_min,
-            "Cavitated area fraction [-]": float(1.0 - self.integrate(self.basis.interpolate(self.fluid_fraction_dofs).value) / self.integrate(np.ones_like(self.problem.h))),
+            "Cavitated area fraction [-]": float(1.0 - self.integrate(np.asarray(self.basis.interpolate(self.fluid_fraction_dofs))) / self.integrate(np.ones_like(self.problem.h))),
             "Newton iterations [-]": int(self.info.get("iterations", 0)),
             "Degrees of freedom [-]": int(self.info.get("dofs", 0)),
             "Solve time [s]": float(self.info.get("wall_time", 0.0)),
