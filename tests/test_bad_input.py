@@ -1,0 +1,85 @@
+"""Bad input and failing solves give clear errors, never NaN fields (library level).
+
+The CLI-level messages and exit codes are pinned in test_cli.py.
+"""
+import numpy as np
+import pytest
+
+from lubrication import (
+    Cavitation, ConvergenceError, Film, InclinedSlider, InputError, JournalBearing, Lubricant,
+    SolverOptions, SpherePlane, FunctionGap, Barus,
+)
+from lubrication import mesh
+
+LUB = Lubricant.newtonian(0.01)
+
+
+def test_zero_gap_is_rejected_with_location():
+    gap = FunctionGap(lambda x: 1e-6 * (x[0] - 0.005) / 0.005)  # h = 0 at x = 5 mm, < 0 before
+    with pytest.raises(InputError, match=r"gap h = .* m at x = .*must be > 0"):
+        Film(mesh.interval(0, 0.01, 20), gap, LUB, velocity_lower=(1.0,)).solve()
+
+
+def test_negative_geometry_is_rejected():
+    with pytest.raises(InputError, match="radial clearance"):
+        JournalBearing(0.02, -1e-5)
+    with pytest.raises(InputError, match="eccentricity ratio = 1 must be < 1"):
+        JournalBearing.from_ratio(0.02, 1e-5, 1.0)
+    with pytest.raises(InputError, match="h_in"):
+        InclinedSlider(0.0, 1e-6, 0.01)
+
+
+def test_no_dirichlet_boundary_is_rejected():
+    film = Film(mesh.interval(0, 0.01, 20), InclinedSlider(2e-6, 1e-6, 0.01), LUB,
+                velocity_lower=(1.0,), dirichlet={})
+    with pytest.raises(InputError, match="no Dirichlet boundary"):
+        film.solve()
+
+
+def test_unknown_options_suggest_close_matches():
+    with pytest.raises(InputError, match="did you mean 'reynolds'"):
+        Cavitation("reynold")
+    with pytest.raises(InputError, match="film.element"):
+        Film(mesh.interval(0, 1, 2), InclinedSlider(2e-6, 1e-6, 1), LUB, element="P3")
+    with pytest.raises(InputError, match="boundary"):
+        Film(mesh.interval(0, 1, 2), InclinedSlider(2e-6, 1e-6, 1), LUB, dirichlet={"lft": 0.0}).solve()
+
+
+def test_too_few_iterations_raise_convergence_error():
+    """The Fowell pocket needs 5 active-set iterations at U = 1 m/s; allow 2."""
+    gap = __import__("lubrication").PocketedSlider(1.05e-6, 1.0e-6, 0.01, 0.002, 0.005, 1e-6)
+    film = Film(mesh.interval(0, 0.01, 100), gap, LUB, velocity_lower=(1.0,),
+                dirichlet={"left": 1e5, "right": 1e5}, cavitation=Cavitation("jfo"),
+                options=SolverOptions(max_iter=2))
+    with pytest.raises(ConvergenceError, match="did not converge in 2 iterations"):
+        film.solve()
+    assert film.with_(options=SolverOptions()).solve().info["iterations"] <= 8
+
+
+def test_jfo_without_supply_is_reported_not_silently_wrong():
+    """Where JFO stops working: a periodic journal whose only boundaries sit at the
+    cavitation pressure has starved solutions besides the flooded one (the
+    cavitated fraction is only transported, never supplied).  The solver must
+    stop with a ConvergenceError rather than return one of them; with a supply
+    pressure above p_cav the same film converges (9 iterations measured)."""
+    R, c, L = 0.025, 50e-6, 0.025
+    m = mesh.rectangle(np.linspace(0, 2 * np.pi * R, 49), np.linspace(-L / 2, L / 2, 9), "quad", periodic_x=True)
+    gap = JournalBearing.from_ratio(R, c, 0.6, attitude_angle=0.3)
+    base = Film(m, gap, Lubricant.newtonian(0.02), velocity_upper=(300.0 * R, 0.0), velocity_lower=(0.0, 0.0),
+                cavitation=Cavitation("jfo", 0.0), options=SolverOptions(max_iter=40))
+    with pytest.raises(ConvergenceError):
+        base.with_(dirichlet={"bottom": 0.0, "top": 0.0}).solve()
+    s = base.with_(dirichlet={"bottom": 1e5, "top": 1e5}).solve()
+    assert s.info["iterations"] <= 15
+    assert np.all(s.pressure >= -1e-6) and 0.0 <= s.fluid_fraction.min() < 1.0
+    # the flooded JFO film carries a load close to (and below) the Reynolds-condition film
+    s_rey = base.with_(dirichlet={"bottom": 1e5, "top": 1e5}, cavitation=Cavitation("reynolds")).solve()
+    ratio = np.hypot(*s.mode_forces.values()) / np.hypot(*s_rey.mode_forces.values())
+    assert 0.9 < ratio < 1.1
+
+
+def test_pressure_divergence_is_reported_for_barus_pole():
+    film = Film(mesh.interval(0, 0.02, 40), InclinedSlider(2e-6, 1e-6, 0.02), Lubricant(Barus(0.01, 1e-6)),
+                velocity_lower=(2.0,), options=SolverOptions(max_iter=30))
+    with pytest.raises(ConvergenceError):
+        film.solve()
