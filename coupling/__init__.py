@@ -1,0 +1,30 @@
+"""coupling: what joins films and dynamics -- case files, scenes, the CLI, run outputs.
+
+=================  ==========================================================
+module             responsibility
+=================  ==========================================================
+``units``          quantities at the input boundary: ``"50 um"`` -> 5e-05 m,
+                   dimension checks ("has units of pressure, expected length")
+``config``         case files: TOML -> ``[smoke]`` and ``--set`` merged ->
+                   pydantic validation (unknown keys with "did you mean",
+                   one-line errors naming key, value and what is allowed) ->
+                   SI model; ``case.resolved.toml``
+``film_scene``     film scene: case -> mesh, gap, lubricant -> ``Film`` ->
+                   solve -> summary (units in names), ``.vtu``, ``.png``
+``outputs``        atomic writers (temporary file + rename) for run outputs
+``cli``            ``lubedyn run | validate | cases | info``; exit codes
+                   0 ok, 2 input error, 1 failed solve
+=================  ==========================================================
+
+Planned: film maps (sweeps, fits, storage) and the dynamics scenes of papers
+A and B.  ``coupling`` imports ``lubrication`` (and later ``dynamics``); never
+the other way round.
+"""
+from __future__ import annotations
+
+try:
+    from importlib.metadata import PackageNotFoundError, version
+
+    __version__ = version("lubedyn")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    __version__ = "0+unknown"

@@ -70,6 +70,7 @@ import scipy.sparse.linalg as spla
 import skfem
 from skfem import BilinearForm, LinearForm, asm
 from skfem.helpers import dot, grad
+from skfem.mesh.mesh_dg import MeshDG
 
 from .errors import ConvergenceError, InputError, unknown_choice
 from .gaps import Gap
@@ -337,9 +338,15 @@ class _Problem:
                 if name not in names:
                     raise unknown_choice("film.dirichlet boundary", name, list(names))
                 values[b.get_dofs(names[name]).all()] = float(value)
+        # on a periodic mesh (periodic in x, lubrication.mesh.rectangle) the seam
+        # dofs sit at x = x_max: measure x distances modulo the period
+        period = float(np.ptp(film.mesh.p[0])) if isinstance(film.mesh, MeshDG) else None
         for point, value in film.pressure_points:
             point = np.atleast_1d(np.asarray(point, dtype=float))
-            d = np.linalg.norm(b.doflocs - point[:, None], axis=0)
+            diff = b.doflocs - point[:, None]
+            if period:
+                diff[0] = (diff[0] + 0.5 * period) % period - 0.5 * period
+            d = np.linalg.norm(diff, axis=0)
             values[int(np.argmin(d))] = float(value)
         self.fixed = ~np.isnan(values)
         if not np.any(self.fixed):

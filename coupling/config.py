@@ -1,0 +1,727 @@
+"""Case files: TOML -> validated model in SI -> (scene builders).
+
+A case is a TOML file with a ``scene`` kind and one table per concern.  This
+module is the *only* place where raw user input is read: it merges the
+``[smoke]`` table (``--smoke``) and ``--set key=value`` overrides into the raw
+mapping, checks the scene kind, validates the result with pydantic (unknown
+keys forbidden, with close matches), converts every quantity to SI once
+(:mod:`coupling.units`) and turns any mistake into a one-line
+:class:`CaseError` naming the dotted key, the value and what is allowed.
+
+Film case layout (``scene = "film"``; every quantity: a number in SI or a
+string with units)::
+
+    scene = "film"
+    description = "one line shown by `lubedyn cases`"
+    [gap]        type = inclined_slider | step_slider | pocketed_slider | journal |
+                        sphere_plane | sphere_sphere | cylinder_plane | ellipsoid_plane
+                 + that gap's parameters (see the ``*Gap`` models below)
+    [mesh]       domain = auto | interval | rectangle | disk | journal
+                 x, y = [lo, hi], nx, ny, cell = quad | tri, radius, refinements,
+                 element = P1 | P2
+    [motion]     velocity_lower, velocity_upper (number = x component, or [ux, uy]),
+                 speed (journal, e.g. "3000 rpm"), squeeze (dh/dt) or
+                 approach_velocity (= -squeeze), mode_velocities = {x = .., y = ..}
+    [lubricant.viscosity]  law = constant | barus | roelands, eta0, alpha, z
+    [lubricant.density]    law = incompressible | dowson_higginson, rho0, a, b
+    [cavitation] model = none | half_sommerfeld | reynolds | jfo, pressure
+    [boundary]   ambient, pressures = {name = p}, sealed = [names]
+    [solver]     rtol, max_iter, linear_solver = auto | direct | amg, amg_tol
+    [output]     write = ["vtu", "png"], film_coefficients = false
+    [smoke]      a partial case merged over this one by ``--smoke``
+
+Boundary names: interval ``left right``; rectangle ``left right bottom top``;
+journal (periodic in theta) ``bottom top``; disk ``edge``.  A boundary not
+listed in ``pressures`` is held at ``ambient``; one listed in ``sealed`` has
+no flow through it.
+
+>>> case = load_case_text('scene = "film"\\n[gap]\\ntype = "sphere_plane"\\nradius = "5 mm"\\n'
+...                       'h0 = "2 um"\\n[mesh]\\nradius = "1 mm"\\n[lubricant]\\nviscosity = "0.1 Pa s"')
+>>> case.gap.h0, case.mesh.domain
+(2e-06, 'disk')
+"""
+from __future__ import annotations
+
+import copy
+import difflib
+import math
+import re
+import tomllib
+import types
+import typing
+from pathlib import Path
+from typing import Annotated, Any, Literal, Union
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, model_validator
+from pydantic_core import PydanticCustomError
+
+from lubrication.errors import InputError
+
+from .units import UnitError, parse_quantity, si_unit
+
+SCENES = ("film",)
+PLANNED_SCENES = ("map", "ehl", "dynamics")
+CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
+
+
+class CaseError(InputError):
+    """A case file mistake: one line naming the key, the value and what is allowed."""
+
+
+# ---------------------------------------------------------------------------
+# quantities
+
+
+def _bounds_text(unit, gt, ge, lt, le) -> str:
+    unit = "" if unit == "-" else f" {unit}"
+    lo = f"({gt:g}" if gt is not None else (f"[{ge:g}" if ge is not None else None)
+    hi = f"{lt:g})" if lt is not None else (f"{le:g}]" if le is not None else None)
+    if lo and hi:
+        return f"must be in {lo}, {hi}{unit}"
+    if lo:
+        return f"must be {'>' if gt is not None else '>='} {lo[1:]}{unit}"
+    return f"must be {'<' if lt is not None else '<='} {hi[:-1]}{unit}"
+
+
+class Dimension(str):
+    """Marker in a quantity's metadata: its dimension (for messages)."""
+
+
+def Q(dimension: str, *, gt=None, ge=None, lt=None, le=None, why: str = ""):
+    """An annotated float: a quantity of ``dimension`` converted to SI, range-checked."""
+
+    def convert(value):
+        try:
+            x = parse_quantity(value, dimension)
+        except UnitError as exc:
+            raise PydanticCustomError("quantity", "{text}", {"text": str(exc)}) from None
+        if not math.isfinite(x):
+            raise PydanticCustomError("quantity", "{text}", {"text": "must be finite"})
+        bad = (gt is not None and not x > gt) or (ge is not None and not x >= ge) or (
+            lt is not None and not x < lt) or (le is not None and not x <= le)
+        if bad:
+            text = _bounds_text(si_unit(dimension), gt, ge, lt, le) + (f" ({why})" if why else "")
+            raise PydanticCustomError("quantity", "{text}", {"text": text})
+        return x
+
+    return Annotated[float, BeforeValidator(convert), Dimension(dimension)]
+
+
+def _listify(value):
+    return value if isinstance(value, list) else [value]
+
+
+Length = Q("length")
+PositiveLength = Q("length", gt=0)
+Pressure = Q("pressure")
+Velocity = Q("velocity")
+VelocityVector = Annotated[list[Velocity], BeforeValidator(_listify)]
+Extent = Annotated[list[Length], Field(min_length=2, max_length=2)]
+PositiveInt = Annotated[int, Field(strict=True, ge=1)]
+
+
+def rule(key: str, value, text: str) -> PydanticCustomError:
+    """A cross-field error on ``key`` (relative to the model raising it)."""
+    return PydanticCustomError("case_rule", "{text}", {"key": key, "value": value, "text": text})
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", validate_default=True)
+
+
+# ---------------------------------------------------------------------------
+# gaps
+
+
+class InclinedSliderGap(_Model):
+    """Plane inclined slider h_in -> h_out over [0, length] (1-D, or 2-D with mesh.y)."""
+
+    type: Literal["inclined_slider"]
+    h_in: PositiveLength
+    h_out: PositiveLength
+    length: PositiveLength
+
+
+class StepSliderGap(_Model):
+    """Rayleigh step: h_in on [0, x_step), h_out on [x_step, length]."""
+
+    type: Literal["step_slider"]
+    h_in: PositiveLength
+    h_out: PositiveLength
+    x_step: PositiveLength
+    length: PositiveLength
+
+    @model_validator(mode="after")
+    def _step_inside(self):
+        if not self.x_step < self.length:
+            raise rule("x_step", self.x_step, f"must be < length = {self.length:g} m")
+        return self
+
+
+class PocketedSliderGap(_Model):
+    """Linear slider with a pocket of ``depth`` on [pocket_start, pocket_end]."""
+
+    type: Literal["pocketed_slider"]
+    h_in: PositiveLength
+    h_out: PositiveLength
+    length: PositiveLength
+    pocket_start: Q("length", ge=0)
+    pocket_end: PositiveLength
+    depth: Length
+
+    @model_validator(mode="after")
+    def _pocket_inside(self):
+        if not self.pocket_start < self.pocket_end:
+            raise rule("pocket_end", self.pocket_end, f"must be > pocket_start = {self.pocket_start:g} m")
+        if not self.pocket_end <= self.length:
+            raise rule("pocket_end", self.pocket_end, f"must be <= length = {self.length:g} m")
+        return self
+
+
+class JournalGap(_Model):
+    """Plain journal bearing; eccentricity as ratio + attitude angle or as (x, y)."""
+
+    type: Literal["journal"]
+    radius: PositiveLength
+    clearance: PositiveLength
+    length: PositiveLength
+    eccentricity_ratio: Q("dimensionless", ge=0, lt=1, why="the journal would touch the bearing") | None = None
+    attitude_angle: Q("angle") | None = None
+    eccentricity_x: Length | None = None
+    eccentricity_y: Length | None = None
+
+    @model_validator(mode="after")
+    def _eccentricity(self):
+        by_ratio = self.eccentricity_ratio is not None or self.attitude_angle is not None
+        by_xy = self.eccentricity_x is not None or self.eccentricity_y is not None
+        if by_ratio and by_xy:
+            raise rule("eccentricity_x", self.eccentricity_x if self.eccentricity_x is not None else self.eccentricity_y,
+                       "cannot be combined with eccentricity_ratio/attitude_angle; give one or the other")
+        if by_xy:
+            ex, ey = self.eccentricity_x or 0.0, self.eccentricity_y or 0.0
+            self.eccentricity_x, self.eccentricity_y = ex, ey
+            eps = math.hypot(ex, ey) / self.clearance
+            if eps >= 1.0:
+                raise rule("eccentricity_x", ex, f"and eccentricity_y = {ey:g} give an eccentricity ratio "
+                           f"{eps:.4g}; it must be < 1 (the journal would touch the bearing)")
+        else:
+            self.eccentricity_ratio = self.eccentricity_ratio or 0.0
+            self.attitude_angle = self.attitude_angle or 0.0
+        return self
+
+
+class SpherePlaneGap(_Model):
+    type: Literal["sphere_plane"]
+    radius: PositiveLength
+    h0: PositiveLength
+    exact: bool = False
+
+
+class SphereSphereGap(_Model):
+    type: Literal["sphere_sphere"]
+    radius1: PositiveLength
+    radius2: PositiveLength | None = None
+    h0: PositiveLength
+    exact: bool = False
+
+    @model_validator(mode="after")
+    def _equal_balls(self):
+        if self.radius2 is None:
+            self.radius2 = self.radius1
+        return self
+
+
+class CylinderPlaneGap(_Model):
+    type: Literal["cylinder_plane"]
+    radius: PositiveLength
+    h0: PositiveLength
+
+
+class EllipsoidPlaneGap(_Model):
+    type: Literal["ellipsoid_plane"]
+    radius_x: PositiveLength
+    radius_y: PositiveLength
+    h0: PositiveLength
+
+
+GapModel = Annotated[
+    Union[InclinedSliderGap, StepSliderGap, PocketedSliderGap, JournalGap, SpherePlaneGap,
+          SphereSphereGap, CylinderPlaneGap, EllipsoidPlaneGap],
+    Field(discriminator="type"),
+]
+SLIDERS = ("inclined_slider", "step_slider", "pocketed_slider")
+ROUND = ("sphere_plane", "sphere_sphere", "ellipsoid_plane")
+
+# ---------------------------------------------------------------------------
+# the other tables
+
+
+class MeshModel(_Model):
+    """Domain and discretisation.  ``domain = "auto"``: sliders -> interval
+    [0, length] (rectangle when ``y`` is given), journal -> journal (periodic
+    in theta, [0, 2 pi R) x [-L/2, L/2]), spheres/ellipsoid -> disk of ``radius``,
+    cylinder -> interval ``x``."""
+
+    domain: Literal["auto", "interval", "rectangle", "disk", "journal"] = "auto"
+    x: Extent | None = None
+    y: Extent | None = None
+    nx: PositiveInt = 100
+    ny: PositiveInt = 20
+    cell: Literal["quad", "tri"] = "quad"
+    radius: PositiveLength | None = None
+    refinements: Annotated[int, Field(strict=True, ge=0, le=8)] = 4
+    element: Literal["P1", "P2"] = "P1"
+
+
+class MotionModel(_Model):
+    velocity_lower: VelocityVector = [0.0]
+    velocity_upper: VelocityVector | None = None
+    speed: Q("angular velocity") | None = None
+    squeeze: Velocity | None = None
+    approach_velocity: Velocity | None = None
+    mode_velocities: dict[str, Velocity] = {}
+
+    @model_validator(mode="after")
+    def _exclusive(self):
+        if self.approach_velocity is not None:
+            if self.squeeze is not None:
+                raise rule("approach_velocity", self.approach_velocity,
+                           "cannot be combined with squeeze (squeeze = -approach_velocity); give one")
+            self.squeeze, self.approach_velocity = -self.approach_velocity, None
+        if self.squeeze is None:
+            self.squeeze = 0.0
+        if self.speed is not None and self.velocity_upper is not None:
+            raise rule("speed", self.speed, "cannot be combined with velocity_upper (speed sets the journal surface velocity)")
+        return self
+
+
+class ViscosityModel(_Model):
+    """constant: eta0; barus: eta0, alpha; roelands: eta0 and one of alpha, z."""
+
+    law: Literal["constant", "barus", "roelands"] = "constant"
+    eta0: Q("dynamic viscosity", gt=0)
+    alpha: Q("inverse pressure", ge=0) | None = None
+    z: Q("dimensionless", gt=0) | None = None
+
+    @model_validator(mode="after")
+    def _law_keys(self):
+        if self.law == "constant":
+            for key in ("alpha", "z"):
+                if getattr(self, key) is not None:
+                    raise rule(key, getattr(self, key), "is not used by law = 'constant'; use law = 'barus' or 'roelands'")
+        elif self.law == "barus":
+            if self.z is not None:
+                raise rule("z", self.z, "is not used by law = 'barus' (give alpha)")
+            if self.alpha is None:
+                raise rule("alpha", None, "is required by law = 'barus' (pressure-viscosity coefficient, e.g. '1.85e-8 m^2/N')")
+        elif (self.alpha is None) == (self.z is None):
+            raise rule("alpha", self.alpha, "law = 'roelands' needs exactly one of alpha or z")
+        return self
+
+
+def _viscosity_shorthand(value):
+    return value if isinstance(value, dict) else {"law": "constant", "eta0": value}
+
+
+class DensityModel(_Model):
+    """incompressible: rho0; dowson_higginson: rho0 (1 + a p / (1 + b p))."""
+
+    law: Literal["incompressible", "dowson_higginson"] = "incompressible"
+    rho0: Q("density", gt=0) = 1000.0
+    a: Q("inverse pressure", ge=0) | None = None
+    b: Q("inverse pressure", ge=0) | None = None
+
+    @model_validator(mode="after")
+    def _law_keys(self):
+        if self.law == "incompressible":
+            for key in ("a", "b"):
+                if getattr(self, key) is not None:
+                    raise rule(key, getattr(self, key), "is not used by law = 'incompressible'")
+        else:
+            self.a = 0.6e-9 if self.a is None else self.a
+            self.b = 1.7e-9 if self.b is None else self.b
+        return self
+
+
+class LubricantModel(_Model):
+    viscosity: Annotated[ViscosityModel, BeforeValidator(_viscosity_shorthand)]
+    density: DensityModel = Field(default_factory=DensityModel)
+
+
+class CavitationModel(_Model):
+    model: Literal["none", "half_sommerfeld", "reynolds", "jfo"] = "none"
+    pressure: Pressure = 0.0
+
+
+class BoundaryModel(_Model):
+    ambient: Pressure = 0.0
+    pressures: dict[str, Pressure] = {}
+    sealed: list[str] = []
+
+
+class SolverModel(_Model):
+    rtol: Q("dimensionless", gt=0, lt=1) = 1e-10
+    max_iter: PositiveInt = 60
+    linear_solver: Literal["auto", "direct", "amg"] = "auto"
+    amg_tol: Q("dimensionless", gt=0, lt=1) = 1e-10
+
+
+class OutputModel(_Model):
+    write: list[Literal["vtu", "png"]] = ["vtu", "png"]
+    film_coefficients: bool = False
+
+
+BOUNDARIES = {
+    "interval": ("left", "right"),
+    "rectangle": ("left", "right", "bottom", "top"),
+    "journal": ("bottom", "top"),
+    "disk": ("edge",),
+}
+
+
+class FilmCase(_Model):
+    """A film scene; after validation every value is SI and every default filled in."""
+
+    scene: Literal["film"]
+    description: str = ""
+    gap: GapModel
+    mesh: MeshModel = Field(default_factory=MeshModel)
+    motion: MotionModel = Field(default_factory=MotionModel)
+    lubricant: LubricantModel
+    cavitation: CavitationModel = Field(default_factory=CavitationModel)
+    boundary: BoundaryModel = Field(default_factory=BoundaryModel)
+    solver: SolverModel = Field(default_factory=SolverModel)
+    output: OutputModel = Field(default_factory=OutputModel)
+    smoke: dict[str, Any] | None = None
+
+    @property
+    def dim(self) -> int:
+        return 1 if self.mesh.domain == "interval" else 2
+
+    @model_validator(mode="after")
+    def _resolve(self):
+        self._resolve_domain()
+        self._resolve_motion()
+        self._check_boundaries()
+        return self
+
+    def _resolve_domain(self):
+        m, g = self.mesh, self.gap
+        if m.domain == "auto":
+            if g.type == "journal":
+                m.domain = "journal"
+            elif g.type in SLIDERS:
+                m.domain = "rectangle" if m.y is not None else "interval"
+            elif g.type in ROUND:
+                m.domain = "disk"
+            else:
+                m.domain = "rectangle" if m.y is not None else "interval"
+        if (m.domain == "journal") != (g.type == "journal"):
+            raise _root_rule("mesh.domain", m.domain, f"and gap.type = {g.type!r} do not go together: the journal "
+                             "domain (periodic in theta) is for gap.type = 'journal' only, and a journal needs it")
+        if m.domain in ("interval", "rectangle") and m.x is None:
+            if g.type in SLIDERS:
+                m.x = [0.0, g.length]
+            else:
+                raise _root_rule("mesh.x", None, f"is required for domain = {m.domain!r} with gap.type = {g.type!r} "
+                                 "(e.g. x = ['-1 mm', '1 mm'])")
+        if m.domain == "rectangle" and m.y is None:
+            raise _root_rule("mesh.y", None, "is required for domain = 'rectangle' (e.g. y = ['-5 mm', '5 mm'])")
+        for key in ("x", "y"):
+            ext = getattr(m, key)
+            if ext is not None and not ext[1] > ext[0]:
+                raise _root_rule(f"mesh.{key}", ext, "must be [lo, hi] with hi > lo")
+        if m.domain == "disk" and m.radius is None:
+            raise _root_rule("mesh.radius", None, "is required for domain = 'disk' (the film's outer radius, e.g. '0.3 mm')")
+        unused = {"interval": ("y", "radius"), "rectangle": ("radius",), "journal": ("x", "y", "radius"),
+                  "disk": ("x", "y")}[m.domain]
+        for key in unused:
+            if getattr(m, key) is not None:
+                raise _root_rule(f"mesh.{key}", getattr(m, key), f"is not used by domain = {m.domain!r}")
+
+    def _resolve_motion(self):
+        mo, dim = self.motion, self.dim
+        if mo.speed is not None and self.gap.type != "journal":
+            raise _root_rule("motion.speed", mo.speed, "is for gap.type = 'journal' only; give velocity_lower/velocity_upper")
+        for key in ("velocity_lower", "velocity_upper"):
+            vec = getattr(mo, key)
+            if vec is None:
+                continue
+            if len(vec) == 1 and dim == 2:
+                vec = [vec[0], 0.0]
+            if len(vec) != dim:
+                raise _root_rule(f"motion.{key}", vec, f"must have {dim} component(s) for a {dim}-D film "
+                                 f"(domain = {self.mesh.domain!r})")
+            setattr(mo, key, vec)
+        if mo.velocity_upper is None and mo.speed is None:
+            mo.velocity_upper = [0.0] * dim
+        modes = ("x", "y") if self.gap.type == "journal" else ("h0",)
+        for name in mo.mode_velocities:
+            if name not in modes:
+                raise _root_rule(f"motion.mode_velocities.{name}", mo.mode_velocities[name],
+                                 f"is not a mode of gap.type = {self.gap.type!r}; modes: {', '.join(modes)}"
+                                 + _did_you_mean(name, modes))
+
+    def _check_boundaries(self):
+        names = BOUNDARIES[self.mesh.domain]
+        b = self.boundary
+        for name, value in b.pressures.items():
+            if name not in names:
+                raise _root_rule(f"boundary.pressures.{name}", value, f"names no boundary of domain = "
+                                 f"{self.mesh.domain!r}; boundaries: {', '.join(names)}" + _did_you_mean(name, names))
+        for name in b.sealed:
+            if name not in names:
+                raise _root_rule("boundary.sealed", name, f"names no boundary of domain = {self.mesh.domain!r}; "
+                                 f"boundaries: {', '.join(names)}" + _did_you_mean(name, names))
+            if name in b.pressures:
+                raise _root_rule("boundary.sealed", name, "is also given a pressure in boundary.pressures")
+        if set(b.sealed) >= set(names):
+            raise _root_rule("boundary.sealed", b.sealed, "seals every boundary: the pressure would be undetermined")
+
+
+def _root_rule(key, value, text):
+    return PydanticCustomError("case_rule", "{text}", {"key": key, "value": value, "text": text, "root": True})
+
+
+def _did_you_mean(value, allowed) -> str:
+    allowed = [str(a) for a in allowed]
+    close = [a for a in allowed if a.lower() == str(value).lower()]
+    close = close or difflib.get_close_matches(str(value), allowed, n=3)
+    return f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+
+
+# ---------------------------------------------------------------------------
+# error messages
+
+
+def _unwrap(annotation):
+    """The model class(es) behind an annotation (through Annotated, Optional, list, dict)."""
+    origin = typing.get_origin(annotation)
+    if origin is Annotated:
+        return _unwrap(typing.get_args(annotation)[0])
+    if origin in (Union, types.UnionType):
+        found = []
+        for arg in typing.get_args(annotation):
+            sub = _unwrap(arg)
+            if isinstance(sub, tuple):
+                found.extend(sub)
+            elif sub is not None:
+                found.append(sub)
+        return tuple(found) if len(found) > 1 else (found[0] if found else None)
+    if origin in (list, dict):
+        return ("container", _unwrap(typing.get_args(annotation)[-1]))
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    return None
+
+
+def _metadata(annotation) -> list:
+    if typing.get_origin(annotation) is Annotated:
+        return list(annotation.__metadata__)
+    return []
+
+
+def _locate(root, loc):
+    """Walk ``loc`` from model ``root``: (model at the end or None, display path)."""
+    current, path = root, []
+    for part in loc:
+        if isinstance(current, tuple) and current and current[0] == "container":
+            path.append(f"[{part}]" if isinstance(part, int) else f".{part}")
+            current = current[1]
+            continue
+        if isinstance(current, tuple):  # a tagged union: this part is the tag
+            tagged = [m for m in current if part in typing.get_args(m.model_fields.get("type").annotation)]
+            current = tagged[0] if tagged else None
+            continue
+        if isinstance(part, int):
+            path.append(f"[{part}]")
+            current = None
+            continue
+        path.append(f".{part}" if path else str(part))
+        if isinstance(current, type) and issubclass(current, BaseModel) and part in current.model_fields:
+            current = _unwrap(current.model_fields[part].annotation)
+        else:
+            current = None
+    return current, "".join(path)
+
+
+def _show(value) -> str:
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, dict):
+        return "{table}"
+    return repr(value)
+
+
+def _expected_list(text: str) -> list[str]:
+    return re.findall(r"'([^']*)'", text)
+
+
+def format_error(error: dict, root=None) -> str:
+    """One line for one pydantic error dict."""
+    root = root or FilmCase
+    kind, loc, value, ctx = error["type"], error["loc"], error.get("input"), error.get("ctx") or {}
+    model, path = _locate(root, loc)
+    if kind == "case_rule":
+        key = ctx["key"] if ctx.get("root") or not path else f"{path}.{ctx['key']}"
+        shown = "" if ctx.get("value") is None else f" = {_show(ctx['value'])}"
+        return f"{key}{shown} {ctx['text']}"
+    if kind == "quantity":
+        return f"{path} = {_show(value)} {ctx['text']}"
+    if kind == "extra_forbidden":
+        parent, ppath = _locate(root, loc[:-1])
+        allowed = list(parent.model_fields) if isinstance(parent, type) else []
+        hint = _did_you_mean(loc[-1], allowed)
+        where = f" in [{ppath}]" if ppath else " at the top level"
+        return f"{path}: unknown key{where}{hint}" + (f" (allowed: {', '.join(allowed)})" if allowed else "")
+    if kind == "missing":
+        parent, _ = _locate(root, loc[:-1])
+        hint = ""
+        if isinstance(parent, type) and loc[-1] in parent.model_fields:
+            info = parent.model_fields[loc[-1]]
+            dims = [m for m in _metadata(info.annotation) + list(info.metadata) if isinstance(m, Dimension)]
+            if dims:
+                hint = f" ({dims[0]}: a number in {si_unit(dims[0])} or a string with units)"
+            elif typing.get_origin(info.annotation) is Literal:
+                hint = f" (one of {', '.join(map(repr, typing.get_args(info.annotation)))})"
+        return f"{path} is required{hint}"
+    if kind == "literal_error":
+        allowed = _expected_list(ctx.get("expected", ""))
+        return f"{path} = {_show(value)} is not allowed; choose one of {', '.join(map(repr, allowed))}" + _did_you_mean(value, allowed)
+    if kind == "union_tag_invalid":
+        allowed = _expected_list(ctx.get("expected_tags", ""))
+        return (f"{path}.type = {ctx.get('tag')!r} is not allowed; choose one of "
+                f"{', '.join(map(repr, allowed))}" + _did_you_mean(ctx.get("tag"), allowed))
+    if kind == "union_tag_not_found":
+        tags = [t for m in (model if isinstance(model, tuple) else ()) if isinstance(m, type)
+                for t in typing.get_args(m.model_fields["type"].annotation)]
+        return f"{path}.type is required; choose one of {', '.join(map(repr, tags))}"
+    if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
+        op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<", "less_than_equal": "<="}[kind]
+        bound = next(iter(ctx.values()))
+        return f"{path} = {_show(value)} must be {op} {bound}"
+    if kind in ("model_type", "model_attributes_type", "dict_type"):
+        return f"{path} = {_show(value)} must be a table"
+    if kind in ("too_short", "too_long"):
+        return f"{path} = {_show(value)} must have {ctx.get('min_length', ctx.get('max_length'))} items"
+    nice = {"int_type": "must be an integer", "int_from_float": "must be an integer", "int_parsing": "must be an integer",
+            "bool_type": "must be true or false", "bool_parsing": "must be true or false",
+            "string_type": "must be a string", "list_type": "must be a list", "float_type": "must be a number",
+            "float_parsing": "must be a number"}
+    return f"{path} = {_show(value)} {nice.get(kind, error['msg'])}"
+
+
+def format_validation_error(exc: ValidationError, root=None) -> str:
+    # an unknown key first: it is usually the misspelling behind a "required" error
+    errors = sorted(exc.errors(), key=lambda e: e["type"] != "extra_forbidden")
+    line = format_error(errors[0], root)
+    if len(errors) > 1:
+        line += f" (and {len(errors) - 1} more error{'s' if len(errors) > 2 else ''})"
+    return line
+
+
+# ---------------------------------------------------------------------------
+# loading
+
+
+def deep_merge(base: dict, over: dict) -> dict:
+    """``base`` updated recursively with ``over`` (a new dict)."""
+    out = copy.deepcopy(base)
+    for key, value in over.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = deep_merge(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
+
+
+def parse_override(text: str) -> tuple[list[str], Any]:
+    """``"mesh.nx=40"`` -> (["mesh", "nx"], 40); values are TOML, else strings."""
+    if "=" not in text:
+        raise CaseError(f"--set {text!r} must be KEY=VALUE, e.g. --set mesh.nx=40")
+    key, raw = (s.strip() for s in text.split("=", 1))
+    parts = key.split(".")
+    if not all(parts):
+        raise CaseError(f"--set {text!r}: {key!r} is not a dotted key")
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw
+    return parts, value
+
+
+def apply_overrides(raw: dict, overrides) -> dict:
+    out = copy.deepcopy(raw)
+    for text in overrides:
+        parts, value = parse_override(text)
+        node = out
+        for i, part in enumerate(parts[:-1]):
+            nxt = node.setdefault(part, {})
+            if not isinstance(nxt, dict):
+                raise CaseError(f"--set {text!r}: {'.'.join(parts[: i + 1])} = {_show(nxt)} is not a table")
+            node = nxt
+        node[parts[-1]] = value
+    return out
+
+
+def read_toml(path) -> dict:
+    path = Path(path)
+    if not path.is_file():
+        hint = ""
+        if (CASES_DIR / f"{path.stem}.toml").is_file() and path.suffix in ("", ".toml"):
+            hint = f"; the bundled case is {CASES_DIR / (path.stem + '.toml')}"
+        raise CaseError(f"case file {str(path)!r} not found{hint}")
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(f"{path}: invalid TOML: {' '.join(str(exc).split())}") from None
+    except UnicodeDecodeError:
+        raise CaseError(f"{path}: not a UTF-8 text file") from None
+
+
+def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> FilmCase:
+    """Merge the smoke table (if ``smoke``) and the overrides, then validate."""
+    if smoke and isinstance(raw.get("smoke"), dict):
+        raw = deep_merge(raw, raw["smoke"])
+    raw = apply_overrides(raw, overrides)
+    scene = raw.get("scene")
+    if scene is None:
+        raise CaseError(f"scene is required; choose one of {', '.join(map(repr, SCENES))}")
+    if scene in PLANNED_SCENES:
+        raise CaseError(f"scene = {scene!r} is not available yet (planned: {', '.join(PLANNED_SCENES)}); "
+                        f"this version runs scene = {', '.join(map(repr, SCENES))}")
+    if scene not in SCENES:
+        raise CaseError(f"scene = {_show(scene)} is not allowed; choose one of {', '.join(map(repr, SCENES))}"
+                        + _did_you_mean(scene, SCENES + PLANNED_SCENES))
+    try:
+        return FilmCase.model_validate(raw)
+    except ValidationError as exc:
+        raise CaseError(format_validation_error(exc)) from None
+
+
+def load_case(path, *, smoke: bool = False, overrides=()) -> FilmCase:
+    """Read, merge and validate a case file; raise :class:`CaseError` on any mistake."""
+    return validate_raw(read_toml(path), smoke=smoke, overrides=overrides)
+
+
+def load_case_text(text: str, **kwargs) -> FilmCase:
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(f"invalid TOML: {' '.join(str(exc).split())}") from None
+    return validate_raw(raw, **kwargs)
+
+
+def resolved_toml(case: FilmCase, header: str = "") -> str:
+    """The case with every default filled in, every quantity in SI, as TOML."""
+    import tomli_w
+
+    data = case.model_dump(exclude_none=True, exclude={"smoke"})
+    lines = [f"# {line}" if line else "#" for line in header.splitlines()]
+    lines.append("# Resolved case: every value in SI (m, s, kg, Pa, Pa s, m/s, rad/s, rad, 1/Pa, kg/m^3),")
+    lines.append("# every default filled in. It is itself a valid case file.")
+    return "\n".join(lines) + "\n\n" + tomli_w.dumps(data)
+
+
+def bundled_cases() -> list[Path]:
+    return sorted(CASES_DIR.glob("*.toml"))

@@ -1,0 +1,292 @@
+"""Film scene: validated case -> mesh and :class:`~lubrication.Film` -> solve -> outputs.
+
+``build_film(case)`` turns a :class:`~coupling.config.FilmCase` (SI) into
+lubrication objects; ``run(case, out_dir)`` solves and writes
+
+- ``summary.json``: flat mapping, names carry units (``"Load [N]"``); 1-D
+  films carry per-unit-width names (``"Load per unit width [N/m]"``); flows
+  through every named boundary (outward positive); film K and C when
+  ``output.film_coefficients``; solver information and timings;
+- ``case.resolved.toml``: the case as run, in SI with every default;
+- ``film.vtu`` (``FilmSolution.save``) and ``pressure.png``
+  (``FilmSolution.plot_pressure``) as listed in ``output.write``.
+
+The solve happens before anything is written; the files are made in a
+staging folder and moved into place (one rename each) only when all of them
+are complete: a failed run leaves an existing output folder as it was.
+
+Meshes: slider steps and pocket edges are made mesh nodes (the nearest grid
+line is moved onto them, or one is added), so a discontinuous gap never cuts
+through an element.
+"""
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+import lubrication as lub
+from lubrication import mesh as meshes
+from lubrication.errors import InputError
+
+from . import outputs
+from .config import FilmCase, resolved_toml
+
+log = logging.getLogger(__name__)
+
+
+# ---------------------------------------------------------------------------
+# case -> lubrication objects
+
+
+def build_gap(case: FilmCase) -> lub.Gap:
+    g = case.gap
+    if g.type == "inclined_slider":
+        return lub.InclinedSlider(g.h_in, g.h_out, g.length)
+    if g.type == "step_slider":
+        return lub.StepSlider(g.h_in, g.h_out, g.x_step)
+    if g.type == "pocketed_slider":
+        return lub.PocketedSlider(g.h_in, g.h_out, g.length, g.pocket_start, g.pocket_end, g.depth)
+    if g.type == "journal":
+        if g.eccentricity_x is not None:
+            return lub.JournalBearing(g.radius, g.clearance, g.eccentricity_x, g.eccentricity_y)
+        return lub.JournalBearing.from_ratio(g.radius, g.clearance, g.eccentricity_ratio, g.attitude_angle)
+    if g.type == "sphere_plane":
+        return lub.SpherePlane(g.radius, g.h0, exact=g.exact)
+    if g.type == "sphere_sphere":
+        return lub.SphereSphere(g.radius1, g.radius2, g.h0, exact=g.exact)
+    if g.type == "cylinder_plane":
+        return lub.CylinderPlane(g.radius, g.h0)
+    if g.type == "ellipsoid_plane":
+        return lub.EllipsoidPlane(g.radius_x, g.radius_y, g.h0)
+    raise InputError(f"gap.type = {g.type!r} has no builder")  # pragma: no cover - schema forbids it
+
+
+def _breakpoints(case: FilmCase) -> list[float]:
+    g = case.gap
+    if g.type == "step_slider":
+        return [g.x_step]
+    if g.type == "pocketed_slider":
+        return [g.pocket_start, g.pocket_end]
+    return []
+
+
+def grid_with_breakpoints(lo: float, hi: float, n: int, breakpoints) -> np.ndarray:
+    """``n + 1`` uniform points on [lo, hi] with every breakpoint inside made a
+    node: the nearest point is moved onto it, or (if that point is taken or an
+    end) a point is added.
+
+    >>> grid_with_breakpoints(0.0, 1.0, 4, [0.3]).tolist()
+    [0.0, 0.3, 0.5, 0.75, 1.0]
+    """
+    xs = list(np.linspace(lo, hi, n + 1))
+    fixed = {xs[0], xs[-1]}
+    for bp in sorted(b for b in breakpoints if lo < b < hi):
+        j = int(np.argmin(np.abs(np.asarray(xs) - bp)))
+        if xs[j] in fixed:
+            xs = sorted(xs + [bp])
+        else:
+            xs[j] = bp
+        fixed.add(bp)
+    xs = np.asarray(xs)
+    return xs
+
+
+def build_mesh(case: FilmCase):
+    m, g = case.mesh, case.gap
+    if m.domain == "interval":
+        xs = grid_with_breakpoints(m.x[0], m.x[1], m.nx, _breakpoints(case))
+        return meshes.interval(xs[0], xs[-1], len(xs) - 1, points=xs)
+    if m.domain == "rectangle":
+        xs = grid_with_breakpoints(m.x[0], m.x[1], m.nx, _breakpoints(case))
+        ys = np.linspace(m.y[0], m.y[1], m.ny + 1)
+        return meshes.rectangle(xs, ys, cell=m.cell)
+    if m.domain == "journal":
+        xs = np.linspace(0.0, 2.0 * math.pi * g.radius, m.nx + 1)
+        ys = np.linspace(-0.5 * g.length, 0.5 * g.length, m.ny + 1)
+        return meshes.rectangle(xs, ys, cell=m.cell, periodic_x=True)
+    if m.domain == "disk":
+        return meshes.disk(m.radius, m.refinements)
+    raise InputError(f"mesh.domain = {m.domain!r} has no builder")  # pragma: no cover
+
+
+def build_lubricant(case: FilmCase) -> lub.Lubricant:
+    v, d = case.lubricant.viscosity, case.lubricant.density
+    if v.law == "constant":
+        viscosity = lub.ConstantViscosity(v.eta0)
+    elif v.law == "barus":
+        viscosity = lub.Barus(v.eta0, v.alpha)
+    else:
+        viscosity = lub.Roelands(v.eta0, z=v.z, alpha=v.alpha)
+    if d.law == "incompressible":
+        density = lub.Incompressible(d.rho0)
+    else:
+        density = lub.DowsonHigginson(d.rho0, d.a, d.b)
+    return lub.Lubricant(viscosity, density)
+
+
+def _check_gap_positive(gap, mesh, case: FilmCase):
+    h = np.asarray(gap(mesh.p), dtype=float)
+    if not np.all(np.isfinite(h)) or np.min(h) <= 0.0:
+        k = int(np.nanargmin(np.where(np.isfinite(h), h, -np.inf)))
+        where = ", ".join(f"{c:.4g}" for c in mesh.p[:, k])
+        raise InputError(
+            f"gap ({case.gap.type}): film thickness h = {h[k]:.4g} m at x = ({where}) m on the mesh; "
+            "it must be > 0 everywhere (the surfaces touch or overlap): check the [gap] values and the mesh extent"
+        )
+
+
+def build_film(case: FilmCase) -> lub.Film:
+    """The :class:`~lubrication.Film` of a validated case (no solve)."""
+    gap = build_gap(case)
+    mesh = build_mesh(case)
+    _check_gap_positive(gap, mesh, case)
+    mo, b = case.motion, case.boundary
+    upper = mo.velocity_upper
+    if mo.speed is not None:  # the journal (upper body) turns; the bearing stands still
+        upper = [mo.speed * case.gap.radius, 0.0]
+    names = sorted((mesh.boundaries or {}).keys())
+    dirichlet = {name: b.pressures.get(name, b.ambient) for name in names if name not in b.sealed}
+    return lub.Film(
+        mesh=mesh,
+        gap=gap,
+        lubricant=build_lubricant(case),
+        velocity_lower=tuple(mo.velocity_lower),
+        velocity_upper=tuple(upper),
+        squeeze=mo.squeeze,
+        mode_velocities=dict(mo.mode_velocities),
+        dirichlet=dirichlet,
+        element=case.mesh.element,
+        cavitation=lub.Cavitation(case.cavitation.model, case.cavitation.pressure),
+        ambient_pressure=b.ambient,
+        options=lub.SolverOptions(
+            rtol=case.solver.rtol, max_iter=case.solver.max_iter,
+            linear_solver=case.solver.linear_solver, amg_tol=case.solver.amg_tol,
+        ),
+    )
+
+
+def describe(case: FilmCase, film: lub.Film) -> str:
+    """One line: what would be solved."""
+    m = case.mesh
+    cells = film.mesh.t.shape[1]
+    kind = {"interval": "1-D interval", "rectangle": f"{m.cell} rectangle", "journal": f"periodic {m.cell} journal",
+            "disk": "triangular disk"}[m.domain]
+    return (f"film scene: gap {case.gap.type}, {kind} mesh with {cells} cells, {m.element}, "
+            f"cavitation {case.cavitation.model}, viscosity {case.lubricant.viscosity.law}, "
+            f"density {case.lubricant.density.law}")
+
+
+# ---------------------------------------------------------------------------
+# solve and summarise
+
+
+def _per_unit_width(key: str) -> str:
+    """Rename a per-area result of a 1-D film to its per-unit-width name."""
+    for unit, new in (("[N]", "[N/m]"), ("[m^3/s]", "[m^2/s]"), ("[N/m]", "[N/m^2]"), ("[N s/m]", "[N s/m^2]")):
+        if key.endswith(" " + unit):
+            return f"{key[: -len(unit) - 1]} per unit width {new}"
+    return key
+
+
+def summarise(case: FilmCase, solution, coefficients=None) -> dict:
+    """Flat mapping of the scene's scalar results (names carry units)."""
+    film = solution.film
+    out = dict(solution.summary())
+    for name in sorted((film.mesh.boundaries or {}).keys()):
+        if name not in case.boundary.sealed:  # a sealed boundary has no flow by its condition
+            out[f"Flow {name} [m^3/s]"] = solution.flow(name)
+    if case.gap.type == "journal":
+        g = case.gap
+        e = np.array([film.gap.eccentricity_x, film.gap.eccentricity_y])
+        force = solution.load_vector[:2]
+        out["Eccentricity ratio [-]"] = float(np.linalg.norm(e) / g.clearance)
+        if np.linalg.norm(e) > 0 and np.linalg.norm(force) > 0:
+            # attitude angle: between the applied load (-film force) and the line of centres
+            cosang = np.dot(e, -force) / (np.linalg.norm(e) * np.linalg.norm(force))
+            out["Attitude angle [deg]"] = float(np.degrees(np.arccos(np.clip(cosang, -1.0, 1.0))))
+        if case.motion.speed and np.linalg.norm(force) > 0:
+            n_rev = case.motion.speed / (2.0 * math.pi)
+            pressure = np.linalg.norm(force) / (2.0 * g.radius * g.length)
+            out["Sommerfeld number [-]"] = float((g.radius / g.clearance) ** 2 * case.lubricant.viscosity.eta0 * n_rev / pressure)
+    if coefficients is not None:
+        names, K, C = coefficients
+        for i, a in enumerate(names):
+            for j, b in enumerate(names):
+                out[f"Stiffness K[{a},{b}] [N/m]"] = float(K[i, j])
+        for i, a in enumerate(names):
+            for j, b in enumerate(names):
+                out[f"Damping C[{a},{b}] [N s/m]"] = float(C[i, j])
+    if case.dim == 1:
+        out = {_per_unit_width(k): v for k, v in out.items()}
+    info = solution.info
+    out.update({
+        "Element": case.mesh.element,
+        "Cavitation model": case.cavitation.model,
+        "Linear solver": str(info.get("linear_solver", "")),
+        "Mesh cells [-]": int(film.mesh.t.shape[1]),
+    })
+    return out
+
+
+@dataclass
+class FilmRun:
+    """What :func:`run` produced: the solution, the summary and the files written."""
+
+    case: FilmCase
+    film: lub.Film
+    solution: object = None
+    summary: dict = field(default_factory=dict)
+    files: list = field(default_factory=list)
+
+
+def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", smoke: bool = False) -> FilmRun:
+    """Build, solve and (if ``out_dir``) write the outputs of a film case.
+
+    Raises :class:`~lubrication.errors.InputError` for a case that cannot be
+    built and :class:`~lubrication.errors.ConvergenceError` for a failed
+    solve; in both cases nothing is written.
+    """
+    from . import __version__
+
+    t0 = time.perf_counter()
+    film = build_film(case)
+    t_build = time.perf_counter() - t0
+    log.info("%s", describe(case, film))
+    solution = lub.solve(film)
+    coefficients = solution.coefficients() if case.output.film_coefficients else None
+    summary = {"Case": name, "Scene": case.scene, "Description": case.description}
+    summary.update(summarise(case, solution, coefficients))
+    summary["Smoke resolution"] = bool(smoke)
+    summary["Build time [s]"] = t_build
+    summary["Run time [s]"] = time.perf_counter() - t0
+    summary["lubedyn version"] = __version__
+    result = FilmRun(case=case, film=film, solution=solution, summary=summary)
+    if out_dir is None:
+        return result
+    out = Path(out_dir)
+    header = f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
+    with outputs.staged(out) as stage:
+        outputs.write_text(stage / "case.resolved.toml", resolved_toml(case, header))
+        if "vtu" in case.output.write:
+            solution.save(stage / "film.vtu")
+        if "png" in case.output.write:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            fig = solution.plot_pressure()
+            fig.axes[0].set_title(f"{name}: film pressure")
+            try:
+                outputs.save_figure(stage / "pressure.png", fig)
+            finally:
+                plt.close(fig)
+        outputs.write_json(stage / "summary.json", summary)
+        names = sorted(p.name for p in stage.iterdir())
+    result.files = [out / n for n in names]
+    return result

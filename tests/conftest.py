@@ -1,0 +1,45 @@
+"""Shared builders for the film verification tests."""
+import numpy as np
+import pytest
+
+from lubrication import Cavitation, Film, JournalBearing, Lubricant
+from lubrication import mesh as meshes
+
+
+@pytest.fixture
+def long_journal_film():
+    """Factory: an infinitely long journal bearing as a 1-D problem.
+
+    A periodic strip (``mesh.rectangle(..., periodic_x=True)``) one element
+    wide in the axial direction with no Dirichlet boundary (zero axial flux,
+    so the solution is independent of z) and the Sommerfeld gauge
+    p(theta = 0) = 0 applied at *every* dof of the column theta = 0 (pinning a
+    single dof of the column would leave its neighbours free and break the
+    z-invariance of the discrete solution).
+
+    The journal is displaced along -x (``e_x = -eps c``), so that
+    h = c (1 + eps cos theta): theta = 0 is the largest gap and theta equals
+    the classical angle phi of :mod:`lubrication.closed_form`.  The journal
+    is the upper surface, turning towards +theta with surface speed U
+    (``velocity_upper = (U, 0)``, bearing fixed, so u_m = U/2).  With the
+    displacement d = -x and n = d turned +90 deg in the direction of rotation
+    = -y, the closed-form components map as F_x = +W_r, F_y = -W_t (per unit
+    length: divide the mode forces by the strip width).
+    """
+
+    def build(radius, clearance, eps, eta, surface_speed, n, element="P2", cavitation="none", width=1e-3):
+        xs = np.linspace(0.0, 2.0 * np.pi * radius, n + 1)
+        m = meshes.rectangle(xs, [0.0, width], cell="quad", periodic_x=True)
+        column = [0.0, width] if element == "P1" else [0.0, 0.5 * width, width]
+        return Film(
+            m,
+            JournalBearing(radius, clearance, -eps * clearance, 0.0),
+            Lubricant.newtonian(eta),
+            velocity_upper=(surface_speed, 0.0),
+            dirichlet={},
+            pressure_points=tuple(((0.0, y), 0.0) for y in column),
+            element=element,
+            cavitation=Cavitation(cavitation, 0.0),
+        )
+
+    return build

@@ -1,0 +1,281 @@
+"""The ``lubedyn`` command line: exit codes, one-line messages, files written.
+
+Most tests call ``coupling.cli.main(argv)`` in-process (fast) and capture
+stdout/stderr; one runs ``python -m coupling.cli`` as a real process.
+"""
+from __future__ import annotations
+
+import json
+import math
+import re
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from coupling import cli
+from coupling.config import CASES_DIR
+from coupling.units import UnitError, parse_quantity
+
+SLIDER = CASES_DIR / "inclined_slider.toml"
+JOURNAL = CASES_DIR / "journal_finite.toml"
+POCKET = CASES_DIR / "fowell_pocket.toml"
+
+
+def run(capsys, *argv):
+    code = cli.main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def assert_one_line_error(err: str, *fragments: str):
+    assert err.startswith("lubedyn: error: "), err
+    assert err.count("\n") == 1, f"not one line: {err!r}"
+    assert "Traceback" not in err
+    for fragment in fragments:
+        assert fragment in err, f"{fragment!r} not in {err!r}"
+
+
+def write_case(tmp_path, text: str, name="case.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+# ---------------------------------------------------------------------------
+# quantities at the boundary (coupling.units)
+
+
+@pytest.mark.parametrize("text, dimension, si", [
+    ("50 um", "length", 50e-6), ("0.05 Pa s", "dynamic viscosity", 0.05), ("10 cP", "dynamic viscosity", 0.01),
+    ("10000 rpm", "angular velocity", 10000 * 2 * math.pi / 60), ("1.85e-8 m^2/N", "inverse pressure", 1.85e-8),
+    ("2e-8 1/Pa", "inverse pressure", 2e-8), ("30 deg", "angle", math.pi / 6), ("0.1 MPa", "pressure", 1e5),
+    ("992 kg/m^3", "density", 992.0), ("5 N s/m", "damping", 5.0), ("-1 mm/s", "velocity", -1e-3), (0.3, "length", 0.3),
+])
+def test_quantity_to_si(text, dimension, si):
+    assert parse_quantity(text, dimension) == pytest.approx(si, rel=1e-14)
+
+
+@pytest.mark.parametrize("text, dimension, message", [
+    ("5 Pa", "length", "has units of pressure, expected length (m)"),
+    ("50 Hz", "angular velocity", "has units of frequency, expected angular velocity (rad/s)"),
+    ("5 ums", "length", "unknown unit 'ums'; did you mean"),
+    ("fast", "velocity", "is not '<number> <units>'"),
+    (True, "length", "is not a quantity"),
+])
+def test_quantity_errors(text, dimension, message):
+    with pytest.raises(UnitError, match=re.escape(message)):
+        parse_quantity(text, dimension)
+
+
+# ---------------------------------------------------------------------------
+# input errors: exit 2, one line naming key, value and what is allowed
+
+
+def test_unknown_key_gets_a_suggestion(tmp_path, capsys):
+    text = JOURNAL.read_text().replace('clearance = "50 um"', 'clearence = "50 um"')
+    code, out, err = run(capsys, "validate", write_case(tmp_path, text))
+    assert code == 2
+    assert_one_line_error(err, "gap.clearence", "unknown key", "did you mean 'clearance'?")
+
+
+def test_unknown_value_gets_a_suggestion(capsys):
+    code, _, err = run(capsys, "validate", JOURNAL, "--set", "cavitation.model=reynold")
+    assert code == 2
+    assert_one_line_error(err, "cavitation.model = 'reynold'", "did you mean 'reynolds'?")
+
+
+def test_wrong_unit_names_key_value_and_dimension(capsys):
+    code, _, err = run(capsys, "run", JOURNAL, "--set", "gap.clearance=5 Pa", "--dry-run")
+    assert code == 2
+    assert_one_line_error(err, "gap.clearance = '5 Pa' has units of pressure, expected length")
+
+
+def test_negative_clearance(capsys):
+    code, _, err = run(capsys, "validate", JOURNAL, "--set", "gap.clearance=-50 um")
+    assert code == 2
+    assert_one_line_error(err, "gap.clearance = '-50 um' must be > 0 m")
+
+
+@pytest.mark.parametrize("setting, fragment", [
+    ("gap.eccentricity_ratio=1.0", "gap.eccentricity_ratio = 1 must be in [0, 1)"),
+    ("gap.eccentricity_ratio=1.2", "gap.eccentricity_ratio = 1.2 must be in [0, 1)"),
+])
+def test_eccentricity_ratio_at_or_above_one(capsys, setting, fragment):
+    code, _, err = run(capsys, "validate", JOURNAL, "--set", setting)
+    assert code == 2
+    assert_one_line_error(err, fragment, "touch")
+
+
+def test_eccentricity_vector_outside_clearance(tmp_path, capsys):
+    text = JOURNAL.read_text().replace("eccentricity_ratio = 0.6\n", "").replace('attitude_angle = "0 deg"\n', "")
+    case = write_case(tmp_path, text)
+    code, _, err = run(capsys, "validate", case, "--set", "gap.eccentricity_x=40 um", "--set", "gap.eccentricity_y=30 um")
+    assert code == 2
+    assert_one_line_error(err, "gap.eccentricity_x", "eccentricity ratio 1;", "must be < 1")
+
+
+def test_zero_gap_parameter(capsys):
+    code, _, err = run(capsys, "validate", SLIDER, "--set", "gap.h_out=0")
+    assert code == 2
+    assert_one_line_error(err, "gap.h_out = 0 must be > 0 m")
+
+
+def test_gap_closing_inside_the_domain(capsys):
+    """A pocket 'depth' of -1.04 um (a bump) closes the 1.04 um gap at x = 2 mm."""
+    code, _, err = run(capsys, "run", POCKET, "--smoke", "--set", "gap.depth=-1.04 um", "--dry-run")
+    assert code == 2
+    assert_one_line_error(err, "gap (pocketed_slider)", "must be > 0 everywhere")
+
+
+def test_scene_not_yet_available(capsys):
+    code, _, err = run(capsys, "validate", JOURNAL, "--set", "scene=dynamics")
+    assert code == 2
+    assert_one_line_error(err, "scene = 'dynamics' is not available yet")
+
+
+def test_missing_file(tmp_path, capsys):
+    code, _, err = run(capsys, "run", tmp_path / "nope.toml")
+    assert code == 2
+    assert_one_line_error(err, "nope.toml", "not found")
+
+
+def test_toml_syntax_error(tmp_path, capsys):
+    code, _, err = run(capsys, "validate", write_case(tmp_path, 'scene = "film"\n[gap\n'))
+    assert code == 2
+    assert_one_line_error(err, "invalid TOML")
+
+
+def test_bad_set_syntax(capsys):
+    code, _, err = run(capsys, "validate", SLIDER, "--set", "mesh.nx")
+    assert code == 2
+    assert_one_line_error(err, "must be KEY=VALUE")
+
+
+# ---------------------------------------------------------------------------
+# solver failure: exit 1, nothing lost
+
+
+def test_non_converging_solve_exits_1(tmp_path, capsys):
+    code, _, err = run(capsys, "run", POCKET, "--smoke", "--set", "solver.max_iter=1", "--out", tmp_path / "out")
+    assert code == 1
+    assert_one_line_error(err, "did not converge")
+    assert not (tmp_path / "out").exists()
+
+
+def test_failing_run_keeps_existing_outputs(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert run(capsys, "run", POCKET, "--smoke", "--out", out)[0] == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert set(before) == {"summary.json", "case.resolved.toml", "film.vtu", "pressure.png"}
+    code, _, err = run(capsys, "run", POCKET, "--smoke", "--set", "solver.max_iter=1", "--out", out)
+    assert code == 1
+    after = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert after == before  # same files, same bytes, no temporaries left behind
+    assert json.loads(after["summary.json"])["Cavitation model"] == "jfo"
+
+
+def test_failure_while_writing_keeps_existing_outputs(tmp_path, capsys, monkeypatch):
+    """Outputs are staged and moved into place only when all are written."""
+    import lubrication.solution
+
+    out = tmp_path / "out"
+    assert run(capsys, "run", POCKET, "--smoke", "--out", out)[0] == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+
+    def broken_plot(self, ax=None):
+        raise OSError("disk full (simulated)")
+
+    monkeypatch.setattr(lubrication.solution.FilmSolution, "plot_pressure", broken_plot)
+    code, _, err = run(capsys, "run", POCKET, "--smoke", "--set", "motion.velocity_lower=2 m/s", "--out", out)
+    assert code == 1
+    assert_one_line_error(err, "disk full (simulated)")
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before  # no staging folder left either
+
+
+# ---------------------------------------------------------------------------
+# run, --set, --dry-run, validate, cases, info
+
+
+def test_set_overrides_a_value(tmp_path, capsys):
+    """The load of an isoviscous slider is linear in the sliding speed."""
+    base, fast = tmp_path / "base", tmp_path / "fast"
+    assert run(capsys, "run", SLIDER, "--smoke", "--out", base)[0] == 0
+    code, out, _ = run(capsys, "run", SLIDER, "--smoke", "--out", fast, "--set", "motion.velocity_lower=10 m/s")
+    assert code == 0 and "wrote" in out
+    w0 = json.loads((base / "summary.json").read_text())["Load per unit width [N/m]"]
+    w1 = json.loads((fast / "summary.json").read_text())["Load per unit width [N/m]"]
+    assert w1 / w0 == pytest.approx(2.0, rel=1e-12)
+    resolved = tomllib.loads((fast / "case.resolved.toml").read_text())
+    assert resolved["motion"]["velocity_lower"] == [10.0]
+    assert resolved["mesh"]["nx"] == 10  # the smoke value, resolved
+
+
+def test_dry_run_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "out"
+    code, stdout, err = run(capsys, "run", JOURNAL, "--dry-run", "--out", out)
+    assert code == 0 and err == ""
+    assert not out.exists()
+    assert "dry run: film scene: gap journal" in stdout
+    resolved = tomllib.loads(stdout.split("\n", 2)[2])  # the resolved case follows the two plan lines
+    assert resolved["gap"]["clearance"] == pytest.approx(50e-6)
+    assert resolved["motion"]["speed"] == pytest.approx(3000 * 2 * 3.141592653589793 / 60)
+
+
+def test_default_out_dir_is_runs_case_stem(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert run(capsys, "run", "rayleigh_step", "--smoke")[0] == 0  # a bundled case by name
+    assert (tmp_path / "runs" / "rayleigh_step" / "summary.json").is_file()
+
+
+def test_summary_is_flat_with_units_and_solver_info(tmp_path, capsys):
+    assert run(capsys, "run", JOURNAL, "--smoke", "--out", tmp_path)[0] == 0
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert all(isinstance(v, (int, float, str, bool)) for v in summary.values())
+    numeric = [k for k, v in summary.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    assert all(k.endswith("]") for k in numeric), [k for k in numeric if not k.endswith("]")]
+    for key in ("Load [N]", "Newton iterations [-]", "Degrees of freedom [-]", "Solve time [s]", "Run time [s]",
+                "Stiffness K[x,y] [N/m]", "Damping C[y,y] [N s/m]", "Flow top [m^3/s]"):
+        assert key in summary
+    assert summary["Linear solver"] and summary["Smoke resolution"] is True
+
+
+def test_validate_ok_is_one_line(capsys):
+    code, out, err = run(capsys, "validate", JOURNAL)
+    assert code == 0 and err == ""
+    assert out.startswith("OK ") and out.count("\n") == 1
+
+
+def test_cases_lists_every_bundled_case(capsys):
+    code, out, _ = run(capsys, "cases")
+    assert code == 0
+    lines = out.splitlines()
+    paths = sorted(CASES_DIR.glob("*.toml"))
+    assert len(lines) == len(paths)
+    for path, line in zip(paths, lines):
+        description = tomllib.loads(path.read_text())["description"]
+        assert line.split()[0] == path.stem and line.endswith(description)
+
+
+def test_info(capsys):
+    code, out, _ = run(capsys, "info")
+    assert code == 0
+    for name in ("lubedyn", "python", "numpy", "scipy", "scikit-fem", "numba", "pyvista", "meshio", "cores"):
+        assert any(line.split()[0] == name for line in out.splitlines()), name
+
+
+def test_verbose_logs_to_stderr(tmp_path, capsys):
+    code, _, err = run(capsys, "-v", "run", SLIDER, "--smoke", "--out", tmp_path)
+    assert code == 0
+    assert "lubedyn: INFO:" in err and "wrote" in err
+
+
+def test_console_entry_point_as_a_process(tmp_path):
+    """A real process: exit code 2 and a single stderr line, no traceback."""
+    case = write_case(tmp_path, SLIDER.read_text().replace('h_out = "10 um"', 'h_out = "10 Pa"'))
+    proc = subprocess.run([sys.executable, "-m", "coupling.cli", "run", str(case)], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2
+    assert_one_line_error(proc.stderr, "gap.h_out = '10 Pa' has units of pressure, expected length")
