@@ -1,0 +1,100 @@
+"""EHL contacts against film-thickness formulas and their own grid convergence.
+
+Dimensionless groups (Moes): U = eta0 u_m/(E' R_x), G = alpha E', M = W (2U)^-3/4
+(point, W = w/(E' R_x^2)) or M = W (2U)^-1/2 (line, W = w/(E' R_x)), L = G (2U)^1/4,
+H = h/R_x (2U)^-1/2.  u_m is the mean (entrainment) speed.
+
+References (formulas written out here, independent of the solver):
+- Moes (1992) line contact: H_c = ((H_RI^7/3 + H_EI^7/3)^(3s/7) + (H_RP^-7/2 + H_EP^-7/2)^(-2s/7))^(1/s),
+  H_RI = 3/M, H_EI = 2.621 M^-1/5, H_RP = 1.287 L^2/3, H_EP = 1.311 M^-1/8 L^3/4,
+  s = (7 + 8 exp(-2 H_EI/H_RI))/5; quoted accuracy a few per cent.
+- Nijenbanning, Venner & Moes (1994) circular contact (D = 1), within ~5 %.
+- Hamrock & Dowson (1977) central film, quoted within ~20 % of their own solutions.
+"""
+import numpy as np
+import pytest
+
+from lubrication import ConvergenceError
+from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, solve_ehl
+
+
+def moes_line(M, L):
+    HRI, HEI = 3 / M, 2.621 * M**-0.2
+    HRP, HEP = 1.287 * L ** (2 / 3), 1.311 * M ** (-1 / 8) * L**0.75
+    s = 0.2 * (7 + 8 * np.exp(-2 * HEI / HRI))
+    return ((HRI ** (7 / 3) + HEI ** (7 / 3)) ** (3 * s / 7) + (HRP**-3.5 + HEP**-3.5) ** (-2 * s / 7)) ** (1 / s)
+
+
+def nvm_circular(M, L):
+    HRI = 145 * 1.796 ** (-15 / 7) * M**-2
+    HEI = 3.18 * 1.63 ** (-14 / 25) * M ** (-2 / 15)
+    HRP = 1.29 * 1.691 ** (-2 / 3) * L ** (2 / 3)
+    HEP = 1.48 * 1.63 ** (-7 / 20) * M ** (-1 / 12) * L**0.75
+    s = 1.5 * (1 + np.exp(-1.2 * HEI / HRI))
+    H00 = 1.8
+    return ((HRI**1.5 + (HEI**-4 + H00**-4) ** (-3 / 8)) ** (2 * s / 3) + (HRP**-8 + HEP**-8) ** (-s / 8)) ** (1 / s)
+
+
+def H(sol, c, value):
+    return value / c.radius_x * (2 * c.U) ** -0.5
+
+
+def test_line_contact_converges_at_second_order_to_moes():
+    c = EHLContact.from_moes(10, 5, line=True)
+    hc = np.array([H(s, c, s.central_film_thickness) for s in
+                   (solve_ehl(c, EHLGrid(nx=n)) for n in (129, 257, 513))])
+    d1, d2 = abs(hc[1] - hc[0]), abs(hc[2] - hc[1])
+    order = np.log2(d1 / d2)
+    assert order > 1.8  # measured 2.0
+    extrap = hc[2] + (hc[2] - hc[1]) / (2**order - 1)
+    # Moes' fit is quoted to a few per cent; measured 1.3 %
+    assert extrap == pytest.approx(moes_line(10, 5), rel=0.03)
+
+
+def test_heavily_loaded_line_contact():
+    """M = 1000, L = 10: Hertzian pressure, outlet spike, Moes film within 2 %."""
+    c = EHLContact.from_moes(1000, 10, line=True)
+    s = solve_ehl(c, EHLGrid(nx=1025))
+    assert H(s, c, s.central_film_thickness) == pytest.approx(moes_line(1000, 10), rel=0.02)  # measured 0.4 %
+    assert s.load == pytest.approx(c.load, rel=1e-9)
+    P = s.problem
+    x = P.basis.doflocs[0]
+    p_hertz = P.ph * np.sqrt(np.clip(1 - (x / P.bx) ** 2, 0, None))
+    # outside the outlet spike the film pressure is the dry Hertz pressure
+    away = np.abs(x / P.bx) < 0.8
+    assert np.max(np.abs(s.pressure[away] - p_hertz[away])) / P.ph < 0.01
+    assert 0.8 * P.bx < s.pressure_spike_position < 1.1 * P.bx
+    assert s.minimum_film_thickness < s.central_film_thickness
+
+
+def test_circular_point_contact_against_nvm_and_hamrock_dowson():
+    c = EHLContact.from_moes(20, 10)
+    s = solve_ehl(c, EHLGrid(nx=65))
+    hc = H(s, c, s.central_film_thickness)
+    assert hc == pytest.approx(nvm_circular(20, 10), rel=0.05)  # measured +1.7 %
+    hd = 2.69 * c.U**0.67 * c.G**0.53 * c.W**-0.067 * (1 - 0.61 * np.exp(-0.73)) * c.radius_x
+    assert s.central_film_thickness == pytest.approx(hd, rel=0.2)
+    assert s.info["scheme"] == "second order"
+    assert s.load == pytest.approx(c.load, rel=1e-9)
+
+
+def test_under_resolved_heavy_contact_fails_clearly():
+    """Where it stops: M = 1000 on 129 nodes cannot resolve the outlet
+    constriction (the film goes through zero at one node)."""
+    c = EHLContact.from_moes(1000, 10, line=True)
+    with pytest.raises(ConvergenceError, match="film-thickness floor"):
+        solve_ehl(c, EHLGrid(nx=129))
+
+
+def test_traction_laws():
+    t_n, t_l, t_e = Traction("newtonian"), Traction("limiting_shear", 5e6, 0.05), Traction("eyring", eyring_stress=5e6)
+    eta, h, p = np.array([1.0, 1e3]), 1e-7, np.array([1e9, 1e9])
+    du = 1e-4
+    # low stress: all laws are Newtonian (Eyring to second order in tau/tau0)
+    assert t_e.stress(eta[:1], du, h, p[:1]) == pytest.approx(t_n.stress(eta[:1], du, h, p[:1]), rel=1e-6)
+    # high stress: limiting shear caps at tau_L0 + gamma p, Eyring grows logarithmically
+    big = t_l.stress(eta[1:], 10.0, h, p[1:])
+    assert big == pytest.approx(5e6 + 0.05 * 1e9)
+    assert t_e.stress(eta[1:], 10.0, h, p[1:]) == pytest.approx(5e6 * np.arcsinh(1e3 * 10 / 1e-7 / 5e6))
+    with pytest.raises(Exception, match="did you mean"):
+        Traction("eyrin")
