@@ -14,6 +14,12 @@ module             responsibility
                    complementarity (Reynolds, JFO) solvers, film K and C
 ``solution``       ``FilmSolution``: loads, moments, friction, flow, VTK, plots
 ``closed_form``    analytic film results used for verification
+``hertz``          Hertz point (exact elliptic integrals, Hamrock-Brewe) and
+                   line contact
+``elastic``        half-space deflection by FFT of exact influence
+                   coefficients (point and line contacts)
+``ehl``            isothermal EHL line and point contacts: Reynolds FEM +
+                   FFT elasticity + load balance, Newton, traction laws
 =================  ==========================================================
 
 Nothing here imports ``dynamics``; ``coupling`` joins the two.

@@ -505,6 +505,67 @@ class EHLSolution:
     def traction_coefficient(self) -> float:
         return self.friction() / self.load
 
+    def to_pyvista(self):
+        """Grid with 3-D points (z = 0) and point data "Pressure [Pa]",
+        "Film thickness [m]", "Elastic deflection [m]"."""
+        import pyvista as pv
+
+        P = self.problem
+        pts = np.zeros((P.N, 3))
+        pts[:, : P.basis.doflocs.shape[0]] = P.basis.doflocs.T
+        t = P.mesh.t
+        nv = t.shape[0]
+        kind = pv.CellType.LINE if nv == 2 else pv.CellType.QUAD
+        cells = np.hstack([np.full((t.shape[1], 1), nv), t.T]).ravel()
+        grid = pv.UnstructuredGrid(cells, np.full(t.shape[1], kind, dtype=np.uint8), pts)
+        # P1 on a tensor mesh: dof i is vertex i
+        grid.point_data["Pressure [Pa]"] = self.pressure
+        grid.point_data["Film thickness [m]"] = self.film_thickness
+        grid.point_data["Elastic deflection [m]"] = self.deflection
+        return grid
+
+    def save(self, path):
+        """Write the fields to a ``.vtu`` file (temporary file + rename)."""
+        import os
+        import tempfile
+        from pathlib import Path
+
+        path = Path(path)
+        if path.suffix != ".vtu":
+            raise InputError(f"output path = {str(path)!r} must end in .vtu")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(suffix=".vtu", dir=path.parent)
+        os.close(fd)
+        try:
+            self.to_pyvista().save(tmp)
+            os.chmod(tmp, 0o644)
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+        return path
+
+    def plot_profiles(self):
+        """Centre-line pressure and film thickness against x/b.  Returns the figure."""
+        import matplotlib
+
+        matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
+        P = self.problem
+        x, p = self._centre_line(self.pressure)
+        _, h = self._centre_line(self.film_thickness)
+        fig, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
+        ax.plot(x / P.bx, p / 1e9, "C0-", label="pressure")
+        ax.set_xlabel("x / b [-]")
+        ax.set_ylabel("Pressure [GPa]", color="C0")
+        ax2 = ax.twinx()
+        ax2.plot(x / P.bx, h * 1e6, "C1-", label="film thickness")
+        ax2.set_ylabel("Film thickness [um]", color="C1")
+        ax2.set_ylim(0, 4 * self.central_film_thickness * 1e6)
+        ax.set_title(f"EHL centre line (M = {self.contact.moes_M:.3g}, L = {self.contact.moes_L:.3g})")
+        return fig
+
     def summary(self) -> dict:
         c = self.contact
         out = {
