@@ -228,6 +228,7 @@ class EHLOptions:
     h_floor: float = 1e-4  # relative to the Hertz film scale b^2/R_x
     consistent_supg: bool = True  # second-order SUPG (recovered Poiseuille flux); False: first order
     active_set_passes: int = 1  # >1: re-solve after moving newly negative nodes to the cavitated set
+    max_point_grid: int = 65  # largest point-contact grid (nodes per side) known to converge
 
 
 # ---------------------------------------------------------------- SUPG forms
@@ -679,6 +680,12 @@ def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOption
     from the 257-node solution).
     """
     t0 = time.perf_counter()
+    if not contact.is_line and grid.nx > options.max_point_grid:
+        raise InputError(
+            f"grid.nx = {grid.nx} for a point contact: this version converges for point contacts only up to "
+            f"{options.max_point_grid} nodes per side (measured: at 129 x 129, M = 20, L = 10, the Newton "
+            "iteration stalls after nested iteration from 65 x 65); use nx <= 65"
+        )
     if options.consistent_supg and _stage_info is None:
         # defect-correction start: the first-order (plain SUPG) solution on the
         # same grid starts the second-order Newton iteration; started from a
@@ -784,7 +791,7 @@ def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOption
         raise ConvergenceError(
             f"EHL solve did not converge in {options.max_iter} Newton iterations at M = {contact.moes_M:.4g}, "
             f"L = {contact.moes_L:.4g}: last |dp|/p_Hertz = {history[-1][0]:.2e}, load error {history[-1][2]:.2e} "
-            f"(ehl.max_iter; a finer grid or continuation in load from a lighter case helps)"
+            "(ehl.max_iter; heavily loaded contacts need fine grids: M = 1000 line contacts converge on 513+ nodes)"
         )
     hn = P.film(p, h00)
     if _final and np.min(hn) <= options.h_floor * P.hscale * 1.0001:
