@@ -17,6 +17,9 @@ Scenes
       Reynolds (Swift-Stieber) cavitation and the half-Sommerfeld
       approximation, error of the load magnitude against a reference from the
       three finest P2 solutions (Richardson when they converge monotonically).
+      Reynolds cavitation twice: with the solver's default (automatic
+      coarse-to-fine start from 1000 DOFs, ``SolverOptions.warm_start_levels``)
+      and cold (``warm_start_levels=0``).
 
 2. A ~1-million-DOF P1 solve (inclined slider, 1000 x 1000 quads, full film):
    mesh, setup, assembly, reduction and linear-solve times separately, the
@@ -53,7 +56,7 @@ import _ross  # noqa: E402
 
 from lubrication import InclinedSlider, JournalBearing, Lubricant, SpherePlane  # noqa: E402
 from lubrication import mesh as lmesh  # noqa: E402
-from lubrication.reynolds import Cavitation, Film, solve  # noqa: E402
+from lubrication.reynolds import Cavitation, Film, SolverOptions, solve  # noqa: E402
 
 log = logging.getLogger("benchmarks.reynolds")
 
@@ -90,7 +93,7 @@ def sphere_exact() -> float:
 def sphere_film(refinements: int, element: str, curved: bool = False) -> Film:
     s = SPHERE
     return Film(
-        mesh=curved_disk(refinements) if curved else lmesh.disk(s["disk_radius"], refinements),
+        mesh=lmesh.disk(s["disk_radius"], refinements, order=2 if curved else 1),
         gap=SpherePlane(s["radius"], s["h0"]),
         lubricant=Lubricant.newtonian(s["viscosity"]),
         squeeze=s["squeeze"],
@@ -98,16 +101,7 @@ def sphere_film(refinements: int, element: str, curved: bool = False) -> Film:
     )
 
 
-def curved_disk(refinements: int):
-    """Isoparametric (quadratic) disk, boundary midpoints on the circle: the
-    mesh a P2 film needs to keep its order (``mesh.disk`` is straight-sided)."""
-    import skfem
-
-    m = skfem.MeshTri2.init_circle(refinements).scaled(SPHERE["disk_radius"])
-    return m.with_boundaries({"edge": m.boundary_facets()})
-
-
-def journal_film(nx: int, element: str, cavitation: str) -> Film:
+def journal_film(nx: int, element: str, cavitation: str, warm_start_levels=None) -> Film:
     j = JOURNAL
     ny = max(nx // JOURNAL_ASPECT, 1)
     m = lmesh.rectangle(
@@ -121,6 +115,7 @@ def journal_film(nx: int, element: str, cavitation: str) -> Film:
         element=element,
         cavitation=Cavitation(cavitation),
         dirichlet={"bottom": 0.0, "top": 0.0},
+        options=SolverOptions(warm_start_levels=warm_start_levels),
     )
 
 
@@ -181,6 +176,8 @@ def point(clock, label, make_film, repeats, value_of):
         "times [s]": times,
         "time ratio [-]": clock.ratio(t),
     }
+    if "nested" in sol.info:  # automatic coarse-to-fine start: iterations per level, coarsest first
+        out["nested levels (dofs, iterations)"] = [(int(d), int(i)) for d, i, _ in sol.info["nested"]]
     out.update(value)
     log.info("%-34s %8d dofs %4d it %8.3f s  %s", label, out["dofs"], out["iterations"], t,
              ", ".join(f"{k}={v:.6g}" for k, v in value.items()))
@@ -217,7 +214,7 @@ def bench_sphere(clock, sizes, repeats):
             p["refinements"] = k
         add_errors(pts, "load [N]", exact)
         out["series"][element] = {"points": pts, **summarise(pts)}
-    # the same P2 films on an isoparametric disk (not what mesh.disk builds: a proposed fix)
+    # the same P2 films on the isoparametric disk, mesh.disk(order=2)
     levels = sizes["P2"]
     pts = [
         point(clock, f"sphere P2 curved refine {k}", lambda k=k: sphere_film(k, "P2", curved=True), repeats,
@@ -227,7 +224,7 @@ def bench_sphere(clock, sizes, repeats):
     for p, k in zip(pts, levels):
         p["refinements"] = k
     add_errors(pts, "load [N]", exact)
-    out["series"]["P2 curved"] = {"points": pts, "mesh": "skfem.MeshTri2.init_circle (quadratic geometry)", **summarise(pts)}
+    out["series"]["P2 curved"] = {"points": pts, "mesh": "mesh.disk(order=2): skfem.MeshTri2 (quadratic geometry)", **summarise(pts)}
     return out
 
 
@@ -255,69 +252,23 @@ def bench_journal(clock, sizes, repeats, cavitation):
     return out
 
 
-def _prolong(coarse, film):
-    """Initial guess for ``film`` from a coarser journal solution.
-
-    Both meshes are tensor grids, so the coarse degrees of freedom lie on a
-    regular (periodic in x) grid: interpolate it bilinearly at the fine
-    degrees of freedom.  Returns what ``solve(initial=...)`` reads.
-    """
-    from types import SimpleNamespace
-
-    from scipy.interpolate import RegularGridInterpolator
-
-    from lubrication.reynolds import make_basis
-
-    period = 2 * np.pi * JOURNAL["radius"]
-    xc = coarse.basis.doflocs
-    x0 = np.round(np.mod(xc[0], period), 12)
-    y0 = np.round(xc[1], 12)
-    xs, ys = np.unique(x0), np.unique(y0)
-    ix, iy = np.searchsorted(xs, x0), np.searchsorted(ys, y0)
-    q = make_basis(film.mesh, film.element).doflocs.copy()
-    q[0] = np.mod(q[0], period)
-    out = []
-    for v in (coarse.pressure_dofs, coarse.fluid_fraction_dofs):
-        grid = np.zeros((xs.size, ys.size))
-        grid[ix, iy] = v
-        f = RegularGridInterpolator((np.append(xs, period), ys), np.vstack([grid, grid[:1]]))
-        out.append(f(q.T))
-    return SimpleNamespace(pressure_dofs=out[0], fluid_fraction_dofs=out[1])
-
-
-def bench_journal_nested(clock, sizes, repeats, cavitation, reference, uncertainty, reference_attitude):
-    """Coarse-to-fine continuation: each level starts from the previous level's
-    solution through ``solve(initial=...)``; a point's time is the cumulative
-    time of the whole chain up to it (a proposed fix for the iteration count)."""
+def bench_journal_cold(clock, sizes, repeats, cavitation, reference, uncertainty, reference_attitude):
+    """The same films without the automatic coarse-to-fine start
+    (``warm_start_levels=0``): the active set starts from the full film and
+    moves its boundary about a node column per iteration."""
     out = {}
     for element, levels in sizes.items():
-        runs = []
-        for _ in range(max(1, repeats)):
-            t_cum, sol, rows = 0.0, None, []
-            for nx in levels:
-                t0 = time.perf_counter()
-                film = journal_film(nx, element, cavitation)
-                sol = solve(film, initial=_prolong(sol, film) if sol is not None else None)
-                load, att = journal_load(sol)
-                t_cum += time.perf_counter() - t0
-                rows.append((t_cum, sol.info["iterations"], sol.info["dofs"], load, att))
-            runs.append(rows)
-            if t_cum > 60.0:
-                break
         pts = []
-        for j, nx in enumerate(levels):
-            times = [r[j][0] for r in runs]
-            _, its, dofs, load, att = runs[-1][j]
-            t = float(np.median(times))
-            pts.append({"label": f"journal {cavitation} {element} nested up to {nx}x{nx // JOURNAL_ASPECT}",
-                        "nx": nx, "ny": nx // JOURNAL_ASPECT, "dofs": dofs, "iterations": its,
-                        "time [s]": t, "times [s]": times, "time ratio [-]": clock.ratio(t),
-                        "load [N]": load, "attitude [deg]": att})
-            log.info("%-34s %8d dofs %4d it %8.3f s (cumulative)", pts[-1]["label"], dofs, its, t)
+        for nx in levels:
+            p = point(clock, f"journal {cavitation} {element} {nx}x{nx // JOURNAL_ASPECT} cold",
+                      lambda nx=nx, e=element: journal_film(nx, e, cavitation, warm_start_levels=0), repeats,
+                      lambda s: dict(zip(("load [N]", "attitude [deg]"), journal_load(s))))
+            p["nx"], p["ny"] = nx, nx // JOURNAL_ASPECT
+            pts.append(p)
         add_errors(pts, "load [N]", reference, uncertainty=uncertainty)
         for p in pts:
             p["attitude error [deg]"] = abs(p["attitude [deg]"] - reference_attitude)
-        out[f"{element} nested"] = {"points": pts, **summarise(pts)}
+        out[f"{element} cold"] = {"points": pts, **summarise(pts)}
     return out
 
 
@@ -481,7 +432,7 @@ def plot(results, path):
     import matplotlib.ticker  # noqa: F401
 
     fig, axes = plt.subplots(2, 2, figsize=(12, 9.5), constrained_layout=True)
-    colours = {"P1": "tab:blue", "P2": "tab:orange", "P2 curved": "tab:green", "P1 nested": "tab:blue", "P2 nested": "tab:orange"}
+    colours = {"P1": "tab:blue", "P2": "tab:orange", "P2 curved": "tab:green", "P1 cold": "tab:blue", "P2 cold": "tab:orange"}
 
     def series(ax, pts, **kw):
         pts = [p for p in pts if not p.get("below reference uncertainty")]
@@ -494,16 +445,16 @@ def plot(results, path):
 
     ax = axes[0, 0]
     for el, s in results["sphere"]["series"].items():
-        name = "P2, curved (MeshTri2) disk" if el == "P2 curved" else f"{el}, mesh.disk"
+        name = "P2, mesh.disk(order=2) (curved)" if el == "P2 curved" else f"{el}, mesh.disk"
         series(ax, s["points"], marker="o", color=colours[el], label=f"{name} (order {s['fitted order (error vs 1/sqrt(dofs))']:.2f})")
     ax.set_title("(a) sphere-plane squeeze film vs closed form")
 
     ax = axes[0, 1]
     for el, s in results["journal_reynolds"]["series"].items():
-        if el.endswith("nested"):
-            series(ax, s["points"], marker="x", ls=":", color=colours[el], label=f"{el} (coarse-to-fine start), Reynolds")
+        if el.endswith("cold"):
+            series(ax, s["points"], marker="x", ls=":", color=colours[el], label=f"{el[:2]}, Reynolds, cold start (warm_start_levels=0)")
         else:
-            series(ax, s["points"], marker="o", color=colours[el], label=f"{el}, Reynolds cavitation")
+            series(ax, s["points"], marker="o", color=colours[el], label=f"{el}, Reynolds cavitation (default)")
     for el, s in results["journal_half_sommerfeld"]["series"].items():
         series(ax, s["points"], marker="s", ls="--", color=colours[el], mfc="none", label=f"{el}, half-Sommerfeld")
     band(ax, results["journal_reynolds"], color="k", ls=":", label="reference uncertainty (Reynolds)")
@@ -588,8 +539,8 @@ def main(argv=None):
     results["sphere"] = bench_sphere(clock, cfg["sphere"], repeats)
     results["journal_reynolds"] = bench_journal(clock, cfg["journal"], repeats, "reynolds")
     jr = results["journal_reynolds"]
-    jr["series"].update(bench_journal_nested(clock, cfg["journal"], repeats, "reynolds", jr["reference load"]["value"],
-                                             jr["reference load"]["uncertainty"] or 0.0, jr["reference attitude"]["value"]))
+    jr["series"].update(bench_journal_cold(clock, cfg["journal"], repeats, "reynolds", jr["reference load"]["value"],
+                                           jr["reference load"]["uncertainty"] or 0.0, jr["reference attitude"]["value"]))
     results["journal_half_sommerfeld"] = bench_journal(clock, cfg["journal"], repeats, "half_sommerfeld")
     hs = results["journal_half_sommerfeld"]
     ref = {"load": hs["reference load"]["value"], "attitude": hs["reference attitude"]["value"]}

@@ -11,6 +11,12 @@ module             responsibility
                    SI model; ``case.resolved.toml``
 ``film_scene``     film scene: case -> mesh, gap, lubricant -> ``Film`` ->
                    solve -> summary (units in names), ``.vtu``, ``.png``
+``ehl_scene``      EHL scene: case -> ``EHLContact`` (radii, from a bearing,
+                   or Moes M, L) -> ``solve_ehl`` -> summary with Hertz and
+                   closed-form film values, ``ehl.vtu``, ``profiles.png``
+``bearing``        one rolling-element/raceway contact of a bearing: radii,
+                   entrainment speed, most loaded element (Stribeck,
+                   quasi-static), contact angle under axial load
 ``outputs``        atomic writers (temporary file + rename) for run outputs
 ``cli``            ``lubedyn run | validate | cases | info``; exit codes
                    0 ok, 2 input error, 1 failed solve

@@ -55,23 +55,41 @@ def _load(args):
     return path, load_case(path, smoke=args.smoke, overrides=args.set or ())
 
 
-def cmd_run(args) -> int:
+# per scene: the module, its builder (validates what the schema cannot: geometry,
+# positive gaps ...; raises InputError) and the field files it writes
+_FIELD_FILES = {"film": (("film.vtu", "vtu"), ("pressure.png", "png")),
+                "ehl": (("ehl.vtu", "vtu"), ("profiles.png", "png"))}
+
+
+def _scene(case):
+    """(scene module, builder) of a validated case."""
+    if case.scene == "ehl":
+        from . import ehl_scene
+
+        return ehl_scene, ehl_scene.build
     from . import film_scene
+
+    return film_scene, film_scene.build_film
+
+
+def cmd_run(args) -> int:
     from .config import resolved_toml
 
     path, case = _load(args)
+    scene, build = _scene(case)
     out = Path(args.out) if args.out else Path("runs") / path.stem
     if args.dry_run:
-        film = film_scene.build_film(case)
-        print(f"dry run: {film_scene.describe(case, film)}")
+        built = build(case)
+        print(f"dry run: {scene.describe(case, built)}")
         print(f"dry run: would write {out}/summary.json, case.resolved.toml"
-              + "".join(f", {f}" for f, k in (("film.vtu", "vtu"), ("pressure.png", "png")) if k in case.output.write))
+              + "".join(f", {f}" for f, k in _FIELD_FILES[case.scene] if k in case.output.write))
         print(resolved_toml(case, f"dry run of {path}"))
         return EXIT_OK
-    result = film_scene.run(case, out, name=path.stem, source=str(path), smoke=args.smoke)
+    result = scene.run(case, out, name=path.stem, source=str(path), smoke=args.smoke)
     s = result.summary
-    shown = [k for k in s if k.startswith(("Load [", "Load per unit width [", "Maximum pressure", "Minimum film",
-                                           "Attitude angle", "Eccentricity ratio"))]
+    shown = [k for k in s if k.startswith(("Load [", "Load per unit width [", "Load per length [", "Maximum pressure",
+                                           "Hertz pressure", "Central film", "Minimum film", "Attitude angle",
+                                           "Eccentricity ratio"))]
     for key in shown:
         print(f"{key:<36} {s[key]:.6g}")
     print(f"{'Newton iterations [-]':<36} {s.get('Newton iterations [-]')}, "
@@ -81,16 +99,17 @@ def cmd_run(args) -> int:
 
 
 def cmd_validate(args) -> int:
-    from . import film_scene
     from .config import read_toml, validate_raw
 
     path = _case_path(args.case)
     raw = read_toml(path)
     case = validate_raw(raw, smoke=args.smoke, overrides=args.set or ())
-    film = film_scene.build_film(case)
+    scene, build = _scene(case)
+    built = build(case)
     if not args.smoke and isinstance(raw.get("smoke"), dict):  # the smoke variant must be valid too
-        film_scene.build_film(validate_raw(raw, smoke=True, overrides=args.set or ()))
-    print(f"OK {path}: {film_scene.describe(case, film)}")
+        smoke_case = validate_raw(raw, smoke=True, overrides=args.set or ())
+        _scene(smoke_case)[1](smoke_case)
+    print(f"OK {path}: {scene.describe(case, built)}")
     return EXIT_OK
 
 
@@ -139,7 +158,7 @@ def _parser() -> argparse.ArgumentParser:
     verbose = argparse.ArgumentParser(add_help=False)
     verbose.add_argument("-v", "--verbose", action="count", default=argparse.SUPPRESS,
                          help="more log output (-v info, -vv debug)")
-    p = _Parser(prog="lubedyn", description="Lubricant films by finite elements; bearing dynamics (planned).",
+    p = _Parser(prog="lubedyn", description="Lubricant films and EHL contacts by finite elements; bearing dynamics (planned).",
                 parents=[verbose])
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 

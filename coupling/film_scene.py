@@ -4,9 +4,10 @@
 lubrication objects; ``run(case, out_dir)`` solves and writes
 
 - ``summary.json``: flat mapping, names carry units (``"Load [N]"``); 1-D
-  films carry per-unit-width names (``"Load per unit width [N/m]"``); flows
-  through every named boundary (outward positive); film K and C when
-  ``output.film_coefficients``; solver information and timings;
+  films carry per-unit-width names (``"Load per unit width [N/m]"``, given by
+  ``FilmSolution.summary``); flows through every boundary that is not sealed
+  (outward positive); film K and C when ``output.film_coefficients``; solver
+  information and timings;
 - ``case.resolved.toml``: the case as run, in SI with every default;
 - ``film.vtu`` (``FilmSolution.save``) and ``pressure.png``
   (``FilmSolution.plot_pressure``) as listed in ``output.write``.
@@ -185,21 +186,13 @@ def describe(case: FilmCase, film: lub.Film) -> str:
 # solve and summarise
 
 
-def _per_unit_width(key: str) -> str:
-    """Rename a per-area result of a 1-D film to its per-unit-width name."""
-    for unit, new in (("[N]", "[N/m]"), ("[m^3/s]", "[m^2/s]"), ("[N/m]", "[N/m^2]"), ("[N s/m]", "[N s/m^2]")):
-        if key.endswith(" " + unit):
-            return f"{key[: -len(unit) - 1]} per unit width {new}"
-    return key
-
-
 def summarise(case: FilmCase, solution, coefficients=None) -> dict:
-    """Flat mapping of the scene's scalar results (names carry units)."""
+    """Flat mapping of the scene's scalar results (names carry units; 1-D
+    films per unit width, named by :meth:`~lubrication.FilmSolution.summary`)."""
     film = solution.film
-    out = dict(solution.summary())
-    for name in sorted((film.mesh.boundaries or {}).keys()):
-        if name not in case.boundary.sealed:  # a sealed boundary has no flow by its condition
-            out[f"Flow {name} [m^3/s]"] = solution.flow(name)
+    # a sealed boundary has no flow by its condition
+    open_boundaries = [name for name in sorted((film.mesh.boundaries or {}).keys()) if name not in case.boundary.sealed]
+    out = dict(solution.summary(boundaries=open_boundaries, coefficients=coefficients))
     if case.gap.type == "journal":
         g = case.gap
         e = np.array([film.gap.eccentricity_x, film.gap.eccentricity_y])
@@ -213,16 +206,6 @@ def summarise(case: FilmCase, solution, coefficients=None) -> dict:
             n_rev = case.motion.speed / (2.0 * math.pi)
             pressure = np.linalg.norm(force) / (2.0 * g.radius * g.length)
             out["Sommerfeld number [-]"] = float((g.radius / g.clearance) ** 2 * case.lubricant.viscosity.eta0 * n_rev / pressure)
-    if coefficients is not None:
-        names, K, C = coefficients
-        for i, a in enumerate(names):
-            for j, b in enumerate(names):
-                out[f"Stiffness K[{a},{b}] [N/m]"] = float(K[i, j])
-        for i, a in enumerate(names):
-            for j, b in enumerate(names):
-                out[f"Damping C[{a},{b}] [N s/m]"] = float(C[i, j])
-    if case.dim == 1:
-        out = {_per_unit_width(k): v for k, v in out.items()}
     info = solution.info
     out.update({
         "Element": case.mesh.element,

@@ -8,8 +8,8 @@ module             responsibility
                    (incompressible, Dowson-Higginson) laws with d/dp
 ``gaps``           film thickness h(x) of sliders, journals, spheres,
                    cylinders, ellipsoids, pockets; rigid-body modes
-``mesh``           1-D, rectangle (periodic in x), disk meshes with named
-                   boundaries
+``mesh``           1-D, rectangle (periodic in x), disk (straight or curved)
+                   meshes with named boundaries; unwrapping of periodic ones
 ``reynolds``       the generalised Reynolds equation: forms, Newton and
                    complementarity (Reynolds, JFO) solvers, film K and C
 ``solution``       ``FilmSolution``: loads, moments, friction, flow, VTK, plots
@@ -20,6 +20,8 @@ module             responsibility
                    coefficients (point and line contacts)
 ``ehl``            isothermal EHL line and point contacts: Reynolds FEM +
                    FFT elasticity + load balance, Newton, traction laws
+``film_formulas``  closed-form EHL film thickness (Hamrock-Dowson,
+                   Nijenbanning, Dowson-Toyoda, Pan-Hamrock, Moes)
 =================  ==========================================================
 
 Nothing here imports ``dynamics``; ``coupling`` joins the two.
@@ -38,7 +40,7 @@ from .gaps import (
     StepSlider,
 )
 from .lubricant import Barus, ConstantViscosity, DowsonHigginson, Incompressible, Lubricant, Roelands
-from .reynolds import Cavitation, Film, SolverOptions, film_coefficients, solve
+from .reynolds import Cavitation, Film, SolverOptions, film_coefficients, solve, solve_nested
 from .solution import FilmSolution
 
 __all__ = [
@@ -46,5 +48,5 @@ __all__ = [
     "DowsonHigginson", "EllipsoidPlane", "Film", "FilmSolution", "FunctionGap", "Gap",
     "InclinedSlider", "Incompressible", "InputError", "JournalBearing", "LubedynError",
     "Lubricant", "PocketedSlider", "Roelands", "SolverOptions", "SpherePlane",
-    "SphereSphere", "StepSlider", "film_coefficients", "solve",
+    "SphereSphere", "StepSlider", "film_coefficients", "solve", "solve_nested",
 ]

@@ -3,11 +3,19 @@
 Every mesh returned here carries named boundaries (``mesh.boundaries``):
 ``left``/``right`` in 1-D; ``left``/``right``/``bottom``/``top`` on rectangles
 (``bottom``/``top`` only when periodic in x); ``edge`` on disks.
+
+Periodic rectangles are scikit-fem "DG-point" meshes: ``mesh.t`` holds
+*topological* vertex numbers (the two sides of the seam are one vertex) while
+``mesh.p`` holds one copy of the vertices per element, so ``mesh.p[:, mesh.t]``
+does not address the geometry.  Use :func:`element_vertices` for coordinates
+and :func:`unwrapped` for an ordinary mesh of the same elements.
 """
 from __future__ import annotations
 
 import numpy as np
 import skfem
+
+from skfem.mesh.mesh_dg import MeshDG
 
 from .errors import InputError
 
@@ -42,6 +50,13 @@ def interval(x0: float, x1: float, n: int, points=None) -> skfem.Mesh:
     points = np.asarray(points, dtype=float)
     if np.any(np.diff(points) <= 0):
         raise InputError("mesh points must be strictly increasing")
+    spacing = np.diff(points)
+    if np.min(spacing) < 1e-12 * (points[-1] - points[0]):
+        k = int(np.argmin(spacing))
+        raise InputError(
+            f"mesh points {k} and {k + 1} are {spacing[k]:.3g} m apart, closer than 1e-12 of the "
+            f"domain length {points[-1] - points[0]:.6g} m"
+        )
     m = skfem.MeshLine(points)
     a, b = points[0], points[-1]
     return _tag(m, {"left": lambda x, t: np.abs(x[0] - a) < t, "right": lambda x, t: np.abs(x[0] - b) < t})
@@ -77,13 +92,83 @@ def rectangle(xs, ys, cell: str = "quad", periodic_x: bool = False) -> skfem.Mes
     return _tag(m, names)
 
 
-def disk(radius: float, refinements: int = 4, smoothed: bool = True) -> skfem.Mesh:
+def disk(radius: float, refinements: int = 4, smoothed: bool = True, order: int = 1) -> skfem.Mesh:
     """Triangular mesh of the disk r <= ``radius`` (scikit-fem ``init_circle``,
-    boundary nodes on the circle), boundary ``edge``."""
+    boundary nodes on the circle), boundary ``edge``.
+
+    ``order=1``: straight-sided triangles (``MeshTri1``); the polygon lies
+    O(h^2) inside the circle, which limits any element to second order.
+    ``order=2``: quadratic (isoparametric) triangles (``MeshTri2``) whose edge
+    midpoints on the boundary lie on the circle; use it with ``P2`` films
+    (the squeeze-film load then converges at order 4, against 2 on ``order=1``).
+
+    >>> m = disk(1e-3, refinements=2, order=2)
+    >>> type(m).__name__, sorted(m.boundaries)
+    ('MeshTri2', ['edge'])
+    """
     if refinements < 0:
         raise InputError(f"mesh refinements = {refinements!r} must be >= 0")
-    m = skfem.MeshTri.init_circle(refinements, smoothed=smoothed).scaled(radius)
-    return _tag(m, {"edge": lambda x, t: np.ones(x.shape[1], dtype=bool)})
+    if order not in (1, 2):
+        raise InputError(f"mesh order = {order!r} is not allowed; choose 1 or 2")
+    cls = skfem.MeshTri if order == 1 else skfem.MeshTri2
+    m = cls.init_circle(refinements, smoothed=smoothed).scaled(radius)
+    return m.with_boundaries({"edge": m.boundary_facets()})
+
+
+def element_vertices(mesh) -> np.ndarray:
+    """Coordinates (dim, nverts, nel) of every element's vertices, in the local
+    order of ``mesh.t``, from the element mapping (correct on periodic
+    DG-point meshes and on curved meshes)."""
+    nv = mesh.t.shape[0]
+    X = np.ascontiguousarray(np.asarray(mesh.elem.doflocs, dtype=float)[:nv].T)
+    return np.asarray(mesh.mapping().F(X)).transpose(0, 2, 1)
+
+
+def unwrapped(mesh) -> skfem.Mesh:
+    """An ordinary mesh with the same elements as ``mesh`` (same order, same
+    local vertex order) and any periodic seam cut open.
+
+    A non-periodic mesh is returned as it is.  For scikit-fem's periodic
+    meshes (``MeshQuad1DG``, ``MeshTri1DG``) the vertices on the seam get one
+    copy per side, so that the result can be plotted, searched
+    (``element_finder``) and used for facet integrals.  Named boundaries are
+    carried over (facets matched through their element and local index).
+    """
+    if not isinstance(mesh, MeshDG):
+        return mesh
+    cached = getattr(mesh, "_unwrapped_cache", None)
+    if cached is not None:
+        return cached
+    nv, nel = mesh.t.shape
+    pts = element_vertices(mesh).reshape(mesh.p.shape[0], -1)  # vertex (i, e) in column i * nel + e
+    key = mesh.t.ravel()
+    tol = 1e-9 * max(np.ptp(mesh.p[i]) for i in range(mesh.p.shape[0]))
+    new = np.full(key.size, -1, dtype=np.int64)
+    points = []
+    count = 0
+    remaining = np.arange(key.size)
+    while remaining.size:
+        # the first copy of each topological vertex makes a point; the copies at
+        # the same place join it, those across a seam wait for the next round
+        k = key[remaining]
+        uniq, first, which = np.unique(k, return_index=True, return_inverse=True)
+        canon = remaining[first]
+        same = np.linalg.norm(pts[:, remaining] - pts[:, canon[which]], axis=0) <= tol
+        new[remaining[same]] = count + which[same]
+        points.append(pts[:, canon])
+        count += uniq.size
+        remaining = remaining[~same]
+    base = type(mesh).__bases__[-1]  # MeshQuad1 / MeshTri1
+    um = base(np.concatenate(points, axis=1), new.reshape(nv, nel).astype(np.int32), sort_t=False)
+    if mesh.boundaries:
+        def carry(facets):
+            elements = mesh.f2t[0, facets]
+            local = np.argmax(mesh.t2f[:, elements] == facets, axis=0)
+            return um.t2f[local, elements]
+
+        um = um.with_boundaries({name: carry(f) for name, f in mesh.boundaries.items()})
+    mesh._unwrapped_cache = um
+    return um
 
 
 def graded(x0: float, x1: float, n: int, centre: float, ratio: float = 1.0) -> np.ndarray:

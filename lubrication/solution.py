@@ -14,6 +14,16 @@ Conventions (SI):
 - ``flow(boundary)`` [m^3/s]: outward volume flow q . n through a named
   boundary, q = -h^3/(12 eta) grad p + theta h u_m.
 - ``h_min`` [m]: the smallest gap over nodes and quadrature points.
+
+``summary()`` names carry units; for 1-D films (per unit width in y) every
+force, flow and coefficient name says so: ``"Load per unit width [N/m]"``,
+``"Flow right per unit width [m^2/s]"``, ``"Stiffness K[h0,h0] per unit width
+[N/m^2]"``.
+
+Periodic meshes: ``mesh.t`` numbers vertices topologically (the seam is one
+vertex) while ``mesh.p`` holds per-element copies; output takes vertex
+coordinates from the element mapping (:func:`lubrication.mesh.element_vertices`)
+and values from the vertex degrees of freedom (first in ``element_dofs``).
 """
 from __future__ import annotations
 
@@ -29,6 +39,7 @@ import skfem
 from skfem import Functional, asm
 from skfem.helpers import dot
 
+from . import mesh as meshes
 from .errors import InputError
 
 log = logging.getLogger(__name__)
@@ -46,6 +57,34 @@ def _integral(w):
 @Functional
 def _boundary_flux(w):
     return dot(w["q"], w.n)
+
+
+@skfem.LinearForm
+def _unit_load(v, w):
+    return v
+
+
+_PER_UNIT_WIDTH = (("[N]", "[N/m]"), ("[m^3/s]", "[m^2/s]"), ("[N/m]", "[N/m^2]"), ("[N s/m]", "[N s/m^2]"))
+
+
+def per_unit_width(key: str) -> str:
+    """The name of a per-area result of a 1-D film (per unit width in y).
+
+    >>> per_unit_width("Load [N]"), per_unit_width("Flow left [m^3/s]")
+    ('Load per unit width [N/m]', 'Flow left per unit width [m^2/s]')
+    >>> per_unit_width("Maximum pressure [Pa]")
+    'Maximum pressure [Pa]'
+    """
+    for unit, new in _PER_UNIT_WIDTH:
+        if key.endswith(" " + unit):
+            return f"{key[: -len(unit) - 1]} per unit width {new}"
+    return key
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 @dataclass
@@ -78,8 +117,13 @@ class FilmSolution:
         """Gap h [m] at the degrees of freedom."""
         return np.asarray(self.film.gap(self.basis.doflocs), dtype=float)
 
+    def _field_q(self, dofs):
+        from .reynolds import interpolate
+
+        return interpolate(self.basis, dofs)
+
     def _gauge_q(self):
-        return np.asarray(self.basis.interpolate(self.pressure_dofs)) - self.film.ambient_pressure
+        return np.asarray(self._field_q(self.pressure_dofs)) - self.film.ambient_pressure
 
     def integrate(self, values_q) -> float:
         """Integral over the film of an array given at quadrature points."""
@@ -122,9 +166,9 @@ class FilmSolution:
     # ------------------------------------------------------------ friction and flow
     def _shear(self):
         prob = self.problem
-        pf = self.basis.interpolate(self.pressure_dofs)
+        pf = self._field_q(self.pressure_dofs)
         eta = self.film.lubricant.viscosity(np.asarray(pf) - self.film.ambient_pressure)
-        theta = np.asarray(self.basis.interpolate(self.fluid_fraction_dofs))
+        theta = np.asarray(self._field_q(self.fluid_fraction_dofs))
         couette = theta * eta * (prob.u_upper - prob.u_lower) / prob.h
         poiseuille = -0.5 * prob.h * pf.grad
         return poiseuille, couette
@@ -147,28 +191,45 @@ class FilmSolution:
         freedom, divided by the density there.  It is exactly mass conserving
         (the flows of all boundaries and the squeeze volume add to zero) and
         converges at the rate of the pressure itself.  Elsewhere the normal
-        flux q . n is integrated pointwise over the facets.
+        flux q . n is integrated pointwise over the facets: on a sealed
+        (natural) boundary it is the discretisation's leakage, which vanishes
+        with the mesh.
         """
-        mesh = self.film.mesh
-        names = mesh.boundaries or {}
+        names = self.film.mesh.boundaries or {}
         if boundary not in names:
             raise InputError(f"boundary = {boundary!r} is unknown; the mesh has {sorted(names)}")
         prob = self.problem
         dofs = self.basis.get_dofs(names[boundary]).all()
         if dofs.size and np.all(prob.fixed[dofs]):
-            jfo = self.film.cavitation.model == "jfo"
-            R = prob.assemble(self.pressure_dofs, 1.0 - self.fluid_fraction_dofs, with_void=jfo)[0]
+            R = self._residual()
             p_b = float(np.mean(self.pressure_dofs[dofs])) - self.film.ambient_pressure
             return float(-np.sum(R[dofs]) / self.film.lubricant.density(p_b))
-        fb = skfem.FacetBasis(mesh, self.basis.elem, facets=names[boundary], intorder=4)
+        return self._pointwise_flow(boundary)
+
+    def _residual(self):
+        if getattr(self, "_residual_cache", None) is None:
+            jfo = self.film.cavitation.model == "jfo"
+            self._residual_cache = self.problem.assemble(
+                self.pressure_dofs, 1.0 - self.fluid_fraction_dofs, with_void=jfo)[0]
+        return self._residual_cache
+
+    def _pointwise_flow(self, boundary: str) -> float:
+        """Integral of q . n over the facets of ``boundary``.
+
+        A facet basis needs a boundary mapping, which scikit-fem's periodic
+        (DG-point) meshes lack: there the integral runs over the unwrapped mesh
+        (same elements, seam cut open) with the fields carried over dof by dof.
+        """
+        from .reynolds import _as_vector_field, unwrapped_dofs
+
+        mesh, index = unwrapped_dofs(self.basis)
+        fb = skfem.FacetBasis(mesh, self.basis.elem, facets=mesh.boundaries[boundary], intorder=4)
         x = np.asarray(fb.global_coordinates())
-        pf = fb.interpolate(self.pressure_dofs)
-        theta = np.asarray(fb.interpolate(self.fluid_fraction_dofs))
+        pf = fb.interpolate(self.pressure_dofs[index])
+        theta = np.asarray(fb.interpolate(self.fluid_fraction_dofs[index]))
         h = np.asarray(self.film.gap(x), dtype=float)
         eta = self.film.lubricant.viscosity(np.asarray(pf) - self.film.ambient_pressure)
-        from .reynolds import _as_vector_field
-
-        dim = prob.dim
+        dim = self.problem.dim
         um = 0.5 * (
             _as_vector_field(self.film.velocity_lower, x, dim, "velocity_lower")
             + _as_vector_field(self.film.velocity_upper, x, dim, "velocity_upper")
@@ -196,13 +257,42 @@ class FilmSolution:
         return film_coefficients(self)
 
     # ------------------------------------------------------------ output
-    def summary(self) -> dict:
-        """Flat mapping of scalar results; names carry units."""
+    @property
+    def cavitated_area_fraction(self) -> float:
+        """Area of the cavitated region over the film area [-]: the indicator
+        of the cavitated nodes (not ``full_film``) integrated as a field of the
+        solution's element (nodal weights int phi_i dA)."""
+        weights = asm(_unit_load, self.basis)
+        return float(np.dot(weights, ~self.full_film) / np.sum(weights))
+
+    @property
+    def mean_void_fraction(self) -> float:
+        """1 - (mean fluid fraction) over the film area [-] (JFO: the share of the
+        film volume that is gas; 0 for the other models)."""
+        area = self.integrate(np.ones_like(self.problem.h))
+        return float(1.0 - self.integrate(np.asarray(self._field_q(self.fluid_fraction_dofs))) / area)
+
+    def summary(self, boundaries=None, coefficients=None) -> dict:
+        """Flat mapping of scalar results; names carry units.
+
+        Parameters
+        ----------
+        boundaries : iterable of str, optional
+            Boundaries whose :meth:`flow` is listed (``"Flow <name> [m^3/s]"``);
+            default: the Dirichlet (pressure) boundaries.
+        coefficients : tuple, optional
+            ``(names, K, C)`` from :meth:`coefficients`, listed as
+            ``"Stiffness K[a,b] [N/m]"`` and ``"Damping C[a,b] [N s/m]"``.
+
+        1-D films are per unit width: their names say so
+        (:func:`per_unit_width`), e.g. ``"Load per unit width [N/m]"``.
+        """
         out = {
             "Load [N]": self.load,
             "Maximum pressure [Pa]": self.p_max,
             "Minimum film thickness [m]": self.h_min,
-            "Cavitated area fraction [-]": float(1.0 - self.integrate(np.asarray(self.basis.interpolate(self.fluid_fraction_dofs))) / self.integrate(np.ones_like(self.problem.h))),
+            "Cavitated area fraction [-]": self.cavitated_area_fraction,
+            "Mean void fraction [-]": self.mean_void_fraction,
             "Newton iterations [-]": int(self.info.get("iterations", 0)),
             "Degrees of freedom [-]": int(self.info.get("dofs", 0)),
             "Solve time [s]": float(self.info.get("wall_time", 0.0)),
@@ -215,29 +305,57 @@ class FilmSolution:
             out[f"Friction lower {axis} [N]"] = float(value)
         for axis, value in zip("xy", self.friction_upper):
             out[f"Friction upper {axis} [N]"] = float(value)
+        if boundaries is None:
+            names = sorted((self.film.mesh.boundaries or {}).keys())
+            dirichlet = self.film.dirichlet
+            boundaries = names if dirichlet is None else [n for n in names if n in dirichlet]
+        for name in boundaries:
+            out[f"Flow {name} [m^3/s]"] = self.flow(name)
+        if coefficients is not None:
+            modes, K, C = coefficients
+            for i, a in enumerate(modes):
+                for j, b in enumerate(modes):
+                    out[f"Stiffness K[{a},{b}] [N/m]"] = float(K[i, j])
+            for i, a in enumerate(modes):
+                for j, b in enumerate(modes):
+                    out[f"Damping C[{a},{b}] [N s/m]"] = float(C[i, j])
+        if self.problem.dim == 1:
+            out = {per_unit_width(k): v for k, v in out.items()}
         return out
 
     def _vertex_values(self, dofs):
-        """Values at mesh vertices (works on periodic DG-point meshes too)."""
-        mesh = self.film.mesh
-        ed = self.basis.element_dofs  # (ndofs_per_elem, nel), vertex dofs first
-        nv = mesh.t.shape[0]
-        out = np.zeros(mesh.p.shape[1])
-        out[mesh.t] = dofs[ed[:nv]]
+        """Values at the mesh's topological vertices (``mesh.t`` numbering)."""
+        t = self.film.mesh.t
+        out = np.zeros(int(t.max()) + 1)
+        out[t] = dofs[self.basis.element_dofs[: t.shape[0]]]  # vertex dofs come first
         return out
 
+    def _vertex_points(self):
+        """Film-plane coordinates (dim, n) of the topological vertices.  On a
+        periodic mesh a seam vertex gets the coordinates of one side (both map
+        to the same point on the wrapped surface)."""
+        t = self.film.mesh.t
+        x = np.zeros((self.problem.dim, int(t.max()) + 1))
+        x[:, t] = meshes.element_vertices(self.film.mesh)
+        return x
+
     def to_pyvista(self):
-        """A ``pyvista.UnstructuredGrid`` with 3-D points and point data with units."""
+        """A ``pyvista.UnstructuredGrid`` with 3-D points and point data with units.
+
+        One point per topological vertex: on a periodic mesh the two sides of
+        the seam are one point, so the wrapped journal surface is watertight.
+        """
         import pyvista as pv
 
         mesh = self.film.mesh
-        pts = self.film.gap.surface_points(mesh.p).T.copy()
-        kind = {2: pv.CellType.LINE, 3: pv.CellType.TRIANGLE, 4: pv.CellType.QUAD}[mesh.t.shape[0]]
-        nv = mesh.t.shape[0]
-        cells = np.hstack([np.full((mesh.t.shape[1], 1), nv), mesh.t.T]).ravel()
-        grid = pv.UnstructuredGrid(cells, np.full(mesh.t.shape[1], kind, dtype=np.uint8), pts)
+        x = self._vertex_points()
+        pts = np.asarray(self.film.gap.surface_points(x)).T.copy()
+        nv, nel = mesh.t.shape
+        kind = {2: pv.CellType.LINE, 3: pv.CellType.TRIANGLE, 4: pv.CellType.QUAD}[nv]
+        cells = np.hstack([np.full((nel, 1), nv), mesh.t.T]).ravel()
+        grid = pv.UnstructuredGrid(cells, np.full(nel, kind, dtype=np.uint8), pts)
         grid.point_data[PRESSURE] = self._vertex_values(self.pressure_dofs)
-        grid.point_data[THICKNESS] = np.asarray(self.film.gap(mesh.p), dtype=float)
+        grid.point_data[THICKNESS] = np.asarray(self.film.gap(x), dtype=float)
         grid.point_data[FRACTION] = self._vertex_values(self.fluid_fraction_dofs)
         return grid
 
@@ -252,6 +370,7 @@ class FilmSolution:
         os.close(fd)
         try:
             grid.save(tmp)
+            os.chmod(tmp, 0o666 & ~_umask())  # mkstemp creates 0600; give the usual mode
             os.replace(tmp, path)
         finally:
             if os.path.exists(tmp):
@@ -267,22 +386,27 @@ class FilmSolution:
         import matplotlib.pyplot as plt
         import matplotlib.tri as mtri
 
-        mesh = self.film.mesh
         if ax is None:
             fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
         else:
             fig = ax.figure
-        pv_ = self._vertex_values(self.pressure_dofs)
-        if mesh.p.shape[0] == 1:
-            order = np.argsort(mesh.p[0])
-            ax.plot(mesh.p[0, order] * 1e3, pv_[order] / 1e6, "-")
+        # the unwrapped mesh: same elements, periodic seam cut open, so that no
+        # triangle spans the film
+        t = meshes.unwrapped(self.film.mesh).t
+        n = int(t.max()) + 1
+        values = np.zeros(n)
+        values[t] = self.pressure_dofs[self.basis.element_dofs[: t.shape[0]]]  # vertex dofs come first
+        xy = np.zeros((self.problem.dim, n))
+        xy[:, t] = meshes.element_vertices(self.film.mesh)
+        if xy.shape[0] == 1:
+            order = np.argsort(xy[0])
+            ax.plot(xy[0, order] * 1e3, values[order] / 1e6, "-")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("Pressure [MPa]")
         else:
-            t = mesh.t
             tris = t.T if t.shape[0] == 3 else np.vstack([t[[0, 1, 2]].T, t[[0, 2, 3]].T])
-            tri = mtri.Triangulation(mesh.p[0] * 1e3, mesh.p[1] * 1e3, tris)
-            cs = ax.tripcolor(tri, pv_ / 1e6, shading="gouraud", cmap="viridis")
+            tri = mtri.Triangulation(xy[0] * 1e3, xy[1] * 1e3, tris)
+            cs = ax.tripcolor(tri, values / 1e6, shading="gouraud", cmap="viridis")
             fig.colorbar(cs, ax=ax, label="Pressure [MPa]")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")

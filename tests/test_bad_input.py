@@ -29,6 +29,18 @@ def test_negative_geometry_is_rejected():
         InclinedSlider(0.0, 1e-6, 0.01)
 
 
+def test_mesh_points_closer_than_round_off_are_rejected():
+    pts = np.array([0.0, 0.004, 0.004 + 1e-15, 0.01])
+    with pytest.raises(InputError, match=r"mesh points 1 and 2 are 1e-15 m apart, closer than 1e-12 of the domain"):
+        mesh.interval(0, 0, 0, points=pts)
+    assert mesh.interval(0, 0, 0, points=[0.0, 0.004, 0.004 + 1e-13, 0.01]).t.shape[1] == 3  # 1e-11 of L: allowed
+
+
+def test_disk_order_is_checked():
+    with pytest.raises(InputError, match="mesh order = 3"):
+        mesh.disk(1.0, 2, order=3)
+
+
 def test_no_dirichlet_boundary_is_rejected():
     film = Film(mesh.interval(0, 0.01, 20), InclinedSlider(2e-6, 1e-6, 0.01), LUB,
                 velocity_lower=(1.0,), dirichlet={})

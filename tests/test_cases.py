@@ -205,6 +205,103 @@ def check_sphere_plane_squeeze(s, c):
     assert rel(s["Stiffness K[h0,h0] [N/m]"], K) < 0.005
 
 
+# ---------------------------------------------------------------------------
+# EHL contacts: the bearing data are recomputed here from the resolved case
+# (Harris & Kotzalas, see coupling/bearing.py), the film against the
+# closed forms of lubrication.film_formulas evaluated with groups computed here.
+
+
+def _hamrock_dowson_groups(eta0, alpha, e_star, radius_x, mean_speed, load, line):
+    Ep = 2 * e_star
+    return eta0 * mean_speed / (Ep * radius_x), alpha * Ep, load / (Ep * radius_x ** (1 if line else 2))
+
+
+def check_ehl_ball_inner_race(s, c):
+    """Most loaded ball of paper B's 6206 on the inner race (M = 1000, L = 25).
+
+    Bearing data: the contact angle solves Harris' zero-clearance thrust
+    equation Fa/(Z K_n (BD)^1.5) = sin a (1/cos a - 1)^1.5 (K_n from the Hertz
+    approach of each race); Q = 4.37 Fr/(Z cos a) + Fa/(Z sin a), R_x =
+    (D/2)(1 - gamma), R_y = f_i D/(2 f_i - 1), u_m = (d_m/4)(1 - gamma^2) w_i.
+    Film (smoke grid 33 x 17): load balance to 1e-8 (Newton tolerance); the
+    heavily loaded pressure is Hertzian: p_max/p_H - 1 measured -1.3 %
+    (default grid -2.2 %), required within 3 %; Hamrock-Dowson (quoted within
+    about 20 % of their own solutions) h_c measured +5.8 %, h_min -1.2 %
+    (default grid +5.3 %, +16 %), required within 25 %."""
+    from lubrication import hertz
+    from lubrication.elastic import reduced_modulus
+    from lubrication.film_formulas import hamrock_dowson_central, hamrock_dowson_minimum
+
+    b, m, v = c["bearing"], c["materials"], c["lubricant"]["viscosity"]
+    assert b["diametral_clearance"] == 0.0 and b["load_distribution"] == "stribeck" and b["outer_speed"] == 0.0
+    D, dm, Z, Fr, Fa = b["element_diameter"], b["pitch_diameter"], b["n_elements"], b["radial_load"], b["axial_load"]
+    fi, fo = b["inner_groove_radius"] / D, b["outer_groove_radius"] / D
+    e_star = reduced_modulus(m["modulus1"], m["poisson1"], m["modulus2"], m["poisson2"])
+    BD = (fi + fo - 1) * D
+    approach = 0.0  # of both contacts in series under 1 N, at the free contact angle 0
+    for Rx0, f in ((D / 2 * (1 - D / dm), fi), (D / 2 * (1 + D / dm), fo)):
+        approach += hertz.point_contact(1.0, Rx0, f * D / (2 * f - 1), e_star).approach
+    K_n = approach**-1.5
+    a = math.radians(s["Contact angle [deg]"])
+    assert 0.1 < a < 0.2  # 9.03 deg
+    assert Z * K_n * BD**1.5 * math.sin(a) * (1 / math.cos(a) - 1) ** 1.5 == pytest.approx(Fa, rel=1e-9)
+    gamma = D * math.cos(a) / dm
+    Rx, Ry = D / 2 * (1 - gamma), fi * D / (2 * fi - 1)
+    um = dm / 4 * (1 - gamma**2) * b["inner_speed"]
+    Q = 4.37 * Fr / (Z * math.cos(a)) + Fa / (Z * math.sin(a))
+    for key, value in (("Reduced radius R_x [m]", Rx), ("Reduced radius R_y [m]", Ry), ("Mean speed [m/s]", um),
+                       ("Element load [N]", Q), ("Reduced modulus E* [Pa]", e_star)):
+        assert s[key] == pytest.approx(value, rel=1e-12), key
+    assert rel(s["Load [N]"], Q) < 1e-8
+    p_hertz = hertz.point_contact(Q, Rx, Ry, e_star).p0
+    assert rel(s["Maximum pressure [Pa]"], p_hertz) < 0.03
+    k = s["Ellipticity k = a_y/b_x [-]"]
+    assert 10 < k < 12
+    U, G, W = _hamrock_dowson_groups(v["eta0"], v["alpha"], e_star, Rx, um, Q, line=False)
+    assert rel(s["Central film thickness [m]"], hamrock_dowson_central(U, G, W, k) * Rx) < 0.25
+    assert rel(s["Minimum film thickness [m]"], hamrock_dowson_minimum(U, G, W, k) * Rx) < 0.25
+
+
+def check_ehl_roller_slice(s, c):
+    """Most loaded roller of paper A on the inner race (M = 1.7, L = 60).
+
+    Bearing data: Q = 4.08 Fr/(Z cos a_i), q = Q/l_eff, R = (D/2)(1 - gamma),
+    u_m = (d_m/4)(1 - gamma^2) w_i.  Film (smoke grid, 129 nodes): load
+    balance to 1e-8.  The contact is lightly loaded and strongly
+    piezoviscous, so the pressure is not Hertzian (no p_H check): its spike
+    lies downstream of the centre, inside the Hertz half-width (measured
+    x = 0.31 b; 0.39 b on the default grid).  Central film: Dowson-Toyoda h_c = 3.06 U^0.69 G^0.56 W^-0.10
+    measured +14.9 % (required within 25 %), Moes (1992) measured +9.1 %
+    (required within 15 %; default grid +9.2 %).  Pan-Hamrock (+51 %) is
+    not asserted: G = 10500 lies outside its fit (G <= 5000)."""
+    from lubrication import hertz
+    from lubrication.elastic import reduced_modulus
+    from lubrication.film_formulas import dowson_toyoda_central, moes_line_central
+
+    b, m, v = c["bearing"], c["materials"], c["lubricant"]["viscosity"]
+    assert b["type"] == "roller" and b["axial_load"] == 0.0 and b["outer_speed"] == 0.0 and c["contact"]["line"]
+    D, dm, Z, a = b["element_diameter"], b["pitch_diameter"], b["n_elements"], b["contact_angle"]
+    gamma = D * math.cos(a) / dm
+    R = D / 2 * (1 - gamma)
+    um = dm / 4 * (1 - gamma**2) * b["inner_speed"]
+    Q = 4.08 * b["radial_load"] / (Z * math.cos(a))
+    q = Q / b["effective_length"]
+    e_star = reduced_modulus(m["modulus1"], m["poisson1"], m["modulus2"], m["poisson2"])
+    for key, value in (("Reduced radius R_x [m]", R), ("Mean speed [m/s]", um), ("Element load [N]", Q),
+                       ("Reduced modulus E* [Pa]", e_star)):
+        assert s[key] == pytest.approx(value, rel=1e-12), key
+    assert rel(s["Load per length [N/m]"], q) < 1e-8
+    assert rel(s["Load [N]"], Q) < 1e-8
+    half_width = hertz.line_contact(q, R, e_star).b
+    assert 0 < s["Pressure spike position [m]"] < half_width
+    U, G, W = _hamrock_dowson_groups(v["eta0"], v["alpha"], e_star, R, um, q, line=True)
+    M, L = W * (2 * U) ** -0.5, G * (2 * U) ** 0.25
+    assert s["Moes M [-]"] == pytest.approx(M, rel=1e-12) and s["Moes L [-]"] == pytest.approx(L, rel=1e-12)
+    hc = s["Central film thickness [m]"]
+    assert rel(hc, dowson_toyoda_central(U, G, W) * R) < 0.25
+    assert rel(hc, moes_line_central(M, L) * R * math.sqrt(2 * U)) < 0.15
+
+
 CHECKS = {name[len("check_"):]: f for name, f in globals().items() if name.startswith("check_")}
 
 
@@ -235,3 +332,15 @@ def test_resolved_case_round_trips(tmp_path):
     assert again.model_dump(exclude={"smoke"}) == original.model_dump(exclude={"smoke"})
     assert again.motion.speed == pytest.approx(3000 * 2 * np.pi / 60)
     assert (again.mesh.nx, again.mesh.ny) == (32, 8)
+
+
+@pytest.mark.parametrize("name", ["ehl_ball_inner_race", "ehl_roller_slice"])
+def test_resolved_ehl_case_round_trips(tmp_path, name):
+    from coupling.config import load_case, resolved_toml
+
+    original = load_case(CASES_DIR / f"{name}.toml", smoke=True)
+    (tmp_path / "resolved.toml").write_text(resolved_toml(original))
+    again = load_case(tmp_path / "resolved.toml")
+    assert again.model_dump(exclude={"smoke"}) == original.model_dump(exclude={"smoke"})
+    assert again.bearing.element_diameter == original.bearing.element_diameter
+    assert again.contact.line == (name == "ehl_roller_slice")

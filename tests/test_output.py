@@ -106,12 +106,6 @@ def test_journal_vtu_lies_on_the_cylinder(tmp_path):
     np.testing.assert_allclose(grid.point_data["Film thickness [m]"], c * (1 - eps * np.cos(theta)), rtol=1e-9)
 
 
-@pytest.mark.xfail(
-    strict=True, raises=AssertionError,
-    reason="lubrication bug: FilmSolution.to_pyvista (and plot_pressure) index scikit-fem's periodic "
-           "MeshQuad1DG/MeshTri1DG with topological vertex numbers (mesh.t) into the per-element DG points "
-           "(mesh.p): cells join wrong points and most point values stay 0. Remove this marker with the fix.",
-)
 def test_journal_vtu_values_are_the_solution(tmp_path):
     """Every VTU point carries the pressure of the solution's dof at that place
     (theta = atan2(y, x), z), and every cell joins points that are neighbours

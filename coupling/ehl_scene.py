@@ -1,0 +1,280 @@
+"""EHL scene: validated case -> :class:`~lubrication.ehl.EHLContact` -> solve -> outputs.
+
+``build(case)`` turns an :class:`~coupling.config.EHLCase` (SI) into the
+contact, grid and options of :func:`lubrication.ehl.solve_ehl`; the contact
+comes from the reduced or body radii and the operating point, from a
+bearing (:mod:`coupling.bearing`: the most loaded element's contact with one
+race), or from Moes' M and L.  ``run(case, out_dir)`` solves and writes
+
+- ``summary.json``: :meth:`~lubrication.ehl.EHLSolution.summary` (film
+  thickness, pressure, load, friction, Moes M and L, Newton iterations) plus
+  the inputs in SI (reduced radii and modulus, speeds, load), the Hertz
+  contact (pressure, semi-axes), Hamrock-Dowson U, G, W and the closed-form
+  film thickness of :mod:`lubrication.film_formulas` for comparison
+  (Hamrock-Dowson for points; Dowson-Toyoda, Pan-Hamrock and Moes for
+  lines), the bearing data when there is a ``[bearing]``, solver information
+  and timings;
+- ``case.resolved.toml``: the case as run, in SI with every default;
+- ``ehl.vtu`` (``EHLSolution.save``: "Pressure [Pa]", "Film thickness [m]",
+  "Elastic deflection [m]") and ``profiles.png`` (centre-line pressure and
+  film) as listed in ``output.write``.
+
+The solve happens before anything is written; the files are made in a
+staging folder and moved into place only when all are complete
+(:func:`coupling.outputs.staged`), so a failed run leaves an existing output
+folder as it was.
+"""
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lubrication import film_formulas, hertz
+from lubrication.errors import InputError
+from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, solve_ehl
+
+from . import bearing as bearings
+from . import outputs
+from .config import EHLCase, resolved_toml
+
+log = logging.getLogger(__name__)
+
+DEFAULT_E_STAR = 1.0e11  # Pa, the modulus scale of a [dimensionless] case without [materials]
+
+
+@dataclass(frozen=True)
+class EHLSetup:
+    """What a case builds: the contact, grid and options, the element's
+    bearing data (or None) and the effective length of a line contact (or None)."""
+
+    contact: EHLContact
+    grid: EHLGrid
+    options: EHLOptions
+    bearing: bearings.RaceContact | None = None
+    length: float | None = None
+
+
+def build_lubricant(case: EHLCase):
+    from .film_scene import build_lubricant as film_lubricant
+
+    return film_lubricant(case)
+
+
+def race_contact(case: EHLCase, e_star: float) -> bearings.RaceContact:
+    """The most loaded element's contact of the case's ``[bearing]``."""
+    b = case.bearing
+    common = dict(race=b.race, pitch_diameter=b.pitch_diameter, radial_load=b.radial_load, axial_load=b.axial_load,
+                  inner_speed=b.inner_speed, outer_speed=b.outer_speed, stribeck_constant=b.stribeck_constant)
+    if b.type == "ball":
+        return bearings.ball_race_contact(
+            ball_diameter=b.element_diameter, inner_groove_radius=b.inner_groove_radius,
+            outer_groove_radius=b.outer_groove_radius, n_balls=b.n_elements, e_star=e_star,
+            contact_angle=b.contact_angle, clearance=b.diametral_clearance, load_distribution=b.load_distribution,
+            **common)
+    return bearings.roller_race_contact(roller_diameter=b.element_diameter, effective_length=b.effective_length,
+                                        n_rollers=b.n_elements, contact_angle=b.contact_angle, **common)
+
+
+def build(case: EHLCase) -> EHLSetup:
+    """The contact, grid and options of a validated case (no solve)."""
+    t, op = case.traction, case.operating
+    traction = Traction(t.model, t.limiting_shear_stress, t.limiting_shear_slope, t.eyring_stress)
+    e_star = case.materials.e_star if case.materials is not None else DEFAULT_E_STAR
+    race, length = None, case.contact.length
+    if case.mode == "dimensionless":
+        d, c = case.dimensionless, case.contact
+        contact = EHLContact.from_moes(d.M, d.L, radius_x=c.radius_x, e_star=e_star, eta0=d.eta0,
+                                       mean_speed=op.mean_speed, line=c.line,
+                                       radius_y=None if c.line else c.radius_y,
+                                       slide_to_roll=op.slide_to_roll, traction=traction)
+    elif case.mode == "bearing":
+        race = race_contact(case, e_star)
+        length = race.length
+        load = race.load_per_length if race.radius_y is None else race.load
+        contact = EHLContact(race.radius_x, race.radius_y, e_star, build_lubricant(case), race.mean_speed,
+                             load=load, slide_to_roll=op.slide_to_roll, traction=traction)
+    else:
+        rx, ry = case.contact.reduced_radii()
+        um, srr = op.speeds()
+        load = op.load_per_length if op.load_per_length is not None else op.load
+        if case.is_line and op.load is not None:
+            load = op.load / length
+        contact = EHLContact(rx, ry, e_star, build_lubricant(case), um, load=load, approach=op.approach,
+                             slide_to_roll=srr, traction=traction)
+    g = case.grid
+    grid = EHLGrid(nx=g.nx, ny=g.ny, x_min=g.x_min, x_max=g.x_max, y_max=g.y_max if g.y_max is not None else 3.0)
+    options = EHLOptions(rtol=case.solver.rtol, max_iter=case.solver.max_iter, max_step=case.solver.max_step)
+    limit = getattr(options, "max_point_grid", None)
+    if not contact.is_line and limit is not None and g.nx > limit:  # found by validate, not only by run
+        raise InputError(f"grid.nx = {g.nx} is too fine for a point contact: the EHL solver converges for point "
+                         f"contacts up to {limit} nodes per side (lubrication.ehl.EHLOptions.max_point_grid)")
+    return EHLSetup(contact, grid, options, race, length)
+
+
+def describe(case: EHLCase, setup: EHLSetup) -> str:
+    """One line: what would be solved."""
+    c, g = setup.contact, setup.grid
+    kind = "line" if c.is_line else "point"
+    load = (f"load {c.load:.4g} N/m" if c.is_line else f"load {c.load:.4g} N") if c.load is not None \
+        else f"approach {c.approach:.4g} m"
+    if case.mode == "bearing":
+        where = f"from a {case.bearing.type} bearing ({case.bearing.race} race)"
+    else:
+        where = "from Moes' M, L" if case.mode == "dimensionless" else "given directly"
+    grid = f"{g.nx} nodes" if c.is_line else f"{g.nx} x {g.ny or 'auto'} nodes"
+    moes = f"M = {c.moes_M:.4g}, " if c.load is not None else ""
+    return (f"ehl scene: {kind} contact {where}, R_x = {c.radius_x:.4g} m, u_m = {c.mean_speed:.4g} m/s, {load}, "
+            f"{moes}L = {c.moes_L:.4g}, grid {grid}, viscosity {type(c.lubricant.viscosity).__name__}")
+
+
+# ---------------------------------------------------------------------------
+# summary
+
+
+def hertz_data(contact: EHLContact, load: float) -> dict:
+    """Hertz contact under ``load`` [N, or N/m for lines]: pressure, semi-axes, ellipticity."""
+    if contact.is_line:
+        h = hertz.line_contact(load, contact.radius_x, contact.e_star)
+        return {"Hertz pressure [Pa]": h.p0, "Hertz half-width along x [m]": h.b}
+    h = hertz.point_contact(load, contact.radius_x, contact.radius_y, contact.e_star)
+    along_x, across = (h.b, h.a) if contact.radius_y >= contact.radius_x else (h.a, h.b)
+    return {"Hertz pressure [Pa]": h.p0, "Hertz semi-axis along x [m]": along_x, "Hertz semi-axis along y [m]": across,
+            "Ellipticity k = a_y/b_x [-]": across / along_x, "Hertz approach [m]": h.approach}
+
+
+def film_formula_values(contact: EHLContact, load: float, ellipticity: float | None) -> dict:
+    """Hamrock-Dowson groups and closed-form film thickness [m] at ``load``."""
+    U, G = contact.U, contact.G
+    Rx, Ep = contact.radius_x, contact.e_prime
+    W = load / (Ep * Rx ** (1 if contact.is_line else 2))
+    out = {"Speed parameter U [-]": U, "Material parameter G [-]": G, "Load parameter W [-]": W}
+    if not G > 0.0:  # isoviscous: the piezoviscous fits do not apply
+        return out
+    if contact.is_line:
+        M, L = W * (2 * U) ** -0.5, G * (2 * U) ** 0.25
+        out["Dowson-Toyoda central film thickness [m]"] = film_formulas.dowson_toyoda_central(U, G, W) * Rx
+        out["Pan-Hamrock central film thickness [m]"] = film_formulas.pan_hamrock_central(U, G, W) * Rx
+        out["Pan-Hamrock minimum film thickness [m]"] = film_formulas.pan_hamrock_minimum(U, G, W) * Rx
+        out["Moes central film thickness [m]"] = film_formulas.moes_line_central(M, L) * Rx * math.sqrt(2 * U)
+    else:
+        out["Hamrock-Dowson central film thickness [m]"] = film_formulas.hamrock_dowson_central(U, G, W, ellipticity) * Rx
+        out["Hamrock-Dowson minimum film thickness [m]"] = film_formulas.hamrock_dowson_minimum(U, G, W, ellipticity) * Rx
+        if contact.radius_y == Rx:
+            M, L = W * (2 * U) ** -0.75, G * (2 * U) ** 0.25
+            out["Nijenbanning central film thickness [m]"] = (film_formulas.nijenbanning_central(M, L) * Rx
+                                                             * math.sqrt(2 * U))
+    return out
+
+
+def bearing_data(race: bearings.RaceContact) -> dict:
+    out = {
+        "Race": race.race,
+        "Contact angle [deg]": math.degrees(race.contact_angle),
+        "Free contact angle [deg]": math.degrees(race.free_contact_angle),
+        "Pitch ratio gamma [-]": race.gamma,
+        "Cage speed [rad/s]": race.cage_speed,
+        "Element load [N]": race.load,
+        "Stribeck element load [N]": race.stribeck_load,
+        "Stribeck constant [-]": race.stribeck_constant,
+        "Load distribution": race.load_distribution,
+    }
+    if race.length is not None:
+        out["Effective length [m]"] = race.length
+    return out
+
+
+def summarise(case: EHLCase, setup: EHLSetup, solution) -> dict:
+    """Flat mapping of the scene's scalar results and inputs (names carry units)."""
+    c = setup.contact
+    load = c.load if c.load is not None else solution.load
+    out = dict(solution.summary())
+    if c.load is None:  # prescribed approach: M, L and the Hertz scales at the load found
+        W = load / (c.e_prime * c.radius_x ** (1 if c.is_line else 2))
+        out["Moes M [-]"] = W * (2 * c.U) ** (-0.5 if c.is_line else -0.75)
+    if c.is_line and setup.length is not None:
+        out["Load [N]"] = solution.load * setup.length
+    hz = hertz_data(c, load)
+    out.update(hz)
+    out.update({
+        "Reduced radius R_x [m]": c.radius_x,
+        **({} if c.is_line else {"Reduced radius R_y [m]": c.radius_y}),
+        "Reduced modulus E* [Pa]": c.e_star,
+        "Mean speed [m/s]": c.mean_speed,
+        "Slide-to-roll ratio [-]": c.slide_to_roll,
+        "Viscosity eta0 [Pa s]": c.lubricant.viscosity.eta0,
+    })
+    out.update(film_formula_values(c, load, hz.get("Ellipticity k = a_y/b_x [-]")))
+    if setup.bearing is not None:
+        out.update(bearing_data(setup.bearing))
+    P = solution.problem
+    out.update({
+        "Contact": "line" if c.is_line else "point",
+        "Degrees of freedom [-]": int(P.N),
+        "Grid nodes x [-]": int(P.shape[0]),
+        **({} if c.is_line else {"Grid nodes y [-]": int(P.shape[1])}),
+        "Linear solver": str(solution.info.get("linear", "")),
+        "Scheme": str(solution.info.get("scheme", "")),
+    })
+    return out
+
+
+@dataclass
+class EHLRun:
+    """What :func:`run` produced: the setup, the solution, the summary and the files written."""
+
+    case: EHLCase
+    setup: EHLSetup
+    solution: object = None
+    summary: dict = field(default_factory=dict)
+    files: list = field(default_factory=list)
+
+
+def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smoke: bool = False) -> EHLRun:
+    """Build, solve and (if ``out_dir``) write the outputs of an EHL case.
+
+    Raises :class:`~lubrication.errors.InputError` for a case that cannot be
+    built and :class:`~lubrication.errors.ConvergenceError` for a failed
+    solve; in both cases nothing is written.
+    """
+    from . import __version__
+
+    t0 = time.perf_counter()
+    setup = build(case)
+    t_build = time.perf_counter() - t0
+    log.info("%s", describe(case, setup))
+    solution = solve_ehl(setup.contact, setup.grid, setup.options)
+    summary = {"Case": name, "Scene": case.scene, "Description": case.description}
+    summary.update(summarise(case, setup, solution))
+    summary["Smoke resolution"] = bool(smoke)
+    summary["Build time [s]"] = t_build
+    summary["Run time [s]"] = time.perf_counter() - t0
+    summary["lubedyn version"] = __version__
+    result = EHLRun(case=case, setup=setup, solution=solution, summary=summary)
+    if out_dir is None:
+        return result
+    out = Path(out_dir)
+    header = f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
+    with outputs.staged(out) as stage:
+        outputs.write_text(stage / "case.resolved.toml", resolved_toml(case, header))
+        if "vtu" in case.output.write:
+            solution.save(stage / "ehl.vtu")
+        if "png" in case.output.write:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            fig = solution.plot_profiles()
+            fig.axes[0].set_title(f"{name}: EHL centre line (M = {summary['Moes M [-]']:.3g}, "
+                                  f"L = {summary['Moes L [-]']:.3g})")
+            try:
+                outputs.save_figure(stage / "profiles.png", fig)
+            finally:
+                plt.close(fig)
+        outputs.write_json(stage / "summary.json", summary)
+        names = sorted(p.name for p in stage.iterdir())
+    result.files = [out / n for n in names]
+    return result

@@ -1,0 +1,106 @@
+"""Linear-solver and nested-iteration paths of the Reynolds solver give the
+same answers as the plain path.
+
+- ``linear_solver="amg"`` (pyamg Ruge-Stuben + CG at ``amg_tol`` = 1e-10)
+  against SuperLU;
+- :func:`lubrication.reynolds.solve_nested` (coarse-to-fine start) against a
+  plain solve, and the iteration counts it removes: the active set moves the
+  cavitation boundary about one node column per iteration, so plain
+  iteration counts grow with the mesh.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from lubrication import Cavitation, ConvergenceError, CylinderPlane, Film, InclinedSlider, InputError, Lubricant
+from lubrication import SolverOptions, SpherePlane
+from lubrication import mesh as meshes
+from lubrication.reynolds import WARM_START_MIN_DOFS, solve_nested
+
+
+def test_amg_matches_direct_solver():
+    """Finite inclined slider, 120 x 120 P1 quads (14641 DOFs).  Measured
+    max |p_amg - p_lu| / max p = 2e-13 (on 30k-147k DOF systems: at most
+    4e-12); required 1e-8."""
+    n = 120
+    xs = np.linspace(0.0, 0.02, n + 1)
+    film = Film(meshes.rectangle(xs, xs), InclinedSlider(20e-6, 10e-6, 0.02), Lubricant.newtonian(0.01),
+                velocity_lower=(1.0, 0.0))
+    direct = film.with_(options=SolverOptions(linear_solver="direct")).solve()
+    amg = film.with_(options=SolverOptions(linear_solver="amg")).solve()
+    assert "Ruge-Stuben" in amg.info["linear_solver"] and "SuperLU" in direct.info["linear_solver"]
+    assert np.max(np.abs(amg.pressure - direct.pressure)) < 1e-8 * np.max(direct.pressure)
+    assert amg.load == pytest.approx(direct.load, rel=1e-8)
+
+
+def long_journal(long_journal_film, n, eps=0.3, **options):
+    film = long_journal_film(0.05, 50e-6, eps, 0.02, 10.0, n, cavitation="reynolds")
+    return film.with_(options=SolverOptions(**options)) if options else film
+
+
+def test_nested_solve_removes_the_growth_of_iterations(long_journal_film):
+    """Swift-Stieber long journal, eps = 0.3, P2.  Plain solve: 22, 41, 80
+    iterations on 64, 128, 256 elements (256 does not converge in the default
+    60).  Nested from 64 -> 128 -> 256: 22, 3, 2.  Same pressures (measured
+    1e-13 of p_max) and the same cavitated nodes."""
+    plain = {n: long_journal(long_journal_film, n, warm_start_levels=0, max_iter=200).solve() for n in (64, 128, 256)}
+    its = [plain[n].info["iterations"] for n in (64, 128, 256)]
+    assert its[0] < its[1] < its[2] and its[2] > 60  # grows with the mesh
+    with pytest.raises(ConvergenceError):
+        long_journal(long_journal_film, 256, warm_start_levels=0).solve()
+    nested = solve_nested(long_journal(long_journal_film, 256), levels=2)
+    levels = nested.info["nested"]
+    assert [dofs for dofs, _, _ in levels] == [384, 768, 1536]
+    assert levels[0][1] == its[0] and all(it <= 5 for _, it, _ in levels[1:])
+    ref = plain[256]
+    assert np.max(np.abs(nested.pressure - ref.pressure)) < 1e-10 * np.max(ref.pressure)
+    np.testing.assert_array_equal(nested.full_film, ref.full_film)
+
+
+def test_warm_start_is_automatic_for_large_cavitating_tensor_films(long_journal_film):
+    """Default options: nested from WARM_START_MIN_DOFS unknowns for Reynolds/JFO
+    cavitation on tensor meshes; never below it, for full films or on disks."""
+    big = long_journal(long_journal_film, 256).solve()  # 1536 DOFs
+    assert big.info["dofs"] >= WARM_START_MIN_DOFS and len(big.info["nested"]) == 3
+    small = long_journal(long_journal_film, 64).solve()  # 384 DOFs
+    assert "nested" not in small.info
+    full = long_journal_film(0.05, 50e-6, 0.3, 0.02, 10.0, 256).solve()
+    assert "nested" not in full.info
+    disk = Film(meshes.disk(1e-3, 4), SpherePlane(10e-3, 10e-6), Lubricant.newtonian(0.01), squeeze=1e-3,
+                element="P2", cavitation=Cavitation("reynolds"))
+    assert "nested" not in disk.solve().info
+    with pytest.raises(InputError, match="solve_nested needs a tensor mesh"):
+        solve_nested(disk)
+
+
+def test_nested_martin_cylinder_and_jfo_pocket():
+    """Martin's rolling cylinder (Reynolds, graded 1-D mesh, P2 800 elements):
+    plain 40 iterations, nested 12/2/2 (measured).  Fowell's JFO pocket (P1,
+    800 elements): same pressure (measured 5e-12 of p_max) and fluid fraction
+    (3e-10 at the reformation node: both stop at the Newton tolerance, last
+    update <= 1e-8) as the plain solve, and the same cavitated nodes."""
+    R_cyl, h0, eta, u = 10e-3, 1e-6, 0.05, 2.0
+    b = np.sqrt(2.0 * R_cyl * h0)
+    pts = meshes.graded(-30.0 * b, 3.0 * b, 800, 0.0, ratio=8.0)
+    film = Film(meshes.interval(0, 0, 0, points=pts), CylinderPlane(R_cyl, h0), Lubricant.newtonian(eta),
+                velocity_lower=(u,), velocity_upper=(u,), element="P2", cavitation=Cavitation("reynolds", 0.0))
+    plain = film.with_(options=SolverOptions(warm_start_levels=0)).solve()
+    nested = solve_nested(film)
+    assert plain.info["iterations"] > 30
+    assert nested.info["nested"][-1][1] <= 4
+    assert np.max(np.abs(nested.pressure - plain.pressure)) < 1e-10 * np.max(plain.pressure)
+
+    from test_cavitation import fowell_fem
+
+    jfo = fowell_fem(1.0, 800)  # 801 DOFs: below the automatic threshold
+    assert "nested" not in jfo.info
+    again = solve_nested(jfo.film, levels=3)
+    assert np.max(np.abs(again.pressure - jfo.pressure)) < 1e-10 * np.max(jfo.pressure)
+    assert np.max(np.abs(again.fluid_fraction - jfo.fluid_fraction)) < 1e-8
+    np.testing.assert_array_equal(again.full_film, jfo.full_film)
+
+
+def test_warm_start_levels_is_validated():
+    with pytest.raises(InputError, match="warm_start_levels"):
+        SolverOptions(warm_start_levels=-1)
