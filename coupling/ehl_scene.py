@@ -30,7 +30,6 @@ import logging
 import math
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
 
 from lubrication import film_formulas, hertz
 from lubrication.errors import InputError
@@ -255,26 +254,13 @@ def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smo
     result = EHLRun(case=case, setup=setup, solution=solution, summary=summary)
     if out_dir is None:
         return result
-    out = Path(out_dir)
     header = f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
-    with outputs.staged(out) as stage:
-        outputs.write_text(stage / "case.resolved.toml", resolved_toml(case, header))
-        if "vtu" in case.output.write:
-            solution.save(stage / "ehl.vtu")
-        if "png" in case.output.write:
-            import matplotlib
 
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
+    def figure():
+        fig = solution.plot_profiles()
+        fig.axes[0].set_title(f"{name}: EHL centre line (M = {summary['Moes M [-]']:.3g}, L = {summary['Moes L [-]']:.3g})")
+        return fig
 
-            fig = solution.plot_profiles()
-            fig.axes[0].set_title(f"{name}: EHL centre line (M = {summary['Moes M [-]']:.3g}, "
-                                  f"L = {summary['Moes L [-]']:.3g})")
-            try:
-                outputs.save_figure(stage / "profiles.png", fig)
-            finally:
-                plt.close(fig)
-        outputs.write_json(stage / "summary.json", summary)
-        names = sorted(p.name for p in stage.iterdir())
-    result.files = [out / n for n in names]
+    result.files = outputs.write_run(out_dir, resolved_toml(case, header), summary, case.output.write,
+                                     fields=("ehl.vtu", solution.save), figure=("profiles.png", figure))
     return result

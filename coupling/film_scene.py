@@ -26,7 +26,6 @@ import logging
 import math
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
@@ -251,25 +250,13 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     result = FilmRun(case=case, film=film, solution=solution, summary=summary)
     if out_dir is None:
         return result
-    out = Path(out_dir)
     header = f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
-    with outputs.staged(out) as stage:
-        outputs.write_text(stage / "case.resolved.toml", resolved_toml(case, header))
-        if "vtu" in case.output.write:
-            solution.save(stage / "film.vtu")
-        if "png" in case.output.write:
-            import matplotlib
 
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
+    def figure():
+        fig = solution.plot_pressure()
+        fig.axes[0].set_title(f"{name}: film pressure")
+        return fig
 
-            fig = solution.plot_pressure()
-            fig.axes[0].set_title(f"{name}: film pressure")
-            try:
-                outputs.save_figure(stage / "pressure.png", fig)
-            finally:
-                plt.close(fig)
-        outputs.write_json(stage / "summary.json", summary)
-        names = sorted(p.name for p in stage.iterdir())
-    result.files = [out / n for n in names]
+    result.files = outputs.write_run(out_dir, resolved_toml(case, header), summary, case.output.write,
+                                     fields=("film.vtu", solution.save), figure=("pressure.png", figure))
     return result

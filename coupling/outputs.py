@@ -88,3 +88,32 @@ def staged(out_dir):
             log.info("wrote %s", out / item.name)
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+
+
+def write_run(out_dir, resolved: str, summary: dict, write, fields=None, figure=None) -> list[Path]:
+    """Write one run's outputs into ``out_dir`` through a staging folder.
+
+    ``resolved`` is the text of ``case.resolved.toml``; ``write`` the case's
+    ``output.write`` list ("vtu", "png"); ``fields`` = (file name, callable
+    writing a ``.vtu`` to a path); ``figure`` = (file name, callable returning
+    a matplotlib figure).  Returns the paths written.
+    """
+    out = Path(out_dir)
+    with staged(out) as stage:
+        write_text(stage / "case.resolved.toml", resolved)
+        if fields is not None and "vtu" in write:
+            fields[1](stage / fields[0])
+        if figure is not None and "png" in write:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            fig = figure[1]()
+            try:
+                save_figure(stage / figure[0], fig)
+            finally:
+                plt.close(fig)
+        write_json(stage / "summary.json", summary)
+        names = sorted(p.name for p in stage.iterdir())
+    return [out / n for n in names]

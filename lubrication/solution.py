@@ -27,7 +27,6 @@ and values from the vertex degrees of freedom (first in ``element_dofs``).
 """
 from __future__ import annotations
 
-import json
 import logging
 import os
 import tempfile
