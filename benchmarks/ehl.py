@@ -1,0 +1,140 @@
+"""EHL contacts: film-thickness accuracy against wall time.
+
+Writes ``benchmarks/results/ehl.json`` and ``ehl.png`` (``--quick``:
+``ehl_quick.*``)::
+
+    python benchmarks/ehl.py           # full run
+    python benchmarks/ehl.py --quick   # small grids, well under a minute
+
+Scenes
+------
+1. Line contacts, L = 10, M = 20, 100, 1000, on grids refined by 2 (nested
+   iteration, second-order SUPG): dimensionless central and minimum film
+   thickness H = h/R_x (2U)^-1/2, wall time, error against the Richardson
+   extrapolation of the three finest grids (with the observed order), and
+   Moes' (1992) formula.
+2. Circular point contacts, L = 10, M = 20, 100, 200, on 33 x 33 and 65 x 65
+   nodes (the largest point grid the solver accepts in this version):
+   H_c, H_min and wall time against Nijenbanning-Venner-Moes (1994).  Point
+   grids of 129 x 129 and above are refused by the solver (measured: the
+   Newton iteration stalls there), so no convergence order is claimed for
+   point contacts.
+
+Timings are medians of ``--repeats`` runs on this machine (noted in the
+JSON); compare ratios, not seconds, across machines.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+import _common  # noqa: E402
+
+from lubrication.ehl import EHLContact, EHLGrid, solve_ehl  # noqa: E402
+from lubrication.film_formulas import moes_line_central, nijenbanning_central  # noqa: E402
+
+RESULTS = Path(__file__).resolve().parent / "results"
+
+
+def H(c, h):
+    return h / c.radius_x * (2 * c.U) ** -0.5
+
+
+def line_series(M, L, grids, repeats):
+    c = EHLContact.from_moes(M, L, line=True)
+    rows = []
+    for n in grids:
+        try:
+            t, _, s = _common.timed(lambda: solve_ehl(c, EHLGrid(nx=n)), repeats=repeats)
+        except Exception as exc:  # the solver's own one-line error, recorded
+            rows.append(dict(nx=n, error=str(exc)))
+            continue
+        rows.append(dict(nx=n, time_s=t, Hc=H(c, s.central_film_thickness), Hmin=H(c, s.minimum_film_thickness),
+                         newton_iterations=s.info["iterations"],
+                         first_order_iterations=s.info.get("first_order_iterations")))
+    ok = [r for r in rows if "Hc" in r]
+    ref = _common.richardson([r["Hc"] for r in ok]) if len(ok) >= 3 else None
+    for r in ok:
+        if ref is not None:
+            r["Hc_error"] = abs(r["Hc"] / ref["value"] - 1.0)
+    return dict(M=M, L=L, moes_Hc=float(moes_line_central(M, L)), reference=ref, grids=rows)
+
+
+def point_series(M, L, grids, repeats):
+    c = EHLContact.from_moes(M, L)
+    rows = []
+    for n in grids:
+        try:
+            t, _, s = _common.timed(lambda: solve_ehl(c, EHLGrid(nx=n)), repeats=repeats)
+        except Exception as exc:
+            rows.append(dict(nx=n, error=str(exc)))
+            continue
+        rows.append(dict(nx=n, time_s=t, Hc=H(c, s.central_film_thickness), Hmin=H(c, s.minimum_film_thickness),
+                         newton_iterations=s.info["iterations"], unknowns=s.info["unknowns"]))
+    return dict(M=M, L=L, nvm_Hc=float(nijenbanning_central(M, L)), grids=rows)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--repeats", type=int, default=None)
+    args = ap.parse_args(argv)
+    repeats = args.repeats or (1 if args.quick else 3)
+    if args.quick:
+        line_cases = {20: [129, 257, 513], 1000: [257, 513, 1025]}
+        point_cases = {20: [33]}
+    else:
+        line_cases = {20: [129, 257, 513, 1025], 100: [129, 257, 513, 1025], 1000: [257, 513, 1025, 2049]}
+        point_cases = {20: [33, 65], 100: [33, 65], 200: [33, 65]}
+    data = dict(machine=_common.machine_info(), quick=args.quick, repeats=repeats,
+                line=[line_series(M, 10.0, g, repeats) for M, g in line_cases.items()],
+                point=[point_series(M, 10.0, g, repeats) for M, g in point_cases.items()])
+    stem = "ehl_quick" if args.quick else "ehl"
+    RESULTS.mkdir(exist_ok=True)
+    _common.write_json(RESULTS / f"{stem}.json", data)
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+    for s in data["line"]:
+        ok = [r for r in s["grids"] if "Hc_error" in r and r["Hc_error"] > 0]
+        if ok:
+            a1.loglog([r["time_s"] for r in ok], [r["Hc_error"] for r in ok], "o-",
+                      label=f"line M={s['M']:g} (order {s['reference']['observed_order'] or float('nan'):.2f})")
+    a1.set_xlabel("wall time [s]")
+    a1.set_ylabel("|H_c / H_c,ref - 1| (Richardson reference)")
+    a1.set_title("Line contacts, L = 10: work-precision")
+    a1.legend(fontsize=8)
+    for s in data["line"]:
+        ok = [r for r in s["grids"] if "Hc" in r]
+        a2.semilogx([r["nx"] for r in ok], [r["Hc"] / s["moes_Hc"] for r in ok], "o-", label=f"line M={s['M']:g} / Moes")
+    for s in data["point"]:
+        ok = [r for r in s["grids"] if "Hc" in r]
+        a2.semilogx([r["nx"] for r in ok], [r["Hc"] / s["nvm_Hc"] for r in ok], "s--", label=f"point M={s['M']:g} / NVM")
+    a2.axhline(1.0, color="k", lw=0.8)
+    a2.set_xlabel("nodes along x")
+    a2.set_ylabel("H_c / formula")
+    a2.set_title("Central film against Moes (line) and NVM (point)")
+    a2.legend(fontsize=8)
+    _common.save_figure(fig, RESULTS / f"{stem}.png")
+    for s in data["line"]:
+        print(f"line M={s['M']:g}: " + ", ".join(
+            f"{r['nx']}: Hc={r.get('Hc', float('nan')):.4f} ({r.get('time_s', float('nan')):.2f} s)" for r in s["grids"])
+              + f"; ref {s['reference']['value'] if s['reference'] else None}, Moes {s['moes_Hc']:.4f}")
+    for s in data["point"]:
+        print(f"point M={s['M']:g}: " + ", ".join(
+            f"{r['nx']}: Hc={r.get('Hc', float('nan')):.4f} ({r.get('time_s', float('nan')):.2f} s)" for r in s["grids"])
+              + f"; NVM {s['nvm_Hc']:.4f}")
+
+
+if __name__ == "__main__":
+    main()
