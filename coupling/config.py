@@ -82,6 +82,7 @@ from pydantic_core import PydanticCustomError
 
 from lubrication.errors import InputError
 
+from .bearing import STRIBECK
 from .units import UnitError, parse_quantity, si_unit
 
 SCENES = ("film", "ehl")
@@ -733,7 +734,7 @@ class BearingModel(_Model):
                 raise rule("effective_length", self.effective_length, "is for type = 'roller' only")
             self.diametral_clearance = self.diametral_clearance or 0.0
             if self.stribeck_constant is None:
-                self.stribeck_constant = 4.37
+                self.stribeck_constant = STRIBECK["point"]
         else:
             for key in ("inner_groove_radius", "outer_groove_radius", "diametral_clearance"):
                 if getattr(self, key) is not None:
@@ -745,7 +746,7 @@ class BearingModel(_Model):
                 raise rule("load_distribution", self.load_distribution, "'quasi_static' is implemented for "
                            "type = 'ball' only; use 'stribeck'")
             if self.stribeck_constant is None:
-                self.stribeck_constant = 4.08
+                self.stribeck_constant = STRIBECK["line"]
         if self.inner_speed == self.outer_speed:
             raise rule("inner_speed", self.inner_speed, f"equals outer_speed = {_show(self.outer_speed)} rad/s: the "
                        "rings do not turn relative to each other and nothing entrains the lubricant")

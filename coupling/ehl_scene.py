@@ -238,23 +238,16 @@ def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smo
     built and :class:`~lubrication.errors.ConvergenceError` for a failed
     solve; in both cases nothing is written.
     """
-    from . import __version__
-
     t0 = time.perf_counter()
     setup = build(case)
     t_build = time.perf_counter() - t0
     log.info("%s", describe(case, setup))
     solution = solve_ehl(setup.contact, setup.grid, setup.options)
-    summary = {"Case": name, "Scene": case.scene, "Description": case.description}
-    summary.update(summarise(case, setup, solution))
-    summary["Smoke resolution"] = bool(smoke)
-    summary["Build time [s]"] = t_build
-    summary["Run time [s]"] = time.perf_counter() - t0
-    summary["lubedyn version"] = __version__
+    summary = outputs.run_summary(case, name, smoke, summarise(case, setup, solution), t0, t_build)
     result = EHLRun(case=case, setup=setup, solution=solution, summary=summary)
     if out_dir is None:
         return result
-    header = f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
+    header = outputs.resolved_header(name, source, smoke)
 
     def figure():
         fig = solution.plot_profiles()

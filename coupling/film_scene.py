@@ -233,24 +233,17 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     built and :class:`~lubrication.errors.ConvergenceError` for a failed
     solve; in both cases nothing is written.
     """
-    from . import __version__
-
     t0 = time.perf_counter()
     film = build_film(case)
     t_build = time.perf_counter() - t0
     log.info("%s", describe(case, film))
     solution = lub.solve(film)
     coefficients = solution.coefficients() if case.output.film_coefficients else None
-    summary = {"Case": name, "Scene": case.scene, "Description": case.description}
-    summary.update(summarise(case, solution, coefficients))
-    summary["Smoke resolution"] = bool(smoke)
-    summary["Build time [s]"] = t_build
-    summary["Run time [s]"] = time.perf_counter() - t0
-    summary["lubedyn version"] = __version__
+    summary = outputs.run_summary(case, name, smoke, summarise(case, solution, coefficients), t0, t_build)
     result = FilmRun(case=case, film=film, solution=solution, summary=summary)
     if out_dir is None:
         return result
-    header = f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
+    header = outputs.resolved_header(name, source, smoke)
 
     def figure():
         fig = solution.plot_pressure()

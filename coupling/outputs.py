@@ -117,3 +117,25 @@ def write_run(out_dir, resolved: str, summary: dict, write, fields=None, figure=
         write_json(stage / "summary.json", summary)
         names = sorted(p.name for p in stage.iterdir())
     return [out / n for n in names]
+
+
+def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float) -> dict:
+    """The summary every scene writes: identity, the scene's own results, timing."""
+    import time
+
+    from . import __version__
+
+    summary = {"Case": name, "Scene": case.scene, "Description": case.description}
+    summary.update(scene_summary)
+    summary["Smoke resolution"] = bool(smoke)
+    summary["Build time [s]"] = t_build
+    summary["Run time [s]"] = time.perf_counter() - t0
+    summary["lubedyn version"] = __version__
+    return summary
+
+
+def resolved_header(name: str, source, smoke: bool) -> str:
+    """First line of ``case.resolved.toml``."""
+    from . import __version__
+
+    return f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")

@@ -527,24 +527,9 @@ class EHLSolution:
 
     def save(self, path):
         """Write the fields to a ``.vtu`` file (temporary file + rename)."""
-        import os
-        import tempfile
-        from pathlib import Path
+        from .solution import write_vtu
 
-        path = Path(path)
-        if path.suffix != ".vtu":
-            raise InputError(f"output path = {str(path)!r} must end in .vtu")
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(suffix=".vtu", dir=path.parent)
-        os.close(fd)
-        try:
-            self.to_pyvista().save(tmp)
-            os.chmod(tmp, 0o644)
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.remove(tmp)
-        return path
+        return write_vtu(self.to_pyvista(), path)
 
     def plot_profiles(self):
         """Centre-line pressure and film thickness against x/b.  Returns the figure."""
@@ -782,7 +767,7 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
         if cav.any() and not added_any:
             # release cavitated nodes whose multiplier is negative, but only in
             # iterations that cavitated no new node (otherwise the set flips)
-            Rn = P.assemble(p_new, h00, jac=False)[0]
+            Rn = Rt  # residual at (p_new, h00): the accepted line-search trial
             release = cav & (Rn < 0)
             cav_new &= ~release
         changed = added_any or not np.array_equal(cav_new, cav_before)

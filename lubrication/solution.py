@@ -360,22 +360,7 @@ class FilmSolution:
 
     def save(self, path) -> Path:
         """Write a ``.vtu`` file (atomically: a crash never leaves half a file)."""
-        path = Path(path)
-        if path.suffix != ".vtu":
-            raise InputError(f"output path = {str(path)!r} must end in .vtu")
-        path.parent.mkdir(parents=True, exist_ok=True)
-        grid = self.to_pyvista()
-        fd, tmp = tempfile.mkstemp(suffix=".vtu", dir=path.parent)
-        os.close(fd)
-        try:
-            grid.save(tmp)
-            os.chmod(tmp, 0o666 & ~_umask())  # mkstemp creates 0600; give the usual mode
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.remove(tmp)
-        log.info("wrote %s", path)
-        return path
+        return write_vtu(self.to_pyvista(), path)
 
     def plot_pressure(self, ax=None):
         """Pressure field (2-D: filled contours; 1-D: line).  Returns the figure."""
@@ -412,3 +397,23 @@ class FilmSolution:
             ax.set_aspect("auto")
         ax.set_title("Film pressure")
         return fig
+
+
+def write_vtu(grid, path) -> Path:
+    """Write a pyvista grid to ``path`` (``.vtu``) through a temporary file and
+    a rename, with the usual file mode; shared by every lubrication result."""
+    path = Path(path)
+    if path.suffix != ".vtu":
+        raise InputError(f"output path = {str(path)!r} must end in .vtu")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(suffix=".vtu", dir=path.parent)
+    os.close(fd)
+    try:
+        grid.save(tmp)
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp creates 0600; give the usual mode
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    log.info("wrote %s", path)
+    return path
