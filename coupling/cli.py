@@ -55,21 +55,19 @@ def _load(args):
     return path, load_case(path, smoke=args.smoke, overrides=args.set or ())
 
 
-# per scene: the module, its builder (validates what the schema cannot: geometry,
-# positive gaps ...; raises InputError) and the field files it writes
-_FIELD_FILES = {"film": (("film.vtu", "vtu"), ("pressure.png", "png")),
-                "ehl": (("ehl.vtu", "vtu"), ("profiles.png", "png"))}
-
-
 def _scene(case):
-    """(scene module, builder) of a validated case."""
-    if case.scene == "ehl":
-        from . import ehl_scene
+    """(scene module, builder) of a validated case.
 
-        return ehl_scene, ehl_scene.build
-    from . import film_scene
+    A scene is a module ``coupling.<scene>_scene`` with ``build(case)`` (validates
+    what the schema cannot: geometry, positive gaps ...; raises InputError),
+    ``describe(case, built) -> str``, ``run(case, out_dir, *, name, source, smoke)``
+    returning an object with ``summary`` (dict) and ``files`` (paths), and
+    ``FIELD_FILES``: ((file name, ``output.write`` key), ...) for the dry-run plan.
+    """
+    import importlib
 
-    return film_scene, film_scene.build_film
+    module = importlib.import_module(f"coupling.{case.scene}_scene")
+    return module, module.build
 
 
 def cmd_run(args) -> int:
@@ -82,7 +80,7 @@ def cmd_run(args) -> int:
         built = build(case)
         print(f"dry run: {scene.describe(case, built)}")
         print(f"dry run: would write {out}/summary.json, case.resolved.toml"
-              + "".join(f", {f}" for f, k in _FIELD_FILES[case.scene] if k in case.output.write))
+              + "".join(f", {f}" for f, k in scene.FIELD_FILES if k in case.output.write))
         print(resolved_toml(case, f"dry run of {path}"))
         return EXIT_OK
     result = scene.run(case, out, name=path.stem, source=str(path), smoke=args.smoke)

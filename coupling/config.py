@@ -85,8 +85,11 @@ from lubrication.errors import InputError
 from .bearing import STRIBECK
 from .units import UnitError, parse_quantity, si_unit
 
-SCENES = ("film", "ehl")
-PLANNED_SCENES = ("map", "dynamics")
+SCENES = ("film", "ehl", "map", "dynamics")
+PLANNED_SCENES: tuple[str, ...] = ()
+# scenes whose case model lives in their own module ``coupling.<scene>_scene``
+# (attribute ``CaseModel``), imported only when a case of that scene is read
+SCENE_MODULES = {"map": "coupling.map_scene", "dynamics": "coupling.dynamics_scene"}
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 
 
@@ -875,7 +878,23 @@ class EHLCase(_Model):
 
 
 CASE_MODELS = {"film": FilmCase, "ehl": EHLCase}
-Case = FilmCase | EHLCase
+Case = FilmCase | EHLCase  # and the case models of SCENE_MODULES
+
+
+def case_model(scene: str):
+    """The pydantic model of a scene's case (imports the scene module when needed)."""
+    if scene in CASE_MODELS:
+        return CASE_MODELS[scene]
+    import importlib
+
+    try:
+        module = importlib.import_module(SCENE_MODULES[scene])
+    except ModuleNotFoundError as exc:
+        if exc.name != SCENE_MODULES[scene]:
+            raise
+        raise CaseError(f"scene = {scene!r} is not available in this version; "
+                        f"it runs scene = {', '.join(repr(k) for k in CASE_MODELS)}") from None
+    return module.CaseModel
 
 
 # ---------------------------------------------------------------------------
@@ -1081,7 +1100,7 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
     if scene not in SCENES:
         raise CaseError(f"scene = {_show(scene)} is not allowed; choose one of {', '.join(map(repr, SCENES))}"
                         + _did_you_mean(scene, SCENES + PLANNED_SCENES))
-    model = CASE_MODELS[scene]
+    model = case_model(scene)
     try:
         return model.model_validate(raw)
     except ValidationError as exc:

@@ -41,6 +41,8 @@ from .config import EHLCase, resolved_toml
 
 log = logging.getLogger(__name__)
 
+FIELD_FILES = (("ehl.vtu", "vtu"), ("profiles.png", "png"))
+
 DEFAULT_E_STAR = 1.0e11  # Pa, the modulus scale of a [dimensionless] case without [materials]
 
 

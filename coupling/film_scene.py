@@ -38,6 +38,8 @@ from .config import FilmCase, resolved_toml
 
 log = logging.getLogger(__name__)
 
+FIELD_FILES = (("film.vtu", "vtu"), ("pressure.png", "png"))
+
 
 # ---------------------------------------------------------------------------
 # case -> lubrication objects
@@ -253,3 +255,6 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     result.files = outputs.write_run(out_dir, resolved_toml(case, header), summary, case.output.write,
                                      fields=("film.vtu", solution.save), figure=("pressure.png", figure))
     return result
+
+
+build = build_film  # the scene protocol of coupling.cli

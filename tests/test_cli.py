@@ -130,10 +130,10 @@ def test_gap_closing_inside_the_domain(capsys):
     assert_one_line_error(err, "gap (pocketed_slider)", "must be > 0 everywhere")
 
 
-def test_scene_not_yet_available(capsys):
-    code, _, err = run(capsys, "validate", JOURNAL, "--set", "scene=dynamics")
+def test_scene_misspelt(capsys):
+    code, _, err = run(capsys, "validate", JOURNAL, "--set", "scene=dynamic")
     assert code == 2
-    assert_one_line_error(err, "scene = 'dynamics' is not available yet")
+    assert_one_line_error(err, "scene = 'dynamic' is not allowed", "did you mean 'dynamics'")
 
 
 def test_missing_file(tmp_path, capsys):
