@@ -139,3 +139,57 @@ def resolved_header(name: str, source, smoke: bool) -> str:
     from . import __version__
 
     return f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
+
+
+def write_pvd(path, entries) -> Path:
+    """A ParaView collection (``.pvd``) of ``(time [s], file name)`` entries.
+
+    The data files are referenced relative to the ``.pvd`` (keep them in the
+    same folder).  ParaView opens the ``.pvd`` as one time series.  Neither
+    pyvista nor meshio writes this collection format (pyvista only reads it),
+    so its small XML is written here.
+    """
+    from xml.sax.saxutils import quoteattr
+
+    lines = ['<?xml version="1.0"?>',
+             '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+             "  <Collection>"]
+    for time, name in entries:
+        lines.append(f"    <DataSet timestep={quoteattr(repr(float(time)))} group=\"\" part=\"0\" "
+                     f"file={quoteattr(str(name))}/>")
+    lines += ["  </Collection>", "</VTKFile>", ""]
+    return write_text(path, "\n".join(lines))
+
+
+def write_timeseries(path, time, columns: dict, meta: dict | None = None) -> Path:
+    """A self-describing time series: ``.npz`` with ``"Time [s]"`` and one array
+    per column (names carry units, e.g. ``"Ball 1 x [m]"``) plus a JSON
+    ``"__meta__"`` entry (case, units convention, anything in ``meta``).
+
+    Read it back with :func:`read_timeseries` (or ``numpy.load``).
+    """
+    import io
+
+    import numpy as np
+
+    buffer = io.BytesIO()
+    arrays = {"Time [s]": np.asarray(time, dtype=float)}
+    for name, value in columns.items():
+        value = np.asarray(value)
+        if value.shape[:1] != arrays["Time [s]"].shape:
+            raise ValueError(f"column {name!r} has {value.shape[:1]} samples, time has {len(arrays['Time [s]'])}")
+        arrays[name] = value
+    header = {"format": "lubedyn time series", "version": 1, "columns": list(arrays), **(meta or {})}
+    np.savez_compressed(buffer, __meta__=np.array(json.dumps(header, default=str)), **arrays)
+    return write_bytes(path, buffer.getvalue())
+
+
+def read_timeseries(path) -> tuple[dict, dict]:
+    """(columns, meta) of a file written by :func:`write_timeseries`."""
+    import numpy as np
+
+    with np.load(path, allow_pickle=False) as data:
+        meta = json.loads(str(data["__meta__"]))
+        if meta.get("format") != "lubedyn time series":
+            raise ValueError(f"{path}: not a lubedyn time series file")
+        return {name: data[name] for name in meta["columns"]}, meta

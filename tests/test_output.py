@@ -122,3 +122,37 @@ def test_journal_vtu_values_are_the_solution(tmp_path):
     cells = grid.cells_dict[pv.CellType.QUAD]
     edges = np.linalg.norm(pts[cells] - pts[np.roll(cells, 1, axis=1)], axis=2)
     assert edges.max() < 1.01 * cell_size
+
+
+def test_pvd_collection_reads_back_in_pyvista(tmp_path):
+    """pyvista's own PVD reader (an independent parser) sees the times and the data."""
+    import pyvista as pv
+
+    from coupling.outputs import write_pvd
+
+    entries = []
+    for k, t in enumerate((0.0, 2.5e-4, 1e-3)):
+        mesh = pv.Sphere(radius=1.0 + k)
+        mesh.point_data["Pressure [Pa]"] = np.full(mesh.n_points, float(k))
+        mesh.save(tmp_path / f"step_{k}.vtp")
+        entries.append((t, f"step_{k}.vtp"))
+    write_pvd(tmp_path / "series.pvd", entries)
+    reader = pv.get_reader(str(tmp_path / "series.pvd"))
+    assert np.allclose(reader.time_values, [0.0, 2.5e-4, 1e-3])
+    reader.set_active_time_value(1e-3)
+    block = reader.read()[0]
+    assert np.allclose(block.point_data["Pressure [Pa]"], 2.0)
+    assert abs(block.bounds[1] - 3.0) < 1e-2  # sphere of radius 3
+
+
+def test_timeseries_roundtrip_and_refuses_ragged_columns(tmp_path):
+    from coupling.outputs import read_timeseries, write_timeseries
+
+    t = np.linspace(0, 1e-3, 5)
+    path = write_timeseries(tmp_path / "ts.npz", t, {"Ball 1 x [m]": np.sin(t)}, {"Case": "demo"})
+    columns, meta = read_timeseries(path)
+    assert np.array_equal(columns["Time [s]"], t) and np.array_equal(columns["Ball 1 x [m]"], np.sin(t))
+    assert meta["Case"] == "demo" and meta["columns"] == ["Time [s]", "Ball 1 x [m]"]
+    with pytest.raises(ValueError, match="Ball 2"):
+        write_timeseries(tmp_path / "bad.npz", t, {"Ball 2 x [m]": np.ones(4)})
+    assert not (tmp_path / "bad.npz").exists()
