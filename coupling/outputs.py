@@ -84,8 +84,16 @@ def staged(out_dir):
     try:
         yield stage
         for item in sorted(stage.iterdir()):
-            os.replace(item, out / item.name)
-            log.info("wrote %s", out / item.name)
+            target = out / item.name
+            if item.is_dir() and target.is_dir():
+                # a folder of fields (frames/): move the old one aside, put the new one in, drop the old
+                old = Path(tempfile.mkdtemp(prefix=f".old-{item.name}-", dir=out))
+                os.replace(target, old / item.name)
+                os.replace(item, target)
+                shutil.rmtree(old, ignore_errors=True)
+            else:
+                os.replace(item, target)
+            log.info("wrote %s", target)
     finally:
         shutil.rmtree(stage, ignore_errors=True)
 

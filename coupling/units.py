@@ -48,6 +48,7 @@ DIMENSIONS: dict[str, tuple[int, ...]] = {
     "volume flow": (3, 0, -1, 0, 0),
     "stiffness": (0, 1, -2, 0, 0),
     "damping": (0, 1, -1, 0, 0),
+    "moment of inertia": (2, 1, 0, 0, 0),
 }
 _NAMES = {v: k for k, v in reversed(list(DIMENSIONS.items()))}
 _NAMES[(0, 1, -2, 0, 0)] = "stiffness (force per length)"
@@ -158,7 +159,8 @@ def si_unit(dimension: str) -> str:
                "inverse pressure": "1/Pa", "velocity": "m/s", "angular velocity": "rad/s",
                "frequency": "Hz", "density": "kg/m^3", "energy": "J", "power": "W",
                "volume flow": "m^3/s", "stiffness": "N/m", "damping": "N s/m",
-               "force per length": "N/m", "area": "m^2", "acceleration": "m/s^2"}
+               "force per length": "N/m", "area": "m^2", "acceleration": "m/s^2",
+               "moment of inertia": "kg m^2"}
     if dimension in special:
         return special[dimension]
     dim = DIMENSIONS[dimension]
