@@ -17,14 +17,23 @@ module             responsibility
 ``bearing``        one rolling-element/raceway contact of a bearing: radii,
                    entrainment speed, most loaded element (Stribeck,
                    quasi-static), contact angle under axial load
+``film_points``    point kinds of film maps (ball-ball Reynolds film, EHL
+                   race contacts: axes, outputs, evaluate) and paper B's
+                   contact laws as plain-float reference functions
+``maps``           FilmMap: sweeps over local processes or Dask, resume,
+                   fitted power law, accuracy report, self-describing file
+``map_scene``      map scene: a point kind swept over its axes -> map file,
+                   PNG, ``.pvd`` series of the film fields
+``dynamics_scene`` dynamics scene: the cage-less ball bearing of paper B ->
+                   integrate -> collisions, Lyapunov exponents, spectrum,
+                   time series, ``.pvd`` of balls, rings and films, PNGs
 ``outputs``        atomic writers (temporary file + rename) for run outputs
 ``cli``            ``lubedyn run | validate | cases | info``; exit codes
                    0 ok, 2 input error, 1 failed solve
 =================  ==========================================================
 
-Planned: film maps (sweeps, fits, storage) and the dynamics scenes of papers
-A and B.  ``coupling`` imports ``lubrication`` (and later ``dynamics``); never
-the other way round.
+Planned: the dynamics scene of paper A (tapered roller bearing).  ``coupling``
+imports ``lubrication`` and ``dynamics``; never the other way round.
 """
 from __future__ import annotations
 

@@ -1,0 +1,25 @@
+"""dynamics: compiled (numba) rigid-body dynamics of rolling bearings.
+
+==============  ==============================================================
+module          responsibility
+==============  ==============================================================
+``integrators`` RK4, Dormand-Prince 5(4) with dense output, the whole time
+                loop in numba; ``integrate`` driver with progress and checks
+``rotations``   unit quaternions, Euler's equations (numba)
+``contacts``    Hertz (exact / Hamrock-Brewe), Hunt-Crossley damping,
+                traction curve, ball-ball film + Hertz series law, Thornton
+                collision phases, film-rupture friction
+``cageless``    cage-less 6206 ball bearing of paper B: ``CagelessBearing``,
+                ``rhs``, ``forces``, ``forces_many``
+``interp``      map interpolation kernels (multilinear, monotone cubic, log
+                axes; clamp-and-count or NaN outside the axes)
+``lyapunov``    Lyapunov spectrum (Benettin), largest exponent of a time
+                series (Rosenstein)
+``spectra``     amplitude spectra, bearing characteristic frequencies
+``analysis``    collision events and slip from sampled contact forces
+``errors``      ``DynamicsInputError``, ``IntegrationError``
+==============  ==============================================================
+
+``dynamics`` never imports ``lubrication`` or ``coupling``: it sees films only
+as plain arrays (map axes and values) and closed forms.
+"""

@@ -1,0 +1,1181 @@
+r"""Cage-less deep-groove ball bearing (paper B: 6206 size, 14 balls, local
+functional slots, balls colliding through the oil film), as a numba
+right-hand side.
+
+Frames and bodies
+-----------------
+Inertial frame: x horizontal, y up (gravity -g e_y), z the bearing axis.  The
+outer ring is fixed with its centre at the origin.  The inner ring (carrying
+the rotor's mass) translates freely (x, y; and z with the 6-DOF balls) and
+turns about z (angle theta, speed omega); the rotor turns at Omega.  Ball j
+has centre c_j, velocity v_j and angular velocity w_j.
+
+Degrees of freedom (option ``dof``)
+    ``"6dof"``: per ball position (3), unit quaternion (4, scalar first, body
+    -> inertial, :mod:`dynamics.rotations`), velocity (3) and body-frame
+    angular velocity (3) with Euler's equations (the gyroscopic term
+    w x J w vanishes for a sphere but is kept general).  13 states/ball.
+    ``"planar"``: the ball stays in the mid-plane z = 0: orbital angle phi,
+    radial position r, spin angle and spin speed about the axis-parallel
+    direction, (phi, r, theta_b, dphi/dt, dr/dt, omega_b), with
+    m (r'' - r phi'^2) = F_r, m (r phi'' + 2 r' phi') = F_t, J omega_b' = T_z.
+    6 states/ball.  No axial load (it needs a contact angle).
+
+State vector (:meth:`CagelessBearing.state_layout` names every entry)::
+
+    [ring x, y, z, theta, vx, vy, vz, omega, rotor Omega] (9)
+    [delta_max of ball pair j, j+1 (mod Z)]               (Z: plastic memory)
+    [ball 0 block, ball 1 block, ...]                      (Z x 13 or Z x 6)
+
+Ball-race contact (rigid rings, groove curvature centres)
+--------------------------------------------------------
+The groove of a race is a torus; its curvature centre circle has radius
+R_oc = D_o/2 - r_o (outer, about the origin) and R_ic = D_i/2 + r_i (inner,
+about the inner-ring centre c_i, axial offset z_i).  For a ball at radial
+distance rho from the race axis in its own radial plane (unit e_r), with u =
+c - (race centre + R_gc e_r) and L = |u|::
+
+    delta = L - (r_g - D/2),   n = u/L,   Q = K delta^1.5 (1 + alpha d(delta)/dt)  (Hunt-Crossley)
+
+the force on the ball is -Q n at the contact point p = c + (D/2) n (the
+reaction +Q n acts on the inner ring); the contact angle reported is the
+angle of the load line, atan(n_z/n_r) at the outer race and atan(-n_z/n_r)
+at the inner race (equal for a ball loaded only by the two races).
+K is the exact Hertz constant of :mod:`dynamics.contacts` at the zero-angle
+curvature (its change with the angle through gamma is < 0.1 %).  Traction:
+the closed-form curve mu(SRR) of :func:`dynamics.contacts.traction_coefficient`
+against the tangential sliding velocity v_s = (v + w x (D/2) n) - v_race(p);
+entrainment u_e = |((v_ball + v_race)/2 - v_p)_t| with v_p the velocity of the
+contact point (it moves with the ball's orbit).  Spin and rolling-resistance
+moments are not modelled.
+
+Functional slots (paper B, Table 4: width W = 3.5 mm across the groove,
+length L_s = 11.5 mm along it, depth 1 mm; EDM-cut in the raceway)
+    The groove surface is missing where the contact point lies within
+    |s| < L_s/2 (arc length along the race from the slot centre) and |z_p| <
+    W/2 (axial, from the groove centre plane): the groove force is multiplied
+    by 1 - w_s(s) w_z(z_p) (smooth steps of width ``slot_blend``).  Over the
+    slot a ball that has lost its groove support drops onto the slot's two
+    edges (circles at z = +-W/2 on the groove surface; a sphere against an
+    edge rounded with ``slot_edge_radius``, Hertz, weighted by w_s).  A ball
+    of D = 9.525 mm dips R - sqrt(R^2 - W^2/4) = 0.33 mm into a 3.5 mm slot,
+    less than its 1 mm depth, so the slot floor is never reached (checked).
+    Default: one slot in the outer (fixed) ring at the bottom of the load
+    zone (azimuth 270 deg, under the radial load), as the paper's figure 3
+    discussion places it ("the bearing area has the lowest set of functional
+    slots"); count, azimuths and race are options (an inner-ring slot turns
+    with theta).
+
+Ball-ball contact between neighbours j, j+1 (no cage; the train keeps its
+order since Z D < pi d_m): the film + Hertz series law with collision phases
+and film-rupture friction of :func:`dynamics.contacts.ball_ball_normal`.
+
+Inner ring and rotor (option ``scenario``)
+    ``"steady"``: omega fixed (driven inner ring), Omega unused.
+    ``"drop"``: the rotor, spinning at Omega_0, has landed on the inner ring
+    (at rest with the balls, in the quasi-static equilibrium under F_r, F_a)
+    and drags it by friction at the rotor-inner ring contact::
+
+        T_f = mu_r F_r r_c tanh((Omega - omega)/omega_reg)
+        J_ring omega' = T_balls + T_f,   J_rotor Omega' = -T_f   (J_rotor = inf: driven rotor)
+
+    (a regularised Coulomb law; F_r the normal load in the rotor-ring
+    contact, r_c the bore radius).  An initial downward ring speed
+    ``drop_speed`` models the impact.
+    ``"free"``: omega free, no rotor (T_f = 0).
+
+The inner-ring assembly (ring + rotor, mass ``ring_mass``) carries the radial
+load F_r downward (-y) including its own weight, i.e. the applied force is
+F_r - m g plus gravity m g, and the axial load F_a along +z.  Gravity also acts
+on the balls.
+
+API
+---
+:class:`CagelessBearing` (parameters, ``args()`` the numba tuple,
+``initial_state()`` the quasi-static start, ``state_layout()``/``state_names()``,
+``omega_max()`` for the explicit step limit); :func:`rhs` (integrator
+contract ``rhs(t, y, args, dydt)``); :func:`forces` / :func:`forces_many`
+(contact loads, angles, slip, ball-ball force vectors, film thickness and
+collision phase at sampled states, columns :data:`DIAG_NAMES`);
+:func:`bearing_energy`, :func:`angular_momentum_z` (invariants for checks).
+
+Cost (measured, numba 0.68, one core of a loaded 2-core machine, CPU time)
+-------------------------------------------------------------------------
+One ``rhs`` call with 14 balls: 5.4-6.7 us planar (107 states), 6.1-7.4 us
+6-DOF (205 states).  Largest stable RK4 step at 10,000 rpm (F_r 2000 N, F_a
+200 N, slot): 1.33e-5 s steady, 1.25e-5 s during the rotor drop with ball
+collisions; :meth:`CagelessBearing.omega_max` gives 2.83/omega_max = 1.03e-5 s
+(conservative by ~25 %).  RK4 at 5 us: ~150-190 ms simulated per CPU second.
+"""
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, fields
+
+import numpy as np
+from numba import njit
+
+from . import contacts as C
+from .contacts import (
+    BB_HCUT,
+    FILM_KINDS,
+    FILM_NONE,
+    ball_ball_friction_coefficient,
+    ball_ball_normal,
+    hertz_force,
+    plastic_memory_rate,
+    traction_coefficient,
+)
+from .errors import DynamicsInputError
+from .rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
+
+logger = logging.getLogger(__name__)
+_JIT = dict(cache=True, fastmath=False)
+
+DOFS = {"planar": 0, "6dof": 1}
+SCENARIOS = {"steady": 0, "drop": 1, "free": 2}
+RACES = {"outer": 0, "inner": 1}
+TRACTIONS = {"closed_form": 0, "map": 1}
+MAP_SPEED_AXES = {"approach_speed": C.MAP_AXIS_APPROACH, "squeeze_number": C.MAP_AXIS_SQUEEZE}
+N_RING = 9
+NB_PLANAR, NB_6DOF = 6, 13
+
+# integer options
+I_Z, I_DOF, I_FILM, I_DRIVE, I_TRACTION, I_BALLBALL, I_NSLOT = range(7)
+I_SIZE = 7
+# float parameters
+(P_D, P_RB, P_ROC, P_RIC, P_RO, P_RI, P_MB, P_JB, P_MR, P_JR, P_JROT, P_KI, P_KO, P_ALPHA, P_MU, P_SRR, P_VREG,
+ P_FX, P_FY, P_FZ, P_G, P_OMEGA_FIX, P_MUROT, P_RC, P_WREG, P_NROT, P_SW, P_SL, P_SBLEND, P_KEO, P_KEI, P_REO,
+ P_REI, P_QSTAB) = range(34)
+P_SIZE = 34
+
+# per-ball diagnostics of forces()
+DIAG_NAMES = (
+    "Inner race load [N]", "Outer race load [N]", "Inner contact angle [rad]", "Outer contact angle [rad]",
+    "Inner slide-to-roll ratio [-]", "Outer slide-to-roll ratio [-]", "Inner sliding speed [m/s]",
+    "Outer sliding speed [m/s]", "Slot edge load [N]", "Ball-ball force x [N]", "Ball-ball force y [N]",
+    "Ball-ball force z [N]", "Ball-ball normal force [N]", "Ball-ball friction force [N]", "Ball-ball gap [m]",
+    "Ball-ball film thickness [m]", "Ball-ball phase [-]", "Orbital angle [rad]", "Orbital speed [rad/s]",
+    "Spin speed [rad/s]",
+)
+(D_QI, D_QO, D_AI, D_AO, D_SRRI, D_SRRO, D_VSI, D_VSO, D_QE, D_BBX, D_BBY, D_BBZ, D_BBN, D_BBT, D_GAP, D_H, D_PHASE,
+ D_PSI, D_PSIDOT, D_SPIN) = range(20)
+N_DIAG = 20
+RING_DIAG_NAMES = ("Ring force from balls x [N]", "Ring force from balls y [N]", "Ring force from balls z [N]",
+                   "Ring torque from balls [N m]", "Rotor friction torque [N m]")
+N_RING_DIAG = 5
+
+
+# ----------------------------------------------------------------------------- kernels
+@njit(**_JIT)
+def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, RF, out):
+    """One ball-race (or slot-edge) contact with normal n (ball force -Q n,
+    contact point c + (D/2) n).  Accumulates ball force F, torque T, ring
+    force RF[0:3] and torque RF[3] (``inner`` race only; ``wr`` its speed).
+    out <- (Q, SRR, sliding speed, contact angle)."""
+    Rb = P[P_RB]
+    vx, vy, vz = v[0] - vctr[0], v[1] - vctr[1], v[2] - vctr[2]
+    ddot = n0 * vx + n1 * vy + n2 * vz
+    Q = hertz_force(delta, ddot, K, P[P_ALPHA])
+    out[0] = Q
+    out[1] = 0.0
+    out[2] = 0.0
+    # contact angle of the load line, positive when the ball is pushed towards -z at this contact
+    out[3] = math.atan2(n2 if not inner else -n2, math.sqrt(n0 * n0 + n1 * n1))
+    if Q <= 0.0:
+        return
+    # contact point relative to the ball centre and to the race centre
+    a0, a1, a2 = Rb * n0, Rb * n1, Rb * n2
+    p0, p1 = c[0] + a0 - ctr[0], c[1] + a1 - ctr[1]
+    # surface velocities at the contact point
+    vb0 = v[0] + w[1] * a2 - w[2] * a1
+    vb1 = v[1] + w[2] * a0 - w[0] * a2
+    vb2 = v[2] + w[0] * a1 - w[1] * a0
+    vr0, vr1, vr2 = vctr[0] - wr * p1, vctr[1] + wr * p0, vctr[2]
+    # orbital rate of the ball about the race axis -> contact point velocity
+    d0, d1 = c[0] - ctr[0], c[1] - ctr[1]
+    rho2 = d0 * d0 + d1 * d1
+    psid = (d0 * vy - d1 * vx) / rho2 if rho2 > 0.0 else 0.0
+    vp0, vp1, vp2 = vctr[0] - psid * p1, vctr[1] + psid * p0, vctr[2]
+    s0, s1, s2 = vb0 - vr0, vb1 - vr1, vb2 - vr2
+    sn = s0 * n0 + s1 * n1 + s2 * n2
+    s0 -= sn * n0
+    s1 -= sn * n1
+    s2 -= sn * n2
+    e0 = 0.5 * (vb0 + vr0) - vp0
+    e1 = 0.5 * (vb1 + vr1) - vp1
+    e2 = 0.5 * (vb2 + vr2) - vp2
+    en = e0 * n0 + e1 * n1 + e2 * n2
+    e0 -= en * n0
+    e1 -= en * n1
+    e2 -= en * n2
+    ue = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
+    vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
+    out[1] = vs / ue if ue > 0.0 else 0.0
+    out[2] = vs
+    ft0 = 0.0
+    ft1 = 0.0
+    ft2 = 0.0
+    if vs > 0.0:
+        mu = traction_coefficient(vs, ue, P[P_MU], P[P_SRR], P[P_VREG])
+        f = -mu * Q / vs
+        ft0, ft1, ft2 = f * s0, f * s1, f * s2
+    fx, fy, fz = -Q * n0 + ft0, -Q * n1 + ft1, -Q * n2 + ft2
+    F[0] += fx
+    F[1] += fy
+    F[2] += fz
+    T[0] += a1 * ft2 - a2 * ft1
+    T[1] += a2 * ft0 - a0 * ft2
+    T[2] += a0 * ft1 - a1 * ft0
+    if inner:  # the inner ring takes the reaction
+        RF[0] -= fx
+        RF[1] -= fy
+        RF[2] -= fz
+        RF[3] -= p0 * fy - p1 * fx
+
+
+@njit(**_JIT)
+def _smooth_in(x, half, blend):
+    """~1 for |x| < half, ~0 beyond, over a width ``blend``."""
+    return 0.5 * (1.0 - math.tanh((abs(x) - half) / blend))
+
+
+@njit(**_JIT)
+def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P):
+    """Largest slot weight w_s(s) w_z(z) of a point (relative to the race centre)
+    and the largest arc weight w_s alone.  Exactly 0 farther than 10 blend widths
+    beyond a slot's end (where the smooth step is below 1e-8)."""
+    best = 0.0
+    best_s = 0.0
+    far = 0.5 * P[P_SL] + 10.0 * P[P_SBLEND]
+    psi = 0.0
+    have_psi = False
+    for k in range(slots.shape[0]):
+        if int(slots[k, 1]) != race:
+            continue
+        if not have_psi:
+            psi = math.atan2(py, px)
+            have_psi = True
+        az = slots[k, 0] + (ring_theta if race == 1 else 0.0)
+        dpsi = (psi - az + math.pi) % (2.0 * math.pi) - math.pi
+        s_arc = R_race * dpsi
+        if abs(s_arc) > far:
+            continue
+        ws = _smooth_in(s_arc, 0.5 * P[P_SL], P[P_SBLEND])
+        if ws > best_s:
+            best_s = ws
+        wz = _smooth_in(pz, 0.5 * P[P_SW], P[P_SBLEND])
+        if ws * wz > best:
+            best = ws * wz
+    return best, best_s
+
+
+@njit(**_JIT)
+def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz):
+    """Both race contacts (and slot edges) of one ball; dg <- diagnostics
+    (``out``, ``ctr``, ``vz``: work arrays of 4, 3, 3 floats)."""
+    D = P[P_D]
+    Rb = P[P_RB]
+    halfw = 0.5 * P[P_SW]
+    for race in range(2):
+        if race == 0:
+            Rgc, rg, K, KE, RE = P[P_ROC], P[P_RO], P[P_KO], P[P_KEO], P[P_REO]
+            ctr[0] = 0.0
+            ctr[1] = 0.0
+            ctr[2] = 0.0
+            vz[0] = 0.0
+            vz[1] = 0.0
+            vz[2] = 0.0
+            wr = 0.0
+            th = 0.0
+        else:
+            Rgc, rg, K, KE, RE = P[P_RIC], P[P_RI], P[P_KI], P[P_KEI], P[P_REI]
+            ctr[0] = ring[0]
+            ctr[1] = ring[1]
+            ctr[2] = ring[2]
+            vz[0] = ring[4]
+            vz[1] = ring[5]
+            vz[2] = ring[6]
+            wr = ring[7]
+            th = ring[3]
+        d0, d1, d2 = c[0] - ctr[0], c[1] - ctr[1], c[2] - ctr[2]
+        rho = math.sqrt(d0 * d0 + d1 * d1)
+        er0, er1 = d0 / rho, d1 / rho
+        ur = rho - Rgc
+        L = math.sqrt(ur * ur + d2 * d2)
+        n0, n1, n2 = ur / L * er0, ur / L * er1, d2 / L
+        delta = L - (rg - 0.5 * D)
+        wslot = 0.0
+        wsarc = 0.0
+        if slots.shape[0] > 0:
+            wslot, wsarc = _slot_weight(d0 + Rb * n0, d1 + Rb * n1, d2 + Rb * n2, race, th, slots,
+                                        rg + Rgc if race == 0 else Rgc - rg, P)
+        _race_contact(c, v, w, n0, n1, n2, delta, K * (1.0 - wslot), ctr, vz, wr, race == 1, P, F, T, RF, out)
+        if race == 0:
+            dg[D_QO] = out[0]
+            dg[D_AO] = out[3]
+            dg[D_SRRO] = out[1]
+            dg[D_VSO] = out[2]
+        else:
+            dg[D_QI] = out[0]
+            dg[D_AI] = out[3]
+            dg[D_SRRI] = out[1]
+            dg[D_VSI] = out[2]
+        if wsarc > 1e-6:  # slot edges: circles at z = +-W/2 on the groove surface
+            for sgn in (-1.0, 1.0):
+                ez = sgn * halfw
+                u_r = rho - RE
+                u_z = d2 - ez
+                Le = math.sqrt(u_r * u_r + u_z * u_z)
+                de = Rb - Le
+                if de > 0.0:
+                    # normal from the ball centre towards the edge
+                    m0, m1, m2 = -u_r / Le * er0, -u_r / Le * er1, -u_z / Le
+                    _race_contact(c, v, w, m0, m1, m2, de, KE * wsarc, ctr, vz, wr, race == 1, P, F, T, RF, out)
+                    dg[D_QE] += out[0]
+
+
+@njit(**_JIT)
+def _evaluate(t, y, args, dydt, diag, ring_diag, want):
+    iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter = args
+    Z = iopt[I_Z]
+    dof = iopt[I_DOF]
+    nb = NB_6DOF if dof == 1 else NB_PLANAR
+    off = N_RING + Z
+    mb = P[P_MB]
+    Jb = P[P_JB]
+    g = P[P_G]
+    Rb = P[P_RB]
+    D = P[P_D]
+    # kinematics of every ball in the inertial frame
+    cpos = np.empty((Z, 3))
+    cvel = np.empty((Z, 3))
+    cw = np.empty((Z, 3))
+    Fb = np.zeros((Z, 3))
+    Tb = np.zeros((Z, 3))
+    RF = np.zeros(4)
+    tmp = np.empty(3)
+    out4 = np.empty(4)
+    ctr3 = np.empty(3)
+    vz3 = np.empty(3)
+    qn = np.empty(4)
+    Jv = np.empty(3)
+    Jv[0] = Jb
+    Jv[1] = Jb
+    Jv[2] = Jb
+    for j in range(Z):
+        b = off + j * nb
+        if dof == 1:
+            for k in range(3):
+                cpos[j, k] = y[b + k]
+                cvel[j, k] = y[b + 7 + k]
+            inv = 1.0 / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
+            for k in range(4):
+                qn[k] = y[b + 3 + k] * inv
+            quat_rotate(qn, y[b + 10:b + 13], tmp)
+            for k in range(3):
+                cw[j, k] = tmp[k]
+        else:
+            phi, r, phid, rd, om = y[b], y[b + 1], y[b + 3], y[b + 4], y[b + 5]
+            cp, sp = math.cos(phi), math.sin(phi)
+            cpos[j, 0] = r * cp
+            cpos[j, 1] = r * sp
+            cpos[j, 2] = 0.0
+            cvel[j, 0] = rd * cp - r * phid * sp
+            cvel[j, 1] = rd * sp + r * phid * cp
+            cvel[j, 2] = 0.0
+            cw[j, 0] = 0.0
+            cw[j, 1] = 0.0
+            cw[j, 2] = om
+    ring = y[0:N_RING]
+    dg = np.zeros(N_DIAG)
+    for j in range(Z):
+        for k in range(N_DIAG):
+            dg[k] = 0.0
+        _ball_races(cpos[j], cvel[j], cw[j], ring, P, slots, Fb[j], Tb[j], RF, dg, out4, ctr3, vz3)
+        if want:
+            for k in range(N_DIAG):
+                diag[j, k] = dg[k]
+    # ball-ball pairs j, j+1
+    for j in range(Z):
+        dydt[N_RING + j] = 0.0
+    if iopt[I_BALLBALL] == 1:
+        for j in range(Z):
+            k = j + 1 if j + 1 < Z else 0
+            d0 = cpos[k, 0] - cpos[j, 0]
+            d1 = cpos[k, 1] - cpos[j, 1]
+            d2 = cpos[k, 2] - cpos[j, 2]
+            dist = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+            gap = dist - D
+            dmax = y[N_RING + j]
+            if want:
+                diag[j, D_GAP] = gap
+                diag[j, D_H] = gap
+            if gap > 0.0 and (iopt[I_FILM] == FILM_NONE or gap >= bbp[BB_HCUT]):
+                dydt[N_RING + j] = plastic_memory_rate(0.0, 0.0, dmax, 0.0, bbp)
+                continue
+            n0, n1, n2 = d0 / dist, d1 / dist, d2 / dist
+            r0 = cvel[k, 0] - cvel[j, 0]
+            r1 = cvel[k, 1] - cvel[j, 1]
+            r2 = cvel[k, 2] - cvel[j, 2]
+            vapp = -(r0 * n0 + r1 * n1 + r2 * n2)
+            a0, a1, a2 = Rb * n0, Rb * n1, Rb * n2
+            wj, wk = cw[j], cw[k]
+            # entrainment: mean surface velocity at the contact relative to the pair's mean, (w_j - w_k) x a / 2
+            e0 = 0.5 * ((wj[1] - wk[1]) * a2 - (wj[2] - wk[2]) * a1)
+            e1 = 0.5 * ((wj[2] - wk[2]) * a0 - (wj[0] - wk[0]) * a2)
+            e2 = 0.5 * ((wj[0] - wk[0]) * a1 - (wj[1] - wk[1]) * a0)
+            ue = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
+            Fn, h, de, phase, share = ball_ball_normal(gap, vapp, ue, dmax, bbp, iopt[I_FILM], map_ax0, map_ax1,
+                                                       map_ax2, map_vals, map_opts, counter)
+            dydt[N_RING + j] = plastic_memory_rate(de, share * vapp, dmax, Fn, bbp)
+            f0, f1, f2 = Fn * n0, Fn * n1, Fn * n2
+            ft = 0.0
+            if Fn > 0.0:
+                # sliding velocity of k's surface relative to j's at the contact point
+                s0 = r0 + (wk[1] * -a2 - wk[2] * -a1) - (wj[1] * a2 - wj[2] * a1)
+                s1 = r1 + (wk[2] * -a0 - wk[0] * -a2) - (wj[2] * a0 - wj[0] * a2)
+                s2 = r2 + (wk[0] * -a1 - wk[1] * -a0) - (wj[0] * a1 - wj[1] * a0)
+                sn = s0 * n0 + s1 * n1 + s2 * n2
+                s0 -= sn * n0
+                s1 -= sn * n1
+                s2 -= sn * n2
+                vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
+                if vs > 0.0:
+                    mu = ball_ball_friction_coefficient(h, bbp)
+                    ft = mu * Fn * math.tanh(vs / bbp[C.BB_VREG])
+                    t0, t1, t2 = -ft * s0 / vs, -ft * s1 / vs, -ft * s2 / vs  # on k
+                    f0 += t0
+                    f1 += t1
+                    f2 += t2
+                    # torques: on k at -a, on j (force -t) at +a
+                    Tb[k, 0] += -a1 * t2 + a2 * t1
+                    Tb[k, 1] += -a2 * t0 + a0 * t2
+                    Tb[k, 2] += -a0 * t1 + a1 * t0
+                    Tb[j, 0] += a1 * -t2 - a2 * -t1
+                    Tb[j, 1] += a2 * -t0 - a0 * -t2
+                    Tb[j, 2] += a0 * -t1 - a1 * -t0
+            Fb[k, 0] += f0
+            Fb[k, 1] += f1
+            Fb[k, 2] += f2
+            Fb[j, 0] -= f0
+            Fb[j, 1] -= f1
+            Fb[j, 2] -= f2
+            if want:
+                diag[j, D_BBX] = f0
+                diag[j, D_BBY] = f1
+                diag[j, D_BBZ] = f2
+                diag[j, D_BBN] = Fn
+                diag[j, D_BBT] = ft
+                diag[j, D_H] = h
+                diag[j, D_PHASE] = phase
+    # balls: equations of motion
+    for j in range(Z):
+        b = off + j * nb
+        Fb[j, 1] -= mb * g
+        if dof == 1:
+            for k in range(3):
+                dydt[b + k] = y[b + 7 + k]
+                dydt[b + 7 + k] = Fb[j, k] / mb
+            inv = 1.0 / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
+            for k in range(4):
+                qn[k] = y[b + 3 + k] * inv
+            quat_derivative(y[b + 3:b + 7], y[b + 10:b + 13], dydt[b + 3:b + 7], P[P_QSTAB])
+            quat_rotate_inverse(qn, Tb[j], tmp)
+            euler_rate(Jv, y[b + 10:b + 13], tmp, dydt[b + 10:b + 13])
+        else:
+            phi, r, phid, rd, om = y[b], y[b + 1], y[b + 3], y[b + 4], y[b + 5]
+            cp, sp = math.cos(phi), math.sin(phi)
+            Fr = Fb[j, 0] * cp + Fb[j, 1] * sp
+            Ft = -Fb[j, 0] * sp + Fb[j, 1] * cp
+            dydt[b] = phid
+            dydt[b + 1] = rd
+            dydt[b + 2] = om
+            dydt[b + 3] = (Ft / mb - 2.0 * rd * phid) / r
+            dydt[b + 4] = r * phid * phid + Fr / mb
+            dydt[b + 5] = Tb[j, 2] / Jb
+        if want:
+            c0, c1 = cpos[j, 0], cpos[j, 1]
+            diag[j, D_PSI] = math.atan2(c1, c0)
+            diag[j, D_PSIDOT] = (c0 * cvel[j, 1] - c1 * cvel[j, 0]) / (c0 * c0 + c1 * c1)
+            diag[j, D_SPIN] = cw[j, 2]
+    # inner ring and rotor
+    mr = P[P_MR]
+    dydt[0] = y[4]
+    dydt[1] = y[5]
+    dydt[2] = y[6]
+    dydt[3] = y[7]
+    dydt[4] = (RF[0] + P[P_FX]) / mr
+    dydt[5] = (RF[1] + P[P_FY]) / mr - g
+    if dof == 1:
+        dydt[6] = (RF[2] + P[P_FZ]) / mr
+    else:
+        dydt[2] = 0.0
+        dydt[6] = 0.0
+    drive = iopt[I_DRIVE]
+    Tf = 0.0
+    if drive == 0:
+        dydt[7] = 0.0
+        dydt[8] = 0.0
+    elif drive == 1:
+        Tf = P[P_MUROT] * P[P_NROT] * P[P_RC] * math.tanh((y[8] - y[7]) / P[P_WREG])
+        dydt[7] = (RF[3] + Tf) / P[P_JR]
+        dydt[8] = -Tf / P[P_JROT] if P[P_JROT] > 0.0 else 0.0
+    else:
+        dydt[7] = RF[3] / P[P_JR]
+        dydt[8] = 0.0
+    if want:
+        ring_diag[0] = RF[0]
+        ring_diag[1] = RF[1]
+        ring_diag[2] = RF[2]
+        ring_diag[3] = RF[3]
+        ring_diag[4] = Tf
+
+
+@njit(**_JIT)
+def rhs(t, y, args, dydt):
+    """Right-hand side ``dy/dt`` of the cage-less bearing (integrator contract)."""
+    _evaluate(t, y, args, dydt, np.empty((0, 0)), np.empty(0), False)
+
+
+@njit(**_JIT)
+def forces(t, y, args):
+    """Contact forces at a state: ``(diag (Z, N_DIAG), ring_diag (N_RING_DIAG,), dydt)``.
+
+    Columns of ``diag`` are named by :data:`DIAG_NAMES`; the ball-ball columns
+    of row j belong to the pair (j, j+1 mod Z) and give the force on ball j+1."""
+    Z = args[0][I_Z]
+    dydt = np.empty(y.size)
+    diag = np.zeros((Z, N_DIAG))
+    ring_diag = np.zeros(N_RING_DIAG)
+    _evaluate(t, y, args, dydt, diag, ring_diag, True)
+    return diag, ring_diag, dydt
+
+
+@njit(**_JIT)
+def forces_many(t, Y, args):
+    """:func:`forces` at every row of ``Y`` (shape (m, n)): ``(diag (m, Z, N_DIAG), ring (m, N_RING_DIAG))``."""
+    m = Y.shape[0]
+    Z = args[0][I_Z]
+    D = np.zeros((m, Z, N_DIAG))
+    R = np.zeros((m, N_RING_DIAG))
+    for i in range(m):
+        d, r, _ = forces(t[i], Y[i], args)
+        D[i] = d
+        R[i] = r
+    return D, R
+
+
+# ----------------------------------------------------------------------------- model builder
+def _check_choice(key, value, allowed):
+    if value not in allowed:
+        import difflib
+
+        close = difflib.get_close_matches(str(value), list(allowed), n=2)
+        hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+        raise DynamicsInputError(f"{key} = {value!r} is not allowed; choose one of {', '.join(map(repr, allowed))}{hint}")
+
+
+def _map_arrays(film_map, axis1_kind):
+    """(ax0, ax1, ax2, vals (k, n0, n1, n2), opts) for the map kernel from a force map's kernel arrays
+    ``(axes, logs, values, logv, method)`` (:class:`coupling.maps.KernelArrays`); a two-axis map (gap,
+    speed) gets a constant third axis."""
+    from .interp import HERMITE
+
+    try:
+        axes, logs, values, logv, method = film_map
+    except (TypeError, ValueError):
+        raise DynamicsInputError("film_map must be (axes, logs, values, logv, method) of a force map "
+                                 "(coupling.maps.FilmMap.kernel_arrays('Force [N]'))") from None
+    axes = [np.ascontiguousarray(a, dtype=np.float64) for a in axes]
+    logs = [int(v) for v in logs]
+    vals = np.asarray(values, dtype=np.float64)
+    nd = len(axes)
+    if nd not in (2, 3) or len(logs) != nd:
+        raise DynamicsInputError(f"film_map has {nd} axes; the ball-ball force map needs 2 (gap, speed) or 3 "
+                                 "(gap, speed, entrainment speed)")
+    shape = tuple(a.size for a in axes)
+    hermite = int(method) == HERMITE
+    expect = ((2**nd,) if hermite else ()) + shape
+    if vals.shape != expect:
+        raise DynamicsInputError(f"film_map values have shape {vals.shape}; the axes need {expect}")
+    if nd == 2:
+        axes.append(np.array([0.0, 1.0]))
+        logs.append(0)
+        if hermite:  # bit 2 (derivative along the constant axis) is zero
+            v3 = np.zeros((8,) + shape + (2,))
+            v3[:4] = vals[..., None]
+        else:
+            v3 = np.repeat(vals[..., None], 2, axis=-1)[None]
+        vals = v3
+    elif not hermite:
+        vals = vals[None]
+    opts = np.zeros(C.MO_SIZE, dtype=np.int64)
+    opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = logs
+    opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = int(logv), int(method), 0
+    opts[C.MO_AXIS1] = axis1_kind
+    return axes[0], axes[1], axes[2], np.ascontiguousarray(vals), opts
+
+
+
+@dataclass(frozen=True)
+class CagelessBearing:
+    """Cage-less deep-groove ball bearing (SI units; defaults: paper B, Tables 1, 2, 4).
+
+    Geometry: ``n_balls`` Z, ``ball_diameter`` D, ``pitch_diameter`` d_m,
+    groove radii r_i, r_o (groove bottoms at d_m/2 -+ D/2 - P_d/4, P_d the
+    ``diametral_clearance``).  Materials: E, nu of the balls (207 GPa, 0.29)
+    and rings (208 GPa, 0.3; Table 2).  ``ball_mass`` None: from
+    ``ball_density`` (3.55 g; the paper prints 0.01 kg).  ``ring_mass``: inner
+    ring plus the rotor share it carries (not given in the paper: 3 kg
+    assumed); ``ring_inertia`` the inner ring alone about its axis (6206 inner
+    ring ~1.45e-5 kg m^2); ``rotor_inertia`` (inf: driven rotor).
+    Options: ``dof`` ("6dof", "planar"), ``film`` ("none", "closed_form",
+    "map" with ``film_map``), ``scenario`` ("steady", "drop", "free"),
+    ``traction`` ("closed_form"; "map" is a reserved slot), ``hertz_method``
+    ("exact", "hamrock_brewe"), ``ball_ball`` (contacts between neighbours).
+    ``shoulder_contact_angle_deg``: the largest contact angle before the contact
+    ellipse runs over the groove shoulder (the paper gives no shoulder
+    diameters; 40 deg assumed): a load that needs more is refused.
+    """
+
+    n_balls: int = 14
+    ball_diameter: float = 9.525e-3
+    pitch_diameter: float = 46.005e-3
+    inner_groove_radius: float = 4.905e-3
+    outer_groove_radius: float = 4.953e-3
+    diametral_clearance: float = 0.0
+    ball_modulus: float = 207e9
+    ball_poisson: float = 0.29
+    ring_modulus: float = 208e9
+    ring_poisson: float = 0.3
+    ball_density: float = 7850.0
+    ball_mass: float | None = None
+    ring_mass: float = 3.0
+    ring_inertia: float = 1.45e-5
+    rotor_inertia: float = 2e-3
+    radial_load: float = 2000.0
+    axial_load: float = 200.0
+    gravity: float = 9.81
+    speed_rpm: float = 10000.0
+    scenario: str = "steady"
+    drop_speed: float = 0.0
+    rotor_friction: float = 0.1
+    rotor_contact_radius: float = 15e-3
+    rotor_slip_regularisation: float = 1.0
+    dof: str = "6dof"
+    hertz_method: str = "exact"
+    race_damping: float = 0.2
+    traction: str = "closed_form"
+    traction_limit: float = 0.07
+    traction_srr: float = 0.02
+    traction_slip_regularisation: float = 0.05
+    ball_ball: bool = True
+    film: str = "closed_form"
+    film_map: tuple | None = None
+    film_map_speed_axis: str = "squeeze_number"
+    pressure_viscosity: float = 1.85e-8
+    viscosity: float = 0.050
+    film_rupture_thickness: float = 1e-7
+    film_cutoff_gap: float | None = None
+    yield_stress: float | None = 1.7e9
+    ball_ball_damping: float = 0.0
+    ball_ball_mu_film: float = 0.03
+    ball_ball_mu_boundary: float = 0.1
+    ball_ball_slip_regularisation: float = 0.01
+    plastic_memory_time: float = 1e-4
+    slot_azimuths_deg: tuple = (270.0,)
+    slot_race: str = "outer"
+    slot_width: float = 3.5e-3
+    slot_length: float = 11.5e-3
+    slot_depth: float = 1e-3
+    slot_edge_radius: float = 2e-4
+    slot_blend: float = 2e-4
+    quaternion_stabilisation: float = 10.0
+    shoulder_contact_angle_deg: float = 40.0
+    first_ball_azimuth_deg: float = 270.0
+
+    def __post_init__(self):
+        _check_choice("dof", self.dof, DOFS)
+        _check_choice("scenario", self.scenario, SCENARIOS)
+        _check_choice("film", self.film, FILM_KINDS)
+        _check_choice("traction", self.traction, TRACTIONS)
+        _check_choice("hertz_method", self.hertz_method, C.HERTZ_METHODS)
+        _check_choice("slot_race", self.slot_race, RACES)
+        Z = self.n_balls
+        if int(Z) != Z or Z < 3:
+            raise DynamicsInputError(f"n_balls = {Z!r} must be an integer >= 3")
+        for key in ("ball_diameter", "pitch_diameter", "ball_modulus", "ring_modulus", "ball_density", "ring_mass",
+                    "ring_inertia", "rotor_inertia", "slot_width", "slot_length", "slot_depth", "slot_edge_radius",
+                    "slot_blend", "rotor_contact_radius", "rotor_slip_regularisation",
+                    "traction_srr", "traction_slip_regularisation", "film_rupture_thickness",
+                    "ball_ball_slip_regularisation", "plastic_memory_time"):
+            v = getattr(self, key)
+            if not (isinstance(v, (int, float)) and v > 0.0):
+                raise DynamicsInputError(f"{key} = {v!r} must be > 0")
+        for key in ("radial_load", "axial_load", "gravity", "race_damping", "traction_limit", "viscosity",
+                    "rotor_friction", "ball_ball_damping", "quaternion_stabilisation"):
+            v = getattr(self, key)
+            if not (isinstance(v, (int, float)) and v >= 0.0 and math.isfinite(v)):
+                raise DynamicsInputError(f"{key} = {v!r} must be a finite number >= 0")
+        D, dm = self.ball_diameter, self.pitch_diameter
+        if Z * D >= math.pi * dm:
+            raise DynamicsInputError(
+                f"n_balls = {Z} balls of D = {D:g} m do not fit the pitch circle: Z D = {Z * D:g} m >= "
+                f"pi d_m = {math.pi * dm:g} m")
+        BD = self.inner_groove_radius + self.outer_groove_radius - D
+        if not (math.isfinite(self.diametral_clearance) and -0.05 * BD < self.diametral_clearance < 4.0 * BD):
+            raise DynamicsInputError(
+                f"diametral_clearance = {self.diametral_clearance!r} m must lie in ({-0.05 * BD:g}, {4 * BD:g}) m "
+                "(negative: interference, i.e. preload)")
+        if not D < dm:
+            raise DynamicsInputError(f"ball_diameter = {D:g} m must be < pitch_diameter = {dm:g} m")
+        for key in ("inner_groove_radius", "outer_groove_radius"):
+            if not getattr(self, key) > 0.5 * D:
+                raise DynamicsInputError(f"{key} = {getattr(self, key)!r} m must be > D/2 = {0.5 * D:g} m")
+        if self.dof == "planar" and self.axial_load != 0.0:
+            raise DynamicsInputError(
+                f"axial_load = {self.axial_load:g} N needs dof = '6dof' (planar balls stay in the mid-plane "
+                "and carry no axial load); set axial_load = 0 or dof = '6dof'")
+        _check_choice("film_map_speed_axis", self.film_map_speed_axis, MAP_SPEED_AXES)
+        if self.film == "map" and self.film_map is None:
+            raise DynamicsInputError("film = 'map' needs film_map = (axes, logs, values, logv, method) of a "
+                                     "ball_ball force map (coupling.maps.FilmMap.kernel_arrays('Force [N]'))")
+        if self.traction == "map":
+            raise DynamicsInputError("traction = 'map' is a reserved slot (EHL traction maps not wired yet); "
+                                     "use traction = 'closed_form'")
+        if self.yield_stress is not None and not self.yield_stress > 0.0:
+            raise DynamicsInputError(f"yield_stress = {self.yield_stress!r} must be > 0 [Pa] (or None: elastic)")
+        if self.slot_width >= 2.0 * min(self.inner_groove_radius, self.outer_groove_radius):
+            raise DynamicsInputError(f"slot_width = {self.slot_width:g} m must be < the groove diameter")
+        dip = 0.5 * D - math.sqrt(0.25 * D * D - 0.25 * self.slot_width**2) if self.slot_width < D else 0.5 * D
+        if self.slot_azimuths_deg and dip >= self.slot_depth:
+            raise DynamicsInputError(f"slot_depth = {self.slot_depth:g} m: a ball dips {dip:g} m into a slot of width "
+                                     f"{self.slot_width:g} m and would reach the slot floor (not modelled)")
+
+    # derived quantities ------------------------------------------------------
+    @property
+    def mass(self) -> float:
+        """Ball mass [kg]."""
+        if self.ball_mass is not None:
+            return float(self.ball_mass)
+        return self.ball_density * math.pi / 6.0 * self.ball_diameter**3
+
+    @property
+    def ball_inertia(self) -> float:
+        """2/5 m R^2 [kg m^2]."""
+        return 0.4 * self.mass * (0.5 * self.ball_diameter) ** 2
+
+    @property
+    def e_star_race(self) -> float:
+        return C.reduced_modulus(self.ball_modulus, self.ball_poisson, self.ring_modulus, self.ring_poisson)
+
+    @property
+    def e_star_ball(self) -> float:
+        return C.reduced_modulus(self.ball_modulus, self.ball_poisson, self.ball_modulus, self.ball_poisson)
+
+    def hertz_constants(self) -> tuple[float, float]:
+        """(K_i, K_o) [N/m^1.5] of the ball-race contacts (zero contact angle)."""
+        D, dm = self.ball_diameter, self.pitch_diameter
+        es = self.e_star_race
+        Ki = C.hertz_constant(*C.race_radii(D, dm, self.inner_groove_radius, "inner"), es, self.hertz_method)
+        Ko = C.hertz_constant(*C.race_radii(D, dm, self.outer_groove_radius, "outer"), es, self.hertz_method)
+        return Ki, Ko
+
+    @property
+    def contact_angle_free(self) -> float:
+        """Free contact angle [rad] from the clearance: cos b0 = 1 - P_d/(2 B D) (0 for P_d <= 0)."""
+        BD = self.inner_groove_radius + self.outer_groove_radius - self.ball_diameter
+        return math.acos(min(1.0, 1.0 - self.diametral_clearance / (2.0 * BD)))
+
+    @property
+    def omega_inner(self) -> float:
+        return self.speed_rpm * math.pi / 30.0
+
+    @property
+    def n_per_ball(self) -> int:
+        return NB_6DOF if self.dof == "6dof" else NB_PLANAR
+
+    @property
+    def n_states(self) -> int:
+        return N_RING + self.n_balls + self.n_balls * self.n_per_ball
+
+    def ball_offset(self, j: int) -> int:
+        """Index of ball j's first state entry."""
+        return N_RING + self.n_balls + j * self.n_per_ball
+
+    def cage_speed(self, contact_angle: float = 0.0) -> float:
+        """Epicyclic ball-train speed omega_i (1 - D cos a/d_m)/2 [rad/s]."""
+        return 0.5 * self.omega_inner * (1.0 - self.ball_diameter * math.cos(contact_angle) / self.pitch_diameter)
+
+    # numba arguments ----------------------------------------------------------
+    def args(self) -> tuple:
+        """The numba tuple ``(iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)``.
+
+        Built once per model and cached: ``counter`` (int64[1]) counts film-map
+        queries outside the map's axes over every run with these args
+        (:attr:`map_counter`)."""
+        cached = self.__dict__.get("_args_cache")
+        if cached is not None:
+            return cached
+        out = self._build_args()
+        object.__setattr__(self, "_args_cache", out)
+        return out
+
+    @property
+    def map_counter(self) -> np.ndarray:
+        """int64[1]: film-map queries outside the axes (clamped) so far."""
+        return self.args()[-1]
+
+    def _build_args(self) -> tuple:
+        D, dm = self.ball_diameter, self.pitch_diameter
+        Rb = 0.5 * D
+        iopt = np.zeros(I_SIZE, dtype=np.int64)
+        iopt[I_Z] = self.n_balls
+        iopt[I_DOF] = DOFS[self.dof]
+        iopt[I_FILM] = FILM_KINDS[self.film]
+        iopt[I_DRIVE] = SCENARIOS[self.scenario]
+        iopt[I_TRACTION] = TRACTIONS[self.traction]
+        iopt[I_BALLBALL] = int(bool(self.ball_ball))
+        iopt[I_NSLOT] = len(self.slot_azimuths_deg)
+        P = np.zeros(P_SIZE)
+        Ki, Ko = self.hertz_constants()
+        Pd4 = 0.25 * self.diametral_clearance
+        P[P_D], P[P_RB] = D, Rb
+        P[P_RO], P[P_RI] = self.outer_groove_radius, self.inner_groove_radius
+        P[P_ROC] = 0.5 * dm + Rb + Pd4 - self.outer_groove_radius
+        P[P_RIC] = 0.5 * dm - Rb - Pd4 + self.inner_groove_radius
+        P[P_MB], P[P_JB] = self.mass, self.ball_inertia
+        P[P_MR], P[P_JR] = self.ring_mass, self.ring_inertia
+        P[P_JROT] = self.rotor_inertia if math.isfinite(self.rotor_inertia) else 0.0
+        P[P_KI], P[P_KO] = Ki, Ko
+        P[P_ALPHA] = self.race_damping
+        P[P_MU], P[P_SRR], P[P_VREG] = self.traction_limit, self.traction_srr, self.traction_slip_regularisation
+        P[P_G] = self.gravity
+        P[P_FX] = 0.0
+        P[P_FY] = -(self.radial_load - self.ring_mass * self.gravity)
+        P[P_FZ] = self.axial_load
+        P[P_OMEGA_FIX] = self.omega_inner
+        P[P_MUROT], P[P_RC], P[P_WREG] = self.rotor_friction, self.rotor_contact_radius, self.rotor_slip_regularisation
+        P[P_NROT] = self.radial_load
+        P[P_SW], P[P_SL], P[P_SBLEND] = self.slot_width, self.slot_length, self.slot_blend
+        # slot edges: sphere against an edge rounded with r_e along a circle of radius R_e
+        hw = 0.5 * self.slot_width
+        P[P_REO] = P[P_ROC] + math.sqrt(self.outer_groove_radius**2 - hw * hw)
+        P[P_REI] = P[P_RIC] - math.sqrt(self.inner_groove_radius**2 - hw * hw)
+        es = self.e_star_race
+        re = self.slot_edge_radius
+        rxo, ryo = C.relative_radii([2.0 / D, -1.0 / P[P_REO]], [2.0 / D, 1.0 / re])
+        rxi, ryi = C.relative_radii([2.0 / D, 1.0 / P[P_REI]], [2.0 / D, 1.0 / re])
+        P[P_KEO] = C.hertz_constant(max(rxo, ryo), min(rxo, ryo), es, self.hertz_method)
+        P[P_KEI] = C.hertz_constant(max(rxi, ryi), min(rxi, ryi), es, self.hertz_method)
+        P[P_QSTAB] = self.quaternion_stabilisation
+        bbp = C.ball_ball_parameters(
+            ball_radius=Rb, e_star=self.e_star_ball, yield_stress=self.yield_stress,
+            damping_alpha=self.ball_ball_damping, viscosity=self.viscosity if self.film != "none" else 0.0,
+            rupture_thickness=self.film_rupture_thickness, cutoff_gap=self.film_cutoff_gap,
+            mu_film=self.ball_ball_mu_film, mu_boundary=self.ball_ball_mu_boundary,
+            slip_regularisation=self.ball_ball_slip_regularisation, memory_time=self.plastic_memory_time,
+            pressure_viscosity=self.pressure_viscosity)
+        slots = np.zeros((len(self.slot_azimuths_deg), 2))
+        for k, az in enumerate(self.slot_azimuths_deg):
+            slots[k, 0] = math.radians(az)
+            slots[k, 1] = RACES[self.slot_race]
+        if self.film == "map":
+            map_ax0, map_ax1, map_ax2, map_vals, map_opts = _map_arrays(self.film_map, MAP_SPEED_AXES[
+                self.film_map_speed_axis])
+        else:
+            map_ax0 = map_ax1 = map_ax2 = np.zeros(2)
+            map_vals = np.zeros((1, 2, 2, 2))
+            map_opts = np.zeros(C.MO_SIZE, dtype=np.int64)
+        counter = np.zeros(1, dtype=np.int64)
+        return (iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
+
+    # state layout ---------------------------------------------------------------
+    def state_layout(self) -> list[tuple[str, str]]:
+        """(name, unit) of every state entry, in order."""
+        out = [("Inner ring x", "m"), ("Inner ring y", "m"), ("Inner ring z", "m"), ("Inner ring angle", "rad"),
+               ("Inner ring vx", "m/s"), ("Inner ring vy", "m/s"), ("Inner ring vz", "m/s"),
+               ("Inner ring speed", "rad/s"), ("Rotor speed", "rad/s")]
+        out += [(f"Pair {j}-{(j + 1) % self.n_balls} plastic memory", "m") for j in range(self.n_balls)]
+        for j in range(self.n_balls):
+            if self.dof == "6dof":
+                names = [("x", "m"), ("y", "m"), ("z", "m"), ("q0", "-"), ("q1", "-"), ("q2", "-"), ("q3", "-"),
+                         ("vx", "m/s"), ("vy", "m/s"), ("vz", "m/s"), ("body wx", "rad/s"), ("body wy", "rad/s"),
+                         ("body wz", "rad/s")]
+            else:
+                names = [("orbital angle", "rad"), ("radial position", "m"), ("spin angle", "rad"),
+                         ("orbital speed", "rad/s"), ("radial speed", "m/s"), ("spin speed", "rad/s")]
+            out += [(f"Ball {j} {n}", u) for n, u in names]
+        return out
+
+    def state_names(self) -> list[str]:
+        """Names with units, e.g. ``"Ball 0 x [m]"``."""
+        return [f"{n} [{u}]" for n, u in self.state_layout()]
+
+    # initial state ---------------------------------------------------------------
+    def _pack(self, ring, psi, r, z, psidot, spin):
+        """State vector from ring entries and per-ball orbital data."""
+        y = np.zeros(self.n_states)
+        y[:N_RING] = ring
+        for j in range(self.n_balls):
+            b = self.ball_offset(j)
+            if self.dof == "6dof":
+                c, s = math.cos(psi[j]), math.sin(psi[j])
+                y[b:b + 3] = r[j] * c, r[j] * s, z[j]
+                y[b + 3] = 1.0
+                y[b + 7:b + 9] = -r[j] * psidot[j] * s, r[j] * psidot[j] * c
+                y[b + 12] = spin[j]
+            else:
+                y[b], y[b + 1], y[b + 3], y[b + 5] = psi[j], r[j], psidot[j], spin[j]
+        return y
+
+    def initial_state(self, ball_azimuths=None, settle=True) -> np.ndarray:
+        """Quasi-static initial state.
+
+        Balls at ``ball_azimuths`` [rad] (default: evenly spaced from
+        ``first_ball_azimuth_deg``), each in radial (and axial) equilibrium
+        between the races, the inner ring in force equilibrium under F_r,
+        F_a and gravity (scipy ``root`` on the same force kernel, centrifugal
+        forces included for the ``"steady"`` scenario, where the balls orbit at
+        the epicyclic speed and roll without slip about the axis-parallel
+        direction).  ``"drop"``/``"free"``: everything at rest, the rotor at
+        ``speed_rpm``; the ring gets the downward ``drop_speed``.
+        ``settle=False`` returns the unloaded geometric guess.
+
+        Raises DynamicsInputError when no equilibrium exists (a load the
+        grooves cannot carry)."""
+        Z = self.n_balls
+        D, dm = self.ball_diameter, self.pitch_diameter
+        if ball_azimuths is None:
+            psi = math.radians(self.first_ball_azimuth_deg) + 2.0 * np.pi * np.arange(Z) / Z
+            spacing = 2.0 * 0.5 * dm * math.sin(math.pi / Z)
+            if spacing <= D:
+                raise DynamicsInputError(f"n_balls = {Z}: evenly spaced balls overlap (chord {spacing:g} m <= D)")
+        else:
+            psi = np.asarray(ball_azimuths, dtype=float)
+            if psi.shape != (Z,):
+                raise DynamicsInputError(f"ball_azimuths has shape {psi.shape}; it must be ({Z},)")
+        steady = self.scenario == "steady"
+        wc = self.cage_speed(self.contact_angle_free) if steady else 0.0
+        spin = np.full(Z, -wc * dm / D)
+        psidot = np.full(Z, wc)
+        ring = np.zeros(N_RING)
+        ring[7] = self.omega_inner if steady else 0.0
+        ring[8] = 0.0 if steady else self.omega_inner
+        r0 = np.full(Z, 0.5 * dm)
+        z0 = np.zeros(Z)
+        y0 = self._pack(ring, psi, r0, z0, psidot, spin)
+        if not settle:
+            return y0
+        args = self.args()
+        y, err = self._static_solve(args, psi, psidot, spin, ring, wc)
+        logger.debug("quasi-static solve: residual %.3g of the mean ball load", err)
+        if not (err <= 1e-3):
+            raise DynamicsInputError(
+                f"radial_load = {self.radial_load:g} N, axial_load = {self.axial_load:g} N: no quasi-static "
+                f"equilibrium found (force residual {err:.3g} of the mean ball load); the grooves cannot carry "
+                "this load")
+        if self.scenario == "drop":
+            y[5] = -self.drop_speed
+        diag, _, _ = forces(0.0, y, args)
+        amax = float(np.max(np.abs(diag[:, [D_AI, D_AO]])))
+        if amax > math.radians(self.shoulder_contact_angle_deg):
+            raise DynamicsInputError(
+                f"axial_load = {self.axial_load:g} N (radial_load = {self.radial_load:g} N) drives the contact angle "
+                f"to {math.degrees(amax):.1f} deg, beyond the groove shoulders (shoulder_contact_angle_deg = "
+                f"{self.shoulder_contact_angle_deg:g}): the bearing cannot carry it")
+        return y
+
+    def _ball_seat(self, args, y, j, psi_j, wc):
+        """Radial (and axial) equilibrium of ball j for the ring in ``y``; writes y."""
+        from scipy.optimize import brentq, root
+
+        D, dm = self.ball_diameter, self.pitch_diameter
+        P = args[1]
+        m = self.mass
+        b = self.ball_offset(j)
+        six = self.dof == "6dof"
+        c, s = math.cos(psi_j), math.sin(psi_j)
+        dydt = np.empty_like(y)
+
+        def set_pos(rho, z):
+            if six:
+                y[b:b + 3] = rho * c, rho * s, z
+                y[b + 7:b + 9] = -rho * wc * s, rho * wc * c
+            else:
+                y[b + 1] = rho
+
+        def res(rho, z):
+            set_pos(rho, z)
+            rhs(0.0, y, args, dydt)
+            if six:
+                return (m * (dydt[b + 7] * c + dydt[b + 8] * s + wc * wc * rho), m * dydt[b + 9])
+            return (m * dydt[b + 4], 0.0)
+
+        # groove centres in the ball's radial plane (rho, z)
+        gi = np.array([P[P_RIC] + y[0] * c + y[1] * s, y[2]])
+        go = np.array([P[P_ROC], 0.0])
+        Ki, Ko = P[P_KI], P[P_KO]
+        si, so_ = P[P_RI] - 0.5 * D, P[P_RO] - 0.5 * D
+        u = go - gi
+        L = float(np.hypot(*u))
+        dtot = L - si - so_
+        body = np.array([m * wc * wc * 0.5 * dm - m * self.gravity * s, 0.0])
+        if dtot > 0.0:
+            di = dtot / (1.0 + (Ki / Ko) ** (2.0 / 3.0))
+            guess = gi + (si + di) * u / L
+        elif np.hypot(*body) > 0.0:
+            bh = body / np.hypot(*body)
+            if body[0] > 0.0:
+                guess = go + (so_ + (np.hypot(*body) / Ko) ** (2.0 / 3.0)) * bh
+            else:
+                guess = gi + (si + (np.hypot(*body) / Ki) ** (2.0 / 3.0)) * bh
+        else:  # loose ball, no body force: anywhere in the clearance; take the middle
+            guess = gi + (si - 0.5 * dtot) * u / L
+        if not six:
+            r0 = float(guess[0])
+            f0 = res(r0, 0.0)[0]
+            if f0 == 0.0:
+                return 0.0
+            step = 1e-7
+            sign = 1.0 if f0 > 0.0 else -1.0
+            r1 = r0
+            for _ in range(60):
+                r1 = r1 + sign * step
+                if res(r1, 0.0)[0] * f0 <= 0.0:
+                    break
+                step *= 2.0
+            lo, hi = min(r0, r1), max(r0, r1)
+            rr = brentq(lambda r: res(r, 0.0)[0], lo, hi, xtol=1e-16, rtol=1e-15)
+            return abs(res(rr, 0.0)[0])
+        sc = 1e-6
+        sol = root(lambda x: np.array(res(guess[0] + sc * x[0], guess[1] + sc * x[1])), np.zeros(2),
+                   method="hybr", options=dict(xtol=1e-13))
+        f = res(guess[0] + sc * sol.x[0], guess[1] + sc * sol.x[1])
+        return float(np.hypot(*f))
+
+    def _static_solve(self, args, psi, psidot, spin, ring, wc):
+        """Ring force balance (hybr) around per-ball equilibria; returns (y, residual)."""
+        from scipy.optimize import root
+
+        Z = self.n_balls
+        six = self.dof == "6dof"
+        nr = 3 if six else 2
+        y = self._pack(ring, psi, np.full(Z, 0.5 * self.pitch_diameter), np.zeros(Z), psidot, spin)
+        Ki, Ko = self.hertz_constants()
+        Kn = C.series_constant(Ki, Ko)
+        fscale = max(self.radial_load, self.axial_load, 1.0) / Z
+        scale = (max(self.radial_load, self.axial_load, 1.0) / (Z * Kn)) ** (2.0 / 3.0)
+        dydt = np.empty_like(y)
+        worst = [0.0]
+
+        def residual(x):
+            y[:nr] = x * scale
+            worst[0] = 0.0
+            for j in range(Z):
+                worst[0] = max(worst[0], self._ball_seat(args, y, j, psi[j], wc))
+            rhs(0.0, y, args, dydt)
+            return dydt[4:4 + nr] * self.ring_mass / fscale
+
+        x0 = np.zeros(nr)
+        x0[1] = -(5.0 * self.radial_load / Z / Kn) ** (2.0 / 3.0) / scale
+        if six and self.axial_load > 0.0:
+            BD = self.inner_groove_radius + self.outer_groove_radius - self.ball_diameter
+            x0[2] = math.sqrt(2.0 * BD * (self.axial_load / (Z * Kn)) ** (2.0 / 3.0)) * 1.2 / scale
+        sol = root(residual, x0, method="hybr", options=dict(xtol=1e-12))
+        r = residual(sol.x)
+        err = max(float(np.max(np.abs(r))), worst[0] / fscale)
+        return y, err
+
+    def omega_max(self, y=None) -> float:
+        """Estimate of the highest rate [rad/s] of the linearised bearing at a state
+        (for the explicit step limit): the ball between its two stiffest loaded
+        contacts, sqrt(2 k/m) with k = 1.5 Q/delta = 1.5 K^(2/3) Q^(1/3), or the
+        contact damping rate 2 alpha Q/m, whichever is larger."""
+        if y is None:
+            y = self.initial_state()
+        diag, _, _ = forces(0.0, np.asarray(y, dtype=float), self.args())
+        Ki, Ko = self.hertz_constants()
+        Q = max(float(np.max(diag[:, D_QI])), float(np.max(diag[:, D_QO])), 1.0)
+        k = 1.5 * max(Ki, Ko) ** (2.0 / 3.0) * Q ** (1.0 / 3.0)
+        # Hunt-Crossley damping c = alpha Q on both contacts: a real eigenvalue -c/m (RK4 limit 2.79 on
+        # the real axis, close to 2.83 on the imaginary one)
+        rate = self.race_damping * 2.0 * Q / self.mass
+        return max(math.sqrt(2.0 * k / self.mass), rate)
+
+    def replace(self, **changes) -> "CagelessBearing":
+        """A copy with some fields changed (validated again)."""
+        kw = {f.name: getattr(self, f.name) for f in fields(self)}
+        unknown = set(changes) - set(kw)
+        if unknown:
+            import difflib
+
+            key = sorted(unknown)[0]
+            close = difflib.get_close_matches(key, list(kw), n=2)
+            hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+            raise DynamicsInputError(f"unknown bearing parameter {key!r}{hint}")
+        kw.update(changes)
+        return CagelessBearing(**kw)
+
+
+def bearing_energy(model: CagelessBearing, y: np.ndarray) -> float:
+    """Mechanical energy [J] of a state: kinetic energy of balls, ring (and
+    rotor when free), Hertz potential 2/5 K delta^2.5 of every ball-race
+    contact and elastic ball-ball contact, gravity and the potential -F.x of
+    the constant applied ring load.  (Exact invariant of a frictionless,
+    undamped, film-free, elastic run with a free ring.)"""
+    args = model.args()
+    P = args[1]
+    Z = model.n_balls
+    y = np.asarray(y, dtype=float)
+    m, J = model.mass, model.ball_inertia
+    E = 0.5 * model.ring_mass * float(np.sum(y[4:7] ** 2)) + 0.5 * model.ring_inertia * y[7] ** 2
+    E += model.ring_mass * model.gravity * y[1] - (P[P_FX] * y[0] + P[P_FY] * y[1] + P[P_FZ] * y[2])
+    pos = np.zeros((Z, 3))
+    for j in range(Z):
+        b = model.ball_offset(j)
+        if model.dof == "6dof":
+            pos[j] = y[b:b + 3]
+            E += 0.5 * m * float(np.sum(y[b + 7:b + 10] ** 2)) + 0.5 * J * float(np.sum(y[b + 10:b + 13] ** 2))
+        else:
+            phi, r, phid, rd, om = y[b], y[b + 1], y[b + 3], y[b + 4], y[b + 5]
+            pos[j] = r * math.cos(phi), r * math.sin(phi), 0.0
+            E += 0.5 * m * (rd * rd + (r * phid) ** 2) + 0.5 * J * om * om
+        E += m * model.gravity * pos[j, 1]
+        for race in (0, 1):
+            ctr = np.zeros(3) if race == 0 else y[0:3]
+            Rgc, rg, K = (P[P_ROC], P[P_RO], P[P_KO]) if race == 0 else (P[P_RIC], P[P_RI], P[P_KI])
+            d = pos[j] - ctr
+            rho = math.hypot(d[0], d[1])
+            delta = math.hypot(rho - Rgc, d[2]) - (rg - 0.5 * model.ball_diameter)
+            if delta > 0.0:
+                E += 0.4 * K * delta**2.5
+    if model.ball_ball:
+        Kbb = args[2][C.BB_K]
+        for j in range(Z):
+            k = (j + 1) % Z
+            gap = float(np.linalg.norm(pos[k] - pos[j])) - model.ball_diameter
+            if gap < 0.0:
+                E += 0.4 * Kbb * (-gap) ** 2.5
+    return E
+
+
+def angular_momentum_z(model: CagelessBearing, y: np.ndarray) -> float:
+    """Angular momentum [kg m^2/s] about the bearing axis of balls and inner ring."""
+    Z = model.n_balls
+    m, J = model.mass, model.ball_inertia
+    L = model.ring_mass * (y[0] * y[5] - y[1] * y[4]) + model.ring_inertia * y[7]
+    for j in range(Z):
+        b = model.ball_offset(j)
+        if model.dof == "6dof":
+            from .rotations import quat_rotate as _qr
+
+            w = np.empty(3)
+            q = y[b + 3:b + 7] / np.linalg.norm(y[b + 3:b + 7])
+            _qr(q, y[b + 10:b + 13].copy(), w)
+            L += m * (y[b] * y[b + 8] - y[b + 1] * y[b + 7]) + J * w[2]
+        else:
+            L += m * y[b + 1] ** 2 * y[b + 3] + J * y[b + 5]
+    return float(L)

@@ -1,0 +1,520 @@
+r"""Contact laws of the ball bearing: Hertz point contact, contact damping,
+traction, and the ball-ball collision through the oil film.
+
+Set-up functions (plain Python, run once) compute constants; the ``@njit``
+kernels are called by the bearing right-hand side (:mod:`dynamics.cageless`).
+Symbols: E* reduced modulus ``1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2``; R_a >= R_b
+the relative principal radii of the two surfaces (``1/R = 1/R_1 + 1/R_2`` per
+direction, concave radii negative); delta the elastic approach [m].
+
+Hertz point contact (``Q = K delta^1.5``)
+-----------------------------------------
+Exact (Johnson, *Contact Mechanics*, 1985, sec. 3.9 and 4.2): with K(e), E(e)
+the complete elliptic integrals of modulus e (``scipy.special.ellipk/ellipe``
+take m = e^2 = 1 - (b/a)^2), the ellipse follows from::
+
+    R_a/R_b = ((a/b)^2 E - K)/(K - E)                       (solved for m)
+    a^3 = 3 Q R_a (K - E)/(pi E* m),  b = a sqrt(1 - m),  p0 = 3 Q/(2 pi a b)
+    delta = p0 b K/E*   =>   K_hertz = Q/delta^1.5  (delta at Q = 1 N)
+
+and the circle (R_a = R_b = R) gives K_hertz = (4/3) E* sqrt(R).  Hamrock &
+Brewe (1983) is the option ``method="hamrock_brewe"``:
+k = 1.0339 (R_a/R_b)^0.636, E = 1.0003 + 0.5968 R_b/R_a, F = 1.5277 + 0.6023
+ln(R_a/R_b), delta = F (9/(2 E R) (Q/(pi k E'))^2)^(1/3), E' = 2 E*,
+1/R = 1/R_a + 1/R_b.  (This module must not import :mod:`lubrication`; its
+:mod:`lubrication.hertz` is the independent implementation the tests compare
+with.)
+
+Contact damping (Hunt & Crossley 1975)
+--------------------------------------
+``Q = K delta^1.5 (1 + alpha d(delta)/dt)``, clipped at 0 (no adhesion).  The
+damping vanishes with the force at first touch (no jump) and gives a
+coefficient of restitution e ~ 1 - (2/3) alpha v_impact; the equivalent
+viscous coefficient at a loaded point is c = alpha Q (so alpha ~ 0.1-0.3 s/m
+gives a damping ratio of about 0.1 for the loaded ball-race contacts of a
+6206).  :func:`hunt_crossley_alpha` converts a restitution coefficient.
+
+Traction (closed form)
+----------------------
+``mu = mu_lim tanh(|v_s| / max(s0 u_e, v_reg))``: a traction curve over the
+slide-to-roll ratio SRR = |v_s|/u_e (initial slope mu_lim/s0, limiting value
+mu_lim, as the Newtonian-then-limiting-shear EHL traction curves), regularised
+at vanishing entrainment by the sliding speed v_reg (then a smoothed Coulomb
+law).  The EHL-map traction is a slot (option ``traction = "map"``) that
+:mod:`dynamics.cageless` reserves.
+
+Ball-ball collision (paper B, sec. 2.2, eqs. 8-23, rebuilt)
+-----------------------------------------------------------
+The paper puts the oil-film stiffness K_L and the Hertz stiffness K_C in
+series with the film damping (eq. 8: 1/K_v = 1/K_L + 1/K_C, C_v = C_f), then
+splits the collision into an elastic compression phase (eq. 9: Hertz), an
+elastic-plastic phase beyond the yield stress sigma (eqs. 10-11: a term
+linear in delta and a constant), and an elastic-plastic recovery (eq. 12:
+Hertz in (delta - delta_sigma)^{3/2}, i.e. with a residual indentation).  The
+extracted equations are garbled (eq. 9 writes a force equal to a stiffness,
+eq. 11 mixes delta^1 and delta^1/2 terms of unstated origin, eq. 13
+differentiates the film stiffness from the *Hertz* law) and the series
+combination of a *viscous* film with a spring is not a spring, so the
+physical equivalents used here are:
+
+* Film and solid in series, quasi-steady (the film is a rigid-surface
+  isoviscous squeeze film between two spheres, R_eff = R/2, its load carried
+  by the elastic(-plastic) flattening of the balls): with g the rigid gap
+  (centre distance - D), v = -dg/dt the approach speed, delta_e >= 0 the
+  solid approach and h = g + delta_e >= 0 the film thickness::
+
+      F = F_solid(delta_e) = F_film(h, v),  F_film = C0 v [1/(h + h_r) - 1/(h_cut + h_r)]_+,
+      C0 = 6 pi eta R_eff^2
+
+  solved for delta_e by a bracketed Newton iteration (F_solid increases and
+  F_film decreases with delta_e, so the root is unique).  h_r, the film
+  rupture thickness (composite roughness), bounds the film damping C0/h_r;
+  h_cut is the starved outer edge of the film.  During separation (v <= 0)
+  the film cavitates and carries no tension: F = F_solid(-g) (Hertz
+  unloading through the ruptured film) or 0.  When the film cannot carry
+  the load at h >= 0 (F_film(0, v) <= F_solid(-g)), the film is ruptured:
+  solid contact.  The map option replaces F_film by the tabulated Reynolds
+  squeeze force of :mod:`coupling.film_points` (kind ``ball_ball``: axes
+  central gap, squeeze number or approach speed, entrainment speed; see
+  :func:`_film_map`).
+* Collision phases (Thornton 1997, elastic-perfectly plastic spheres, J.
+  Appl. Mech. 64:383), the physical content of eqs. 9-12: elastic Hertz
+  F = K delta^1.5 up to the yield approach delta_y = (pi p_y/(2 E*))^2 R_eff
+  (F_y = K delta_y^1.5); plastic loading F = F_y + pi p_y R_eff (delta -
+  delta_y) (linear in delta: eq. 11); recovery (unloading and reloading below
+  delta_max) Hertz with the enlarged radius R_p and residual indentation
+  delta_p::
+
+      a_m^2 = (2 F_max + F_y)/(2 pi p_y),  R_p = 4 E* a_m^3/(3 F_max),
+      delta_p = delta_max - a_m^2/R_p,     F = (4/3) E* sqrt(R_p) (delta - delta_p)^1.5
+
+  (eq. 12 with delta_sigma = delta_p).  p_y = 1.6 sigma_y (onset of yield
+  below a Hertz contact, Johnson sec. 6.2).  The largest approach delta_max
+  is a state of the bearing (one per ball pair): d(delta_max)/dt =
+  d(delta_e)/dt while delta_e >= delta_max and loading, and when the pair has
+  separated the memory decays with tau_mem (the dented spot rolls out of the
+  contact; each collision meets fresh surface).
+* Friction (the physical content of eqs. 16-21, the film-rupture friction):
+  the tangential force on the sliding surfaces is mu F_n tanh(|v_s|/v_reg)
+  against the sliding velocity, with mu = mu_b f_a + mu_f (1 - f_a), f_a =
+  exp(-h/h_r) the asperity share of the load: mu_f (a limiting EHL shear
+  coefficient) when the film is intact, the boundary coefficient mu_b when
+  it has ruptured (h -> 0), as the paper's mixing of the oil-film rheological
+  friction and mu_b by the critical load Q_a.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from scipy.optimize import brentq
+from scipy.special import ellipe, ellipk
+
+from .errors import DynamicsInputError
+from .interp import HERMITE, hermite3_grad, interp3_grad
+
+_JIT = dict(cache=True, fastmath=False)
+
+HERTZ_METHODS = ("exact", "hamrock_brewe")
+
+# ball-ball collision phases (returned by ball_ball_normal)
+PHASE_SEPARATED, PHASE_FILM, PHASE_ELASTIC, PHASE_PLASTIC, PHASE_RECOVERY = 0, 1, 2, 3, 4
+PHASE_NAMES = ("separated", "film", "elastic", "elastic-plastic", "recovery")
+
+# film kinds
+FILM_NONE, FILM_CLOSED_FORM, FILM_MAP = 0, 1, 2
+FILM_KINDS = {"none": FILM_NONE, "closed_form": FILM_CLOSED_FORM, "map": FILM_MAP}
+
+# indices of the ball-ball parameter vector (see ball_ball_parameters)
+(BB_K, BB_R, BB_ESTAR, BB_PY, BB_DY, BB_FY, BB_ALPHA, BB_C0, BB_HR, BB_HCUT, BB_MUF, BB_MUB, BB_VREG, BB_TAU,
+ BB_SQF) = range(15)
+BB_SIZE = 15
+
+# map options (int64 array ``map_opts``): log flags of the three axes and the values, interp method, mode,
+# kind of the second axis (MAP_AXIS_APPROACH: approach speed v [m/s]; MAP_AXIS_SQUEEZE: squeeze number
+# Lambda = 3 alpha eta0 R_eff v/h^2 [-], the ball_ball kind of coupling.film_points)
+MO_LOG0, MO_LOG1, MO_LOG2, MO_LOGV, MO_METHOD, MO_MODE, MO_AXIS1 = range(7)
+MO_SIZE = 7
+MAP_AXIS_APPROACH, MAP_AXIS_SQUEEZE = 0, 1
+
+
+# ------------------------------------------------------------------ set-up (Python)
+
+
+def _positive(key, value):
+    value = float(value)
+    if not (value > 0.0 and math.isfinite(value)):
+        raise DynamicsInputError(f"{key} = {value!r} must be a finite number > 0")
+    return value
+
+
+def reduced_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:
+    """E* = 1/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) [Pa]."""
+    _positive("elastic modulus E1 [Pa]", E1)
+    _positive("elastic modulus E2 [Pa]", E2)
+    for key, nu in (("Poisson ratio nu1", nu1), ("Poisson ratio nu2", nu2)):
+        if not -1.0 < nu < 0.5:
+            raise DynamicsInputError(f"{key} = {nu!r} must lie in (-1, 0.5)")
+    return 1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2)
+
+
+def relative_radii(curvatures_x, curvatures_y):
+    """Relative principal radii (R_x, R_y) [m] of two bodies from their
+    principal curvatures [1/m] (convex positive, concave negative) in the
+    rolling (x) and transverse (y) directions."""
+    sx, sy = float(np.sum(curvatures_x)), float(np.sum(curvatures_y))
+    if not (sx > 0.0 and sy > 0.0):
+        raise DynamicsInputError(
+            f"contact curvature sums (x: {sx:g} 1/m, y: {sy:g} 1/m) must be > 0 (the surfaces must not conform)")
+    return 1.0 / sx, 1.0 / sy
+
+
+def race_radii(D: float, d_m: float, groove_radius: float, race: str, alpha: float = 0.0):
+    """(R_x, R_y) [m] of a ball on the ``race`` ("inner"/"outer") groove of radius
+    ``groove_radius`` at contact angle ``alpha``: R_x = (D/2)(1 -+ gamma),
+    gamma = D cos(alpha)/d_m, R_y = r D/(2 r - D)."""
+    gamma = D * math.cos(alpha) / d_m
+    if race not in ("inner", "outer"):
+        raise DynamicsInputError(f"race = {race!r} is not allowed; choose 'inner' or 'outer'")
+    if not groove_radius > 0.5 * D:
+        raise DynamicsInputError(f"{race} groove radius = {groove_radius:g} m must be > D/2 = {0.5 * D:g} m")
+    rx = 0.5 * D * (1.0 - gamma if race == "inner" else 1.0 + gamma)
+    return rx, groove_radius * D / (2.0 * groove_radius - D)
+
+
+def _ratio_residual(m, ratio):
+    K, E = ellipk(m), ellipe(m)
+    return (E / (1.0 - m) - K) / (K - E) - ratio
+
+
+def ellipticity_parameter(radius_ratio: float) -> float:
+    """m = 1 - (b/a)^2 of the contact ellipse for R_a/R_b = ``radius_ratio`` >= 1 (exact)."""
+    if not radius_ratio >= 1.0:
+        raise DynamicsInputError(f"radius ratio R_a/R_b = {radius_ratio!r} must be >= 1")
+    if radius_ratio - 1.0 < 1e-6:
+        return 4.0 * (radius_ratio - 1.0) / 3.0  # series R_a/R_b = 1 + 3m/4 + O(m^2)
+    return brentq(_ratio_residual, 1e-14, 1.0 - 1e-15, args=(radius_ratio,), xtol=1e-16, rtol=1e-15)
+
+
+def hertz_approach(load, radius_a, radius_b, e_star, method="exact"):
+    """(a, b, delta) [m] of a Hertz point contact under ``load`` [N]."""
+    if method not in HERTZ_METHODS:
+        raise DynamicsInputError(f"hertz method = {method!r} is not allowed; choose one of {HERTZ_METHODS}")
+    load = _positive("contact load [N]", load)
+    Ra, Rb = _positive("relative radius R_a [m]", radius_a), _positive("relative radius R_b [m]", radius_b)
+    e_star = _positive("reduced modulus E* [Pa]", e_star)
+    Ra, Rb = max(Ra, Rb), min(Ra, Rb)
+    if method == "hamrock_brewe":
+        k = 1.0339 * (Ra / Rb) ** 0.636
+        Eb = 1.0003 + 0.5968 * Rb / Ra
+        F = 1.5277 + 0.6023 * math.log(Ra / Rb)
+        R = 1.0 / (1.0 / Ra + 1.0 / Rb)
+        Ep = 2.0 * e_star
+        a = (6.0 * k * k * Eb * load * R / (math.pi * Ep)) ** (1.0 / 3.0)
+        b = (6.0 * Eb * load * R / (math.pi * k * Ep)) ** (1.0 / 3.0)
+        return a, b, F * (9.0 / (2.0 * Eb * R) * (load / (math.pi * k * Ep)) ** 2) ** (1.0 / 3.0)
+    m = ellipticity_parameter(Ra / Rb)
+    if m < 1e-12:
+        a = (3.0 * load * Ra / (4.0 * e_star)) ** (1.0 / 3.0)
+        return a, a, a * a / Ra
+    K, E = ellipk(m), ellipe(m)
+    a = (3.0 * load * Ra * (K - E) / (math.pi * e_star * m)) ** (1.0 / 3.0)
+    b = a * math.sqrt(1.0 - m)
+    p0 = 3.0 * load / (2.0 * math.pi * a * b)
+    return a, b, p0 * b * K / e_star
+
+
+def hertz_constant(radius_a: float, radius_b: float, e_star: float, method: str = "exact") -> float:
+    """K [N/m^1.5] of ``Q = K delta^1.5`` (delta at Q = 1 N, to the power -3/2)."""
+    return hertz_approach(1.0, radius_a, radius_b, e_star, method)[2] ** -1.5
+
+
+def series_constant(K1: float, K2: float) -> float:
+    """K of two Hertz contacts in series (same load): (K1^-2/3 + K2^-2/3)^-3/2."""
+    return (K1 ** (-2.0 / 3.0) + K2 ** (-2.0 / 3.0)) ** -1.5
+
+
+def hunt_crossley_alpha(restitution: float, impact_speed: float) -> float:
+    """alpha [s/m] of the Hunt-Crossley law for a restitution coefficient at an
+    impact speed (Hunt & Crossley 1975: alpha = 3 (1 - e)/(2 v))."""
+    if not 0.0 < restitution <= 1.0:
+        raise DynamicsInputError(f"restitution = {restitution!r} must lie in (0, 1]")
+    return 1.5 * (1.0 - restitution) / _positive("impact speed [m/s]", impact_speed)
+
+
+def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alpha=0.0, viscosity=0.0,
+                         rupture_thickness=1e-7, cutoff_gap=None, mu_film=0.03, mu_boundary=0.1,
+                         slip_regularisation=0.01, memory_time=1e-4, pressure_viscosity=0.0) -> np.ndarray:
+    """Parameter vector (indices ``BB_*``) of the ball-ball collision law.
+
+    ``yield_stress`` [Pa] None: elastic only (p_y = inf).  ``viscosity`` [Pa s]
+    of the squeeze film (closed form); ``rupture_thickness`` h_r [m],
+    ``cutoff_gap`` h_cut [m] (default R/10), ``memory_time`` tau_mem [s],
+    ``pressure_viscosity`` alpha [m^2/N] (only for a map over the squeeze number).
+    """
+    R = _positive("ball radius [m]", ball_radius)
+    Reff = 0.5 * R
+    e_star = _positive("E* [Pa]", e_star)
+    p = np.zeros(BB_SIZE)
+    p[BB_K] = 4.0 / 3.0 * e_star * math.sqrt(Reff)
+    p[BB_R] = Reff
+    p[BB_ESTAR] = e_star
+    if yield_stress is None:
+        p[BB_PY], p[BB_DY], p[BB_FY] = np.inf, np.inf, np.inf
+    else:
+        py = 1.6 * _positive("yield stress [Pa]", yield_stress)
+        dy = (math.pi * py / (2.0 * e_star)) ** 2 * Reff
+        p[BB_PY], p[BB_DY], p[BB_FY] = py, dy, p[BB_K] * dy**1.5
+    if damping_alpha < 0.0:
+        raise DynamicsInputError(f"ball-ball damping alpha = {damping_alpha!r} must be >= 0 [s/m]")
+    p[BB_ALPHA] = damping_alpha
+    if viscosity < 0.0:
+        raise DynamicsInputError(f"viscosity = {viscosity!r} must be >= 0 [Pa s]")
+    p[BB_C0] = 6.0 * math.pi * viscosity * Reff**2
+    p[BB_HR] = _positive("film rupture thickness [m]", rupture_thickness)
+    p[BB_HCUT] = _positive("film cut-off gap [m]", 0.1 * R if cutoff_gap is None else cutoff_gap)
+    for key, mu in (("mu_film", mu_film), ("mu_boundary", mu_boundary)):
+        if not 0.0 <= mu < 10.0:
+            raise DynamicsInputError(f"{key} = {mu!r} must lie in [0, 10)")
+    p[BB_MUF], p[BB_MUB] = mu_film, mu_boundary
+    p[BB_VREG] = _positive("slip regularisation speed [m/s]", slip_regularisation)
+    p[BB_TAU] = _positive("plastic memory time [s]", memory_time)
+    p[BB_SQF] = 3.0 * pressure_viscosity * viscosity * Reff
+    return p
+
+
+# ------------------------------------------------------------------ kernels
+
+
+@njit(**_JIT)
+def hertz_force(delta, delta_dot, K, alpha):
+    """Hunt-Crossley Hertz force ``K delta^1.5 (1 + alpha delta_dot)``, >= 0; 0 for delta <= 0."""
+    if delta <= 0.0:
+        return 0.0
+    f = K * delta * math.sqrt(delta) * (1.0 + alpha * delta_dot)
+    return f if f > 0.0 else 0.0
+
+
+@njit(**_JIT)
+def traction_coefficient(slip_speed, entrainment_speed, mu_lim, srr_ref, v_reg):
+    """``mu_lim tanh(|v_s| / max(srr_ref |u_e|, v_reg))`` (>= 0)."""
+    scale = srr_ref * abs(entrainment_speed)
+    if scale < v_reg:
+        scale = v_reg
+    return mu_lim * math.tanh(abs(slip_speed) / scale)
+
+
+@njit(**_JIT)
+def thornton_force(delta, delta_max, p):
+    """Elastic-perfectly plastic sphere contact (Thornton 1997), without damping.
+
+    Returns ``(F, dF/ddelta, phase)`` for the solid approach ``delta`` and the
+    largest approach so far ``delta_max`` (parameters ``p`` from
+    :func:`ball_ball_parameters`).  phase: 2 elastic, 3 plastic loading, 4
+    recovery (below delta_max after yielding)."""
+    if delta <= 0.0:
+        return 0.0, 0.0, PHASE_SEPARATED
+    K, R, es, py, dy, Fy = p[BB_K], p[BB_R], p[BB_ESTAR], p[BB_PY], p[BB_DY], p[BB_FY]
+    if delta <= dy and delta_max <= dy:
+        s = math.sqrt(delta)
+        return K * delta * s, 1.5 * K * s, PHASE_ELASTIC
+    if delta >= delta_max:  # on the loading envelope, beyond yield
+        if delta <= dy:
+            s = math.sqrt(delta)
+            return K * delta * s, 1.5 * K * s, PHASE_ELASTIC
+        return Fy + math.pi * py * R * (delta - dy), math.pi * py * R, PHASE_PLASTIC
+    Fm = Fy + math.pi * py * R * (delta_max - dy)
+    am2 = (2.0 * Fm + Fy) / (2.0 * math.pi * py)
+    Rp = 4.0 * es * am2 * math.sqrt(am2) / (3.0 * Fm)
+    dp = delta_max - am2 / Rp
+    x = delta - dp
+    if x <= 0.0:
+        return 0.0, 0.0, PHASE_SEPARATED
+    Kp = 4.0 / 3.0 * es * math.sqrt(Rp)
+    s = math.sqrt(x)
+    return Kp * x * s, 1.5 * Kp * s, PHASE_RECOVERY
+
+
+@njit(**_JIT)
+def residual_indentation(delta_max, p):
+    """delta_p [m] left after unloading from ``delta_max`` (0 if never yielded)."""
+    dy = p[BB_DY]
+    if delta_max <= dy:
+        return 0.0
+    R, es, py, Fy = p[BB_R], p[BB_ESTAR], p[BB_PY], p[BB_FY]
+    Fm = Fy + math.pi * py * R * (delta_max - dy)
+    am2 = (2.0 * Fm + Fy) / (2.0 * math.pi * py)
+    Rp = 4.0 * es * am2 * math.sqrt(am2) / (3.0 * Fm)
+    return delta_max - am2 / Rp
+
+
+@njit(**_JIT)
+def squeeze_film_closed_form(h, v, p):
+    """Rigid isoviscous squeeze film between two spheres (R_eff = R/2) and its
+    derivative d/dh: ``C0 v [1/(h + h_r) - 1/(h_cut + h_r)]`` for v > 0 and
+    h < h_cut, else 0 (cavitated during separation; starved beyond h_cut).
+
+    Reynolds' sphere-plane squeeze film F = 6 pi eta R^2 v/h (h << R) with
+    the rupture thickness h_r as an offset that bounds it at contact."""
+    if v <= 0.0 or h >= p[BB_HCUT]:
+        return 0.0, 0.0
+    hr = p[BB_HR]
+    inv = 1.0 / (h + hr)
+    return p[BB_C0] * v * (inv - 1.0 / (p[BB_HCUT] + hr)), -p[BB_C0] * v * inv * inv
+
+
+@njit(**_JIT)
+def _film(h, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter):
+    """Film force F_film(h, v) >= 0 and dF/dh for the chosen film kind."""
+    if film_kind == FILM_CLOSED_FORM:
+        return squeeze_film_closed_form(h, v, p)
+    if film_kind == FILM_MAP:
+        return _film_map(h, v, ue, p, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
+    return 0.0, 0.0
+
+
+@njit(**_JIT)
+def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
+    """Tabulated squeeze force over (gap, approach speed or squeeze number,
+    entrainment speed), read with :mod:`dynamics.interp` (``vals`` of shape
+    (1, n0, n1, n2), or (8, n0, n1, n2) from ``hermite_data`` for the hermite
+    method; a two-axis table is given a constant third axis by the builder).
+
+    The gap is floored at the map's first node (it plays the role of h_r); an
+    approach speed below the first node scales the force linearly in v (the
+    isoviscous squeeze film is linear in v); other points outside the axes are
+    clamped and counted in ``counter[0]`` (or give NaN with mode 1).  No film
+    force during separation (v <= 0: cavitated) or beyond h_cut.  d/dh is
+    taken at fixed v (through the squeeze number when that is the axis)."""
+    if v <= 0.0 or h >= p[BB_HCUT]:
+        return 0.0, 0.0
+    h0 = math.exp(ax0[0]) if opts[MO_LOG0] == 1 else ax0[0]
+    if h < h0:
+        h = h0 * (1.0 + 1e-12)  # the first gap node acts as the rupture thickness (no clamp count)
+    scale = 1.0
+    if opts[MO_AXIS1] == MAP_AXIS_SQUEEZE:
+        x1 = p[BB_SQF] * v / (h * h)
+        dx1dh = -2.0 * x1 / h
+    else:
+        x1 = v
+        dx1dh = 0.0
+        v0 = math.exp(ax1[0]) if opts[MO_LOG1] == 1 else ax1[0]
+        if v < v0:
+            scale = v / v0
+            x1 = v0 * (1.0 + 1e-12)  # stay inside the axis after the log/exp round trip
+    if opts[MO_METHOD] == HERMITE:
+        f, d0, d1, _ = hermite3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
+                                     opts[MO_LOGV], h, x1, ue, opts[MO_MODE], counter)
+    else:
+        f, d0, d1, _ = interp3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals[0],
+                                    opts[MO_LOGV], opts[MO_METHOD], h, x1, ue, opts[MO_MODE], counter)
+    if f != f:
+        return f, f
+    if f < 0.0:
+        return 0.0, 0.0
+    return scale * f, scale * (d0 + d1 * dx1dh)
+
+
+@njit(**_JIT)
+def _solid(delta, delta_dot, delta_max, p):
+    """Solid force with Hunt-Crossley damping (on the Thornton law)."""
+    f, k, ph = thornton_force(delta, delta_max, p)
+    if f <= 0.0:
+        return 0.0, 0.0, ph
+    f2 = f * (1.0 + p[BB_ALPHA] * delta_dot)
+    if f2 < 0.0:
+        return 0.0, 0.0, ph
+    return f2, k * (1.0 + p[BB_ALPHA] * delta_dot), ph
+
+
+@njit(**_JIT)
+def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter):
+    """Normal force between two balls through the film (see the module docstring).
+
+    Parameters: ``g`` rigid gap [m] (centre distance - D), ``v = -dg/dt``
+    approach speed [m/s], ``ue`` entrainment speed [m/s] (map only),
+    ``delta_max`` plastic memory [m], ``p`` from :func:`ball_ball_parameters`,
+    ``film_kind`` (``FILM_*``), map arrays (used for ``FILM_MAP`` only, see
+    :func:`_film_map`; a NaN force from a map in mode 1 is returned as NaN).
+
+    Returns ``(F, h, delta_e, phase, share)``: normal force [N] (>= 0, pushes
+    the balls apart), film thickness h [m] (0 when ruptured; g when
+    separated), solid approach delta_e [m], phase (``PHASE_*``) and the share
+    of the approach taken by the solids, d(delta_e)/dt = share * v at fixed v
+    (from differentiating F_solid(delta_e) = F_film(g + delta_e, v):
+    share = -F_film,h/(F_solid' - F_film,h); 1 for a ruptured film, 0 when
+    separated), which drives the plastic memory."""
+    d_solid = -g if g < 0.0 else 0.0
+    F_lo, _, ph = _solid(d_solid, v, delta_max, p)
+    if film_kind == FILM_NONE:
+        if F_lo > 0.0:
+            return F_lo, 0.0, d_solid, ph, 1.0
+        return 0.0, g if g > 0.0 else 0.0, d_solid, PHASE_SEPARATED, 0.0
+    h_lo = g + d_solid  # film thickness at the lower bracket (0 if g < 0)
+    f_at, dfdh = _film(h_lo, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
+    if f_at != f_at:
+        return f_at, h_lo, d_solid, PHASE_FILM, 0.0
+    if f_at <= F_lo:  # film cannot carry more than the solid contact: ruptured, or separated
+        if F_lo > 0.0:
+            return F_lo, 0.0, d_solid, ph, 1.0
+        return 0.0, h_lo, d_solid, PHASE_SEPARATED, 0.0
+    # root of phi(x) = F_solid(x) - F_film(g + x, v) on x in [d_solid, x_hi]
+    lo = d_solid
+    # upper bracket: solid approach that carries f_at (the film force can only drop as h grows)
+    hi = d_solid + 1e-9
+    for _ in range(200):
+        fs, _, _ = _solid(hi, v, delta_max, p)
+        if fs >= f_at:
+            break
+        hi = d_solid + 2.0 * (hi - d_solid)
+    x = 0.5 * (lo + hi)
+    phase = PHASE_FILM
+    F = 0.0
+    for _ in range(60):
+        fs, ks, ph = _solid(x, v, delta_max, p)
+        ff, dff = _film(g + x, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
+        if ff != ff:
+            return ff, g + x, x, PHASE_FILM, 0.0
+        phi = fs - ff
+        if phi > 0.0:
+            hi = x
+        else:
+            lo = x
+        dphi = ks - dff
+        xn = x - phi / dphi if dphi > 0.0 else 0.5 * (lo + hi)
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+        F = ff
+        if abs(xn - x) <= 1e-13 + 1e-10 * abs(x) or hi - lo <= 1e-15:
+            x = xn
+            break
+        x = xn
+    fs, ks, ph = _solid(x, v, delta_max, p)
+    _, dff = _film(g + x, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
+    share = -dff / (ks - dff) if ks - dff > 0.0 else 1.0
+    F = fs
+    h = g + x
+    if h < 0.0:
+        h = 0.0
+    if ph == PHASE_PLASTIC or ph == PHASE_RECOVERY:
+        phase = ph
+    return F, h, x, phase, share
+
+
+@njit(**_JIT)
+def ball_ball_friction_coefficient(h, p):
+    """mu = mu_b f_a + mu_f (1 - f_a), f_a = exp(-h/h_r) (asperity load share)."""
+    fa = math.exp(-h / p[BB_HR])
+    return p[BB_MUB] * fa + p[BB_MUF] * (1.0 - fa)
+
+
+@njit(**_JIT)
+def plastic_memory_rate(delta_e, delta_e_dot, delta_max, F, p):
+    """d(delta_max)/dt: follows the solid approach (rate ``delta_e_dot``) while
+    it grows beyond the memory, decays with tau_mem once the pair carries no load."""
+    if F > 0.0:
+        if delta_e >= delta_max and delta_e_dot > 0.0:
+            return delta_e_dot
+        return 0.0
+    return -delta_max / p[BB_TAU]

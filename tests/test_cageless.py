@@ -1,0 +1,203 @@
+"""The cage-less 6206 ball bearing (dynamics.cageless), issue 5 section 5:
+quasi-static load distribution from a damped settling run against Jones' rigid-ring
+model (coupling.bearing) and Stribeck's 4.37 Fr/(Z cos a); Hertz deflection against
+load (lubrication.hertz); ball-train speed against epicyclic kinematics in the
+no-slip limit; energy and angular momentum in a frictionless undamped run; the
+rotor-drop friction law; bad input."""
+import math
+
+import numpy as np
+import pytest
+
+from coupling import bearing as cb
+from dynamics import cageless as cg
+from dynamics.errors import DynamicsInputError
+from dynamics.integrators import integrate
+from lubrication import hertz
+
+FR = 2000.0
+
+
+def _run(model, y0, T, dt, n_out=21):
+    t_out = np.linspace(0.0, T, n_out)
+    res = integrate(cg.rhs, y0, t_out, model.args(), method="rk4", dt=dt)
+    diag, ring = cg.forces_many(res.t, res.y, model.args())
+    return res, diag, ring
+
+
+@pytest.fixture(scope="module")
+def settled():
+    """Planar bearing at rest, zero clearance, loaded suddenly by F_r from the unloaded
+    geometry, settled by the Hunt-Crossley contact damping (alpha = 2 s/m; the
+    ring's damping ratio is ~0.2) over 5 ms."""
+    model = cg.CagelessBearing(dof="planar", axial_load=0.0, radial_load=FR, gravity=0.0, slot_azimuths_deg=(),
+                               speed_rpm=0.0, race_damping=2.0, ring_mass=0.5)
+    res, diag, _ = _run(model, model.initial_state(settle=False), 5e-3, 1e-6, n_out=51)
+    return model, res, diag
+
+
+def _jones(model):
+    D = model.ball_diameter
+    fi, fo = model.inner_groove_radius / D, model.outer_groove_radius / D
+    Kn = cb.deflection_constant(D, model.pitch_diameter, fi, fo, 0.0, model.e_star_race)
+    return cb.ball_load_distribution(FR, 0.0, model.n_balls, D, fi, fo, Kn)
+
+
+def test_settled_load_distribution(settled):
+    model, res, diag = settled
+    Q = diag[-10:, :, cg.D_QI].mean(axis=0)  # last 0.9 ms (residual ring oscillation < 0.1 %)
+    Qj, _, _, dr = _jones(model)
+    # Jones' rigid-ring model linearises the ring shift (delta_r cos psi): agreement to ~1e-3
+    np.testing.assert_allclose(Q, Qj, rtol=0, atol=2e-3 * Qj.max())
+    # Stribeck: Q_max = 4.37 F_r/(Z cos a) for zero clearance (Harris & Kotzalas ch. 7), quoted to 3 digits
+    assert Q.max() == pytest.approx(4.37 * FR / model.n_balls, rel=5e-3)
+    assert -res.y[-10:, 1].mean() == pytest.approx(dr, rel=3e-3)
+    # the quasi-static solver of the model (second method) gives the same loads
+    y_qs = model.initial_state()
+    Qqs = cg.forces(0.0, y_qs, model.args())[0][:, cg.D_QI]
+    np.testing.assert_allclose(Q, Qqs, rtol=0, atol=2e-3 * Qj.max())
+    assert Qqs.max() == pytest.approx(Qj.max(), rel=1e-3)
+
+
+def test_hertz_deflection_against_load(settled):
+    """Each loaded contact: the overlap measured from the ball and groove-centre
+    positions is the Hertz approach of lubrication.hertz at that load (0.1 %)."""
+    model, res, diag = settled
+    y = res.y[-1]
+    d = diag[-1]
+    D, dm = model.ball_diameter, model.pitch_diameter
+    R_oc = dm / 2 + D / 2 - model.outer_groove_radius
+    R_ic = dm / 2 - D / 2 + model.inner_groove_radius
+    checked = 0
+    for j in range(model.n_balls):
+        b = model.ball_offset(j)
+        c = y[b + 1] * np.array([math.cos(y[b]), math.sin(y[b])])
+        rel = c - y[0:2]
+        delta_o = np.linalg.norm(c) - R_oc - (model.outer_groove_radius - D / 2)
+        delta_i = (R_ic - np.linalg.norm(rel)) - (model.inner_groove_radius - D / 2)
+        for delta, Q, race, r in ((delta_i, d[j, cg.D_QI], "inner", model.inner_groove_radius),
+                                  (delta_o, d[j, cg.D_QO], "outer", model.outer_groove_radius)):
+            if Q < 50.0:
+                continue
+            rx = 0.5 * D * (1 - D / dm) if race == "inner" else 0.5 * D * (1 + D / dm)
+            ry = r * D / (2 * r - D)
+            ref = hertz.point_contact(Q, rx, ry, model.e_star_race).approach
+            assert delta == pytest.approx(ref, rel=1e-3)
+            checked += 1
+    assert checked >= 8
+
+
+@pytest.mark.parametrize("dof", ["planar", "6dof"])
+def test_ball_train_speed_epicyclic(dof):
+    """Balls start at rest on a ring turning at 1000 rpm (preload 8 um, no radial
+    load, no gravity): traction drives them to free rolling; with no cage and no drag
+    the steady ball train runs at omega_i (1 - D/d_m)/2 and spins at -omega_c d_m/D."""
+    model = cg.CagelessBearing(dof=dof, axial_load=0.0, radial_load=0.0, gravity=0.0, slot_azimuths_deg=(),
+                               speed_rpm=1000.0, diametral_clearance=-8e-6, traction_limit=0.3, ball_ball=False)
+    y0 = model.initial_state()
+    for j in range(model.n_balls):
+        b = model.ball_offset(j)
+        if dof == "planar":
+            y0[b + 3] = y0[b + 5] = 0.0
+        else:
+            y0[b + 7:b + 13] = 0.0
+    res, diag, _ = _run(model, y0, 2e-3, 2e-6)
+    wc = 0.5 * model.omega_inner * (1 - model.ball_diameter / model.pitch_diameter)
+    assert diag[0, :, cg.D_PSIDOT].max() == 0.0  # started at rest
+    np.testing.assert_allclose(diag[-5:, :, cg.D_PSIDOT], wc, rtol=2e-3)
+    np.testing.assert_allclose(diag[-1, :, cg.D_SPIN], -wc * model.pitch_diameter / model.ball_diameter, rtol=2e-3)
+
+
+@pytest.mark.parametrize("dof", ["planar", "6dof"])
+def test_frictionless_undamped_run_conserves_energy_and_angular_momentum(dof):
+    """Balls thrown around a preloaded free ring (alternating orbital speeds: the
+    neighbours collide elastically, Hertz without film, plasticity, damping or
+    friction).  The mechanical energy and the angular momentum about the axis
+    are invariants (the outer ring is fixed, its forces pass through the axis)."""
+    model = cg.CagelessBearing(dof=dof, axial_load=0.0, radial_load=0.0, gravity=0.0, slot_azimuths_deg=(),
+                               scenario="free", diametral_clearance=-8e-6, traction_limit=0.0, race_damping=0.0,
+                               film="none", yield_stress=None, ball_ball_mu_boundary=0.0, ball_ball_mu_film=0.0)
+    y0 = model.initial_state()
+    rng = np.random.default_rng(3)
+    y0[4:6] = 0.05, -0.03
+    y0[7] = 50.0
+    for j in range(model.n_balls):
+        b = model.ball_offset(j)
+        w = 43.0 * (1 if j % 2 else -1) + 5.0 * rng.normal()
+        if dof == "planar":
+            y0[b + 3], y0[b + 4], y0[b + 5] = w, 0.05 * rng.normal(), 100.0 * rng.normal()
+        else:
+            c = y0[b:b + 3]
+            y0[b + 7:b + 10] = w * np.array([-c[1], c[0], 0.0]) + 0.05 * rng.normal(size=3)
+            y0[b + 10:b + 13] = 100.0 * rng.normal(size=3)
+    E0, L0 = cg.bearing_energy(model, y0), cg.angular_momentum_z(model, y0)
+    errs = []
+    for dt in (4e-7, 2e-7):
+        res, diag, _ = _run(model, y0, 1e-3, dt, n_out=101)
+        E = np.array([cg.bearing_energy(model, y) for y in res.y])
+        L = np.array([cg.angular_momentum_z(model, y) for y in res.y])
+        errs.append(np.abs(E / E0 - 1).max())
+        assert np.abs(L / L0 - 1).max() < 1e-11
+    assert (diag[:, :, cg.D_BBN] > 0).sum() >= 10  # collisions did happen
+    # RK4 energy error: < 1e-6 and shrinking with the step (non-smooth contact onsets limit the order)
+    assert errs[1] < 1e-6 and errs[1] < 0.5 * errs[0]
+
+
+def test_rotor_drop_friction_law():
+    """Rotor drop: while the rotor slips on the inner ring (tanh ~ 1) it decelerates
+    at mu F_r r_c/J_rotor exactly, whatever the balls do."""
+    model = cg.CagelessBearing(scenario="drop", speed_rpm=10000.0)
+    y0 = model.initial_state()
+    assert y0[7] == 0.0 and y0[8] == pytest.approx(10000 * math.pi / 30)
+    res, diag, ring = _run(model, y0, 1e-3, 2e-6, n_out=11)
+    decel = model.rotor_friction * model.radial_load * model.rotor_contact_radius / model.rotor_inertia
+    np.testing.assert_allclose(res.y[:, 8], y0[8] - decel * res.t, rtol=1e-9)
+    np.testing.assert_allclose(ring[1:, 4], model.rotor_friction * model.radial_load * model.rotor_contact_radius,
+                               rtol=1e-9)
+    assert 0.0 < res.y[-1, 7] < res.y[-1, 8]  # the inner ring is being spun up
+
+
+def test_slot_takes_groove_support_away():
+    """The bottom ball over the outer-ring slot loses its groove contact and rests on
+    the slot edges, the radial load moves to its neighbours."""
+    plain = cg.CagelessBearing(dof="planar", axial_load=0.0, slot_azimuths_deg=(), scenario="drop")
+    slot = plain.replace(slot_azimuths_deg=(270.0,))
+    d0 = cg.forces(0.0, plain.initial_state(), plain.args())[0]
+    d1 = cg.forces(0.0, slot.initial_state(), slot.args())[0]
+    assert d1[0, cg.D_QO] < 1e-6 * d0[0, cg.D_QO] and d1[0, cg.D_QE] > 0.0
+    assert d1[1, cg.D_QI] > d0[1, cg.D_QI] and d1[0, cg.D_QI] < d0[0, cg.D_QI]
+
+
+@pytest.mark.parametrize("dof", ["planar", "6dof"])
+def test_kernel_compiled_matches_python(dof):
+    kw = dict(axial_load=0.0) if dof == "planar" else {}
+    model = cg.CagelessBearing(dof=dof, scenario="drop", **kw)
+    y = model.initial_state()
+    b = model.ball_offset(1)
+    y[b + 3 if dof == "planar" else b + 8] += 5.0  # a ball moving towards its neighbour
+    if dof == "planar":
+        y[b] -= 0.0995
+    else:
+        y[b:b + 2] = y[b:b + 2] @ np.array([[math.cos(-0.0995), math.sin(-0.0995)],
+                                            [-math.sin(-0.0995), math.cos(-0.0995)]])
+    a = model.args()
+    d1, d2 = np.empty_like(y), np.empty_like(y)
+    cg.rhs(0.0, y, a, d1)
+    cg._evaluate.py_func(0.0, y, a, d2, np.zeros((model.n_balls, cg.N_DIAG)), np.zeros(cg.N_RING_DIAG), True)
+    np.testing.assert_allclose(d1, d2, rtol=1e-12, atol=1e-9)
+    assert cg.forces(0.0, y, a)[0][0, cg.D_BBN] > 0.0
+
+
+def test_bad_input():
+    with pytest.raises(DynamicsInputError, match="do not fit the pitch circle"):
+        cg.CagelessBearing(n_balls=16)
+    with pytest.raises(DynamicsInputError, match="axial_load"):
+        cg.CagelessBearing(dof="planar")
+    with pytest.raises(DynamicsInputError, match="did you mean '6dof'"):
+        cg.CagelessBearing(dof="6dfo")
+    with pytest.raises(DynamicsInputError, match="film_map"):
+        cg.CagelessBearing(film="map")
+    with pytest.raises(DynamicsInputError, match="unknown bearing parameter 'radial_lod'"):
+        cg.CagelessBearing().replace(radial_lod=1.0)
+    with pytest.raises(DynamicsInputError, match="axial_load = 1e[+]06 N"):
+        cg.CagelessBearing(axial_load=1e6, slot_azimuths_deg=()).initial_state()

@@ -1,0 +1,287 @@
+"""Contact laws of dynamics.contacts against independent references: lubrication.hertz
+(a separate implementation of the same theory), the analytic circular Hertz
+contact, Thornton's closed-form restitution of elastic-plastic spheres, Hunt and
+Crossley's small-damping restitution, the analytic rigid squeeze-film approach,
+and a scipy brentq reference of the film/solid series law."""
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from dynamics import contacts as C
+from dynamics import interp
+from dynamics.errors import DynamicsInputError
+from lubrication import hertz
+
+D, DM, RI, RO = 9.525e-3, 46.005e-3, 4.905e-3, 4.953e-3  # paper B, Table 4
+ES_RACE = C.reduced_modulus(207e9, 0.29, 208e9, 0.3)
+ES_BALL = C.reduced_modulus(207e9, 0.29, 207e9, 0.29)
+M_BALL = 7850.0 * math.pi / 6.0 * D**3
+
+
+def _k(kernel, compiled):
+    return kernel if compiled else kernel.py_func
+
+
+def _no_map():
+    return (np.zeros(2), np.zeros(2), np.zeros(2), np.zeros((1, 2, 2, 2)), np.zeros(C.MO_SIZE, dtype=np.int64),
+            np.zeros(1, dtype=np.int64))
+
+
+@pytest.mark.parametrize("race, groove", [("inner", RI), ("outer", RO)])
+@pytest.mark.parametrize("load", [1.0, 100.0, 2000.0])
+def test_exact_hertz_matches_lubrication_hertz(race, groove, load):
+    """6206 ball-race contacts: ellipse and approach within 0.1 % (issue 5), here 1e-9."""
+    rx, ry = C.race_radii(D, DM, groove, race)
+    a, b, delta = C.hertz_approach(load, rx, ry, ES_RACE)
+    ref = hertz.point_contact(load, rx, ry, ES_RACE)
+    assert a == pytest.approx(ref.a, rel=1e-9)
+    assert b == pytest.approx(ref.b, rel=1e-9)
+    assert delta == pytest.approx(ref.approach, rel=1e-9)
+    K = C.hertz_constant(max(rx, ry), min(rx, ry), ES_RACE)
+    assert load / delta**1.5 == pytest.approx(K, rel=1e-9)  # Q = K delta^1.5 at every load
+
+
+@pytest.mark.parametrize("race, groove", [("inner", RI), ("outer", RO)])
+def test_hamrock_brewe_option(race, groove):
+    rx, ry = C.race_radii(D, DM, groove, race)
+    hb = C.hertz_approach(300.0, rx, ry, ES_RACE, "hamrock_brewe")[2]
+    ref = hertz.point_contact(300.0, rx, ry, ES_RACE, method="hamrock_brewe").approach
+    assert hb == pytest.approx(ref, rel=1e-12)
+    # Hamrock & Brewe (1983) quote their approximations within ~3 % of the exact solution
+    assert hb == pytest.approx(C.hertz_approach(300.0, rx, ry, ES_RACE)[2], rel=0.03)
+
+
+def test_circular_contact_is_analytic():
+    """Two balls: K = (4/3) E* sqrt(R/2) (Hertz, sphere on sphere)."""
+    R = 0.5 * D
+    assert C.hertz_constant(R / 2, R / 2, ES_BALL) == pytest.approx(4 / 3 * ES_BALL * math.sqrt(R / 2), rel=1e-12)
+    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL)
+    assert p[C.BB_K] == pytest.approx(C.hertz_constant(R / 2, R / 2, ES_BALL), rel=1e-12)
+
+
+def test_series_constant_is_two_hertz_springs():
+    K1, K2 = 3.0e10, 2.0e10
+    Kn = C.series_constant(K1, K2)
+    Q = 250.0
+    assert (Q / Kn) ** (2 / 3) == pytest.approx((Q / K1) ** (2 / 3) + (Q / K2) ** (2 / 3), rel=1e-13)
+
+
+def test_bad_input():
+    with pytest.raises(DynamicsInputError, match="groove radius"):
+        C.race_radii(D, DM, 0.4 * D, "inner")
+    with pytest.raises(DynamicsInputError, match="hertz method"):
+        C.hertz_approach(1.0, 1e-3, 1e-3, ES_RACE, "hamrok")
+    with pytest.raises(DynamicsInputError, match="Poisson"):
+        C.reduced_modulus(2e11, 0.6, 2e11, 0.3)
+
+
+def _impact(force, v0, mass, dt):
+    """RK4 of m x'' = -force(x, x') from first touch to separation; returns v_out/v_in."""
+    def acc(x, v):
+        return -force(x, v) / mass
+
+    s = np.array([0.0, v0])
+    while True:
+        k1 = np.array([s[1], acc(s[0], s[1])])
+        k2 = np.array([s[1] + 0.5 * dt * k1[1], acc(s[0] + 0.5 * dt * k1[0], s[1] + 0.5 * dt * k1[1])])
+        k3 = np.array([s[1] + 0.5 * dt * k2[1], acc(s[0] + 0.5 * dt * k2[0], s[1] + 0.5 * dt * k2[1])])
+        k4 = np.array([s[1] + dt * k3[1], acc(s[0] + dt * k3[0], s[1] + dt * k3[1])])
+        s = s + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        if s[0] <= 0.0 and s[1] < 0.0:
+            return -s[1] / v0
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_hunt_crossley_restitution(compiled):
+    """Hunt & Crossley: 1 - e = (2/3) alpha v for small alpha v (first order)."""
+    hf = _k(C.hertz_force, compiled)
+    K, v0 = 3e10, 0.5
+    alpha = C.hunt_crossley_alpha(0.999, v0)
+    e = _impact(lambda x, v: hf(x, v, K, alpha), v0, M_BALL, 2e-8)
+    assert (1.0 - e) / 0.001 == pytest.approx(1.0, rel=0.01)
+    e0 = _impact(lambda x, v: hf(x, v, K, 0.0), v0, M_BALL, 2e-8)
+    # undamped: elastic; the residual is RK4's error at the non-smooth first touch
+    # (force ~ x^1.5: local error O(dt^2.5)), ~3e-9 at this step
+    assert e0 == pytest.approx(1.0, abs=1e-7)
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+@pytest.mark.parametrize("ratio", [1.5, 6.0, 25.0])
+def test_thornton_restitution(compiled, ratio):
+    """Elastic / elastic-plastic / recovery phases against Thornton's (1997) closed form
+    e = sqrt(6 sqrt3/5) sqrt(1 - x^2/6) [x/(x + 2 sqrt(6/5 - x^2/5))]^(1/4), x = V_y/V_i."""
+    tf, rate = _k(C.thornton_force, compiled), _k(C.plastic_memory_rate, compiled)
+    p = C.ball_ball_parameters(ball_radius=0.5 * D, e_star=ES_BALL, yield_stress=1.7e9)
+    ms = 0.5 * M_BALL
+    K, dy = p[C.BB_K], p[C.BB_DY]
+    vy = math.sqrt(4.0 * K * dy**2.5 / (5.0 * ms))  # (2/5) K dy^2.5 = m* Vy^2/2
+    v0 = ratio * vy
+    dt = 1e-3 * (ms / (1.5 * K * dy**0.5)) ** 0.5 / ratio**0.2
+
+    def f(s):
+        F, _, _ = tf(s[0], s[2], p)
+        return np.array([s[1], -F / ms, rate(s[0], s[1], s[2], F, p)])
+
+    s = np.array([1e-15, v0, 0.0])
+    phases = set()
+    while True:
+        k1 = f(s)
+        k2 = f(s + 0.5 * dt * k1)
+        k3 = f(s + 0.5 * dt * k2)
+        k4 = f(s + dt * k3)
+        s = s + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        F, _, ph = tf(s[0], s[2], p)
+        phases.add(ph)
+        if s[1] < 0.0 and F <= 0.0:
+            break
+    x = 1.0 / ratio
+    e_th = math.sqrt(6 * math.sqrt(3) / 5) * math.sqrt(1 - x * x / 6) * (x / (x + 2 * math.sqrt(6 / 5 - x * x / 5))) ** 0.25
+    assert -s[1] / v0 == pytest.approx(e_th, rel=1e-5)
+    assert {C.PHASE_ELASTIC, C.PHASE_PLASTIC, C.PHASE_RECOVERY} <= phases
+    # the residual indentation is where the recovery curve reaches zero
+    dp = C.residual_indentation(s[2], p)
+    assert tf(dp * (1 + 1e-9) + 1e-18, s[2], p)[0] == pytest.approx(0.0, abs=1e-6 * K * dy**1.5)
+    assert dp > 0.0
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_series_law_matches_brentq_reference(compiled):
+    """Film (rigid isoviscous squeeze film, R_eff = R/2) in series with Hertz:
+    F = K x^1.5 = C0 v (1/(g + x + h_r) - 1/(h_cut + h_r)), solved by brentq here."""
+    bbn = _k(C.ball_ball_normal, compiled)
+    R = 0.5 * D
+    eta = 0.05
+    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=eta, rupture_thickness=1e-7)
+    K, C0, hr, hcut = p[C.BB_K], 6 * math.pi * eta * (R / 2) ** 2, 1e-7, 0.1 * R
+    dummy = _no_map()
+    for g, v in [(5e-6, 0.3), (2e-7, 0.05), (-1e-7, 0.5), (-1e-6, 2.0)]:
+        F, h, x, phase, share = bbn(g, v, 0.0, 0.0, p, C.FILM_CLOSED_FORM, *dummy)
+
+        def phi(x):
+            return K * x**1.5 - C0 * v * (1 / (g + x + hr) - 1 / (hcut + hr))
+
+        xr = brentq(phi, max(-g, 0.0), 1e-3, xtol=1e-20, rtol=1e-14)
+        assert F == pytest.approx(K * xr**1.5, rel=1e-8)
+        assert h == pytest.approx(g + xr, rel=1e-6, abs=1e-15)
+        assert phase == C.PHASE_FILM
+        # share of the approach taken by the solids: d(x)/d(-g) of the reference root (finite difference)
+        eps = 1e-4 * max(abs(g), xr)
+        x2 = brentq(lambda y: K * y**1.5 - C0 * v * (1 / (g - eps + y + hr) - 1 / (hcut + hr)), max(eps - g, 0.0),
+                    1e-3, xtol=1e-22, rtol=1e-15)
+        assert share == pytest.approx((x2 - xr) / eps, rel=1e-3)
+    # separation: the film cavitates, Hertz unloads through the ruptured film
+    F, h, x, phase, share = bbn(-1e-6, -0.5, 0.0, 0.0, p, C.FILM_CLOSED_FORM, *dummy)
+    assert F == pytest.approx(K * 1e-6**1.5, rel=1e-12) and h == 0.0 and phase == C.PHASE_ELASTIC
+    assert bbn(1e-6, -0.5, 0.0, 0.0, p, C.FILM_CLOSED_FORM, *dummy)[0] == 0.0
+    # film "none": plain Hertz
+    assert bbn(-2e-6, 0.3, 0.0, 0.0, p, C.FILM_NONE, *dummy)[0] == pytest.approx(K * 2e-6**1.5, rel=1e-12)
+
+
+def test_rigid_squeeze_film_approach_is_analytic():
+    """Two balls approaching through the film from 100 um: in the rigid regime
+    (h >> elastic approach) m* dv/dh = C0 (1/(h + h_r) - 1/(h_cut + h_r)) integrates to
+    v(h) = v0 - (C0/m*) [ln((h0 + h_r)/(h + h_r)) - (h0 - h)/(h_cut + h_r)]."""
+    R = 0.5 * D
+    eta = 0.05
+    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=eta)
+    C0, hr, hcut = p[C.BB_C0], p[C.BB_HR], p[C.BB_HCUT]
+    ms = 0.5 * M_BALL
+    dummy = _no_map()
+    g0, v0 = 1e-4, 0.02
+    s = np.array([g0, v0])  # gap, approach speed
+    dt = 2e-6
+
+    def f(s):
+        F = C.ball_ball_normal(s[0], s[1], 0.0, 0.0, p, C.FILM_CLOSED_FORM, *dummy)[0]
+        return np.array([-s[1], -F / ms])
+
+    while s[0] > 1e-5:
+        k1 = f(s)
+        k2 = f(s + 0.5 * dt * k1)
+        k3 = f(s + 0.5 * dt * k2)
+        k4 = f(s + dt * k3)
+        s = s + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    g = s[0]
+    v_th = v0 - C0 / ms * (math.log((g0 + hr) / (g + hr)) - (g0 - g) / (hcut + hr))
+    assert v_th < 0.9 * v0  # the film has taken a good part of the speed
+    # the elastic approach delta_e = (F/K)^(2/3) ~ 1e-8 m << g = 10 um changes v by
+    # ~ (C0/m*) int delta_e/g^2 dg ~ 2e-4 relative here
+    assert s[1] == pytest.approx(v_th, rel=5e-4)
+
+
+@pytest.mark.parametrize("method, speed_axis", [(interp.PCHIP, "approach_speed"), (interp.HERMITE, "approach_speed"),
+                                                (interp.PCHIP, "squeeze_number")])
+def test_map_option_reproduces_tabulated_closed_form(method, speed_axis):
+    """The map slot: a force table of the closed form over (gap, approach speed) or
+    (gap, squeeze number, entrainment speed), read through dynamics.interp, gives the
+    same series force within the table's interpolation error."""
+    from dynamics.cageless import MAP_SPEED_AXES, _map_arrays
+
+    R = 0.5 * D
+    alpha = 1.85e-8
+    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=0.05, pressure_viscosity=alpha)
+    gaps = np.geomspace(1e-9, 4e-4, 161)
+    ax0 = interp.prepare_axis(gaps, True)
+    if speed_axis == "approach_speed":
+        speeds = np.geomspace(1e-4, 10.0, 41)
+        vals = np.array([[C.squeeze_film_closed_form(h, v, p)[0] for v in speeds] for h in gaps])
+        axes, logs = (ax0, interp.prepare_axis(speeds, True)), (1, 1)
+    else:  # Lambda = 3 alpha eta R_eff v/h^2; a third (entrainment) axis on which nothing depends
+        lam = np.geomspace(1e-16, 1e10, 131)  # isoviscous: any Lambda (a Barus map stops below 1)
+        ue = np.array([0.0, 0.05])
+        vals = np.array([[[C.squeeze_film_closed_form(h, L * h * h / p[C.BB_SQF], p)[0]] * 2 for L in lam]
+                         for h in gaps])
+        axes, logs = (ax0, interp.prepare_axis(lam, True), interp.prepare_axis(ue, False)), (1, 1, 0)
+    u = interp.prepare_values(np.maximum(vals, 1e-300), True)
+    if method == interp.HERMITE:
+        u = interp.hermite_data(axes, u)
+    arrays = _map_arrays((axes, logs, u, 1, method), MAP_SPEED_AXES[speed_axis])
+    counter = np.zeros(1, dtype=np.int64)
+    dummy = _no_map()
+    for g, v in [(5e-6, 0.3), (2e-7, 0.05), (-5e-7, 0.5), (3e-5, 3e-5)]:
+        Fm = C.ball_ball_normal(g, v, 0.01, 0.0, p, C.FILM_MAP, *arrays, counter)[0]
+        Fc = C.ball_ball_normal(g, v, 0.01, 0.0, p, C.FILM_CLOSED_FORM, *dummy)[0]
+        assert Fm == pytest.approx(Fc, rel=2e-3)
+    assert counter[0] == 0
+    # outside the axes: clamped and counted
+    C.ball_ball_normal(1e-6, 1e3 if speed_axis == "approach_speed" else 0.1, 1.0, 0.0, p, C.FILM_MAP, *arrays,
+                       counter)
+    assert counter[0] >= 1
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_traction_curve_limits(compiled):
+    tc = _k(C.traction_coefficient, compiled)
+    assert tc(5.0, 10.0, 0.07, 0.02, 0.05) == pytest.approx(0.07, rel=1e-12)  # SRR 0.5 >> 0.02: limiting
+    # initial slope mu_lim/s0 in SRR
+    assert tc(1e-5, 10.0, 0.07, 0.02, 0.05) / 1e-6 == pytest.approx(0.07 / 0.02, rel=1e-8)
+    # no entrainment: regularised Coulomb on the sliding speed
+    assert tc(1e-4, 0.0, 0.07, 0.02, 0.05) == pytest.approx(0.07 * math.tanh(1e-4 / 0.05), rel=1e-14)
+
+
+def test_film_rupture_friction_blend():
+    p = C.ball_ball_parameters(ball_radius=0.5 * D, e_star=ES_BALL, mu_film=0.03, mu_boundary=0.12,
+                               rupture_thickness=1e-7)
+    assert C.ball_ball_friction_coefficient(0.0, p) == pytest.approx(0.12, rel=1e-15)
+    assert C.ball_ball_friction_coefficient(1e-7, p) == pytest.approx(0.12 / math.e + 0.03 * (1 - 1 / math.e))
+    assert C.ball_ball_friction_coefficient(5e-6, p) == pytest.approx(0.03, rel=1e-12)
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_thornton_matches_film_points_reference(compiled):
+    """The collision phases against the map-physics helper's plain-Python reference
+    (coupling.film_points.thornton_force, written independently from the paper)."""
+    from coupling import film_points as fp
+
+    tf = _k(C.thornton_force, compiled)
+    R = 0.5 * D
+    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, yield_stress=1.7e9)
+    py, dy, _ = fp.yield_onset(R / 2, ES_BALL, 1.7e9)
+    assert p[C.BB_DY] == pytest.approx(dy, rel=1e-14) and p[C.BB_PY] == pytest.approx(py, rel=1e-14)
+    for dmax in (0.0, 0.5 * dy, 3 * dy, 40 * dy):
+        for frac in (0.05, 0.5, 0.9, 0.999, 1.0, 1.3):
+            delta = frac * max(dmax, dy)
+            ref = fp.thornton_force(delta, max(dmax, delta), R / 2, ES_BALL, py)
+            assert tf(delta, dmax, p)[0] == pytest.approx(ref, rel=1e-12, abs=1e-12 * p[C.BB_FY])
