@@ -1,0 +1,1060 @@
+"""Time integrators: classical RK4, Dormand-Prince 5(4) and Rosenbrock ROS2, whole time loop in numba.
+
+Right-hand side contract
+------------------------
+A right-hand side is an ``@njit`` function ``rhs(t, y, args, dydt) -> None``
+(float64 ``t``, float64[:] ``y``, ``args`` any numba-typable tuple passed
+through unchanged; it writes ``dydt`` in place).
+
+Kernels
+-------
+``rk4(rhs, y0, t_out, dt, args)``
+    Classical fourth-order Runge-Kutta (Butcher 1/2, 1/2, 1; weights
+    1/6, 1/3, 1/3, 1/6).  It steps *exactly onto the output times*: the
+    interval ``[t_out[i-1], t_out[i]]`` is cut into ``ceil(interval / dt)``
+    equal steps, so every step is <= ``dt`` and no interpolation is involved.
+``dopri5(rhs, y0, t_out, args, rtol, atol, h0, h_max, max_steps)``
+    Dormand-Prince 5(4) (FSAL, local extrapolation) as in Hairer, Norsett and
+    Wanner, *Solving ODEs I*, 2nd ed., sec. II.4-II.6 and their code DOPRI5:
+    error norm ``sqrt(mean((e_i / (atol + rtol max(|y_i|, |y1_i|)))^2))``, PI
+    (Lund-stabilised) step control ``h_new = h / max(1/10, min(5, err^(0.2 -
+    0.75 beta) / err_old^beta / 0.9))`` with beta = 0.04, no step increase right
+    after a rejection, initial step from Hairer's ``hinit`` when ``h0 <= 0``.
+    Output times are filled by the 4th-order continuous extension (dense
+    output coefficients d1..d7 of Dormand & Prince / Shampine); the last step
+    is shortened to land exactly on ``t_out[-1]`` so that a continuation starts
+    from a true step value.
+
+Both return ``(Y, stats)``: ``Y`` of shape ``(len(t_out), len(y0))``, rows not
+reached are NaN, and the float64 array ``stats`` indexed by the constants
+``ACCEPTED, REJECTED, NFEV, STATUS, T_REACHED, H_NEXT, N_FILLED`` (status: 0 ok,
+1 ``max_steps`` reached, 2 step-size underflow, 3 non-finite state; ``H_NEXT``
+is the step proposed for a continuation; ``N_FILLED`` the number of valid rows).
+
+Caching (measured, numba 0.68)
+------------------------------
+A ``cache=True`` kernel that receives the rhs *as an argument* never hits the
+on-disk cache in a new process: the argument type ``Dispatcher(<function at
+0x..>)`` carries the object identity, so every process misses and appends one
+more ``.nbc`` file (measured: 3 runs, 3 misses, ~3 s compile each).  A closure
+factory misses the same way, and a cached wrapper that passes a global rhs on
+to a generic kernel refuses to cache ("uses dynamic globals").  What works is a
+kernel whose rhs is a *module global*: :func:`specialise` writes the kernel's
+source, with ``rhs`` turned from a parameter into a global imported from the
+rhs's module, to a small file in a cache directory (``LUBEDYN_KERNEL_CACHE``,
+default ``~/.cache/lubedyn/kernels``) whose name carries a hash of the kernel
+source and of the rhs's package sources; numba's own cache then hits in every
+later process.  The generic kernels ``rk4``/``dopri5``/``ros2`` are therefore compiled
+with ``cache=False`` (caching them would only grow ``__pycache__``); the driver
+:func:`integrate` uses the specialised ones.
+
+Stiff problems: ``ros2(rhs, jac, y0, t_out, args, rtol, atol, h0, h_max, max_steps, use_fd)``
+-----------------------------------------------------------------------------------------------
+The two-stage L-stable Rosenbrock method ROS2 of Verwer, Spee, Blom &
+Hundsdorfer (SIAM J. Sci. Comput. 20, 1999), gamma = 1 + 1/sqrt(2):
+(I - gamma h J) k1 = f(t, y), (I - gamma h J) k2 = f(t + h, y + h k1) - 2 k1,
+y_new = y + h (3/2 k1 + 1/2 k2), second order (for any W, so an inexact J
+costs no order), embedded first-order Rosenbrock-Euler y + h k1 for the error
+estimate h (k1 + k2) / 2, step factor 0.9 err^(-1/2) in [0.2, 5], dense
+output by cubic Hermite interpolation (3rd order).  J is a user ``jac(t, y,
+args, J)`` or forward differences (n extra rhs calls per accepted step); one
+inverse of W per step.  Same ``(Y, stats)`` contract as DOPRI5.
+
+Stiffness of the ball contacts (measured with :func:`contact_step_study`)
+--------------------------------------------------------------------------
+A ball of 3.5 g on a contact of stiffness k = 1e9 N/m has omega = sqrt(k/m)
+= 5.3e5 rad/s.  Explicit stability on the imaginary axis (:func:`stability_limit`,
+computed from the stability polynomials): RK4 |h omega| <= 2 sqrt(2) = 2.83;
+DOPRI5 only <= 0.997 strictly (|R(i y)| - 1 = 1.4e-6 at y = 1, 3e-3 at 1.5;
+its real-axis limit is 3.31, the "~3.3" often quoted), so an undamped mode
+must be resolved by DOPRI5 anyway.  For an elastic Hertz impact (3.5 g, 0.5
+m/s, k = 1e9 N/m at the largest deflection, contact 7.5 us) the rebound speed
+error of RK4 is 5e-8, 4.4e-6, 3.4e-4, 6.6e-3, 6.6e-2, 0.26 at h omega = 0.1,
+0.2, 0.5, 1, 2, 2.8: a 1e-4 answer needs h omega ~ 0.3, about ten times below
+the RK4 limit, and DOPRI5 chooses mean h omega = 0.58 / 0.22 / 0.086 across the
+contact at rtol = 1e-4 / 1e-6 / 1e-8 (rebound errors 5e-4, 1.5e-5, 5.6e-7).
+Accuracy, not stability, sets the step, so ROS2 (which would still have to
+resolve the contact, at an n x n Jacobian and inverse per step) is not the
+default for the ball collisions; it is there for scenes with a stiff mode
+that is not of interest (e.g. a very stiff film damper).  The driver refuses
+an RK4 step beyond the stability limit when the caller gives the highest
+frequency ``omega_max``.
+"""
+from __future__ import annotations
+
+import ast
+import hashlib
+import importlib
+import importlib.util
+import inspect
+import logging
+import math
+import os
+import sys
+import textwrap
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numba
+import numpy as np
+from numba import njit
+
+from .errors import DynamicsInputError, IntegrationError
+
+logger = logging.getLogger(__name__)
+
+# stats indices and status codes ------------------------------------------------
+ACCEPTED, REJECTED, NFEV, STATUS, T_REACHED, H_NEXT, N_FILLED = range(7)
+N_STATS = 7
+STATUS_OK, STATUS_MAX_STEPS, STATUS_UNDERFLOW, STATUS_NONFINITE = 0, 1, 2, 3
+STATUS_MESSAGES = {
+    STATUS_OK: "ok",
+    STATUS_MAX_STEPS: "the step budget max_steps was used up",
+    STATUS_UNDERFLOW: "the step size underflowed (h below 10 x machine epsilon x |t|)",
+    STATUS_NONFINITE: "the state or its derivative became non-finite (NaN/inf)",
+}
+
+# Dormand-Prince 5(4) coefficients (Hairer's DOPRI5) ----------------------------
+C2, C3, C4, C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
+A21 = 0.2
+A31, A32 = 3.0 / 40.0, 9.0 / 40.0
+A41, A42, A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
+A51, A52, A53, A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
+A61, A62, A63, A64, A65 = 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0
+A71, A73, A74, A75, A76 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
+E1, E3, E4, E5, E6, E7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0,
+                          22.0 / 525.0, -1.0 / 40.0)
+D1, D3, D4, D5, D6, D7 = (-12715105075.0 / 11282082432.0, 87487479700.0 / 32700410799.0,
+                          -10690763975.0 / 1880347072.0, 701980252875.0 / 199316789632.0,
+                          -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0)
+BETA = 0.04
+EXPO1 = 0.2 - 0.75 * BETA
+SAFE = 0.9
+FACC1 = 1.0 / 0.2  # largest step decrease 1/5
+FACC2 = 1.0 / 10.0  # largest step increase 10
+UROUND = 2.3e-16
+MAX_NONFINITE_TRIALS = 20
+
+#: stability polynomials R(z) (coefficients of z^0, z^1, ...) of the explicit methods
+STABILITY_POLYNOMIALS = {
+    "rk4": (1.0, 1.0, 1.0 / 2.0, 1.0 / 6.0, 1.0 / 24.0),
+    "dopri5": (1.0, 1.0, 1.0 / 2.0, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 600.0),
+}
+METHODS = ("dopri5", "rk4", "ros2")
+
+
+# small helpers (no rhs: ordinary cached kernels) ------------------------------
+@njit(cache=True)
+def _all_finite(x):
+    for v in x:
+        if not np.isfinite(v):
+            return False
+    return True
+
+
+@njit(cache=True)
+def _dense_eval(rcont, theta, out):
+    """Dormand-Prince continuous extension at ``theta = (t - t_old) / h`` (Hairer's CONTD5)."""
+    theta1 = 1.0 - theta
+    for j in range(out.shape[0]):
+        out[j] = rcont[0, j] + theta * (rcont[1, j] + theta1 * (rcont[2, j] + theta * (
+            rcont[3, j] + theta1 * rcont[4, j])))
+
+
+# kernel sources: rhs is the first parameter; see `specialise` -------------------
+def _rk4_impl(rhs, y0, t_out, dt, args):
+    n = y0.shape[0]
+    m = t_out.shape[0]
+    Y = np.full((m, n), np.nan)
+    stats = np.zeros(N_STATS)
+    y = y0.copy()
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    tmp = np.empty(n)
+    Y[0, :] = y
+    accepted = 0
+    status = STATUS_OK
+    t_reached = t_out[0]
+    filled = 1
+    for i in range(1, m):
+        t_start = t_out[i - 1]
+        interval = t_out[i] - t_start
+        nsub = max(1, int(math.ceil(interval / dt * (1.0 - 1e-12))))
+        h = interval / nsub
+        for s in range(nsub):
+            t = t_start + s * h
+            rhs(t, y, args, k1)
+            for j in range(n):
+                tmp[j] = y[j] + 0.5 * h * k1[j]
+            rhs(t + 0.5 * h, tmp, args, k2)
+            for j in range(n):
+                tmp[j] = y[j] + 0.5 * h * k2[j]
+            rhs(t + 0.5 * h, tmp, args, k3)
+            for j in range(n):
+                tmp[j] = y[j] + h * k3[j]
+            rhs(t + h, tmp, args, k4)
+            for j in range(n):
+                tmp[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+            if not _all_finite(tmp):
+                status = STATUS_NONFINITE
+                break
+            y[:] = tmp
+            accepted += 1
+            t_reached = t + h
+        if status != STATUS_OK:
+            break
+        t_reached = t_out[i]
+        Y[i, :] = y
+        filled = i + 1
+    stats[ACCEPTED] = accepted
+    stats[NFEV] = 4 * accepted + (4 if status == STATUS_NONFINITE else 0)
+    stats[STATUS] = status
+    stats[T_REACHED] = t_reached
+    stats[H_NEXT] = dt
+    stats[N_FILLED] = filled
+    return Y, stats
+
+
+def _dopri5_impl(rhs, y0, t_out, args, rtol, atol, h0, h_max, max_steps):
+    n = y0.shape[0]
+    m = t_out.shape[0]
+    Y = np.full((m, n), np.nan)
+    stats = np.zeros(N_STATS)
+    y = y0.copy()
+    y1 = np.empty(n)
+    ytmp = np.empty(n)
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    k5 = np.empty(n)
+    k6 = np.empty(n)
+    k7 = np.empty(n)
+    rcont = np.empty((5, n))
+    t = t_out[0]
+    t_end = t_out[m - 1]
+    Y[0, :] = y
+    filled = 1
+    accepted = 0
+    rejected = 0
+    status = STATUS_OK
+    if h_max <= 0.0:
+        h_max = t_end - t
+    rhs(t, y, args, k1)
+    nfev = 1
+    h_next = 0.0
+    if not (_all_finite(y) and _all_finite(k1)):
+        status = STATUS_NONFINITE
+    elif m > 1:
+        h = h0
+        if h <= 0.0:  # Hairer's HINIT, order 5
+            dnf = 0.0
+            dny = 0.0
+            for j in range(n):
+                sk = atol + rtol * abs(y[j])
+                dnf += (k1[j] / sk) ** 2
+                dny += (y[j] / sk) ** 2
+            if dnf <= 1e-10 or dny <= 1e-10:
+                h = 1e-6
+            else:
+                h = 0.01 * math.sqrt(dny / dnf)
+            h = min(h, h_max)
+            for j in range(n):
+                ytmp[j] = y[j] + h * k1[j]
+            rhs(t + h, ytmp, args, k2)
+            nfev += 1
+            der2 = 0.0
+            for j in range(n):
+                sk = atol + rtol * abs(y[j])
+                der2 += ((k2[j] - k1[j]) / sk) ** 2
+            der2 = math.sqrt(der2) / h
+            der12 = max(abs(der2), math.sqrt(dnf))
+            if not np.isfinite(der12):
+                h1 = 1e-6 * h
+            elif der12 <= 1e-15:
+                h1 = max(1e-6, abs(h) * 1e-3)
+            else:
+                h1 = (0.01 / der12) ** 0.2
+            h = min(100.0 * abs(h), h1, h_max)
+        h = min(h, h_max)
+        facold = 1e-4
+        reject = False
+        n_nonfinite = 0
+        while True:
+            if accepted + rejected >= max_steps:
+                status = STATUS_MAX_STEPS
+                break
+            if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
+                status = STATUS_UNDERFLOW
+                break
+            h_proposed = h
+            last = False
+            if t + 1.01 * h >= t_end:
+                h = t_end - t
+                last = True
+            for j in range(n):
+                ytmp[j] = y[j] + h * A21 * k1[j]
+            rhs(t + C2 * h, ytmp, args, k2)
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A31 * k1[j] + A32 * k2[j])
+            rhs(t + C3 * h, ytmp, args, k3)
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A41 * k1[j] + A42 * k2[j] + A43 * k3[j])
+            rhs(t + C4 * h, ytmp, args, k4)
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A51 * k1[j] + A52 * k2[j] + A53 * k3[j] + A54 * k4[j])
+            rhs(t + C5 * h, ytmp, args, k5)
+            for j in range(n):
+                ytmp[j] = y[j] + h * (A61 * k1[j] + A62 * k2[j] + A63 * k3[j] + A64 * k4[j] + A65 * k5[j])
+            rhs(t + h, ytmp, args, k6)
+            for j in range(n):
+                y1[j] = y[j] + h * (A71 * k1[j] + A73 * k3[j] + A74 * k4[j] + A75 * k5[j] + A76 * k6[j])
+            rhs(t + h, y1, args, k7)
+            nfev += 6
+            err = 0.0
+            for j in range(n):
+                sk = atol + rtol * max(abs(y[j]), abs(y1[j]))
+                e = h * (E1 * k1[j] + E3 * k3[j] + E4 * k4[j] + E5 * k5[j] + E6 * k6[j] + E7 * k7[j])
+                err += (e / sk) ** 2
+            err = math.sqrt(err / n)
+            if not np.isfinite(err):
+                rejected += 1
+                n_nonfinite += 1
+                if n_nonfinite >= MAX_NONFINITE_TRIALS:
+                    status = STATUS_NONFINITE
+                    break
+                h = 0.1 * h
+                reject = True
+                continue
+            n_nonfinite = 0
+            fac11 = err ** EXPO1
+            fac = fac11 / facold ** BETA
+            fac = max(FACC2, min(FACC1, fac / SAFE))
+            hnew = h / fac
+            if err <= 1.0:
+                facold = max(err, 1e-4)
+                accepted += 1
+                for j in range(n):
+                    rcont[0, j] = y[j]
+                    ydiff = y1[j] - y[j]
+                    rcont[1, j] = ydiff
+                    bspl = h * k1[j] - ydiff
+                    rcont[2, j] = bspl
+                    rcont[3, j] = ydiff - h * k7[j] - bspl
+                    rcont[4, j] = h * (D1 * k1[j] + D3 * k3[j] + D4 * k4[j] + D5 * k5[j] + D6 * k6[j]
+                                       + D7 * k7[j])
+                t_old = t
+                t = t_end if last else t + h
+                while filled < m and t_out[filled] <= t:
+                    if filled == m - 1 and last:
+                        Y[filled, :] = y1
+                    else:
+                        _dense_eval(rcont, (t_out[filled] - t_old) / h, ytmp)
+                        Y[filled, :] = ytmp
+                    filled += 1
+                y[:] = y1
+                k1[:] = k7
+                if hnew > h_max:
+                    hnew = h_max
+                if reject:
+                    hnew = min(hnew, h)
+                reject = False
+                if last:
+                    h_next = h_proposed
+                    break
+                h = hnew
+                h_next = hnew
+            else:
+                hnew = h / min(FACC1, fac11 / SAFE)
+                reject = True
+                rejected += 1
+                h = hnew
+    stats[ACCEPTED] = accepted
+    stats[REJECTED] = rejected
+    stats[NFEV] = nfev
+    stats[STATUS] = status
+    stats[T_REACHED] = t
+    stats[H_NEXT] = h_next
+    stats[N_FILLED] = filled
+    return Y, stats
+
+
+ROS2_GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
+FD_SQRT_EPS = math.sqrt(2.2e-16)
+
+
+@njit(cache=True)
+def no_jac(t, y, args, J):
+    """Placeholder Jacobian: the Rosenbrock kernel uses forward differences instead."""
+    J[:, :] = np.nan
+
+
+@njit(cache=True)
+def _hermite(y0, f0, y1, f1, h, theta, out):
+    """Cubic Hermite interpolant between (y0, f0) and (y1, f1) over a step h (Hairer I, II.6)."""
+    for j in range(out.shape[0]):
+        dy = y1[j] - y0[j]
+        out[j] = (1.0 - theta) * y0[j] + theta * y1[j] + theta * (theta - 1.0) * (
+            (1.0 - 2.0 * theta) * dy + (theta - 1.0) * h * f0[j] + theta * h * f1[j])
+
+
+def _ros2_impl(rhs, jac, y0, t_out, args, rtol, atol, h0, h_max, max_steps, use_fd):
+    n = y0.shape[0]
+    m = t_out.shape[0]
+    Y = np.full((m, n), np.nan)
+    stats = np.zeros(N_STATS)
+    y = y0.copy()
+    y1 = np.empty(n)
+    ytmp = np.empty(n)
+    f0 = np.empty(n)
+    f1 = np.empty(n)
+    fnew = np.empty(n)
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    J = np.empty((n, n))
+    W = np.empty((n, n))
+    t = t_out[0]
+    t_end = t_out[m - 1]
+    Y[0, :] = y
+    filled = 1
+    accepted = 0
+    rejected = 0
+    status = STATUS_OK
+    if h_max <= 0.0:
+        h_max = t_end - t
+    rhs(t, y, args, f0)
+    nfev = 1
+    h_next = 0.0
+    if not (_all_finite(y) and _all_finite(f0)):
+        status = STATUS_NONFINITE
+    elif m > 1:
+        h = h0
+        if h <= 0.0:
+            d0 = 0.0
+            d1 = 0.0
+            for j in range(n):
+                sk = atol + rtol * abs(y[j])
+                d0 += (y[j] / sk) ** 2
+                d1 += (f0[j] / sk) ** 2
+            d0 = math.sqrt(d0 / n)
+            d1 = math.sqrt(d1 / n)
+            h = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+        h = min(h, h_max)
+        need_jac = True
+        n_nonfinite = 0
+        while True:
+            if accepted + rejected >= max_steps:
+                status = STATUS_MAX_STEPS
+                break
+            if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
+                status = STATUS_UNDERFLOW
+                break
+            if need_jac:
+                if use_fd:
+                    for j in range(n):
+                        delta = FD_SQRT_EPS * (abs(y[j]) + atol / rtol)
+                        ytmp[:] = y
+                        ytmp[j] = y[j] + delta
+                        rhs(t, ytmp, args, fnew)
+                        for i in range(n):
+                            J[i, j] = (fnew[i] - f0[i]) / delta
+                    nfev += n
+                else:
+                    jac(t, y, args, J)
+                need_jac = False
+            h_proposed = h
+            last = False
+            if t + 1.01 * h >= t_end:
+                h = t_end - t
+                last = True
+            for i in range(n):
+                for j in range(n):
+                    W[i, j] = -ROS2_GAMMA * h * J[i, j]
+                W[i, i] += 1.0
+            ok = _all_finite(W.ravel())
+            if ok:
+                Winv = np.linalg.inv(W)
+                k1[:] = Winv @ f0
+                for j in range(n):
+                    ytmp[j] = y[j] + h * k1[j]
+                rhs(t + h, ytmp, args, f1)
+                nfev += 1
+                for j in range(n):
+                    f1[j] -= 2.0 * k1[j]
+                k2[:] = Winv @ f1
+                err = 0.0
+                for j in range(n):
+                    y1[j] = y[j] + h * (1.5 * k1[j] + 0.5 * k2[j])
+                    sk = atol + rtol * max(abs(y[j]), abs(y1[j]))
+                    err += (0.5 * h * (k1[j] + k2[j]) / sk) ** 2
+                err = math.sqrt(err / n)
+            else:
+                err = np.nan
+            if not np.isfinite(err):
+                rejected += 1
+                n_nonfinite += 1
+                if n_nonfinite >= MAX_NONFINITE_TRIALS:
+                    status = STATUS_NONFINITE
+                    break
+                h = 0.1 * h
+                continue
+            n_nonfinite = 0
+            fac = min(5.0, max(0.2, 0.9 / math.sqrt(max(err, 1e-10))))
+            if err <= 1.0:
+                rhs(t + h, y1, args, fnew)
+                nfev += 1
+                if not _all_finite(fnew):
+                    rejected += 1
+                    h = 0.5 * h
+                    continue
+                accepted += 1
+                t_old = t
+                t = t_end if last else t + h
+                while filled < m and t_out[filled] <= t:
+                    if filled == m - 1 and last:
+                        Y[filled, :] = y1
+                    else:
+                        _hermite(y, f0, y1, fnew, h, (t_out[filled] - t_old) / h, ytmp)
+                        Y[filled, :] = ytmp
+                    filled += 1
+                y[:] = y1
+                f0[:] = fnew
+                need_jac = True
+                hnew = min(h * fac, h_max)
+                if last:
+                    h_next = h_proposed
+                    break
+                h = hnew
+                h_next = hnew
+            else:
+                rejected += 1
+                h = h * fac
+    stats[ACCEPTED] = accepted
+    stats[REJECTED] = rejected
+    stats[NFEV] = nfev
+    stats[STATUS] = status
+    stats[T_REACHED] = t
+    stats[H_NEXT] = h_next
+    stats[N_FILLED] = filled
+    return Y, stats
+
+
+#: generic kernels taking the rhs as an argument (no cross-process cache: see module docstring)
+rk4 = njit(cache=False)(_rk4_impl)
+dopri5 = njit(cache=False)(_dopri5_impl)
+ros2 = njit(cache=False)(_ros2_impl)
+
+
+# specialisation with a cross-process cache --------------------------------------
+_SPECIALISED = {}
+
+
+def kernel_cache_dir() -> Path:
+    """Directory of generated kernel modules (``LUBEDYN_KERNEL_CACHE`` or ``~/.cache/lubedyn/kernels``)."""
+    env = os.environ.get("LUBEDYN_KERNEL_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "lubedyn" / "kernels"
+
+
+def _import_path(func):
+    """``(module, name)`` under which the @njit ``func`` can be imported, or None."""
+    py = getattr(func, "py_func", None)
+    if py is None:
+        return None
+    mod, name = py.__module__, py.__qualname__
+    if mod in (None, "__main__") or "." in name or "<" in name:
+        return None
+    module = sys.modules.get(mod)
+    if module is None or getattr(module, name, None) is not func:
+        return None
+    return mod, name
+
+
+def _source_digest(func, whole_package=True) -> bytes:
+    """Hash of the source files the compiled ``func`` may depend on.
+
+    numba's cache does not track callees, so for a callable (rhs, jvp ...) the
+    digest covers every ``.py`` file of its top-level package (for a module
+    outside a package: its file alone); for a kernel source
+    (``whole_package=False``) its own module and this module (the helpers).
+    """
+    h = hashlib.sha256()
+    py = getattr(func, "py_func", func)
+    module = sys.modules[py.__module__]
+    files = [Path(getattr(module, "__file__", "") or "")]
+    if whole_package:
+        top = sys.modules.get(module.__name__.split(".")[0])
+        top_file = getattr(top, "__file__", None)
+        if top is not None and top is not module and top_file:
+            files = sorted(Path(top_file).parent.rglob("*.py"))
+    else:
+        files.append(Path(__file__))
+    for f in files:
+        try:
+            h.update(f.read_bytes())
+        except OSError:
+            h.update(str(f).encode())
+    return h.digest()
+
+
+def _generate_source(impl, callables) -> str:
+    """Kernel source with the callables turned from parameters into module globals."""
+    tree = ast.parse(textwrap.dedent(inspect.getsource(impl)))
+    fn = tree.body[0]
+    fn.args.args = [a for a in fn.args.args if a.arg not in callables]
+    fn.name = "kernel"
+    fn.decorator_list = []
+    lines = [
+        f"# generated by dynamics.integrators.specialise for {impl.__module__}.{impl.__name__}; do not edit",
+        "from numba import njit",
+        f"import {impl.__module__} as _impl_module",
+        "globals().update({k: v for k, v in vars(_impl_module).items() if not k.startswith('__')})",
+    ]
+    for pname, func in callables.items():
+        mod, name = _import_path(func)
+        lines.append(f"from {mod} import {name} as {pname}")
+    lines.append("")
+    lines.append("@njit(cache=True)")
+    lines.append(ast.unparse(fn))
+    return "\n".join(lines) + "\n"
+
+
+def specialise(impl, **callables):
+    """A cached ``@njit`` kernel of ``impl`` with the given callables bound as globals.
+
+    ``impl`` is a plain kernel source function whose leading parameters are
+    the callables (e.g. ``rhs``); the returned kernel takes the remaining
+    parameters.  The generated module lives in :func:`kernel_cache_dir`; its
+    name carries a hash of the kernel source, the callables' package sources
+    and the numba version, so an edit anywhere in those packages gives a new
+    file (older siblings are removed).  If a callable cannot be imported by
+    name (defined in ``__main__``, a closure) or the directory is not
+    writable, the generic kernel is returned bound to the callables (correct,
+    compiled once per process).
+    """
+    key = (impl, tuple((k, id(v)) for k, v in callables.items()))
+    if key in _SPECIALISED:
+        return _SPECIALISED[key]
+    kernel = None
+    paths = {k: _import_path(v) for k, v in callables.items()}
+    if all(p is not None for p in paths.values()):
+        try:
+            kernel = _load_generated(impl, callables, paths)
+        except (OSError, ImportError, SyntaxError) as exc:  # pragma: no cover - environment dependent
+            logger.warning("kernel cache unavailable (%s); compiling %s without cross-process cache",
+                           exc, impl.__name__)
+    else:
+        logger.info("%s: callables %s are not importable by module and name (define them at module level "
+                    "for a cross-process cache); compiling once per process", impl.__name__, paths)
+    if kernel is None:
+        generic = _GENERIC[impl]
+        bound = tuple(callables.values())
+
+        def kernel(*a, _g=generic, _b=bound):
+            return _g(*_b, *a)
+
+        kernel.py_func = lambda *a, _p=impl, _b=bound: _p(*_b, *a)
+    _SPECIALISED[key] = kernel
+    return kernel
+
+
+def _load_generated(impl, callables, paths):
+    source = _generate_source(impl, callables)
+    digest = hashlib.sha256(source.encode())
+    digest.update(numba.__version__.encode())
+    digest.update(_source_digest(impl, whole_package=False))
+    for func in callables.values():
+        digest.update(_source_digest(func))
+    tag = "_".join(f"{m.replace('.', '_')}_{n}" for m, n in paths.values())
+    stem = f"k_{impl.__name__.strip('_')}__{tag}"
+    name = f"{stem}__{digest.hexdigest()[:16]}"
+    directory = kernel_cache_dir()
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / f"{name}.py"
+    if not path.exists():
+        for old in directory.glob(f"{stem}__*.py"):  # stale generations of the same kernel
+            old.unlink(missing_ok=True)
+            for cached in (directory / "__pycache__").glob(f"{old.stem}.*"):
+                cached.unlink(missing_ok=True)
+        tmp = path.with_suffix(f".tmp{os.getpid()}")
+        tmp.write_text(source)
+        os.replace(tmp, path)
+    modname = f"_lubedyn_kernels.{name}"
+    module = sys.modules.get(modname)
+    if module is None:
+        spec = importlib.util.spec_from_file_location(modname, path)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[modname] = module
+        spec.loader.exec_module(module)
+    return module.kernel
+
+
+_GENERIC = {_rk4_impl: rk4, _dopri5_impl: dopri5, _ros2_impl: ros2}
+
+
+def register_generic(impl, jitted):
+    """Register the generic (argument-taking) jitted version of a kernel source for :func:`specialise`."""
+    _GENERIC[impl] = jitted
+
+
+# stability ----------------------------------------------------------------------
+def stability_limit(method: str, axis: str = "imaginary") -> float:
+    """Largest ``|h lambda|`` on an axis for which the explicit ``method`` is stable.
+
+    Computed from the stability polynomial R(z) (``STABILITY_POLYNOMIALS``):
+    the first ``y > 0`` where ``|R(i y)|`` (axis ``"imaginary"``) or
+    ``|R(-y)|`` (axis ``"real"``) exceeds 1, found by a scan and bisection.
+    RK4: 2 sqrt(2) = 2.828 (imaginary), 2.785 (real); DOPRI5 (R(z) = sum_k<=5
+    z^k/k! + z^6/600, Hairer & Wanner, *Solving ODEs II*, sec. IV.2): 0.997
+    (imaginary, where |R| exceeds 1 by 1.4e-6 only; 3e-3 at 1.5) and 3.307
+    (real).
+    """
+    if method not in STABILITY_POLYNOMIALS:
+        raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {sorted(STABILITY_POLYNOMIALS)}")
+    if axis not in ("imaginary", "real"):
+        raise DynamicsInputError(f"axis = {axis!r} is not allowed; choose 'imaginary' or 'real'")
+    poly = np.polynomial.Polynomial(STABILITY_POLYNOMIALS[method])
+    unit = 1j if axis == "imaginary" else -1.0
+
+    def unstable(y):
+        return abs(poly(unit * y)) > 1.0 + 1e-13
+
+    ys = np.arange(1e-3, 10.0, 1e-3)
+    bad = np.nonzero([unstable(y) for y in ys])[0]
+    lo, hi = ys[bad[0] - 1], ys[bad[0]]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if unstable(mid) else (mid, hi)
+    return float(lo)
+
+
+# Python driver --------------------------------------------------------------------
+@dataclass(frozen=True)
+class IntegrationResult:
+    """Result of :func:`integrate`.
+
+    Attributes
+    ----------
+    t : ndarray, shape (m,)
+        Output times [s].
+    y : ndarray, shape (m, n)
+        States at ``t``.
+    stats : dict
+        ``"Accepted steps [-]"``, ``"Rejected steps [-]"``, ``"RHS evaluations [-]"``,
+        ``"Wall time [s]"``.
+    method : str
+    """
+
+    t: np.ndarray
+    y: np.ndarray
+    stats: dict = field(default_factory=dict)
+    method: str = "dopri5"
+
+
+def kernel_for(method, rhs, jac=None):
+    """The compiled kernel of ``method`` specialised to ``rhs`` (cached across processes).
+
+    Same call as the generic kernel without the leading callables:
+    ``rk4: (y0, t_out, dt, args)``, ``dopri5: (y0, t_out, args, rtol, atol, h0, h_max, max_steps)``,
+    ``ros2: (y0, t_out, args, rtol, atol, h0, h_max, max_steps, use_fd)``.
+    """
+    if method not in METHODS:
+        raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {METHODS}")
+    if method == "ros2":
+        return specialise(_ros2_impl, rhs=rhs, jac=no_jac if jac is None else jac)
+    impl = _rk4_impl if method == "rk4" else _dopri5_impl
+    return specialise(impl, rhs=rhs)
+
+
+def _check_positive(key, value):
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise DynamicsInputError(f"{key} = {value!r} must be a positive number") from None
+    if not (v > 0.0 and math.isfinite(v)):
+        raise DynamicsInputError(f"{key} = {value!r} must be a finite number > 0")
+    return v
+
+
+def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt=None, h_max=0.0,
+              max_steps=10_000_000, progress=False, omega_max=None, h0=0.0, n_chunks=None, jac=None):
+    """Integrate ``dy/dt = rhs(t, y, args)`` and sample at ``t_out``.
+
+    Parameters
+    ----------
+    rhs : numba dispatcher
+        ``@njit`` function ``rhs(t, y, args, dydt)``.
+    y0 : array_like, shape (n,)
+        State at ``t_out[0]``.
+    t_out : array_like, shape (m,), m >= 2
+        Strictly increasing output times [s]; integration starts at ``t_out[0]``.
+    args : tuple
+        Passed to ``rhs`` unchanged.
+    method : {"dopri5", "rk4", "ros2"}
+        ``"ros2"`` is the L-stable Rosenbrock method for stiff problems.
+    rtol, atol : float
+        DOPRI5 / ROS2 tolerances (scalars).
+    dt : float
+        RK4 largest step [s] (required for ``"rk4"``).
+    h_max : float
+        DOPRI5 largest step [s] (0: no limit).
+    max_steps : int
+        Step budget (accepted + rejected) of the whole run (DOPRI5).
+    progress : bool
+        Show a tqdm bar of simulated time (the run is split in chunks; DOPRI5
+        carries its step size over chunk boundaries and restarts from a true
+        step value, so results agree with a one-chunk run within the tolerance).
+    omega_max : float, optional
+        Highest angular frequency [rad/s] of the linearised system (e.g.
+        sqrt(k_contact / m_ball)).  With RK4, ``dt * omega_max`` beyond
+        :func:`stability_limit` is refused; with DOPRI5 an ``h_max`` beyond it
+        is reported in the log (the step control will reject there).
+    h0 : float
+        DOPRI5 initial step (0: automatic).
+    n_chunks : int, optional
+        Number of kernel calls (default 1, or up to 200 when ``progress``).
+    jac : numba dispatcher, optional
+        ``jac(t, y, args, J)`` writing the n x n Jacobian (ROS2 only); forward differences if None.
+
+    Returns
+    -------
+    IntegrationResult
+
+    Raises
+    ------
+    DynamicsInputError
+        Bad input (one line: key, value, what is allowed).
+    IntegrationError
+        The kernel stopped early (status code, time reached and the samples
+        filled so far are attributes of the exception).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from numba import njit
+    >>> @njit
+    ... def decay(t, y, args, dydt):
+    ...     dydt[0] = -args[0] * y[0]
+    >>> res = integrate(decay, [1.0], np.linspace(0.0, 1.0, 5), (2.0,), rtol=1e-10, atol=1e-12)
+    >>> bool(abs(res.y[-1, 0] - np.exp(-2.0)) < 1e-9)
+    True
+    """
+    if method not in METHODS:
+        raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {METHODS}")
+    if not hasattr(rhs, "py_func"):
+        raise DynamicsInputError(f"rhs = {rhs!r} must be an @njit function rhs(t, y, args, dydt)")
+    if jac is not None and (method != "ros2" or not hasattr(jac, "py_func")):
+        raise DynamicsInputError(f"jac = {jac!r}: only method 'ros2' takes a Jacobian, an @njit jac(t, y, args, J)")
+    if not isinstance(args, tuple):
+        raise DynamicsInputError(f"args = {type(args).__name__} must be a tuple")
+    y0 = np.array(y0, dtype=np.float64, ndmin=1)
+    if y0.ndim != 1 or y0.size == 0 or not np.all(np.isfinite(y0)):
+        raise DynamicsInputError(f"y0 (shape {y0.shape}) must be a non-empty 1-D array of finite numbers")
+    t_out = np.array(t_out, dtype=np.float64, ndmin=1)
+    if t_out.ndim != 1 or t_out.size < 2 or not np.all(np.isfinite(t_out)):
+        raise DynamicsInputError(f"t_out (shape {t_out.shape}) must be a 1-D array of >= 2 finite times")
+    if not np.all(np.diff(t_out) > 0.0):
+        raise DynamicsInputError("t_out must be strictly increasing")
+    max_steps = int(_check_positive("max_steps", max_steps))
+    if method == "rk4":
+        if dt is None:
+            raise DynamicsInputError("dt = None: method 'rk4' needs a step dt > 0 [s]")
+        dt = _check_positive("dt", dt)
+    else:
+        rtol = _check_positive("rtol", rtol)
+        atol = _check_positive("atol", atol)
+        if rtol < 10 * UROUND:
+            raise DynamicsInputError(f"rtol = {rtol!r} must be >= {10 * UROUND:g}")
+        h_max = float(h_max)
+        if not (h_max >= 0.0 and math.isfinite(h_max)):
+            raise DynamicsInputError(f"h_max = {h_max!r} must be >= 0 (0: no limit)")
+    if omega_max is not None:
+        omega_max = _check_positive("omega_max", omega_max)
+        limit = stability_limit(method, "imaginary") if method != "ros2" else math.inf
+        if method == "rk4" and dt * omega_max > limit:
+            raise DynamicsInputError(
+                f"dt = {dt:g} s is beyond the RK4 stability limit {limit / omega_max:g} s "
+                f"(dt * omega_max = {dt * omega_max:.3g} > {limit:.3f} for omega_max = {omega_max:g} rad/s)")
+        if method == "dopri5" and (h_max == 0.0 or h_max * omega_max > limit):
+            logger.info("dopri5: steps are stability-limited near h = %.3g s (omega_max = %.3g rad/s)",
+                        limit / omega_max, omega_max)
+
+    kernel = kernel_for(method, rhs, jac)
+    m = t_out.size
+    if n_chunks is None:
+        n_chunks = min(m - 1, 200) if progress else 1
+    n_chunks = max(1, min(int(n_chunks), m - 1))
+    edges = np.unique(np.linspace(0, m - 1, n_chunks + 1).round().astype(np.int64))
+
+    Y = np.full((m, y0.size), np.nan)
+    Y[0] = y0
+    totals = np.zeros(3)
+    h_next = float(h0)
+    wall0 = time.perf_counter()
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=float(t_out[-1] - t_out[0]), unit="s", desc=f"{method} simulated time",
+               disable=True if not progress else None,
+               bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]")
+    try:
+        for i0, i1 in zip(edges[:-1], edges[1:]):
+            t_chunk = t_out[i0:i1 + 1]
+            y_start = Y[i0].copy()
+            if method == "rk4":
+                Yc, st = kernel(y_start, t_chunk, dt, args)
+            else:
+                budget = max(max_steps - int(totals[0] + totals[1]), 0)
+                if method == "ros2":
+                    Yc, st = kernel(y_start, t_chunk, args, rtol, atol, h_next, h_max, budget, jac is None)
+                else:
+                    Yc, st = kernel(y_start, t_chunk, args, rtol, atol, h_next, h_max, budget)
+            totals += st[:3]
+            filled = int(st[N_FILLED])
+            Y[i0:i0 + filled] = Yc[:filled]
+            status = int(st[STATUS])
+            if status != STATUS_OK:
+                n_good = i0 + filled
+                raise IntegrationError(
+                    f"{method} stopped at t = {st[T_REACHED]:.6g} s of {t_out[-1]:.6g} s: "
+                    f"{STATUS_MESSAGES.get(status, 'unknown status')} (status {status}; "
+                    f"{int(totals[0])} accepted, {int(totals[1])} rejected steps)",
+                    status=status, t_reached=st[T_REACHED], t=t_out[:n_good].copy(), y=Y[:n_good].copy())
+            h_next = st[H_NEXT]
+            bar.update(float(t_chunk[-1] - t_chunk[0]))
+    finally:
+        bar.close()
+    wall = time.perf_counter() - wall0
+    stats = {
+        "Accepted steps [-]": int(totals[0]),
+        "Rejected steps [-]": int(totals[1]),
+        "RHS evaluations [-]": int(totals[2]),
+        "Wall time [s]": wall,
+    }
+    logger.debug("%s: %s", method, stats)
+    return IntegrationResult(t=t_out, y=Y, stats=stats, method=method)
+
+
+# cold-start measurement ------------------------------------------------------------
+_FIRST_CALL_SCRIPT = """
+import sys, time, importlib
+import numpy as np
+t0 = time.perf_counter()
+from dynamics import integrators as I
+rhs = getattr(importlib.import_module(sys.argv[1]), sys.argv[2])
+y0 = np.array([float(v) for v in sys.argv[4].split(",")])
+args = tuple(float(v) for v in sys.argv[5].split(",") if v)
+t1 = time.perf_counter()
+t_out = np.array([0.0, 1e-3])
+if sys.argv[3] == "generic":
+    I.dopri5(rhs, y0, t_out, args, 1e-6, 1e-9, 0.0, 0.0, 10**6)
+else:
+    I.kernel_for(sys.argv[3], rhs)(y0, t_out, args, 1e-6, 1e-9, 0.0, 0.0, 10**6) if sys.argv[3] == "dopri5" \
+        else I.kernel_for("rk4", rhs)(y0, t_out, 1e-5, args)
+print(t1 - t0, time.perf_counter() - t1)
+"""
+
+
+def first_call_seconds(rhs_module, rhs_name, y0, args=(), method="dopri5", cache_dir=None, extra_path=None):
+    """Import and first-call times [s] of a kernel in a *fresh* Python process.
+
+    ``method``: "dopri5" or "rk4" (specialised, cross-process cached kernel) or
+    "generic" (the argument-taking DOPRI5 kernel, compiled in every process).
+    The rhs must be importable as ``rhs_module.rhs_name`` (``extra_path`` is
+    prepended to ``sys.path``) and take a tuple of floats ``args``.  Call
+    twice with the same ``cache_dir`` to see cold and warm numbers.
+
+    Returns
+    -------
+    dict: "Import time [s]", "First call [s]".
+    """
+    import subprocess
+
+    env = dict(os.environ)
+    if cache_dir is not None:
+        env["LUBEDYN_KERNEL_CACHE"] = str(cache_dir)
+    if extra_path:
+        env["PYTHONPATH"] = os.pathsep.join([str(extra_path), env.get("PYTHONPATH", "")])
+    cmd = [sys.executable, "-c", _FIRST_CALL_SCRIPT, rhs_module, rhs_name, method,
+           ",".join(repr(float(v)) for v in np.atleast_1d(y0)), ",".join(repr(float(a)) for a in args)]
+    out = subprocess.run(cmd, env=env, capture_output=True, text=True, check=True).stdout.split()
+    return {"Import time [s]": float(out[-2]), "First call [s]": float(out[-1])}
+
+
+# stiffness study ----------------------------------------------------------------
+@njit(cache=True)
+def _contact_rhs(t, y, args, dydt):
+    """Ball of mass m (args[1]) hitting a Hertz half-space: F = k_h delta^1.5 for delta = -x > 0."""
+    k_h = args[0]
+    mass = args[1]
+    dydt[0] = y[1]
+    delta = -y[0]
+    dydt[1] = k_h * delta ** 1.5 / mass if delta > 0.0 else 0.0
+
+
+def contact_step_study(stiffness=1e9, mass=3.5e-3, approach_speed=0.5,
+                       rk4_h_omega=(0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 2.8), rtols=(1e-4, 1e-6, 1e-8)):
+    """Measure whether contact stiffness makes the explicit integrators stability-limited.
+
+    A ball of ``mass`` [kg] hits a Hertzian half-space (F = k_h delta^1.5) at
+    ``approach_speed`` [m/s]; k_h is chosen so that the contact stiffness at
+    the largest deflection, k = 1.5 k_h delta_max^0.5, equals ``stiffness``
+    [N/m] (energy: m v^2 / 2 = 0.4 k_h delta_max^2.5 gives delta_max = (1.875 m
+    v^2 / k)^(1/2)).  The impact is elastic, so the exact rebound speed equals the
+    approach speed; the contact lasts 2.943 delta_max / v (Hertz impact).
+    omega = sqrt(stiffness / mass).
+
+    RK4 runs at fixed ``h omega`` values (below the 2.83 stability limit) and
+    DOPRI5 at the given tolerances; for each the relative rebound-speed error
+    is returned, and for DOPRI5 the mean ``h omega`` of the steps it takes
+    across the contact.  If the step that accuracy needs is well below the
+    stability limit, an implicit method would buy nothing: that is the
+    measured argument of the module docstring.
+
+    Returns
+    -------
+    dict: "Omega [rad/s]", "Contact duration [s]", "RK4 stable step [s]",
+    "DOPRI5 stable step [s]", "rk4": list of {"h*omega [-]", "Rebound speed
+    error [-]"}, "dopri5": list of {"rtol [-]", "Rebound speed error [-]",
+    "Mean h*omega in contact [-]", "Steps in contact [-]"}.
+    """
+    stiffness = _check_positive("stiffness", stiffness)
+    mass = _check_positive("mass", mass)
+    v = _check_positive("approach_speed", approach_speed)
+    d_max = math.sqrt(1.875 * mass * v * v / stiffness)
+    k_h = stiffness / (1.5 * math.sqrt(d_max))
+    omega = math.sqrt(stiffness / mass)
+    duration = 2.9432 * d_max / v
+    x0 = 0.5 * v * duration  # contact starts at t = duration / 2, ends near 1.5 duration
+    t_end = 2.0 * duration
+    args = (k_h, mass)
+    y0 = np.array([x0, -v])
+    out = {
+        "Omega [rad/s]": omega,
+        "Contact duration [s]": duration,
+        "RK4 stable step [s]": stability_limit("rk4") / omega,
+        "DOPRI5 stable step [s]": stability_limit("dopri5") / omega,
+        "rk4": [],
+        "dopri5": [],
+    }
+    rk4_kernel = kernel_for("rk4", _contact_rhs)
+    for ho in rk4_h_omega:
+        Y, st = rk4_kernel(y0, np.array([0.0, t_end]), ho / omega, args)
+        out["rk4"].append({"h*omega [-]": ho, "Rebound speed error [-]": abs(Y[-1, 1] - v) / v})
+    dp_kernel = kernel_for("dopri5", _contact_rhs)
+    t_in, t_exit = 0.5 * duration, 1.5 * duration
+    for rtol in rtols:
+        atol = rtol * d_max
+        Y, st = dp_kernel(y0, np.array([0.0, t_in, t_end]), args, rtol, atol, 0.0, 0.0, 10**7)
+        Yc, sc = dp_kernel(Y[1], np.array([t_in, t_exit]), args, rtol, atol, st[H_NEXT], 0.0, 10**7)
+        out["dopri5"].append({
+            "rtol [-]": rtol,
+            "Rebound speed error [-]": abs(Y[-1, 1] - v) / v,
+            "Steps in contact [-]": int(sc[ACCEPTED]),
+            "Mean h*omega in contact [-]": omega * (t_exit - t_in) / max(sc[ACCEPTED], 1.0),
+        })
+    return out
