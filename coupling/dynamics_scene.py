@@ -1,0 +1,637 @@
+"""Dynamics scene: the cage-less 6206 ball bearing of paper B in the time domain.
+
+``scene = "dynamics"``.  A case describes the bearing (defaults: paper B,
+Tables 1, 2 and 4), its functional slots, the operating scenario (rotor drop
+or steady inner-ring speed), the fidelity of each interaction (degrees of
+freedom of the balls, Hertz constants exact or Hamrock-Brewe, the ball-ball
+film: none / closed form / tabulated map), the integrator and the analyses.
+``run(case, out_dir)`` builds :class:`dynamics.cageless.CagelessBearing`,
+integrates from its quasi-static initial state with
+:func:`dynamics.integrators.integrate` (a progress bar of simulated time on
+a terminal) and writes
+
+- ``timeseries.npz``: every state entry and the contact diagnostics at every
+  sample, names with units (:func:`coupling.outputs.read_timeseries`);
+- ``collisions.csv``: one line per ball-ball collision (pair, time of the
+  force peak, position, force components, duration);
+- ``bearing.pvd`` + ``frames/*.vtp``: balls, rings, slots and the ball-ball
+  film pressure (rigid squeeze-film profile p = 3 eta v R_eff / h^2 while
+  the film carries the load, Hertz ellipse p0 sqrt(1 - r^2/a^2) once the
+  solids touch) for ParaView;
+- PNG plots: ball trajectories (x, y, z), collision-force needles by
+  direction (paper B, figure 5), phase portraits, inner-ring acceleration
+  spectrum with the bearing frequencies marked;
+- ``summary.json``: Lyapunov exponents (largest, per direction, from each
+  coordinate's time series by Rosenstein's method, in 1/s and per shaft
+  revolution), collision counts and largest forces by direction, ball and
+  inner-ring slip, integrator statistics, timings.
+
+Everything is computed before anything is written; the files are staged and
+moved into place together (:func:`coupling.outputs.staged`).
+"""
+from __future__ import annotations
+
+import logging
+import math
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from lubrication.errors import ConvergenceError, InputError
+
+from . import outputs
+from .config import CASES_DIR, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
+
+log = logging.getLogger(__name__)
+
+FIELD_FILES = (("timeseries.npz", "timeseries"), ("collisions.csv", "timeseries"), ("bearing.pvd", "pvd"),
+               ("trajectories.png", "png"), ("collision_needles.png", "png"), ("phase_portraits.png", "png"),
+               ("spectrum.png", "png"))
+
+Force = Q("force", ge=0)
+PositiveTime = Q("time", gt=0)
+
+
+# ---------------------------------------------------------------------------- case model
+class BearingTable(_Model):
+    """Geometry, materials and masses (defaults: paper B Tables 1, 2 and 4;
+    the ring mass, rotor inertia and ring inertia are not given in the paper)."""
+
+    n_balls: PositiveInt = 14
+    ball_diameter: PositiveLength = 9.525e-3
+    pitch_diameter: PositiveLength = 46.005e-3
+    inner_groove_radius: PositiveLength = 4.905e-3
+    outer_groove_radius: PositiveLength = 4.953e-3
+    diametral_clearance: Q("length", ge=0) = 0.0
+    ball_modulus: Q("pressure", gt=0) = 207e9
+    ball_poisson: Q("dimensionless", gt=-1, lt=0.5) = 0.29
+    ring_modulus: Q("pressure", gt=0) = 208e9
+    ring_poisson: Q("dimensionless", gt=-1, lt=0.5) = 0.3
+    ball_density: Q("density", gt=0) = 7850.0
+    ball_mass: Q("mass", gt=0) | None = None
+    ring_mass: Q("mass", gt=0) = 3.0
+    ring_inertia: Q("moment of inertia", gt=0) = 1.45e-5
+    rotor_inertia: Q("moment of inertia", gt=0) = 2e-3
+
+
+class SlotsTable(_Model):
+    """Local functional slots (paper B Table 4).  ``azimuths = []``: no slot."""
+
+    race: Literal["outer", "inner"] = "outer"
+    azimuths: list[Q("angle")] = Field(default_factory=lambda: [math.radians(270.0)])
+    width: PositiveLength = 3.5e-3
+    length: PositiveLength = 11.5e-3
+    depth: PositiveLength = 1e-3
+    edge_radius: PositiveLength = 2e-4
+
+
+class OperatingTable(_Model):
+    """``scenario``: "drop" (the rotor spinning at ``speed`` lands on the inner
+    ring and drags it up to speed by friction), "steady" (inner ring driven at
+    ``speed``) or "free" (no rotor)."""
+
+    scenario: Literal["drop", "steady", "free"] = "drop"
+    speed: Q("angular velocity", gt=0) = 10000 * 2 * math.pi / 60
+    radial_load: Force = 2000.0
+    axial_load: Force = 200.0
+    gravity: Q("acceleration", ge=0) = 9.81
+    drop_speed: Q("velocity", ge=0) = 0.0
+    rotor_friction: Q("dimensionless", ge=0) = 0.1
+    rotor_contact_radius: PositiveLength = 15e-3
+
+
+class ModelTable(_Model):
+    """Fidelity of the bearing model."""
+
+    dof: Literal["6dof", "planar"] = "6dof"
+    hertz: Literal["exact", "hamrock_brewe"] = "exact"
+    ball_ball: bool = True
+    race_damping: Q("dimensionless", ge=0) = 0.2
+    yield_stress: Q("pressure", gt=0) | None = 1.7e9
+    traction_limit: Q("dimensionless", ge=0) = 0.07
+    traction_srr: Q("dimensionless", gt=0) = 0.02
+
+
+class FilmsTable(_Model):
+    """The oil film between neighbouring balls: "none", "closed_form" (rigid
+    isoviscous squeeze film in series with Hertz) or "map" (a FilmMap file of
+    kind ball_ball, path relative to the case file or to cases/)."""
+
+    ball_ball: Literal["none", "closed_form", "map"] = "closed_form"
+    map: str | None = None
+    viscosity: Q("dynamic viscosity", gt=0) = 0.050
+    rupture_thickness: PositiveLength = 1e-7
+    friction_film: Q("dimensionless", ge=0) = 0.03
+    friction_boundary: Q("dimensionless", ge=0) = 0.1
+
+    @model_validator(mode="after")
+    def _map_given(self):
+        if self.ball_ball == "map" and not self.map:
+            raise rule("map", None, "is required when ball_ball = 'map' (a .npz written by a map case)")
+        return self
+
+
+class IntegratorTable(_Model):
+    method: Literal["dopri5", "rk4"] = "dopri5"
+    rtol: Q("dimensionless", gt=0, lt=1) = 1e-6
+    atol: Q("dimensionless", gt=0) = 1e-9
+    dt: PositiveTime | None = None
+    duration: PositiveTime = 0.02
+    sample_interval: PositiveTime = 2e-6
+    max_steps: PositiveInt = 50_000_000
+
+    @model_validator(mode="after")
+    def _rk4_step(self):
+        if self.method == "rk4" and self.dt is None:
+            raise rule("dt", None, "is required with method = 'rk4' (a fixed step, e.g. '0.2 us')")
+        if self.sample_interval > self.duration:
+            raise rule("sample_interval", self.sample_interval, f"must be <= duration = {self.duration:g} s")
+        return self
+
+
+class AnalysisTable(_Model):
+    lyapunov: bool = True
+    ball: Annotated[int, Field(strict=True, ge=0)] = 0
+    spectrum: bool = True
+    collision_threshold: Q("force", gt=0) = 1.0
+    transient: Q("time", ge=0) = 0.0
+    frames: PositiveInt = 100
+
+
+class OutputTable(_Model):
+    write: list[Literal["timeseries", "pvd", "png"]] = Field(default_factory=lambda: ["timeseries", "pvd", "png"])
+
+
+class DynamicsCase(_Model):
+    """A dynamics scene; after validation every value is SI and every default filled in."""
+
+    scene: Literal["dynamics"]
+    description: str = ""
+    bearing: BearingTable = Field(default_factory=BearingTable)
+    slots: SlotsTable = Field(default_factory=SlotsTable)
+    operating: OperatingTable = Field(default_factory=OperatingTable)
+    model: ModelTable = Field(default_factory=ModelTable)
+    films: FilmsTable = Field(default_factory=FilmsTable)
+    integrator: IntegratorTable = Field(default_factory=IntegratorTable)
+    analysis: AnalysisTable = Field(default_factory=AnalysisTable)
+    output: OutputTable = Field(default_factory=OutputTable)
+    smoke: dict[str, Any] | None = None
+
+    @model_validator(mode="after")
+    def _checks(self):
+        if self.analysis.ball >= self.bearing.n_balls:
+            raise rule("analysis.ball", self.analysis.ball, f"must be < bearing.n_balls = {self.bearing.n_balls}")
+        if self.analysis.transient >= self.integrator.duration:
+            raise rule("analysis.transient", self.analysis.transient,
+                       f"must be < integrator.duration = {self.integrator.duration:g} s")
+        return self
+
+
+CaseModel = DynamicsCase
+
+
+# ---------------------------------------------------------------------------- build
+@dataclass
+class DynamicsSetup:
+    """What a case builds: the bearing model, its initial state and output times."""
+
+    model: Any  # dynamics.cageless.CagelessBearing
+    y0: np.ndarray
+    t_out: np.ndarray
+    map_path: Path | None = None
+    map_info: dict = field(default_factory=dict)
+
+
+def _map_path(case: DynamicsCase, source: str | None) -> Path:
+    given = Path(case.films.map)
+    candidates = [given] if given.is_absolute() else (
+        ([Path(source).resolve().parent / given] if source else []) + [Path.cwd() / given, CASES_DIR / given])
+    for path in candidates:
+        if path.is_file():
+            return path
+    raise InputError(f"films.map = {case.films.map!r} not found (looked in: "
+                     f"{', '.join(str(p.parent) for p in candidates)}); build it with a map case, "
+                     "e.g. lubedyn run cases/map_ball_ball.toml")
+
+
+def _film_map(case: DynamicsCase, source: str | None):
+    from .maps import FilmMap
+
+    path = _map_path(case, source)
+    fmap = FilmMap.load(path)
+    if fmap.kind != "ball_ball":
+        raise InputError(f"films.map = {case.films.map!r} is a map of kind {fmap.kind!r}; ball_ball is needed")
+    return path, fmap
+
+
+def bearing_kwargs(case: DynamicsCase) -> dict:
+    """The case as keyword arguments of :class:`dynamics.cageless.CagelessBearing`."""
+    b, s, op, m, f = case.bearing, case.slots, case.operating, case.model, case.films
+    return dict(
+        n_balls=b.n_balls, ball_diameter=b.ball_diameter, pitch_diameter=b.pitch_diameter,
+        inner_groove_radius=b.inner_groove_radius, outer_groove_radius=b.outer_groove_radius,
+        diametral_clearance=b.diametral_clearance, ball_modulus=b.ball_modulus, ball_poisson=b.ball_poisson,
+        ring_modulus=b.ring_modulus, ring_poisson=b.ring_poisson, ball_density=b.ball_density,
+        ball_mass=b.ball_mass, ring_mass=b.ring_mass, ring_inertia=b.ring_inertia, rotor_inertia=b.rotor_inertia,
+        radial_load=op.radial_load, axial_load=op.axial_load, gravity=op.gravity,
+        speed_rpm=op.speed * 60.0 / (2.0 * math.pi), scenario=op.scenario, drop_speed=op.drop_speed,
+        rotor_friction=op.rotor_friction, rotor_contact_radius=op.rotor_contact_radius,
+        dof=m.dof, hertz_method=m.hertz, race_damping=m.race_damping, ball_ball=m.ball_ball,
+        yield_stress=m.yield_stress, traction_limit=m.traction_limit, traction_srr=m.traction_srr,
+        film=f.ball_ball, viscosity=f.viscosity, film_rupture_thickness=f.rupture_thickness,
+        ball_ball_mu_film=f.friction_film, ball_ball_mu_boundary=f.friction_boundary,
+        slot_azimuths_deg=tuple(math.degrees(a) for a in s.azimuths), slot_race=s.race, slot_width=s.width,
+        slot_length=s.length, slot_depth=s.depth, slot_edge_radius=s.edge_radius,
+    )
+
+
+def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
+    """Bearing model, quasi-static initial state and output times (raises InputError)."""
+    from dynamics.cageless import CagelessBearing
+    from dynamics.errors import DynamicsInputError
+
+    kw = bearing_kwargs(case)
+    map_path, info = None, {}
+    if case.films.ball_ball == "map":
+        map_path, fmap = _film_map(case, source)
+        kw["film_map"] = fmap.dynamics_film_map() if hasattr(fmap, "dynamics_film_map") else fmap.kernel_arrays(
+            "Force [N]")
+        info = {"Ball-ball film map": str(map_path), "Ball-ball film map hash": fmap.provenance.get("input_hash", "")}
+    try:
+        model = CagelessBearing(**kw)
+        y0 = model.initial_state()
+    except DynamicsInputError as exc:
+        raise InputError(str(exc)) from None
+    ig = case.integrator
+    n = int(round(ig.duration / ig.sample_interval))
+    t_out = np.linspace(0.0, n * ig.sample_interval, n + 1)
+    return DynamicsSetup(model=model, y0=y0, t_out=t_out, map_path=map_path, map_info=info)
+
+
+def describe(case: DynamicsCase, setup: DynamicsSetup) -> str:
+    m, op, ig = setup.model, case.operating, case.integrator
+    return (f"cage-less bearing, {m.n_balls} balls ({case.model.dof}, {len(setup.y0)} states), "
+            f"{op.scenario} at {op.speed * 60 / (2 * math.pi):.0f} rpm, Fr = {op.radial_load:g} N, "
+            f"Fa = {op.axial_load:g} N, ball-ball film {case.films.ball_ball}, {len(case.slots.azimuths)} slot(s); "
+            f"{ig.method} over {ig.duration:g} s, {len(setup.t_out)} samples")
+
+
+# ---------------------------------------------------------------------------- run
+@dataclass
+class DynamicsRun:
+    summary: dict
+    files: list
+    t: np.ndarray = None
+    y: np.ndarray = None
+    events: list = None
+
+
+def _contact_positions(setup: DynamicsSetup, Y: np.ndarray) -> np.ndarray:
+    """Mid-points of neighbouring ball centres, (m, Z, 3) [m]."""
+    c = ball_centres(setup, Y)
+    return 0.5 * (c + np.roll(c, -1, axis=1))
+
+
+def ball_centres(setup: DynamicsSetup, Y: np.ndarray) -> np.ndarray:
+    """Ball centres (m, Z, 3) [m] in the inertial frame, for either ball model."""
+    m = setup.model
+    Y = np.atleast_2d(Y)
+    out = np.zeros((Y.shape[0], m.n_balls, 3))
+    for j in range(m.n_balls):
+        b = m.ball_offset(j)
+        if m.dof == "6dof":
+            out[:, j, :] = Y[:, b:b + 3]
+        else:
+            out[:, j, 0] = Y[:, b + 1] * np.cos(Y[:, b])
+            out[:, j, 1] = Y[:, b + 1] * np.sin(Y[:, b])
+    return out
+
+
+def _lyapunov_per_direction(case, t, centres, shaft_speed) -> dict:
+    """Largest exponent of ball ``analysis.ball``'s x, y, z time series (Rosenstein)."""
+    from dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution
+
+    out = {}
+    keep = t >= case.analysis.transient
+    dt = float(t[1] - t[0])
+    j = case.analysis.ball
+    for i, axis in enumerate("xyz"):
+        x = centres[keep, j, i]
+        key = f"Largest Lyapunov exponent, ball {j} {axis}"
+        if np.ptp(x) <= 1e-15 * max(1.0, float(np.max(np.abs(x)))):
+            out[f"{key} [1/s]"] = None  # a coordinate that does not move (planar z)
+            continue
+        try:
+            res = largest_lyapunov_rosenstein(x, dt, dim=6, delay=_delay(x))
+        except Exception as exc:  # too short a record: say so in the summary, do not fail the run
+            log.warning("Lyapunov exponent of ball %d %s not computed: %s", j, axis, exc)
+            out[f"{key} [1/s]"] = None
+            continue
+        out[f"{key} [1/s]"] = float(res.exponent)
+        out[f"{key} [1/rev]"] = float(per_shaft_revolution(res.exponent, shaft_speed))
+    return out
+
+
+def _delay(x) -> int:
+    """Embedding delay: first zero crossing of the autocorrelation (at least 1)."""
+    x = np.asarray(x) - np.mean(x)
+    n = x.size
+    f = np.fft.rfft(x, 2 * n)
+    ac = np.fft.irfft(f * np.conj(f))[:n]
+    crossing = np.flatnonzero(ac <= 0.0)
+    return max(1, int(crossing[0]) if crossing.size else n // 10)
+
+
+def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str = "",
+        smoke: bool = False) -> DynamicsRun:
+    from dynamics.analysis import collision_events, collision_summary
+    from dynamics.cageless import (
+        D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, D_QO, D_SPIN, forces_many, rhs)
+    from dynamics.errors import DynamicsInputError, IntegrationError
+    from dynamics.integrators import integrate
+
+    t0 = time.perf_counter()
+    setup = build(case, source or None)
+    model = setup.model
+    t_build = time.perf_counter() - t0
+    ig = case.integrator
+    progress = sys.stderr.isatty()
+    log.info("integrating %s", describe(case, setup))
+    try:
+        res = integrate(rhs, setup.y0, setup.t_out, model.args(), method=ig.method, rtol=ig.rtol, atol=ig.atol,
+                        dt=ig.dt, max_steps=ig.max_steps, progress=progress, omega_max=model.omega_max(setup.y0))
+    except DynamicsInputError as exc:
+        raise InputError(str(exc)) from None
+    except IntegrationError as exc:
+        raise ConvergenceError(f"{exc} (integrator.method = {ig.method!r}, rtol = {ig.rtol:g}; "
+                               "tighten the tolerance or reduce integrator.dt)") from None
+    t_int = time.perf_counter() - t0 - t_build
+    t, Y = res.t, res.y
+    diag, ring = forces_many(t, Y, model.args())
+
+    events = collision_events(t, diag[:, :, D_BBN], diag[:, :, [D_BBX, D_BBY, D_BBZ]],
+                              _contact_positions(setup, Y), case.analysis.collision_threshold)
+    centres = ball_centres(setup, Y)
+    omega_i = Y[:, 7]
+    shaft = float(case.operating.speed)
+    summary = {
+        "Balls [-]": model.n_balls, "Ball degrees of freedom": case.model.dof, "States [-]": int(Y.shape[1]),
+        "Scenario": case.operating.scenario, "Rotor speed at start [rpm]": shaft * 60 / (2 * math.pi),
+        "Radial load [N]": case.operating.radial_load, "Axial load [N]": case.operating.axial_load,
+        "Ball-ball film": case.films.ball_ball, "Simulated time [s]": float(t[-1]),
+        "Sample interval [s]": float(t[1] - t[0]), "Integrator": ig.method,
+    }
+    summary.update(setup.map_info)
+    summary.update(res.stats)
+    summary["Integration wall time [s]"] = t_int
+    summary["Simulated time per wall second [s/s]"] = float(t[-1]) / t_int if t_int > 0 else None
+    summary["Inner ring speed at end [rpm]"] = float(omega_i[-1] * 60 / (2 * math.pi))
+    if case.operating.scenario == "drop":
+        Omega = Y[:, 8]
+        summary["Rotor speed at end [rpm]"] = float(Omega[-1] * 60 / (2 * math.pi))
+        summary["Inner ring slip against rotor at end [-]"] = float(1.0 - omega_i[-1] / Omega[-1])
+    # ball slip: orbital speed against the no-slip epicyclic (ball-train) speed of the current ring speed
+    cage_ratio = model.cage_speed(0.0) / model.omega_inner if model.omega_inner else 0.5
+    ideal = cage_ratio * omega_i[-1]
+    orbital = diag[-1, :, D_PSIDOT]
+    summary["Ball-train speed at end [rad/s]"] = float(np.mean(orbital))
+    summary["Ball-train slip at end [-]"] = float(1.0 - np.mean(orbital) / ideal) if ideal else None
+    summary["Initial largest inner race load [N]"] = float(diag[0, :, D_QI].max())
+    summary["Initial largest outer race load [N]"] = float(diag[0, :, D_QO].max())
+    summary["Largest inner race load [N]"] = float(diag[:, :, D_QI].max())
+    summary["Largest outer race load [N]"] = float(diag[:, :, D_QO].max())
+    summary["Largest ball spin speed [rad/s]"] = float(np.abs(diag[:, :, D_SPIN]).max())
+    summary.update(collision_summary(events, model.n_balls))
+    counter = getattr(model, "map_counter", None)
+    if counter is not None:
+        summary["Film map queries outside axes [-]"] = int(counter[0])
+    if case.analysis.lyapunov:
+        summary.update(_lyapunov_per_direction(case, t, centres, shaft))
+    # characteristic frequencies at the inner ring's mean speed over the analysed window
+    # (after a drop the ring is still spinning up: the lines move during the run)
+    keep = t >= case.analysis.transient
+    ring_hz = float(np.mean(omega_i[keep])) / (2 * math.pi)
+    window = float(t[keep][-1] - t[keep][0]) if keep.sum() > 1 else 0.0
+    n_in_window = sum(1 for e in events if e.t_peak >= case.analysis.transient)
+    freqs = bearing_frequencies(ring_hz, model, {"Collision rate [Hz]": n_in_window / window if window else 0.0})
+    summary["Mean inner ring speed in the analysed window [rpm]"] = ring_hz * 60.0
+    summary.update(freqs)
+
+    summary = outputs.run_summary(case, name, smoke, summary, t0, t_build)
+    files = []
+    if out_dir is not None:
+        files = _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs)
+    return DynamicsRun(summary=summary, files=files, t=t, y=Y, events=events)
+
+
+HEADLINE = ("Simulated time [s]", "Inner ring speed at end [rpm]", "Rotor speed at end [rpm]",
+            "Ball-train slip at end [-]", "Ball-ball collisions [-]", "Largest collision normal force [N]",
+            "Largest inner race load [N]", "Accepted steps [-]", "Integration wall time [s]")
+
+
+def headline(summary: dict) -> list[str]:
+    """What ``lubedyn run`` prints for a dynamics run."""
+    lines = []
+    for key in HEADLINE + tuple(k for k in summary if k.startswith("Largest Lyapunov") and k.endswith("[1/s]")):
+        value = summary.get(key)
+        if value is not None:
+            lines.append(f"{key:<52} {value:.6g}" if isinstance(value, float) else f"{key:<52} {value}")
+    return lines
+
+
+def bearing_frequencies(ring_hz: float, model, extra=None) -> dict:
+    """Kinematic bearing frequencies [Hz] at an inner-ring speed (outer ring fixed, zero contact angle)."""
+    from dynamics.spectra import bearing_frequencies as bf
+
+    return bf(ring_hz, model.ball_diameter, model.pitch_diameter, model.n_balls, 0.0, extra=extra)
+
+
+# ---------------------------------------------------------------------------- outputs
+def _collisions_csv(events) -> str:
+    lines = ["pair,t_start [s],t_peak [s],t_end [s],normal force [N],Fx [N],Fy [N],Fz [N],x [m],y [m],z [m]"]
+    for e in events:
+        lines.append(",".join(f"{v:.9g}" for v in (e.pair, e.t_start, e.t_peak, e.t_end, e.peak_force, *e.force,
+                                                     *e.position)))
+    return "\n".join(lines) + "\n"
+
+
+def _frame(case, setup, y, diag_row, D_BBN, D_H):
+    """One ParaView frame: balls, rings, slots and ball-ball film discs in one
+    PolyData with point fields "Body [-]" (0 outer ring, 1 inner ring, 2 slot,
+    3 balls, 4 films) and "Film pressure [Pa]"."""
+    import pyvista as pv
+
+    m = setup.model
+    R = 0.5 * m.ball_diameter
+    parts = []
+
+    def add(mesh, body, pressure=None):
+        mesh = mesh.extract_surface() if not isinstance(mesh, pv.PolyData) else mesh
+        mesh.point_data["Body [-]"] = np.full(mesh.n_points, body, dtype=np.int32)
+        mesh.point_data["Film pressure [Pa]"] = (np.zeros(mesh.n_points) if pressure is None
+                                                 else pressure(mesh.points).astype(float))
+        parts.append(mesh)
+
+    r_po = 0.5 * m.pitch_diameter + R  # groove bottoms (zero clearance)
+    r_pi = 0.5 * m.pitch_diameter - R
+    add(pv.Disc(inner=r_po, outer=r_po + 3e-3, r_res=1, c_res=90), 0)
+    ring = pv.Disc(inner=r_pi - 6e-3, outer=r_pi, r_res=1, c_res=90)
+    ring.rotate_z(math.degrees(y[3]), inplace=True)
+    ring.translate((y[0], y[1], y[2]), inplace=True)
+    add(ring, 1)
+    for az in case.slots.azimuths:
+        slot = pv.Box(bounds=(-0.5 * case.slots.length, 0.5 * case.slots.length, 0, case.slots.depth,
+                              -0.5 * case.slots.width, 0.5 * case.slots.width))
+        radius = r_po if case.slots.race == "outer" else r_pi - case.slots.depth
+        slot.translate((0, radius, 0), inplace=True)
+        slot.rotate_z(math.degrees(az) - 90.0, inplace=True)
+        if case.slots.race == "inner":
+            slot.rotate_z(math.degrees(y[3]), inplace=True)
+            slot.translate((y[0], y[1], y[2]), inplace=True)
+        add(slot, 2)
+    centres = ball_centres(setup, y[None, :])[0]
+    for c in centres:
+        add(pv.Sphere(radius=R, center=c, theta_resolution=16, phi_resolution=12), 3)
+    Reff = 0.5 * R
+    eta = case.films.viscosity
+    for j in range(m.n_balls):
+        F = diag_row[j, D_BBN]
+        if F <= 0.0:
+            continue
+        a, b = centres[j], centres[(j + 1) % m.n_balls]
+        n = (b - a) / np.linalg.norm(b - a)
+        h0 = float(diag_row[j, D_H])
+        # the film disc: radius of a few Hertz radii (or of sqrt(2 R_eff h0) when separated)
+        E = 1.0 / ((1 - m.ball_poisson**2) / m.ball_modulus * 2)
+        a_h = (3 * F * Reff / (4 * E)) ** (1 / 3)
+        r_disc = max(3 * a_h, 3 * math.sqrt(2 * Reff * max(h0, 1e-9)))
+        disc = pv.Disc(center=0.5 * (a + b), normal=n, inner=0.0, outer=r_disc, r_res=12, c_res=24)
+        mid = 0.5 * (a + b)
+
+        def pressure(points, F=F, h0=h0, a_h=a_h, mid=mid):
+            r = np.linalg.norm(points - mid, axis=1)
+            if h0 > 0:  # film: rigid squeeze profile scaled to the film force F = 6 pi eta R^2 v / h0
+                v = F * h0 / (6 * math.pi * eta * Reff**2)
+                return 3 * eta * v * Reff / (h0 + r**2 / (2 * Reff)) ** 2
+            p0 = 1.5 * F / (math.pi * a_h**2)
+            return p0 * np.sqrt(np.clip(1 - (r / a_h) ** 2, 0.0, None))
+
+        add(disc, 4, pressure)
+    return pv.merge(parts) if len(parts) > 1 else parts[0]
+
+
+def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
+    import matplotlib.pyplot as plt
+
+    from dynamics.cageless import D_PSIDOT
+
+    figs = {}
+    j = case.analysis.ball
+    ms = t * 1e3
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
+    for i, axis in enumerate("xyz"):
+        axes[i].plot(ms, centres[:, j, i] * 1e3, lw=0.8)
+        axes[i].set_ylabel(f"ball {j} {axis} [mm]")
+    axes[-1].set_xlabel("time [ms]")
+    axes[0].set_title(f"{case.description or 'cage-less bearing'}: ball {j} centre")
+    fig.tight_layout()
+    figs["trajectories.png"] = fig
+
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
+    for i, axis in enumerate("xyz"):
+        if events:
+            te = np.array([e.t_peak for e in events]) * 1e3
+            fe = np.array([e.force[i] for e in events])
+            axes[i].vlines(te, 0, fe, lw=0.8)
+            axes[i].plot(te, fe, "o", ms=2)
+        axes[i].axhline(0, color="k", lw=0.5)
+        axes[i].set_ylabel(f"F{axis} [N]")
+    axes[0].set_title(f"ball-ball collision forces ({len(events)} collisions)")
+    axes[-1].set_xlabel("time [ms]")
+    axes[-1].set_xlim(ms[0], ms[-1])
+    fig.tight_layout()
+    figs["collision_needles.png"] = fig
+
+    vel = np.gradient(centres[:, j, :], t, axis=0)
+    fig, axes = plt.subplots(1, 3, figsize=(11, 3.6))
+    for i, axis in enumerate("xyz"):
+        axes[i].plot(centres[:, j, i] * 1e3, vel[:, i], lw=0.5)
+        axes[i].set_xlabel(f"{axis} [mm]")
+        axes[i].set_ylabel(f"d{axis}/dt [m/s]")
+    fig.suptitle(f"phase portraits, ball {j}")
+    fig.tight_layout()
+    figs["phase_portraits.png"] = fig
+
+    fig, ax = plt.subplots(figsize=(8, 4))
+    keep = t >= case.analysis.transient
+    acc = np.gradient(Y[keep, 5], t[keep])  # inner ring vertical acceleration
+    if keep.sum() > 16:
+        from dynamics.spectra import amplitude_spectrum
+
+        f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
+        ax.semilogy(f / 1e3, np.maximum(amp, 1e-12), lw=0.7)
+        for k, (name, value) in enumerate(freqs.items()):
+            if 0 < value < f[-1]:
+                ax.axvline(value / 1e3, color=f"C{k + 1}", lw=0.8, ls="--", label=f"{name.replace(' [Hz]', '')} {value:.0f} Hz")
+        ax.legend(fontsize=7)
+    ax.set_xlabel("frequency [kHz]")
+    ax.set_ylabel("inner ring y acceleration [m/s^2]")
+    ax.set_title("inner-ring acceleration spectrum")
+    fig.tight_layout()
+    figs["spectrum.png"] = fig
+    return figs
+
+
+def _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs) -> list:
+    from dynamics.cageless import D_BBN, D_H, DIAG_NAMES, RING_DIAG_NAMES
+
+    write = case.output.write
+    t_write = time.perf_counter()
+    full = dict(summary)
+    out = Path(out_dir)
+    with outputs.staged(out) as stage:
+        outputs.write_text(stage / "case.resolved.toml",
+                           resolved_toml(case, outputs.resolved_header(name, source, smoke)))
+        if "timeseries" in write:
+            columns = {n: Y[:, i] for i, n in enumerate(setup.model.state_names())}
+            for j in range(setup.model.n_balls):
+                for k, n in enumerate(DIAG_NAMES):
+                    columns[f"Ball {j} {n}"] = diag[:, j, k]
+            for k, n in enumerate(RING_DIAG_NAMES):
+                columns[n] = ring[:, k]
+            outputs.write_timeseries(stage / "timeseries.npz", t, columns,
+                                     {"Case": name, "Scene": "dynamics", "Summary": full})
+            outputs.write_text(stage / "collisions.csv", _collisions_csv(events))
+        if "pvd" in write:
+            (stage / "frames").mkdir()
+            n_frames = min(case.analysis.frames, len(t))
+            picks = np.unique(np.linspace(0, len(t) - 1, n_frames).round().astype(int))
+            # frames at the collision peaks too, so that the film pressure is seen
+            peaks = np.searchsorted(t, [e.t_peak for e in events[:200]])
+            picks = np.unique(np.concatenate([picks, peaks]))
+            entries = []
+            for k, i in enumerate(picks):
+                fname = f"frames/frame_{k:05d}.vtp"
+                _frame(case, setup, Y[i], diag[i], D_BBN, D_H).save(stage / fname)
+                entries.append((float(t[i]), fname))
+            outputs.write_pvd(stage / "bearing.pvd", entries)
+        if "png" in write:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            for fname, fig in _figures(case, setup, t, Y, diag, ring, events, centres, freqs).items():
+                try:
+                    outputs.save_figure(stage / fname, fig)
+                finally:
+                    plt.close(fig)
+        full["Output write time [s]"] = time.perf_counter() - t_write
+        outputs.write_json(stage / "summary.json", full)
+        names = sorted(p.name for p in stage.iterdir())
+    return [out / n for n in names]
