@@ -161,6 +161,7 @@ class AnalysisTable(_Model):
     collision_threshold: Q("force", gt=0) = 1.0
     transient: Q("time", ge=0) = 0.0
     frames: PositiveInt = 100
+    collision_frames: Annotated[int, Field(strict=True, ge=0)] = 50  # extra frames at the strongest collisions
 
 
 class OutputTable(_Model):
@@ -312,13 +313,20 @@ def ball_centres(setup: DynamicsSetup, Y: np.ndarray) -> np.ndarray:
     return out
 
 
+LYAPUNOV_SAMPLES = 8000
+
+
 def _lyapunov_per_direction(case, t, centres, shaft_speed) -> dict:
     """Largest exponent of ball ``analysis.ball``'s x, y, z time series (Rosenstein)."""
     from dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution
 
     out = {}
-    keep = t >= case.analysis.transient
-    dt = float(t[1] - t[0])
+    keep = np.flatnonzero(t >= case.analysis.transient)
+    # Rosenstein's neighbour search is O(n^2): decimate to at most LYAPUNOV_SAMPLES samples
+    step = max(1, int(math.ceil(keep.size / LYAPUNOV_SAMPLES)))
+    keep = keep[::step]
+    dt = float(t[1] - t[0]) * step
+    out["Lyapunov sample interval [s]"] = dt
     j = case.analysis.ball
     for i, axis in enumerate("xyz"):
         x = centres[keep, j, i]
@@ -460,69 +468,100 @@ def _collisions_csv(events) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _frame(case, setup, y, diag_row, D_BBN, D_H):
-    """One ParaView frame: balls, rings, slots and ball-ball film discs in one
-    PolyData with point fields "Body [-]" (0 outer ring, 1 inner ring, 2 slot,
-    3 balls, 4 films) and "Film pressure [Pa]"."""
-    import pyvista as pv
+class _Scene3D:
+    """Geometry of the ParaView frames, built once: template surfaces (balls,
+    rings, slots, a unit film disc) whose points are moved with numpy for each
+    frame and written as one PolyData per frame with point fields
+    "Body [-]" (0 outer ring, 1 inner ring, 2 slot, 3 ball, 4 film) and
+    "Film pressure [Pa]".
 
-    m = setup.model
-    R = 0.5 * m.ball_diameter
-    parts = []
+    Film pressure on the disc between two balls: while the oil film carries
+    the force F at a central film thickness h0 > 0, the rigid squeeze-film
+    profile p = 3 eta v R_eff / h^2 with h = h0 + r^2/(2 R_eff) and v from
+    F = 6 pi eta R_eff^2 v / h0; once the solids touch (h0 = 0), Hertz's
+    p0 sqrt(1 - r^2/a^2) with a = (3 F R_eff / (4 E*))^(1/3)."""
 
-    def add(mesh, body, pressure=None):
-        mesh = mesh.extract_surface() if not isinstance(mesh, pv.PolyData) else mesh
-        mesh.point_data["Body [-]"] = np.full(mesh.n_points, body, dtype=np.int32)
-        mesh.point_data["Film pressure [Pa]"] = (np.zeros(mesh.n_points) if pressure is None
-                                                 else pressure(mesh.points).astype(float))
-        parts.append(mesh)
+    def __init__(self, case, setup):
+        import pyvista as pv
 
-    r_po = 0.5 * m.pitch_diameter + R  # groove bottoms (zero clearance)
-    r_pi = 0.5 * m.pitch_diameter - R
-    add(pv.Disc(inner=r_po, outer=r_po + 3e-3, r_res=1, c_res=90), 0)
-    ring = pv.Disc(inner=r_pi - 6e-3, outer=r_pi, r_res=1, c_res=90)
-    ring.rotate_z(math.degrees(y[3]), inplace=True)
-    ring.translate((y[0], y[1], y[2]), inplace=True)
-    add(ring, 1)
-    for az in case.slots.azimuths:
-        slot = pv.Box(bounds=(-0.5 * case.slots.length, 0.5 * case.slots.length, 0, case.slots.depth,
-                              -0.5 * case.slots.width, 0.5 * case.slots.width))
-        radius = r_po if case.slots.race == "outer" else r_pi - case.slots.depth
-        slot.translate((0, radius, 0), inplace=True)
-        slot.rotate_z(math.degrees(az) - 90.0, inplace=True)
-        if case.slots.race == "inner":
-            slot.rotate_z(math.degrees(y[3]), inplace=True)
-            slot.translate((y[0], y[1], y[2]), inplace=True)
-        add(slot, 2)
-    centres = ball_centres(setup, y[None, :])[0]
-    for c in centres:
-        add(pv.Sphere(radius=R, center=c, theta_resolution=16, phi_resolution=12), 3)
-    Reff = 0.5 * R
-    eta = case.films.viscosity
-    for j in range(m.n_balls):
-        F = diag_row[j, D_BBN]
-        if F <= 0.0:
-            continue
-        a, b = centres[j], centres[(j + 1) % m.n_balls]
-        n = (b - a) / np.linalg.norm(b - a)
-        h0 = float(diag_row[j, D_H])
-        # the film disc: radius of a few Hertz radii (or of sqrt(2 R_eff h0) when separated)
-        E = 1.0 / ((1 - m.ball_poisson**2) / m.ball_modulus * 2)
-        a_h = (3 * F * Reff / (4 * E)) ** (1 / 3)
-        r_disc = max(3 * a_h, 3 * math.sqrt(2 * Reff * max(h0, 1e-9)))
-        disc = pv.Disc(center=0.5 * (a + b), normal=n, inner=0.0, outer=r_disc, r_res=12, c_res=24)
-        mid = 0.5 * (a + b)
+        m = setup.model
+        self.case, self.setup = case, setup
+        self.R = 0.5 * m.ball_diameter
+        self.r_eff = 0.5 * self.R
+        self.eta = case.films.viscosity
+        self.e_star = 0.5 * m.ball_modulus / (1 - m.ball_poisson**2)
+        r_po = 0.5 * m.pitch_diameter + self.R
+        r_pi = 0.5 * m.pitch_diameter - self.R
+        self.outer = pv.Disc(inner=r_po, outer=r_po + 3e-3, r_res=1, c_res=90).triangulate()
+        self.inner = pv.Disc(inner=r_pi - 6e-3, outer=r_pi, r_res=1, c_res=90).triangulate()
+        self.slots = []
+        for az in case.slots.azimuths:
+            sl = pv.Box(bounds=(-0.5 * case.slots.length, 0.5 * case.slots.length, 0, case.slots.depth,
+                                -0.5 * case.slots.width, 0.5 * case.slots.width)).triangulate()
+            radius = r_po if case.slots.race == "outer" else r_pi - case.slots.depth
+            sl.translate((0, radius, 0), inplace=True)
+            sl.rotate_z(math.degrees(az) - 90.0, inplace=True)
+            self.slots.append(sl)
+        self.sphere = pv.Sphere(radius=self.R, theta_resolution=16, phi_resolution=12).triangulate()
+        self.disc = pv.Disc(inner=0.0, outer=1.0, r_res=12, c_res=24, normal=(0, 0, 1)).triangulate()
 
-        def pressure(points, F=F, h0=h0, a_h=a_h, mid=mid):
-            r = np.linalg.norm(points - mid, axis=1)
-            if h0 > 0:  # film: rigid squeeze profile scaled to the film force F = 6 pi eta R^2 v / h0
-                v = F * h0 / (6 * math.pi * eta * Reff**2)
-                return 3 * eta * v * Reff / (h0 + r**2 / (2 * Reff)) ** 2
-            p0 = 1.5 * F / (math.pi * a_h**2)
-            return p0 * np.sqrt(np.clip(1 - (r / a_h) ** 2, 0.0, None))
+    @staticmethod
+    def _faces(mesh):
+        return mesh.faces.reshape(-1, 4)[:, 1:]
 
-        add(disc, 4, pressure)
-    return pv.merge(parts) if len(parts) > 1 else parts[0]
+    def frame(self, y, diag_row, D_BBN, D_H):
+        import pyvista as pv
+
+        m = self.setup.model
+        pts, tris, body, pres = [], [], [], []
+        count = 0
+
+        def add(points, faces, b, p=None):
+            nonlocal count
+            pts.append(points)
+            tris.append(faces + count)
+            body.append(np.full(len(points), b, dtype=np.int32))
+            pres.append(np.zeros(len(points)) if p is None else p)
+            count += len(points)
+
+        add(self.outer.points, self._faces(self.outer), 0)
+        c, s = math.cos(y[3]), math.sin(y[3])
+        rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        add(self.inner.points @ rot.T + y[:3], self._faces(self.inner), 1)
+        for sl in self.slots:
+            p = sl.points @ rot.T + y[:3] if self.case.slots.race == "inner" else sl.points
+            add(p, self._faces(sl), 2)
+        centres = ball_centres(self.setup, y[None, :])[0]
+        f_sphere = self._faces(self.sphere)
+        for cen in centres:
+            add(self.sphere.points + cen, f_sphere, 3)
+        disc, f_disc = self.disc.points, self._faces(self.disc)
+        r_unit = np.hypot(disc[:, 0], disc[:, 1])
+        for j in range(m.n_balls):
+            F = diag_row[j, D_BBN]
+            if F <= 0.0:
+                continue
+            a, b = centres[j], centres[(j + 1) % m.n_balls]
+            n = (b - a) / np.linalg.norm(b - a)
+            e1 = np.cross(n, (0.0, 0.0, 1.0) if abs(n[2]) < 0.9 else (1.0, 0.0, 0.0))
+            e1 /= np.linalg.norm(e1)
+            e2 = np.cross(n, e1)
+            h0 = float(diag_row[j, D_H])
+            a_h = (3 * F * self.r_eff / (4 * self.e_star)) ** (1 / 3)
+            size = max(3 * a_h, 3 * math.sqrt(2 * self.r_eff * max(h0, 1e-9)))
+            r = r_unit * size
+            if h0 > 0:
+                v = F * h0 / (6 * math.pi * self.eta * self.r_eff**2)
+                p = 3 * self.eta * v * self.r_eff / (h0 + r**2 / (2 * self.r_eff)) ** 2
+            else:
+                p = 1.5 * F / (math.pi * a_h**2) * np.sqrt(np.clip(1 - (r / a_h) ** 2, 0.0, None))
+            pos = 0.5 * (a + b) + size * (disc[:, :1] * e1 + disc[:, 1:2] * e2)
+            add(pos, f_disc, 4, p)
+        tri = np.concatenate(tris)
+        mesh = pv.PolyData(np.concatenate(pts), np.hstack([np.full((len(tri), 1), 3), tri]).ravel())
+        mesh.point_data["Body [-]"] = np.concatenate(body)
+        mesh.point_data["Film pressure [Pa]"] = np.concatenate(pres)
+        return mesh
 
 
 def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
@@ -612,12 +651,14 @@ def _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring,
             n_frames = min(case.analysis.frames, len(t))
             picks = np.unique(np.linspace(0, len(t) - 1, n_frames).round().astype(int))
             # frames at the collision peaks too, so that the film pressure is seen
-            peaks = np.searchsorted(t, [e.t_peak for e in events[:200]])
+            strongest = sorted(events, key=lambda e: -e.peak_force)[:case.analysis.collision_frames]
+            peaks = np.searchsorted(t, [e.t_peak for e in strongest])
             picks = np.unique(np.concatenate([picks, peaks]))
             entries = []
+            scene3d = _Scene3D(case, setup)
             for k, i in enumerate(picks):
                 fname = f"frames/frame_{k:05d}.vtp"
-                _frame(case, setup, Y[i], diag[i], D_BBN, D_H).save(stage / fname)
+                scene3d.frame(Y[i], diag[i], D_BBN, D_H).save(stage / fname)
                 entries.append((float(t[i]), fname))
             outputs.write_pvd(stage / "bearing.pvd", entries)
         if "png" in write:
