@@ -617,6 +617,9 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
         for k, (name, value) in enumerate(freqs.items()):
             if 0 < value < f[-1]:
                 ax.axvline(value / 1e3, color=f"C{k + 1}", lw=0.8, ls="--", label=f"{name.replace(' [Hz]', '')} {value:.0f} Hz")
+        marked = [v for v in freqs.values() if v > 0]
+        if marked:
+            ax.set_xlim(0.0, min(f[-1], 4.0 * max(marked)) / 1e3)
         ax.legend(fontsize=7)
     ax.set_xlabel("frequency [kHz]")
     ax.set_ylabel("inner ring y acceleration [m/s^2]")
