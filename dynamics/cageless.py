@@ -540,6 +540,22 @@ def rhs(t, y, args, dydt):
 
 
 @njit(**_JIT)
+def rhs_scaled(t, z, args, dzdt):
+    """``rhs`` of the scaled state z = y / scale, ``args = (model args, scale)``.
+
+    Lyapunov exponents do not change under a constant scaling of the state,
+    but finite-difference tangent dynamics do: the state mixes metres
+    (contact deflections of micrometres) with rad/s (thousands), and one
+    perturbation size cannot suit both.  On z every entry has its natural
+    perturbation scale (:meth:`CagelessBearing.state_scales`)."""
+    inner, scale = args[0], args[1]
+    y = z * scale
+    rhs(t, y, inner, dzdt)
+    for i in range(z.size):
+        dzdt[i] /= scale[i]
+
+
+@njit(**_JIT)
 def forces(t, y, args):
     """Contact forces at a state: ``(diag (Z, N_DIAG), ring_diag (N_RING_DIAG,), dydt)``.
 
@@ -909,6 +925,16 @@ class CagelessBearing:
                          ("orbital speed", "rad/s"), ("radial speed", "m/s"), ("spin speed", "rad/s")]
             out += [(f"Ball {j} {n}", u) for n, u in names]
         return out
+
+    def state_scales(self) -> np.ndarray:
+        """A natural perturbation scale of every state entry (for tangent
+        dynamics): 1 um for lengths, the speed a 1 um oscillation at the
+        contact frequency has for velocities, 1e-4 for quaternion entries and
+        angles, 1 rad/s for angular speeds."""
+        k = 1.5 * max(self.hertz_constants()) ** (2.0 / 3.0) * max(self.radial_load, 100.0) ** (1.0 / 3.0)
+        omega = math.sqrt(k / self.mass)
+        unit = {"m": 1e-6, "m/s": 1e-6 * omega, "rad": 1e-4, "-": 1e-4, "rad/s": 1.0}
+        return np.array([unit[u] for _, u in self.state_layout()])
 
     def state_names(self) -> list[str]:
         """Names with units, e.g. ``"Ball 0 x [m]"``."""
