@@ -356,6 +356,31 @@ def _check_cageless_drop(s, c):
     assert s["Initial largest outer race load [N]"] == pytest.approx(Q, rel=1e-3)  # ball in radial balance
 
 
+def check_cageless_6206_steady(s, c):
+    """Inner ring driven at a steady speed from the quasi-static state.  (1) The
+    most loaded ball is pressed outward by its centrifugal force m (d_m/2) w_c^2
+    with the epicyclic ball-train speed w_c = w_i (1 - D/d_m)/2 computed here:
+    Q_outer - Q_inner = F_c / cos(alpha) (alpha ~ 4.6 deg; measured 14.09 N for
+    14.06 N).  (2) The balls keep the epicyclic speed (slip measured 0.15 %).
+    (3) The slotted ball's neighbours carry the Jones bounds of the drop cases."""
+    op, b = c["operating"], c["bearing"]
+    D, dm = b["ball_diameter"], b["pitch_diameter"]
+    mass = b["ball_density"] * math.pi / 6 * D**3
+    w_c = op["speed"] * (1 - D / dm) / 2
+    f_c = mass * dm / 2 * w_c**2
+    dq = s["Initial largest outer race load [N]"] - s["Initial largest inner race load [N]"]
+    assert dq == pytest.approx(f_c, rel=0.01)
+    assert abs(s["Ball-train slip at end [-]"]) < 0.005
+    assert s["Ball-train speed at end [rad/s]"] == pytest.approx(w_c, rel=0.005)
+    from lubrication.elastic import reduced_modulus
+
+    args = (op["radial_load"], op["axial_load"], b["n_balls"], D, dm, b["inner_groove_radius"] / D,
+            b["outer_groove_radius"] / D,
+            reduced_modulus(b["ball_modulus"], b["ball_poisson"], b["ring_modulus"], b["ring_poisson"]))
+    assert _jones_largest_load(*args) * 1.01 < s["Initial largest inner race load [N]"] < _jones_largest_load(
+        *args, without_first=True)
+
+
 check_cageless_6206_10krpm = check_cageless_6206_15krpm = _check_cageless_drop
 check_cageless_6206_20krpm = check_cageless_6206_25krpm = _check_cageless_drop
 check_cageless_6206_10krpm_short = _check_cageless_drop
