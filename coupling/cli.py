@@ -94,9 +94,13 @@ def cmd_run(args) -> int:
                                            "Hertz pressure", "Central film", "Minimum film", "Attitude angle",
                                            "Eccentricity ratio"))]
     for key in shown:
-        print(f"{key:<36} {s[key]:.6g}")
-    print(f"{'Newton iterations [-]':<36} {s.get('Newton iterations [-]')}, "
-          f"{s.get('Degrees of freedom [-]')} dofs, {s['Run time [s]']:.3g} s")
+        if isinstance(s[key], (int, float)):
+            print(f"{key:<36} {s[key]:.6g}")
+    if "Newton iterations [-]" in s:
+        print(f"{'Newton iterations [-]':<36} {s.get('Newton iterations [-]')}, "
+              f"{s.get('Degrees of freedom [-]')} dofs, {s['Run time [s]']:.3g} s")
+    else:
+        print(f"{'Run time [s]':<36} {s['Run time [s]']:.3g}")
     print(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
     return EXIT_OK
 

@@ -263,7 +263,7 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
         map_path, fmap = _film_map(case, source)
         kw["film_map"] = fmap.dynamics_film_map() if hasattr(fmap, "dynamics_film_map") else fmap.kernel_arrays(
             "Force [N]")
-        info = {"Ball-ball film map": str(map_path), "Ball-ball film map hash": fmap.provenance.get("input_hash", "")}
+        info = {"Ball-ball film map": str(map_path), "Ball-ball film map hash": fmap.input_hash}
     try:
         model = CagelessBearing(**kw)
         y0 = model.initial_state()
@@ -454,6 +454,9 @@ def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str
     counter = getattr(model, "map_counter", None)
     if counter is not None:
         summary["Film map queries outside axes [-]"] = int(counter[0])
+        if case.films.ball_ball == "map" and counter[0] > 0:
+            log.warning("the ball-ball film map was queried outside its axes %d times and clamped there "
+                        "(films.map = %s); widen the map's axes for this scene", int(counter[0]), case.films.map)
     if case.analysis.lyapunov:
         summary.update(_lyapunov_per_direction(case, t, centres, shaft))
     if case.analysis.lyapunov_exponents:

@@ -131,7 +131,7 @@ from .errors import DynamicsInputError
 from .rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
 
 logger = logging.getLogger(__name__)
-_JIT = dict(cache=True, fastmath=False)
+_JIT = dict(cache=True, fastmath=False, error_model="numpy")  # a blown-up state gives inf/NaN, not ZeroDivisionError
 
 DOFS = {"planar": 0, "6dof": 1}
 SCENARIOS = {"steady": 0, "drop": 1, "free": 2}

@@ -114,7 +114,7 @@ from scipy.special import ellipe, ellipk
 from .errors import DynamicsInputError
 from .interp import HERMITE, hermite3_grad, interp3_grad
 
-_JIT = dict(cache=True, fastmath=False)
+_JIT = dict(cache=True, fastmath=False, error_model="numpy")
 
 HERTZ_METHODS = ("exact", "hamrock_brewe")
 

@@ -327,6 +327,9 @@ def _dopri5_impl(rhs, y0, t_out, args, rtol, atol, h0, h_max, max_steps):
                     status = STATUS_NONFINITE
                     break
                 h = 0.1 * h
+                if 0.1 * abs(h) <= abs(t) * UROUND:  # shrinking cannot cure it: say non-finite, not underflow
+                    status = STATUS_NONFINITE
+                    break
                 reject = True
                 continue
             n_nonfinite = 0

@@ -32,19 +32,50 @@ Newton on (p, h00): J = A + D K with A = dR/dp at fixed h (sparse), D = dR/dh
 (sparse) and K the elastic influence operator (FFT).  The load equation is
 bordered: each Newton step solves J z1 = -R and J z2 = -dR/dh00 with the same
 factorisation or preconditioner, then dh00 = -(w.z1 + w.p - W)/(w.z2) and
-dp = z1 + dh00 z2 (w_i = int phi_i dA).  The linear systems are solved
-densely (LU) up to ``EHLOptions.dense_max`` unknowns, otherwise by GMRES with
-FFT matrix-vector products, preconditioned by an incomplete LU of
-A + D K_local (K truncated to a (2s+1)^d stencil).  Cavitation by a projected
-active set: nodes whose update would go negative join the cavitated set
-(p = 0), cavitated nodes whose multiplier R_i turns negative leave it.
-Each step is damped so that no pressure changes by more than
-``max_step`` p_Hertz and h00 by more than ``max_step`` of the Hertz film scale.
+dp = z1 + dh00 z2 (w_i = int phi_i dA).  Two treatments of the outlet
+cavitation (``EHLOptions.method``; ``auto``: the first for points, the
+second for lines):
 
-Convergence test: the active set is unchanged, max|dp| <= rtol p_Hertz,
-|dh00| <= rtol a^2/R_x and |int p dA - W| <= rtol W.  Otherwise, after
-``max_iter`` steps, :class:`~lubrication.errors.ConvergenceError` naming the
-load parameter M reached.
+- ``fischer_burmeister`` (:func:`_fb_newton`): semismooth Newton on
+  phi(p_i/p_ref, s_i R_i) = 0, phi(a, b) = sqrt(a^2 + b^2) - a - b, which is
+  the complementarity itself (no active set), with an Armijo line search on
+  |phi|^2 + (load error)^2.  Linear systems: dense LU up to
+  ``dense_max`` unknowns, else restarted GMRES with FFT products,
+  right-preconditioned by the sparse LU (``splu``, minimum-degree ordering of
+  A^T + A) of the same matrix with K truncated to a (2s+1)^2 stencil; the
+  factorisation is kept while GMRES needs fewer than ``precond_refresh``
+  iterations, and GMRES stops at rtol min(1e-3, |phi|) (inexact Newton).
+- ``active_set`` (:func:`_active_set_newton`): nodes whose update would go
+  negative join the cavitated set (p = 0), cavitated nodes whose multiplier
+  R_i turns negative leave it; dense LU or ILU-GMRES.
+
+Each step is capped so that no pressure changes by more than ``max_step``
+p_ref (p_Hertz, or the largest pressure where that is smaller).
+
+Start and grid sequence: Hertz pressure and a closed-form central film
+(:func:`_film_guess`), the first-order SUPG solution as a defect-correction
+start for the second-order scheme, and nested iteration (coarse solution
+prolonged to the next grid).  Points run the first-order start on the
+coarsest (33 x 33) grid only, then second order on every grid; if the
+second-order iteration from the prolonged start fails, the full chain with
+first-order starts on every grid is run (measured need: M = 20, L = 10 on
+129 x 129).  A coarse level that does not converge in ``coarse_max_iter``
+steps hands its last iterate on (it is only a start).
+
+Convergence test: a full step (omega = 1) with max|dp| <= rtol p_ref,
+|dh00| <= rtol b^2/R_x and |int p dA - W| <= 10 rtol W (active set: also
+unchanged).  Otherwise, after ``max_iter`` steps or ``max_stalls`` stalled
+line searches, :class:`~lubrication.errors.ConvergenceError` naming M and L.
+
+Measured (circular, L = 10, this shared 2-core machine; benchmarks/ehl.py,
+Newton steps of the finest stage): M = 20 ... 200 converge on 33 x 33 (6
+steps, 0.8 - 1.3 s); M = 20 ... 500 on 65 x 65 (9 - 11 steps, 2.6 - 3.3 s);
+M = 20 ... 1000 on 129 x 129 (7 - 13 steps, 13 - 96 s; M = 20, 50 and 1000
+through the fallback chain); M = 100 on 257 x 257 (fallback chain, 661 s:
+far from a 10 s target).  M = 500 on 33 x 33 and M = 1000 on 33 and 65
+fail clearly (the film reaches the floor: outlet constriction not resolved).
+
+Normal film coefficients: :func:`ehl_normal_coefficients`.
 
 References: Venner & Lubrecht, *Multilevel Methods in Lubrication*, Elsevier
 2000 (dimensionless groups, domain, test cases); Habchi et al., Tribol. Int. 41
@@ -56,6 +87,7 @@ from __future__ import annotations
 import logging
 import time
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import scipy.linalg as sla
@@ -106,8 +138,13 @@ class EHLContact:
     """An EHL contact (SI).
 
     ``radius_y=None`` makes a line contact (``load`` then in N/m).  Give
-    ``load`` (load balance finds h00) or ``approach`` = h00 [m] (prescribed).
-    ``slide_to_roll`` = (u2 - u1)/u_m; ``squeeze_velocity`` = dh00/dt [m/s].
+    ``load`` (load balance finds h00) or ``approach`` = h00 [m] (prescribed:
+    h00 is the rigid-body separation, -h00 the approach of the bodies).
+    ``slide_to_roll`` = (u2 - u1)/u_m; ``squeeze_velocity`` = dh00/dt [m/s]
+    (negative: the bodies approach; the Reynolds equation gets the source
+    rho dh00/dt).  ``scale_load`` [N or N/m]: with a prescribed approach, the
+    load whose Hertz contact sets the grid's length scales (default 1 N or
+    1 N/m); give the load of a steady state to solve on the same grid.
     """
 
     radius_x: float
@@ -120,6 +157,7 @@ class EHLContact:
     slide_to_roll: float = 0.0
     squeeze_velocity: float = 0.0
     traction: Traction = Traction()
+    scale_load: float | None = None
 
     def __post_init__(self):
         require_positive("radius_x [m]", self.radius_x)
@@ -131,6 +169,8 @@ class EHLContact:
             raise InputError("an EHL contact needs exactly one of 'load' or 'approach'")
         if self.load is not None:
             require_positive("load [N or N/m]", self.load)
+        if self.scale_load is not None:
+            require_positive("scale_load [N or N/m]", self.scale_load)
 
     @property
     def is_line(self) -> bool:
@@ -141,8 +181,10 @@ class EHLContact:
         return 2.0 * self.e_star
 
     def hertz_load(self) -> float:
-        """Load used for the Hertz scales (the given load, or a nominal one)."""
-        return self.load if self.load is not None else 1.0
+        """Load used for the Hertz scales (the given load, else ``scale_load``, else 1)."""
+        if self.load is not None:
+            return self.load
+        return self.scale_load if self.scale_load is not None else 1.0
 
     # dimensionless groups ----------------------------------------------
     @property
@@ -197,6 +239,53 @@ class EHLContact:
         lub = Lubricant(Barus(eta0, alpha), density or Incompressible(850.0))
         return cls(radius_x, ry, e_star, lub, mean_speed, load=load, **kw)
 
+    @classmethod
+    def from_hamrock_dowson(cls, W, U, G, k=1.0, *, radius_x=0.01, e_star=1.0e11, eta0=0.04, line=False,
+                            ellipticity="exact", density=None, **kw):
+        """A contact with Hamrock-Dowson groups ``W``, ``U``, ``G`` and ellipticity ``k`` = a/b.
+
+        W = w/(E' R_x^2) (point; w/(E' R_x) with ``line=True``), U = eta0 u_m/(E' R_x),
+        G = alpha E' (E' = 2 E*).  Radius, modulus and eta0 are fixed, so
+        u_m = U E' R_x/eta0, alpha = G/E', w = W E' R_x^2 (or W E' R_x).  The
+        radius ratio R_y/R_x (entrainment along the minor axis, k >= 1) is
+        the one whose Hertz ellipse has a/b = k: exactly (``ellipticity=
+        "exact"``), inverting the elliptic-integral relation of
+        :mod:`lubrication.hertz`, R_y/R_x = (E(m)/(1 - m) - K(m))/(K(m) - E(m)),
+        m = 1 - 1/k^2; or by Hamrock & Brewe's fit k = 1.0339 (R_y/R_x)^0.636
+        (``"hamrock_brewe"``).  Returns a Barus lubricant.
+
+        >>> c = EHLContact.from_hamrock_dowson(1e-6, 1e-11, 5000, 3.0)
+        >>> round(c.W / 1e-6, 12), round(c.U / 1e-11, 12), round(c.G / 5000, 12)
+        (1.0, 1.0, 1.0)
+        """
+        from scipy.special import ellipe, ellipk
+
+        from .errors import unknown_choice
+        from .lubricant import Barus, Incompressible
+
+        for key, val in (("W", W), ("U", U)):
+            require_positive(f"Hamrock-Dowson {key}", val)
+        if G < 0:
+            raise InputError(f"Hamrock-Dowson G = {G!r} must be >= 0")
+        if ellipticity not in hertz.METHODS:
+            raise unknown_choice("ellipticity", ellipticity, hertz.METHODS)
+        Ep = 2 * e_star
+        mean_speed = U * Ep * radius_x / eta0
+        lub = Lubricant(Barus(eta0, G / Ep), density or Incompressible(850.0))
+        if line:
+            return cls(radius_x, None, e_star, lub, mean_speed, load=W * Ep * radius_x, **kw)
+        if not k >= 1.0:
+            raise InputError(f"ellipticity k = {k!r} must be >= 1 (entrainment along the minor axis)")
+        if ellipticity == "hamrock_brewe":
+            ratio = max(k / 1.0339, 1.0) ** (1 / 0.636)
+        elif k == 1.0:
+            ratio = 1.0
+        else:
+            m = 1.0 - 1.0 / k**2
+            K, E = ellipk(m), ellipe(m)
+            ratio = (E / (1.0 - m) - K) / (K - E)
+        return cls(radius_x, ratio * radius_x, e_star, lub, mean_speed, load=W * Ep * radius_x**2, **kw)
+
 
 @dataclass(frozen=True)
 class EHLGrid:
@@ -228,7 +317,23 @@ class EHLOptions:
     h_floor: float = 1e-4  # relative to the Hertz film scale b^2/R_x
     consistent_supg: bool = True  # second-order SUPG (recovered Poiseuille flux); False: first order
     active_set_passes: int = 1  # >1: re-solve after moving newly negative nodes to the cavitated set
-    max_point_grid: int = 65  # largest point-contact grid (nodes per side) known to converge
+    max_point_grid: int = 257  # largest point-contact grid (nodes per side) measured to converge
+    method: str = "auto"  # "fischer_burmeister", "active_set"; auto: FB for points, active set for lines
+    line_search: int = 12  # Armijo halvings of the FB Newton step
+    first_order_start: str = "auto"  # "every_grid", "coarsest"; auto: lines every grid, points coarsest
+    coarse_max_iter: int = 30  # FB Newton iterations on a nested coarse level (only a start for the next)
+    max_stalls: int = 4  # FB Newton: give up after this many stalled line searches (< 1/64 of the step)
+    precond_refresh: int = 20  # refactorise the sparse preconditioner when GMRES needs this many iterations
+
+    def __post_init__(self):
+        for key, value, allowed in (("method", self.method, EHL_METHODS),
+                                    ("first_order_start", self.first_order_start, FIRST_ORDER_STARTS)):
+            if value not in allowed:
+                raise unknown_choice(f"ehl.{key}", value, allowed)
+
+
+EHL_METHODS = ("auto", "fischer_burmeister", "active_set")
+FIRST_ORDER_STARTS = ("auto", "every_grid", "coarsest")
 
 
 # ---------------------------------------------------------------- SUPG forms
@@ -582,16 +687,25 @@ def _hertz_guess(P: _Problem):
 
 
 def _film_guess(c: EHLContact) -> float:
-    """Central film thickness start value [m]: Hamrock-Dowson (point) or
-    Dowson-Toyoda (line), floored by an order-of-magnitude rigid estimate 8 U/W."""
-    from .film_formulas import dowson_toyoda_central, hamrock_dowson_central
+    """Central film thickness start value [m].
+
+    Line contacts: Dowson-Toyoda, floored by an order-of-magnitude rigid
+    estimate 8 U/W.  Point contacts: Nijenbanning-Venner-Moes (all four
+    regimes, circular), times Hamrock-Dowson's ellipticity factor
+    (1 - 0.61 exp(-0.73 k)) / (1 - 0.61 exp(-0.73)) for k = (R_y/R_x)^(2/pi).
+    (The former point-contact start, Hamrock-Dowson floored by 8 U/W, was
+    3 to 17 times too thick for M = 20 ... 200, L = 10, and its Newton
+    iteration did not recover: measured failures at M = 40, 50, 100 on 33 x 33.)
+    """
+    from .film_formulas import dowson_toyoda_central, nijenbanning_central
 
     U, G, W = c.U, max(c.G, 1e-3), c.W
     if c.is_line:
         H = dowson_toyoda_central(U, G, W)
-    else:
-        H = hamrock_dowson_central(U, G, W, (c.radius_y / c.radius_x) ** (2 / np.pi))
-    return max(H, 8 * U / W) * c.radius_x
+        return max(H, 8 * U / W) * c.radius_x
+    k = (c.radius_y / c.radius_x) ** (2 / np.pi)
+    shape = (1 - 0.61 * np.exp(-0.73 * k)) / (1 - 0.61 * np.exp(-0.73))
+    return float(nijenbanning_central(c.moes_M, max(c.moes_L, 1e-6)) * np.sqrt(2 * U) * shape) * c.radius_x
 
 
 class _Linear:
@@ -652,71 +766,11 @@ def _prolong(coarse: EHLSolution, P: _Problem) -> np.ndarray:
     return f(P.basis.doflocs.T)
 
 
-def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOptions = EHLOptions(),
-              initial=None, sequence: bool = True, _final: bool = True, _stage_info=None) -> EHLSolution:
-    """Solve an EHL contact; see the module docstring for the method.
-
-    With ``sequence=True`` (default) and no ``initial``, grids finer than 129
-    (line) or 33 (point contact) nodes along x are reached by nested iteration: the contact is solved on
-    the grid with (nx - 1)/2 + 1 nodes first (recursively) and its pressure,
-    interpolated, starts the Newton iteration on the finer grid.  This is what
-    makes heavily loaded contacts converge on fine grids (measured: M = 100,
-    L = 10 line contact on 513 nodes fails from the Hertz start and converges
-    from the 257-node solution).
-    """
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(limits=1, user_api="blas"):
-        return _solve_ehl(contact, grid, options, initial, sequence, _final, _stage_info)
-
-
-def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True, _stage_info=None):
-    """:func:`solve_ehl` body (BLAS limited to one thread by the caller: the
-    dense LU of a 561-unknown contact took 0.18 s with two OpenBLAS threads
-    and 0.004 s with one on this project's 2-core machine)."""
-    t0 = time.perf_counter()
-    if not contact.is_line and grid.nx > options.max_point_grid:
-        raise InputError(
-            f"grid.nx = {grid.nx} for a point contact: this version converges for point contacts only up to "
-            f"{options.max_point_grid} nodes per side (measured: at 129 x 129, M = 20, L = 10, the Newton "
-            "iteration stalls after nested iteration from 65 x 65); use nx <= 65"
-        )
-    if options.consistent_supg and _stage_info is None:
-        # defect-correction start: the first-order (plain SUPG) solution on the
-        # same grid starts the second-order Newton iteration; started from a
-        # Hertz or prolonged pressure, the second-order scheme alone stalls on
-        # 2-D grids (measured: M = 20, L = 10 on 65 x 65 nodes)
-        import dataclasses
-
-        first = _solve_ehl(contact, grid, dataclasses.replace(options, consistent_supg=False), initial=initial,
-                          sequence=sequence, _final=False)
-        out = _solve_ehl(contact, grid, options, initial=first, sequence=False, _final=_final,
-                        _stage_info=dict(first_order_iterations=first.info["iterations"],
-                                         first_order_central_film=first.central_film_thickness,
-                                         first_order_time=first.info["wall_time"]))
-        out.info["wall_time"] = time.perf_counter() - t0
-        return out
-    P = _Problem(contact, grid, options)
-    coarsest = 129 if contact.is_line else 33
-    if initial is None and sequence and grid.nx > coarsest and (grid.nx - 1) % 2 == 0:
-        coarse_grid = EHLGrid(nx=(grid.nx - 1) // 2 + 1, ny=None if grid.ny is None else (grid.ny - 1) // 2 + 1,
-                              x_min=grid.x_min, x_max=grid.x_max, y_max=grid.y_max)
-        coarse = _solve_ehl(contact, coarse_grid, options, sequence=True, _final=False)
-        initial = EHLSolution(contact, P, _prolong(coarse, P), None, coarse.h00,
-                              dict(coarse_iterations=coarse.info["iterations"]))
-    balance = contact.load is not None
-    W = contact.load if balance else None
-    if initial is not None and initial.pressure.shape == (P.N,):
-        p, h00 = initial.pressure.copy(), float(initial.h00)
-    else:
-        p = _hertz_guess(P)
-        if not balance:
-            p *= 0.0
-        hc = _film_guess(contact)
-        h00 = contact.approach if not balance else hc - float(P.deflect(p)[np.argmin(np.abs(P.rigid))])
-    if not balance:
-        h00 = contact.approach
-    p[P.fixed] = 0.0
+def _active_set_newton(P: _Problem, p, h00, W):
+    """Bordered Newton with a projected active set (the module docstring's
+    scheme; line contacts by default).  Returns ``(p, h00, history, gmres)``."""
+    options, contact = P.o, P.c
+    balance = W is not None
     cav = np.zeros(P.N, dtype=bool)
     history = []
     gm = 0
@@ -739,8 +793,13 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
                 z2 = lin.solve(-(D @ np.ones(P.N))[idx])
                 wv = P.weights[idx]
                 load_err = P.weights @ (p + dp) - W
-                dh = -(wv @ z1 + load_err) / (wv @ z2)
-                dp[idx] = z1 + dh * z2
+                denom = wv @ z2
+                if not (np.isfinite(denom) and denom != 0.0):  # no free node responds to the approach
+                    dh = 0.0
+                    dp[idx] = z1
+                else:
+                    dh = -(wv @ z1 + load_err) / denom
+                    dp[idx] = z1 + dh * z2
             else:
                 dp[idx] = z1
             gm += getattr(lin, "gmres_iters", 0)
@@ -788,15 +847,437 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
             f"L = {contact.moes_L:.4g}: last |dp|/p_Hertz = {history[-1][0]:.2e}, load error {history[-1][2]:.2e} "
             "(ehl.max_iter; heavily loaded contacts need fine grids: M = 1000 line contacts converge on 513+ nodes)"
         )
+    return p, h00, history, gm
+
+
+class _FBLinear:
+    """Linear solver of the Fischer-Burmeister Newton step on the free (interior) dofs ``idx``::
+
+        J = diag(a') + diag(b' s) (A + D K)     (a' = dphi/da / p_ref, given scaled)
+
+    dense LU up to ``dense_max`` unknowns; otherwise restarted GMRES with
+    FFT products (K applied by :meth:`_Problem.deflect`), right-preconditioned
+    by the sparse LU (``splu``) of the same matrix with K replaced by its
+    local truncation ``K_local`` (offsets up to ``EHLOptions.stencil``),
+    factorised once per Newton step.
+    """
+
+    def __init__(self, P: _Problem, A, D, da, dbs, idx, reuse=None, rtol=None):
+        self.P, self.idx = P, idx
+        self.rtol = P.o.gmres_rtol if rtol is None else rtol
+        self.refactored = False
+        n = idx.size
+        self.dense = n <= (P.o.dense_max_line if P.c.is_line else P.o.dense_max)
+        self.gmres_iters = 0
+        if self.dense:
+            K = P.K_dense()
+            J = A[idx][:, idx].toarray() + (D[idx] @ K[:, idx])
+            J *= dbs[:, None]
+            J[np.arange(n), np.arange(n)] += da
+            self.lu = sla.lu_factor(J, check_finite=False)
+            return
+        if reuse is not None:
+            self.lu = reuse
+        else:
+            Jl = (A + D @ P.K_local())[idx][:, idx]
+            Pm = (sp.diags(dbs) @ Jl + sp.diags(da)).tocsc()
+            # minimum degree on A^T + A: 3-4 times less fill and time than COLAMD here
+            self.lu = spla.splu(Pm, permc_spec="MMD_AT_PLUS_A")
+            self.refactored = True
+        full = np.zeros(P.N)
+
+        def mv(v):
+            full[:] = 0.0
+            full[idx] = v
+            return dbs * (A @ full + D @ P.deflect(full))[idx] + da * v
+
+        self.op = spla.LinearOperator((n, n), matvec=mv, dtype=float)
+        self.M = spla.LinearOperator((n, n), matvec=self.lu.solve, dtype=float)
+
+    def solve(self, rhs):
+        if self.dense:
+            return sla.lu_solve(self.lu, rhs, check_finite=False)
+        count = [0]
+
+        def cb(_):
+            count[0] += 1
+
+        x, info = spla.gmres(self.op, rhs, M=self.M, rtol=self.rtol, atol=0.0, restart=60,
+                             maxiter=10, callback=cb, callback_type="pr_norm")
+        self.gmres_iters += count[0]
+        self.last_iters = count[0]
+        if info != 0:
+            log.debug("EHL GMRES did not reach rtol %.1e (%d iterations)", self.rtol, count[0])
+        return x
+
+
+def _row_scale(P: _Problem, A, D, idx, p_ref=None):
+    """s_i = 1/(p_ref max_j |J_ij|), J = A + D K_local: Reynolds residual rows in
+    units of the pressure scale ``p_ref`` (default p_Hertz)."""
+    Jl = (A + D @ P.K_local())[idx][:, idx]
+    rowmax = np.asarray(abs(Jl).max(axis=1).todense()).ravel()
+    rowmax = np.maximum(rowmax, 1e-12 * np.max(rowmax))
+    return 1.0 / ((P.ph if p_ref is None else p_ref) * rowmax)
+
+
+def _fb(a, b):
+    """Fischer-Burmeister function phi(a, b) = sqrt(a^2 + b^2) - a - b and its
+    partial derivatives (phi = 0 <=> a >= 0, b >= 0, a b = 0).  At a = b = 0
+    (where phi is not differentiable) the element (1/sqrt2 - 1, 1/sqrt2 - 1)
+    of the generalised Jacobian is taken."""
+    r = np.hypot(a, b)
+    safe = np.where(r > 0, r, 1.0)
+    da = np.where(r > 0, a / safe, 2**-0.5) - 1.0
+    db = np.where(r > 0, b / safe, 2**-0.5) - 1.0
+    return r - a - b, da, db
+
+
+def _fb_newton(P: _Problem, p, h00, W, max_iter=None):
+    """Semismooth (Fischer-Burmeister) Newton on the coupled system, globalised by an Armijo line search.
+
+    Unknowns: the interior pressures and, with a load, h00.  Equations::
+
+        Phi_i = phi(p_i / p_H, s_i R_i(p, h00)) = 0        (every interior node)
+        (int p dA - W) / W = 0                              (load balance)
+
+    phi the Fischer-Burmeister function (:func:`_fb`): Phi_i = 0 is exactly the
+    complementarity p_i >= 0, R_i >= 0, p_i R_i = 0, with no active set to
+    guess.  s_i = 1/(p_H max_j |J_ij|) scales residual rows to pressures
+    (J = A + D K_local, refreshed every step).  The step solves
+    the bordered system as the active-set scheme does (two solves with one
+    factorisation, :class:`_FBLinear`); it is capped so that no pressure
+    moves by more than ``max_step`` p_H and then halved until the merit
+    theta = |Phi|^2 + load error^2 decreases by the Armijo fraction 1e-4
+    (at most ``line_search`` halvings; if none decreases, the best trial is
+    taken and counted as a stall).
+
+    Convergence test (as for the active-set scheme): a full step (omega = 1)
+    with max|dp| <= rtol p_H, |dh00| <= rtol b^2/R_x and relative load error
+    <= 10 rtol.  Returns ``(p, h00, history, gmres_iterations)``; p is
+    clipped at 0 (it is >= -rtol p_H at convergence).
+    """
+    options, contact = P.o, P.c
+    balance = W is not None
+    idx = np.flatnonzero(P.free0)
+    wv = P.weights[idx]
+    history, gm = [], 0
+
+    def merit(R, pp, hh, s):
+        phi = _fb(pp[idx] / ps, s * R[idx])[0]
+        le = (P.weights @ pp - W) / W if balance else 0.0
+        return phi @ phi + le * le, phi, le
+
+    stalls, nfact, keep = 0, 0, None
+    max_iter = options.max_iter if max_iter is None else max_iter
+    for it in range(1, max_iter + 1):
+        R, hn, A, D, aux = P.assemble(p, h00)
+        # pressure scale: p_Hertz, or the largest pressure where that is smaller
+        # (hydrodynamic, nearly rigid contacts: p << p_Hertz of the nominal load)
+        pmax = float(np.max(p))
+        ps = P.ph if pmax <= 0 else min(P.ph, pmax)
+        s = _row_scale(P, A, D, idx, ps)
+        phi, da, db = _fb(p[idx] / ps, s * R[idx])
+        le = (P.weights @ p - W) / W if balance else 0.0
+        theta0 = phi @ phi + le * le
+        # inexact Newton: GMRES to rtol min(1e-3, |Phi|) (floored at gmres_rtol);
+        # the sparse LU preconditioner is kept from the previous step while
+        # GMRES needs fewer than precond_refresh iterations per solve
+        eta_k = max(options.gmres_rtol, min(1e-3, np.sqrt(theta0)))
+        lin = _FBLinear(P, A, D, da / ps, db * s, idx, reuse=keep, rtol=eta_k)
+        z1 = lin.solve(-phi)
+        dp = np.zeros(P.N)
+        dh = 0.0
+        if balance:
+            z2 = lin.solve(-(db * s) * (D @ np.ones(P.N))[idx])
+            dh = -(wv @ z1 + le * W) / (wv @ z2)
+            dp[idx] = z1 + dh * z2
+        else:
+            dp[idx] = z1
+        gm += lin.gmres_iters
+        if not lin.dense:
+            nfact += lin.refactored
+            worst = lin.last_iters if not balance else max(lin.last_iters, lin.gmres_iters - lin.last_iters)
+            keep = lin.lu if worst < options.precond_refresh else None
+        omega = omega_cap = 1.0 / max(np.max(np.abs(dp)) / (options.max_step * ps), 1.0)
+        best = None
+        for _ in range(options.line_search + 1):
+            trial_p, trial_h = p + omega * dp, h00 + omega * dh
+            Rt = P.assemble(trial_p, trial_h, jac=False)[0]
+            theta = merit(Rt, trial_p, trial_h, s)[0]
+            if best is None or theta < best[0]:
+                best = (theta, omega)
+            if theta <= (1.0 - 2e-4 * omega) * theta0:
+                break
+            omega *= 0.5
+        else:
+            omega = best[1]
+        # a stall: no Armijo decrease, or one only after 6 or more halvings
+        if omega <= omega_cap / 64:
+            stalls += 1
+            if stalls >= options.max_stalls:
+                err = ConvergenceError(
+                    f"EHL Newton line search stalled {stalls} times at M = {contact.moes_M:.4g}, "
+                    f"L = {contact.moes_L:.4g} ({P.N} nodes; merit {theta0:.2e}; ehl.max_stalls)")
+                err.iterate = (np.maximum(p + omega * dp, 0.0), h00 + omega * dh)
+                raise err
+        p = p + omega * dp
+        h00 = h00 + omega * dh
+        pmax = float(np.max(p))
+        dmax = omega * np.max(np.abs(dp)) / (P.ph if pmax <= 0 else min(P.ph, pmax))
+        load_rel = abs(P.weights @ p - W) / W if balance else 0.0
+        history.append((dmax, omega * abs(dh) / P.hscale, load_rel, int(np.sum(p[idx] < 1e-6 * ps))))
+        log.debug("EHL FB %d: |dp|/ph = %.2e, dh00/hs = %.2e, load err %.2e, omega %.3g, merit %.2e, gmres %d, "
+                  "h_min/hs %.2e, h00/hs %.3g",
+                  it, dmax, history[-1][1], load_rel, omega, theta0, lin.gmres_iters, np.min(hn) / P.hscale,
+                  h00 / P.hscale)
+        if not np.all(np.isfinite(p)):
+            raise ConvergenceError(f"EHL Newton iteration {it}: non-finite pressure (M = {contact.moes_M:.4g})")
+        if (omega == 1.0 and dmax <= options.rtol and history[-1][1] <= options.rtol
+                and load_rel <= max(options.rtol, 1e-10) * 10):
+            break
+    else:
+        err = ConvergenceError(
+            f"EHL solve did not converge in {max_iter} Newton iterations at M = {contact.moes_M:.4g}, "
+            f"L = {contact.moes_L:.4g}: last |dp|/p_Hertz = {history[-1][0]:.2e}, load error {history[-1][2]:.2e} "
+            f"({stalls} line-search stalls; ehl.max_iter)"
+        )
+        err.iterate = (np.maximum(p, 0.0), h00)
+        raise err
+    P.factorisations = nfact
+    return np.maximum(p, 0.0), h00, history, gm
+
+
+def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOptions = EHLOptions(),
+              initial=None, sequence: bool = True, _final: bool = True, _stage_info=None) -> EHLSolution:
+    """Solve an EHL contact; see the module docstring for the method.
+
+    With ``sequence=True`` (default) and no ``initial``, grids finer than 129
+    (line) or 33 (point contact) nodes along x are reached by nested iteration: the contact is solved on
+    the grid with (nx - 1)/2 + 1 nodes first (recursively) and its pressure,
+    interpolated, starts the Newton iteration on the finer grid.  This is what
+    makes heavily loaded contacts converge on fine grids (measured: M = 100,
+    L = 10 line contact on 513 nodes fails from the Hertz start and converges
+    from the 257-node solution).
+    """
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _solve_ehl(contact, grid, options, initial, sequence, _final, _stage_info)
+
+
+def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True, _stage_info=None, _coarse=False):
+    """:func:`solve_ehl` body (BLAS limited to one thread by the caller: the
+    dense LU of a 561-unknown contact took 0.18 s with two OpenBLAS threads
+    and 0.004 s with one on this project's 2-core machine)."""
+    t0 = time.perf_counter()
+    if not contact.is_line and grid.nx > options.max_point_grid:
+        raise InputError(
+            f"grid.nx = {grid.nx} for a point contact: point contacts are solved up to {options.max_point_grid} "
+            f"nodes per side (ehl.max_point_grid: the largest grid measured to converge, M = 100, L = 10; "
+            f"finer grids are untested and take minutes per Newton step); use nx <= {options.max_point_grid}"
+        )
+    coarsest = 129 if contact.is_line else 33
+    nests = initial is None and sequence and grid.nx > coarsest and (grid.nx - 1) % 2 == 0
+    first_start = options.first_order_start
+    if first_start == "auto":
+        first_start = "every_grid" if contact.is_line else "coarsest"
+    if options.consistent_supg and _stage_info is None and not (nests and first_start == "coarsest"):
+        # defect-correction start: the first-order (plain SUPG) solution on the
+        # same grid starts the second-order Newton iteration; started from a
+        # Hertz or prolonged pressure, the second-order scheme alone stalls on
+        # 2-D grids (measured: M = 20, L = 10 on 65 x 65 nodes)
+        import dataclasses
+
+        first = _solve_ehl(contact, grid, dataclasses.replace(options, consistent_supg=False), initial=initial,
+                          sequence=sequence, _final=False, _coarse=_coarse)
+        out = _solve_ehl(contact, grid, options, initial=first, sequence=False, _final=_final, _coarse=_coarse,
+                        _stage_info=dict(first_order_iterations=first.info["iterations"],
+                                         first_order_central_film=first.central_film_thickness,
+                                         first_order_time=first.info["wall_time"]))
+        out.info["wall_time"] = time.perf_counter() - t0
+        return out
+    P = _Problem(contact, grid, options)
+    if nests:
+        coarse_grid = EHLGrid(nx=(grid.nx - 1) // 2 + 1, ny=None if grid.ny is None else (grid.ny - 1) // 2 + 1,
+                              x_min=grid.x_min, x_max=grid.x_max, y_max=grid.y_max)
+        try:
+            coarse = _solve_ehl(contact, coarse_grid, options, sequence=True, _final=False, _coarse=True)
+        except ConvergenceError as exc:
+            # a coarse level is only a start: where it cannot resolve the
+            # outlet constriction (heavy loads), its last iterate still is one
+            if getattr(exc, "partial", None) is None:
+                raise
+            log.info("EHL coarse level %s did not converge (%s); its last iterate starts %d nodes",
+                     coarse_grid.nx, exc, P.N)
+            coarse = exc.partial
+        initial = EHLSolution(contact, P, _prolong(coarse, P), None, coarse.h00,
+                              dict(coarse_iterations=coarse.info.get("iterations")))
+    balance = contact.load is not None
+    W = contact.load if balance else None
+    if initial is not None and initial.pressure.shape == (P.N,):
+        p, h00 = initial.pressure.copy(), float(initial.h00)
+    else:
+        p = _hertz_guess(P)
+        if not balance:
+            p *= 0.0
+        hc = _film_guess(contact)
+        h00 = contact.approach if not balance else hc - float(P.deflect(p)[np.argmin(np.abs(P.rigid))])
+    if not balance:
+        h00 = contact.approach
+    p[P.fixed] = 0.0
+    method = options.method
+    if method == "auto":
+        method = "active_set" if contact.is_line else "fischer_burmeister"
+    newton = _fb_newton if method == "fischer_burmeister" else _active_set_newton
+    budget = dict(max_iter=options.coarse_max_iter) if (_coarse and method == "fischer_burmeister") else {}
+    try:
+        p, h00, history, gm = newton(P, p.copy(), h00, W, **budget)
+    except ConvergenceError as exc:
+        if _coarse and getattr(exc, "iterate", None) is not None:
+            exc.partial = EHLSolution(contact, P, exc.iterate[0], None, exc.iterate[1], {})
+        if _coarse or not (options.consistent_supg and _stage_info is None and nests):
+            raise
+        # second order from the prolonged coarse solution failed: the full
+        # defect-correction chain instead (first-order nested iteration from
+        # the coarsest grid, then second order on this grid); measured need:
+        # M = 20, L = 10 on 129 x 129 (the second-order iteration from the
+        # 65 x 65 solution wanders into an oscillating outlet spike)
+        import dataclasses
+
+        log.info("EHL: %s; retrying with first-order nested iteration on %d nodes", exc, P.N)
+        out = _solve_ehl(contact, grid, dataclasses.replace(options, first_order_start="every_grid"),
+                         sequence=True, _final=_final, _coarse=_coarse)
+        out.info["fallback"] = dict(failed_start=str(exc))
+        out.info["wall_time"] = time.perf_counter() - t0
+        return out
     hn = P.film(p, h00)
     if _final and np.min(hn) <= options.h_floor * P.hscale * 1.0001:
         raise ConvergenceError(
             f"EHL solution touches the film-thickness floor ({options.h_floor:g} of b^2/R_x): the film "
             f"has collapsed at M = {contact.moes_M:.4g}; refine the grid or reduce the load"
         )
+    dense = P.N <= (options.dense_max_line if contact.is_line else options.dense_max)
+    linear = "dense LU" if dense else ("GMRES + ILU" if method == "active_set" else "GMRES + sparse LU (local K)")
     info = dict(iterations=len(history), history=history, wall_time=time.perf_counter() - t0,
-                gmres_iterations=gm, unknowns=int(P.N), linear="dense LU" if P.N <= (options.dense_max_line if contact.is_line else options.dense_max) else "GMRES + ILU",
+                gmres_iterations=gm, unknowns=int(P.N), linear=linear, method=method,
                 scheme="second order" if options.consistent_supg else "first order", **(_stage_info or {}))
     log.info("EHL M=%.4g L=%.4g: %d unknowns, %d Newton iterations, %.2f s", contact.moes_M, contact.moes_L,
              P.N, len(history), info["wall_time"])
     return EHLSolution(contact, P, p, hn, h00, info)
+
+
+class NormalCoefficients(NamedTuple):
+    """Normal film coefficients about a steady state (unpacks as ``K, C, solution``).
+
+    ``stiffness`` K = -dF/dh00 [N/m] and ``damping`` C = -dF/d(dh00/dt)
+    [N s/m] (per unit length, [N/m^2] and [N s/m^2], for line contacts),
+    F = int p dA the film force that pushes the bodies apart, h00 the
+    rigid-body separation (so K = dF/d(delta) for the approach delta =
+    -h00); both > 0.  ``solution`` is the steady state; its
+    ``info["normal_coefficients"]`` holds the method and its details.
+    """
+
+    stiffness: float
+    damping: float
+    solution: EHLSolution
+
+
+def ehl_normal_coefficients(contact: EHLContact, grid: EHLGrid = EHLGrid(nx=33),
+                            options: EHLOptions = EHLOptions(), method: str = "linearised",
+                            rel_step: float = 1e-3, steady: EHLSolution | None = None) -> NormalCoefficients:
+    r"""Normal stiffness and damping of an EHL film about its steady state.
+
+    The steady state is ``contact`` solved with its load (or taken from
+    ``steady``, solved on ``grid`` with ``options``).  Then, with the
+    discrete system R(p, h00, hdot) = 0 (Reynolds with the squeeze source
+    rho hdot, hdot = dh00/dt; elasticity inside h) and F = w . p:
+
+    ``method="linearised"`` (default, one extra factorisation): on the nodes
+    that carry pressure (the cavitated set held fixed: at the Reynolds
+    free boundary p and grad p vanish, so to first order the load does not
+    depend on where the boundary moves)::
+
+        (A + D K) dp/dh00 = -dR/dh00 = -D 1,   (A + D K) dp/dhdot = -dR/dhdot
+        dR_i/dhdot = int rho phi_i dA + int tau rho (u_m . grad phi_i) dA     (SUPG part)
+        K = -w . dp/dh00,   C = -w . dp/dhdot
+
+    ``method="finite_difference"``: four prescribed-approach solves on the
+    same grid (``scale_load`` = the steady load), started from the steady
+    pressure: central differences in h00 (step ``rel_step`` h_c) and in
+    dh00/dt (step ``rel_step`` u_m h_c / b_x).
+
+    Parameters
+    ----------
+    contact : EHLContact
+        With ``load`` given (the steady state).
+    grid, options : EHLGrid, EHLOptions
+        Moderate grids are meant (33 x 33 points, 257 line nodes: well under a
+        second each for the linearised method here).
+    method : {"linearised", "finite_difference"}
+    rel_step : float
+        Relative finite-difference step.
+    steady : EHLSolution, optional
+        A converged steady state of ``contact`` on ``grid`` (skips its solve).
+
+    Returns
+    -------
+    NormalCoefficients
+        ``(K, C, steady_solution)``.
+
+    Examples
+    --------
+    >>> K, C, s = ehl_normal_coefficients(EHLContact.from_moes(100, 10, line=True), EHLGrid(nx=257))
+    >>> bool(K > 0 and C > 0)
+    True
+    """
+    import dataclasses
+
+    from threadpoolctl import threadpool_limits
+
+    methods = ("linearised", "finite_difference")
+    if method not in methods:
+        raise unknown_choice("normal coefficients method", method, methods)
+    if contact.load is None:
+        raise InputError("ehl_normal_coefficients needs a contact with 'load' (the steady state), not 'approach'")
+    t0 = time.perf_counter()
+    sol = steady if steady is not None else solve_ehl(contact, grid, options)
+    P = sol.problem
+    with threadpool_limits(limits=1, user_api="blas"):
+        if method == "linearised":
+            p, h00 = sol.pressure, float(sol.h00)
+            R, hn, A, D, aux = P.assemble(p, h00)
+            # the Reynolds set: interior nodes where the pressure, not the
+            # (row-scaled) residual, is the larger member of the complementary pair
+            inner = np.flatnonzero(P.free0)
+            s_row = _row_scale(P, A, D, inner)
+            idx = inner[p[inner] / P.ph > s_row * R[inner]]
+            lin = _FBLinear(P, A, D, np.zeros(idx.size), np.ones(idx.size), idx)
+            b = P.basis
+            dR_dh = D @ np.ones(P.N)
+            dR_dv = np.asarray(asm(_source_load, b, g=aux["rho"])) + np.asarray(
+                asm(_supg_load, b, t=aux["tau"] * aux["rho"], u=P.u))
+            w = P.weights[idx]
+            K = -float(w @ lin.solve(-dR_dh[idx]))
+            C = -float(w @ lin.solve(-dR_dv[idx]))
+            details = dict(method=method, free_nodes=int(idx.size), gmres_iterations=lin.gmres_iters)
+        else:
+            hc = sol.central_film_thickness
+            base = dataclasses.replace(contact, load=None, approach=float(sol.h00), scale_load=contact.load)
+            dh = rel_step * hc
+            dv = rel_step * contact.mean_speed * hc / P.bx
+
+            def force(**change):
+                s2 = _solve_ehl(dataclasses.replace(base, **change), grid, options, initial=sol, sequence=False,
+                                _final=False, _stage_info={})
+                return s2.load, s2.info["iterations"]
+
+            (fp, ip), (fm, im) = force(approach=sol.h00 + dh), force(approach=sol.h00 - dh)
+            (vp, jp), (vm, jm) = (force(squeeze_velocity=contact.squeeze_velocity + dv),
+                                  force(squeeze_velocity=contact.squeeze_velocity - dv))
+            K = -(fp - fm) / (2 * dh)
+            C = -(vp - vm) / (2 * dv)
+            details = dict(method=method, h00_step=dh, squeeze_step=dv, newton_iterations=[ip, im, jp, jm])
+    details["wall_time"] = time.perf_counter() - t0
+    sol.info["normal_coefficients"] = details
+    log.info("EHL normal coefficients (%s): K = %.4g, C = %.4g, %.2f s", method, K, C, details["wall_time"])
+    return NormalCoefficients(K, C, sol)

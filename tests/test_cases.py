@@ -302,6 +302,51 @@ def check_ehl_roller_slice(s, c):
     assert rel(hc, moes_line_central(M, L) * R * math.sqrt(2 * U)) < 0.15
 
 
+def check_map_ball_ball(s, c):
+    """Largest F (corner h0 = 50 um, Lambda = 0.9) vs rigid Barus squeeze closed form: +0.84 % smoke
+    (Dowson-Higginson compressibility), within 2 %; h_min = h0 exactly; largest v = Lambda h0^2/(3 alpha eta0 R_eff)."""
+    from coupling.film_points import squeeze_force_barus
+
+    p = c["params"]
+    h_hi, lam_hi = 5e-5, 0.9
+    r_eff = p["ball_radius"] / 2
+    assert rel(s["Largest value of Force [N]"],
+               squeeze_force_barus(h_hi, lam_hi, p["alpha"], r_eff, p["domain_gap_ratio"])) < 0.02
+    assert rel(s["Smallest value of Minimum film thickness [m]"], 5e-8) < 1e-12
+    assert rel(s["Largest value of Approach speed [m/s]"], lam_hi * h_hi**2 / (3 * p["alpha"] * p["eta0"] * r_eff)) < 1e-9
+
+
+def _check_map_ehl_ball(s, c):
+    """Thickest central film (200 N, 30 m/s) vs Hamrock-Dowson: +5.9 % inner / +1.7 % outer, within 25 %;
+    traction odd in the slide-to-roll ratio."""
+    from lubrication import hertz
+    from lubrication.film_formulas import hamrock_dowson_central
+
+    p = c["params"]
+    U, G, W = _hamrock_dowson_groups(p["eta0"], p["alpha"], p["e_star"], p["radius_x"], 30.0, 200.0, line=False)
+    h = hertz.point_contact(200.0, p["radius_x"], p["radius_y"], p["e_star"])
+    k = max(h.a, h.b) / min(h.a, h.b)
+    assert rel(s["Largest value of Central film thickness [m]"], hamrock_dowson_central(U, G, W, k) * p["radius_x"]) < 0.25
+    assert rel(-s["Smallest value of Traction coefficient [-]"], s["Largest value of Traction coefficient [-]"]) < 1e-9
+
+
+check_map_ehl_ball_inner_race = _check_map_ehl_ball
+check_map_ehl_ball_outer_race = _check_map_ehl_ball
+
+
+def check_map_ehl_roller_race(s, c):
+    """Thickest central film (5 kN over the length, 30 m/s) vs Moes (1992): +9.1 %, within 15 %; traction odd."""
+    from lubrication.film_formulas import moes_line_central
+
+    p = c["params"]
+    q = 5000.0 / p["length"]
+    U, G, W = _hamrock_dowson_groups(p["eta0"], p["alpha"], p["e_star"], p["radius_x"], 30.0, q, line=True)
+    M, L = W * (2 * U) ** -0.5, G * (2 * U) ** 0.25
+    assert rel(s["Largest value of Central film thickness [m]"],
+               moes_line_central(M, L) * p["radius_x"] * math.sqrt(2 * U)) < 0.15
+    assert rel(-s["Smallest value of Traction coefficient [-]"], s["Largest value of Traction coefficient [-]"]) < 1e-9
+
+
 def _jones_largest_load(Fr, Fa, Z, D, dm, f_i, f_o, e_star, without_first=False):
     """Largest ball load of Jones' rigid-ring model at zero clearance, solved here
     (scipy root); ``without_first``: the ball under the load (over the slot)

@@ -332,7 +332,7 @@ def test_ehl_unknown_key_in_contact(tmp_path, capsys):
     ("ball", "bearing.inner_groove_radius=4 mm", "bearing.inner_groove_radius = 0.004 m must be > D/2"),
     ("roller", "grid.ny=33", "grid.ny = 33 is not used by a line contact"),
     ("direct", "operating.load=5 m", "operating.load = '5 m' has units of length, expected force"),
-    ("ball", "grid.nx=129", "grid.nx = 129 is too fine for a point contact"),
+    ("ball", "grid.nx=513", "grid.nx = 513 is too fine for a point contact"),
 ])
 def test_ehl_input_errors(tmp_path, capsys, case, setting, fragment):
     path = {"direct": write_case(tmp_path, EHL_DIRECT), "ball": BALL_RACE, "roller": ROLLER}[case]

@@ -82,11 +82,3 @@ def test_traction_laws():
     assert t_e.stress(eta[1:], 10.0, h, p[1:]) == pytest.approx(5e6 * np.arcsinh(1e3 * 10 / 1e-7 / 5e6))
     with pytest.raises(Exception, match="did you mean"):
         Traction("eyrin")
-
-
-def test_point_contact_grid_limit_is_reported():
-    """Where it stops: point contacts finer than 65 x 65 do not converge yet
-    (measured: 129 x 129 at M = 20, L = 10 stalls); refused at once."""
-    c = EHLContact.from_moes(20, 10)
-    with pytest.raises(Exception, match="grid.nx = 129 for a point contact"):
-        solve_ehl(c, EHLGrid(nx=129))

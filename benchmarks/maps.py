@@ -1,0 +1,282 @@
+"""Film maps: speed against accuracy.
+
+1. Cost of one interpolation query inside a numba loop (``dynamics.interp``):
+   1, 2, 3 axes; multilinear, sequential monotone cubic (pchip) and cubic
+   Hermite on precomputed PCHIP node slopes (hermite); value only and value
+   + gradient; random queries (cell search by a guess plus bisection, branch
+   mispredictions) and a sweep of neighbouring queries (what an integrator
+   does).  Median of repeats of 200,000 queries, ns per query.
+2. Map resolution against interpolation error against build time:
+   - the analytic rigid isoviscous sphere-sphere squeeze film
+     F = 6 pi eta R_eff^2 v D^2/(h (h + D)^2) (exact reference, cheap), nodes
+     per axis doubled;
+   - the real ``ball_ball`` kind (``coupling.film_points``) at three grid
+     resolutions, errors against direct solves at random off-grid points
+     (median and maximum relative error), build time on the usable cores.
+3. Build time of the default ball-to-ball map on 2 cores (and the time per
+   point with 1 and 2 workers on the same points).
+
+``python benchmarks/maps.py [--quick]`` -> ``results/maps{_quick}.json`` and ``.png``.
+``--quick`` skips the real kind's builds beyond its smoke map (< 1 min).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from benchmarks import _common  # noqa: E402
+from coupling import maps  # noqa: E402
+from dynamics import interp  # noqa: E402
+
+GAP, SPEED = "Central gap [m]", "Approach speed [m/s]"
+
+
+# ---------------------------------------------------------------- analytic kind
+def squeeze_params():
+    return {"radius": 4.7625e-3, "viscosity": 0.05, "film_radius": 0.3e-3}
+
+
+def squeeze_exact(params, h, v):
+    r_eff = params["radius"] / 2
+    D = params["film_radius"] ** 2 / (2 * r_eff)
+    return 6 * math.pi * params["viscosity"] * r_eff**2 * v * D**2 / (h * (h + D) ** 2)
+
+
+def squeeze_evaluate(params, point):
+    return {"Force [N]": squeeze_exact(params, point[GAP], point[SPEED])}
+
+
+class _Axis:
+    def __init__(self, name, lo, hi, n, scale):
+        self.name, self.lo, self.hi, self.n, self.scale = name, lo, hi, n, scale
+
+
+class _Kind:
+    name = "bench_squeeze"
+    description = "rigid isoviscous sphere-sphere squeeze (closed form)"
+    axes = (_Axis(GAP, 1e-7, 1e-5, 9, "log"), _Axis(SPEED, 1e-3, 1e-1, 3, "log"))
+    outputs = ("Force [N]",)
+    evaluate = staticmethod(squeeze_evaluate)
+    default_params = staticmethod(squeeze_params)
+    field = None
+
+
+# ---------------------------------------------------------------- 1. query cost
+def query_cost(repeats=5, n=200_000):
+    rng = np.random.default_rng(0)
+    nodes = [np.geomspace(5e-8, 5e-5, 19), np.linspace(-0.2, 0.9, 12), np.linspace(0.0, 0.05, 3)]
+    logs = (1, 0, 0)
+    axes = [interp.prepare_axis(x, l) for x, l in zip(nodes, logs)]
+    V = rng.normal(size=(19, 12, 3)).cumsum(axis=0)
+    counter = np.zeros(1, np.int64)
+    rand = np.stack([np.exp(rng.uniform(np.log(5e-8), np.log(5e-5), n)), rng.uniform(-0.2, 0.9, n),
+                     rng.uniform(0, 0.05, n)], axis=1)
+    s = np.linspace(0, 1, n)
+    sweep = np.stack([np.exp(np.log(5e-8) + s * (np.log(5e-5) - np.log(5e-8))), -0.2 + 1.1 * s, 0.05 * s], axis=1)
+    out = []
+    for nd in (1, 2, 3):
+        vals = np.ascontiguousarray(V[(slice(None),) * nd + (0,) * (3 - nd)])
+        deriv = interp.hermite_data(tuple(axes[:nd]), vals)
+        for method, mname in ((interp.LINEAR, "linear"), (interp.PCHIP, "pchip"), (interp.HERMITE, "hermite")):
+            for qname, q in (("random", rand), ("sweep", sweep)):
+                pts = np.ascontiguousarray(q[:, :nd])
+                x0 = np.ascontiguousarray(pts[:, 0])
+
+                def value():
+                    if method == interp.HERMITE:
+                        if nd == 1:
+                            return interp.hsum1(axes[0], 1, deriv, 0, x0, 0, counter)
+                        if nd == 2:
+                            return interp.hsum2(axes[0], axes[1], 1, 0, deriv, 0, pts, 0, counter)
+                        return interp.hsum3(axes[0], axes[1], axes[2], 1, 0, 0, deriv, 0, pts, 0, counter)
+                    if nd == 1:
+                        return interp.sum1(axes[0], 1, vals, 0, method, x0, 0, counter)
+                    if nd == 2:
+                        return interp.sum2(axes[0], axes[1], 1, 0, vals, 0, method, pts, 0, counter)
+                    return interp.sum3(axes[0], axes[1], axes[2], 1, 0, 0, vals, 0, method, pts, 0, counter)
+
+                def grad():
+                    interp.evaluate(tuple(axes[:nd]), logs[:nd], deriv if method == interp.HERMITE else vals, 0,
+                                    method, pts, 0, counter, grad=True)
+
+                value()
+                grad()  # compile
+                t_val = _common.timed(value, repeats)[0]
+                t_grad = _common.timed(grad, repeats)[0]
+                out.append({"axes": nd, "method": mname, "queries": qname, "ns per value query": t_val / n * 1e9,
+                            "ns per value+gradient query (with output stores)": t_grad / n * 1e9})
+                print(f"query {nd}-D {mname:6s} {qname:6s}: {t_val / n * 1e9:7.1f} ns value, "
+                      f"{t_grad / n * 1e9:7.1f} ns value+grad", flush=True)
+    return out
+
+
+# ---------------------------------------------------------------- 2. resolution vs error (analytic)
+def analytic_resolution():
+    kind = _Kind()
+    params = squeeze_params()
+    rows = []
+    for n in (5, 9, 17, 33, 65):
+        axes = maps.resolve_axes(kind, {"central_gap": {"n": n}})
+        for method in ("linear", "pchip", "hermite"):
+            t0 = time.perf_counter()
+            fmap = maps.build_map(kind, None, axes, method=method, workers=1, progress=False, fit=False)
+            q = maps.random_points(axes, 2000, seed=1)
+            err = np.abs(fmap("Force [N]", *q.T) / squeeze_exact(params, q[:, 0], q[:, 1]) - 1)
+            rows.append({"nodes along the gap": n, "method": method, "median relative error": float(np.median(err)),
+                         "max relative error": float(err.max()), "build time [s]": time.perf_counter() - t0})
+            print(f"analytic n={n:3d} {method:6s}: median {np.median(err):.2e}, max {err.max():.2e}", flush=True)
+    for method in ("linear", "pchip", "hermite"):
+        sel = [r for r in rows if r["method"] == method]
+        p = -np.polyfit(np.log([r["nodes along the gap"] - 1 for r in sel]), np.log([r["max relative error"] for r in sel]), 1)[0]
+        rows.append({"method": method, "fitted order (max error vs cells)": float(p)})
+    return rows
+
+
+# ---------------------------------------------------------------- 2b/3. the real ball-ball kind
+def real_kind_levels(quick: bool, accuracy_points: int):
+    """ball_ball maps at three resolutions (nodes per axis x 0.5, 0.75, 1 of the defaults), built without
+    a cache (timed), each compared with the same direct solves at random off-grid points of the default
+    axes (solved once)."""
+    try:
+        kind = maps.get_kind("ball_ball")
+    except Exception as exc:  # noqa: BLE001 - recorded
+        return {"available": False, "reason": str(exc)}
+    defaults = {maps.axis_key(a.name): a for a in kind.axes}
+    levels = {"smoke": 0.5} if quick else {"coarse": 0.5, "medium": 0.75, "default": 1.0}
+    resolution = "smoke" if quick else "default"
+    params = {**kind.default_params(), "resolution": resolution}
+    workers = maps.default_workers()
+    out = {"available": True, "params resolution": resolution, "workers": workers, "levels": []}
+    ref_axes = maps.resolve_axes(kind)
+    pts = maps.random_points(ref_axes, accuracy_points, seed=5)
+    plist = [{a.name: float(x) for a, x in zip(ref_axes, row)} for row in pts]
+    t0 = time.perf_counter()
+    direct, info = maps.solve_points(kind, params, plist, workers=workers, progress=False)
+    out["direct solves"] = {"points": accuracy_points, "failed": len(info["failed"]), "time [s]": time.perf_counter() - t0}
+    ok = [i for i, r in enumerate(direct) if r is not None]
+    for name, scale in levels.items():
+        over = {} if scale == 1.0 else {k: {"n": max(2, int(round((a.n - 1) * scale)) + 1)} for k, a in defaults.items()}
+        axes = maps.resolve_axes(kind, over)
+        t0 = time.perf_counter()
+        try:
+            fmap = maps.build_map(kind, params, axes, workers=workers, progress=False, on_failure="fill")
+        except Exception as exc:  # noqa: BLE001
+            out["levels"].append({"level": name, "failed": str(exc)})
+            continue
+        t = time.perf_counter() - t0
+        acc = {}
+        for method in ("hermite", "pchip", "linear"):
+            m = maps.FilmMap(fmap.axes, fmap.values, method=method, provenance=fmap.provenance)
+            acc[method] = m.accuracy_against(pts[ok], {k: np.array([direct[i][k] for i in ok]) for k in fmap.outputs})
+        row = {"level": name, "shape": list(fmap.shape), "points": int(np.prod(fmap.shape)), "build time [s]": t,
+               "seconds per point per worker": t * workers / int(np.prod(fmap.shape)),
+               "filled points": len(fmap.provenance.get("filled points", [])), "accuracy": acc,
+               "fits": {k: {"max": f.max_error, "median": f.median_error, "formula": f.formula()}
+                        for k, f in fmap.fits.items() if f is not None}}
+        out["levels"].append(row)
+        print(f"ball_ball {name}: {fmap.shape} in {t:.1f} s; hermite " + ", ".join(
+            f"{k}: {v['median']:.2e}/{v['max']:.2e}" for k, v in acc["hermite"].items()), flush=True)
+    return out
+
+
+def worker_scaling(n_points=24):
+    """Seconds per point on the same ball-ball points with 1 and 2 local workers."""
+    try:
+        kind = maps.get_kind("ball_ball")
+    except Exception as exc:  # noqa: BLE001
+        return {"available": False, "reason": str(exc)}
+    axes = maps.resolve_axes(kind)
+    pts = maps.random_points(axes, n_points, seed=9)
+    plist = [{a.name: float(x) for a, x in zip(axes, row)} for row in pts]
+    params = kind.default_params()
+    out = {}
+    for workers in (1, 2):
+        t0 = time.perf_counter()
+        maps.solve_points(kind, params, plist, workers=workers, progress=False)
+        out[f"{workers} worker(s): s per point"] = (time.perf_counter() - t0) / n_points
+    out["speed-up"] = out["1 worker(s): s per point"] / out["2 worker(s): s per point"]
+    print("worker scaling", out, flush=True)
+    return out
+
+
+# ---------------------------------------------------------------- chart
+def chart(data, path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axs = plt.subplots(1, 3, figsize=(15, 4.2))
+    q = data["query cost"]
+    labels = [f"{r['axes']}D {r['method']}\n{r['queries']}" for r in q]
+    x = np.arange(len(q))
+    axs[0].bar(x - 0.2, [r["ns per value query"] for r in q], 0.4, label="value")
+    axs[0].bar(x + 0.2, [r["ns per value+gradient query (with output stores)"] for r in q], 0.4, label="value + gradient")
+    axs[0].axhline(100, color="k", ls="--", lw=0.8, label="target 100 ns")
+    axs[0].set_xticks(x, labels, fontsize=6, rotation=90)
+    axs[0].set_ylabel("ns per query (numba loop)")
+    axs[0].set_yscale("log")
+    axs[0].legend(fontsize=7)
+    axs[0].set_title("interpolation query cost")
+    for method, marker in (("linear", "s"), ("pchip", "o"), ("hermite", "^")):
+        sel = [r for r in data["analytic resolution"] if r.get("method") == method and "nodes along the gap" in r]
+        axs[1].loglog([r["nodes along the gap"] for r in sel], [r["max relative error"] for r in sel], marker + "-",
+                      label=f"{method} max")
+        axs[1].loglog([r["nodes along the gap"] for r in sel], [r["median relative error"] for r in sel], marker + ":",
+                      label=f"{method} median")
+    axs[1].axhline(0.03, color="r", lw=0.8, ls="--")
+    axs[1].axhline(0.01, color="g", lw=0.8, ls="--")
+    axs[1].set_xlabel("nodes along the gap axis (0.1-10 um, log)")
+    axs[1].set_ylabel("relative error of F")
+    axs[1].set_title("analytic squeeze film: resolution vs error")
+    axs[1].legend(fontsize=7)
+    real = data.get("ball_ball levels", {})
+    if real.get("available"):
+        for out_name, marker in (("Force [N]", "o"), ("Stiffness [N/m]", "s"), ("Damping [N s/m]", "^")):
+            pts = [(r["build time [s]"], r["accuracy"]["hermite"][out_name]) for r in real["levels"]
+                   if "accuracy" in r and out_name in r["accuracy"]["hermite"]]
+            if pts:
+                axs[2].loglog([p[0] for p in pts], [p[1]["max"] for p in pts], marker + "-", label=f"{out_name} max")
+                axs[2].loglog([p[0] for p in pts], [p[1]["median"] for p in pts], marker + ":", label=f"{out_name} median")
+        axs[2].axhline(0.03, color="r", lw=0.8, ls="--")
+        axs[2].axhline(0.01, color="g", lw=0.8, ls="--")
+        axs[2].set_xlabel("map build time [s] (2 cores)")
+        axs[2].set_ylabel("relative error vs direct solves")
+        axs[2].set_title("ball_ball map: build time vs error")
+        axs[2].legend(fontsize=6)
+    else:
+        axs[2].text(0.5, 0.5, "ball_ball kind not available", ha="center")
+    fig.tight_layout()
+    _common.save_figure(fig, path)
+    plt.close(fig)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--accuracy-points", type=int, default=40)
+    args = ap.parse_args(argv)
+    t0 = time.perf_counter()
+    data = {"machine": _common.machine_info(("numba", "dask", "distributed", "pyvista")),
+            "started": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+    data["query cost"] = query_cost(repeats=3 if args.quick else 5)
+    data["analytic resolution"] = analytic_resolution()
+    data["ball_ball levels"] = real_kind_levels(args.quick, 10 if args.quick else args.accuracy_points)
+    if not args.quick:
+        data["worker scaling"] = worker_scaling()
+    data["total time [s]"] = time.perf_counter() - t0
+    data["load_average_at_end"] = list(__import__("os").getloadavg())
+    stem = "maps_quick" if args.quick else "maps"
+    _common.write_json(_common.RESULTS / f"{stem}.json", data)
+    chart(data, _common.RESULTS / f"{stem}.png")
+    print(f"wrote results/{stem}.json, .png in {data['total time [s]']:.0f} s")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,382 @@
+"""Map scene: a point kind's film solves swept over its axes -> :class:`~coupling.maps.FilmMap` -> outputs.
+
+Case layout (``scene = "map"``; quantities as numbers in SI or strings with
+units, checked against the unit in the axis name)::
+
+    scene = "map"
+    description = "one line shown by `lubedyn cases`"
+    kind = "ball_ball"          # a kind of coupling.film_points.KINDS
+    [axes.<key>]                # key: the axis name without unit, lower case, "_" for spaces
+                                # ("Central gap [m]" -> central_gap); overrides the kind's default
+    lo = "0.05 um"; hi = "50 um"; n = 19; scale = "log" | "linear"
+                                # or nodes = [...] (explicit, increasing; e.g. refined near a kink)
+    [params]                    # overrides of the kind's default_params() (numbers in SI; a string
+                                # "<number> <unit>" is converted to SI; other strings as they are)
+    resolution = "default"
+    [build]
+    method = "hermite" | "pchip" | "linear"   # interpolation (dynamics.interp)
+    workers = 0                 # local processes; 0: every usable core
+    scheduler = ""              # Dask scheduler address ("tcp://host:8786"): solve there instead
+    cache_dir = ""              # solved points and built maps; "" -> <out>/.map-cache
+    accuracy_points = 20        # random off-grid points solved directly for the accuracy report
+    seed = 0
+    on_failure = "raise" | "fill"
+    [output]
+    write = ["map", "png", "pvd"]
+    map_file = ""               # "" -> <kind>.npz
+    field_frames = 6            # .pvd frames: nodes of the first axis (evenly picked) ...
+    field_at = {}               # ... with the other axes at their middle node unless given here
+    [smoke]                     # partial case merged by --smoke
+
+Outputs of ``run``: ``<kind>.npz`` (:meth:`FilmMap.save`), ``map.png`` (each
+output against the first axis, lines over the second), ``fields.pvd`` with
+``field_NNN.vtu`` (the kind's film fields, a series along the first axis;
+open ``fields.pvd`` in ParaView; the "time" of each frame is the first axis'
+value), ``summary.json`` (accuracy report, fit errors, build information),
+``case.resolved.toml``.  Everything is written through a staging folder
+(:func:`coupling.outputs.staged`): a failed build leaves the output folder
+as it was (solved points stay in the cache, so the next run resumes).
+"""
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Annotated, Any, Literal
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+from pydantic import Field, model_validator
+from pydantic_core import PydanticCustomError
+
+from lubrication.errors import InputError
+
+from . import maps, outputs
+from .config import _Model, resolved_toml
+from .units import DIMENSIONS, UnitError, parse_quantity, parse_units
+
+log = logging.getLogger(__name__)
+
+FIELD_FILES = (("<kind>.npz", "map"), ("map.png", "png"), ("fields.pvd", "pvd"))
+
+
+def _rule(key, value, text):
+    return PydanticCustomError("case_rule", "{text}", {"key": key, "value": value, "text": text, "root": True})
+
+
+def _dimension(unit: str) -> str:
+    """Name of the dimension of a unit expression (``"m/s"`` -> ``"velocity"``; ``"-"`` -> dimensionless)."""
+    if unit in ("", "-"):
+        return "dimensionless"
+    _, dim = parse_units(unit)
+    for name, vector in DIMENSIONS.items():
+        if vector == dim:
+            return name
+    raise InputError(f"axis unit {unit!r} has no named dimension")
+
+
+class AxisModel(_Model):
+    """Override of one axis of the kind (any subset of the keys)."""
+
+    lo: Any = None
+    hi: Any = None
+    n: Annotated[int, Field(strict=True, ge=2)] | None = None
+    scale: Literal["log", "linear"] | None = None
+    nodes: list[Any] | None = None  # explicit nodes (replace lo, hi, n), e.g. refined near a kink
+
+
+class BuildModel(_Model):
+    method: Literal["hermite", "pchip", "linear"] = "hermite"
+    workers: Annotated[int, Field(strict=True, ge=0)] = 0
+    scheduler: str = ""
+    cache_dir: str = ""
+    accuracy_points: Annotated[int, Field(strict=True, ge=0)] = 20
+    seed: Annotated[int, Field(strict=True, ge=0)] = 0
+    on_failure: Literal["raise", "fill"] = "raise"
+
+
+class MapOutputModel(_Model):
+    write: list[Literal["map", "png", "pvd"]] = ["map", "png", "pvd"]
+    map_file: str = ""
+    field_frames: Annotated[int, Field(strict=True, ge=1)] = 6
+    field_at: dict[str, Any] = {}
+
+
+class CaseModel(_Model):
+    """A map scene; after validation every axis bound and numeric parameter is SI and ``params`` holds
+    every parameter of the kind (its defaults with the case's overrides)."""
+
+    scene: Literal["map"]
+    description: str = ""
+    kind: str
+    axes: dict[str, AxisModel] = {}
+    params: dict[str, Any] = {}
+    build: BuildModel = Field(default_factory=BuildModel)
+    output: MapOutputModel = Field(default_factory=MapOutputModel)
+    smoke: dict[str, Any] | None = None
+
+    @model_validator(mode="after")
+    def _resolve(self):
+        known = maps.kinds()
+        if self.kind not in known:
+            import difflib
+
+            close = difflib.get_close_matches(self.kind, list(known), n=3)
+            hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+            raise _rule("kind", self.kind, f"is not a map kind; choose one of {', '.join(map(repr, known))}{hint}")
+        kind = known[self.kind]
+        by_key = {maps.axis_key(a.name): a for a in kind.axes}
+        for key, over in self.axes.items():
+            if key not in by_key:
+                import difflib
+
+                close = difflib.get_close_matches(key, list(by_key), n=3)
+                hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+                raise _rule(f"axes.{key}", None, f"is not an axis of kind {self.kind!r}{hint} "
+                            f"(axes: {', '.join(by_key)})")
+            dim = _dimension(maps.axis_unit(by_key[key].name))
+            for bound in ("lo", "hi"):
+                value = getattr(over, bound)
+                if value is None:
+                    continue
+                try:
+                    setattr(over, bound, parse_quantity(value, dim))
+                except UnitError as exc:
+                    raise _rule(f"axes.{key}.{bound}", value, str(exc)) from None
+            if over.nodes is not None:
+                if any(getattr(over, k) is not None for k in ("lo", "hi", "n")):
+                    raise _rule(f"axes.{key}.nodes", over.nodes, "cannot be combined with lo, hi, n; give one or the other")
+                try:
+                    over.nodes = [parse_quantity(v, dim) for v in over.nodes]
+                except UnitError as exc:
+                    raise _rule(f"axes.{key}.nodes", over.nodes, str(exc)) from None
+            try:
+                maps.resolve_axes(kind, {key: over.model_dump(exclude_none=True)})
+            except InputError as exc:
+                raise _rule(f"axes.{key}", over.model_dump(exclude_none=True), f"is not a valid axis: {exc}") from None
+        first = maps.axis_key(kind.axes[0].name)
+        for key, value in list(self.output.field_at.items()):
+            if key not in by_key or key == first:
+                others = [k for k in by_key if k != first]
+                raise _rule(f"output.field_at.{key}", value, f"must be one of the axes after the first "
+                            f"({', '.join(others) or 'none'})")
+            try:
+                self.output.field_at[key] = parse_quantity(value, _dimension(maps.axis_unit(by_key[key].name)))
+            except UnitError as exc:
+                raise _rule(f"output.field_at.{key}", value, str(exc)) from None
+        defaults = kind.default_params()
+        for key, value in list(self.params.items()):
+            if key not in defaults:
+                import difflib
+
+                close = difflib.get_close_matches(key, list(defaults), n=3)
+                hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+                raise _rule(f"params.{key}", value, f"is not a parameter of kind {self.kind!r}{hint} "
+                            f"(parameters: {', '.join(defaults)})")
+            self.params[key] = _param_value(key, value, defaults[key])
+        # every default filled in (case.resolved.toml lists the parameters the map was built with)
+        self.params = {**{k: v for k, v in defaults.items() if v is not None}, **self.params}
+        return self
+
+
+def _param_value(key, value, default):
+    """A numeric parameter: number, or "<number> <unit>" converted to SI; a string parameter: a string."""
+    if isinstance(default, bool) or not isinstance(default, (int, float)):
+        if not isinstance(value, type(default)) and default is not None:
+            raise _rule(f"params.{key}", value, f"must be a {type(default).__name__} like the default {default!r}")
+        return value
+    if isinstance(value, bool):
+        raise _rule(f"params.{key}", value, "must be a number (SI) or a string with units")
+    if isinstance(value, (int, float)):
+        return float(value)
+    if isinstance(value, str):
+        try:
+            number, *unit = value.split(maxsplit=1)
+            factor = parse_units(unit[0])[0] if unit else 1.0
+            return float(f"{float(number) * factor:.15g}")
+        except (ValueError, UnitError) as exc:
+            raise _rule(f"params.{key}", value, f"is not '<number> <units>' ({exc})") from None
+    raise _rule(f"params.{key}", value, "must be a number (SI) or a string with units")
+
+
+@dataclass(frozen=True)
+class MapSetup:
+    """What a case builds: the kind, its full parameters and the axes."""
+
+    kind: Any
+    params: dict
+    axes: tuple
+
+    @property
+    def points(self) -> int:
+        return int(np.prod([a.n for a in self.axes]))
+
+
+def build(case: CaseModel) -> MapSetup:
+    """Kind, parameters and axes of a validated case (no solve)."""
+    kind = maps.get_kind(case.kind)
+    params = {**kind.default_params(), **case.params}
+    axes = maps.resolve_axes(kind, {k: v.model_dump(exclude_none=True) for k, v in case.axes.items()})
+    by_key = {a.key: a for a in axes}
+    for key in case.output.field_at:
+        if key not in by_key or key == axes[0].key:
+            raise InputError(f"output.field_at.{key}: not one of the axes after the first "
+                             f"({', '.join(a.key for a in axes[1:]) or 'none'})")
+    return MapSetup(kind, params, axes)
+
+
+def describe(case: CaseModel, setup: MapSetup) -> str:
+    axes = " x ".join(f"{a.name} {a.lo:.4g}..{a.hi:.4g} ({a.n}, {a.scale})" for a in setup.axes)
+    where = f"Dask scheduler {case.build.scheduler}" if case.build.scheduler else \
+        f"{case.build.workers or maps.default_workers()} local process(es)"
+    return (f"map scene: kind {setup.kind.name}, {axes} = {setup.points} points + {case.build.accuracy_points} "
+            f"accuracy points on {where}, {case.build.method} interpolation")
+
+
+def map_file_name(case: CaseModel) -> str:
+    return case.output.map_file or f"{case.kind}.npz"
+
+
+# ---------------------------------------------------------------------------
+# outputs
+
+
+def field_points(case: CaseModel, setup: MapSetup) -> list[dict]:
+    """The points of the .pvd series: ``field_frames`` nodes of the first axis, the others at their
+    middle node or at ``output.field_at``."""
+    first = setup.axes[0]
+    picks = sorted(set(np.linspace(0, first.n - 1, min(case.output.field_frames, first.n)).round().astype(int)))
+    rest = {}
+    for a in setup.axes[1:]:
+        rest[a.name] = float(case.output.field_at.get(a.key, a.nodes[a.n // 2]))
+    return [{first.name: float(first.nodes[i]), **rest} for i in picks]
+
+
+def write_pvd(path, frames) -> Path:
+    """A ParaView collection: ``frames`` = [(time, file name relative to the .pvd)]."""
+    lines = ['<?xml version="1.0"?>', '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+             "  <Collection>"]
+    lines += [f'    <DataSet timestep="{t:.17g}" group="" part="0" file={quoteattr(name)}/>' for t, name in frames]
+    lines += ["  </Collection>", "</VTKFile>"]
+    return outputs.write_text(path, "\n".join(lines) + "\n")
+
+
+def summarise(case: CaseModel, setup: MapSetup, fmap: maps.FilmMap) -> dict:
+    """Flat summary: the map's identity, build information, accuracy and fit errors per output."""
+    p = fmap.provenance
+    out = {
+        "Kind": setup.kind.name,
+        "Map file": map_file_name(case),
+        "Axes": "; ".join(f"{a.name} {a.lo:.6g}..{a.hi:.6g} ({a.n} nodes, {a.scale})" for a in fmap.axes),
+        "Outputs": "; ".join(fmap.outputs),
+        "Interpolation": fmap.method,
+        "Grid points [-]": p.get("points", int(np.prod(fmap.shape))),
+        "Points solved [-]": p.get("points solved", 0),
+        "Points from cache [-]": p.get("points from cache", 0),
+        "Filled (failed) points [-]": len(p.get("filled points", [])),
+        "Backend": p.get("backend", ""),
+        "Map build time [s]": p.get("build time [s]", 0.0),
+        "Map loaded from cache": "loaded from cache" in p,
+        "Accuracy points [-]": fmap.accuracy.get("requested points", 0),
+        "Failed accuracy points [-]": len(fmap.accuracy.get("failed points", [])),
+        "Map input sha256": p.get("input sha256", {}).get("map", ""),
+    }
+    for name in fmap.outputs:
+        # the quantity comes last: keys never start with an output name (the CLI prints numeric keys
+        # that start with e.g. "Maximum pressure")
+        rep = fmap.accuracy.get(name)
+        if rep:
+            out[f"Interpolation median relative error [-] of {name}"] = rep["median"]
+            out[f"Interpolation max relative error [-] of {name}"] = rep["max"]
+            out[f"Accuracy points above 3 % [-] of {name}"] = rep.get("above 3 %", 0)
+            out[f"Worst accuracy point of {name}"] = ", ".join(
+                f"{a.name} = {x:.4g}" for a, x in zip(fmap.axes, rep["worst point"]))
+        fit = fmap.fits.get(name)
+        if fit is not None:
+            out[f"Fitted closed form of {name}"] = fit.formula()
+            out[f"Fit median relative error [-] of {name}"] = fit.median_error
+            out[f"Fit max relative error [-] of {name}"] = fit.max_error
+        out[f"Smallest value of {name}"] = float(np.min(fmap.values[name]))
+        out[f"Largest value of {name}"] = float(np.max(fmap.values[name]))
+    return out
+
+
+@dataclass
+class MapRun:
+    """What :func:`run` produced."""
+
+    case: CaseModel
+    setup: MapSetup
+    map: maps.FilmMap | None = None
+    summary: dict = field(default_factory=dict)
+    files: list = field(default_factory=list)
+
+
+def run(case: CaseModel, out_dir=None, *, name: str = "map", source: str = "", smoke: bool = False) -> MapRun:
+    """Build the map of a case and (if ``out_dir``) write its outputs.
+
+    Raises :class:`~lubrication.errors.InputError` for a case that cannot be
+    built, :class:`~lubrication.errors.ConvergenceError` when points fail (with
+    ``on_failure = "raise"``); then nothing is written but the point cache.
+    """
+    t0 = time.perf_counter()
+    setup = build(case)
+    t_build = time.perf_counter() - t0
+    log.info("%s", describe(case, setup))
+    b = case.build
+    cache = Path(b.cache_dir) if b.cache_dir else (Path(out_dir) / ".map-cache" if out_dir is not None else None)
+    fmap = maps.build_map(setup.kind, case.params, setup.axes, method=b.method, workers=b.workers or None,
+                          scheduler=b.scheduler or None, cache_dir=cache, progress=True,
+                          accuracy_points=b.accuracy_points, seed=b.seed, on_failure=b.on_failure)
+    summary = outputs.run_summary(case, name, smoke, summarise(case, setup, fmap), t0, t_build)
+    result = MapRun(case=case, setup=setup, map=fmap, summary=summary)
+    if out_dir is None:
+        return result
+    header = outputs.resolved_header(name, source, smoke)
+    out = Path(out_dir)
+    write = case.output.write
+    with outputs.staged(out) as stage:
+        outputs.write_text(stage / "case.resolved.toml", resolved_toml(case, header))
+        if "map" in write:
+            fmap.save(stage / map_file_name(case))
+        if "png" in write:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            fig = fmap.plot()
+            try:
+                outputs.save_figure(stage / "map.png", fig)
+            finally:
+                plt.close(fig)
+        if "pvd" in write:
+            _write_fields(case, setup, stage, summary)
+        outputs.write_json(stage / "summary.json", summary)
+        names = sorted(p.name for p in stage.iterdir())
+    result.files = [out / n for n in names]
+    return result
+
+
+def _write_fields(case, setup, stage, summary):
+    field = getattr(setup.kind, "field", None)
+    if field is None:
+        log.warning("kind %s has no film field: no fields.pvd", setup.kind.name)
+        summary["Field frames [-]"] = 0
+        return
+    from lubrication.solution import write_vtu
+
+    frames = []
+    for k, point in enumerate(field_points(case, setup)):
+        grid = field(setup.params, point)
+        if type(grid).__name__ != "UnstructuredGrid":  # .vtu holds unstructured grids only
+            grid = grid.cast_to_unstructured_grid()
+        for axis, value in point.items():
+            grid.field_data[axis] = np.array([value])
+        fname = f"field_{k:03d}.vtu"
+        write_vtu(grid, stage / fname)
+        frames.append((point[setup.axes[0].name], fname))
+    write_pvd(stage / "fields.pvd", frames)
+    summary["Field frames [-]"] = len(frames)
+    summary["Field series axis"] = setup.axes[0].name

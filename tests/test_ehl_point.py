@@ -1,0 +1,227 @@
+"""Point contacts (Fischer-Burmeister Newton), normal film coefficients, rigid
+isoviscous limits and Hamrock-Dowson inputs.
+
+Independent references:
+- Nijenbanning, Venner & Moes (1994) circular-contact central film, quoted
+  within ~5 % of their numerical solutions (:mod:`lubrication.film_formulas`).
+- Dry Hertz contact stiffness dW/d(delta) = 1.5 W/delta (Johnson 1985), which
+  the EHL contact stiffness approaches at heavy load.
+- Martin (1916) rigid isoviscous line contact: w' = 4.896 eta u_m R/h0 with
+  the Reynolds (Swift-Stieber) outlet condition and a fully flooded inlet;
+  on the solver's truncated domain the same 1-D Reynolds equation is
+  integrated here by quadrature (dp/dx = 12 eta u_m (h - h_c)/h^3,
+  p(x_in) = 0, p = dp/dx = 0 at the cavitation point).
+- Brewe, Hamrock & Taylor (1979) rigid isoviscous point contact:
+  H_min = 128 a_r phi^2 (0.131 atan(a_r/2) + 1.683)^2 (U/W)^2,
+  phi = (1 + 2/(3 a_r))^-1, a_r = R_y/R_x.
+- Groups: W = M (2U)^(3/4), G = L (2U)^(-1/4) (Moes' definitions inverted by hand).
+"""
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+from lubrication import ConvergenceError
+from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, ehl_normal_coefficients, solve_ehl
+from lubrication.errors import InputError
+from lubrication.film_formulas import nijenbanning_central
+from lubrication.hertz import point_contact
+from lubrication.lubricant import Barus, Incompressible, Lubricant
+
+
+def H(c, h):
+    return h / c.radius_x * (2 * c.U) ** -0.5
+
+
+# ---------------------------------------------------------------- point contacts, light to heavy load
+
+
+@pytest.mark.parametrize("M, measured", [(20, 0.013), (50, 0.000), (100, -0.019), (200, 0.003)])
+def test_circular_contact_converges_from_light_to_heavy_load(M, measured):
+    """M = 20 ... 200, L = 10 on 33 x 33 nodes: before the Fischer-Burmeister
+    Newton and the Nijenbanning-Venner-Moes start film, M = 40, 50 and 100
+    did not converge here (the start film was 3-17 times too thick)."""
+    c = EHLContact.from_moes(M, 10)
+    s = solve_ehl(c, EHLGrid(nx=33))
+    assert s.info["method"] == "fischer_burmeister" and s.info["scheme"] == "second order"
+    assert s.load == pytest.approx(c.load, rel=1e-9)
+    assert np.all(s.pressure >= 0.0)
+    err = H(c, s.central_film_thickness) / nijenbanning_central(M, 10) - 1
+    assert abs(err) < 0.05  # NVM's quoted accuracy
+    assert err == pytest.approx(measured, abs=0.01)  # measured on 33 x 33 (65 x 65: +1.3 ... +2.8 %)
+
+
+def test_heavy_point_contact_on_a_coarse_grid_fails_clearly():
+    """Where it stops: M = 1000 on 33 x 33 cannot resolve the outlet
+    constriction (the film reaches the floor)."""
+    with pytest.raises(ConvergenceError, match="film-thickness floor"):
+        solve_ehl(EHLContact.from_moes(1000, 10), EHLGrid(nx=33))
+
+
+def test_point_grid_limit_is_pinned():
+    """Grids beyond the measured limit (EHLOptions.max_point_grid) are refused at once."""
+    limit = EHLOptions().max_point_grid
+    n = 2 * (limit - 1) + 1
+    with pytest.raises(InputError, match=f"grid.nx = {n} for a point contact"):
+        solve_ehl(EHLContact.from_moes(20, 10), EHLGrid(nx=n))
+
+
+# ---------------------------------------------------------------- normal stiffness and damping
+
+
+@pytest.mark.parametrize("line, n", [(False, 33), (True, 257)])
+def test_normal_coefficients_linearised_against_finite_differences(line, n):
+    """K = -dF/dh00 and C = -dF/d(dh00/dt): the linearised response (one
+    solve with the steady Jacobian) against central differences of four
+    prescribed-approach solves (measured agreement 1e-7 ... 1e-11)."""
+    c = EHLContact.from_moes(100, 10, line=line)
+    K, C, s = ehl_normal_coefficients(c, EHLGrid(nx=n))
+    K2, C2, _ = ehl_normal_coefficients(c, EHLGrid(nx=n), method="finite_difference", steady=s)
+    assert K > 0 and C > 0
+    assert K2 == pytest.approx(K, rel=1e-5)
+    assert C2 == pytest.approx(C, rel=1e-5)
+    if not line:
+        # heavy load: the contact stiffness tends to the dry Hertz one
+        # 1.5 W/delta (measured -1.4 % at M = 100 on 33 x 33)
+        hz = point_contact(c.load, c.radius_x, c.radius_y, c.e_star)
+        assert K == pytest.approx(hz.stiffness, rel=0.05)
+
+
+# ---------------------------------------------------------------- rigid isoviscous limits
+
+R, ETA, UM, H0 = 0.01, 0.04, 1.0, 1e-6
+RIGID = 1e16  # E* [Pa]: deflection ~1e-13 m against h0 = 1 um
+ISO = Lubricant(Barus(ETA, 0.0), Incompressible(850.0))
+
+
+def rigid_line_load(h0, radius, eta, um, x_in, x_out):
+    """Load per length of a rigid cylinder on a plane, inlet at x_in, domain end
+    x_out, Reynolds outlet condition (cavitation at x_c < x_out) by quadrature."""
+    h = lambda x: h0 + x * x / (2 * radius)  # noqa: E731
+    dp = lambda x, hc: 12 * eta * um * (h(x) - hc) / h(x) ** 3  # noqa: E731
+    g = lambda xc: quad(dp, x_in, xc, args=(h(xc),), limit=200)[0]  # noqa: E731
+    if g(x_out) < 0:
+        xc = brentq(g, 1e-9 * x_out, x_out, xtol=1e-15)
+        hc = h(xc)
+    else:  # full film to x_out, p(x_out) = 0
+        xc = x_out
+        hc = quad(lambda x: h(x) ** -2, x_in, x_out)[0] / quad(lambda x: h(x) ** -3, x_in, x_out)[0]
+    # int p dx = -int (x - x_c) p'(x) dx  (p vanishes at both ends)
+    return quad(lambda x: -(x - xc) * dp(x, hc), x_in, xc, limit=200)[0]
+
+
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
+def test_reference_reproduces_martin():
+    s = np.sqrt(2 * R * H0)
+    w = rigid_line_load(H0, R, ETA, UM, -2000 * s, 50 * s)
+    assert w / (ETA * UM * R / H0) == pytest.approx(4.896, rel=1e-3)
+
+
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
+def test_rigid_isoviscous_line_contact_against_martin_on_the_same_domain():
+    """The EHL solver's very stiff, isoviscous limit on X in [-4.5, 1.5] b
+    (b = sqrt(2 R h0) set through ``scale_load``; the truncated inlet gives
+    0.89 of Martin's fully flooded load) against the quadrature reference."""
+    s = np.sqrt(2 * R * H0)
+    w_scale = np.pi * RIGID * s * s / (4 * R)  # Hertz half-width b = s
+    c = EHLContact(R, None, RIGID, ISO, UM, approach=H0, scale_load=w_scale)
+    sol = solve_ehl(c, EHLGrid(nx=129))
+    ref = rigid_line_load(H0, R, ETA, UM, -4.5 * s, 1.5 * s)
+    assert ref / (4.896 * ETA * UM * R / H0) == pytest.approx(0.8905, abs=1e-3)
+    assert sol.load == pytest.approx(ref, rel=1e-3)  # measured 2e-4 on 129 nodes
+    assert sol.minimum_film_thickness == pytest.approx(H0, rel=1e-5)  # rigid: deflection ~1e-12 m
+
+
+def rigid_point_load_fd(x_in, x_out, y_max, d, omega=1.95):
+    """Rigid isoviscous sphere on a plane by finite differences (5-point,
+    H^3 at mid-points) and projected red-black SOR (Christopherson 1941:
+    p = max(0, SOR update) gives the Reynolds outlet condition).  Lengths in
+    s = sqrt(2 R h0): H = 1 + X^2 + Y^2, div(H^3 grad P) = dH/dX = 2X,
+    p = 12 eta u_m s / h0^2 P.  Returns int P dX dY."""
+    X = np.arange(x_in, x_out + d / 2, d)
+    Y = np.arange(-y_max, y_max + d / 2, d)
+    XX, YY = np.meshgrid(X, Y, indexing="ij")
+    H3 = (1 + XX**2 + YY**2) ** 3
+    ce, cw, cn, cs = (np.zeros_like(H3) for _ in range(4))
+    ce[:-1] = 0.5 * (H3[:-1] + H3[1:])
+    cw[1:] = ce[:-1]
+    cn[:, :-1] = 0.5 * (H3[:, :-1] + H3[:, 1:])
+    cs[:, 1:] = cn[:, :-1]
+    f, diag = 2 * XX * d * d, ce + cw + cn + cs
+    P = np.zeros_like(H3)
+    inner = np.zeros(P.shape, dtype=bool)
+    inner[1:-1, 1:-1] = True
+    red = inner & (np.add.outer(np.arange(X.size), np.arange(Y.size)) % 2 == 0)
+    for it in range(100000):
+        old = P.copy()
+        for m in (red, inner & ~red):
+            nb = np.zeros_like(P)
+            nb[1:-1, 1:-1] = (ce[1:-1, 1:-1] * P[2:, 1:-1] + cw[1:-1, 1:-1] * P[:-2, 1:-1]
+                              + cn[1:-1, 1:-1] * P[1:-1, 2:] + cs[1:-1, 1:-1] * P[1:-1, :-2])
+            P[m] = np.maximum(P[m] + omega * ((nb[m] - f[m]) / diag[m] - P[m]), 0.0)
+        if np.max(np.abs(P - old)) < 1e-10 * P.max():
+            break
+    return P.sum() * d * d
+
+
+def test_rigid_isoviscous_point_contact_on_the_same_domain():
+    """Very stiff, isoviscous circular contact on X in [-4.5, 1.5] b, |Y| <= 3 b
+    (b = 4 sqrt(2 R h0) through ``scale_load``) against an independent
+    finite-difference/PSOR solution of the same domain, Richardson-extrapolated
+    from spacings 0.25 and 0.125 s (second order; measured 0.3062, 0.3122).
+
+    Brewe-Hamrock-Taylor (fully flooded) is 11 % above this truncated-domain
+    load; the finite-difference load rises towards it as the inlet moves
+    away (measured: -10.5 %, -5.2 %, -2.5 % of BHT for inlets at 18, 36
+    and 72 s): the 'same domain' comparison is the one a solver can pass.
+    """
+    s = np.sqrt(2 * R * H0)
+    b = 4 * s
+    c = EHLContact(R, R, RIGID, ISO, UM, approach=H0, scale_load=4 * RIGID * b**3 / (3 * R))
+    fd = [rigid_point_load_fd(-18, 6, 12, d) for d in (0.25, 0.125)]
+    ref = (4 * fd[1] - fd[0]) / 3 * 12 * ETA * UM * s**3 / H0**2
+    U, W_over = ETA * UM / (2 * RIGID * R), 2 * RIGID * R**2
+    phi = 1 / (1 + 2 / 3)
+    bht = W_over * U * np.sqrt(128 * phi**2 * (0.131 * np.arctan(0.5) + 1.683) ** 2 / (H0 / R))
+    assert ref / bht - 1 == pytest.approx(-0.105, abs=0.01)
+    errs = [solve_ehl(c, EHLGrid(nx=n)).load / ref - 1 for n in (33, 65)]
+    # FEM measured -2.3 % and -1.1 %: converging (first order here) to the FD value
+    assert abs(errs[1]) < 0.015 and abs(errs[1]) < 0.6 * abs(errs[0])
+
+
+# ---------------------------------------------------------------- Hamrock-Dowson inputs
+
+
+def test_hamrock_dowson_inputs_give_the_moes_contact():
+    """Two routes to one contact: from_moes(M, L) and from_hamrock_dowson(W, U, G)
+    with W = M (2U)^(3/4), G = L (2U)^(-1/4) computed here."""
+    M, L = 100.0, 10.0
+    a = EHLContact.from_moes(M, L)
+    U = a.lubricant.viscosity.eta0 * a.mean_speed / (2 * a.e_star * a.radius_x)
+    b = EHLContact.from_hamrock_dowson(M * (2 * U) ** 0.75, U, L * (2 * U) ** -0.25, 1.0)
+    assert b.load == pytest.approx(a.load, rel=1e-12)
+    assert b.mean_speed == pytest.approx(a.mean_speed, rel=1e-12)
+    assert b.lubricant.viscosity.alpha == pytest.approx(a.lubricant.viscosity.alpha, rel=1e-12)
+    assert (b.moes_M, b.moes_L) == (pytest.approx(M, rel=1e-12), pytest.approx(L, rel=1e-12))
+    sa, sb = solve_ehl(a, EHLGrid(nx=33)), solve_ehl(b, EHLGrid(nx=33))
+    assert sb.central_film_thickness == pytest.approx(sa.central_film_thickness, rel=1e-9)
+
+
+@pytest.mark.parametrize("k", [1.5, 3.0, 8.0])
+def test_hamrock_dowson_ellipticity(k):
+    """The radius ratio chosen for ellipticity k gives a Hertz ellipse with a/b = k
+    (exact elliptic integrals, solved forward by lubrication.hertz), and
+    Hamrock-Brewe's k = 1.0339 (R_y/R_x)^0.636 in the approximate route."""
+    c = EHLContact.from_hamrock_dowson(1e-6, 1e-11, 5000, k)
+    assert point_contact(c.load, c.radius_y, c.radius_x, c.e_star).ellipticity == pytest.approx(k, rel=1e-9)
+    d = EHLContact.from_hamrock_dowson(1e-6, 1e-11, 5000, k, ellipticity="hamrock_brewe")
+    assert 1.0339 * (d.radius_y / d.radius_x) ** 0.636 == pytest.approx(k, rel=1e-12)
+    with pytest.raises(InputError, match="ellipticity k = 0.5 must be >= 1"):
+        EHLContact.from_hamrock_dowson(1e-6, 1e-11, 5000, 0.5)
+
+
+def test_unknown_solver_options_are_refused():
+    with pytest.raises(InputError, match="ehl.method = 'fischer_burmeistr' is not allowed.*did you mean"):
+        EHLOptions(method="fischer_burmeistr")
+    with pytest.raises(InputError, match="normal coefficients method"):
+        ehl_normal_coefficients(EHLContact.from_moes(20, 10), method="linearized")
