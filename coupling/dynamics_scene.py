@@ -252,6 +252,31 @@ def bearing_kwargs(case: DynamicsCase) -> dict:
     )
 
 
+# model field -> case key, so that the model's one-line errors name the case file's key
+CASE_KEYS = {
+    **{k: f"bearing.{k}" for k in ("n_balls", "ball_diameter", "pitch_diameter", "inner_groove_radius",
+                                   "outer_groove_radius", "diametral_clearance", "ball_modulus", "ball_poisson",
+                                   "ring_modulus", "ring_poisson", "ball_density", "ball_mass", "ring_mass",
+                                   "ring_inertia", "rotor_inertia")},
+    **{k: f"operating.{k}" for k in ("radial_load", "axial_load", "gravity", "scenario", "drop_speed",
+                                     "rotor_friction", "rotor_contact_radius")},
+    "speed_rpm": "operating.speed", "dof": "model.dof", "hertz_method": "model.hertz",
+    "race_damping": "model.race_damping", "yield_stress": "model.yield_stress",
+    "traction_limit": "model.traction_limit", "traction_srr": "model.traction_srr", "film": "films.ball_ball",
+    "film_map": "films.map", "viscosity": "films.viscosity", "film_rupture_thickness": "films.rupture_thickness",
+    "slot_azimuths_deg": "slots.azimuths", "slot_race": "slots.race", "slot_width": "slots.width",
+    "slot_length": "slots.length", "slot_depth": "slots.depth", "slot_edge_radius": "slots.edge_radius",
+}
+
+
+def _case_words(message: str) -> str:
+    """The model's error message with its field names replaced by the case keys."""
+    import re
+
+    return re.sub(r"\b(" + "|".join(sorted(CASE_KEYS, key=len, reverse=True)) + r")\b(?= =|\))",
+                  lambda m: CASE_KEYS[m.group(1)], message)
+
+
 def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
     """Bearing model, quasi-static initial state and output times (raises InputError)."""
     from dynamics.cageless import CagelessBearing
@@ -268,7 +293,7 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
         model = CagelessBearing(**kw)
         y0 = model.initial_state()
     except DynamicsInputError as exc:
-        raise InputError(str(exc)) from None
+        raise InputError(_case_words(str(exc))) from None
     ig = case.integrator
     n = int(round(ig.duration / ig.sample_interval))
     t_out = np.linspace(0.0, n * ig.sample_interval, n + 1)

@@ -1,0 +1,58 @@
+"""The dynamics scene through the CLI: bad input is one line with exit code 2, a
+film map queried outside its axes is counted and reported, and a failed
+integration is exit code 1 without overwriting earlier outputs."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from coupling import cli
+from coupling.config import CASES_DIR
+
+SHORT = CASES_DIR / "cageless_6206_10krpm_short.toml"
+
+
+def run(capsys, *argv):
+    code = cli.main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def one_line(err, *fragments):
+    assert err.startswith("lubedyn: error: ") and err.count("\n") == 1 and "Traceback" not in err, err
+    for fragment in fragments:
+        assert fragment in err, (fragment, err)
+
+
+@pytest.mark.parametrize("overrides, fragments", [
+    (["bearing.n_balls=16"], ["bearing.n_balls = 16", "do not fit the pitch circle"]),
+    (["films.ball_ball=map"], ["films.map", "is required when ball_ball = 'map'"]),
+    (["films.ball_ball=map", "films.map=maps/nope.npz"], ["films.map = 'maps/nope.npz' not found"]),
+    (["integrator.method=rk4"], ["integrator.dt", "required with method = 'rk4'"]),
+    (["integrator.method=rk4", "integrator.dt='20 us'"], ["beyond the RK4 stability limit"]),
+    (["operating.axial_load='200 kN'"], ["operating.axial_load = 200000 N", "beyond the groove shoulders"]),
+    (["model.dof=planar"], ["operating.axial_load", "needs model.dof = '6dof'"]),
+    (["analysis.ball=14"], ["analysis.ball = 14", "must be < bearing.n_balls = 14"]),
+    (["operating.speed='100 m'"], ["operating.speed", "expected angular velocity"]),
+])
+def test_bad_input_is_one_line_exit_2(capsys, tmp_path, overrides, fragments):
+    argv = ["run", SHORT, "--smoke", "--out", tmp_path / "out"]
+    for o in overrides:
+        argv += ["--set", o]
+    code, _, err = run(capsys, *argv)
+    assert code == 2
+    one_line(err, *fragments)
+    assert not (tmp_path / "out" / "summary.json").exists()
+
+
+def test_map_queries_outside_the_axes_are_counted_and_reported(capsys, tmp_path, caplog):
+    """The shipped ball-ball map stops at squeeze number 0.9 (a rigid Barus film has no
+    solution at 1); collisions go far beyond it, so the run clamps, counts and warns."""
+    code, _, _ = run(capsys, "run", SHORT, "--smoke", "--set", "films.ball_ball=map", "--set",
+                     "films.map=maps/ball_ball.npz", "--set", "analysis.lyapunov_exponents=0",
+                     "--set", "output.write=[]", "--out", tmp_path)
+    assert code == 0
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["Ball-ball film"] == "map" and s["Film map queries outside axes [-]"] > 0
+    assert any("queried outside its axes" in r.getMessage() for r in caplog.records)
