@@ -194,13 +194,9 @@ def fitted_order(sizes, errors) -> float | None:
 
 # ---------------------------------------------------------------- output
 def _default(obj):
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, Path):
-        return str(obj)
-    raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
+    from coupling.outputs import json_default
+
+    return json_default(obj)
 
 
 def _publish(tmp: str, path: Path) -> None:

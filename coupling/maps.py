@@ -629,14 +629,7 @@ class FilmMap:
         return fig
 
 
-def _json_default(obj):
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, Path):
-        return str(obj)
-    raise TypeError(f"{type(obj).__name__} is not JSON serialisable")
+_json_default = outputs.json_default
 
 
 # ---------------------------------------------------------------------------

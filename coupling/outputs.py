@@ -52,15 +52,22 @@ def write_text(path, text: str) -> Path:
     return write_bytes(path, text.encode("utf-8"))
 
 
+def json_default(obj):
+    """``json.dumps(default=...)`` for numpy scalars and arrays and paths."""
+    import numpy as np
+
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, Path):
+        return str(obj)
+    raise TypeError(f"{type(obj).__name__} is not JSON serialisable")
+
+
 def write_json(path, mapping: dict) -> Path:
-    """A flat mapping as indented JSON (numpy scalars become Python numbers)."""
-
-    def plain(value):
-        if hasattr(value, "item"):
-            return value.item()
-        raise TypeError(f"{type(value).__name__} is not JSON serialisable")
-
-    return write_text(path, json.dumps(mapping, indent=2, default=plain) + "\n")
+    """A mapping as indented JSON (numpy scalars and arrays become Python numbers and lists)."""
+    return write_text(path, json.dumps(mapping, indent=2, default=json_default) + "\n")
 
 
 def save_figure(path, figure, dpi: int = 120) -> Path:

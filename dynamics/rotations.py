@@ -78,7 +78,12 @@ def quat_rotate(q, v, out):
     """``out = R(q) v`` for a unit ``q`` (body -> inertial).
 
     Uses ``v' = v + 2 w (r x v) + 2 r x (r x v)`` with ``r = (x, y, z)``."""
-    w, x, y, z = q[0], q[1], q[2], q[3]
+    _rotate(q[0], q[1], q[2], q[3], v, out)
+
+
+@njit(**_JIT)
+def _rotate(w, x, y, z, v, out):
+    """Rotate ``v`` by the unit quaternion (w, x, y, z) into ``out``."""
     tx = 2.0 * (y * v[2] - z * v[1])
     ty = 2.0 * (z * v[0] - x * v[2])
     tz = 2.0 * (x * v[1] - y * v[0])
@@ -90,13 +95,7 @@ def quat_rotate(q, v, out):
 @njit(**_JIT)
 def quat_rotate_inverse(q, v, out):
     """``out = R(q)^T v`` for a unit ``q`` (inertial -> body)."""
-    w, x, y, z = q[0], -q[1], -q[2], -q[3]
-    tx = 2.0 * (y * v[2] - z * v[1])
-    ty = 2.0 * (z * v[0] - x * v[2])
-    tz = 2.0 * (x * v[1] - y * v[0])
-    out[0] = v[0] + w * tx + (y * tz - z * ty)
-    out[1] = v[1] + w * ty + (z * tx - x * tz)
-    out[2] = v[2] + w * tz + (x * ty - y * tx)
+    _rotate(q[0], -q[1], -q[2], -q[3], v, out)
 
 
 @njit(**_JIT)
