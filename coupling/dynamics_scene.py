@@ -124,6 +124,8 @@ class FilmsTable(_Model):
 
     ball_ball: Literal["none", "closed_form", "map"] = "closed_form"
     map: str | None = None
+    race: Literal["none", "closed_form"] = "none"  # EHL films on the ball-race contacts (Hamrock-Dowson)
+    pressure_viscosity: Q("inverse pressure", ge=0) = 1.85e-8
     viscosity: Q("dynamic viscosity", gt=0) = 0.050
     rupture_thickness: PositiveLength = 1e-7
     friction_film: Q("dimensionless", ge=0) = 0.03
@@ -246,6 +248,7 @@ def bearing_kwargs(case: DynamicsCase) -> dict:
         dof=m.dof, hertz_method=m.hertz, race_damping=m.race_damping, ball_ball=m.ball_ball,
         yield_stress=m.yield_stress, traction_limit=m.traction_limit, traction_srr=m.traction_srr,
         film=f.ball_ball, viscosity=f.viscosity, film_rupture_thickness=f.rupture_thickness,
+        race_film=f.race, pressure_viscosity=f.pressure_viscosity,
         ball_ball_mu_film=f.friction_film, ball_ball_mu_boundary=f.friction_boundary,
         slot_azimuths_deg=tuple(math.degrees(a) for a in s.azimuths), slot_race=s.race, slot_width=s.width,
         slot_length=s.length, slot_depth=s.depth, slot_edge_radius=s.edge_radius,
@@ -263,7 +266,8 @@ CASE_KEYS = {
     "speed_rpm": "operating.speed", "dof": "model.dof", "hertz_method": "model.hertz",
     "race_damping": "model.race_damping", "yield_stress": "model.yield_stress",
     "traction_limit": "model.traction_limit", "traction_srr": "model.traction_srr", "film": "films.ball_ball",
-    "film_map": "films.map", "viscosity": "films.viscosity", "film_rupture_thickness": "films.rupture_thickness",
+    "film_map": "films.map", "viscosity": "films.viscosity", "race_film": "films.race",
+    "pressure_viscosity": "films.pressure_viscosity", "film_rupture_thickness": "films.rupture_thickness",
     "slot_azimuths_deg": "slots.azimuths", "slot_race": "slots.race", "slot_width": "slots.width",
     "slot_length": "slots.length", "slot_depth": "slots.depth", "slot_edge_radius": "slots.edge_radius",
 }
@@ -470,6 +474,11 @@ def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str
     orbital = diag[-1, :, D_PSIDOT]
     summary["Ball-train speed at end [rad/s]"] = float(np.mean(orbital))
     summary["Ball-train slip at end [-]"] = float(1.0 - np.mean(orbital) / ideal) if ideal else None
+    if case.films.race == "closed_form":
+        ue = 0.25 * model.pitch_diameter * (1 - (model.ball_diameter / model.pitch_diameter) ** 2) * abs(omega_i[-1])
+        h_i, h_o = model.race_film_thickness(ue)
+        summary["Inner race film at end, epicyclic speed [m]"] = h_i
+        summary["Outer race film at end, epicyclic speed [m]"] = h_o
     summary["Initial largest inner race load [N]"] = float(diag[0, :, D_QI].max())
     summary["Initial largest outer race load [N]"] = float(diag[0, :, D_QO].max())
     summary["Largest inner race load [N]"] = float(diag[:, :, D_QI].max())

@@ -137,6 +137,7 @@ DOFS = {"planar": 0, "6dof": 1}
 SCENARIOS = {"steady": 0, "drop": 1, "free": 2}
 RACES = {"outer": 0, "inner": 1}
 TRACTIONS = {"closed_form": 0, "map": 1}
+RACE_FILMS = {"none": 0, "closed_form": 1}
 MAP_SPEED_AXES = {"approach_speed": C.MAP_AXIS_APPROACH, "squeeze_number": C.MAP_AXIS_SQUEEZE}
 N_RING = 9
 NB_PLANAR, NB_6DOF = 6, 13
@@ -147,8 +148,8 @@ I_SIZE = 7
 # float parameters
 (P_D, P_RB, P_ROC, P_RIC, P_RO, P_RI, P_MB, P_JB, P_MR, P_JR, P_JROT, P_KI, P_KO, P_ALPHA, P_MU, P_SRR, P_VREG,
  P_FX, P_FY, P_FZ, P_G, P_OMEGA_FIX, P_MUROT, P_RC, P_WREG, P_NROT, P_SW, P_SL, P_SBLEND, P_KEO, P_KEI, P_REO,
- P_REI, P_QSTAB) = range(34)
-P_SIZE = 34
+ P_REI, P_QSTAB, P_HCI, P_HCO) = range(36)
+P_SIZE = 36
 
 # per-ball diagnostics of forces()
 DIAG_NAMES = (
@@ -169,21 +170,24 @@ N_RING_DIAG = 5
 
 # ----------------------------------------------------------------------------- kernels
 @njit(**_JIT)
-def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, RF, out):
+def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, RF, out, hc_coef=0.0):
     """One ball-race (or slot-edge) contact with normal n (ball force -Q n,
     contact point c + (D/2) n).  Accumulates ball force F, torque T, ring
     force RF[0:3] and torque RF[3] (``inner`` race only; ``wr`` its speed).
-    out <- (Q, SRR, sliding speed, contact angle)."""
+    out <- (Q, SRR, sliding speed, contact angle).
+
+    ``hc_coef`` > 0: an EHL film of central thickness h_c = hc_coef u_e^0.67
+    (Hamrock-Dowson at a reference load, :meth:`CagelessBearing.race_film_thickness`)
+    separates the surfaces, so the solids' approach is delta + h_c."""
     Rb = P[P_RB]
     vx, vy, vz = v[0] - vctr[0], v[1] - vctr[1], v[2] - vctr[2]
     ddot = n0 * vx + n1 * vy + n2 * vz
-    Q = hertz_force(delta, ddot, K, P[P_ALPHA])
-    out[0] = Q
     out[1] = 0.0
     out[2] = 0.0
     # contact angle of the load line, positive when the ball is pushed towards -z at this contact
     out[3] = math.atan2(n2 if not inner else -n2, math.sqrt(n0 * n0 + n1 * n1))
-    if Q <= 0.0:
+    if hc_coef <= 0.0 and delta <= 0.0:
+        out[0] = 0.0
         return
     # contact point relative to the ball centre and to the race centre
     a0, a1, a2 = Rb * n0, Rb * n1, Rb * n2
@@ -211,6 +215,12 @@ def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, 
     e1 -= en * n1
     e2 -= en * n2
     ue = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
+    if hc_coef > 0.0:
+        delta += hc_coef * ue**0.67
+    Q = hertz_force(delta, ddot, K, P[P_ALPHA])
+    out[0] = Q
+    if Q <= 0.0:
+        return
     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
     out[1] = vs / ue if ue > 0.0 else 0.0
     out[2] = vs
@@ -311,7 +321,8 @@ def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz):
         if slots.shape[0] > 0:
             wslot, wsarc = _slot_weight(d0 + Rb * n0, d1 + Rb * n1, d2 + Rb * n2, race, th, slots,
                                         rg + Rgc if race == 0 else Rgc - rg, P)
-        _race_contact(c, v, w, n0, n1, n2, delta, K * (1.0 - wslot), ctr, vz, wr, race == 1, P, F, T, RF, out)
+        _race_contact(c, v, w, n0, n1, n2, delta, K * (1.0 - wslot), ctr, vz, wr, race == 1, P, F, T, RF, out,
+                      P[P_HCO] if race == 0 else P[P_HCI])
         if race == 0:
             dg[D_QO] = out[0]
             dg[D_AO] = out[3]
@@ -332,7 +343,7 @@ def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz):
                 if de > 0.0:
                     # normal from the ball centre towards the edge
                     m0, m1, m2 = -u_r / Le * er0, -u_r / Le * er1, -u_z / Le
-                    _race_contact(c, v, w, m0, m1, m2, de, KE * wsarc, ctr, vz, wr, race == 1, P, F, T, RF, out)
+                    _race_contact(c, v, w, m0, m1, m2, de, KE * wsarc, ctr, vz, wr, race == 1, P, F, T, RF, out, 0.0)
                     dg[D_QE] += out[0]
 
 
@@ -683,6 +694,7 @@ class CagelessBearing:
     dof: str = "6dof"
     hertz_method: str = "exact"
     race_damping: float = 0.2
+    race_film: str = "none"
     traction: str = "closed_form"
     traction_limit: float = 0.07
     traction_srr: float = 0.02
@@ -714,6 +726,7 @@ class CagelessBearing:
 
     def __post_init__(self):
         _check_choice("dof", self.dof, DOFS)
+        _check_choice("race_film", self.race_film, RACE_FILMS)
         _check_choice("scenario", self.scenario, SCENARIOS)
         _check_choice("film", self.film, FILM_KINDS)
         _check_choice("traction", self.traction, TRACTIONS)
@@ -799,6 +812,40 @@ class CagelessBearing:
         Ko = C.hertz_constant(*C.race_radii(D, dm, self.outer_groove_radius, "outer"), es, self.hertz_method)
         return Ki, Ko
 
+    def race_film_reference_load(self) -> float:
+        """Reference load [N] of the race films: Stribeck's most loaded ball 4.37 F_r / Z
+        (or the axial share F_a / Z when larger); at least 1 N."""
+        return max(4.37 * self.radial_load / self.n_balls, self.axial_load / self.n_balls, 1.0)
+
+    def race_film_coefficients(self) -> tuple[float, float]:
+        """(c_i, c_o) of the race films h_c = c u_e^0.67 [m with u_e in m/s].
+
+        Hamrock & Dowson (1977) central film of an elliptic contact,
+        h_c / R_x = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k)),
+        U = eta0 u_e / (E' R_x), G = alpha E', W = Q / (E' R_x^2), E' = 2 E*,
+        k = a/b from the exact ellipse (m = 1 - (b/a)^2 of
+        :func:`dynamics.contacts.ellipticity_parameter`), evaluated at
+        :meth:`race_film_reference_load` (the film depends on the load only as
+        Q^-0.067: a tenfold load changes it by 14 %).  Isothermal, fully
+        flooded, smooth surfaces; the film adds h_c to the solids' approach."""
+        D, dm = self.ball_diameter, self.pitch_diameter
+        e_prime = 2.0 * self.e_star_race
+        q = self.race_film_reference_load()
+        out = []
+        for race, groove in (("inner", self.inner_groove_radius), ("outer", self.outer_groove_radius)):
+            rx, ry = C.race_radii(D, dm, groove, race)
+            k = 1.0 / math.sqrt(1.0 - C.ellipticity_parameter(ry / rx))
+            U1 = self.viscosity / (e_prime * rx)  # U per (m/s)
+            G = self.pressure_viscosity * e_prime
+            W = q / (e_prime * rx * rx)
+            out.append(2.69 * U1**0.67 * G**0.53 * W**-0.067 * (1.0 - 0.61 * math.exp(-0.73 * k)) * rx)
+        return out[0], out[1]
+
+    def race_film_thickness(self, entrainment_speed: float) -> tuple[float, float]:
+        """(h_ci, h_co) [m] of the closed-form race films at an entrainment speed [m/s]."""
+        ci, co = self.race_film_coefficients()
+        return ci * entrainment_speed**0.67, co * entrainment_speed**0.67
+
     @property
     def contact_angle_free(self) -> float:
         """Free contact angle [rad] from the clearance: cos b0 = 1 - P_d/(2 B D) (0 for P_d <= 0)."""
@@ -866,6 +913,8 @@ class CagelessBearing:
         P[P_MR], P[P_JR] = self.ring_mass, self.ring_inertia
         P[P_JROT] = self.rotor_inertia if math.isfinite(self.rotor_inertia) else 0.0
         P[P_KI], P[P_KO] = Ki, Ko
+        if self.race_film == "closed_form":
+            P[P_HCI], P[P_HCO] = self.race_film_coefficients()
         P[P_ALPHA] = self.race_damping
         P[P_MU], P[P_SRR], P[P_VREG] = self.traction_limit, self.traction_srr, self.traction_slip_regularisation
         P[P_G] = self.gravity
