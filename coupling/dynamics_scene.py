@@ -115,6 +115,12 @@ class ModelTable(_Model):
     yield_stress: Q("pressure", gt=0) | None = 1.7e9
     traction_limit: Q("dimensionless", ge=0) = 0.07
     traction_srr: Q("dimensionless", gt=0) = 0.02
+    # "map": the traction coefficient of the race contacts from the EHL maps (inner, outer race),
+    # paths relative to the case file or to cases/
+    traction: Literal["closed_form", "map"] = "closed_form"
+    traction_maps: list[str] = Field(default_factory=lambda: ["maps/ehl_ball_inner_race.npz",
+                                                              "maps/ehl_ball_outer_race.npz"],
+                                     min_length=2, max_length=2)
 
 
 class FilmsTable(_Model):
@@ -211,14 +217,15 @@ class DynamicsSetup:
     map_info: dict = field(default_factory=dict)
 
 
-def _map_path(case: DynamicsCase, source: str | None) -> Path:
-    given = Path(case.films.map)
+def _map_path(case: DynamicsCase, source: str | None, name: str | None = None, key: str = "films.map") -> Path:
+    name = name if name is not None else case.films.map
+    given = Path(name)
     candidates = [given] if given.is_absolute() else (
         ([Path(source).resolve().parent / given] if source else []) + [Path.cwd() / given, CASES_DIR / given])
     for path in candidates:
         if path.is_file():
             return path
-    raise InputError(f"films.map = {case.films.map!r} not found (looked in: "
+    raise InputError(f"{key} = {name!r} not found (looked in: "
                      f"{', '.join(str(p.parent) for p in candidates)}); build it with a map case, "
                      "e.g. lubedyn run cases/map_ball_ball.toml")
 
@@ -265,7 +272,8 @@ CASE_KEYS = {
                                      "rotor_friction", "rotor_contact_radius")},
     "speed_rpm": "operating.speed", "dof": "model.dof", "hertz_method": "model.hertz",
     "race_damping": "model.race_damping", "yield_stress": "model.yield_stress",
-    "traction_limit": "model.traction_limit", "traction_srr": "model.traction_srr", "film": "films.ball_ball",
+    "traction_limit": "model.traction_limit", "traction_srr": "model.traction_srr", "traction": "model.traction",
+    "traction_maps": "model.traction_maps", "film": "films.ball_ball",
     "film_map": "films.map", "viscosity": "films.viscosity", "race_film": "films.race",
     "pressure_viscosity": "films.pressure_viscosity", "film_rupture_thickness": "films.rupture_thickness",
     "slot_azimuths_deg": "slots.azimuths", "slot_race": "slots.race", "slot_width": "slots.width",
@@ -293,6 +301,19 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
         kw["film_map"] = fmap.dynamics_film_map() if hasattr(fmap, "dynamics_film_map") else fmap.kernel_arrays(
             "Force [N]")
         info = {"Ball-ball film map": str(map_path), "Ball-ball film map hash": fmap.input_hash}
+    if case.model.traction == "map":
+        from .maps import FilmMap
+
+        arrays = []
+        for race, name in zip(("inner", "outer"), case.model.traction_maps):
+            path = _map_path(case, source, name, "model.traction_maps")
+            fmap = FilmMap.load(path)
+            if fmap.kind != f"ehl_ball_{race}_race":
+                raise InputError(f"model.traction_maps = {name!r} is a map of kind {fmap.kind!r}; the {race} race "
+                                 f"needs kind 'ehl_ball_{race}_race'")
+            arrays.append(fmap.kernel_arrays("Traction coefficient [-]"))
+            info[f"Traction map, {race} race"] = str(path)
+        kw["traction"], kw["traction_maps"] = "map", tuple(arrays)
     try:
         model = CagelessBearing(**kw)
         y0 = model.initial_state()
@@ -488,9 +509,9 @@ def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str
     counter = getattr(model, "map_counter", None)
     if counter is not None:
         summary["Film map queries outside axes [-]"] = int(counter[0])
-        if case.films.ball_ball == "map" and counter[0] > 0:
-            log.warning("the ball-ball film map was queried outside its axes %d times and clamped there "
-                        "(films.map = %s); widen the map's axes for this scene", int(counter[0]), case.films.map)
+        if (case.films.ball_ball == "map" or case.model.traction == "map") and counter[0] > 0:
+            log.warning("the film maps were queried outside their axes %d times and clamped there; "
+                        "widen the maps' axes for this scene", int(counter[0]))
     if case.analysis.lyapunov:
         summary.update(_lyapunov_per_direction(case, t, centres, shaft))
     if case.analysis.lyapunov_exponents:

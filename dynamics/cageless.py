@@ -128,6 +128,7 @@ from .contacts import (
     traction_coefficient,
 )
 from .errors import DynamicsInputError
+from .interp import HERMITE, hermite3, interp3
 from .rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
 
 logger = logging.getLogger(__name__)
@@ -145,6 +146,7 @@ NB_PLANAR, NB_6DOF = 6, 13
 # integer options
 I_Z, I_DOF, I_FILM, I_DRIVE, I_TRACTION, I_BALLBALL, I_NSLOT = range(7)
 I_SIZE = 7
+ARG_COUNTER = 9  # position of the clamp counter in the args tuple
 # float parameters
 (P_D, P_RB, P_ROC, P_RIC, P_RO, P_RI, P_MB, P_JB, P_MR, P_JR, P_JROT, P_KI, P_KO, P_ALPHA, P_MU, P_SRR, P_VREG,
  P_FX, P_FY, P_FZ, P_G, P_OMEGA_FIX, P_MUROT, P_RC, P_WREG, P_NROT, P_SW, P_SL, P_SBLEND, P_KEO, P_KEI, P_REO,
@@ -170,7 +172,18 @@ N_RING_DIAG = 5
 
 # ----------------------------------------------------------------------------- kernels
 @njit(**_JIT)
-def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, RF, out, hc_coef=0.0):
+def _traction_from_map(ax0, ax1, ax2, vals, opts, Q, ue, srr, counter):
+    """Traction coefficient of an EHL map (load, entrainment speed, slide-to-roll ratio)."""
+    if opts[C.MO_METHOD] == HERMITE:
+        return hermite3(ax0, ax1, ax2, opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2], vals, opts[C.MO_LOGV],
+                        Q, ue, srr, opts[C.MO_MODE], counter)
+    return interp3(ax0, ax1, ax2, opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2], vals[0], opts[C.MO_LOGV],
+                   opts[C.MO_METHOD], Q, ue, srr, opts[C.MO_MODE], counter)
+
+
+@njit(**_JIT)
+def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, RF, out, hc_coef, tmap, race,
+                  counter):
     """One ball-race (or slot-edge) contact with normal n (ball force -Q n,
     contact point c + (D/2) n).  Accumulates ball force F, torque T, ring
     force RF[0:3] and torque RF[3] (``inner`` race only; ``wr`` its speed).
@@ -178,7 +191,13 @@ def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, 
 
     ``hc_coef`` > 0: an EHL film of central thickness h_c = hc_coef u_e^0.67
     (Hamrock-Dowson at a reference load, :meth:`CagelessBearing.race_film_thickness`)
-    separates the surfaces, so the solids' approach is delta + h_c."""
+    separates the surfaces, so the solids' approach is delta + h_c.
+
+    ``race`` >= 0 with a traction map (``tmap``, :func:`_traction_arrays`): the
+    traction coefficient is read from the EHL map of that race over (load,
+    entrainment speed, |slide-to-roll ratio|) instead of the closed form;
+    queries outside its axes are clamped and counted in ``counter[0]``.
+    ``race`` = -1 (slot edges, or no map): the closed-form curve."""
     Rb = P[P_RB]
     vx, vy, vz = v[0] - vctr[0], v[1] - vctr[1], v[2] - vctr[2]
     ddot = n0 * vx + n1 * vy + n2 * vz
@@ -228,7 +247,12 @@ def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, 
     ft1 = 0.0
     ft2 = 0.0
     if vs > 0.0:
-        mu = traction_coefficient(vs, ue, P[P_MU], P[P_SRR], P[P_VREG])
+        if race >= 0 and ue > 0.0:
+            tax0, tax1, tax2, tvals, topts = tmap
+            mu = abs(_traction_from_map(tax0[race], tax1[race], tax2[race], tvals[race], topts, Q, ue, vs / ue,
+                                        counter))
+        else:
+            mu = traction_coefficient(vs, ue, P[P_MU], P[P_SRR], P[P_VREG])
         f = -mu * Q / vs
         ft0, ft1, ft2 = f * s0, f * s1, f * s2
     fx, fy, fz = -Q * n0 + ft0, -Q * n1 + ft1, -Q * n2 + ft2
@@ -282,7 +306,7 @@ def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P):
 
 
 @njit(**_JIT)
-def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz):
+def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz, tmap, use_map, counter):
     """Both race contacts (and slot edges) of one ball; dg <- diagnostics
     (``out``, ``ctr``, ``vz``: work arrays of 4, 3, 3 floats)."""
     D = P[P_D]
@@ -322,7 +346,7 @@ def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz):
             wslot, wsarc = _slot_weight(d0 + Rb * n0, d1 + Rb * n1, d2 + Rb * n2, race, th, slots,
                                         rg + Rgc if race == 0 else Rgc - rg, P)
         _race_contact(c, v, w, n0, n1, n2, delta, K * (1.0 - wslot), ctr, vz, wr, race == 1, P, F, T, RF, out,
-                      P[P_HCO] if race == 0 else P[P_HCI])
+                      P[P_HCO] if race == 0 else P[P_HCI], tmap, race if use_map else -1, counter)
         if race == 0:
             dg[D_QO] = out[0]
             dg[D_AO] = out[3]
@@ -343,13 +367,14 @@ def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz):
                 if de > 0.0:
                     # normal from the ball centre towards the edge
                     m0, m1, m2 = -u_r / Le * er0, -u_r / Le * er1, -u_z / Le
-                    _race_contact(c, v, w, m0, m1, m2, de, KE * wsarc, ctr, vz, wr, race == 1, P, F, T, RF, out, 0.0)
+                    _race_contact(c, v, w, m0, m1, m2, de, KE * wsarc, ctr, vz, wr, race == 1, P, F, T, RF, out, 0.0,
+                                  tmap, -1, counter)
                     dg[D_QE] += out[0]
 
 
 @njit(**_JIT)
 def _evaluate(t, y, args, dydt, diag, ring_diag, want):
-    iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter = args
+    iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap = args
     Z = iopt[I_Z]
     dof = iopt[I_DOF]
     nb = NB_6DOF if dof == 1 else NB_PLANAR
@@ -404,7 +429,8 @@ def _evaluate(t, y, args, dydt, diag, ring_diag, want):
     for j in range(Z):
         for k in range(N_DIAG):
             dg[k] = 0.0
-        _ball_races(cpos[j], cvel[j], cw[j], ring, P, slots, Fb[j], Tb[j], RF, dg, out4, ctr3, vz3)
+        _ball_races(cpos[j], cvel[j], cw[j], ring, P, slots, Fb[j], Tb[j], RF, dg, out4, ctr3, vz3, tmap,
+                    iopt[I_TRACTION] == 1, counter)
         if want:
             for k in range(N_DIAG):
                 diag[j, k] = dg[k]
@@ -646,6 +672,36 @@ def _map_arrays(film_map, axis1_kind):
 
 
 
+def _traction_arrays(maps):
+    """``(ax0 (2, n0), ax1 (2, n1), ax2 (2, n2), vals (2, k, n0, n1, n2), opts)`` from the kernel arrays
+    (:class:`coupling.maps.KernelArrays` of "Traction coefficient [-]") of the inner and the outer race
+    EHL maps, both over (load [N], entrainment speed [m/s], slide-to-roll ratio [-]) with the same
+    node counts and method."""
+    from .interp import HERMITE
+
+    try:
+        (ai, li, vi, lvi, mi), (ao, lo, vo, lvo, mo) = maps
+    except (TypeError, ValueError):
+        raise DynamicsInputError("traction_maps must be (inner, outer) kernel arrays of EHL maps "
+                                 "(coupling.maps.FilmMap.kernel_arrays('Traction coefficient [-]'))") from None
+    if len(ai) != 3 or len(ao) != 3:
+        raise DynamicsInputError("traction maps need 3 axes (load, entrainment speed, slide-to-roll ratio)")
+    shapes = [tuple(a.size for a in ai), tuple(a.size for a in ao)]
+    if shapes[0] != shapes[1] or int(mi) != int(mo) or list(li) != list(lo) or int(lvi) != int(lvo):
+        raise DynamicsInputError(f"the inner and outer traction maps differ in nodes {shapes} or method; "
+                                 "build both with the same axes")
+    if int(lvi) != 0:
+        raise DynamicsInputError("traction maps must store the traction coefficient without log (it changes sign)")
+    axes = [np.ascontiguousarray(np.stack([ai[k], ao[k]]), dtype=np.float64) for k in range(3)]
+    vals = [np.asarray(v, dtype=np.float64) for v in (vi, vo)]
+    if int(mi) != HERMITE:
+        vals = [v[None] for v in vals]
+    opts = np.zeros(C.MO_SIZE, dtype=np.int64)
+    opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = (int(x) for x in li)
+    opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = 0, int(mi), 0
+    return axes[0], axes[1], axes[2], np.ascontiguousarray(np.stack(vals)), opts
+
+
 @dataclass(frozen=True)
 class CagelessBearing:
     """Cage-less deep-groove ball bearing (SI units; defaults: paper B, Tables 1, 2, 4).
@@ -696,6 +752,7 @@ class CagelessBearing:
     race_damping: float = 0.2
     race_film: str = "none"
     traction: str = "closed_form"
+    traction_maps: tuple | None = None
     traction_limit: float = 0.07
     traction_srr: float = 0.02
     traction_slip_regularisation: float = 0.05
@@ -771,9 +828,9 @@ class CagelessBearing:
         if self.film == "map" and self.film_map is None:
             raise DynamicsInputError("film = 'map' needs film_map = (axes, logs, values, logv, method) of a "
                                      "ball_ball force map (coupling.maps.FilmMap.kernel_arrays('Force [N]'))")
-        if self.traction == "map":
-            raise DynamicsInputError("traction = 'map' is a reserved slot (EHL traction maps not wired yet); "
-                                     "use traction = 'closed_form'")
+        if self.traction == "map" and self.traction_maps is None:
+            raise DynamicsInputError("traction = 'map' needs traction_maps = (inner, outer) kernel arrays of the "
+                                     "EHL race maps (coupling.maps.FilmMap.kernel_arrays('Traction coefficient [-]'))")
         if self.yield_stress is not None and not self.yield_stress > 0.0:
             raise DynamicsInputError(f"yield_stress = {self.yield_stress!r} must be > 0 [Pa] (or None: elastic)")
         if self.slot_width >= 2.0 * min(self.inner_groove_radius, self.outer_groove_radius):
@@ -874,7 +931,7 @@ class CagelessBearing:
 
     # numba arguments ----------------------------------------------------------
     def args(self) -> tuple:
-        """The numba tuple ``(iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)``.
+        """The numba tuple ``(iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap)``.
 
         Built once per model and cached: ``counter`` (int64[1]) counts film-map
         queries outside the map's axes over every run with these args
@@ -888,8 +945,8 @@ class CagelessBearing:
 
     @property
     def map_counter(self) -> np.ndarray:
-        """int64[1]: film-map queries outside the axes (clamped) so far."""
-        return self.args()[-1]
+        """int64[1]: film- and traction-map queries outside the axes (clamped) so far."""
+        return self.args()[ARG_COUNTER]
 
     def _build_args(self) -> tuple:
         D, dm = self.ball_diameter, self.pitch_diameter
@@ -955,7 +1012,12 @@ class CagelessBearing:
             map_vals = np.zeros((1, 2, 2, 2))
             map_opts = np.zeros(C.MO_SIZE, dtype=np.int64)
         counter = np.zeros(1, dtype=np.int64)
-        return (iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
+        if self.traction == "map":
+            tmap = _traction_arrays(self.traction_maps)
+        else:
+            z = np.zeros((2, 2))
+            tmap = (z, z, z, np.zeros((2, 1, 2, 2, 2)), np.zeros(C.MO_SIZE, dtype=np.int64))
+        return (iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap)
 
     # state layout ---------------------------------------------------------------
     def state_layout(self) -> list[tuple[str, str]]:

@@ -55,4 +55,4 @@ def test_map_queries_outside_the_axes_are_counted_and_reported(capsys, tmp_path,
     assert code == 0
     s = json.loads((tmp_path / "summary.json").read_text())
     assert s["Ball-ball film"] == "map" and s["Film map queries outside axes [-]"] > 0
-    assert any("queried outside its axes" in r.getMessage() for r in caplog.records)
+    assert any("queried outside their axes" in r.getMessage() for r in caplog.records)
