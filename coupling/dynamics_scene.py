@@ -44,6 +44,7 @@ from pydantic import Field, model_validator
 
 from lubrication.errors import ConvergenceError, InputError
 
+from . import bearing as bearings
 from . import outputs
 from .config import CASES_DIR, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
 
@@ -490,13 +491,12 @@ def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str
         summary["Rotor speed at end [rpm]"] = float(Omega[-1] * 60 / (2 * math.pi))
         summary["Inner ring slip against rotor at end [-]"] = float(1.0 - omega_i[-1] / Omega[-1])
     # ball slip: orbital speed against the no-slip epicyclic (ball-train) speed of the current ring speed
-    cage_ratio = model.cage_speed(0.0) / model.omega_inner if model.omega_inner else 0.5
-    ideal = cage_ratio * omega_i[-1]
+    ideal = bearings.cage_speed(model.ball_diameter, model.pitch_diameter, 0.0, omega_i[-1])
     orbital = diag[-1, :, D_PSIDOT]
     summary["Ball-train speed at end [rad/s]"] = float(np.mean(orbital))
     summary["Ball-train slip at end [-]"] = float(1.0 - np.mean(orbital) / ideal) if ideal else None
     if case.films.race == "closed_form":
-        ue = 0.25 * model.pitch_diameter * (1 - (model.ball_diameter / model.pitch_diameter) ** 2) * abs(omega_i[-1])
+        ue = bearings.entrainment_speed(model.ball_diameter, model.pitch_diameter, 0.0, omega_i[-1])
         h_i, h_o = model.race_film_thickness(ue)
         summary["Inner race film at end, epicyclic speed [m]"] = h_i
         summary["Outer race film at end, epicyclic speed [m]"] = h_o
@@ -585,7 +585,7 @@ class _Scene3D:
         self.R = 0.5 * m.ball_diameter
         self.r_eff = 0.5 * self.R
         self.eta = case.films.viscosity
-        self.e_star = 0.5 * m.ball_modulus / (1 - m.ball_poisson**2)
+        self.e_star = m.e_star_ball
         r_po = 0.5 * m.pitch_diameter + self.R
         r_pi = 0.5 * m.pitch_diameter - self.R
         self.outer = pv.Disc(inner=r_po, outer=r_po + 3e-3, r_res=1, c_res=90).triangulate()
@@ -607,6 +607,8 @@ class _Scene3D:
 
     def frame(self, y, diag_row, D_BBN, D_H):
         import pyvista as pv
+
+        from .film_points import hertz_ball_ball_contact
 
         m = self.setup.model
         pts, tris, body, pres = [], [], [], []
@@ -643,14 +645,14 @@ class _Scene3D:
             e1 /= np.linalg.norm(e1)
             e2 = np.cross(n, e1)
             h0 = float(diag_row[j, D_H])
-            a_h = (3 * F * self.r_eff / (4 * self.e_star)) ** (1 / 3)
+            a_h, p0, _ = hertz_ball_ball_contact(F, self.r_eff, self.e_star)
             size = max(3 * a_h, 3 * math.sqrt(2 * self.r_eff * max(h0, 1e-9)))
             r = r_unit * size
             if h0 > 0:
                 v = F * h0 / (6 * math.pi * self.eta * self.r_eff**2)
                 p = 3 * self.eta * v * self.r_eff / (h0 + r**2 / (2 * self.r_eff)) ** 2
             else:
-                p = 1.5 * F / (math.pi * a_h**2) * np.sqrt(np.clip(1 - (r / a_h) ** 2, 0.0, None))
+                p = p0 * np.sqrt(np.clip(1 - (r / a_h) ** 2, 0.0, None))
             pos = 0.5 * (a + b) + size * (disc[:, :1] * e1 + disc[:, 1:2] * e2)
             add(pos, f_disc, 4, p)
         tri = np.concatenate(tris)
