@@ -397,6 +397,12 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed) -> dict:
     return out
 
 
+def memory_states(model) -> np.ndarray:
+    """Indices of the ball pairs' plastic-memory states in the state vector."""
+    return np.array([i for i, (name, _) in enumerate(model.state_layout()) if name.endswith("plastic memory")],
+                    dtype=np.int64)
+
+
 def _benettin(case, model, t, Y, shaft_speed) -> dict:
     """The k largest Lyapunov exponents of the whole bearing (Benettin, RK4 on
     state and tangent vectors with QR re-orthonormalisation every 50 steps,
@@ -404,10 +410,19 @@ def _benettin(case, model, t, Y, shaft_speed) -> dict:
     :func:`dynamics.cageless.rhs_scaled`), from the state at the end of the
     transient over the rest of the run.
 
-    Collisions are non-smooth (contact onset, yield, film rupture): the
-    tangent vectors are stretched in bursts at collisions, so the finite-time
-    exponents converge slowly; the summary gives the relative change of the
-    largest one over the second half of the window as a convergence measure."""
+    The ball pairs' plastic-memory states are left out of the tangent space
+    (``frozen``): their rate switches from the approach rate to 0 when the
+    pair leaves plastic loading, so a forward difference across that switch is
+    of order 1/eps and stretches the tangent vectors by e^10-e^30 in single
+    orthonormalisation intervals, depending on the step (measured on the
+    10 krpm drop over 6 ms: 14,700 1/s at dt = 0.3/omega_max, 44,400 1/s at
+    0.15/omega_max; with the memory frozen the step dependence goes, see
+    tests/test_bearing_lyapunov.py).  The exponents are those of the mechanical
+    states with the memory shared by the reference and perturbed
+    trajectories.  Collisions stay non-smooth (contact onset, film rupture),
+    so the finite-time exponents converge slowly; the summary gives the
+    relative change of the largest one over the second half of the window as
+    a convergence measure."""
     from dynamics.cageless import rhs_scaled
     from dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
 
@@ -418,9 +433,12 @@ def _benettin(case, model, t, Y, shaft_speed) -> dict:
     omega = model.omega_max(Y[i0])
     dt = 0.3 / omega
     t_c = time.perf_counter()
-    res = lyapunov_spectrum(rhs_scaled, Y[i0] / scale, (model.args(), scale), dt=dt, t_total=window,
-                            t_orth=50 * dt, n_exponents=k, omega_max=omega, t0=float(t[i0]))
-    out = {"Benettin window [s]": window, "Benettin time [s]": time.perf_counter() - t_c}
+    # the first tenth of the window aligns the random initial tangent vectors (its stretching is discarded)
+    res = lyapunov_spectrum(rhs_scaled, Y[i0] / scale, (model.args(), scale), dt=dt, t_total=0.9 * window,
+                            t_transient=0.1 * window, t_orth=50 * dt, n_exponents=k, omega_max=omega, t0=float(t[i0]),
+                            frozen=memory_states(model))
+    out = {"Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,
+           "Benettin time [s]": time.perf_counter() - t_c}
     for i, lam in enumerate(res.exponents):
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/s]"] = float(lam)
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/rev]"] = float(per_shaft_revolution(lam,

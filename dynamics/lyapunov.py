@@ -81,7 +81,7 @@ def no_jvp(t, y, v, args, out):
     out[:] = np.nan
 
 
-def _benettin_impl(rhs, jvp, y0, V0, args, t0, dt, steps_per_orth, n_orth, n_transient, use_fd):
+def _benettin_impl(rhs, jvp, y0, V0, keep, args, t0, dt, steps_per_orth, n_orth, n_transient, use_fd):
     n = y0.shape[0]
     k = V0.shape[0]
     y = y0.copy()
@@ -132,10 +132,11 @@ def _benettin_impl(rhs, jvp, y0, V0, args, t0, dt, steps_per_orth, n_orth, n_tra
                             ytmp[j] = ys[j] + eps * Vs[i, j]
                         rhs(ts, ytmp, args, ftmp)
                         for j in range(n):
-                            kV[stage, i, j] = (ftmp[j] - f0[j]) / eps
+                            kV[stage, i, j] = keep[j] * (ftmp[j] - f0[j]) / eps
                     else:
                         jvp(ts, ys, Vs[i], args, ftmp)
-                        kV[stage, i, :] = ftmp
+                        for j in range(n):
+                            kV[stage, i, j] = keep[j] * ftmp[j]
             for j in range(n):
                 y[j] += dt * (w[0] * ky[0, j] + w[1] * ky[1, j] + w[2] * ky[2, j] + w[3] * ky[3, j])
             for i in range(k):
@@ -246,7 +247,7 @@ def _positive(key, value):
 
 
 def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient=0.0, n_exponents=None,
-                      jvp=None, t0=0.0, seed=0, omega_max=None):
+                      jvp=None, t0=0.0, seed=0, omega_max=None, frozen=None):
     """Lyapunov spectrum of the flow ``dy/dt = rhs(t, y, args)`` by Benettin's method.
 
     Parameters
@@ -273,6 +274,13 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
         Highest angular frequency [rad/s] of the system (e.g. sqrt(k / m) of
         the stiffest contact); ``dt`` beyond the RK4 stability limit 2.83 /
         omega_max is refused.
+    frozen : sequence of int, optional
+        State entries left out of the tangent space (their tangent components
+        stay 0): memory (hysteresis) states whose rate switches
+        discontinuously, see "Memory states" in the module docstring.  The
+        exponents are then those of the other states with the memory shared
+        by the reference and the perturbed trajectories; ``n_exponents`` is
+        at most n - len(frozen).
 
     Returns
     -------
@@ -286,9 +294,17 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
     if y0.ndim != 1 or not np.all(np.isfinite(y0)):
         raise DynamicsInputError(f"y0 (shape {y0.shape}) must be a 1-D array of finite numbers")
     n = y0.size
-    k = n if n_exponents is None else int(n_exponents)
-    if not 1 <= k <= n:
-        raise DynamicsInputError(f"n_exponents = {n_exponents!r} must be between 1 and the state size {n}")
+    keep = np.ones(n)
+    if frozen is not None:
+        idx = np.asarray(frozen, dtype=np.int64).ravel()
+        if idx.size and (idx.min() < 0 or idx.max() >= n):
+            raise DynamicsInputError(f"frozen = {list(idx)!r} must hold state indices between 0 and {n - 1}")
+        keep[idx] = 0.0
+    n_free = int(keep.sum())
+    k = n_free if n_exponents is None else int(n_exponents)
+    if not 1 <= k <= n_free:
+        raise DynamicsInputError(f"n_exponents = {n_exponents!r} must be between 1 and the number of "
+                                 f"state entries in the tangent space, {n_free}")
     dt = _positive("dt", dt)
     t_total = _positive("t_total", t_total)
     t_orth = 10 * dt if t_orth is None else _positive("t_orth", t_orth)
@@ -302,10 +318,12 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
     steps_per_orth = max(1, int(round(t_orth / dt)))
     n_orth = max(1, int(math.ceil(t_total / (steps_per_orth * dt))))
     n_transient = int(math.ceil(t_transient / (steps_per_orth * dt)))
-    V0 = np.linalg.qr(np.random.default_rng(seed).standard_normal((n, k)))[0].T.copy()
+    G = np.random.default_rng(seed).standard_normal((n, k)) * keep[:, None]
+    V0 = np.linalg.qr(G)[0].T.copy()
+    V0[:, keep == 0.0] = 0.0  # exactly zero (QR round-off)
     kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
     log_sum, accumulated, running, y_final, t_end, status = kernel(
-        y0, V0, args, float(t0), dt, steps_per_orth, n_orth + n_transient, n_transient, jvp is None)
+        y0, V0, keep, args, float(t0), dt, steps_per_orth, n_orth + n_transient, n_transient, jvp is None)
     if status != 0:
         from .errors import IntegrationError
 
