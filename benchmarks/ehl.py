@@ -5,6 +5,7 @@ Writes ``benchmarks/results/ehl.json`` and ``ehl.png`` (``--quick``:
 
     python benchmarks/ehl.py           # full run
     python benchmarks/ehl.py --quick   # small grids, well under a minute
+    python benchmarks/ehl.py --only points   # one scene; the other's stored results are kept
 
 Scenes
 ------
@@ -15,14 +16,18 @@ Scenes
    Moes' (1992) formula.
 2. Circular point contacts, L = 10, M = 20, 50, 100, 200, 500, 1000 on
    33 x 33 ... 257 x 257 nodes (Fischer-Burmeister Newton; dense LU up to
-   33 x 33, GMRES with a sparse-LU preconditioner beyond): H_c, H_min,
+   33 x 33, bordered GMRES with a sparse-LU preconditioner beyond; 513 x 513
+   is refused by ``EHLOptions.max_point_grid`` and recorded so): H_c, H_min,
    Newton iterations, wall time (one run per point: they take up to minutes),
    error against Nijenbanning-Venner-Moes (1994) and against the Richardson
    extrapolation of the three finest converged grids.  Failures are recorded
    with the solver's message.
 
 Timings are medians of ``--repeats`` runs on this machine (noted in the
-JSON); compare ratios, not seconds, across machines.
+JSON); compare ratios, not seconds, across machines.  Point rows also record
+the process CPU time (``cpu_s``: the solver is single-threaded, so this is
+the wall time of an unloaded core; the machine is shared) and the load
+average at the start of the row.
 """
 from __future__ import annotations
 
@@ -70,15 +75,22 @@ def line_series(M, L, grids, repeats):
 
 
 def point_series(M, L, grids, repeats):
+    import os
+    import time
+
     c = EHLContact.from_moes(M, L)
     rows = []
     for n in grids:
+        load = os.getloadavg()[0]
+        cpu0 = time.process_time()
         try:
             t, _, s = _common.timed(lambda: solve_ehl(c, EHLGrid(nx=n), POINT_OPTIONS), repeats=repeats)
         except Exception as exc:
-            rows.append(dict(nx=n, error=str(exc)))
+            rows.append(dict(nx=n, error=str(exc), cpu_s=time.process_time() - cpu0, load_average=load))
             continue
-        rows.append(dict(nx=n, time_s=t, Hc=H(c, s.central_film_thickness), Hmin=H(c, s.minimum_film_thickness),
+        cpu = (time.process_time() - cpu0) / max(1, repeats)
+        rows.append(dict(nx=n, time_s=t, cpu_s=cpu, load_average=load, Hc=H(c, s.central_film_thickness),
+                         Hmin=H(c, s.minimum_film_thickness),
                          newton_iterations=s.info["iterations"], unknowns=s.info["unknowns"],
                          gmres_iterations=s.info.get("gmres_iterations"), linear=s.info.get("linear"),
                          fallback="fallback" in s.info))
@@ -108,6 +120,8 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=None)
     ap.add_argument("--replot", action="store_true",
                     help="redo the derived references and the PNG from the stored JSON (no solves)")
+    ap.add_argument("--only", choices=("points", "lines"), default=None,
+                    help="run one scene and keep the other's stored results")
     args = ap.parse_args(argv)
     repeats = args.repeats or (1 if args.quick else 3)
     stem = "ehl_quick" if args.quick else "ehl"
@@ -123,13 +137,32 @@ def main(argv=None):
         point_cases = {20: [33, 65], 100: [33, 65]}
     else:
         line_cases = {20: [129, 257, 513, 1025], 100: [129, 257, 513, 1025], 1000: [257, 513, 1025, 2049]}
-        point_cases = {20: [33, 65, 129], 50: [33, 65, 129], 100: [33, 65, 129, 257], 200: [33, 65, 129],
+        # M = 100 first: the 257 x 257 target row
+        # (513 x 513 is refused by EHLOptions.max_point_grid: its row records the message)
+        point_cases = {100: [33, 65, 129, 257, 513], 200: [33, 65, 129, 257], 20: [33, 65, 129], 50: [33, 65, 129],
                        500: [65, 129], 1000: [65, 129]}
-    data = dict(machine=_common.machine_info(), quick=args.quick, repeats=repeats,
-                line=[line_series(M, 10.0, g, repeats) for M, g in line_cases.items()],
-                point=[point_series(M, 10.0, g, 1) for M, g in point_cases.items()])
+    if args.only == "points":
+        line_cases = {}
+    elif args.only == "lines":
+        point_cases = {}
     RESULTS.mkdir(exist_ok=True)
-    _common.write_json(RESULTS / f"{stem}.json", data)
+    data = dict(machine=_common.machine_info(), quick=args.quick, repeats=repeats, line=[], point=[])
+    if args.only:
+        # keep the other scene's stored results
+        import json
+
+        old = RESULTS / f"{stem}.json"
+        if old.exists():
+            prev = json.loads(old.read_text())
+            other = "line" if args.only == "points" else "point"
+            data[other] = prev.get(other, [])
+    # written after every series, so that a long run leaves usable partial results
+    for M, g in line_cases.items():
+        data["line"] = [s for s in data["line"] if s["M"] != M] + [line_series(M, 10.0, g, repeats)]
+        _common.write_json(RESULTS / f"{stem}.json", data)
+    for M, g in point_cases.items():
+        data["point"] = [s for s in data["point"] if s["M"] != M] + [point_series(M, 10.0, g, 1)]
+        _common.write_json(RESULTS / f"{stem}.json", data)
     plot(data, stem)
 
 

@@ -26,13 +26,27 @@ cell).  The Reynolds residual is the Galerkin form of
 dominated (inlet, light loads) and tends to full upwinding in the contact,
 where k -> 0 and the Galerkin transport alone would oscillate.
 
+Assembly is vectorised on the uniform grid (:mod:`lubrication.ehl_assembly`:
+one template product and one scatter per matrix; equal to scikit-fem's
+``asm`` of the same forms to round-off, :meth:`_Problem.assemble_skfem`).
+
 Coupled solver
 --------------
 Newton on (p, h00): J = A + D K with A = dR/dp at fixed h (sparse), D = dR/dh
-(sparse) and K the elastic influence operator (FFT).  The load equation is
-bordered: each Newton step solves J z1 = -R and J z2 = -dR/dh00 with the same
-factorisation or preconditioner, then dh00 = -(w.z1 + w.p - W)/(w.z2) and
-dp = z1 + dh00 z2 (w_i = int phi_i dA).  Two treatments of the outlet
+(sparse) and K the elastic influence operator (FFT).  The Jacobian is exact
+for the discretisation it solves: besides k(p, h), rho(p) and the recovered
+flux, the SUPG parameter is differentiated, tau'(Pe) = l/(2 u_m) (1/Pe^2 -
+1/sinh^2 Pe) with Pe = 6 u_m l eta/h^2, so d tau/dp = tau'(Pe) Pe eta'/eta
+and d tau/dh = -2 tau'(Pe) Pe/h (the alternative, tau frozen per grid level,
+would change the discrete solution; differentiating keeps it: converged H_c
+unchanged to 1e-14).  Checked against finite differences of the residual in
+tests/test_ehl_point.py; the last Newton steps converge quadratically.
+(Measured effect: small; the consistent strong residual multiplying
+d tau vanishes at the solution, so before the fix the iteration histories
+were the same to three digits.)  The load equation is bordered: dense
+systems solve J z1 = -R and J z2 = -dR/dh00 with one LU, then
+dh00 = -(w.z1 + w.p - W)/(w.z2) and dp = z1 + dh00 z2 (w_i = int phi_i dA);
+iterative ones run one GMRES on the bordered system (:meth:`_FBLinear.solve_bordered`).  Two treatments of the outlet
 cavitation (``EHLOptions.method``; ``auto``: the first for points, the
 second for lines):
 
@@ -44,7 +58,9 @@ second for lines):
   right-preconditioned by the sparse LU (``splu``, minimum-degree ordering of
   A^T + A) of the same matrix with K truncated to a (2s+1)^2 stencil; the
   factorisation is kept while GMRES needs fewer than ``precond_refresh``
-  iterations, and GMRES stops at rtol min(1e-3, |phi|) (inexact Newton).
+  iterations, and GMRES stops at rtol min(``gmres_forcing``, |phi|)
+  (inexact Newton; 1e-3: a looser 0.1 saved 10 % at 129 x 129 but let the
+  257 x 257 iteration wander).
 - ``active_set`` (:func:`_active_set_newton`): nodes whose update would go
   negative join the cavitated set (p = 0), cavitated nodes whose multiplier
   R_i turns negative leave it; dense LU or ILU-GMRES.
@@ -59,21 +75,34 @@ prolonged to the next grid).  Points run the first-order start on the
 coarsest (33 x 33) grid only, then second order on every grid; if the
 second-order iteration from the prolonged start fails, the full chain with
 first-order starts on every grid is run (measured need: M = 20, L = 10 on
-129 x 129).  A coarse level that does not converge in ``coarse_max_iter``
-steps hands its last iterate on (it is only a start).
+129 x 129); the second-order attempt from the prolonged start gives up after
+``max_damped`` damped steps (on 257 x 257 every step is damped: the outlet
+spike's nodes ask for steps of several p_Hertz).  Lines run the first-order
+start on every grid; if the second-order iteration from it fails, second
+order from the prolonged coarse second-order solution is tried (measured
+need: M = 20, L = 10 on 1025 nodes).  A coarse level that does not converge
+in ``coarse_max_iter`` steps hands its last iterate on (it is only a start).
+Starts (coarse levels, first-order stages) are converged only to
+``coarse_rtol`` (1e-3 of p_Hertz: the next grid changes the pressure by
+0.2 - 0.5 p_Hertz at the spike), the final stage to ``rtol``.
 
 Convergence test: a full step (omega = 1) with max|dp| <= rtol p_ref,
 |dh00| <= rtol b^2/R_x and |int p dA - W| <= 10 rtol W (active set: also
 unchanged).  Otherwise, after ``max_iter`` steps or ``max_stalls`` stalled
 line searches, :class:`~lubrication.errors.ConvergenceError` naming M and L.
 
-Measured (circular, L = 10, this shared 2-core machine; benchmarks/ehl.py,
-Newton steps of the finest stage): M = 20 ... 200 converge on 33 x 33 (6
-steps, 0.8 - 1.3 s); M = 20 ... 500 on 65 x 65 (9 - 11 steps, 2.6 - 3.3 s);
-M = 20 ... 1000 on 129 x 129 (7 - 13 steps, 13 - 96 s; M = 20, 50 and 1000
-through the fallback chain); M = 100 on 257 x 257 (fallback chain, 661 s:
-far from a 10 s target).  M = 500 on 33 x 33 and M = 1000 on 33 and 65
-fail clearly (the film reaches the floor: outlet constriction not resolved).
+Measured (circular, L = 10, benchmarks/ehl.py and benchmarks/README.md;
+CPU seconds of one core, the shared machine's wall times were 3-8 times
+more): M = 20 ... 200 converge on 33 x 33 (6 steps, 0.6 - 0.9 s); M = 20 ...
+500 on 65 x 65 (9 - 11 steps, 1.2 - 1.8 s); M = 20 ... 1000 on 129 x 129 (7 -
+13 steps, 8 - 31 s; M = 20, 50 and 1000 through the fallback chain; 1.6 - 3.7
+times less CPU than before these changes); M = 100 on 257 x 257 in 136 s
+(first-order chain, 16 second-order steps; before: 661 s wall): far from a
+10 s target, because each Newton step there costs about 5 s (sparse LU of
+the preconditioner 2.7 s, GMRES 2 s) and the outlet spike needs a global
+Newton phase on every level.  M = 200 on 257 x 257 fails clearly after
+both starts (247 s).  M = 500 on 33 x 33 and M = 1000 on 33 and 65 fail
+clearly (the film reaches the floor: outlet constriction not resolved).
 
 Normal film coefficients: :func:`ehl_normal_coefficients`.
 
@@ -98,6 +127,7 @@ from skfem.helpers import dot, grad
 
 from . import hertz, mesh as meshes
 from .elastic import ElasticKernel
+from .ehl_assembly import UniformForms
 from .errors import ConvergenceError, InputError, require_positive, unknown_choice
 from .lubricant import Lubricant
 from .reynolds import _advection, _diffusion, _flux_load, _mass, _source_load, _streamline, make_basis
@@ -321,8 +351,11 @@ class EHLOptions:
     method: str = "auto"  # "fischer_burmeister", "active_set"; auto: FB for points, active set for lines
     line_search: int = 12  # Armijo halvings of the FB Newton step
     first_order_start: str = "auto"  # "every_grid", "coarsest"; auto: lines every grid, points coarsest
+    max_damped: int = 8  # second order from a prolonged start: fall back after this many damped steps
+    coarse_rtol: float = 1e-3  # FB Newton tolerance of a start (nested coarse level, first-order stage)
     coarse_max_iter: int = 30  # FB Newton iterations on a nested coarse level (only a start for the next)
     max_stalls: int = 4  # FB Newton: give up after this many stalled line searches (< 1/64 of the step)
+    gmres_forcing: float = 1e-3  # largest GMRES rtol of an inexact Newton step (min with |Phi|)
     precond_refresh: int = 20  # refactorise the sparse preconditioner when GMRES needs this many iterations
 
     def __post_init__(self):
@@ -404,7 +437,8 @@ class _Problem:
         self.rigid = x**2 / (2 * contact.radius_x)
         if not contact.is_line:
             self.rigid = self.rigid + loc[1] ** 2 / (2 * contact.radius_y)
-        self.weights = np.asarray(asm(_source_load, b, g=np.ones((b.nelems, b.X.shape[-1]))))
+        self.forms = UniformForms(b)
+        self.weights = self.forms.vector([(np.ones((b.nelems, b.X.shape[-1])), self.forms.val)])
         dim = 1 if contact.is_line else 2
         u = np.zeros((dim,) + (b.nelems, b.X.shape[-1]))
         u[0] = contact.mean_speed
@@ -469,6 +503,96 @@ class _Problem:
         return h00 + self.rigid + self.deflect(p)
 
     def assemble(self, p, h00, jac=True):
+        """Residual R(p, h00) of the stabilised Reynolds equation and, with
+        ``jac``, its exact derivatives A = dR/dp at fixed film and D = dR/dh
+        (nodal film), vectorised on the uniform grid (:mod:`lubrication.ehl_assembly`;
+        :meth:`assemble_skfem` is the same with scikit-fem forms, for checks)."""
+        c, F, lub = self.c, self.forms, self.c.lubricant
+        hn = self.film(p, h00)
+        hfloor = self.o.h_floor * self.hscale
+        hn_eff = np.maximum(hn, hfloor)
+        pv, pg = F.interpolate(p)
+        hq, hg = F.interpolate(hn_eff)
+        pq = np.maximum(pv, 0.0)
+        with np.errstate(over="ignore", invalid="ignore"):
+            eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
+            rho, drho = lub.density(pq), lub.density.derivative(pq)
+        k = rho * hq**3 / (12 * eta)
+        um = c.mean_speed
+        hdot = c.squeeze_velocity
+        dim = F.dim
+        # SUPG parameter; Pe = 6 u_m l eta/h^2 (rho cancels), differentiated
+        # exactly below: d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -2 tau'(Pe) Pe/h
+        Pe_raw = um * self.dx * rho * hq / (2 * np.maximum(k, 1e-300))
+        Pe = np.minimum(Pe_raw, 1e8)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            xi = np.where(Pe > 1e-3, 1.0 / np.tanh(np.minimum(Pe, 700)) - 1.0 / Pe, Pe / 3.0)
+            sh = np.sinh(np.minimum(Pe, 300.0))
+            dxi = np.where(Pe > 1e-3, 1.0 / Pe**2 - np.where(Pe < 300.0, 1.0 / sh**2, 0.0), 1.0 / 3.0)
+        dxi = np.where(Pe_raw < 1e8, dxi, 0.0)
+        tau = self.dx / (2 * um) * xi
+        dtau_dPe = self.dx / (2 * um) * dxi
+        strong = um * (rho * hg[0] + hq * drho * pg[0]) + rho * hdot
+        if self.o.consistent_supg:
+            # recovered Poiseuille flux F = -k grad p at the nodes (lumped L2
+            # projection); its divergence completes the strong residual, so the
+            # SUPG term is consistent and the scheme second order
+            for d in range(dim):
+                Fd = -F.vector([(k * pg[d], F.val)]) / self.weights
+                strong = strong + F.interpolate(Fd)[1][d]
+        # R_i = int (k grad p - rho h u_m + tau strong u_m) . grad v_i + rho hdot v_i
+        terms = [(k * pg[d], F.grd[d]) for d in range(dim)]
+        terms[0] = (k * pg[0] - rho * hq * um + tau * strong * um, F.grd[0])
+        if hdot != 0.0:
+            terms.append((rho * hdot, F.val))
+        R = F.vector(terms)
+        if not jac:
+            return R, hn
+        dk_dp = hq**3 / 12 * (drho / eta - rho * deta / eta**2)
+        dk_dh = rho * 3 * hq**2 / (12 * eta)
+        dtau_dp = dtau_dPe * Pe * deta / eta
+        dtau_dh = -2.0 * dtau_dPe * Pe / hq
+        # d(strong)/dp_j without the film dependence (that is in D):
+        # u_m (rho' h_x + h rho'' p_x) phi_j + u_m rho' h d_x phi_j + rho' hdot phi_j
+        if np.any(drho != 0.0):
+            # rho'' by a central difference on the smooth branch p > 0 (rho' jumps
+            # at p = 0, where rho = rho(max(p, 0)) has rho'' = 0 on the flat side)
+            dp_ = 1e-6 * self.ph
+            lo, hi = np.maximum(pq - dp_, 0.5 * pq), pq + dp_
+            with np.errstate(invalid="ignore", divide="ignore"):
+                d2rho = np.where(pq > 0, (lub.density.derivative(hi) - lub.density.derivative(lo)) / (hi - lo), 0.0)
+            d_strong_dp = um * (drho * hg[0] + hq * d2rho * pg[0]) + drho * hdot
+        else:
+            d_strong_dp = 0.0
+        # A: diffusion k, advection (k' grad p - rho' h u) phi_j . grad v, the
+        # squeeze mass rho' hdot, SUPG: tau (d strong/dp) u.grad v + tau' strong u.grad v
+        Aterms = [(k, F.gg[d][d]) for d in range(dim)]
+        Aterms += [(dk_dp * pg[d], F.adv[d]) for d in range(dim)]
+        Aterms.append((-drho * hq * um + (tau * d_strong_dp + dtau_dp * strong) * um, F.adv[0]))
+        Aterms.append((tau * drho * hq * um * um, F.gg[0][0]))
+        if hdot != 0.0:
+            Aterms.append((drho * hdot, F.mass))
+        Dterms = [(dk_dh * pg[d], F.adv[d]) for d in range(dim)]
+        Dterms.append((-rho * um + (tau * um * drho * pg[0] + dtau_dh * strong) * um, F.adv[0]))
+        Dterms.append((tau * rho * um * um, F.gg[0][0]))
+        A = F.matrix(Aterms)
+        D = F.matrix(Dterms)
+        if self.o.consistent_supg:
+            Ml_inv = sp.diags(1.0 / self.weights)
+            for d in range(dim):
+                S = F.matrix([(tau * um, F.gg[0][d])])
+                Gp = F.matrix([(k, F.dirn[d]), (dk_dp * pg[d], F.mass)])
+                Gh = F.matrix([(dk_dh * pg[d], F.mass)])
+                SM = S @ Ml_inv
+                A = A - SM @ Gp
+                D = D - SM @ Gh
+            A, D = A.tocsr(), D.tocsr()
+        # nodes whose film sits on the floor do not feel h changes
+        D = D @ sp.diags((hn > hfloor).astype(float))
+        return R, hn, A, D, dict(tau=tau, rho=rho)
+
+    def assemble_skfem(self, p, h00, jac=True):
+        """Reference assembly with scikit-fem forms (the same equations as :meth:`assemble`)."""
         c, b, lub = self.c, self.basis, self.c.lubricant
         hn = self.film(p, h00)
         hfloor = self.o.h_floor * self.hscale
@@ -482,12 +606,17 @@ class _Problem:
         um = c.mean_speed
         u = self.u
         hdot = c.squeeze_velocity
-        # SUPG parameter (frozen in the Jacobian)
-        Pe = um * self.dx * rho * hq / (2 * np.maximum(k, 1e-300))
-        Pe = np.minimum(Pe, 1e8)
-        with np.errstate(over="ignore", invalid="ignore"):
+        # SUPG parameter; Pe = 6 u_m l eta/h^2 (rho cancels), differentiated
+        # exactly below: d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -2 tau'(Pe) Pe/h
+        Pe_raw = um * self.dx * rho * hq / (2 * np.maximum(k, 1e-300))
+        Pe = np.minimum(Pe_raw, 1e8)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             xi = np.where(Pe > 1e-3, 1.0 / np.tanh(np.minimum(Pe, 700)) - 1.0 / Pe, Pe / 3.0)
+            sh = np.sinh(np.minimum(Pe, 300.0))
+            dxi = np.where(Pe > 1e-3, 1.0 / Pe**2 - np.where(Pe < 300.0, 1.0 / sh**2, 0.0), 1.0 / 3.0)
+        dxi = np.where(Pe_raw < 1e8, dxi, 0.0)
         tau = self.dx / (2 * um) * xi
+        dtau_dPe = self.dx / (2 * um) * dxi
         ugrad_rho_h = um * (rho * hf.grad[0] + hq * drho * pf.grad[0])
         strong = ugrad_rho_h + rho * hdot
         dim = 1 if c.is_line else 2
@@ -507,17 +636,29 @@ class _Problem:
             return R, hn
         dk_dp = hq**3 / 12 * (drho / eta - rho * deta / eta**2)
         dk_dh = rho * 3 * hq**2 / (12 * eta)
+        dtau_dp = dtau_dPe * Pe * deta / eta
+        dtau_dh = -2.0 * dtau_dPe * Pe / hq
+        # d(strong)/dp_j without the h-dependence (in D): u_m (rho' h_x + h rho'' p_x)
+        # phi_j + (rho' h u_m) . grad phi_j + rho' hdot phi_j
+        if np.any(drho != 0.0):
+            dp_ = 1e-6 * self.ph
+            lo, hi = np.maximum(pq - dp_, 0.5 * pq), pq + dp_
+            with np.errstate(invalid="ignore", divide="ignore"):
+                d2rho = np.where(pq > 0, (lub.density.derivative(hi) - lub.density.derivative(lo)) / (hi - lo), 0.0)
+            d_strong_dp = um * (drho * hf.grad[0] + hq * d2rho * pf.grad[0]) + drho * hdot
+        else:
+            d_strong_dp = 0.0 * hq
         A = (
             Kd
             + asm(_advection, b, b=dk_dp * pf.grad - drho * hq * u)
             + asm(_mass, b, c=drho * hdot * np.ones_like(hq))
             + asm(_streamline, b, s=tau * drho * hq, beta=u)
-            + asm(_advection, b, b=tau * drho * hdot * u)
+            + asm(_advection, b, b=(tau * d_strong_dp + dtau_dp * strong) * u)
         ).tocsr()
         D = (
             asm(_advection, b, b=dk_dh * pf.grad - rho * u)
             + asm(_streamline, b, s=tau * rho, beta=u)
-            + asm(_advection, b, b=tau * um * drho * pf.grad[0] * u)
+            + asm(_advection, b, b=(tau * um * drho * pf.grad[0] + dtau_dh * strong) * u)
         ).tocsr()
         if self.o.consistent_supg:
             Ml_inv = sp.diags(1.0 / self.weights)
@@ -876,14 +1017,11 @@ class _FBLinear:
             J[np.arange(n), np.arange(n)] += da
             self.lu = sla.lu_factor(J, check_finite=False)
             return
+        self._parts = (A, D, da, dbs)
         if reuse is not None:
             self.lu = reuse
         else:
-            Jl = (A + D @ P.K_local())[idx][:, idx]
-            Pm = (sp.diags(dbs) @ Jl + sp.diags(da)).tocsc()
-            # minimum degree on A^T + A: 3-4 times less fill and time than COLAMD here
-            self.lu = spla.splu(Pm, permc_spec="MMD_AT_PLUS_A")
-            self.refactored = True
+            self._factorise()
         full = np.zeros(P.N)
 
         def mv(v):
@@ -910,6 +1048,76 @@ class _FBLinear:
             log.debug("EHL GMRES did not reach rtol %.1e (%d iterations)", self.rtol, count[0])
         return x
 
+    def _factorise(self):
+        A, D, da, dbs = self._parts
+        Jl = (A + D @ self.P.K_local())[self.idx][:, self.idx]
+        Pm = (sp.diags(dbs) @ Jl + sp.diags(da)).tocsc()
+        # minimum degree on A^T + A: 3-4 times less fill and time than COLAMD here
+        self.lu = spla.splu(Pm, permc_spec="MMD_AT_PLUS_A")
+        self.refactored = True
+
+    def solve_bordered(self, rhs, col, row, rhs_row):
+        """Solve [[J, col], [row^T, 0]] [x; t] = [rhs; rhs_row] (the load-balance
+        border).  Dense: two LU solves and the Schur complement.  Iterative:
+        one GMRES on the bordered system, right-preconditioned by the block
+        factorisation with J replaced by its sparse LU (y = LU^-1 col once,
+        then x = LU^-1 r - t y, t = (row . LU^-1 r - s)/(row . y)); half the
+        GMRES work of solving for the two right-hand sides separately."""
+        if self.dense:
+            z1, z2 = self.solve(rhs), self.solve(col)
+            t = (row @ z1 - rhs_row) / (row @ z2)
+            return z1 - t * z2, t
+        n = self.idx.size
+        pre = {}
+
+        def setup():
+            pre["y"] = self.lu.solve(col)
+            pre["ry"] = row @ pre["y"]
+
+        def prec(v):
+            z = self.lu.solve(v[:n])
+            t = (row @ z - v[n]) / pre["ry"]
+            out = np.empty(n + 1)
+            out[:n] = z - t * pre["y"]
+            out[n] = t
+            return out
+
+        def mv(v):
+            out = np.empty(n + 1)
+            out[:n] = self.op.matvec(v[:n]) + col * v[n]
+            out[n] = row @ v[:n]
+            return out
+
+        op = spla.LinearOperator((n + 1, n + 1), matvec=mv, dtype=float)
+        M = spla.LinearOperator((n + 1, n + 1), matvec=prec, dtype=float)
+        count = [0]
+
+        def cb(_):
+            count[0] += 1
+
+        b = np.concatenate([rhs, [rhs_row]])
+        setup()
+        x0 = None
+        if not self.refactored:
+            # a factorisation kept from an earlier step: if GMRES needs more
+            # than precond_refresh iterations with it (the Jacobian has moved:
+            # measured 299 iterations at 257 x 257), refactorise and go on
+            x0, info = spla.gmres(op, b, M=M, rtol=self.rtol, atol=0.0, restart=self.P.o.precond_refresh,
+                                  maxiter=1, callback=cb, callback_type="pr_norm")
+            if info != 0:
+                self._factorise()
+                setup()
+        if x0 is None or info != 0:
+            x, info = spla.gmres(op, b, x0=x0, M=M, rtol=self.rtol, atol=0.0, restart=60, maxiter=10, callback=cb,
+                                 callback_type="pr_norm")
+        else:
+            x = x0
+        self.gmres_iters += count[0]
+        self.last_iters = count[0]
+        if info != 0:
+            log.debug("EHL GMRES did not reach rtol %.1e (%d iterations)", self.rtol, count[0])
+        return x[:n], x[n]
+
 
 def _row_scale(P: _Problem, A, D, idx, p_ref=None):
     """s_i = 1/(p_ref max_j |J_ij|), J = A + D K_local: Reynolds residual rows in
@@ -932,7 +1140,7 @@ def _fb(a, b):
     return r - a - b, da, db
 
 
-def _fb_newton(P: _Problem, p, h00, W, max_iter=None):
+def _fb_newton(P: _Problem, p, h00, W, max_iter=None, rtol=None, max_damped=None):
     """Semismooth (Fischer-Burmeister) Newton on the coupled system, globalised by an Armijo line search.
 
     Unknowns: the interior pressures and, with a load, h00.  Equations::
@@ -967,8 +1175,9 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None):
         le = (P.weights @ pp - W) / W if balance else 0.0
         return phi @ phi + le * le, phi, le
 
-    stalls, nfact, keep = 0, 0, None
+    stalls, nfact, keep, damped = 0, 0, None, 0
     max_iter = options.max_iter if max_iter is None else max_iter
+    tol = options.rtol if rtol is None else rtol
     for it in range(1, max_iter + 1):
         R, hn, A, D, aux = P.assemble(p, h00)
         # pressure scale: p_Hertz, or the largest pressure where that is smaller
@@ -982,23 +1191,30 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None):
         # inexact Newton: GMRES to rtol min(1e-3, |Phi|) (floored at gmres_rtol);
         # the sparse LU preconditioner is kept from the previous step while
         # GMRES needs fewer than precond_refresh iterations per solve
-        eta_k = max(options.gmres_rtol, min(1e-3, np.sqrt(theta0)))
+        eta_k = max(options.gmres_rtol, min(options.gmres_forcing, np.sqrt(theta0)))
         lin = _FBLinear(P, A, D, da / ps, db * s, idx, reuse=keep, rtol=eta_k)
-        z1 = lin.solve(-phi)
         dp = np.zeros(P.N)
         dh = 0.0
         if balance:
-            z2 = lin.solve(-(db * s) * (D @ np.ones(P.N))[idx])
-            dh = -(wv @ z1 + le * W) / (wv @ z2)
-            dp[idx] = z1 + dh * z2
+            # bordered step: J dp + c dh = -phi, w . dp / W = -le (h00 in units of b^2/R_x)
+            col = (db * s) * (D @ np.ones(P.N))[idx] * P.hscale
+            dp[idx], t = lin.solve_bordered(-phi, col, wv / W, -le)
+            dh = t * P.hscale
         else:
-            dp[idx] = z1
+            dp[idx] = lin.solve(-phi)
         gm += lin.gmres_iters
         if not lin.dense:
             nfact += lin.refactored
-            worst = lin.last_iters if not balance else max(lin.last_iters, lin.gmres_iters - lin.last_iters)
-            keep = lin.lu if worst < options.precond_refresh else None
+            # bordered solves refactorise by themselves when the kept LU has gone stale
+            keep = lin.lu if (balance or lin.last_iters < options.precond_refresh) else None
         omega = omega_cap = 1.0 / max(np.max(np.abs(dp)) / (options.max_step * ps), 1.0)
+        if log.isEnabledFor(logging.DEBUG):
+            i = int(np.argmax(np.abs(dp)))
+            j = int(np.searchsorted(idx, i))
+            loc = P.basis.doflocs[:, i]
+            log.debug("EHL FB %d: largest step %.2e p_ref at x/b = %.3f%s (p/p_ref %.3f, s R %.2e, h/hs %.3e)", it,
+                      dp[i] / ps, loc[0] / P.bx, "" if contact.is_line else f", y/b = {loc[1] / P.by:.3f}",
+                      p[i] / ps, (s * R[idx])[j] if j < idx.size and idx[j] == i else 0.0, hn[i] / P.hscale)
         best = None
         for _ in range(options.line_search + 1):
             trial_p, trial_h = p + omega * dp, h00 + omega * dh
@@ -1020,6 +1236,13 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None):
                     f"L = {contact.moes_L:.4g} ({P.N} nodes; merit {theta0:.2e}; ehl.max_stalls)")
                 err.iterate = (np.maximum(p + omega * dp, 0.0), h00 + omega * dh)
                 raise err
+        damped += omega < 1.0
+        if max_damped is not None and damped > max_damped:
+            err = ConvergenceError(
+                f"EHL Newton needed more than {max_damped} damped steps at M = {contact.moes_M:.4g}, "
+                f"L = {contact.moes_L:.4g} ({P.N} nodes; ehl.max_damped)")
+            err.iterate = (np.maximum(p, 0.0), h00)
+            raise err
         p = p + omega * dp
         h00 = h00 + omega * dh
         pmax = float(np.max(p))
@@ -1032,8 +1255,7 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None):
                   h00 / P.hscale)
         if not np.all(np.isfinite(p)):
             raise ConvergenceError(f"EHL Newton iteration {it}: non-finite pressure (M = {contact.moes_M:.4g})")
-        if (omega == 1.0 and dmax <= options.rtol and history[-1][1] <= options.rtol
-                and load_rel <= max(options.rtol, 1e-10) * 10):
+        if omega == 1.0 and dmax <= tol and history[-1][1] <= tol and load_rel <= max(tol, 1e-10) * 10:
             break
     else:
         err = ConvergenceError(
@@ -1065,7 +1287,8 @@ def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOption
         return _solve_ehl(contact, grid, options, initial, sequence, _final, _stage_info)
 
 
-def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True, _stage_info=None, _coarse=False):
+def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True, _stage_info=None, _coarse=False,
+               _loose=False, _fallback=True):
     """:func:`solve_ehl` body (BLAS limited to one thread by the caller: the
     dense LU of a 561-unknown contact took 0.18 s with two OpenBLAS threads
     and 0.004 s with one on this project's 2-core machine)."""
@@ -1074,13 +1297,17 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
         raise InputError(
             f"grid.nx = {grid.nx} for a point contact: point contacts are solved up to {options.max_point_grid} "
             f"nodes per side (ehl.max_point_grid: the largest grid measured to converge, M = 100, L = 10; "
-            f"finer grids are untested and take minutes per Newton step); use nx <= {options.max_point_grid}"
+            f"a Newton step costs about 5 s of one core on 257 x 257 and the sparse-LU preconditioner's fill "
+            f"grows faster than the grid); use nx <= {options.max_point_grid}"
         )
     coarsest = 129 if contact.is_line else 33
     nests = initial is None and sequence and grid.nx > coarsest and (grid.nx - 1) % 2 == 0
     first_start = options.first_order_start
     if first_start == "auto":
-        first_start = "every_grid" if contact.is_line else "coarsest"
+        # points finer than 129 x 129: every grid (measured on 257 x 257, M =
+        # 100 and 200: the second-order iteration from the prolonged
+        # second-order solution never converged, every step damped)
+        first_start = "every_grid" if (contact.is_line or grid.nx > 129) else "coarsest"
     if options.consistent_supg and _stage_info is None and not (nests and first_start == "coarsest"):
         # defect-correction start: the first-order (plain SUPG) solution on the
         # same grid starts the second-order Newton iteration; started from a
@@ -1088,12 +1315,29 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
         # 2-D grids (measured: M = 20, L = 10 on 65 x 65 nodes)
         import dataclasses
 
-        first = _solve_ehl(contact, grid, dataclasses.replace(options, consistent_supg=False), initial=initial,
-                          sequence=sequence, _final=False, _coarse=_coarse)
-        out = _solve_ehl(contact, grid, options, initial=first, sequence=False, _final=_final, _coarse=_coarse,
-                        _stage_info=dict(first_order_iterations=first.info["iterations"],
-                                         first_order_central_film=first.central_film_thickness,
-                                         first_order_time=first.info["wall_time"]))
+        try:
+            first = _solve_ehl(contact, grid, dataclasses.replace(options, consistent_supg=False), initial=initial,
+                               sequence=sequence, _final=False, _coarse=_coarse, _loose=True)
+            out = _solve_ehl(contact, grid, options, initial=first, sequence=False, _final=_final, _coarse=_coarse,
+                             _stage_info=dict(first_order_iterations=first.info["iterations"],
+                                              first_order_central_film=first.central_film_thickness,
+                                              first_order_time=first.info["wall_time"]))
+        except ConvergenceError as exc:
+            if not (_fallback and not _coarse and nests and options.first_order_start == "auto"):
+                raise
+            # the second-order iteration from the first-order solution of the
+            # same grid failed: the other start, second order from the
+            # prolonged coarse second-order solution (measured need: line
+            # contact M = 20, L = 10 on 1025 nodes, where the outlet-spike node
+            # oscillates from the first-order start and 15 steps converge from
+            # the 513-node solution)
+            log.info("EHL: %s; retrying from the prolonged second-order solution on %d nodes", exc, grid.nx)
+            try:
+                out = _solve_ehl(contact, grid, dataclasses.replace(options, first_order_start="coarsest"),
+                                 sequence=sequence, _final=_final, _fallback=False)
+            except ConvergenceError as exc2:
+                raise ConvergenceError(f"{exc2}; before that, from the first-order start: {exc}") from exc2
+            out.info["fallback"] = dict(failed_start=str(exc))
         out.info["wall_time"] = time.perf_counter() - t0
         return out
     P = _Problem(contact, grid, options)
@@ -1129,13 +1373,26 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
     if method == "auto":
         method = "active_set" if contact.is_line else "fischer_burmeister"
     newton = _fb_newton if method == "fischer_burmeister" else _active_set_newton
-    budget = dict(max_iter=options.coarse_max_iter) if (_coarse and method == "fischer_burmeister") else {}
+    budget = {}
+    if method == "fischer_burmeister":
+        if _coarse:
+            budget["max_iter"] = options.coarse_max_iter
+        if _coarse or _loose:
+            # a start for the next stage: converged to coarse_rtol, well below
+            # the change the next grid (or scheme) makes (measured: max|dp| of
+            # 0.2 - 0.5 p_Hertz at the outlet spike from 65 to 129 and 129 to 257)
+            budget["rtol"] = max(options.rtol, options.coarse_rtol)
+        elif options.consistent_supg and _stage_info is None and nests:
+            # second order from the prolonged coarse solution: where it
+            # wanders (damped steps at the outlet spike: measured on 257 x 257,
+            # every step damped, |dp| capped at the spike), fall back early
+            budget["max_damped"] = options.max_damped
     try:
         p, h00, history, gm = newton(P, p.copy(), h00, W, **budget)
     except ConvergenceError as exc:
         if _coarse and getattr(exc, "iterate", None) is not None:
             exc.partial = EHLSolution(contact, P, exc.iterate[0], None, exc.iterate[1], {})
-        if _coarse or not (options.consistent_supg and _stage_info is None and nests):
+        if _coarse or not (options.consistent_supg and _stage_info is None and nests and _fallback):
             raise
         # second order from the prolonged coarse solution failed: the full
         # defect-correction chain instead (first-order nested iteration from
