@@ -58,7 +58,17 @@ Sections
 4. scipy ``solve_ivp`` (RK45, DOP853) on the same numba rhs through a Python
    wrapper, same rtol/atol, over a shorter window, against lubedyn's DOPRI5
    on the same window: wall per simulated ms and the ratio; their errors
-   against the reference.
+   against the reference; and the same on a 2-state rhs (one Hertz impact).
+4b. Equal accuracy (``equal_accuracy``): every lubedyn method (DOPRI5, RK4,
+   ROS2 with a finite-difference Jacobian) and every scipy method (RK45,
+   DOP853, LSODA, BDF and Radau, the last two with the bearing's
+   ``jac_sparsity``) over a range of tolerances on the same window, the
+   ball-position error at its end against the reference, the wall time to
+   reach 0.1 / 0.01 / 0.001 delta_H interpolated log-log, and the honest
+   ratio: scipy's best method over lubedyn's best at equal error.  Also the
+   bound for methods making the same rhs calls, 1 + o/c with c one rhs call
+   from compiled code and o scipy's overhead per call (wall/nfev - c).
+   Walls here are the fastest of the repeats.
 5. Simulated ms per wall second at the cheapest converged setting, and a
    measured 0.1 s run of the drop (quick: 10 ms, extrapolated).
 6. First-call compile time in fresh processes with empty caches (cold) and
@@ -121,12 +131,18 @@ SIZES = {
                   rk4_dt=[1.2e-5, 1e-5, 5e-6, 2.5e-6, 1.25e-6],
                   dopri_rtol=[1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
                   stiffness=[0.3, 1.0, 3.0], stab_window=1e-3, bisections=5,
-                  fidelity_window=2e-3, scipy_window=1e-3, long=10e-3, repeats=1),
+                  fidelity_window=2e-3, scipy_window=1e-3, long=10e-3, repeats=1,
+                  eq_rtols=[1e-4, 1e-5, 1e-6, 1e-7, 1e-8], eq_rk4_dt=[2.5e-6, 1.25e-6, 6.25e-7],
+                  eq_ros2_rtols=[1e-2], eq_ros2_steps=20000, eq_implicit_rtols=[1e-2, 1e-3, 1e-4],
+                  eq_lsoda_rtols=[1e-4, 1e-6]),
     "full": dict(window=2e-3, ref_rtol=1e-10, samples=21, predict_window=5e-3, predict_rtol=[1e-7, 1e-8, 1e-9],
                  rk4_dt=[1.2e-5, 1e-5, 7.5e-6, 5e-6, 2.5e-6, 1.25e-6, 6.25e-7, 3.125e-7, 1.5625e-7],
                  dopri_rtol=[1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9],
                  stiffness=[0.1, 0.3, 1.0, 3.0, 10.0, 30.0], stab_window=2e-3, bisections=7,
-                 fidelity_window=20e-3, scipy_window=2e-3, long=0.1, repeats=3),
+                 fidelity_window=20e-3, scipy_window=2e-3, long=0.1, repeats=3,
+                 eq_rtols=[1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9], eq_rk4_dt=[2.5e-6, 1.25e-6, 6.25e-7, 3.125e-7],
+                 eq_ros2_rtols=[1e-2], eq_ros2_steps=50000,
+                 eq_implicit_rtols=[1e-2, 1e-3, 1e-4, 1e-5], eq_lsoda_rtols=[1e-4, 1e-6]),
 }
 
 
@@ -601,6 +617,140 @@ def bench_scipy(setup, cfg, ref, ref_t, repeats, rtol=1e-6):
     return out
 
 
+def jac_sparsity(model) -> "scipy.sparse.csr_matrix":
+    """Structural sparsity of the bearing Jacobian: ring <-> every ball, ball j <-> itself and its
+    neighbours j +- 1 (ball-ball contacts), pair memory j <-> balls j, j+1 and itself (for scipy's
+    BDF/Radau ``jac_sparsity``: column grouping cuts the finite-difference Jacobian from n rhs calls)."""
+    from scipy.sparse import lil_matrix
+
+    Z, n = model.n_balls, model.n_states
+    nb = model.n_per_ball
+    S = lil_matrix((n, n), dtype=bool)
+    ring = list(range(9))
+    blocks = [list(range(model.ball_offset(j), model.ball_offset(j) + nb)) for j in range(Z)]
+    mem = [9 + j for j in range(Z)]
+    for i in ring:
+        S[i, :] = True
+    for j in range(Z):
+        cols = ring + blocks[j] + blocks[(j - 1) % Z] + blocks[(j + 1) % Z] + [mem[j], mem[(j - 1) % Z]]
+        for i in blocks[j]:
+            S[i, cols] = True
+        S[mem[j], ring + blocks[j] + blocks[(j + 1) % Z] + [mem[j]]] = True
+    return S.tocsr()
+
+
+def bench_equal_accuracy(setup, cfg, ref, ref_t, repeats):
+    """lubedyn's integrators against every scipy ``solve_ivp`` method on the same numba rhs, each
+    over a range of tolerances, errors at the window's end against the work-precision reference;
+    the honest ratio is the wall time of scipy's best method over lubedyn's best at equal error
+    (interpolated log-log, :func:`_common.time_to_error`)."""
+    from scipy.integrate import solve_ivp
+
+    from dynamics.integrators import kernel_for
+
+    model, y0 = setup.model, setup.y0
+    args = model.args()
+    W = cfg["scipy_window"]
+    j = int(np.argmin(np.abs(ref_t - W)))
+    assert abs(ref_t[j] - W) < 1e-12, "the scipy window must be a sample of the reference"
+    dH, _ = hertz_deflection(model, y0)
+    omega0 = float(y0[8])
+    t_out = np.array([0.0, W])
+    rhs_cost = rhs_cost_in_numba(model, y0)
+    out = {"window [s]": W, "atol": "1e-3 rtol (every method)", "load average": load(),
+           "error": "ball position error at the window's end [delta_H] (as section 1)",
+           "wall": "fastest of the repeats (the machine is shared; a busy core only slows a run down)",
+           "one rhs call from compiled code at the initial state [us] (c)": rhs_cost * 1e6,
+           "one rhs call from Python at the initial state [us]": setup_rhs_cost(model, y0) * 1e6, "methods": {}}
+    calls = [0]
+    dy = np.empty(y0.size)
+
+    def f(t, y):
+        calls[0] += 1
+        rhs(t, y, args, dy)
+        return dy.copy()
+
+    sparsity = jac_sparsity(model)
+
+    def point(label, go, value, key):
+        try:
+            _, allw, res = _common.timed(go, repeats=repeats, single_above=5.0)
+        except (IntegrationError, DynamicsInputError) as exc:
+            return {key: value, "failed": str(exc)}
+        wall = min(allw)
+        if hasattr(res, "stats"):  # lubedyn
+            yend, nfev, ok = res.y[-1], res.stats["RHS evaluations [-]"], True
+            extra = {"Accepted steps [-]": res.stats["Accepted steps [-]"],
+                     "Rejected steps [-]": res.stats["Rejected steps [-]"]}
+        else:
+            ok = bool(res.success) and np.ndim(res.y) == 2 and np.shape(res.y)[1] > 0
+            yend, nfev = (res.y[:, -1] if ok else None), int(res.nfev)
+            extra = {"status": int(res.status), "Jacobian evaluations [-]": int(getattr(res, "njev", 0)),
+                     "LU decompositions [-]": int(getattr(res, "nlu", 0))}
+        r = {key: value, "wall [s]": wall, "wall, all repeats [s]": allw, "RHS evaluations [-]": int(nfev),
+             "wall per RHS evaluation [us]": wall / max(nfev, 1) * 1e6,
+             "overhead per RHS evaluation beyond the rhs call [us]": (wall / max(nfev, 1) - rhs_cost) * 1e6,
+             **extra}
+        if ok and np.all(np.isfinite(yend)):
+            r.update(errors(model, yend[None, :], ref[j:j + 1], dH, omega0))
+        else:
+            r["failed"] = "did not finish: " + str(getattr(res, "message", ""))
+        log.info("%s %s %g: %.3f s, %d rhs, err %s", label, key, value, wall, nfev,
+                 r.get("ball position error at end [delta_H]"))
+        return r
+
+    lub_tols = cfg["eq_rtols"]
+    rows = {}
+    rows["lubedyn dopri5"] = [point("lubedyn dopri5", lambda r=r: run(model, y0, t_out, "dopri5", r), r, "rtol [-]")
+                              for r in lub_tols]
+    rows["lubedyn rk4"] = [point("lubedyn rk4", lambda d=d: run(model, y0, t_out, "rk4", d), d, "dt [s]")
+                           for d in cfg["eq_rk4_dt"]]
+    ros = kernel_for("ros2", rhs)
+    ros(y0, np.array([0.0, 1e-7]), args, 1e-3, 1e-6, 0.0, 0.0, 10, True)  # compile / load
+    rows["lubedyn ros2 (finite-difference Jacobian)"] = [
+        point("lubedyn ros2", lambda r=r: integrate(rhs, y0, t_out, args, method="ros2", rtol=r,
+                                                    atol=ATOL_PER_RTOL * r, max_steps=cfg["eq_ros2_steps"]),
+              r, "rtol [-]") for r in cfg["eq_ros2_rtols"]]
+    for method in ("RK45", "DOP853", "LSODA", "BDF", "Radau"):
+        kw = {"jac_sparsity": sparsity} if method in ("BDF", "Radau") else {}
+        tols = {"LSODA": cfg["eq_lsoda_rtols"], "BDF": cfg["eq_implicit_rtols"],
+                "Radau": cfg["eq_implicit_rtols"]}.get(method, cfg["eq_rtols"])
+        rows[f"scipy {method}"] = [
+            point(f"scipy {method}", lambda r=r, method=method, kw=kw: solve_ivp(
+                f, (0.0, W), y0, method=method, rtol=r, atol=ATOL_PER_RTOL * r, t_eval=[W], **kw), r, "rtol [-]")
+            for r in tols]
+    out["methods"] = rows
+    targets = (1e-1, 1e-2, 1e-3)
+    ttl = {}
+    for name, pts in rows.items():
+        good = [p for p in pts if "failed" not in p and "ball position error at end [delta_H]" in p]
+        ttl[name] = _common.time_to_error([p["wall [s]"] for p in good],
+                                          [p["ball position error at end [delta_H]"] for p in good], targets)
+    out["wall to reach the error [s] (interpolated; None: not reached)"] = ttl
+    ratios = {}
+    for tk in (f"{t:.0e}" for t in targets):
+        lub = {k: v[tk] for k, v in ttl.items() if k.startswith("lubedyn") and v[tk] is not None}
+        sci = {k: v[tk] for k, v in ttl.items() if k.startswith("scipy") and v[tk] is not None}
+        if lub and sci:
+            bl, bs = min(lub, key=lub.get), min(sci, key=sci.get)
+            ratios[tk] = {"lubedyn best": bl, "scipy best": bs, "ratio scipy best / lubedyn best [-]": sci[bs] / lub[bl],
+                          "per scipy method [-]": {k: v / lub[bl] for k, v in sci.items()}}
+    out["ratio at equal error"] = ratios
+    # the bound for an explicit method making the same rhs calls: (rhs + scipy overhead) / (rhs + lubedyn overhead)
+    rk = [p for p in rows["scipy RK45"] if "failed" not in p]
+    lk = [p for p in rows["lubedyn dopri5"] if "failed" not in p]
+    if rk and lk:
+        o_s = float(np.median([p["overhead per RHS evaluation beyond the rhs call [us]"] for p in rk]))
+        o_l = float(np.median([p["overhead per RHS evaluation beyond the rhs call [us]"] for p in lk]))
+        c = rhs_cost * 1e6
+        out["bound for equal rhs calls"] = {
+            "rhs call from compiled code [us]": c, "rhs call from Python [us]": setup_rhs_cost(model, y0) * 1e6,
+            "scipy RK45 overhead per call [us]": o_s, "lubedyn DOPRI5 overhead per call [us]": o_l,
+            "ratio bound (c + o_scipy) / (c + o_lubedyn) [-]": (c + o_s) / (c + max(o_l, 0.0)),
+            "ratio bound 1 + o_scipy / c [-]": 1.0 + o_s / c}
+    return out
+
+
 _RHS_COST = {}
 
 
@@ -638,17 +788,48 @@ def bench_scipy_cheap(repeats, rtol=1e-6):
 
 
 def setup_rhs_cost(model, y0):
+    """One rhs call from Python [s]: the fastest of 40 batches of 200 calls (a shared machine only
+    ever makes a batch slower, so the minimum is the machine's cost)."""
     key = id(model)
     if key not in _RHS_COST:
         dy = np.empty(y0.size)
         args = model.args()
         rhs(0.0, y0, args, dy)
-        n = 2000
-        t0 = time.perf_counter()
-        for _ in range(n):
-            rhs(0.0, y0, args, dy)
-        _RHS_COST[key] = (time.perf_counter() - t0) / n
+        n, best = 200, math.inf
+        for _ in range(40):
+            t0 = time.perf_counter()
+            for _ in range(n):
+                rhs(0.0, y0, args, dy)
+            best = min(best, (time.perf_counter() - t0) / n)
+        _RHS_COST[key] = best
     return _RHS_COST[key]
+
+
+_RHS_LOOP = {}
+
+
+def rhs_cost_in_numba(model, y0):
+    """One rhs call from compiled code [s] (what lubedyn's integrators pay): the fastest of 200
+    batches of 100 calls in a jitted loop."""
+    from numba import njit
+
+    key = id(model)
+    if key not in _RHS_LOOP:
+        @njit
+        def loop(y, args, dy, n):
+            for _ in range(n):
+                rhs(0.0, y, args, dy)
+
+        dy = np.empty(y0.size)
+        args = model.args()
+        loop(y0, args, dy, 1)
+        best = math.inf
+        for _ in range(200):
+            t0 = time.perf_counter()
+            loop(y0, args, dy, 100)
+            best = min(best, (time.perf_counter() - t0) / 100)
+        _RHS_LOOP[key] = best
+    return _RHS_LOOP[key]
 
 
 # ------------------------------------------------------------------ 5. throughput
@@ -751,6 +932,39 @@ def bench_compile(skip_cli):
 
 
 # ------------------------------------------------------------------ plot
+def plot_equal_accuracy(ax, eq):
+    """Work-precision of every method of section 4b on one axis, with the equal-error ratios."""
+    styles = {"lubedyn dopri5": ("s-", "C1"), "lubedyn rk4": ("o-", "C0"),
+              "lubedyn ros2 (finite-difference Jacobian)": ("D-", "C3"), "scipy RK45": ("v--", "C7"),
+              "scipy DOP853": ("^--", "k"), "scipy LSODA": ("<--", "C8"), "scipy BDF": (">--", "C9"),
+              "scipy Radau": ("x--", "C5")}
+    for name, pts in eq["methods"].items():
+        good = [p for p in pts if "failed" not in p and "ball position error at end [delta_H]" in p]
+        if not good:
+            continue
+        mk, col = styles.get(name, ("+-", "C6"))
+        ax.loglog([p["wall [s]"] for p in good], [max(p["ball position error at end [delta_H]"], 1e-12) for p in good],
+                  mk, color=col, ms=4, label=name.replace(" (finite-difference Jacobian)", " (FD Jacobian)"))
+    ax.axhline(POS_TOL, color="k", ls=":", lw=0.8)
+    lines = []
+    for tk, r in eq.get("ratio at equal error", {}).items():
+        lines.append(f"error {tk} dH: {r['scipy best'].replace('scipy ', '')} / "
+                     f"{r['lubedyn best'].replace('lubedyn ', '')} = {r['ratio scipy best / lubedyn best [-]']:.1f} x")
+    bnd = eq.get("bound for equal rhs calls")
+    if bnd:
+        c = bnd["rhs call from compiled code [us]"]
+        lines.append(f"same rhs calls: (c + o_scipy) / (c + o_lubedyn) = ({c:.1f} + "
+                     f"{bnd['scipy RK45 overhead per call [us]']:.1f}) / ({c:.1f} + "
+                     f"{bnd['lubedyn DOPRI5 overhead per call [us]']:.1f}) us = "
+                     f"{bnd['ratio bound (c + o_scipy) / (c + o_lubedyn) [-]']:.1f} x")
+    ax.text(0.02, 0.02, "\n".join(lines), transform=ax.transAxes, fontsize=7, va="bottom")
+    ax.set_xlabel("wall [s]")
+    ax.set_ylabel("ball position error at end / delta_H")
+    ax.set_title(f"4. same numba rhs, every method, drop 0-{eq['window [s]'] * 1e3:g} ms: ratio at equal error",
+                 fontsize=9)
+    ax.legend(fontsize=6, ncol=2)
+
+
 def plot(data, path):
     import matplotlib
 
@@ -847,17 +1061,7 @@ def plot(data, path):
     ax.set_xlabel("wall per simulated ms [s]")
     ax.set_title(f"3. fidelity: cost and answers ({fid['window [s]'] * 1e3:g} ms, DOPRI5 rtol 1e-6)", fontsize=9)
 
-    ax = axs[1, 1]
-    sc = data["scipy"]
-    names = ["lubedyn dopri5", "scipy RK45", "scipy DOP853"]
-    vals = [sc[n]["wall [s]"] / (sc["window [s]"] * 1e3) for n in names]
-    ax.bar(names, vals, color=["C1", "C7", "C7"])
-    for i, n in enumerate(names[1:], 1):
-        ax.text(i, vals[i], f"x{sc[n]['ratio scipy / lubedyn per simulated ms [-]']:.0f}", ha="center",
-                va="bottom", fontsize=8)
-    ax.set_ylabel("wall per simulated ms [s]")
-    ax.set_title(f"4. same rhs, rtol {sc['rtol [-]']:g}: scipy solve_ivp vs lubedyn "
-                 f"({sc['window [s]'] * 1e3:g} ms)", fontsize=9)
+    plot_equal_accuracy(axs[1, 1], data["equal_accuracy"])
 
     ax = axs[1, 2]
     cp = data.get("compile", {})
@@ -923,6 +1127,7 @@ def main(argv=None):
     data["stability"] = bench_stability(setup, cfg, ref.y, ref_t)
     data["fidelity"] = bench_fidelity(setup, cfg, repeats)
     data["scipy"] = bench_scipy(setup, cfg, ref.y, ref_t, repeats)
+    data["equal_accuracy"] = bench_equal_accuracy(setup, cfg, ref.y, ref_t, repeats)
     data["throughput"] = bench_throughput(setup, cfg, wp["cheapest converged"], clock)
     data["compile"] = bench_compile(skip_cli=args.skip_cli or args.quick)
     data["reference run, again at the end"] = Clock(model, y0).describe()

@@ -99,13 +99,32 @@ contract ``rhs(t, y, args, dydt)``); :func:`forces` / :func:`forces_many`
 collision phase at sampled states, columns :data:`DIAG_NAMES`);
 :func:`bearing_energy`, :func:`angular_momentum_z` (invariants for checks).
 
-Cost (measured, numba 0.68, one core of a loaded 2-core machine, CPU time)
--------------------------------------------------------------------------
-One ``rhs`` call with 14 balls: 5.4-6.7 us planar (107 states), 6.1-7.4 us
-6-DOF (205 states).  Largest stable RK4 step at 10,000 rpm (F_r 2000 N, F_a
-200 N, slot): 1.33e-5 s steady, 1.25e-5 s during the rotor drop with ball
-collisions; :meth:`CagelessBearing.omega_max` gives 2.83/omega_max = 1.03e-5 s
-(conservative by ~25 %).  RK4 at 5 us: ~150-190 ms simulated per CPU second.
+Cost (measured, numba 0.68, one core of a loaded 2-core machine)
+----------------------------------------------------------------
+One ``rhs`` call with 14 balls, 6-DOF (205 states), called from a jitted
+loop, minimum of 300 x 100 calls: 3.2 us at the quasi-static start of the
+drop, 3.8-4.0 us during the first ball-ball collisions (1-2 ms), against
+8.3-8.8 / 9.4-10.0 us before the rewrite of 2026-11-22 in the same process
+(bit-identical results: rhs, diagnostics and a 2 ms DOPRI5 trajectory).
+Where the old 8.3 us went (perf + ablation): about a third in atomic
+reference-count pairs (NRT incref/decref; every array view such as
+``y[b+10:b+13]`` or ``Fb[j]`` and every array passed to a non-inlined
+kernel inside the ball loops costs one pair), 7.4 us in the 28 ball-race
+contacts (traction tanh ~1.4 us, slot weights' atan2 and tanh ~1.5 us,
+contact-angle atan2 computed for diagnostics only ~0.6 us), 0.2 us in 13
+small allocations.  Now: the contact kernels take and return scalars and are
+inlined (numba ``inline='always'``), ball kinematics and the quaternion
+algebra are written out on scalars, the contact angle is computed only for
+:func:`forces`, points far from a slot are skipped by a dot product before
+the atan2, and two allocations replace thirteen.  Remaining (at the start
+of the drop): 28 race contacts ~2.0 us (sqrt, tanh, divisions), kinematics,
+equations of motion, ring ~0.6 us; each close ball pair adds ~0.15 us (the
+film/Hertz series root).  The inlining costs compile time once (about +4 s
+CPU for ``rhs`` and ``forces`` together, cached afterwards).
+Largest stable RK4 step at 10,000 rpm (F_r 2000 N, F_a 200 N, slot): 1.33e-5
+s steady, 1.25e-5 s during the rotor drop with ball collisions;
+:meth:`CagelessBearing.omega_max` gives 2.83/omega_max = 1.03e-5 s
+(conservative by ~25 %).
 """
 from __future__ import annotations
 
@@ -129,7 +148,6 @@ from .contacts import (
 )
 from .errors import DynamicsInputError
 from .interp import HERMITE, hermite3, interp3
-from .rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
 
 logger = logging.getLogger(__name__)
 _JIT = dict(cache=True, fastmath=False, error_model="numpy")  # a blown-up state gives inf/NaN, not ZeroDivisionError
@@ -181,13 +199,16 @@ def _traction_from_map(ax0, ax1, ax2, vals, opts, Q, ue, srr, counter):
                    opts[C.MO_METHOD], Q, ue, srr, opts[C.MO_MODE], counter)
 
 
-@njit(**_JIT)
-def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, RF, out, hc_coef, tmap, race,
-                  counter):
-    """One ball-race (or slot-edge) contact with normal n (ball force -Q n,
-    contact point c + (D/2) n).  Accumulates ball force F, torque T, ring
-    force RF[0:3] and torque RF[3] (``inner`` race only; ``wr`` its speed).
-    out <- (Q, SRR, sliding speed, contact angle).
+@njit(inline='always', **_JIT)
+def _race_contact(c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K, ctr0, ctr1, vc0, vc1, vc2, wr, inner, Rb,
+                  alpha, mu_lim, srr_ref, v_reg, hc_coef, tmap, race, counter, want):
+    """One ball-race (or slot-edge) contact of a ball (centre c, velocity v,
+    angular velocity w, inertial frame) with normal n (ball force -Q n,
+    contact point c + (D/2) n) on a race with centre ``ctr``, centre
+    velocity ``vc`` and speed ``wr``.  Returns (Q, SRR, sliding speed,
+    contact angle (only with ``want``, else 0), force on the ball (3),
+    torque on the ball (3), z-moment p x f of that force about the race
+    centre); an ``inner`` race takes -force and -moment.
 
     ``hc_coef`` > 0: an EHL film of central thickness h_c = hc_coef u_e^0.67
     (Hamrock-Dowson at a reference load, :meth:`CagelessBearing.race_film_thickness`)
@@ -197,30 +218,32 @@ def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, 
     traction coefficient is read from the EHL map of that race over (load,
     entrainment speed, |slide-to-roll ratio|) instead of the closed form;
     queries outside its axes are clamped and counted in ``counter[0]``.
-    ``race`` = -1 (slot edges, or no map): the closed-form curve."""
-    Rb = P[P_RB]
-    vx, vy, vz = v[0] - vctr[0], v[1] - vctr[1], v[2] - vctr[2]
+    ``race`` = -1 (slot edges, or no map): the closed-form curve.
+
+    Scalars in, scalars out, inlined (numba ``inline='always'``) into the
+    rhs: an array passed to or viewed in a loop body costs an atomic
+    reference-count pair, and those were about a third of the rhs time."""
+    vx, vy, vz = v0 - vc0, v1 - vc1, v2 - vc2
     ddot = n0 * vx + n1 * vy + n2 * vz
-    out[1] = 0.0
-    out[2] = 0.0
+    angle = 0.0
     # contact angle of the load line, positive when the ball is pushed towards -z at this contact
-    out[3] = math.atan2(n2 if not inner else -n2, math.sqrt(n0 * n0 + n1 * n1))
+    if want:
+        angle = math.atan2(n2 if not inner else -n2, math.sqrt(n0 * n0 + n1 * n1))
     if hc_coef <= 0.0 and delta <= 0.0:
-        out[0] = 0.0
-        return
+        return 0.0, 0.0, 0.0, angle, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     # contact point relative to the ball centre and to the race centre
     a0, a1, a2 = Rb * n0, Rb * n1, Rb * n2
-    p0, p1 = c[0] + a0 - ctr[0], c[1] + a1 - ctr[1]
+    p0, p1 = c0 + a0 - ctr0, c1 + a1 - ctr1
     # surface velocities at the contact point
-    vb0 = v[0] + w[1] * a2 - w[2] * a1
-    vb1 = v[1] + w[2] * a0 - w[0] * a2
-    vb2 = v[2] + w[0] * a1 - w[1] * a0
-    vr0, vr1, vr2 = vctr[0] - wr * p1, vctr[1] + wr * p0, vctr[2]
+    vb0 = v0 + w1 * a2 - w2 * a1
+    vb1 = v1 + w2 * a0 - w0 * a2
+    vb2 = v2 + w0 * a1 - w1 * a0
+    vr0, vr1, vr2 = vc0 - wr * p1, vc1 + wr * p0, vc2
     # orbital rate of the ball about the race axis -> contact point velocity
-    d0, d1 = c[0] - ctr[0], c[1] - ctr[1]
+    d0, d1 = c0 - ctr0, c1 - ctr1
     rho2 = d0 * d0 + d1 * d1
     psid = (d0 * vy - d1 * vx) / rho2 if rho2 > 0.0 else 0.0
-    vp0, vp1, vp2 = vctr[0] - psid * p1, vctr[1] + psid * p0, vctr[2]
+    vp0, vp1, vp2 = vc0 - psid * p1, vc1 + psid * p0, vc2
     s0, s1, s2 = vb0 - vr0, vb1 - vr1, vb2 - vr2
     sn = s0 * n0 + s1 * n1 + s2 * n2
     s0 -= sn * n0
@@ -236,13 +259,11 @@ def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, 
     ue = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
     if hc_coef > 0.0:
         delta += hc_coef * ue**0.67
-    Q = hertz_force(delta, ddot, K, P[P_ALPHA])
-    out[0] = Q
+    Q = hertz_force(delta, ddot, K, alpha)
     if Q <= 0.0:
-        return
+        return Q, 0.0, 0.0, angle, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
-    out[1] = vs / ue if ue > 0.0 else 0.0
-    out[2] = vs
+    srr = vs / ue if ue > 0.0 else 0.0
     ft0 = 0.0
     ft1 = 0.0
     ft2 = 0.0
@@ -252,41 +273,43 @@ def _race_contact(c, v, w, n0, n1, n2, delta, K, ctr, vctr, wr, inner, P, F, T, 
             mu = abs(_traction_from_map(tax0[race], tax1[race], tax2[race], tvals[race], topts, Q, ue, vs / ue,
                                         counter))
         else:
-            mu = traction_coefficient(vs, ue, P[P_MU], P[P_SRR], P[P_VREG])
+            mu = traction_coefficient(vs, ue, mu_lim, srr_ref, v_reg)
         f = -mu * Q / vs
         ft0, ft1, ft2 = f * s0, f * s1, f * s2
     fx, fy, fz = -Q * n0 + ft0, -Q * n1 + ft1, -Q * n2 + ft2
-    F[0] += fx
-    F[1] += fy
-    F[2] += fz
-    T[0] += a1 * ft2 - a2 * ft1
-    T[1] += a2 * ft0 - a0 * ft2
-    T[2] += a0 * ft1 - a1 * ft0
-    if inner:  # the inner ring takes the reaction
-        RF[0] -= fx
-        RF[1] -= fy
-        RF[2] -= fz
-        RF[3] -= p0 * fy - p1 * fx
+    return (Q, srr, vs, angle, fx, fy, fz, a1 * ft2 - a2 * ft1, a2 * ft0 - a0 * ft2, a0 * ft1 - a1 * ft0,
+            p0 * fy - p1 * fx)
 
 
-@njit(**_JIT)
+@njit(inline='always', **_JIT)
 def _smooth_in(x, half, blend):
     """~1 for |x| < half, ~0 beyond, over a width ``blend``."""
     return 0.5 * (1.0 - math.tanh((abs(x) - half) / blend))
 
 
-@njit(**_JIT)
-def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P):
+@njit(inline='always', **_JIT)
+def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P, sdir, cfar):
     """Largest slot weight w_s(s) w_z(z) of a point (relative to the race centre)
     and the largest arc weight w_s alone.  Exactly 0 farther than 10 blend widths
-    beyond a slot's end (where the smooth step is below 1e-8)."""
+    beyond a slot's end (where the smooth step is below 1e-8).
+
+    ``sdir[k] = (cos, sin)`` of slot k's azimuth (with the ring angle for an
+    inner-ring slot) and ``cfar`` the cosine of 1.01 times the angular reach
+    far/R_race (-2 when that reaches past pi): a point whose direction is
+    farther from the slot than that is skipped with a dot product, before
+    the atan2 (the same points the arc-length test skips; results unchanged)."""
     best = 0.0
     best_s = 0.0
     far = 0.5 * P[P_SL] + 10.0 * P[P_SBLEND]
     psi = 0.0
     have_psi = False
+    rho_p = -1.0
     for k in range(slots.shape[0]):
         if int(slots[k, 1]) != race:
+            continue
+        if rho_p < 0.0:
+            rho_p = math.sqrt(px * px + py * py)
+        if px * sdir[k, 0] + py * sdir[k, 1] < cfar * rho_p:
             continue
         if not have_psi:
             psi = math.atan2(py, px)
@@ -305,35 +328,54 @@ def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P):
     return best, best_s
 
 
-@njit(**_JIT)
-def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz, tmap, use_map, counter):
-    """Both race contacts (and slot edges) of one ball; dg <- diagnostics
-    (``out``, ``ctr``, ``vz``: work arrays of 4, 3, 3 floats)."""
+@njit(inline='always', **_JIT)
+def _slot_directions(P, slots, ring_theta, sdir, cfar):
+    """sdir[k] <- (cos, sin) of slot k's azimuth (plus the ring angle for an
+    inner-ring slot); cfar[race] <- cos of 1.01 times the angular reach
+    far/R_race of a slot's weight on that race (-2 when it reaches past pi),
+    for the dot-product skip of :func:`_slot_weight`."""
+    far = 0.5 * P[P_SL] + 10.0 * P[P_SBLEND]
+    for race in range(2):
+        R_race = P[P_RO] + P[P_ROC] if race == 0 else P[P_RIC] - P[P_RI]
+        reach = 1.01 * far / R_race
+        cfar[race] = math.cos(reach) if reach < math.pi else -2.0
+    for k in range(slots.shape[0]):
+        az = slots[k, 0] + (ring_theta if int(slots[k, 1]) == 1 else 0.0)
+        sdir[k, 0] = math.cos(az)
+        sdir[k, 1] = math.sin(az)
+
+
+@njit(inline='always', **_JIT)
+def _ball_races(j, cpos, cvel, cw, y, P, slots, diag, tmap, use_map, counter, want, sdir, cfar):
+    """Both race contacts (and slot edges) of ball j: returns the force and
+    torque on the ball (6) and the force and z-torque on the inner ring (4);
+    with ``want`` its diagnostics go to diag[j] (race loads, angles, slip,
+    slot-edge load)."""
     D = P[P_D]
     Rb = P[P_RB]
     halfw = 0.5 * P[P_SW]
+    c0, c1, c2 = cpos[j, 0], cpos[j, 1], cpos[j, 2]
+    v0, v1, v2 = cvel[j, 0], cvel[j, 1], cvel[j, 2]
+    w0, w1, w2 = cw[j, 0], cw[j, 1], cw[j, 2]
+    alpha, mu_lim, srr_ref, v_reg = P[P_ALPHA], P[P_MU], P[P_SRR], P[P_VREG]
+    F0 = F1 = F2 = T0 = T1 = T2 = 0.0
+    R0 = R1 = R2 = R3 = 0.0
+    if want:
+        diag[j, D_QE] = 0.0
     for race in range(2):
         if race == 0:
             Rgc, rg, K, KE, RE = P[P_ROC], P[P_RO], P[P_KO], P[P_KEO], P[P_REO]
-            ctr[0] = 0.0
-            ctr[1] = 0.0
-            ctr[2] = 0.0
-            vz[0] = 0.0
-            vz[1] = 0.0
-            vz[2] = 0.0
+            ctr0, ctr1, ctr2 = 0.0, 0.0, 0.0
+            vc0, vc1, vc2 = 0.0, 0.0, 0.0
             wr = 0.0
             th = 0.0
         else:
             Rgc, rg, K, KE, RE = P[P_RIC], P[P_RI], P[P_KI], P[P_KEI], P[P_REI]
-            ctr[0] = ring[0]
-            ctr[1] = ring[1]
-            ctr[2] = ring[2]
-            vz[0] = ring[4]
-            vz[1] = ring[5]
-            vz[2] = ring[6]
-            wr = ring[7]
-            th = ring[3]
-        d0, d1, d2 = c[0] - ctr[0], c[1] - ctr[1], c[2] - ctr[2]
+            ctr0, ctr1, ctr2 = y[0], y[1], y[2]
+            vc0, vc1, vc2 = y[4], y[5], y[6]
+            wr = y[7]
+            th = y[3]
+        d0, d1, d2 = c0 - ctr0, c1 - ctr1, c2 - ctr2
         rho = math.sqrt(d0 * d0 + d1 * d1)
         er0, er1 = d0 / rho, d1 / rho
         ur = rho - Rgc
@@ -344,19 +386,33 @@ def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz, tmap, use_m
         wsarc = 0.0
         if slots.shape[0] > 0:
             wslot, wsarc = _slot_weight(d0 + Rb * n0, d1 + Rb * n1, d2 + Rb * n2, race, th, slots,
-                                        rg + Rgc if race == 0 else Rgc - rg, P)
-        _race_contact(c, v, w, n0, n1, n2, delta, K * (1.0 - wslot), ctr, vz, wr, race == 1, P, F, T, RF, out,
-                      P[P_HCO] if race == 0 else P[P_HCI], tmap, race if use_map else -1, counter)
-        if race == 0:
-            dg[D_QO] = out[0]
-            dg[D_AO] = out[3]
-            dg[D_SRRO] = out[1]
-            dg[D_VSO] = out[2]
-        else:
-            dg[D_QI] = out[0]
-            dg[D_AI] = out[3]
-            dg[D_SRRI] = out[1]
-            dg[D_VSI] = out[2]
+                                        rg + Rgc if race == 0 else Rgc - rg, P, sdir, cfar[race])
+        Q, srr, vs, ang, fx, fy, fz, tx, ty, tz, mz = _race_contact(
+            c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K * (1.0 - wslot), ctr0, ctr1, vc0, vc1, vc2, wr,
+            race == 1, Rb, alpha, mu_lim, srr_ref, v_reg, P[P_HCO] if race == 0 else P[P_HCI], tmap,
+            race if use_map else -1, counter, want)
+        F0 += fx
+        F1 += fy
+        F2 += fz
+        T0 += tx
+        T1 += ty
+        T2 += tz
+        if race == 1:  # the inner ring takes the reaction
+            R0 -= fx
+            R1 -= fy
+            R2 -= fz
+            R3 -= mz
+        if want:
+            if race == 0:
+                diag[j, D_QO] = Q
+                diag[j, D_AO] = ang
+                diag[j, D_SRRO] = srr
+                diag[j, D_VSO] = vs
+            else:
+                diag[j, D_QI] = Q
+                diag[j, D_AI] = ang
+                diag[j, D_SRRI] = srr
+                diag[j, D_VSI] = vs
         if wsarc > 1e-6:  # slot edges: circles at z = +-W/2 on the groove surface
             for sgn in (-1.0, 1.0):
                 ez = sgn * halfw
@@ -367,14 +423,39 @@ def _ball_races(c, v, w, ring, P, slots, F, T, RF, dg, out, ctr, vz, tmap, use_m
                 if de > 0.0:
                     # normal from the ball centre towards the edge
                     m0, m1, m2 = -u_r / Le * er0, -u_r / Le * er1, -u_z / Le
-                    _race_contact(c, v, w, m0, m1, m2, de, KE * wsarc, ctr, vz, wr, race == 1, P, F, T, RF, out, 0.0,
-                                  tmap, -1, counter)
-                    dg[D_QE] += out[0]
+                    Qe, _, _, _, fx, fy, fz, tx, ty, tz, mz = _race_contact(
+                        c0, c1, v0, v1, v2, w0, w1, w2, m0, m1, m2, de, KE * wsarc, ctr0, ctr1, vc0, vc1, vc2, wr,
+                        race == 1, Rb, alpha, mu_lim, srr_ref, v_reg, 0.0, tmap, -1, counter, want)
+                    F0 += fx
+                    F1 += fy
+                    F2 += fz
+                    T0 += tx
+                    T1 += ty
+                    T2 += tz
+                    if race == 1:
+                        R0 -= fx
+                        R1 -= fy
+                        R2 -= fz
+                        R3 -= mz
+                    if want:
+                        diag[j, D_QE] += Qe
+    return F0, F1, F2, T0, T1, T2, R0, R1, R2, R3
+
+
+@njit(inline='always', **_JIT)
+def _rotate3(w, x, y, z, v0, v1, v2):
+    """R(q) v for the unit quaternion (w, x, y, z), scalars (the arithmetic of
+    :func:`dynamics.rotations.quat_rotate`; pass (w, -x, -y, -z) for R^T v)."""
+    tx = 2.0 * (y * v2 - z * v1)
+    ty = 2.0 * (z * v0 - x * v2)
+    tz = 2.0 * (x * v1 - y * v0)
+    return v0 + w * tx + (y * tz - z * ty), v1 + w * ty + (z * tx - x * tz), v2 + w * tz + (x * ty - y * tx)
 
 
 @njit(**_JIT)
-def _evaluate(t, y, args, dydt, diag, ring_diag, want):
+def _evaluate(t, y, args, dydt, diag, ring_diag):
     iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap = args
+    want = diag.shape[0] > 0
     Z = iopt[I_Z]
     dof = iopt[I_DOF]
     nb = NB_6DOF if dof == 1 else NB_PLANAR
@@ -384,34 +465,36 @@ def _evaluate(t, y, args, dydt, diag, ring_diag, want):
     g = P[P_G]
     Rb = P[P_RB]
     D = P[P_D]
-    # kinematics of every ball in the inertial frame
-    cpos = np.empty((Z, 3))
-    cvel = np.empty((Z, 3))
-    cw = np.empty((Z, 3))
-    Fb = np.zeros((Z, 3))
-    Tb = np.zeros((Z, 3))
-    RF = np.zeros(4)
-    tmp = np.empty(3)
-    out4 = np.empty(4)
-    ctr3 = np.empty(3)
-    vz3 = np.empty(3)
-    qn = np.empty(4)
-    Jv = np.empty(3)
-    Jv[0] = Jb
-    Jv[1] = Jb
-    Jv[2] = Jb
+    use_map = iopt[I_TRACTION] == 1
+    # Kinematics of every ball in the inertial frame, ball forces and torques in one allocation, the
+    # ring load and the slot directions in another; no array views in the loops below (a view costs an
+    # atomic reference-count pair, which dominated the cost of this function before).
+    bw = np.empty((5, Z, 3))
+    cpos = bw[0]
+    cvel = bw[1]
+    cw = bw[2]
+    Fb = bw[3]
+    Tb = bw[4]
+    nslot = slots.shape[0]
+    sw = np.empty(6 + 2 * nslot)
+    RF = sw[0:4]  # ring force x, y, z and torque from the balls
+    cfar = sw[4:6]
+    sdir = sw[6:6 + 2 * nslot].reshape((nslot, 2))
+    for k in range(4):
+        RF[k] = 0.0
+    _slot_directions(P, slots, y[3], sdir, cfar)
     for j in range(Z):
         b = off + j * nb
+        for k in range(3):
+            Fb[j, k] = 0.0
+            Tb[j, k] = 0.0
         if dof == 1:
             for k in range(3):
                 cpos[j, k] = y[b + k]
                 cvel[j, k] = y[b + 7 + k]
             inv = 1.0 / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
-            for k in range(4):
-                qn[k] = y[b + 3 + k] * inv
-            quat_rotate(qn, y[b + 10:b + 13], tmp)
-            for k in range(3):
-                cw[j, k] = tmp[k]
+            cw[j, 0], cw[j, 1], cw[j, 2] = _rotate3(y[b + 3] * inv, y[b + 4] * inv, y[b + 5] * inv,
+                                                    y[b + 6] * inv, y[b + 10], y[b + 11], y[b + 12])
         else:
             phi, r, phid, rd, om = y[b], y[b + 1], y[b + 3], y[b + 4], y[b + 5]
             cp, sp = math.cos(phi), math.sin(phi)
@@ -424,16 +507,19 @@ def _evaluate(t, y, args, dydt, diag, ring_diag, want):
             cw[j, 0] = 0.0
             cw[j, 1] = 0.0
             cw[j, 2] = om
-    ring = y[0:N_RING]
-    dg = np.zeros(N_DIAG)
     for j in range(Z):
-        for k in range(N_DIAG):
-            dg[k] = 0.0
-        _ball_races(cpos[j], cvel[j], cw[j], ring, P, slots, Fb[j], Tb[j], RF, dg, out4, ctr3, vz3, tmap,
-                    iopt[I_TRACTION] == 1, counter)
-        if want:
-            for k in range(N_DIAG):
-                diag[j, k] = dg[k]
+        F0, F1, F2, T0, T1, T2, R0, R1, R2, R3 = _ball_races(j, cpos, cvel, cw, y, P, slots, diag, tmap, use_map,
+                                                            counter, want, sdir, cfar)
+        Fb[j, 0] = F0
+        Fb[j, 1] = F1
+        Fb[j, 2] = F2
+        Tb[j, 0] = T0
+        Tb[j, 1] = T1
+        Tb[j, 2] = T2
+        RF[0] += R0
+        RF[1] += R1
+        RF[2] += R2
+        RF[3] += R3
     # ball-ball pairs j, j+1
     for j in range(Z):
         dydt[N_RING + j] = 0.0
@@ -458,11 +544,12 @@ def _evaluate(t, y, args, dydt, diag, ring_diag, want):
             r2 = cvel[k, 2] - cvel[j, 2]
             vapp = -(r0 * n0 + r1 * n1 + r2 * n2)
             a0, a1, a2 = Rb * n0, Rb * n1, Rb * n2
-            wj, wk = cw[j], cw[k]
+            wj0, wj1, wj2 = cw[j, 0], cw[j, 1], cw[j, 2]
+            wk0, wk1, wk2 = cw[k, 0], cw[k, 1], cw[k, 2]
             # entrainment: mean surface velocity at the contact relative to the pair's mean, (w_j - w_k) x a / 2
-            e0 = 0.5 * ((wj[1] - wk[1]) * a2 - (wj[2] - wk[2]) * a1)
-            e1 = 0.5 * ((wj[2] - wk[2]) * a0 - (wj[0] - wk[0]) * a2)
-            e2 = 0.5 * ((wj[0] - wk[0]) * a1 - (wj[1] - wk[1]) * a0)
+            e0 = 0.5 * ((wj1 - wk1) * a2 - (wj2 - wk2) * a1)
+            e1 = 0.5 * ((wj2 - wk2) * a0 - (wj0 - wk0) * a2)
+            e2 = 0.5 * ((wj0 - wk0) * a1 - (wj1 - wk1) * a0)
             ue = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
             Fn, h, de, phase, share = ball_ball_normal(gap, vapp, ue, dmax, bbp, iopt[I_FILM], map_ax0, map_ax1,
                                                        map_ax2, map_vals, map_opts, counter)
@@ -471,9 +558,9 @@ def _evaluate(t, y, args, dydt, diag, ring_diag, want):
             ft = 0.0
             if Fn > 0.0:
                 # sliding velocity of k's surface relative to j's at the contact point
-                s0 = r0 + (wk[1] * -a2 - wk[2] * -a1) - (wj[1] * a2 - wj[2] * a1)
-                s1 = r1 + (wk[2] * -a0 - wk[0] * -a2) - (wj[2] * a0 - wj[0] * a2)
-                s2 = r2 + (wk[0] * -a1 - wk[1] * -a0) - (wj[0] * a1 - wj[1] * a0)
+                s0 = r0 + (wk1 * -a2 - wk2 * -a1) - (wj1 * a2 - wj2 * a1)
+                s1 = r1 + (wk2 * -a0 - wk0 * -a2) - (wj2 * a0 - wj0 * a2)
+                s2 = r2 + (wk0 * -a1 - wk1 * -a0) - (wj0 * a1 - wj1 * a0)
                 sn = s0 * n0 + s1 * n1 + s2 * n2
                 s0 -= sn * n0
                 s1 -= sn * n1
@@ -508,6 +595,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag, want):
                 diag[j, D_H] = h
                 diag[j, D_PHASE] = phase
     # balls: equations of motion
+    stab = P[P_QSTAB]
     for j in range(Z):
         b = off + j * nb
         Fb[j, 1] -= mb * g
@@ -515,12 +603,29 @@ def _evaluate(t, y, args, dydt, diag, ring_diag, want):
             for k in range(3):
                 dydt[b + k] = y[b + 7 + k]
                 dydt[b + 7 + k] = Fb[j, k] / mb
-            inv = 1.0 / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
-            for k in range(4):
-                qn[k] = y[b + 3 + k] * inv
-            quat_derivative(y[b + 3:b + 7], y[b + 10:b + 13], dydt[b + 3:b + 7], P[P_QSTAB])
-            quat_rotate_inverse(qn, Tb[j], tmp)
-            euler_rate(Jv, y[b + 10:b + 13], tmp, dydt[b + 10:b + 13])
+            # dq/dt = q * (0, w_b) / 2 - k (|q|^2 - 1) q (dynamics.rotations.quat_derivative)
+            qw, qx, qy, qz = y[b + 3], y[b + 4], y[b + 5], y[b + 6]
+            ox, oy, oz = y[b + 10], y[b + 11], y[b + 12]
+            dq0 = 0.5 * (-qx * ox - qy * oy - qz * oz)
+            dq1 = 0.5 * (qw * ox + qy * oz - qz * oy)
+            dq2 = 0.5 * (qw * oy - qx * oz + qz * ox)
+            dq3 = 0.5 * (qw * oz + qx * oy - qy * ox)
+            if stab != 0.0:
+                cst = stab * (qw * qw + qx * qx + qy * qy + qz * qz - 1.0)
+                dq0 -= cst * qw
+                dq1 -= cst * qx
+                dq2 -= cst * qy
+                dq3 -= cst * qz
+            dydt[b + 3] = dq0
+            dydt[b + 4] = dq1
+            dydt[b + 5] = dq2
+            dydt[b + 6] = dq3
+            # Euler's equations for a sphere (J1 = J2 = J3 = Jb; dynamics.rotations.euler_rate)
+            inv = 1.0 / math.sqrt(qw ** 2 + qx ** 2 + qy ** 2 + qz ** 2)
+            tb0, tb1, tb2 = _rotate3(qw * inv, -(qx * inv), -(qy * inv), -(qz * inv), Tb[j, 0], Tb[j, 1], Tb[j, 2])
+            dydt[b + 10] = (tb0 - (Jb - Jb) * oy * oz) / Jb
+            dydt[b + 11] = (tb1 - (Jb - Jb) * oz * ox) / Jb
+            dydt[b + 12] = (tb2 - (Jb - Jb) * ox * oy) / Jb
         else:
             phi, r, phid, rd, om = y[b], y[b + 1], y[b + 3], y[b + 4], y[b + 5]
             cp, sp = math.cos(phi), math.sin(phi)
@@ -573,7 +678,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag, want):
 @njit(**_JIT)
 def rhs(t, y, args, dydt):
     """Right-hand side ``dy/dt`` of the cage-less bearing (integrator contract)."""
-    _evaluate(t, y, args, dydt, np.empty((0, 0)), np.empty(0), False)
+    _evaluate(t, y, args, dydt, np.empty((0, 0)), np.empty(0))
 
 
 @njit(**_JIT)
@@ -602,7 +707,7 @@ def forces(t, y, args):
     dydt = np.empty(y.size)
     diag = np.zeros((Z, N_DIAG))
     ring_diag = np.zeros(N_RING_DIAG)
-    _evaluate(t, y, args, dydt, diag, ring_diag, True)
+    _evaluate(t, y, args, dydt, diag, ring_diag)
     return diag, ring_diag, dydt
 
 

@@ -287,7 +287,7 @@ def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alph
 # ------------------------------------------------------------------ kernels
 
 
-@njit(**_JIT)
+@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
 def hertz_force(delta, delta_dot, K, alpha):
     """Hunt-Crossley Hertz force ``K delta^1.5 (1 + alpha delta_dot)``, >= 0; 0 for delta <= 0."""
     if delta <= 0.0:
@@ -296,7 +296,7 @@ def hertz_force(delta, delta_dot, K, alpha):
     return f if f > 0.0 else 0.0
 
 
-@njit(**_JIT)
+@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
 def traction_coefficient(slip_speed, entrainment_speed, mu_lim, srr_ref, v_reg):
     """``mu_lim tanh(|v_s| / max(srr_ref |u_e|, v_reg))`` (>= 0)."""
     scale = srr_ref * abs(entrainment_speed)
@@ -502,14 +502,14 @@ def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax
     return F, h, x, phase, share
 
 
-@njit(**_JIT)
+@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
 def ball_ball_friction_coefficient(h, p):
     """mu = mu_b f_a + mu_f (1 - f_a), f_a = exp(-h/h_r) (asperity load share)."""
     fa = math.exp(-h / p[BB_HR])
     return p[BB_MUB] * fa + p[BB_MUF] * (1.0 - fa)
 
 
-@njit(**_JIT)
+@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
 def plastic_memory_rate(delta_e, delta_e_dot, delta_max, F, p):
     """d(delta_max)/dt: follows the solid approach (rate ``delta_e_dot``) while
     it grows beyond the memory, decays with tau_mem once the pair carries no load."""

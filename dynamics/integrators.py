@@ -79,6 +79,31 @@ default for the ball collisions; it is there for scenes with a stiff mode
 that is not of interest (e.g. a very stiff film damper).  The driver refuses
 an RK4 step beyond the stability limit when the caller gives the highest
 frequency ``omega_max``.
+
+Stiffness of the cage-less bearing (measured, benchmarks/dynamics.py)
+----------------------------------------------------------------------
+At the start of the rotor drop adaptive DOPRI5 is held near 2.3 us by a
+*real* eigenvalue of -1.48e6 1/s (real-axis limit 3.31/1.48e6 = 2.2 us),
+not by the contacts (largest |Im lambda| 2.7e5 rad/s): the linearised race
+traction F_t = -(mu_lim Q / max(s0 u_e, v_reg)) v_s acts on a ball as a
+dashpot of rate c_t (1/m + R^2/J) = 3.5 c_t/m.  With the balls at rest
+(u_e = 0) the slope is set by the regularisation speed v_reg = 0.05 m/s, a
+numerical choice (mu_lim = 0.07, Q ~ 620 N: c_t ~ 870 N s/m, rate 8.7e5 1/s
+per contact, ~1.5e6 for a ball slipping on both races).  Once the
+entrainment exceeds v_reg/s0 = 2.5 m/s the slope mu_lim/(s0 u_e) is the
+closed-form EHL traction curve's (limit reached near SRR 2 %, as measured
+traction curves) and falls as 1/u_e (about 2e5 1/s at 10,000 rpm, no longer
+limiting).  Trade-off (2 ms of the drop, initial state): v_reg x 10 cuts
+DOPRI5's steps 3.9 x at rtol 1e-3 but only 1.26 x at rtol 1e-6, where
+accuracy limits the step; no race traction at all: 4.5 x fewer steps at
+1e-6.  Implicit methods do not pay here: scipy's BDF and Radau (with the
+bearing's ``jac_sparsity``) take 3-10 x fewer rhs calls than DOPRI5 before
+the first ball collision, but across the collisions (1-2 ms) they do not get
+below 1.9 delta_H of ball-position error up to rtol 1e-5 (the collision
+phases switch the force law), and ROS2 with a finite-difference Jacobian
+(n + 2 rhs calls and an n x n inverse per step, n = 205) costs ~100-200 x
+DOPRI5 at equal error.  An implicit step would need a sparse analytic
+Jacobian and a bordered block-tridiagonal solve to compete (not done).
 """
 from __future__ import annotations
 
@@ -609,6 +634,13 @@ def _generate_source(impl, callables) -> str:
     """Kernel source with the callables turned from parameters into module globals."""
     tree = ast.parse(textwrap.dedent(inspect.getsource(impl)))
     fn = tree.body[0]
+    # inspect reads the file as it is now, at the line numbers of the code object as it was imported: a
+    # process that imported this module before an edit that shifted it would generate another function's
+    # source under the new file's digest (seen: an rk4 body in a dopri5 kernel file).  Refuse instead.
+    code = impl.__code__
+    if (not isinstance(fn, ast.FunctionDef) or fn.name != impl.__name__
+            or [a.arg for a in fn.args.args] != list(code.co_varnames[:code.co_argcount])):
+        raise ImportError(f"source of {impl.__name__} changed since import; not generating a kernel from it")
     fn.args.args = [a for a in fn.args.args if a.arg not in callables]
     fn.name = "kernel"
     fn.decorator_list = []
@@ -856,12 +888,12 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     if not isinstance(args, tuple):
         raise DynamicsInputError(f"args = {type(args).__name__} must be a tuple")
     y0 = np.array(y0, dtype=np.float64, ndmin=1)
-    if y0.ndim != 1 or y0.size == 0 or not np.all(np.isfinite(y0)):
+    if y0.ndim != 1 or y0.size == 0 or not np.isfinite(y0).all():
         raise DynamicsInputError(f"y0 (shape {y0.shape}) must be a non-empty 1-D array of finite numbers")
     t_out = np.array(t_out, dtype=np.float64, ndmin=1)
-    if t_out.ndim != 1 or t_out.size < 2 or not np.all(np.isfinite(t_out)):
+    if t_out.ndim != 1 or t_out.size < 2 or not np.isfinite(t_out).all():
         raise DynamicsInputError(f"t_out (shape {t_out.shape}) must be a 1-D array of >= 2 finite times")
-    if not np.all(np.diff(t_out) > 0.0):
+    if not (t_out[1:] > t_out[:-1]).all():
         raise DynamicsInputError("t_out must be strictly increasing")
     max_steps = int(_check_positive("max_steps", max_steps))
     if method == "rk4":
@@ -892,22 +924,30 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     if n_chunks is None:
         n_chunks = min(m - 1, 200) if progress else 1
     n_chunks = max(1, min(int(n_chunks), m - 1))
-    edges = np.unique(np.linspace(0, m - 1, n_chunks + 1).round().astype(np.int64))
+    # (a one-chunk run without a bar skips the chunk arithmetic, the output copy and tqdm: on a cheap rhs
+    # those Python steps cost several times the kernel, e.g. 50 us against 8 us for one 2-state impact)
+    if n_chunks == 1:
+        edges = [0, m - 1]
+    else:
+        edges = np.unique(np.linspace(0, m - 1, n_chunks + 1).round().astype(np.int64)).tolist()
 
-    Y = np.full((m, y0.size), np.nan)
-    Y[0] = y0
+    Y = None
+    if len(edges) > 2:
+        Y = np.full((m, y0.size), np.nan)
+        Y[0] = y0
     totals = np.zeros(3)
     h_next = float(h0)
     wall0 = time.perf_counter()
-    from tqdm.auto import tqdm
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
 
-    bar = tqdm(total=float(t_out[-1] - t_out[0]), unit="s", desc=f"{method} simulated time",
-               disable=True if not progress else None,
-               bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]")
+        bar = tqdm(total=float(t_out[-1] - t_out[0]), unit="s", desc=f"{method} simulated time", disable=None,
+                   bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]")
     try:
         for i0, i1 in zip(edges[:-1], edges[1:]):
-            t_chunk = t_out[i0:i1 + 1]
-            y_start = Y[i0].copy()
+            t_chunk = t_out[i0:i1 + 1] if Y is not None else t_out
+            y_start = Y[i0].copy() if Y is not None else y0
             if method == "rk4":
                 Yc, st = kernel(y_start, t_chunk, dt, args)
             else:
@@ -918,7 +958,10 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
                     Yc, st = kernel(y_start, t_chunk, args, rtol, atol, h_next, h_max, budget)
             totals += st[:3]
             filled = int(st[N_FILLED])
-            Y[i0:i0 + filled] = Yc[:filled]
+            if Y is None:  # one chunk: the kernel's output is the result (rows not reached are NaN)
+                Y = Yc
+            else:
+                Y[i0:i0 + filled] = Yc[:filled]
             status = int(st[STATUS])
             if status != STATUS_OK:
                 n_good = i0 + filled
@@ -928,9 +971,11 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
                     f"{int(totals[0])} accepted, {int(totals[1])} rejected steps)",
                     status=status, t_reached=st[T_REACHED], t=t_out[:n_good].copy(), y=Y[:n_good].copy())
             h_next = st[H_NEXT]
-            bar.update(float(t_chunk[-1] - t_chunk[0]))
+            if bar is not None:
+                bar.update(float(t_chunk[-1] - t_chunk[0]))
     finally:
-        bar.close()
+        if bar is not None:
+            bar.close()
     wall = time.perf_counter() - wall0
     stats = {
         "Accepted steps [-]": int(totals[0]),

@@ -183,9 +183,57 @@ def test_kernel_compiled_matches_python(dof):
     a = model.args()
     d1, d2 = np.empty_like(y), np.empty_like(y)
     cg.rhs(0.0, y, a, d1)
-    cg._evaluate.py_func(0.0, y, a, d2, np.zeros((model.n_balls, cg.N_DIAG)), np.zeros(cg.N_RING_DIAG), True)
+    cg._evaluate.py_func(0.0, y, a, d2, np.zeros((model.n_balls, cg.N_DIAG)), np.zeros(cg.N_RING_DIAG))
     np.testing.assert_allclose(d1, d2, rtol=1e-12, atol=1e-9)
     assert cg.forces(0.0, y, a)[0][0, cg.D_BBN] > 0.0
+
+
+def _slot_weight_reference(psi, z, azimuths, R_race, P):
+    """numpy reference of the slot weight (module docstring of dynamics.cageless): the largest
+    w_s(s) w_z(z) over the slots, w(x) = (1 - tanh((|x| - half)/blend))/2, s = R_race wrap(psi - az),
+    exactly 0 for |s| > L_s/2 + 10 blend (and the largest w_s alone)."""
+    half_l, half_w, blend = 0.5 * P[cg.P_SL], 0.5 * P[cg.P_SW], P[cg.P_SBLEND]
+    far = half_l + 10.0 * blend
+    best = np.zeros_like(psi)
+    best_s = np.zeros_like(psi)
+    for az in azimuths:
+        s = R_race * ((psi - az + np.pi) % (2.0 * np.pi) - np.pi)
+        ws = np.where(np.abs(s) > far, 0.0, 0.5 * (1.0 - np.tanh((np.abs(s) - half_l) / blend)))
+        wz = 0.5 * (1.0 - np.tanh((np.abs(z) - half_w) / blend))
+        best = np.maximum(best, ws * wz)
+        best_s = np.maximum(best_s, ws)
+    return best, best_s
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+@pytest.mark.parametrize("race", ["outer", "inner"])
+def test_slot_weight_skip_keeps_every_slot_point(compiled, race):
+    """The rhs skips points far from a slot with a dot product before its atan2 (a 2.6x faster rhs
+    came partly from that); no point the arc-length test keeps may be lost: points at
+    |s| = far (1 -+ 1e-6), inside the slot and all round the race, against a numpy reference."""
+    model = cg.CagelessBearing(slot_azimuths_deg=(270.0, 30.0), slot_race=race)
+    a = model.args()
+    P, slots = a[1], a[3]
+    theta = 0.7 if race == "inner" else 0.0  # an inner-ring slot turns with the ring
+    r = 0 if race == "outer" else 1
+    R_race = P[cg.P_RO] + P[cg.P_ROC] if r == 0 else P[cg.P_RIC] - P[cg.P_RI]
+    far = 0.5 * P[cg.P_SL] + 10.0 * P[cg.P_SBLEND]
+    az = slots[:, 0] + theta * r
+    ds = far / R_race * np.array([0.0, 0.2, 0.5, 0.9, 1.0 - 1e-6, 1.0 + 1e-6, 1.005, 1.02, 3.0])
+    psi = np.concatenate([az[0] + ds, az[0] - ds, az[1] + ds, np.linspace(-np.pi, np.pi, 97)])
+    z = np.tile([0.0, 1.0e-3, 1.75e-3, 3e-3], psi.size // 4 + 1)[:psi.size]
+    sdir, cfar = np.empty((slots.shape[0], 2)), np.empty(2)
+    sd = cg._slot_directions if compiled else cg._slot_directions.py_func
+    sw = cg._slot_weight if compiled else cg._slot_weight.py_func
+    sd(P, slots, theta, sdir, cfar)
+    got = np.array([sw(R_race * math.cos(p), R_race * math.sin(p), zz, r, theta, slots, R_race, P, sdir, cfar[r])
+                    for p, zz in zip(psi, z)])
+    ref, ref_s = _slot_weight_reference(psi, z, az, R_race, P)
+    np.testing.assert_allclose(got[:, 0], ref, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(got[:, 1], ref_s, rtol=1e-12, atol=1e-15)
+    # the points just inside the reach carry their tiny weight (not skipped), those beyond carry none
+    k_in, k_out = 4, 5
+    assert 1e-10 < got[k_in, 1] < 1e-8 and got[k_out, 1] == 0.0
 
 
 def test_bad_input():

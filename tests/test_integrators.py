@@ -350,3 +350,25 @@ def test_dopri5_step_count_on_stiff_linear_problem_is_set_by_the_real_stability_
     expected = 1e4 / I.stability_limit("dopri5", "real")
     assert counts[0] == pytest.approx(expected, rel=0.03)
     assert counts[1] == pytest.approx(expected, rel=0.03)
+
+
+@njit(cache=True)
+def stale_decay(t, y, args, dydt):
+    """y' = -2 y (a module-level rhs used only by the stale-source test)."""
+    dydt[0] = -2.0 * y[0]
+
+
+def test_stale_kernel_source_is_refused_and_the_generic_kernel_used(monkeypatch, tmp_path):
+    """A process that imported dynamics.integrators before an edit shifted its lines would read another
+    kernel's source for the generated file (inspect reads the new file at the old line numbers); the
+    generator must refuse it, and specialise must fall back to the generic kernel, whose answer is still
+    the exact exp(-2 t)."""
+    monkeypatch.setenv("LUBEDYN_KERNEL_CACHE", str(tmp_path))
+    real = I.inspect.getsource
+    monkeypatch.setattr(I.inspect, "getsource", lambda f: real(I._rk4_impl) if f is I._dopri5_impl else real(f))
+    with pytest.raises(ImportError, match="changed since import"):
+        I._generate_source(I._dopri5_impl, {"rhs": stale_decay})
+    kernel = I.specialise(I._dopri5_impl, rhs=stale_decay)
+    Y, st = kernel(np.array([1.0]), np.array([0.0, 0.5, 1.0]), (), 1e-10, 1e-12, 0.0, 0.0, 10**6)
+    np.testing.assert_allclose(Y[:, 0], np.exp(-2.0 * np.array([0.0, 0.5, 1.0])), rtol=1e-8)
+    assert not list(tmp_path.glob("k_dopri5_impl__*.py"))
