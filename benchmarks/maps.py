@@ -1,11 +1,14 @@
 """Film maps: speed against accuracy.
 
 1. Cost of one interpolation query inside a numba loop (``dynamics.interp``):
-   1, 2, 3 axes; multilinear, sequential monotone cubic (pchip) and cubic
-   Hermite on precomputed PCHIP node slopes (hermite); value only and value
+   1, 2, 3 axes; multilinear, sequential monotone cubic (pchip), cubic
+   Hermite on precomputed PCHIP node slopes (hermite) and the same interpolant
+   stored as per-cell polynomial coefficients (hermite-cells); value only and value
    + gradient; random queries (cell search by a guess plus bisection, branch
    mispredictions) and a sweep of neighbouring queries (what an integrator
-   does).  Median of repeats of 200,000 queries, ns per query.
+   does).  Wall-clock median, and minimum thread CPU time (robust on a shared
+   machine), of repeats of 200,000 queries, ns per query.
+   ``--query-only`` runs only this section (one core, about a minute).
 2. Map resolution against interpolation error against build time:
    - the analytic rigid isoviscous sphere-sphere squeeze film
      F = 6 pi eta R_eff^2 v D^2/(h (h + D)^2) (exact reference, cheap), nodes
@@ -35,6 +38,7 @@ from coupling import maps  # noqa: E402
 from dynamics import interp  # noqa: E402
 
 GAP, SPEED = "Central gap [m]", "Approach speed [m/s]"
+HERMITE_CELLS = getattr(interp, "HERMITE_CELLS", -1)  # absent before the per-cell kernels (before/after runs)
 
 
 # ---------------------------------------------------------------- analytic kind
@@ -68,6 +72,17 @@ class _Kind:
 
 
 # ---------------------------------------------------------------- 1. query cost
+def _cpu_min(fn, repeats):
+    """Minimum thread CPU time of ``fn()`` over ``repeats`` runs: time the thread spent descheduled
+    (other jobs on a shared machine) is not counted, unlike the wall-clock median."""
+    best = math.inf
+    for _ in range(max(1, repeats)):
+        t0 = time.thread_time()
+        fn()
+        best = min(best, time.thread_time() - t0)
+    return best
+
+
 def query_cost(repeats=5, n=200_000):
     rng = np.random.default_rng(0)
     nodes = [np.geomspace(5e-8, 5e-5, 19), np.linspace(-0.2, 0.9, 12), np.linspace(0.0, 0.05, 3)]
@@ -83,12 +98,23 @@ def query_cost(repeats=5, n=200_000):
     for nd in (1, 2, 3):
         vals = np.ascontiguousarray(V[(slice(None),) * nd + (0,) * (3 - nd)])
         deriv = interp.hermite_data(tuple(axes[:nd]), vals)
-        for method, mname in ((interp.LINEAR, "linear"), (interp.PCHIP, "pchip"), (interp.HERMITE, "hermite")):
+        methods = [(interp.LINEAR, "linear"), (interp.PCHIP, "pchip"), (interp.HERMITE, "hermite")]
+        cells = None
+        if hasattr(interp, "hermite_cells_data"):  # (absent from older versions: before/after runs)
+            cells = interp.hermite_cells_data(tuple(axes[:nd]), deriv)
+            methods.append((interp.HERMITE_CELLS, "hermite-cells"))
+        for method, mname in methods:
             for qname, q in (("random", rand), ("sweep", sweep)):
                 pts = np.ascontiguousarray(q[:, :nd])
                 x0 = np.ascontiguousarray(pts[:, 0])
 
                 def value():
+                    if method == HERMITE_CELLS:
+                        if nd == 1:
+                            return interp.csum1(axes[0], 1, cells, 0, x0, 0, counter)
+                        if nd == 2:
+                            return interp.csum2(axes[0], axes[1], 1, 0, cells, 0, pts, 0, counter)
+                        return interp.csum3(axes[0], axes[1], axes[2], 1, 0, 0, cells, 0, pts, 0, counter)
                     if method == interp.HERMITE:
                         if nd == 1:
                             return interp.hsum1(axes[0], 1, deriv, 0, x0, 0, counter)
@@ -102,17 +128,21 @@ def query_cost(repeats=5, n=200_000):
                     return interp.sum3(axes[0], axes[1], axes[2], 1, 0, 0, vals, 0, method, pts, 0, counter)
 
                 def grad():
-                    interp.evaluate(tuple(axes[:nd]), logs[:nd], deriv if method == interp.HERMITE else vals, 0,
-                                    method, pts, 0, counter, grad=True)
+                    data = {interp.HERMITE: deriv, HERMITE_CELLS: cells}.get(method, vals)
+                    interp.evaluate(tuple(axes[:nd]), logs[:nd], data, 0, method, pts, 0, counter, grad=True)
 
                 value()
                 grad()  # compile
-                t_val = _common.timed(value, repeats)[0]
-                t_grad = _common.timed(grad, repeats)[0]
+                t_val, all_val, _ = _common.timed(value, repeats)
+                t_grad, all_grad, _ = _common.timed(grad, repeats)
+                cpu_val, cpu_grad = _cpu_min(value, repeats), _cpu_min(grad, repeats)
                 out.append({"axes": nd, "method": mname, "queries": qname, "ns per value query": t_val / n * 1e9,
-                            "ns per value+gradient query (with output stores)": t_grad / n * 1e9})
-                print(f"query {nd}-D {mname:6s} {qname:6s}: {t_val / n * 1e9:7.1f} ns value, "
-                      f"{t_grad / n * 1e9:7.1f} ns value+grad", flush=True)
+                            "ns per value+gradient query (with output stores)": t_grad / n * 1e9,
+                            "min thread CPU ns per value query": cpu_val / n * 1e9,
+                            "min thread CPU ns per value+gradient query": cpu_grad / n * 1e9})
+                print(f"query {nd}-D {mname:13s} {qname:6s}: value {t_val / n * 1e9:7.1f} ns wall median, "
+                      f"{cpu_val / n * 1e9:6.1f} CPU min; value+grad {t_grad / n * 1e9:7.1f} wall median, "
+                      f"{cpu_grad / n * 1e9:6.1f} CPU min", flush=True)
     return out
 
 
@@ -261,11 +291,24 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--accuracy-points", type=int, default=40)
+    ap.add_argument("--query-only", action="store_true",
+                    help="only section 1 (query cost, ~1 min on one core) -> results/maps_query.json")
+    ap.add_argument("--repeats", type=int, default=None,
+                    help="repeats per query-cost timing (default 7 with --query-only, 5, 3 with --quick)")
     args = ap.parse_args(argv)
+    if args.query_only:
+        data = {"machine": _common.machine_info(("numba",)),
+                "started": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+                "load_average_at_start": list(__import__("os").getloadavg())}
+        data["query cost"] = query_cost(repeats=args.repeats or 7)
+        data["load_average_at_end"] = list(__import__("os").getloadavg())
+        _common.write_json(_common.RESULTS / "maps_query.json", data)
+        print("wrote results/maps_query.json")
+        return
     t0 = time.perf_counter()
     data = {"machine": _common.machine_info(("numba", "dask", "distributed", "pyvista")),
             "started": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
-    data["query cost"] = query_cost(repeats=3 if args.quick else 5)
+    data["query cost"] = query_cost(repeats=args.repeats or (3 if args.quick else 5))
     data["analytic resolution"] = analytic_resolution()
     data["ball_ball levels"] = real_kind_levels(args.quick, 10 if args.quick else args.accuracy_points)
     if not args.quick:
