@@ -299,6 +299,14 @@ def summarise(case: CaseModel, setup: MapSetup, fmap: maps.FilmMap) -> dict:
             out[f"Fit max relative error [-] of {name}"] = fit.max_error
         out[f"Smallest value of {name}"] = float(np.min(fmap.values[name]))
         out[f"Largest value of {name}"] = float(np.max(fmap.values[name]))
+    derived = getattr(setup.kind, "derived", None)
+    if derived is not None:  # closed forms of the axes (e.g. the speeds of a polar ball_ball map), at the nodes
+        rows = [derived(setup.params, {a.name: float(x) for a, x in zip(fmap.axes, row)}) for row in fmap.grid_points()]
+        for name in rows[0] if rows else ():
+            if name not in fmap.values:
+                vals = np.array([r[name] for r in rows], dtype=float)
+                out[f"Smallest value of {name}"] = float(vals.min())
+                out[f"Largest value of {name}"] = float(vals.max())
     return out
 
 

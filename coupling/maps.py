@@ -21,8 +21,9 @@ resumes, the whole map rebuilt only when its inputs change) and returns a
 Interpolation (:mod:`dynamics.interp`): cubic Hermite on PCHIP node slopes
 (``hermite``, default: C1, third order, the cheapest cubic query), sequential
 monotone cubic (``pchip``) or multilinear (``linear``), in log space on ``log`` axes; the values are
-interpolated in log space when every value of the output is > 0, as they are
-otherwise (a force over an approach-speed axis that crosses zero is signed).
+interpolated in log space when every value of the output is > 0 and the kind does not declare it
+``signed`` (the traction coefficient, odd in the slide-to-roll ratio), as they are otherwise (a force
+over an approach-speed axis that crosses zero is signed).
 
 Relative errors of the accuracy report are ``|a - b| / |b|`` for an output
 that is nonzero and of one sign on the whole grid, and ``|a - b| / max(|b|,
@@ -31,6 +32,14 @@ through zero approach speed, the zero force of a separating, cavitated film),
 s the largest |value| on the grid at the point's gap (its cell of the first
 axis, which carries the scale): such an output is judged against its scale
 there instead of against zero (:func:`local_floor`).
+
+Coordinates matter more than nodes: a map is only as accurate as its function is smooth in the map's
+coordinates.  The ball-ball film is tabulated on polar axes (gap, pressure number, squeeze angle) because
+on (gap, squeeze number, entrainment speed) it has a cone at zero approach and entrainment speed, and the
+EHL traction on a log slide-to-roll axis from 1e-3 because through SRR = 0 it is a step
+(:mod:`coupling.film_points`).  :meth:`FilmMap.dynamics_film_map` hands a polar ball-ball map to the
+bearing kernel (polar arrays when :mod:`dynamics.contacts` reads them, else resampled on the Cartesian
+nodes it reads, :func:`cartesian_resample`).
 
 Failed points: a point whose solve raises is recorded (its message kept) and
 not cached, so a later build retries it.  With ``on_failure = "raise"`` (the
@@ -204,6 +213,8 @@ def resolve_axes(kind, overrides: dict | None = None) -> tuple[MapAxis, ...]:
         scale = over.get("scale", a.scale)
         if over.get("nodes") is not None:
             out.append(MapAxis(a.name, np.asarray(over["nodes"], dtype=float), scale))
+        elif getattr(a, "explicit", ()) and not over:
+            out.append(MapAxis(a.name, np.asarray(a.explicit, dtype=float), scale))
         else:
             out.append(MapAxis.uniform(a.name, float(over.get("lo", a.lo)), float(over.get("hi", a.hi)),
                                        int(over.get("n", a.n)), scale))
@@ -498,6 +509,28 @@ class FilmMap:
         v = v.reshape(shape)
         return (v, g.reshape(shape + (self.ndim,))) if grad else v
 
+    # -- dynamics
+    def is_polar(self) -> bool:
+        """True for a ball_ball map on the polar axes (gap, pressure number, squeeze angle)."""
+        return [a.name for a in self.axes][1:] == [POLAR_AXES[0], POLAR_AXES[1]]
+
+    def dynamics_film_map(self, output: str = "Force [N]"):
+        """Kernel arrays of ``output`` for :class:`dynamics.cageless.CagelessBearing` (``film = "map"``).
+
+        A map on (gap, squeeze number or approach speed, entrainment speed): its kernel arrays.  A polar
+        ball_ball map (:mod:`coupling.film_points`, "Polar axes"): ``(*kernel_arrays, "polar")`` when the
+        bearing kernel reads polar axes (``dynamics.contacts.MAP_AXIS_POLAR``); otherwise the map resampled
+        on the (gap, squeeze number, entrainment speed) nodes that kernel reads (:func:`cartesian_resample`;
+        transitional: that grid has the cone at zero approach speed that the polar axes remove)."""
+        output = self._output(output)
+        if not self.is_polar():
+            return self.kernel_arrays(output)
+        from dynamics import contacts
+
+        if hasattr(contacts, "MAP_AXIS_POLAR"):
+            return tuple(self.kernel_arrays(output)) + ("polar",)
+        return cartesian_resample(self, output).kernel_arrays(output)
+
     def grid_points(self) -> np.ndarray:
         """All nodes as (N, ndim) in C order of the value arrays."""
         grids = np.meshgrid(*[a.nodes for a in self.axes], indexing="ij")
@@ -630,6 +663,38 @@ class FilmMap:
 
 
 _json_default = outputs.json_default
+
+POLAR_AXES = ("Pressure number [-]", "Squeeze angle [rad]")
+CARTESIAN_SQUEEZE = (0.0, 0.01, 0.03, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9)
+CARTESIAN_ENTRAINMENT = (0.0, 0.025, 0.05)
+
+
+def cartesian_resample(fmap: "FilmMap", output: str = "Force [N]", squeeze=CARTESIAN_SQUEEZE,
+                       entrainment=CARTESIAN_ENTRAINMENT, gaps: int = 19) -> "FilmMap":
+    """A polar ball_ball map's ``output`` on (gap, squeeze number, entrainment speed) nodes (approach side).
+
+    Each node (h0, Lambda, u_e) is turned into (rho, theta) (:func:`coupling.film_points.polar_numbers`)
+    and read from the polar map: rho above the axis is clamped, rho below its first node scales the
+    output by rho/rho_lo (isoviscous limit: F, K ~ rho), rho = 0 gives 0."""
+    from . import film_points as fp
+
+    params = fmap.provenance.get("params") or fp.ball_ball_default_params()
+    g = fmap.axes[0]
+    h_nodes = np.geomspace(g.lo, g.hi, gaps)
+    rho_lo, rho_hi = fmap.axes[1].lo, fmap.axes[1].hi
+    vals = np.zeros((gaps, len(squeeze), len(entrainment)))
+    for i, h0 in enumerate(h_nodes):
+        for j, lam in enumerate(squeeze):
+            for k, ue in enumerate(entrainment):
+                rho, theta = fp.polar_numbers(h0, fp.approach_speed(h0, lam, params), ue, params)
+                if rho <= 0.0:
+                    continue
+                rq = min(max(rho, rho_lo), rho_hi)
+                vals[i, j, k] = float(fmap(output, h0, rq, theta, mode="clamp")) * (rho / rho_lo if rho < rho_lo else 1.0)
+    axes = [MapAxis(g.name, h_nodes, "log"), MapAxis("Squeeze number [-]", np.array(squeeze, float), "linear"),
+            MapAxis("Entrainment speed [m/s]", np.array(entrainment, float), "linear")]
+    prov = {**fmap.provenance, "resampled from": "polar axes (gap, pressure number, squeeze angle)"}
+    return FilmMap(axes, {output: vals}, method=fmap.method, provenance=prov)
 
 
 # ---------------------------------------------------------------------------
@@ -973,7 +1038,9 @@ def build_map(kind, params: dict | None = None, axes=None, *, method: str = "her
         "points from cache": info["cached"],
         "filled points": [{"point": p, "error": msg} for _, p, msg in failed],
     }
-    fmap = FilmMap(axes, values, method=method, provenance=provenance)
+    signed = set(getattr(kind, "signed", ()) or ())
+    fmap = FilmMap(axes, values, method=method, provenance=provenance,
+                   log_values={name: False for name in names if name in signed})
     if fit:
         for name in names:
             fmap.fit_power_law(name)

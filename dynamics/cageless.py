@@ -157,7 +157,11 @@ SCENARIOS = {"steady": 0, "drop": 1, "free": 2}
 RACES = {"outer": 0, "inner": 1}
 TRACTIONS = {"closed_form": 0, "map": 1}
 RACE_FILMS = {"none": 0, "closed_form": 1}
-MAP_SPEED_AXES = {"approach_speed": C.MAP_AXIS_APPROACH, "squeeze_number": C.MAP_AXIS_SQUEEZE}
+MAP_SPEED_AXES = {"approach_speed": C.MAP_AXIS_APPROACH, "squeeze_number": C.MAP_AXIS_SQUEEZE,
+                  "polar": C.MAP_AXIS_POLAR}
+# traction maps start at a slide-to-roll ratio > 0 (coupling.film_points, "Traction axis"): below the
+# first node the kernel takes mu linear in the SRR (tests/test_traction_map.py checks this flag)
+TRACTION_MAP_BELOW_AXIS = "linear"
 N_RING = 9
 NB_PLANAR, NB_6DOF = 6, 13
 
@@ -270,8 +274,14 @@ def _race_contact(c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K, ctr0, ct
     if vs > 0.0:
         if race >= 0 and ue > 0.0:
             tax0, tax1, tax2, tvals, topts = tmap
-            mu = abs(_traction_from_map(tax0[race], tax1[race], tax2[race], tvals[race], topts, Q, ue, vs / ue,
-                                        counter))
+            # below the map's first slide-to-roll node: linear in the SRR (coupling.film_points, "Traction axis")
+            sq = vs / ue
+            s_lo = math.exp(tax2[race][0]) if topts[C.MO_LOG2] == 1 else tax2[race][0]
+            lin = 1.0
+            if sq < s_lo:
+                lin, sq = sq / s_lo, s_lo * (1.0 + 1e-12)
+            mu = lin * abs(_traction_from_map(tax0[race], tax1[race], tax2[race], tvals[race], topts, Q, ue, sq,
+                                              counter))
         else:
             mu = traction_coefficient(vs, ue, mu_lim, srr_ref, v_reg)
         f = -mu * Q / vs
@@ -741,6 +751,9 @@ def _map_arrays(film_map, axis1_kind):
     speed) gets a constant third axis."""
     from .interp import HERMITE
 
+    if len(film_map) == 6:  # (axes, logs, values, logv, method, axis kind name): coupling.maps.FilmMap.dynamics_film_map
+        axis1_kind = MAP_SPEED_AXES[film_map[5]]
+        film_map = tuple(film_map[:5])
     try:
         axes, logs, values, logv, method = film_map
     except (TypeError, ValueError):

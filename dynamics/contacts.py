@@ -133,10 +133,12 @@ BB_SIZE = 15
 
 # map options (int64 array ``map_opts``): log flags of the three axes and the values, interp method, mode,
 # kind of the second axis (MAP_AXIS_APPROACH: approach speed v [m/s]; MAP_AXIS_SQUEEZE: squeeze number
-# Lambda = 3 alpha eta0 R_eff v/h^2 [-], the ball_ball kind of coupling.film_points)
+# Lambda = 3 alpha eta0 R_eff v/h^2 [-]; MAP_AXIS_POLAR: the polar axes of the ball_ball kind of
+# coupling.film_points, pressure number rho = sqrt(Lambda^2 + E^2) [-] and squeeze angle theta =
+# atan2(Lambda, E) [rad] on the second and third axes, E = 3 alpha eta0 |u_e| sqrt(2 R_eff h)/h^2)
 MO_LOG0, MO_LOG1, MO_LOG2, MO_LOGV, MO_METHOD, MO_MODE, MO_AXIS1 = range(7)
 MO_SIZE = 7
-MAP_AXIS_APPROACH, MAP_AXIS_SQUEEZE = 0, 1
+MAP_AXIS_APPROACH, MAP_AXIS_SQUEEZE, MAP_AXIS_POLAR = 0, 1, 2
 
 
 # ------------------------------------------------------------------ set-up (Python)
@@ -375,6 +377,48 @@ def _film(h, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts,
 
 
 @njit(**_JIT)
+def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
+    """F and dF/dh (fixed v, u_e) from a ball_ball map on (gap, rho, theta); see :func:`_film_map`."""
+    if h >= p[BB_HCUT]:
+        return 0.0, 0.0
+    h0 = math.exp(ax0[0]) if opts[MO_LOG0] == 1 else ax0[0]
+    floored = h < h0
+    if floored:
+        h = h0 * (1.0 + 1e-12)  # the first gap node acts as the rupture thickness (no clamp count)
+    lam = p[BB_SQF] * v / (h * h)
+    e = p[BB_SQF] * abs(ue) * math.sqrt(2.0 / (p[BB_R] * h)) / h
+    rho = math.sqrt(lam * lam + e * e)
+    if rho <= 0.0:
+        return 0.0, 0.0
+    th = math.atan2(lam, e)
+    if th < ax2[0]:
+        return 0.0, 0.0
+    # d/dh at fixed v, u_e: dLambda/dh = -2 Lambda/h, dE/dh = -1.5 E/h
+    dlam, de = -2.0 * lam / h, -1.5 * e / h
+    drho = (lam * dlam + e * de) / rho
+    dth = (e * dlam - lam * de) / (rho * rho)
+    if floored:
+        drho, dth = 0.0, 0.0
+    rho_lo = math.exp(ax1[0]) if opts[MO_LOG1] == 1 else ax1[0]
+    scale, rq = 1.0, rho
+    if rho < rho_lo:
+        scale, rq = rho / rho_lo, rho_lo * (1.0 + 1e-12)
+    if opts[MO_METHOD] == HERMITE:
+        f, d0, d1, d2 = hermite3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
+                                      opts[MO_LOGV], h, rq, th, opts[MO_MODE], counter)
+    else:
+        f, d0, d1, d2 = interp3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals[0],
+                                     opts[MO_LOGV], opts[MO_METHOD], h, rq, th, opts[MO_MODE], counter)
+    if f != f:
+        return f, f
+    if f < 0.0:
+        return 0.0, 0.0
+    if scale < 1.0:
+        return scale * f, scale * (d0 + d2 * dth) + f * drho / rho_lo
+    return f, d0 + d1 * drho + d2 * dth
+
+
+@njit(**_JIT)
 def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     """Tabulated squeeze force over (gap, approach speed or squeeze number,
     entrainment speed), read with :mod:`dynamics.interp` (``vals`` of shape
@@ -386,7 +430,15 @@ def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     isoviscous squeeze film is linear in v); other points outside the axes are
     clamped and counted in ``counter[0]`` (or give NaN with mode 1).  No film
     force during separation (v <= 0: cavitated) or beyond h_cut.  d/dh is
-    taken at fixed v (through the squeeze number when that is the axis)."""
+    taken at fixed v (through the squeeze number when that is the axis).
+
+    Polar axes (``MAP_AXIS_POLAR``: gap, pressure number rho, squeeze angle
+    theta): a separating film (v < 0) with entrainment carries the tabulated
+    load down to the axis' first angle (-80 deg, 2.6e-3 of the squeeze force
+    of the same rho), none below; below the first rho node the isoviscous
+    scaling F ~ rho holds (:mod:`coupling.film_points`, "Polar axes")."""
+    if opts[MO_AXIS1] == MAP_AXIS_POLAR:
+        return _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter)
     if v <= 0.0 or h >= p[BB_HCUT]:
         return 0.0, 0.0
     h0 = math.exp(ax0[0]) if opts[MO_LOG0] == 1 else ax0[0]

@@ -16,7 +16,11 @@
   (roller), film stiffness against the Hertz stiffness 1.5 Q/delta and, with
   the damping, against a second method (steady solves at two loads),
   traction odd in SRR, zero at SRR = 0 and within 10 % of a Hertz-pressure
-  limiting-shear estimate.
+  limiting-shear estimate;
+- the ball_ball polar axes: the isoviscous film is homogeneous of degree 1
+  in (v, u_e) (the cone that Cartesian axes cannot interpolate), the film is
+  self-similar in h0 at fixed (rho, theta), the separation onset angle of the
+  maximum principle, and theta = 90 deg is the closed-form squeeze film.
 """
 import math
 import pickle
@@ -51,14 +55,14 @@ def test_registry_kinds_pickle_and_evaluate_to_closed_form():
     kind = pickle.loads(pickle.dumps(fp.KINDS["ball_ball"]))
     params = dict(kind.default_params(), viscosity_law="constant", density_law="incompressible", resolution="smoke")
     point = {a.name: float(np.median(a.nodes())) for a in kind.axes}
-    point["Entrainment speed [m/s]"] = 0.0
+    point[fp.SQUEEZE_ANGLE] = 0.5 * math.pi  # pure approach
     out = kind.evaluate(params, point)
-    assert set(out) == set(kind.outputs)
+    assert set(kind.outputs) <= set(out)
     h0, Reff = point["Central gap [m]"], 0.5 * params["ball_radius"]
-    v = fp.approach_speed(h0, point["Squeeze number [-]"], params)
+    v = out["Approach speed [m/s]"]
     exact = sphere_plane_squeeze_force(Reff, h0, params["eta0"], -v, math.sqrt(2 * Reff * 999 * h0))
     assert out["Force [N]"] == pytest.approx(exact, rel=5e-3)
-    assert fp.squeeze_number(h0, v, params) == pytest.approx(point["Squeeze number [-]"], rel=1e-12)
+    assert fp.squeeze_number(h0, v, params) == pytest.approx(point[fp.PRESSURE_NUMBER], rel=1e-12)
 
 
 def test_default_params_reproduce_the_papers_derived_numbers():
@@ -205,6 +209,57 @@ def test_film_friction_coefficient_matches_quadrature():
     assert fp.barus_hertz_friction_coefficient(eta0, alpha, U, h, p0) == pytest.approx(num / Q, rel=1e-9)
     assert fp.barus_hertz_friction_coefficient(eta0, 1e-20, U, h, p0) == pytest.approx(1.5 * eta0 * U / (h * p0), rel=1e-9)
     assert fp.mixed_friction_coefficient(0.02, 0.1, 0.25) == pytest.approx(0.04, rel=1e-12)
+
+
+def _polar(h0, rho, theta_deg):
+    return {"Central gap [m]": h0, fp.PRESSURE_NUMBER: rho, fp.SQUEEZE_ANGLE: math.radians(theta_deg)}
+
+
+def test_ball_ball_isoviscous_film_is_homogeneous_in_approach_and_entrainment_speed():
+    """The isoviscous incompressible film with Reynolds cavitation is positively homogeneous of degree 1
+    in (v, u_e) (the source 12 eta (u_e x/R - v) scales, the complementarity problem p >= 0 with it):
+    F(2 v, 2 u_e) = 2 F(v, u_e), and C = dF/dv is of degree 0, at a point where the approach film is partly
+    cavitated by the entrainment.  This is the cone at v = u_e = 0 that a (Lambda, u_e) grid cannot
+    interpolate; in (rho, theta) it is F ~ rho at fixed theta."""
+    params = dict(fp.ball_ball_default_params(), viscosity_law="constant", density_law="incompressible",
+                  resolution="smoke")
+    h0, v, ue = 1e-6, 2e-4, 0.02
+    one = fp.evaluate_ball_ball(params, {"Central gap [m]": h0, "Approach speed [m/s]": v, "Entrainment speed [m/s]": ue})
+    two = fp.evaluate_ball_ball(params, {"Central gap [m]": h0, "Approach speed [m/s]": 2 * v,
+                                         "Entrainment speed [m/s]": 2 * ue})
+    full = fp.evaluate_ball_ball(params, {"Central gap [m]": h0, "Approach speed [m/s]": v})
+    assert two["Force [N]"] == pytest.approx(2 * one["Force [N]"], rel=1e-8)
+    assert two["Damping [N s/m]"] == pytest.approx(one["Damping [N s/m]"], rel=1e-8)
+    assert one["Force [N]"] > 1.05 * full["Force [N]"]  # the entrainment matters at this point
+
+
+def test_ball_ball_polar_axes_self_similar_onset_and_squeeze_limit():
+    """Polar axes of the ball_ball kind (coupling.film_points, "Polar axes"; smoke mesh, paper B's oil):
+    (1) scaling r by sqrt(2 R_eff h0), h by h0 and p by 1/alpha makes F/h0, K, C h0 and p_max functions of
+    (rho, theta) only: equal at h0 = 0.05 and 50 um (measured to 1e-9); (2) the separation onset
+    theta_on = -atan(sqrt(h_a/h0 - 1)) (maximum principle: the source is >= 0 on the whole disk below it):
+    F = 0 exactly half a degree below, F > 0 two degrees above; (3) theta = 90 deg is the pure squeeze film:
+    isoviscous, the finite-disk closed form 6 pi eta R^2 v/h0 (1 - h0/h_a)^2 (smoke mesh: -3.3e-3)."""
+    params = dict(fp.ball_ball_default_params(), resolution="smoke")
+    small, large = (fp.evaluate_ball_ball(params, _polar(h0, 0.4, 20.0)) for h0 in (5e-8, 5e-5))
+    assert large["Force [N]"] / 5e-5 == pytest.approx(small["Force [N]"] / 5e-8, rel=1e-7)
+    assert large["Stiffness [N/m]"] == pytest.approx(small["Stiffness [N/m]"], rel=1e-7)
+    assert large["Damping [N s/m]"] * 5e-5 == pytest.approx(small["Damping [N s/m]"] * 5e-8, rel=1e-7)
+    assert large["Maximum pressure [Pa]"] == pytest.approx(small["Maximum pressure [Pa]"], rel=1e-7)
+    onset = math.degrees(fp.separation_onset_angle(params))
+    assert onset == pytest.approx(-88.1878, abs=1e-3)
+    below = fp.evaluate_ball_ball(params, _polar(1e-6, 0.5, onset - 0.5))["Force [N]"]
+    above = fp.evaluate_ball_ball(params, _polar(1e-6, 0.5, onset + 2.0))["Force [N]"]
+    squeeze = fp.evaluate_ball_ball(params, _polar(1e-6, 0.5, 90.0))["Force [N]"]
+    assert abs(below) < 1e-15 * squeeze  # zero up to round-off
+    assert above > 1e-7 * squeeze
+    iso = dict(params, viscosity_law="constant", density_law="incompressible")
+    h0, Reff = 1e-6, 0.5 * params["ball_radius"]
+    out = fp.evaluate_ball_ball(iso, _polar(h0, 0.3, 90.0))
+    v, ue = fp.polar_speeds(h0, 0.3, 0.5 * math.pi, iso)
+    assert ue == 0.0 and v == pytest.approx(0.3 * h0**2 / (3 * iso["alpha"] * iso["eta0"] * Reff), rel=1e-12)
+    exact = sphere_plane_squeeze_force(Reff, h0, iso["eta0"], -v, math.sqrt(2 * Reff * 999 * h0))
+    assert out["Force [N]"] == pytest.approx(exact, rel=5e-3)
 
 
 # ---------------------------------------------------------------- EHL kinds

@@ -327,9 +327,7 @@ def test_shipped_map_agrees_with_a_fresh_solve(path):
     point also at the centre (in interpolation space) of a cell whose corner values of the first output
     are all significant and positive, where the interpolation must be within 3 % (the issue's target)
     for every output positive at all the cell's corners whose accuracy report meets the median target
-    (< 1 %; an output that misses it, e.g. the EHL line contact's maximum pressure, a grid-dependent
-    spike, is listed in the map's report and summary instead).  The global maximum errors of the
-    reports sit at kinks (the ball-ball film at zero approach speed), which such a cell avoids."""
+    (< 1 %; an output that misses it is listed in the map's report and summary instead)."""
     fmap = FilmMap.load(path)
     kind = maps.get_kind(fmap.provenance["kind"])
     params = fmap.provenance["params"]
@@ -371,7 +369,7 @@ def test_dask_worker_processes_give_the_same_real_map(tmp_path):
     the real ball-ball kind at smoke resolution bit-identically to local processes."""
     from distributed import LocalCluster
 
-    axes = {"central_gap": {"n": 2}, "squeeze_number": {"n": 2}, "entrainment_speed": {"n": 2}}
+    axes = {"central_gap": {"n": 2}, "pressure_number": {"n": 2}, "squeeze_angle": {"n": 2}}
     params = {"resolution": "smoke"}
     local = build_map("ball_ball", params, axes, workers=2, cache_dir=tmp_path / "a", progress=False, fit=False)
     with LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None) as cluster:
@@ -381,3 +379,89 @@ def test_dask_worker_processes_give_the_same_real_map(tmp_path):
     for name in local.outputs:
         assert np.array_equal(local.values[name], remote.values[name]), name
     assert np.all(local.values["Force [N]"] >= 0.0) and local.values["Force [N]"].max() > 0.0
+
+
+# ---------------------------------------------------------------------------
+# the shipped maps' accuracy (issue 4, section 5) and the polar ball-ball map
+
+SHIPPED_MAPS = Path(__file__).resolve().parents[1] / "cases" / "maps"
+
+
+# (map, output) pairs whose EHL *solution* jitters between neighbouring points (cases/maps/README.md,
+# "Accuracy"): the interpolation is fine, the direct solves are not smooth in (load, speed)
+KNOWN_MISSES = {
+    ("ehl_ball_inner_race", "Film stiffness [N/m]"): "inner race K jumps at light load / high speed (M < 30)",
+    ("ehl_ball_inner_race", "Film damping [N s/m]"): "inner race C jumps at light load / high speed (M < 30)",
+    ("ehl_ball_outer_race", "Film damping [N s/m]"): "outer race C at light load / high speed",
+    ("ehl_roller_race", "Minimum film thickness [m]"): "one-node outlet constriction on 257 nodes",
+    ("ehl_roller_race", "Film damping [N s/m]"): "one-node outlet constriction on 257 nodes",
+    ("ehl_roller_race", "Approach [m]"): "one-node outlet constriction on 257 nodes",
+}
+
+
+def _accuracy_cases():
+    out = []
+    for path in sorted(SHIPPED_MAPS.glob("*.npz")):
+        fmap = FilmMap.load(path)
+        for name in fmap.outputs:
+            why = KNOWN_MISSES.get((path.stem, name))
+            marks = [pytest.mark.xfail(strict=True, reason=why)] if why else []
+            out.append(pytest.param(path, name, id=f"{path.stem}-{name.split('[')[0].strip()}", marks=marks))
+    return out
+
+
+
+
+@pytest.mark.parametrize("path, name", _accuracy_cases())
+def test_shipped_map_accuracy_report_meets_the_target(path, name):
+    """Every output of every shipped map: interpolation error against direct solves at random off-grid
+    points (coupling.maps.accuracy_report, stored in the map) median < 1 %, max < 3 % (the issue's target),
+    on at least 15 points, none failed.  Strict xfail: the pairs of KNOWN_MISSES (EHL solution jitter)."""
+    rep = FilmMap.load(path).accuracy
+    assert not rep.get("failed points"), rep.get("failed points")
+    assert rep[name]["points"] >= 15, name
+    assert rep[name]["median"] < 0.01 and rep[name]["max"] < 0.03, (name, rep[name])
+
+
+def _old_cone_points():
+    # the worst points of the earlier (gap, squeeze number, entrainment speed) map: F 59 %, C 123 %
+    # (separating, 0.29 um) and F 39 % (approaching, 2.1 um), next to zero approach speed
+    return [(2.9416789483285e-07, -0.015427428788579082, 0.005409470763730636),
+            (2.13093296e-06, 3.13753268e-03, 8.90244440e-03)]
+
+
+def test_shipped_ball_ball_map_at_the_cone_of_the_cartesian_axes():
+    """The points where the Cartesian map failed (the cone at v = u_e = 0), read from the shipped polar
+    map through coupling.film_points.polar_numbers, against direct Reynolds solves with the map's own
+    parameters: F, K, C within 3 %."""
+    from coupling import film_points as fp
+
+    fmap = FilmMap.load(SHIPPED_MAPS / "ball_ball.npz")
+    params = fmap.provenance["params"]
+    for h0, lam, ue in _old_cone_points():
+        v = fp.approach_speed(h0, lam, params)
+        rho, theta = fp.polar_numbers(h0, v, ue, params)
+        direct = fp.evaluate_ball_ball(params, {"Central gap [m]": h0, "Approach speed [m/s]": v,
+                                                "Entrainment speed [m/s]": ue})
+        for name in ("Force [N]", "Stiffness [N/m]", "Damping [N s/m]"):
+            assert float(fmap(name, h0, rho, theta)) == pytest.approx(direct[name], rel=0.03), (name, h0, lam, ue)
+
+
+def test_cartesian_resample_for_the_bearing_kernel():
+    """The polar ball-ball map resampled on (gap, squeeze number, entrainment speed) nodes (what the bearing
+    kernel reads until it reads polar axes): at nodes with and without entrainment it matches direct solves
+    within 3 %; at Lambda = u_e = 0 the force is 0 (no film load at rest)."""
+    from coupling import film_points as fp
+
+    fmap = FilmMap.load(SHIPPED_MAPS / "ball_ball.npz")
+    params = fmap.provenance["params"]
+    cart = maps.cartesian_resample(fmap, "Force [N]")
+    assert [a.name for a in cart.axes] == ["Central gap [m]", "Squeeze number [-]", "Entrainment speed [m/s]"]
+    g, lam, ue = (a.nodes for a in cart.axes)
+    assert np.all(cart.values["Force [N]"][:, 0, 0] == 0.0)
+    for i, j, k in ((9, 4, 1), (3, 8, 2), (15, 2, 0)):
+        direct = fp.evaluate_ball_ball(params, {"Central gap [m]": g[i], "Squeeze number [-]": lam[j],
+                                                "Entrainment speed [m/s]": ue[k]})
+        assert cart.values["Force [N]"][i, j, k] == pytest.approx(direct["Force [N]"], rel=0.03), (i, j, k)
+    arrays = fmap.dynamics_film_map()
+    assert len(arrays) in (5, 6)
