@@ -376,6 +376,16 @@ def _film(h, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts,
     return 0.0, 0.0
 
 
+@njit(inline='always', **_JIT)  # shared by the two film-map readers; inlined like the other leaves
+def _map3_grad(ax0, ax1, ax2, vals, opts, x0, x1, x2, counter):
+    """Value and gradient of a packed 3-axis film map (``opts``: logs, method, mode; see :func:`_film_map`)."""
+    if opts[MO_METHOD] == HERMITE:
+        return hermite3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
+                             opts[MO_LOGV], x0, x1, x2, opts[MO_MODE], counter)
+    return interp3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals[0],
+                        opts[MO_LOGV], opts[MO_METHOD], x0, x1, x2, opts[MO_MODE], counter)
+
+
 @njit(**_JIT)
 def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     """F and dF/dh (fixed v, u_e) from a ball_ball map on (gap, rho, theta); see :func:`_film_map`."""
@@ -403,12 +413,7 @@ def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     scale, rq = 1.0, rho
     if rho < rho_lo:
         scale, rq = rho / rho_lo, rho_lo * (1.0 + 1e-12)
-    if opts[MO_METHOD] == HERMITE:
-        f, d0, d1, d2 = hermite3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
-                                      opts[MO_LOGV], h, rq, th, opts[MO_MODE], counter)
-    else:
-        f, d0, d1, d2 = interp3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals[0],
-                                     opts[MO_LOGV], opts[MO_METHOD], h, rq, th, opts[MO_MODE], counter)
+    f, d0, d1, d2 = _map3_grad(ax0, ax1, ax2, vals, opts, h, rq, th, counter)
     if f != f:
         return f, f
     if f < 0.0:
@@ -455,12 +460,7 @@ def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
         if v < v0:
             scale = v / v0
             x1 = v0 * (1.0 + 1e-12)  # stay inside the axis after the log/exp round trip
-    if opts[MO_METHOD] == HERMITE:
-        f, d0, d1, _ = hermite3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
-                                     opts[MO_LOGV], h, x1, ue, opts[MO_MODE], counter)
-    else:
-        f, d0, d1, _ = interp3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals[0],
-                                    opts[MO_LOGV], opts[MO_METHOD], h, x1, ue, opts[MO_MODE], counter)
+    f, d0, d1, _ = _map3_grad(ax0, ax1, ax2, vals, opts, h, x1, ue, counter)
     if f != f:
         return f, f
     if f < 0.0:
