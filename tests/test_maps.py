@@ -390,9 +390,6 @@ SHIPPED_MAPS = Path(__file__).resolve().parents[1] / "cases" / "maps"
 # (map, output) pairs whose EHL *solution* jitters between neighbouring points (cases/maps/README.md,
 # "Accuracy"): the interpolation is fine, the direct solves are not smooth in (load, speed)
 KNOWN_MISSES = {
-    ("ehl_ball_inner_race", "Film stiffness [N/m]"): "inner race K jumps at light load / high speed (M < 30)",
-    ("ehl_ball_inner_race", "Film damping [N s/m]"): "inner race C jumps at light load / high speed (M < 30)",
-    ("ehl_ball_outer_race", "Film damping [N s/m]"): "outer race C at light load / high speed",
     ("ehl_roller_race", "Minimum film thickness [m]"): "one-node outlet constriction on 257 nodes",
     ("ehl_roller_race", "Film damping [N s/m]"): "one-node outlet constriction on 257 nodes",
     ("ehl_roller_race", "Approach [m]"): "one-node outlet constriction on 257 nodes",
