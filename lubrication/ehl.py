@@ -137,6 +137,22 @@ log = logging.getLogger(__name__)
 TRACTION_MODELS = ("newtonian", "limiting_shear", "eyring")
 
 
+def supg_parameter(um, dx, rho, h, k):
+    """Streamline-upwind parameter of the Reynolds equation at the quadrature points.
+
+    Peclet number Pe = u_m dx rho h / (2 k), k = rho h^3/(12 eta) (so Pe = 6 u_m dx eta/h^2,
+    rho cancels), capped at 1e8; tau = dx/(2 u_m) (coth Pe - 1/Pe) (Pe/3 below 1e-3) and its
+    exact derivative d tau/d Pe (0 at the cap).  Returns ``(Pe, tau, dtau_dPe)``."""
+    Pe_raw = um * dx * rho * h / (2 * np.maximum(k, 1e-300))
+    Pe = np.minimum(Pe_raw, 1e8)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        xi = np.where(Pe > 1e-3, 1.0 / np.tanh(np.minimum(Pe, 700)) - 1.0 / Pe, Pe / 3.0)
+        sh = np.sinh(np.minimum(Pe, 300.0))
+        dxi = np.where(Pe > 1e-3, 1.0 / Pe**2 - np.where(Pe < 300.0, 1.0 / sh**2, 0.0), 1.0 / 3.0)
+    dxi = np.where(Pe_raw < 1e8, dxi, 0.0)
+    return Pe, dx / (2 * um) * xi, dx / (2 * um) * dxi
+
+
 @dataclass(frozen=True)
 class Traction:
     """Shear law for friction.  ``newtonian``: tau = eta du/h;
@@ -523,15 +539,7 @@ class _Problem:
         dim = F.dim
         # SUPG parameter; Pe = 6 u_m l eta/h^2 (rho cancels), differentiated
         # exactly below: d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -2 tau'(Pe) Pe/h
-        Pe_raw = um * self.dx * rho * hq / (2 * np.maximum(k, 1e-300))
-        Pe = np.minimum(Pe_raw, 1e8)
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            xi = np.where(Pe > 1e-3, 1.0 / np.tanh(np.minimum(Pe, 700)) - 1.0 / Pe, Pe / 3.0)
-            sh = np.sinh(np.minimum(Pe, 300.0))
-            dxi = np.where(Pe > 1e-3, 1.0 / Pe**2 - np.where(Pe < 300.0, 1.0 / sh**2, 0.0), 1.0 / 3.0)
-        dxi = np.where(Pe_raw < 1e8, dxi, 0.0)
-        tau = self.dx / (2 * um) * xi
-        dtau_dPe = self.dx / (2 * um) * dxi
+        Pe, tau, dtau_dPe = supg_parameter(um, self.dx, rho, hq, k)
         strong = um * (rho * hg[0] + hq * drho * pg[0]) + rho * hdot
         if self.o.consistent_supg:
             # recovered Poiseuille flux F = -k grad p at the nodes (lumped L2
@@ -608,15 +616,7 @@ class _Problem:
         hdot = c.squeeze_velocity
         # SUPG parameter; Pe = 6 u_m l eta/h^2 (rho cancels), differentiated
         # exactly below: d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -2 tau'(Pe) Pe/h
-        Pe_raw = um * self.dx * rho * hq / (2 * np.maximum(k, 1e-300))
-        Pe = np.minimum(Pe_raw, 1e8)
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            xi = np.where(Pe > 1e-3, 1.0 / np.tanh(np.minimum(Pe, 700)) - 1.0 / Pe, Pe / 3.0)
-            sh = np.sinh(np.minimum(Pe, 300.0))
-            dxi = np.where(Pe > 1e-3, 1.0 / Pe**2 - np.where(Pe < 300.0, 1.0 / sh**2, 0.0), 1.0 / 3.0)
-        dxi = np.where(Pe_raw < 1e8, dxi, 0.0)
-        tau = self.dx / (2 * um) * xi
-        dtau_dPe = self.dx / (2 * um) * dxi
+        Pe, tau, dtau_dPe = supg_parameter(um, self.dx, rho, hq, k)
         ugrad_rho_h = um * (rho * hf.grad[0] + hq * drho * pf.grad[0])
         strong = ugrad_rho_h + rho * hdot
         dim = 1 if c.is_line else 2
