@@ -590,13 +590,7 @@ def bench_scipy(setup, cfg, ref, ref_t, repeats, rtol=1e-6):
     if have_ref:
         lub.update(errors(model, res.y[-1:], ref[j:j + 1], dH, omega0))
     out["lubedyn dopri5"] = lub
-    calls = [0]
-    dy = np.empty(y0.size)
-
-    def f(t, y):
-        calls[0] += 1
-        rhs(t, y, args, dy)
-        return dy.copy()
+    f, calls = python_rhs(args, y0.size)
 
     for method in ("RK45", "DOP853"):
         def go():
@@ -662,13 +656,7 @@ def bench_equal_accuracy(setup, cfg, ref, ref_t, repeats):
            "wall": "fastest of the repeats (the machine is shared; a busy core only slows a run down)",
            "one rhs call from compiled code at the initial state [us] (c)": rhs_cost * 1e6,
            "one rhs call from Python at the initial state [us]": setup_rhs_cost(model, y0) * 1e6, "methods": {}}
-    calls = [0]
-    dy = np.empty(y0.size)
-
-    def f(t, y):
-        calls[0] += 1
-        rhs(t, y, args, dy)
-        return dy.copy()
+    f, calls = python_rhs(args, y0.size)
 
     sparsity = jac_sparsity(model)
 
@@ -785,6 +773,19 @@ def bench_scipy_cheap(repeats, rtol=1e-6):
         out[f"scipy {method} RHS evaluations [-]"] = int(sol.nfev)
         out[f"ratio scipy {method} / lubedyn [-]"] = w / wall
     return out
+
+
+def python_rhs(args, n):
+    """The bearing's numba rhs as scipy calls it, ``f(t, y) -> dy/dt`` (a fresh array), and its call counter."""
+    calls = [0]
+    dy = np.empty(n)
+
+    def f(t, y):
+        calls[0] += 1
+        rhs(t, y, args, dy)
+        return dy.copy()
+
+    return f, calls
 
 
 def setup_rhs_cost(model, y0):
