@@ -22,6 +22,14 @@ Scenes
    error against Nijenbanning-Venner-Moes (1994) and against the Richardson
    extrapolation of the three finest converged grids.  Failures are recorded
    with the solver's message.
+3. The same circular contacts with ``ehl.method = "multigrid"`` (FAS
+   multigrid, lubrication/ehl_multigrid.py), M = 20, 50, 100, 200, 500, 1000
+   on 65 x 65 ... 513 x 513 nodes: H_c, H_min, cycles, work units, wall and
+   CPU time, error against NVM and against the Richardson extrapolation of
+   the three finest multigrid grids (129, 257, 513; the reference of both
+   methods in the PNG, since both converge to the same H_c: M = 100, 4.648).
+   The numba kernels are compiled (or loaded from the cache) by a warm-up
+   solve before the timed runs.
 
 Timings are medians of ``--repeats`` runs on this machine (noted in the
 JSON); compare ratios, not seconds, across machines.  Point rows also record
@@ -97,6 +105,49 @@ def point_series(M, L, grids, repeats):
     return point_reference(dict(M=M, L=L, nvm_Hc=float(nijenbanning_central(M, L)), grids=rows))
 
 
+MG_OPTIONS = EHLOptions(method="multigrid")
+
+
+def multigrid_series(M, L, grids):
+    import os
+    import time
+
+    c = EHLContact.from_moes(M, L)
+    rows = []
+    for n in grids:
+        load = os.getloadavg()[0]
+        cpu0, t0 = time.process_time(), time.perf_counter()
+        try:
+            s = solve_ehl(c, EHLGrid(nx=n), MG_OPTIONS)
+        except Exception as exc:
+            rows.append(dict(nx=n, error=str(exc), cpu_s=time.process_time() - cpu0,
+                             time_s=time.perf_counter() - t0, load_average=load))
+            continue
+        rows.append(dict(nx=n, time_s=time.perf_counter() - t0, cpu_s=time.process_time() - cpu0,
+                         solver_wall_s=s.info["wall_time"], solver_cpu_s=s.info["cpu_time"],
+                         setup_wall_s=s.info["setup_time"], load_average=load,
+                         Hc=H(c, s.central_film_thickness), Hmin=H(c, s.minimum_film_thickness),
+                         cycles=s.info["cycles"], work_units=s.info["work_units"], residual=s.info["residual"],
+                         load_error=s.info["load_error"], unknowns=s.info["unknowns"],
+                         max_pressure_over_hertz=s.maximum_pressure / s.problem.ph))
+    series = dict(M=M, L=L, nvm_Hc=float(nijenbanning_central(M, L)), grids=rows)
+    return multigrid_reference(series)
+
+
+def multigrid_reference(series):
+    """NVM errors and the Richardson reference of the three finest converged grids (order >= 1)."""
+    ok = [r for r in series["grids"] if "Hc" in r]
+    ref = _common.richardson([r["Hc"] for r in ok]) if len(ok) >= 3 else None
+    if ref is not None and not (ref.get("observed_order") or 0.0) >= 1.0:
+        ref = dict(ref, method="none: observed order below 1 (grids not in the asymptotic range)", value=None)
+    for r in ok:
+        r["Hc_nvm_error"] = r["Hc"] / series["nvm_Hc"] - 1.0
+        if ref is not None and ref["value"] is not None:
+            r["Hc_error"] = abs(r["Hc"] / ref["value"] - 1.0)
+    series["reference"] = ref
+    return series
+
+
 def point_reference(series):
     """NVM errors, and a Richardson reference from the three finest converged
     grids only where the observed order is at least 1 (an under-resolved
@@ -120,7 +171,7 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=None)
     ap.add_argument("--replot", action="store_true",
                     help="redo the derived references and the PNG from the stored JSON (no solves)")
-    ap.add_argument("--only", choices=("points", "lines"), default=None,
+    ap.add_argument("--only", choices=("points", "lines", "multigrid"), default=None,
                     help="run one scene and keep the other's stored results")
     args = ap.parse_args(argv)
     repeats = args.repeats or (1 if args.quick else 3)
@@ -130,38 +181,55 @@ def main(argv=None):
 
         data = json.loads((RESULTS / f"{stem}.json").read_text())
         data["point"] = [point_reference(s) for s in data["point"]]
+        data["multigrid"] = [multigrid_reference(s) for s in data.get("multigrid", [])]
         _common.write_json(RESULTS / f"{stem}.json", data)
         return plot(data, stem)
     if args.quick:
         line_cases = {20: [129, 257, 513], 1000: [257, 513, 1025]}
         point_cases = {20: [33, 65], 100: [33, 65]}
+        mg_cases = {100: [65, 129, 257]}
     else:
         line_cases = {20: [129, 257, 513, 1025], 100: [129, 257, 513, 1025], 1000: [257, 513, 1025, 2049]}
         # M = 100 first: the 257 x 257 target row
         # (513 x 513 is refused by EHLOptions.max_point_grid: its row records the message)
         point_cases = {100: [33, 65, 129, 257, 513], 200: [33, 65, 129, 257], 20: [33, 65, 129], 50: [33, 65, 129],
                        500: [65, 129], 1000: [65, 129]}
+        mg_cases = {M: [65, 129, 257, 513] for M in (100, 200, 20, 50, 500, 1000)}
     if args.only == "points":
-        line_cases = {}
+        line_cases, mg_cases = {}, {}
     elif args.only == "lines":
-        point_cases = {}
+        point_cases, mg_cases = {}, {}
+    elif args.only == "multigrid":
+        line_cases, point_cases = {}, {}
     RESULTS.mkdir(exist_ok=True)
-    data = dict(machine=_common.machine_info(), quick=args.quick, repeats=repeats, line=[], point=[])
+    data = dict(machine=_common.machine_info(), quick=args.quick, repeats=repeats, line=[], point=[], multigrid=[])
     if args.only:
-        # keep the other scene's stored results
+        # keep the other scenes' stored results (and the machine notes they were measured with)
         import json
 
         old = RESULTS / f"{stem}.json"
         if old.exists():
             prev = json.loads(old.read_text())
-            other = "line" if args.only == "points" else "point"
-            data[other] = prev.get(other, [])
+            ran = {"points": "point", "lines": "line", "multigrid": "multigrid"}[args.only]
+            for other in ("line", "point", "multigrid"):
+                if other != ran:
+                    data[other] = prev.get(other, [])
+            data["machine_previous_scenes"] = prev.get("machine")
     # written after every series, so that a long run leaves usable partial results
     for M, g in line_cases.items():
         data["line"] = [s for s in data["line"] if s["M"] != M] + [line_series(M, 10.0, g, repeats)]
         _common.write_json(RESULTS / f"{stem}.json", data)
     for M, g in point_cases.items():
         data["point"] = [s for s in data["point"] if s["M"] != M] + [point_series(M, 10.0, g, 1)]
+        _common.write_json(RESULTS / f"{stem}.json", data)
+    if mg_cases:
+        import time
+
+        t0, c0 = time.perf_counter(), time.process_time()
+        solve_ehl(EHLContact.from_moes(100, 10), EHLGrid(nx=33), MG_OPTIONS)  # numba compile / cache load
+        data["multigrid_warmup"] = dict(wall_s=time.perf_counter() - t0, cpu_s=time.process_time() - c0)
+    for M, g in mg_cases.items():
+        data["multigrid"] = [s for s in data["multigrid"] if s["M"] != M] + [multigrid_series(M, 10.0, g)]
         _common.write_json(RESULTS / f"{stem}.json", data)
     plot(data, stem)
 
@@ -173,7 +241,7 @@ def plot(data, stem):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(16, 4.4), constrained_layout=True)
     for s in data["line"]:
         ok = [r for r in s["grids"] if "Hc_error" in r and r["Hc_error"] > 0]
         if ok:
@@ -197,7 +265,29 @@ def plot(data, stem):
     a2.set_xlabel("nodes along x")
     a2.set_ylabel("H_c / formula")
     a2.set_title("Central film against Moes (line) and NVM (point)")
-    a2.legend(fontsize=8)
+    for s in data.get("multigrid", []):
+        ok = [r for r in s["grids"] if "Hc" in r]
+        a2.semilogx([r["nx"] for r in ok], [r["Hc"] / s["nvm_Hc"] for r in ok], "^:",
+                    label=f"multigrid M={s['M']:g} / NVM")
+    a2.legend(fontsize=7)
+    # circular contacts, both methods: error against the multigrid Richardson reference vs CPU time
+    refs = {s["M"]: (s.get("reference") or {}).get("value") for s in data.get("multigrid", [])}
+    for i, s in enumerate(sorted(data.get("multigrid", []), key=lambda s: s["M"])):
+        ref = refs.get(s["M"])
+        ok = [r for r in s["grids"] if "Hc" in r]
+        if ref and ok:
+            a3.loglog([r["cpu_s"] for r in ok], [max(abs(r["Hc"] / ref - 1), 1e-6) for r in ok], "o-", color=f"C{i}",
+                      label=f"multigrid M={s['M']:g}")
+        fem = next((p for p in data["point"] if p["M"] == s["M"]), None)
+        fok = [r for r in (fem or {}).get("grids", []) if "Hc" in r and r.get("cpu_s")]
+        if ref and fok:
+            a3.loglog([r["cpu_s"] for r in fok], [max(abs(r["Hc"] / ref - 1), 1e-6) for r in fok], "s--",
+                      color=f"C{i}", alpha=0.7, label=f"FEM Newton M={s['M']:g}")
+    a3.axvline(10.0, color="k", lw=0.8, ls=":")
+    a3.set_xlabel("CPU time of one core [s] (dotted: 10 s)")
+    a3.set_ylabel("|H_c / H_c,ref - 1| (multigrid Richardson reference)")
+    a3.set_title("Circles, L = 10: multigrid (solid), FEM Newton (dashed)")
+    a3.legend(fontsize=6, ncol=2)
     _common.save_figure(fig, RESULTS / f"{stem}.png")
     for s in data["line"]:
         print(f"line M={s['M']:g}: " + ", ".join(
@@ -208,6 +298,11 @@ def plot(data, stem):
             f"{r['nx']}: Hc={r.get('Hc', float('nan')):.4f} ({r.get('time_s', float('nan')):.2f} s, "
             f"{r.get('newton_iterations')} it)" if "Hc" in r else f"{r['nx']}: FAILED ({r['error'][:60]})"
             for r in s["grids"]) + f"; NVM {s['nvm_Hc']:.4f}")
+    for s in data.get("multigrid", []):
+        print(f"multigrid M={s['M']:g}: " + ", ".join(
+            f"{r['nx']}: Hc={r['Hc']:.4f} ({r['cpu_s']:.2f} s CPU, {r['time_s']:.2f} s wall, {r['cycles']} cycles)"
+            if "Hc" in r else f"{r['nx']}: FAILED ({r['error'][:60]})" for r in s["grids"])
+              + f"; NVM {s['nvm_Hc']:.4f}, ref {(s.get('reference') or {}).get('value')}")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,643 @@
+r"""Multilevel (FAS multigrid) solver of steady EHL point contacts.
+
+The method of Venner & Lubrecht, *Multilevel Methods in Lubrication*
+(Elsevier 2000, ch. 6-8), with the elastic deflection on every level by the
+FFT (DC-FFT) kernel of :mod:`lubrication.elastic` instead of multilevel
+multi-integration (O(N log N) instead of O(N); same influence coefficients).
+
+Equations (dimensionless, X = x/b_x, Y = y/b_x, P = p/p_H, H = h R_x/b_x^2,
+b_x the Hertz semi-axis along the entrainment direction x, p_H the Hertz
+pressure; rho and eta relative to their ambient values)::
+
+    d/dX(eps dP/dX) + d/dY(eps dP/dY) - d(rho H)/dX = 0,   eps = rho H^3/(eta lambda)
+    lambda = 12 u_m eta0 R_x^2/(p_H b_x^3)                 (= (128 pi^3/(3 M^4))^(1/3), circular)
+    H = H00 + X^2/2 + (R_x/R_y) Y^2/2 + (p_H R_x/b_x^2) sum_j k_ij P_j
+    hx hy sum P = w/(p_H b_x^2)                             (= 2 pi/3, circular)
+    P >= 0, r >= 0, P r = 0                                 (r = -L(P): outlet cavitation)
+
+k_ij [m/Pa] are the influence coefficients of :class:`~lubrication.elastic.ElasticKernel`
+(uniform pressure on node j's cell, deflection at node i), so the film is
+h = h00 + x^2/(2 R_x) + y^2/(2 R_y) + u, the film of :mod:`lubrication.ehl`,
+divided by b_x^2/R_x; for a circular contact the elastic term is Venner's
+(2/pi^2) int P/r dX'dY'.  The nodes are those of :mod:`lubrication.ehl`
+(cell centres of the FFT grid); the discretisation is finite differences:
+
+- Poiseuille term: second-order central differences with eps at the
+  half-points eps_{i+1/2} = (eps_i + eps_{i+1})/2;
+- wedge term: second-order upstream, (1.5 rhoH_i - 2 rhoH_{i-1} + 0.5
+  rhoH_{i-2})/hx (first order on the first interior node), used in the
+  relaxation as well (no defect correction was needed; ``order=1`` gives
+  first-order upstream throughout).
+
+Relaxation (one sweep, lines along x, j ascending): for every line, the
+banded system (3 sub-, 2 super-diagonals) of the line's Newton-like
+corrections is solved by band elimination with partial pivoting
+(:func:`band_solve`).  Row i is a Gauss-Seidel row where
+max(eps_{i+-1/2}/hx^2, eps_{j+-1/2}/hy^2) > ``xi_switch`` (Poiseuille
+dominated: change delta_i applied at the node, under-relaxed by
+``omega_gs``), else a Jacobi distributive row (change delta_i applied at the
+node and -delta_i/4 at its four neighbours, from the pressures before the
+sweep, under-relaxed by ``omega_jac``; the row's coefficients are those of
+the distributed change: Poiseuille -1.25 sum xi on the diagonal, xi_w +
+sum xi/4 and -xi_w/4 on the first and second upstream columns (likewise
+downstream), and the distributed influence coefficients K_d - (K_{d-1} +
+K_{d+1} + 2 K_{d,1})/4 in the wedge part).  Where one of the line nodes
+i-2 .. i+2 is cavitated, only the diagonal is kept (point relaxation).
+Cavitation is handled by projection: every updated pressure is max(P, 0)
+(projected Gauss-Seidel/Jacobi: a relaxation of the complementarity
+problem P >= 0, r >= 0, P r = 0 rather than a Reynolds solve with a guessed
+free boundary).  The film (FFT) and eps are recomputed before every sweep
+and frozen in it.
+
+Coarse grids (full approximation scheme, standard coarsening down to 16
+cells along x): pressure restricted by full weighting (injection where one
+of the nine fine nodes is cavitated), residuals by full weighting with zero
+residual at cavitated fine nodes, the film by injection with the FAS film
+right-hand side (the coarse film equals the injected fine film at the
+restricted pressure), the force balance by its FAS right-hand side.  The
+coarse correction is interpolated bilinearly and added only where the fine
+pressure is positive, then clipped at zero.  H00 is updated on the coarsest
+grid only, H00 += h_fact g with g = hx hy sum P - w/(p_H b_x^2) (the coarse
+FAS force residual), ``h00_updates`` times per visit, each after
+nu0/(h00_updates + 1) relaxations.  FMG start: the Hertz pressure on the
+coarsest grid, cubic interpolation to each finer grid, ``fmg_cycles``
+cycles per intermediate grid, then cycles on the target grid until
+convergence.  Defaults: W(3, 1)-cycles (``gamma=2``, ``nu1=3``), nu0 = 20,
+three H00 updates per coarsest visit, h_fact scaled by the contact's dry
+Hertz stiffness (Venner's factors are for the circular contact).  Measured
+at 257 x 257 (L = 10): V(2, 1)-cycles stall at M = 20 (a two-cycle limit
+cycle at the outlet spike, residual 6e-5); W(2, 1) converged for the
+circular contacts but not for R_y = 4 R_x on 257 x 641 nodes (a slowly
+growing two-cycle oscillation of the spike's Jacobi-distributive rows,
+residual 4e-5; lower omega_jac, a smaller h_fact, nu2 = 2 or first-order
+coarse grids did not cure it); W(3, 1) converges in 10-17 cycles for all
+of them, at about 0.5 residual reduction per cycle.  nu0 = 40 (Venner's
+value) gave the same cycles with 10-30 % more time; one H00 update per visit
+needed 25 instead of 16 cycles at M = 100 (V-cycles).
+
+Elastic deflection on each level: the DC-FFT product with the padded length
+raised to FFT-friendly sizes >= 2n - 1 (2n = 514 for 257 nodes contains the
+prime 257: three times slower), and a dense product on grids of at most
+1200 nodes (the coarsest, where the FFT call overhead dominated).
+
+Convergence test (target grid, after every cycle): the relative projected
+("natural") residual res = sum_i |max(P_i + r_i/a_ii, 0) - P_i| / sum_i P_i
+(a_ii = dL_i/dP_i, including the elastic self-influence; it vanishes exactly
+at a complementarity solution and is not dominated by free-boundary nodes
+whose pressures flip between 0 and 1e-7, as sum |r| over P > 0 was) at most
+``rtol`` (1e-5) and the relative load error at most ``load_rtol`` (1e-5).
+Divergence (non-finite values, or ``res`` above 1e3 times its value after
+the FMG start), stagnation (``res`` reduced by less than a factor
+``stall_factor`` over ``stall_cycles`` cycles) or ``max_cycles`` exceeded
+raise :class:`~lubrication.errors.ConvergenceError` naming M, L, the grid,
+the cycle and the residual.  Work units: one relaxation sweep on the target
+grid = 1, on a coarser grid the ratio of node counts.
+
+Kernels are numba (``@njit(cache=True)``): :func:`line_relax` (one sweep),
+:func:`reynolds_operator`, :func:`band_solve` (first-call compile about
+3.3 s, then loaded from the cache in about 0.3 s).  Everything else is numpy.
+
+References: Venner & Lubrecht 2000 (above; relaxation switch 0.3,
+under-relaxation 0.4 / 0.2, H00 factor 0.1 for V-, 0.05 for W-cycles, 0.25 times that
+for L > 10 or M > 1000 are their published values); Liu, Wang & Liu,
+Wear 243 (2000) 101 (DC-FFT).
+"""
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft
+from numba import njit
+
+from .elastic import ElasticKernel
+from .errors import ConvergenceError, InputError
+
+log = logging.getLogger(__name__)
+
+_KL, _KU = 3, 2  # sub- and super-diagonals of a line system
+_KX, _KY = 7, 2  # local influence stencil kept for the line systems: |dx| < 7, |dy| < 2
+_DENSE_MAX = 1200  # grids up to this many nodes deflect by a dense product instead of the FFT
+
+
+# ---------------------------------------------------------------- numba kernels
+@njit(cache=True)
+def _row_operator(P, H, rho, eps, i, j, rx2, ry2, rhx, order):
+    e0 = eps[i, j]
+    xe = 0.5 * (eps[i + 1, j] + e0) * rx2
+    xw = 0.5 * (eps[i - 1, j] + e0) * rx2
+    xn = 0.5 * (eps[i, j + 1] + e0) * ry2
+    xs = 0.5 * (eps[i, j - 1] + e0) * ry2
+    q = xe * P[i + 1, j] + xw * P[i - 1, j] + xn * P[i, j + 1] + xs * P[i, j - 1] - (xe + xw + xn + xs) * P[i, j]
+    if order == 2 and i >= 2:
+        w = rhx * (1.5 * rho[i, j] * H[i, j] - 2.0 * rho[i - 1, j] * H[i - 1, j] + 0.5 * rho[i - 2, j] * H[i - 2, j])
+    else:
+        w = rhx * (rho[i, j] * H[i, j] - rho[i - 1, j] * H[i - 1, j])
+    return q - w, w
+
+
+@njit(cache=True)
+def reynolds_operator(P, H, rho, eps, K, hx, hy, order, out, wedge, diag):
+    """Discrete Reynolds operator L(P) (Poiseuille minus wedge) at the interior
+    nodes into ``out``, the wedge term d(rho H)/dX into ``wedge`` and the
+    diagonal dL_i/dP_i (elastic part through the influence coefficient
+    ``K[0, 0]``, ``K`` as in :func:`line_relax`) into ``diag`` (boundary: 0)."""
+    nx, ny = P.shape
+    rx2, ry2, rhx = 1.0 / (hx * hx), 1.0 / (hy * hy), 1.0 / hx
+    out[:, :] = 0.0
+    wedge[:, :] = 0.0
+    diag[:, :] = 0.0
+    for i in range(1, nx - 1):
+        for j in range(1, ny - 1):
+            out[i, j], wedge[i, j] = _row_operator(P, H, rho, eps, i, j, rx2, ry2, rhx, order)
+            e0 = eps[i, j]
+            sx = (0.5 * (eps[i + 1, j] + eps[i - 1, j]) + e0) * rx2 + (0.5 * (eps[i, j + 1] + eps[i, j - 1]) + e0) * ry2
+            if order == 2 and i >= 2:
+                dw = rhx * (1.5 * rho[i, j] * K[0, 0] - 2.0 * rho[i - 1, j] * K[1, 0] + 0.5 * rho[i - 2, j] * K[2, 0])
+            else:
+                dw = rhx * (rho[i, j] * K[0, 0] - rho[i - 1, j] * K[1, 0])
+            diag[i, j] = -sx - dw
+
+
+@njit(cache=True)
+def band_solve(S, y, n, kl, ku):
+    """Solve A x = y in place (x returned in ``y``) for a band matrix with
+    ``kl`` sub- and ``ku`` super-diagonals, rows stored as windows
+    S[r, c - r + kl] = A[r, c] (width 2 kl + ku + 1: room for the fill of
+    partial pivoting).  Gaussian elimination with partial pivoting.  Returns
+    False if a pivot is zero."""
+    for k in range(n):
+        best = k
+        amax = abs(S[k, kl])
+        for r in range(k + 1, min(n, k + kl + 1)):
+            v = abs(S[r, k - r + kl])
+            if v > amax:
+                amax = v
+                best = r
+        if amax == 0.0:
+            return False
+        if best != k:
+            for c in range(k, min(n, k + kl + ku + 1)):
+                wk = c - k + kl
+                wb = c - best + kl
+                t = S[k, wk]
+                S[k, wk] = S[best, wb]
+                S[best, wb] = t
+            t = y[k]
+            y[k] = y[best]
+            y[best] = t
+        piv = S[k, kl]
+        for r in range(k + 1, min(n, k + kl + 1)):
+            m = S[r, k - r + kl] / piv
+            if m != 0.0:
+                for c in range(k + 1, min(n, k + kl + ku + 1)):
+                    S[r, c - r + kl] -= m * S[k, c - k + kl]
+                S[r, k - r + kl] = 0.0
+                y[r] -= m * y[k]
+    for k in range(n - 1, -1, -1):
+        s = y[k]
+        for c in range(k + 1, min(n, k + kl + ku + 1)):
+            s -= S[k, c - k + kl] * y[c]
+        y[k] = s / S[k, kl]
+    return True
+
+
+@njit(cache=True)
+def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac):
+    """One sweep of the mixed Gauss-Seidel / Jacobi-distributive line
+    relaxation (lines along x, the module docstring's scheme) of
+    L(P) = f, in place on ``P``.  ``K[d, e]``: dimensionless influence
+    coefficient (dH per unit P) at offsets |dx| = d < 7, |dy| = e < 2.
+    Returns the number of Jacobi-distributive rows."""
+    nx, ny = P.shape
+    n = nx - 2
+    kl, ku = 3, 2
+    width = 2 * kl + ku + 1
+    Pold = P.copy()
+    S = np.zeros((n, width))
+    y = np.zeros(n)
+    gsrow = np.zeros(n, dtype=np.bool_)
+    dK = np.zeros(6)
+    rx2, ry2, rhx = 1.0 / (hx * hx), 1.0 / (hy * hy), 1.0 / hx
+    njac = 0
+    for j in range(1, ny - 1):
+        S[:, :] = 0.0
+        for i in range(1, nx - 1):
+            r = i - 1
+            e0 = eps[i, j]
+            xe = 0.5 * (eps[i + 1, j] + e0) * rx2
+            xw = 0.5 * (eps[i - 1, j] + e0) * rx2
+            xn = 0.5 * (eps[i, j + 1] + e0) * ry2
+            xs = 0.5 * (eps[i, j - 1] + e0) * ry2
+            sx = xe + xw + xn + xs
+            gs = xe > switch or xw > switch or xn > switch or xs > switch
+            gsrow[r] = gs
+            if gs:
+                Lv, _ = _row_operator(P, H, rho, eps, i, j, rx2, ry2, rhx, order)
+            else:
+                Lv, _ = _row_operator(Pold, H, rho, eps, i, j, rx2, ry2, rhx, order)
+                njac += 1
+            y[r] = f[i, j] - Lv
+            for d in range(6):
+                if gs:
+                    dK[d] = K[d, 0]
+                else:
+                    dK[d] = K[d, 0] - 0.25 * (K[abs(d - 1), 0] + K[d + 1, 0] + 2.0 * K[d, 1])
+            if order == 2 and i >= 2:
+                c0, c1, c2 = 1.5 * rho[i, j], -2.0 * rho[i - 1, j], 0.5 * rho[i - 2, j]
+            else:
+                c0, c1, c2 = rho[i, j], -rho[i - 1, j], 0.0
+            # d(-wedge_i)/dP_{i+c} = -(c0 K|c| + c1 K|c+1| + c2 K|c+2|)/hx
+            diag = -rhx * (c0 * dK[0] + c1 * dK[1] + c2 * dK[2])
+            diag -= sx if gs else 1.25 * sx
+            S[r, kl] = diag
+            full = True
+            for c in range(-2, 3):
+                ii = i + c
+                if 0 <= ii < nx and P[ii, j] <= 0.0:
+                    full = False
+            if full:
+                for c in (-3, -2, -1, 1, 2):
+                    col = r + c
+                    if col < 0 or col >= n:
+                        continue
+                    a = -rhx * (c0 * dK[abs(c)] + c1 * dK[abs(c + 1)] + c2 * dK[abs(c + 2)])
+                    if c == -1:
+                        a += xw if gs else xw + 0.25 * sx
+                    elif c == 1:
+                        a += xe if gs else xe + 0.25 * sx
+                    elif c == -2 and not gs:
+                        a -= 0.25 * xw
+                    elif c == 2 and not gs:
+                        a -= 0.25 * xe
+                    S[r, c + kl] = a
+        if not band_solve(S, y, n, kl, ku):
+            y[:] = 0.0
+        for i in range(1, nx - 1):
+            r = i - 1
+            if gsrow[r]:
+                v = P[i, j] + omega_gs * y[r]
+                P[i, j] = v if v > 0.0 else 0.0
+            else:
+                p0 = P[i, j]
+                v = p0 + omega_jac * y[r]
+                v = v if v > 0.0 else 0.0
+                P[i, j] = v
+                d = v - p0
+                if v > 0.0 and P[i - 1, j] > 0.0 and P[i + 1, j] > 0.0 and P[i, j - 1] > 0.0 and P[i, j + 1] > 0.0:
+                    if i > 1:
+                        P[i - 1, j] = max(P[i - 1, j] - 0.25 * d, 0.0)
+                    if i < nx - 2:
+                        P[i + 1, j] = max(P[i + 1, j] - 0.25 * d, 0.0)
+                    if j > 1:
+                        P[i, j - 1] = max(P[i, j - 1] - 0.25 * d, 0.0)
+                    if j < ny - 2:
+                        P[i, j + 1] = max(P[i, j + 1] - 0.25 * d, 0.0)
+    return njac
+
+
+# ---------------------------------------------------------------- grid transfers (numpy)
+def _full_weighting(A):
+    """Full-weighting restriction (1/16 [1 2 1; 2 4 2; 1 2 1]) to the interior coarse nodes."""
+    nc = ((A.shape[0] - 1) // 2 + 1, (A.shape[1] - 1) // 2 + 1)
+    out = np.zeros(nc)
+    c = A[2:-2:2, 2:-2:2]
+    e = A[1:-3:2, 2:-2:2] + A[3:-1:2, 2:-2:2] + A[2:-2:2, 1:-3:2] + A[2:-2:2, 3:-1:2]
+    d = A[1:-3:2, 1:-3:2] + A[3:-1:2, 1:-3:2] + A[1:-3:2, 3:-1:2] + A[3:-1:2, 3:-1:2]
+    out[1:-1, 1:-1] = (4 * c + 2 * e + d) / 16.0
+    return out
+
+
+def _restrict_pressure(P):
+    """Full weighting, injection where one of the nine fine nodes is cavitated (P = 0)."""
+    out = _full_weighting(P)
+    inj = P[::2, ::2]
+    sl = [slice(1, -3, 2), slice(2, -2, 2), slice(3, -1, 2)]
+    mn = np.full(inj[1:-1, 1:-1].shape, np.inf)
+    for a in sl:
+        for b in sl:
+            mn = np.minimum(mn, P[a, b])
+    inner = out[1:-1, 1:-1]
+    out[1:-1, 1:-1] = np.where(mn > 0.0, inner, inj[1:-1, 1:-1])
+    return out
+
+
+def _bilinear(dc, shape):
+    e = np.zeros(shape)
+    e[::2, ::2] = dc
+    e[1::2, ::2] = 0.5 * (dc[:-1, :] + dc[1:, :])
+    e[::2, 1::2] = 0.5 * (dc[:, :-1] + dc[:, 1:])
+    e[1::2, 1::2] = 0.25 * (dc[:-1, :-1] + dc[1:, :-1] + dc[:-1, 1:] + dc[1:, 1:])
+    return e
+
+
+def _cubic_axis(a, axis):
+    """Four-point cubic interpolation to the midpoints along ``axis`` (one-sided at the ends)."""
+    a = np.moveaxis(a, axis, 0)
+    nc = a.shape[0]
+    out = np.zeros((2 * nc - 1,) + a.shape[1:])
+    out[::2] = a
+    if nc >= 4:
+        out[3:-3:2] = (-a[:-3] + 9 * a[1:-2] + 9 * a[2:-1] - a[3:]) / 16.0
+        out[1] = (5 * a[0] + 15 * a[1] - 5 * a[2] + a[3]) / 16.0
+        out[-2] = (5 * a[-1] + 15 * a[-2] - 5 * a[-3] + a[-4]) / 16.0
+    else:
+        out[1::2] = 0.5 * (a[:-1] + a[1:])
+    return np.moveaxis(out, 0, axis)
+
+
+def _fmg_interpolate(Pc):
+    P = _cubic_axis(_cubic_axis(Pc, 1), 0)
+    P = np.maximum(P, 0.0)
+    P[0, :] = P[-1, :] = P[:, 0] = P[:, -1] = 0.0
+    return P
+
+
+# ---------------------------------------------------------------- options and levels
+@dataclass(frozen=True)
+class MultigridOptions:
+    """Parameters of the multilevel solver.
+
+    Relaxation parameters, switch and H00 factors are Venner & Lubrecht's
+    (2000); cycle type, ``nu0``, ``nu1`` and ``h00_updates`` were chosen by
+    the measurements quoted in the module docstring.
+
+    ``order``: upstream order of the wedge term on the target grid (2 or 1),
+    ``coarse_order`` on the coarser grids (FAS keeps the target grid's
+    solution either way; 1 was tried against the spike oscillation: no
+    gain); ``xi_switch``: Gauss-Seidel where eps/h^2 exceeds it, else
+    Jacobi-distributive; ``omega_gs``/``omega_jac``: under-relaxation;
+    ``coarsest_cells``: cells along x on the coarsest grid; ``nu0``
+    relaxations there per visit with ``h00_updates`` H00 updates in between,
+    ``nu1``/``nu2`` pre- and post-relaxations; ``gamma`` 1 (V-cycle) or 2
+    (W-cycle); ``fmg_cycles`` cycles on each intermediate FMG grid;
+    ``h_fact`` the H00 relaxation factor (None: 0.1 for V-, 0.05 for
+    W-cycles, times 0.25 for L > 10 or M > 1000, times pi over the contact's
+    dimensionless Hertz stiffness 1.5 W/delta); ``rtol``/``load_rtol``: convergence test;
+    ``max_cycles``: cycles on the target grid; stagnation: less than a factor
+    ``stall_factor`` of residual reduction over ``stall_cycles`` cycles.
+    """
+
+    order: int = 2
+    coarse_order: int = 2
+    xi_switch: float = 0.3
+    omega_gs: float = 0.4
+    omega_jac: float = 0.2
+    coarsest_cells: int = 16
+    nu0: int = 20
+    nu1: int = 3
+    nu2: int = 1
+    gamma: int = 2
+    h00_updates: int = 3
+    fmg_cycles: int = 2
+    h_fact: float | None = None
+    rtol: float = 1e-5
+    load_rtol: float = 1e-5
+    max_cycles: int = 60
+    stall_cycles: int = 6
+    stall_factor: float = 0.7
+
+    def __post_init__(self):
+        for key in ("order", "coarse_order"):
+            if getattr(self, key) not in (1, 2):
+                raise InputError(f"multigrid.{key} = {getattr(self, key)!r} is not allowed; choose 1 or 2 "
+                                 "(wedge upstream order)")
+        if self.gamma not in (1, 2):
+            raise InputError(f"multigrid.gamma = {self.gamma!r} is not allowed; choose 1 (V-cycle) or 2 (W-cycle)")
+        for key in ("omega_gs", "omega_jac"):
+            v = getattr(self, key)
+            if not 0.0 < v <= 1.0:
+                raise InputError(f"multigrid.{key} = {v!r} must be in (0, 1]")
+
+
+class _Level:
+    def __init__(self, X, Y, bx, e_star, kscale, ratio, kernel=None):
+        self.X, self.Y = X, Y
+        self.shape = (X.size, Y.size)
+        self.hx, self.hy = X[1] - X[0], Y[1] - Y[0]
+        self.kernel = kernel or ElasticKernel(self.shape, (self.hx * bx, self.hy * bx), e_star)
+        self.kscale = kscale
+        nx, ny = self.shape
+        Kk = self.kernel._kernel
+        K = np.zeros((_KX, _KY))
+        mx, my = min(_KX, nx), min(_KY, ny)
+        K[:mx, :my] = Kk[nx - 1:nx - 1 + mx, ny - 1:ny - 1 + my] * kscale
+        self.K = K
+        # DC-FFT as in ElasticKernel.deflect, but padded to FFT-friendly sizes >= 2n - 1
+        # (2n = 514 for 257 nodes has the prime factor 257: 2-3 times slower)
+        self.fft_shape = tuple(scipy.fft.next_fast_len(2 * m - 1, real=True) for m in self.shape)
+        padded = np.zeros(self.fft_shape)
+        idx = [np.arange(-(m - 1), m) % q for m, q in zip(self.shape, self.fft_shape)]
+        padded[np.ix_(*idx)] = Kk * kscale
+        self.spectrum = scipy.fft.rfftn(padded)
+        self.dense = None
+        if nx * ny <= _DENSE_MAX:
+            # small (coarsest) grids: the same influence coefficients as a dense
+            # matrix (an FFT call's overhead is most of its cost there)
+            ix, iy = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+            ix, iy = ix.ravel(), iy.ravel()
+            self.dense = Kk[ix[:, None] - ix[None, :] + nx - 1, iy[:, None] - iy[None, :] + ny - 1] * kscale
+        self.rigid = 0.5 * X[:, None] ** 2 + 0.5 * ratio * Y[None, :] ** 2
+        self.P = np.zeros(self.shape)
+        self.f = np.zeros(self.shape)
+        self.hcorr = np.zeros(self.shape)
+        self.rg = 0.0
+        self.N = nx * ny
+
+
+class MultigridEHL:
+    """FAS multigrid solve of one steady point contact (see the module docstring).
+
+    Parameters: ``problem`` an :class:`lubrication.ehl._Problem`-like object
+    of the target grid (Hertz scales ``bx``, ``by``, ``ph``, ``hscale``, node
+    axes ``xs``, ``ys`` and the elastic ``kernel``), the contact, and
+    :class:`MultigridOptions`.
+    """
+
+    def __init__(self, problem, contact, options: MultigridOptions = MultigridOptions()):
+        self.pb, self.c, self.o = problem, contact, options
+        lub = contact.lubricant
+        self.visc, self.dens = lub.viscosity, lub.density
+        self.eta0 = float(self.visc(np.zeros(1))[0])
+        self.rho0 = float(self.dens(np.zeros(1))[0])
+        pb = problem
+        self.lam = 12 * contact.mean_speed * self.eta0 * contact.radius_x**2 / (pb.ph * pb.bx**3)
+        self.target = (contact.load / (pb.ph * pb.bx**2)) if contact.load is not None else None
+        kscale = pb.ph / pb.hscale
+        ratio = contact.radius_x / contact.radius_y
+        X, Y = pb.xs / pb.bx, pb.ys / pb.bx
+        levels = [_Level(X, Y, pb.bx, contact.e_star, kscale, ratio, kernel=pb.kernel)]
+        while (levels[-1].shape[0] - 1) // 2 >= options.coarsest_cells and all(
+                (n - 1) % 2 == 0 and (n - 1) // 2 >= 4 for n in levels[-1].shape):
+            X, Y = X[::2], Y[::2]
+            levels.append(_Level(X, Y, pb.bx, contact.e_star, kscale, ratio))
+        self.levels = levels[::-1]  # coarsest first
+        for lv in self.levels:
+            lv.order = options.coarse_order
+        self.levels[-1].order = options.order
+        self.H00 = 0.0
+        self.work = 0.0
+        mf = contact.moes_M
+        hf = 0.1 if options.gamma == 1 else 0.05
+        if contact.moes_L > 10 + 1e-9 or mf > 1000 + 1e-9:
+            hf *= 0.25
+        # Venner's factors are for the circular contact, whose dry Hertz stiffness
+        # -dW/dH00 = 1.5 W/delta is pi in these units; scale by the contact's own
+        # (measured need: R_y = 4 R_x, stiffness 2.4 times larger, H00 oscillated)
+        delta = getattr(problem, "delta_hertz", None)
+        if self.target is not None and delta:
+            hf *= np.pi / (1.5 * self.target / (delta / pb.hscale))
+        self.h_fact = options.h_fact if options.h_fact is not None else hf
+
+    # -- film and coefficients -----------------------------------------
+    def film(self, lv):
+        if lv.dense is not None:
+            return self.H00 + lv.rigid + lv.hcorr + (lv.dense @ lv.P.ravel()).reshape(lv.shape)
+        u = scipy.fft.irfftn(scipy.fft.rfftn(lv.P, s=lv.fft_shape) * lv.spectrum, s=lv.fft_shape)
+        return self.H00 + lv.rigid + lv.hcorr + u[:lv.shape[0], :lv.shape[1]]
+
+    def coefficients(self, lv, H):
+        p = self.pb.ph * np.maximum(lv.P, 0.0)
+        with np.errstate(over="ignore"):
+            eta = self.visc(p) / self.eta0
+        rho = self.dens(p) / self.rho0
+        eps = rho * np.maximum(H, 0.0) ** 3 / (eta * self.lam)
+        return rho, eps
+
+    def residual(self, lv, H=None):
+        """r = f - L(P) (interior), the wedge term and the film."""
+        H = self.film(lv) if H is None else H
+        rho, eps = self.coefficients(lv, H)
+        Lv = np.zeros(lv.shape)
+        wedge = np.zeros(lv.shape)
+        diag = np.zeros(lv.shape)
+        reynolds_operator(lv.P, H, rho, eps, lv.K, lv.hx, lv.hy, lv.order, Lv, wedge, diag)
+        r = lv.f - Lv
+        r[0, :] = r[-1, :] = r[:, 0] = r[:, -1] = 0.0
+        self._diag = diag
+        return r, wedge, H, rho, eps
+
+    def relax(self, k):
+        lv = self.levels[k]
+        H = self.film(lv)
+        rho, eps = self.coefficients(lv, H)
+        o = self.o
+        line_relax(lv.P, H, rho, eps, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)
+        self.work += lv.N / self.levels[-1].N
+
+    def load(self, lv):
+        return lv.hx * lv.hy * float(np.sum(lv.P))
+
+    def relax_h00(self, k):
+        if self.target is None:
+            return
+        lv = self.levels[k]
+        g = self.load(lv) + lv.rg
+        self.H00 += self.h_fact * g
+
+    # -- cycles -----------------------------------------------------------
+    def cycle(self, k):
+        o = self.o
+        if k == 0:
+            m = max(1, o.h00_updates)
+            for s in range(m):
+                for _ in range(o.nu0 // (m + 1)):
+                    self.relax(0)
+                self.relax_h00(0)
+            for _ in range(o.nu0 - m * (o.nu0 // (m + 1))):
+                self.relax(0)
+            return
+        fine, coarse = self.levels[k], self.levels[k - 1]
+        for _ in range(o.nu1):
+            self.relax(k)
+        r, _, Hf, _, _ = self.residual(fine)
+        r[fine.P <= 0.0] = 0.0
+        coarse.P = _restrict_pressure(fine.P)
+        P_old = coarse.P.copy()
+        coarse.hcorr = np.zeros(coarse.shape)
+        coarse.hcorr = Hf[::2, ::2] - self.film(coarse)
+        coarse.f = np.zeros(coarse.shape)
+        Lc = -self.residual(coarse)[0]  # f = 0: -r = L(P_c)
+        coarse.f = Lc + _full_weighting(r)
+        coarse.f[0, :] = coarse.f[-1, :] = coarse.f[:, 0] = coarse.f[:, -1] = 0.0
+        coarse.rg = fine.rg + self.load(fine) - self.load(coarse)
+        for _ in range(o.gamma):
+            self.cycle(k - 1)
+        e = _bilinear(coarse.P - P_old, fine.shape)
+        fine.P = np.maximum(np.where(fine.P > 0.0, fine.P + e, fine.P), 0.0)
+        for _ in range(o.nu2):
+            self.relax(k)
+
+    def norms(self, k):
+        """Relative projected residual, relative load error and the film.
+
+        The residual is the complementarity ("natural") residual of the
+        pointwise Newton step: d_i = max(P_i + r_i/a_ii, 0) - P_i (a_ii =
+        dL_i/dP_i < 0), summed over the interior and divided by sum P.  It
+        vanishes exactly at a solution of P >= 0, r >= 0 where P = 0, r = 0
+        where P > 0, and is not dominated by nodes at the free boundary whose
+        tiny pressures flip between 0 and 1e-7 (as sum |r| over P > 0 is)."""
+        lv = self.levels[k]
+        r, wedge, H, _, _ = self.residual(lv)
+        a = self._diag[1:-1, 1:-1]
+        Pi = lv.P[1:-1, 1:-1]
+        d = np.maximum(Pi + r[1:-1, 1:-1] / np.where(a < 0, a, -1.0), 0.0) - Pi
+        res = float(np.sum(np.abs(d)) / max(np.sum(Pi), 1e-300))
+        load_err = ((self.load(lv) - self.target) / self.target) if self.target is not None else 0.0
+        return res, load_err, H
+
+    def _fail(self, what, k, cycle, res):
+        lv = self.levels[k]
+        return ConvergenceError(
+            f"EHL multigrid {what} at M = {self.c.moes_M:.4g}, L = {self.c.moes_L:.4g} on {lv.shape[0]} x "
+            f"{lv.shape[1]} nodes, cycle {cycle}: relative residual {res:.2e} (tolerance {self.o.rtol:.0e}); "
+            f"heavier loads need finer grids (measured: M = 3000, L = 10 stagnates on 257 x 257 and converges on "
+            f"513 x 513), see EHLOptions.multigrid")
+
+    def solve(self, H00_start):
+        """FMG start, then cycles on the target grid; returns ``(P, H00, history)``
+        (P = p/p_H on the target grid; H00 in units of b_x^2/R_x)."""
+        o = self.o
+        self.H00 = float(H00_start)
+        nlev = len(self.levels)
+        c0 = self.levels[0]
+        if self.target is not None:
+            for lv in self.levels:
+                lv.rg = -self.target
+        ry = self.pb.by / self.pb.bx
+        r2 = c0.X[:, None] ** 2 + (c0.Y[None, :] / ry) ** 2
+        c0.P = np.sqrt(np.clip(1.0 - r2, 0.0, None))
+        c0.P[0, :] = c0.P[-1, :] = c0.P[:, 0] = c0.P[:, -1] = 0.0
+        self.cycle(0)
+        for k in range(1, nlev):
+            lv = self.levels[k]
+            lv.P = _fmg_interpolate(self.levels[k - 1].P)
+            lv.f = np.zeros(lv.shape)
+            lv.hcorr = np.zeros(lv.shape)
+            lv.rg = -self.target if self.target is not None else 0.0
+            if k < nlev - 1:
+                for _ in range(o.fmg_cycles):
+                    self.cycle(k)
+        k = nlev - 1
+        top = self.levels[k]
+        self._ic = (int(np.argmin(np.abs(top.X))), int(np.argmin(np.abs(top.Y))))
+        history = []
+        res0, _, _ = self.norms(k)
+        history.append(dict(cycle=0, residual=res0, load_error=None, work=self.work, H00=self.H00))
+        for cyc in range(1, o.max_cycles + 1):
+            self.cycle(k)
+            res, load_err, H = self.norms(k)
+            history.append(dict(cycle=cyc, residual=res, load_error=load_err, work=self.work, H00=self.H00,
+                                H_centre=float(H[self._ic]), H_min=float(np.min(H))))
+            log.debug("EHL multigrid cycle %d: res %.3e, load err %.2e, H00 %.7f, H_c %.7f, H_min %.7f, work %.1f",
+                      cyc, res, load_err, self.H00, history[-1]["H_centre"], history[-1]["H_min"], self.work)
+            if not (np.isfinite(res) and np.isfinite(self.H00)) or res > 1e3 * max(res0, 1e-300):
+                raise self._fail("diverged", k, cyc, res)
+            if res <= o.rtol and abs(load_err) <= o.load_rtol:
+                break
+            if cyc > o.stall_cycles and res > o.stall_factor * history[-1 - o.stall_cycles]["residual"]:
+                raise self._fail("stagnated", k, cyc, res)
+        else:
+            raise self._fail(f"did not converge in {o.max_cycles} cycles", k, o.max_cycles, history[-1]["residual"])
+        return self.levels[k].P.copy(), self.H00, history

@@ -1,0 +1,283 @@
+"""FAS multigrid EHL point-contact solver (lubrication.ehl_multigrid, ehl.method = "multigrid").
+
+Independent references:
+- numpy references of the discrete Reynolds operator and a dense solve of the
+  band systems (kernels compiled and as ``.py_func``); scipy's sparse solve of
+  the 5-point Poisson problem for the line relaxation;
+- the second method: the FEM Fischer-Burmeister Newton of lubrication.ehl on
+  the same nodes (different discretisation: P1 + SUPG against finite
+  differences), whose difference must shrink under refinement;
+- dry Hertz contact (Johnson 1985): pressure ellipse and approach, 1 %;
+- Nijenbanning, Venner & Moes (1994) central film, quoted within ~5 %;
+- the measured grid-convergence order of H_c (second-order scheme);
+- Richardson extrapolations of both methods for an elliptic contact and a
+  Roelands / Dowson-Higginson lubricant.
+"""
+import numpy as np
+import pytest
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from lubrication import ConvergenceError
+from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, ehl_normal_coefficients, solve_ehl
+from lubrication.ehl_multigrid import MultigridOptions, band_solve, line_relax, reynolds_operator
+from lubrication.errors import InputError
+from lubrication.film_formulas import nijenbanning_central
+
+MG = EHLOptions(method="multigrid")
+
+
+def H(c, h):
+    return h / c.radius_x * (2 * c.U) ** -0.5
+
+
+def operator_reference(P, H_, rho, eps, hx, hy):
+    """Numpy form of the module docstring's discrete operator (second-order upstream wedge)."""
+    ex = 0.5 * (eps[1:] + eps[:-1]) / hx**2
+    ey = 0.5 * (eps[:, 1:] + eps[:, :-1]) / hy**2
+    fx = ex * (P[1:] - P[:-1])
+    fy = ey * (P[:, 1:] - P[:, :-1])
+    L = np.zeros_like(P)
+    L[1:-1, 1:-1] = (fx[1:, 1:-1] - fx[:-1, 1:-1]) + (fy[1:-1, 1:] - fy[1:-1, :-1])
+    q = rho * H_
+    w = np.zeros_like(P)
+    w[2:-1, 1:-1] = (1.5 * q[2:-1, 1:-1] - 2 * q[1:-2, 1:-1] + 0.5 * q[:-3, 1:-1]) / hx
+    w[1, 1:-1] = (q[1, 1:-1] - q[0, 1:-1]) / hx
+    return L - w, w
+
+
+def _fields(nx=9, ny=8, seed=0):
+    rng = np.random.default_rng(seed)
+    P = rng.uniform(0.1, 1.0, (nx, ny))
+    P[0], P[-1], P[:, 0], P[:, -1] = 0, 0, 0, 0
+    return P, rng.uniform(0.5, 1.5, (nx, ny)), rng.uniform(0.9, 1.1, (nx, ny)), rng.uniform(0.01, 2.0, (nx, ny))
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_operator_kernel_against_numpy(compiled):
+    P, H_, rho, eps = _fields()
+    K = np.abs(np.random.default_rng(1).normal(size=(7, 2)))
+    out, wedge, diag = (np.zeros_like(P) for _ in range(3))
+    fn = reynolds_operator if compiled else reynolds_operator.py_func
+    fn(P, H_, rho, eps, K, 0.1, 0.13, 2, out, wedge, diag)
+    L_ref, w_ref = operator_reference(P, H_, rho, eps, 0.1, 0.13)
+    np.testing.assert_allclose(out, L_ref, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(wedge, w_ref, rtol=1e-12, atol=1e-12)
+    # diagonal: dL_i/dP_i with the film answering through the influence
+    # coefficients, dH_m/dP_i = K[|m - i|] (L is linear in P and H at frozen eps, rho)
+    for i, j in ((1, 3), (2, 4), (5, 5), (7, 6)):
+        dK = np.zeros_like(P)
+        for m in range(P.shape[0]):
+            for n in range(P.shape[1]):
+                if abs(m - i) < 7 and abs(n - j) < 2:
+                    dK[m, n] = K[abs(m - i), abs(n - j)]
+        dP = np.zeros_like(P)
+        dP[i, j] = 1.0
+        L1, _ = operator_reference(P + dP, H_ + dK, rho, eps, 0.1, 0.13)
+        assert diag[i, j] == pytest.approx(L1[i, j] - L_ref[i, j], rel=1e-10)
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_band_solver_against_dense(compiled):
+    n, kl, ku = 40, 3, 2
+    rng = np.random.default_rng(2)
+    A = np.zeros((n, n))
+    for d in range(-kl, ku + 1):
+        A += np.diag(rng.normal(size=n - abs(d)), d)  # no diagonal dominance: pivoting needed
+    b = rng.normal(size=n)
+    S = np.zeros((n, 2 * kl + ku + 1))
+    for r in range(n):
+        for c in range(max(0, r - kl), min(n, r + ku + 1)):
+            S[r, c - r + kl] = A[r, c]
+    y = b.copy()
+    fn = band_solve if compiled else band_solve.py_func
+    assert fn(S, y, n, kl, ku)
+    np.testing.assert_allclose(y, np.linalg.solve(A, b), rtol=1e-9, atol=1e-10)
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_line_relaxation_keeps_an_exact_solution(compiled):
+    """A P with f = L(P) exactly is a fixed point of the mixed Gauss-Seidel /
+    Jacobi-distributive sweep (eps spans both sides of the 0.3 switch)."""
+    P, H_, rho, eps = _fields(11, 10, seed=3)
+    eps[:6] *= 0.01  # upstream half Jacobi-distributive (eps/h^2 < 30), downstream Gauss-Seidel
+    K = np.abs(np.random.default_rng(4).normal(size=(7, 2)))
+    f, _ = operator_reference(P, H_, rho, eps, 0.1, 0.1)
+    P1 = P.copy()
+    fn = line_relax if compiled else line_relax.py_func
+    njac = fn(P1, H_, rho, eps, f, K, 0.1, 0.1, 2, 30.0, 0.4, 0.2)
+    assert 0 < njac < 9 * 8
+    np.testing.assert_allclose(P1, P, rtol=0, atol=1e-12)
+
+
+def test_line_relaxation_solves_the_poisson_problem():
+    """Pure Poiseuille (H = 0, eps = 1, Gauss-Seidel everywhere, no under-relaxation):
+    the sweeps converge to the 5-point Poisson solution of scipy's sparse solve."""
+    nx, ny, h = 17, 13, 0.1
+    eps, rho, Hz = np.ones((nx, ny)), np.ones((nx, ny)), np.zeros((nx, ny))
+    f = -np.ones((nx, ny))
+    P = np.zeros((nx, ny))
+    for _ in range(300):
+        line_relax(P, Hz, rho, eps, f, np.zeros((7, 2)), h, h, 2, 0.3, 1.0, 1.0)
+    n1, n2 = nx - 2, ny - 2
+    T = lambda n: sp.diags([1.0, -2.0, 1.0], [-1, 0, 1], shape=(n, n)) / h**2  # noqa: E731
+    A = sp.kron(T(n1), sp.identity(n2)) + sp.kron(sp.identity(n1), T(n2))
+    ref = spla.spsolve(A.tocsc(), f[1:-1, 1:-1].ravel()).reshape(n1, n2)
+    np.testing.assert_allclose(P[1:-1, 1:-1], ref, rtol=1e-8)
+
+
+def test_level_films_equal_the_elastic_kernel():
+    """The multigrid's own deflection products (FFT padded to fast lengths on
+    fine grids, a dense product on the coarsest) against ElasticKernel.deflect
+    (DC-FFT padded to 2n) and its dense direct sum."""
+    from lubrication.ehl import _Problem
+    from lubrication.ehl_multigrid import MultigridEHL
+
+    c = EHLContact.from_moes(100, 10, radius_y=0.02)
+    g = EHLGrid(nx=65, ny=97)
+    P = _Problem(c, g, EHLOptions())
+    mg = MultigridEHL(P, c)
+    rng = np.random.default_rng(5)
+    for lv in (mg.levels[0], mg.levels[-1]):
+        lv.P = rng.uniform(0, 1, lv.shape)
+        ref = lv.kernel.deflect(lv.P * P.ph) / P.hscale + lv.rigid
+        np.testing.assert_allclose(mg.film(lv), ref, rtol=1e-10, atol=1e-12 * np.abs(ref).max())
+    assert mg.levels[0].dense is not None and mg.levels[-1].dense is None
+    small = mg.levels[0]
+    np.testing.assert_allclose(mg.film(small) - small.rigid,
+                               small.kernel.deflect_direct(small.P * P.ph) / P.hscale, rtol=1e-10)
+
+
+@pytest.mark.parametrize("line", [False, True])
+def test_uniform_weights_equal_the_assembled_ones(line):
+    """The multigrid's nodal weights (cell area times adjacent cells / 4)
+    against the FEM's assembled int phi_i dA."""
+    from lubrication.ehl import _Problem
+
+    c = EHLContact.from_moes(100, 10, line=line)
+    assembled = _Problem(c, EHLGrid(nx=33), EHLOptions()).weights
+    direct = _Problem(c, EHLGrid(nx=33), EHLOptions()).uniform_weights()
+    np.testing.assert_allclose(direct, assembled, rtol=1e-13)
+
+
+# ---------------------------------------------------------------- EHL solutions
+def test_multigrid_and_fem_newton_agree_under_refinement():
+    """Second method: the FEM Newton (P1 + SUPG) on the same nodes.  The two
+    discretisations differ, but both are second order: their H_c difference
+    shrinks about fourfold per refinement (measured M = 20: -11.6 % on 33 x 33,
+    -2.8 % on 65 x 65; M = 100 continues -3.4 %, -0.9 % on 129, 257 and both
+    extrapolate to H_c = 4.648)."""
+    c = EHLContact.from_moes(20, 10)
+    diff = []
+    for n in (33, 65):
+        fem = solve_ehl(c, EHLGrid(nx=n))
+        mg = solve_ehl(c, EHLGrid(nx=n), MG)
+        assert mg.info["method"] == "multigrid"
+        assert mg.load == pytest.approx(c.load, rel=1e-4)
+        diff.append(mg.central_film_thickness / fem.central_film_thickness - 1)
+        assert mg.minimum_film_thickness < mg.central_film_thickness
+    assert abs(diff[1]) < abs(diff[0]) / 3  # second order against second order: ratio ~4
+    assert abs(diff[1]) < 0.05
+
+
+def test_elliptic_contact_extrapolates_to_the_fem_newton():
+    """R_y = 4 R_x (M = 100, L = 10; 33 x 81 ... 129 x 321 nodes, ny chosen by
+    multigrid_grid): the multigrid H_c converges at second order (measured
+    1.94) and its Richardson extrapolation agrees with the FEM Newton on
+    65 x 161 nodes within 1 % (measured 0.5 %; the FEM's own extrapolation
+    from 65 and 129 nodes is 3.515e-7 m against the multigrid's 3.517e-7 m)."""
+    c = EHLContact.from_moes(100, 10, radius_y=0.04)
+    hc = []
+    for n in (33, 65, 129):
+        s = solve_ehl(c, EHLGrid(nx=n), MG)
+        assert s.problem.shape[1] == 5 * (n - 1) // 2 + 1
+        hc.append(s.central_film_thickness)
+    d1, d2 = hc[1] - hc[0], hc[2] - hc[1]
+    order = np.log2(d1 / d2)
+    assert 1.6 < order < 2.4
+    extrapolated = hc[2] + d2 / (2**order - 1)
+    fem = solve_ehl(c, EHLGrid(nx=65, ny=161))
+    assert extrapolated == pytest.approx(fem.central_film_thickness, rel=0.01)
+
+
+def test_roelands_compressible_contact_extrapolates_to_the_fem_newton():
+    """Roelands viscosity (z matched to the Barus alpha of L = 10) and
+    Dowson-Higginson density, M = 100: the multigrid's Richardson value from
+    65, 129, 257 nodes (measured order 1.94) against the FEM Newton's from 65
+    and 129 nodes (second order, benchmarks/README.md): measured 2.4012e-7 m
+    against 2.4000e-7 m (0.05 %)."""
+    import dataclasses
+
+    from lubrication.lubricant import DowsonHigginson, Lubricant, Roelands
+
+    c0 = EHLContact.from_moes(100, 10)
+    lub = Lubricant(Roelands(c0.lubricant.viscosity.eta0, alpha=c0.lubricant.viscosity.alpha), DowsonHigginson(850.0))
+    c = dataclasses.replace(c0, lubricant=lub)
+    mg = [solve_ehl(c, EHLGrid(nx=n), MG).central_film_thickness for n in (65, 129, 257)]
+    d1, d2 = mg[1] - mg[0], mg[2] - mg[1]
+    order = np.log2(d1 / d2)
+    assert 1.6 < order < 2.4
+    fem = [solve_ehl(c, EHLGrid(nx=n)).central_film_thickness for n in (65, 129)]
+    assert mg[2] + d2 / (2**order - 1) == pytest.approx(fem[1] + (fem[1] - fem[0]) / 3, rel=0.005)
+
+
+def test_heavy_load_tends_to_dry_hertz():
+    """M = 1000, L = 10: away from the inlet and the outlet spike (r < 0.8 b,
+    x < 0.5 b) the pressure is the Hertz ellipse, and the rigid-body approach
+    h_c - h00 the Hertz approach, both within 1 % (measured 0.78 % and 0.3 %
+    on 257 x 257; on 129 x 129 the pressure differs by 1.08 %)."""
+    c = EHLContact.from_moes(1000, 10)
+    s = solve_ehl(c, EHLGrid(nx=257), MG)
+    P = s.problem
+    x, y = P.basis.doflocs[0] / P.bx, P.basis.doflocs[1] / P.by
+    hertz = P.ph * np.sqrt(np.clip(1 - x**2 - y**2, 0, None))
+    away = (x**2 + y**2 < 0.8**2) & (x < 0.5)
+    assert np.max(np.abs(s.pressure[away] - hertz[away])) / P.ph < 0.01
+    assert (s.central_film_thickness - s.h00) == pytest.approx(P.delta_hertz, rel=0.01)
+
+
+@pytest.mark.parametrize("M", [20, 50, 100])
+def test_central_film_against_nijenbanning_venner_moes(M):
+    """129 x 129 nodes (measured +1.2, +1.5, -0.5 %)."""
+    c = EHLContact.from_moes(M, 10)
+    s = solve_ehl(c, EHLGrid(nx=129), MG)
+    assert H(c, s.central_film_thickness) == pytest.approx(nijenbanning_central(M, 10), rel=0.05)
+
+
+def test_grid_convergence_order_of_central_film():
+    """H_c on 33, 65, 129 nodes (M = 20): the observed order of the
+    differences is that of the second-order scheme (measured 1.95)."""
+    c = EHLContact.from_moes(20, 10)
+    hc = [solve_ehl(c, EHLGrid(nx=n), MG).central_film_thickness for n in (33, 65, 129)]
+    d1, d2 = hc[1] - hc[0], hc[2] - hc[1]
+    assert d1 * d2 > 0
+    order = np.log2(d1 / d2)
+    assert 1.6 < order < 2.4
+
+
+def test_where_the_multigrid_stops_is_pinned():
+    """M = 1000 needs 129 x 129 nodes: on 65 x 65 the discrete film at the
+    outlet constriction goes negative (a resolution limit, as for the Newton
+    methods, measured also for M = 500 on 65 and M = 2000 on 129); M = 3000 on
+    129 x 129 stops reducing its residual (stagnation at a relative residual
+    of 1.5e-2, a clear error naming M, L, grid, cycle and residual)."""
+    with pytest.raises(ConvergenceError, match=r"M = 1000, L = 10 on 65 x 65 nodes has a film thickness <= 0"):
+        solve_ehl(EHLContact.from_moes(1000, 10), EHLGrid(nx=65), MG)
+    with pytest.raises(ConvergenceError, match=r"stagnated at M = 3000, L = 10 on 129 x 129 nodes, cycle \d+: "
+                                               r"relative residual"):
+        solve_ehl(EHLContact.from_moes(3000, 10), EHLGrid(nx=129), MG)
+
+
+def test_multigrid_inputs_are_checked():
+    with pytest.raises(InputError, match="solves point contacts"):
+        solve_ehl(EHLContact.from_moes(20, 10, line=True), EHLGrid(nx=129), MG)
+    with pytest.raises(InputError, match="grid.nx = 100 for ehl.method = 'multigrid'"):
+        solve_ehl(EHLContact.from_moes(20, 10), EHLGrid(nx=100), MG)
+    with pytest.raises(InputError, match="multigrid.gamma"):
+        MultigridOptions(gamma=3)
+    with pytest.raises(InputError, match="ehl.multigrid"):
+        EHLOptions(method="multigrid", multigrid="fast")
+    with pytest.raises(InputError, match="steady and has no Jacobian"):
+        ehl_normal_coefficients(EHLContact.from_moes(20, 10), options=MG)
+    with pytest.raises(InputError, match="squeeze_velocity"):
+        solve_ehl(EHLContact.from_moes(20, 10, squeeze_velocity=-1e-3), EHLGrid(nx=33), MG)
