@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 
 from lubrication import film_formulas, hertz
 from lubrication.errors import InputError
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, solve_ehl
+from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, multigrid_grid, solve_ehl
 
 from . import bearing as bearings
 from . import outputs
@@ -107,11 +107,16 @@ def build(case: EHLCase) -> EHLSetup:
                              slide_to_roll=srr, traction=traction)
     g = case.grid
     grid = EHLGrid(nx=g.nx, ny=g.ny, x_min=g.x_min, x_max=g.x_max, y_max=g.y_max if g.y_max is not None else 3.0)
-    options = EHLOptions(rtol=case.solver.rtol, max_iter=case.solver.max_iter, max_step=case.solver.max_step)
+    options = EHLOptions(rtol=case.solver.rtol, max_iter=case.solver.max_iter, max_step=case.solver.max_step,
+                         method=case.solver.method)
     limit = getattr(options, "max_point_grid", None)
-    if not contact.is_line and limit is not None and g.nx > limit:  # found by validate, not only by run
+    if options.method == "multigrid":
+        # refuses line contacts and grids that do not coarsen to 16 cells (found by validate, not only by run)
+        grid = multigrid_grid(contact, grid)
+    elif not contact.is_line and limit is not None and g.nx > limit:  # found by validate, not only by run
         raise InputError(f"grid.nx = {g.nx} is too fine for a point contact: the EHL solver converges for point "
-                         f"contacts up to {limit} nodes per side (lubrication.ehl.EHLOptions.max_point_grid)")
+                         f"contacts up to {limit} nodes per side (lubrication.ehl.EHLOptions.max_point_grid); "
+                         f"solver.method = 'multigrid' solves finer point-contact grids")
     return EHLSetup(contact, grid, options, race, length)
 
 

@@ -20,6 +20,8 @@ module             responsibility
                    coefficients (point and line contacts)
 ``ehl``            isothermal EHL line and point contacts: Reynolds FEM +
                    FFT elasticity + load balance, Newton, traction laws
+``ehl_multigrid``  FAS multigrid EHL point-contact solver (Venner & Lubrecht;
+                   numba line relaxation, FFT deflection)
 ``film_formulas``  closed-form EHL film thickness (Hamrock-Dowson,
                    Nijenbanning, Dowson-Toyoda, Pan-Hamrock, Moes)
 =================  ==========================================================

@@ -878,7 +878,8 @@ class EHLSolution:
             "Rolling resistance [N]" if not c.is_line else "Rolling resistance per length [N/m]": self.rolling_resistance(),
             "Moes M [-]": c.moes_M,
             "Moes L [-]": c.moes_L,
-            "Newton iterations [-]": int(self.info.get("iterations", 0)),
+            ("Multigrid cycles [-]" if self.info.get("method") == "multigrid" else "Newton iterations [-]"):
+                int(self.info.get("iterations", 0)),
             "Solve time [s]": float(self.info.get("wall_time", 0.0)),
         }
         return out

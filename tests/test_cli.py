@@ -400,3 +400,11 @@ def test_ehl_prescribed_approach_gives_back_the_load(tmp_path, capsys):
     assert code == 0, err
     s = json.loads((tmp_path / "approach" / "summary.json").read_text())
     assert s["Load [N]"] == pytest.approx(1.0, rel=1e-6)
+
+
+def test_multigrid_method_refuses_line_contacts_at_validate(capsys):
+    """The EHL multigrid solves point contacts only: a line-contact case asking for it is refused before any
+    solve, in one line naming the key, the value and what is allowed."""
+    code, _, err = run(capsys, "validate", CASES_DIR / "ehl_roller_slice.toml", "--set", "solver.method=multigrid")
+    assert code == 2
+    assert_one_line_error(err, "ehl.method = 'multigrid' solves point contacts", "line contacts use 'auto'")
