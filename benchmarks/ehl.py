@@ -131,21 +131,7 @@ def multigrid_series(M, L, grids):
                          load_error=s.info["load_error"], unknowns=s.info["unknowns"],
                          max_pressure_over_hertz=s.maximum_pressure / s.problem.ph))
     series = dict(M=M, L=L, nvm_Hc=float(nijenbanning_central(M, L)), grids=rows)
-    return multigrid_reference(series)
-
-
-def multigrid_reference(series):
-    """NVM errors and the Richardson reference of the three finest converged grids (order >= 1)."""
-    ok = [r for r in series["grids"] if "Hc" in r]
-    ref = _common.richardson([r["Hc"] for r in ok]) if len(ok) >= 3 else None
-    if ref is not None and not (ref.get("observed_order") or 0.0) >= 1.0:
-        ref = dict(ref, method="none: observed order below 1 (grids not in the asymptotic range)", value=None)
-    for r in ok:
-        r["Hc_nvm_error"] = r["Hc"] / series["nvm_Hc"] - 1.0
-        if ref is not None and ref["value"] is not None:
-            r["Hc_error"] = abs(r["Hc"] / ref["value"] - 1.0)
-    series["reference"] = ref
-    return series
+    return point_reference(series)
 
 
 def point_reference(series):
@@ -181,7 +167,7 @@ def main(argv=None):
 
         data = json.loads((RESULTS / f"{stem}.json").read_text())
         data["point"] = [point_reference(s) for s in data["point"]]
-        data["multigrid"] = [multigrid_reference(s) for s in data.get("multigrid", [])]
+        data["multigrid"] = [point_reference(s) for s in data.get("multigrid", [])]
         _common.write_json(RESULTS / f"{stem}.json", data)
         return plot(data, stem)
     if args.quick:
