@@ -1133,19 +1133,12 @@ def _ehl_secant_coefficients(contact, grid, options, sol, step):
 
 def _short_inlet_start(contact, grid, options, x_min):
     """Start for ``grid``: the steady solution on the same nodes with the inlet cut at ``x_min`` (Hertz
-    semi-axes), its pressure interpolated onto ``grid`` (zero upstream).
-
-    Uses lubrication.ehl's grid-transfer helpers (``_Problem``, ``_prolong``): ``solve_ehl`` takes an
-    ``initial`` only on its own grid.  If they are not there, ConvergenceError (the caller's next
-    fallback runs)."""
+    semi-axes), returned as it is: ``solve_ehl`` interpolates a start from another grid onto its own
+    (multilinear, zero upstream of the short inlet)."""
     import dataclasses
 
     from lubrication import ehl
 
-    try:
-        problem_cls, prolong, solution_cls = ehl._Problem, ehl._prolong, ehl.EHLSolution
-    except AttributeError as exc:  # pragma: no cover - lubrication.ehl changed
-        raise ConvergenceError(f"no grid transfer in lubrication.ehl ({exc})") from None
     cells = int(round((grid.x_max - x_min) * (grid.nx - 1) / (grid.x_max - grid.x_min)))
     dx = (grid.x_max - grid.x_min) / (grid.nx - 1)
     short = dataclasses.replace(grid, nx=cells + 1, x_min=grid.x_max - cells * dx)
@@ -1158,8 +1151,7 @@ def _short_inlet_start(contact, grid, options, x_min):
             error = exc
     if sol is None:
         raise ConvergenceError(f"short-inlet start: {error}")
-    P = problem_cls(contact, grid, options)
-    return solution_cls(contact, P, prolong(sol, P), None, sol.h00, {})
+    return sol
 
 
 def ehl_load_response(params: dict, load: float, speed: float) -> dict:
