@@ -138,7 +138,14 @@ loads; the multigrid is ahead at M = 1000, converges where the Newton
 methods do not (M = 200 on 257 x 257, 513 x 513) and meets the 257 x 257
 speed target.  The default stays the FEM Newton (``auto``): it also gives squeeze
 films and the linearised normal coefficients, and it is the method the
-coupling code is validated with.
+coupling code is validated with.  Limit, measured on paper B's most loaded
+ball / inner race contact (k = 11, M = 1001, L = 25.4,
+cases/ehl_ball_inner_race.toml): it converges on 65 x 33 (y_max = 1.5 b_y;
+h_c 1.041 um against the FEM's 1.120 um on the same grid) and on 129 x 713
+isotropic cells (1.104 um), but stagnates on 129 x 33 and 257 x 1425 and
+diverges on 513 x 2849 (clear errors; pinned in tests/test_cli.py): the
+Jacobi-distributive rows and the bilinear transfers assume hx = hy, so
+elongated, heavily loaded contacts stay with the FEM Newton.
 
 Normal film coefficients: :func:`ehl_normal_coefficients`.
 

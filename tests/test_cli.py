@@ -408,3 +408,17 @@ def test_multigrid_method_refuses_line_contacts_at_validate(capsys):
     code, _, err = run(capsys, "validate", CASES_DIR / "ehl_roller_slice.toml", "--set", "solver.method=multigrid")
     assert code == 2
     assert_one_line_error(err, "ehl.method = 'multigrid' solves point contacts", "line contacts use 'auto'")
+
+
+def test_multigrid_stops_clearly_on_paper_b_elongated_contact(tmp_path, capsys):
+    """Where the EHL multigrid stops, pinned: paper B's most loaded ball / inner race contact (k = 11,
+    M = 1001, L = 25.4) on the case's anisotropic grid converges on 65 x 33 nodes and stagnates on
+    129 x 33 (measured: relative residual 7.6e-2 at cycle 8); the run exits 1 with one line naming
+    M, L, the grid and the residual, and writes nothing.  (The FEM Newton solves both grids.)"""
+    out = tmp_path / "out"
+    code, _, err = run(capsys, "run", CASES_DIR / "ehl_ball_inner_race.toml", "--set", "solver.method=multigrid",
+                       "--set", "grid.nx=129", "--out", str(out))
+    assert code == 1
+    assert_one_line_error(err, "EHL multigrid stagnated at M = 1001, L = 25.44 on 129 x 33 nodes",
+                          "relative residual")
+    assert not out.exists() or not any(out.iterdir())
