@@ -1094,9 +1094,9 @@ def _ehl_secant_coefficients(contact, grid, options, sol, step):
     variants = [{}] + [v for v in ({"first_order_start": "every_grid"}, {"method": "active_set"}) if set(v) <= fields]
     variants += [{"max_step": 1.0, "max_iter": 150}, {"max_step": 0.5, "max_iter": 150}]
 
-    ref_x_min = EHL_REFERENCE_DOMAIN["line" if contact.is_line else "point"][0]
+    ref_x_min = _longer_inlet(grid, contact.is_line)
     tries = [({}, sol)]
-    if grid.x_min < ref_x_min - 1e-9:
+    if ref_x_min is not None:
         # long inlet: the short-inlet solution of the changed contact, prolonged (see ehl_load_response;
         # measured: paper B's inner race at 1200 N, 30 m/s on x in [-18.5, 1.5] b, all four solves
         # stall from the steady state with every Newton variant and converge from this start)
@@ -1129,6 +1129,13 @@ def _ehl_secant_coefficients(contact, grid, options, sol, step):
     log.warning("EHL secant coefficients failed; using the linearised tangent")
     K, C, _ = ehl_normal_coefficients(contact, grid, options, steady=sol)
     return K, C
+
+
+def _longer_inlet(grid, line: bool):
+    """The reference domain's inlet x_min [Hertz semi-axes] if ``grid`` starts upstream of it (a long
+    inlet, whose heavy loads are started from the short-inlet solution), else None."""
+    ref_x_min = EHL_REFERENCE_DOMAIN["line" if line else "point"][0]
+    return ref_x_min if grid.x_min < ref_x_min - 1e-9 else None
 
 
 def _short_inlet_start(contact, grid, options, x_min):
@@ -1217,8 +1224,8 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
         variants.append({"method": "active_set"})
     variants += [{"max_step": 1.0, "max_iter": 150}, {"max_step": 0.5, "max_iter": 150}]
     attempts = [(grid, dataclasses.replace(options, **v)) for v in variants]
-    ref_x_min = EHL_REFERENCE_DOMAIN["line" if line else "point"][0]
-    if grid.x_min < ref_x_min - 1e-9:
+    ref_x_min = _longer_inlet(grid, line)
+    if ref_x_min is not None:
         # a long inlet (ball races: x_min = -18.5): start from the solution on the reference inlet,
         # prolonged (measured: paper B's races at 700-1200 N, M = 480-2700, fail on x in [-18.5, 1.5]
         # from the nested-iteration start with every Newton variant above and converge in 1-2 s from

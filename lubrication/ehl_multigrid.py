@@ -427,10 +427,7 @@ class _Level:
         # DC-FFT as in ElasticKernel.deflect, but padded to FFT-friendly sizes >= 2n - 1
         # (2n = 514 for 257 nodes has the prime factor 257: 2-3 times slower)
         self.fft_shape = tuple(scipy.fft.next_fast_len(2 * m - 1, real=True) for m in self.shape)
-        padded = np.zeros(self.fft_shape)
-        idx = [np.arange(-(m - 1), m) % q for m, q in zip(self.shape, self.fft_shape)]
-        padded[np.ix_(*idx)] = Kk * kscale
-        self.spectrum = scipy.fft.rfftn(padded)
+        self.spectrum = self.kernel.padded_spectrum(self.fft_shape) * kscale
         self.dense = None
         if nx * ny <= _DENSE_MAX:
             # small (coarsest) grids: the same influence coefficients as a dense

@@ -108,11 +108,21 @@ class ElasticKernel:
             X, Y = np.meshgrid(offsets[0], offsets[1], indexing="ij")
             K = rectangle_influence(X, Y, self.spacing[0] / 2, self.spacing[1] / 2, self.e_star)
         self._kernel = K  # offsets -(n-1) .. (n-1) per axis
-        # wrap-around order on the padded grid of size 2n: offset k at index k mod 2n
-        padded = np.zeros(tuple(2 * n for n in self.shape))
-        idx = [np.arange(-(n - 1), n) % (2 * n) for n in self.shape]
-        padded[np.ix_(*idx)] = K
-        self._spectrum = scipy.fft.rfftn(padded)
+        self._spectrum = self.padded_spectrum(tuple(2 * n for n in self.shape))
+
+    def padded_spectrum(self, shape: tuple) -> np.ndarray:
+        """rfftn of the influence coefficients on a zero-padded grid of ``shape``
+        (each length >= 2n - 1; offset k at index k mod length, the wrap-around
+        order of the DC-FFT): ``irfftn(rfftn(p, s=shape) * this, s=shape)`` cut
+        to the grid is the deflection.  :meth:`deflect` uses 2n; lengths from
+        ``scipy.fft.next_fast_len`` avoid large prime factors (2n = 514 has 257)."""
+        if any(q < 2 * n - 1 for q, n in zip(shape, self.shape)):
+            raise InputError(f"padded FFT shape {shape} must be at least 2n - 1 = "
+                             f"{tuple(2 * n - 1 for n in self.shape)} per axis")
+        padded = np.zeros(shape)
+        idx = [np.arange(-(n - 1), n) % q for n, q in zip(self.shape, shape)]
+        padded[np.ix_(*idx)] = self._kernel
+        return scipy.fft.rfftn(padded)
 
     def deflect(self, p: np.ndarray) -> np.ndarray:
         """Displacement u [m] on the grid for cell pressures ``p`` [Pa] (FFT)."""
