@@ -24,6 +24,7 @@ string with units)::
                  approach_velocity (= -squeeze), mode_velocities = {x = .., y = ..}
     [lubricant.viscosity]  law = constant | barus | roelands, eta0, alpha, z
     [lubricant.density]    law = incompressible | dowson_higginson, rho0, a, b
+    [lubricant]  eyring_stress (EHL scenes only: Reynolds-Eyring shear thinning, tau0)
     [cavitation] model = none | half_sommerfeld | reynolds | jfo, pressure
     [boundary]   ambient, pressures = {name = p}, sealed = [names]
     [solver]     rtol, max_iter, linear_solver = auto | direct | amg, amg_tol
@@ -373,8 +374,12 @@ class DensityModel(_Model):
 
 
 class LubricantModel(_Model):
+    """viscosity, density; eyring_stress tau0 (EHL scenes only): Reynolds-Eyring shear thinning of the
+    Poiseuille flow (:mod:`lubrication.lubricant`), omitted = Newtonian."""
+
     viscosity: Annotated[ViscosityModel, BeforeValidator(_viscosity_shorthand)]
     density: DensityModel = Field(default_factory=DensityModel)
+    eyring_stress: Q("pressure", gt=0) | None = None
 
 
 class CavitationModel(_Model):
@@ -429,6 +434,9 @@ class FilmCase(_Model):
 
     @model_validator(mode="after")
     def _resolve(self):
+        if self.lubricant.eyring_stress is not None:
+            raise _root_rule("lubricant.eyring_stress", self.lubricant.eyring_stress, "is for EHL scenes (scene = "
+                             "'ehl'); the film solver is Newtonian, remove it")
         self._resolve_domain()
         self._resolve_motion()
         self._check_boundaries()

@@ -26,6 +26,16 @@ cell).  The Reynolds residual is the Galerkin form of
 dominated (inlet, light loads) and tends to full upwinding in the contact,
 where k -> 0 and the Galerkin transport alone would oscillate.
 
+Reynolds-Eyring flow (``Lubricant(eyring_stress=tau0)``): k becomes
+k Phi(x), x = h |grad p|/(2 tau0), Phi = 3 (x cosh x - sinh x)/x^3 (the
+Poiseuille flow of the sinh law in pure rolling,
+:func:`lubrication.lubricant.eyring_flow_factor`); the flux then depends on
+grad p nonlinearly, and the Jacobian carries its tensor part
+k Phi'/x (h/(2 tau0))^2 grad p grad p^T, dPhi/dh, and the SUPG parameter's
+dependence on grad p (Pe ~ 1/Phi).  The pressure still does not depend on
+sliding (pure-rolling flow factor), so a map's traction axis stays
+post-processing.
+
 Assembly is vectorised on the uniform grid (:mod:`lubrication.ehl_assembly`:
 one template product and one scatter per matrix; equal to scikit-fem's
 ``asm`` of the same forms to round-off, :meth:`_Problem.assemble_skfem`).
@@ -98,8 +108,15 @@ the discrete Reynolds equation there is rho h = const to machine precision
 and several states satisfy the discrete problem (10 kN, 8.84 m/s, 257 nodes:
 two starts give spikes 0.18 b apart, h_min 5 % apart, both with free-node
 residual 2.5e-11 and cavitated multipliers >= 0).  No convergence test can
-pick one; at alpha p_Hertz = 33 both starts agree to 1e-15.  An ``initial``
-from another grid is interpolated onto this one (:func:`_prolong`).
+pick one; at alpha p_Hertz = 33 both starts agree to 1e-15.  Capping the
+viscosity at 1e6 ... 1e12 Pa s or a Dowson-Higginson density leaves the two
+states; Eyring flow (tau0 = 5 MPa) removes them: five starts agree to 1e-13
+(tests/test_ehl_eyring.py pins both).  With Eyring flow the Newton iteration
+is less robust: some starts fail (0.944 times the load at 10 kN; from the
+Newtonian state at 15 kN), and on 1025 nodes no start converged at 10 kN,
+8.84 m/s (the outlet's x grows with refinement: 56 on 257 nodes, 90 on 513).
+An ``initial`` from another grid is interpolated onto this one
+(:func:`_prolong`).
 
 Measured (circular, L = 10, benchmarks/ehl.py and benchmarks/README.md;
 CPU seconds of one core, the shared machine's wall times were 3-8 times
@@ -172,7 +189,7 @@ from . import hertz, mesh as meshes
 from .elastic import ElasticKernel
 from .ehl_assembly import UniformForms
 from .errors import ConvergenceError, InputError, require_positive, unknown_choice
-from .lubricant import Lubricant
+from .lubricant import Lubricant, eyring_flow_factor
 from .reynolds import _advection, _diffusion, _flux_load, _mass, _source_load, _streamline, make_basis
 
 log = logging.getLogger(__name__)
@@ -194,6 +211,29 @@ def supg_parameter(um, dx, rho, h, k):
         dxi = np.where(Pe > 1e-3, 1.0 / Pe**2 - np.where(Pe < 300.0, 1.0 / sh**2, 0.0), 1.0 / 3.0)
     dxi = np.where(Pe_raw < 1e8, dxi, 0.0)
     return Pe, dx / (2 * um) * xi, dx / (2 * um) * dxi
+
+
+def _log_slope(eta, deta):
+    """d ln(eta)/dp, 0 where a far-off Newton iterate overflowed eta (there k = 0 and tau is capped)."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        r = deta / eta
+    return np.where(np.isfinite(r), r, 0.0)
+
+
+def _eyring_terms(lub, h, grad_p):
+    """Reynolds-Eyring factors at the quadrature points (None for a Newtonian lubricant).
+
+    ``phi`` = Phi(x), x = s |grad p|, s = h/(2 tau0) (:func:`lubrication.lubricant.eyring_flow_factor`);
+    ``c2`` = (Phi'/x) s^2, so that d(Phi grad p)/d(grad p) = Phi I + c2 grad p grad p^T;
+    ``dphi_dh`` = dPhi/dh = (Phi'/x) x^2/h."""
+    tau0 = getattr(lub, "eyring_stress", None)
+    if tau0 is None:
+        return None
+    s = h / (2.0 * tau0)
+    g2 = sum(np.asarray(grad_p[d]) ** 2 for d in range(len(grad_p)))
+    x = s * np.sqrt(g2)
+    phi, dphi_x = eyring_flow_factor(x)
+    return {"phi": phi, "c2": dphi_x * s**2, "dphi_dh": dphi_x * x**2 / h}
 
 
 @dataclass(frozen=True)
@@ -615,10 +655,12 @@ class _Problem:
         with np.errstate(over="ignore", invalid="ignore"):
             eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
             rho, drho = lub.density(pq), lub.density.derivative(pq)
-        k = rho * hq**3 / (12 * eta)
+        kN = rho * hq**3 / (12 * eta)
         um = c.mean_speed
         hdot = c.squeeze_velocity
         dim = F.dim
+        ey = _eyring_terms(lub, hq, pg)
+        k = kN if ey is None else kN * ey["phi"]
         # SUPG parameter; Pe = 6 u_m l eta/h^2 (rho cancels), differentiated
         # exactly below: d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -2 tau'(Pe) Pe/h
         Pe, tau, dtau_dPe = supg_parameter(um, self.dx, rho, hq, k)
@@ -638,10 +680,17 @@ class _Problem:
         R = F.vector(terms)
         if not jac:
             return R, hn
-        dk_dp = hq**3 / 12 * (drho / eta - rho * deta / eta**2)
+        dlog_eta = _log_slope(eta, deta)
+        dk_dp = hq**3 / 12 * (drho - rho * dlog_eta) / eta
         dk_dh = rho * 3 * hq**2 / (12 * eta)
-        dtau_dp = dtau_dPe * Pe * deta / eta
+        dtau_dp = dtau_dPe * Pe * dlog_eta
         dtau_dh = -2.0 * dtau_dPe * Pe / hq
+        if ey is not None:
+            # k = kN Phi(x), x = h |grad p|/(2 tau0): dk/dh gains kN Phi' x/h, and the flux
+            # k grad p depends on grad p through Phi (kN Phi'/x s^2 grad p grad p^T); Pe ~ 1/Phi
+            dk_dp = dk_dp * ey["phi"]
+            dk_dh = dk_dh * ey["phi"] + kN * ey["dphi_dh"]
+            dtau_dh = dtau_dh - dtau_dPe * Pe * ey["dphi_dh"] / ey["phi"]
         # d(strong)/dp_j without the film dependence (that is in D):
         # u_m (rho' h_x + h rho'' p_x) phi_j + u_m rho' h d_x phi_j + rho' hdot phi_j
         if np.any(drho != 0.0):
@@ -658,6 +707,11 @@ class _Problem:
         # squeeze mass rho' hdot, SUPG: tau (d strong/dp) u.grad v + tau' strong u.grad v
         Aterms = [(k, F.gg[d][d]) for d in range(dim)]
         Aterms += [(dk_dp * pg[d], F.adv[d]) for d in range(dim)]
+        if ey is not None:
+            c2 = kN * ey["c2"]
+            Aterms += [(c2 * pg[d] * pg[e], F.gg[d][e]) for d in range(dim) for e in range(dim)]
+            # tau(Pe(grad p)): d tau/d(d_e p) = -tau'(Pe) Pe c2/k d_e p, times strong u_m . grad v
+            Aterms += [(-dtau_dPe * Pe * ey["c2"] / ey["phi"] * pg[e] * strong * um, F.gg[0][e]) for e in range(dim)]
         Aterms.append((-drho * hq * um + (tau * d_strong_dp + dtau_dp * strong) * um, F.adv[0]))
         Aterms.append((tau * drho * hq * um * um, F.gg[0][0]))
         if hdot != 0.0:
@@ -671,7 +725,10 @@ class _Problem:
             Ml_inv = sp.diags(1.0 / self.weights)
             for d in range(dim):
                 S = F.matrix([(tau * um, F.gg[0][d])])
-                Gp = F.matrix([(k, F.dirn[d]), (dk_dp * pg[d], F.mass)])
+                gp_terms = [(k, F.dirn[d]), (dk_dp * pg[d], F.mass)]
+                if ey is not None:
+                    gp_terms += [(c2 * pg[d] * pg[e], F.dirn[e]) for e in range(dim)]
+                Gp = F.matrix(gp_terms)
                 Gh = F.matrix([(dk_dh * pg[d], F.mass)])
                 SM = S @ Ml_inv
                 A = A - SM @ Gp
@@ -692,7 +749,9 @@ class _Problem:
         with np.errstate(over="ignore", invalid="ignore"):
             eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
             rho, drho = lub.density(pq), lub.density.derivative(pq)
-        k = rho * hq**3 / (12 * eta)
+        kN = rho * hq**3 / (12 * eta)
+        ey = _eyring_terms(lub, hq, np.asarray(pf.grad))
+        k = kN if ey is None else kN * ey["phi"]
         um = c.mean_speed
         u = self.u
         hdot = c.squeeze_velocity
@@ -716,10 +775,15 @@ class _Problem:
         R = R + asm(_supg_load, b, t=tau * strong, u=u)
         if not jac:
             return R, hn
-        dk_dp = hq**3 / 12 * (drho / eta - rho * deta / eta**2)
+        dlog_eta = _log_slope(eta, deta)
+        dk_dp = hq**3 / 12 * (drho - rho * dlog_eta) / eta
         dk_dh = rho * 3 * hq**2 / (12 * eta)
-        dtau_dp = dtau_dPe * Pe * deta / eta
+        dtau_dp = dtau_dPe * Pe * dlog_eta
         dtau_dh = -2.0 * dtau_dPe * Pe / hq
+        if ey is not None:
+            dk_dp = dk_dp * ey["phi"]
+            dk_dh = dk_dh * ey["phi"] + kN * ey["dphi_dh"]
+            dtau_dh = dtau_dh - dtau_dPe * Pe * ey["dphi_dh"] / ey["phi"]
         # d(strong)/dp_j without the h-dependence (in D): u_m (rho' h_x + h rho'' p_x)
         # phi_j + (rho' h u_m) . grad phi_j + rho' hdot phi_j
         if np.any(drho != 0.0):
@@ -736,7 +800,14 @@ class _Problem:
             + asm(_mass, b, c=drho * hdot * np.ones_like(hq))
             + asm(_streamline, b, s=tau * drho * hq, beta=u)
             + asm(_advection, b, b=(tau * d_strong_dp + dtau_dp * strong) * u)
-        ).tocsr()
+        )
+        if ey is not None:
+            gp = np.asarray(pf.grad)
+            c2 = kN * ey["c2"]
+            # c2 (grad p . grad phi_j)(grad p . grad v) and d tau/d(grad p) strong (u . grad v)
+            A = (A + asm(_supg_derivative, b, t=c2, u=gp, e=gp)
+                 + asm(_supg_derivative, b, t=-dtau_dPe * Pe * ey["c2"] / ey["phi"] * strong, u=u, e=gp))
+        A = A.tocsr()
         D = (
             asm(_advection, b, b=dk_dh * pf.grad - rho * u)
             + asm(_streamline, b, s=tau * rho, beta=u)
@@ -749,6 +820,8 @@ class _Problem:
                 e[d] = 1.0
                 S = asm(_supg_derivative, b, t=tau, u=u, e=e)
                 Gp = asm(_directional, b, k=k, e=e) + asm(_mass, b, c=dk_dp * pf.grad[d])
+                if ey is not None:
+                    Gp = Gp + asm(_directional, b, k=c2 * gp[d], e=gp)
                 Gh = asm(_mass, b, c=dk_dh * pf.grad[d])
                 A = A - S @ (Ml_inv @ Gp)
                 D = D - S @ (Ml_inv @ Gh)
@@ -1521,6 +1594,9 @@ def multigrid_grid(contact: EHLContact, grid: EHLGrid, coarsest_cells: int = 16)
     if contact.is_line:
         raise InputError("ehl.method = 'multigrid' solves point contacts; line contacts use 'auto' "
                          "(active set) or 'fischer_burmeister'")
+    if getattr(contact.lubricant, "eyring_stress", None) is not None:
+        raise InputError(f"lubricant.eyring_stress = {contact.lubricant.eyring_stress!r}: ehl.method = 'multigrid' "
+                         "is Newtonian; use 'auto', 'fischer_burmeister' or 'active_set' for Eyring flow")
     cells = grid.nx - 1
     k = 0
     while cells % 2 == 0 and cells // 2 >= coarsest_cells:

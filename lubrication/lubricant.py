@@ -15,6 +15,20 @@ Viscosity
   a Barus ``alpha``: z = alpha p0 / (ln eta0 + 9.67)  (Roelands 1966; Venner &
   Lubrecht 2000, eq. 2.12).
 
+Shear thinning of the Poiseuille flow (Reynolds-Eyring)
+-------------------------------------------------------
+:class:`Lubricant` ``eyring_stress`` tau0 [Pa] (None: Newtonian).  An Eyring
+fluid, shear rate (tau0/eta) sinh(tau/tau0), in pure rolling carries the
+Poiseuille flow of a Newtonian one times the flow factor
+
+    Phi(x) = 3 (x cosh x - sinh x) / x^3,   x = h |grad p| / (2 tau0)
+
+(derived here from the sinh law: by symmetry tau = z |grad p| across the
+film, z from mid-film; integrating the shear rate twice over the film gives
+the flow; Phi -> 1 + x^2/10 as x -> 0.  The pure-rolling case of Conry, Wang &
+Cusano 1987, "A Reynolds-Eyring equation for elastohydrodynamic lubrication
+in line contacts", J. Tribol. 109, 648).  :func:`eyring_flow_factor`.
+
 Density
 -------
 - :class:`Incompressible`     rho = rho0
@@ -150,17 +164,53 @@ class DowsonHigginson:
         return np.where(p > 0, self.rho0 * self.a / (1.0 + self.b * q) ** 2, 0.0)
 
 
+# Phi(x) = 3 sum_{k>=1} 2k x^(2k-2)/(2k+1)!  and  Phi'(x)/x = 3 sum_{k>=2} 2k(2k-2) x^(2k-4)/(2k+1)!
+_PHI_SERIES = (1.0, 1 / 10, 1 / 280, 1 / 15120, 1 / 1330560, 1 / 172972800)
+_DPHI_SERIES = (1 / 5, 1 / 70, 1 / 2520, 1 / 166320, 1 / 17297280)
+EYRING_X_CAP = 300.0  # Phi(300) ~ 1e126; above it Phi is held (derivative 0)
+
+
+def eyring_flow_factor(x):
+    """Reynolds-Eyring Poiseuille flow factor Phi(x) and Phi'(x)/x for x = h |grad p|/(2 tau0) >= 0.
+
+    Phi = 3 (x cosh x - sinh x)/x^3, Phi'/x = 3 sinh x/x^3 - 3 Phi/x^2 (closed forms for
+    x >= 0.5; their power series, to x^10, below it, where the closed forms cancel).
+    x is held at :data:`EYRING_X_CAP`.  Returns ``(phi, dphi_over_x)``.
+    """
+    x = np.minimum(np.abs(np.asarray(x, dtype=float)), EYRING_X_CAP)
+    x2 = x * x
+    phi_s = np.polynomial.polynomial.polyval(x2, _PHI_SERIES)
+    dphi_s = np.polynomial.polynomial.polyval(x2, _DPHI_SERIES)
+    big = x >= 0.5
+    xb = np.where(big, x, 1.0)
+    phi_b = 3.0 * (xb * np.cosh(xb) - np.sinh(xb)) / xb**3
+    dphi_b = 3.0 * np.sinh(xb) / xb**3 - 3.0 * phi_b / xb**2
+    held = np.asarray(x) >= EYRING_X_CAP
+    return np.where(big, phi_b, phi_s), np.where(held, 0.0, np.where(big, dphi_b, dphi_s))
+
+
 @dataclass(frozen=True)
 class Lubricant:
-    """A Newtonian lubricant: a viscosity law and a density law."""
+    """A lubricant: a viscosity law, a density law and, optionally, Eyring shear thinning.
+
+    ``eyring_stress`` tau0 [Pa]: the Poiseuille flow of the EHL solver is the
+    Newtonian one times :func:`eyring_flow_factor` (module docstring); None
+    (default) is Newtonian.  Only :mod:`lubrication.ehl`'s finite-element
+    solver uses it; the others refuse it.
+    """
 
     viscosity: ConstantViscosity | Barus | Roelands
     density: Incompressible | DowsonHigginson = Incompressible()
+    eyring_stress: float | None = None
+
+    def __post_init__(self):
+        if self.eyring_stress is not None:
+            require_positive("lubricant eyring_stress [Pa]", self.eyring_stress)
 
     @property
     def is_constant(self) -> bool:
-        """True when neither law depends on pressure (the Reynolds problem is linear)."""
-        return bool(self.viscosity.is_constant and self.density.is_constant)
+        """True when neither law depends on pressure and the fluid is Newtonian (the Reynolds problem is linear)."""
+        return bool(self.viscosity.is_constant and self.density.is_constant and self.eyring_stress is None)
 
     @classmethod
     def newtonian(cls, eta0: float, rho0: float = 1.0) -> "Lubricant":

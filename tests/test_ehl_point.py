@@ -267,15 +267,59 @@ def test_newton_jacobian_is_exact(density):
     assert np.max(np.abs(fd - Dh)) < 1e-6 * np.max(np.abs(Dh))
 
 
+def _eyring_state(c, n):
+    """``_smooth_state`` with a Reynolds-Eyring lubricant whose tau0 puts the median
+    x = h |grad p|/(2 tau0) at 1, so that both branches of the flow factor (series
+    below x = 0.5, closed form above) and Phi >> 1 (x up to ~10) are exercised."""
+    import dataclasses
+
+    P, p, h00 = _smooth_state(c, n)
+    g = np.sqrt(sum(np.asarray(d) ** 2 for d in P.forms.interpolate(p)[1]))
+    h = P.forms.interpolate(np.maximum(P.film(p, h00), P.o.h_floor * P.hscale))[0]
+    tau0 = float(np.median(h * g)) / 2
+    ce = dataclasses.replace(c, lubricant=dataclasses.replace(c.lubricant, eyring_stress=tau0))
+    P.c = ce
+    return P, p, h00
+
+
 @pytest.mark.parametrize("line", [False, True])
-def test_vectorised_assembly_equals_scikit_fem(line):
+def test_eyring_jacobian_is_exact(line):
+    """The Reynolds-Eyring terms of the Jacobian (flux Phi(x) k grad p with
+    x = h |grad p|/(2 tau0): the grad p grad p^T diffusion, dPhi/dh, and the SUPG
+    parameter's dependence on grad p through Pe ~ 1/Phi) against central
+    differences of the residual, as in :func:`test_newton_jacobian_is_exact`."""
+    from lubrication.lubricant import DowsonHigginson
+
+    c = EHLContact.from_moes(100, 10, line=line, density=DowsonHigginson(850.0))
+    P, p, h00 = _eyring_state(c, 65 if line else 17)
+    R, hn, A, D, _ = P.assemble(p, h00)
+    J = A.toarray() + D.toarray() @ P.K_dense()
+    # the flow factor is active: the residual differs from the Newtonian one
+    R_newtonian = _smooth_state(c, 65 if line else 17)[0].assemble(p, h00, jac=False)[0]
+    assert np.max(np.abs(R - R_newtonian)) > 1e-3 * np.max(np.abs(R))
+    rng = np.random.default_rng(1)
+    for j in rng.choice(np.flatnonzero(P.free0), 8, replace=False):
+        e = np.zeros(P.N)
+        e[j] = 1e-6 * P.ph
+        fd = (P.assemble(p + e, h00, jac=False)[0] - P.assemble(p - e, h00, jac=False)[0]) / (2e-6 * P.ph)
+        assert np.max(np.abs(fd - J[:, j])) < 1e-5 * np.max(np.abs(J[:, j]))
+    dh = 1e-6 * P.hscale
+    fd = (P.assemble(p, h00 + dh, jac=False)[0] - P.assemble(p, h00 - dh, jac=False)[0]) / (2 * dh)
+    Dh = D @ np.ones(P.N)
+    assert np.max(np.abs(fd - Dh)) < 1e-6 * np.max(np.abs(Dh))
+
+
+@pytest.mark.parametrize("line", [False, True])
+@pytest.mark.parametrize("eyring", [False, True])
+def test_vectorised_assembly_equals_scikit_fem(line, eyring):
     """The vectorised assembly (lubrication.ehl_assembly) against scikit-fem's
     ``asm`` of the same forms (``_Problem.assemble_skfem``), with squeeze
-    and a compressible lubricant so that every term is present."""
+    and a compressible lubricant so that every term is present; and with the
+    Reynolds-Eyring flow factor (its tensor diffusion and SUPG terms)."""
     from lubrication.lubricant import DowsonHigginson
 
     c = EHLContact.from_moes(100, 10, line=line, density=DowsonHigginson(850.0), squeeze_velocity=-1e-4)
-    P, p, h00 = _smooth_state(c, 65 if line else 17)
+    P, p, h00 = (_eyring_state if eyring else _smooth_state)(c, 65 if line else 17)
     fast, ref = P.assemble(p, h00), P.assemble_skfem(p, h00)
     assert np.max(np.abs(fast[0] - ref[0])) < 1e-12 * np.max(np.abs(ref[0]))
     for a, b in ((fast[2], ref[2]), (fast[3], ref[3])):
