@@ -387,25 +387,11 @@ def test_dask_worker_processes_give_the_same_real_map(tmp_path):
 SHIPPED_MAPS = Path(__file__).resolve().parents[1] / "cases" / "maps"
 
 
-# (map, output) pairs whose EHL *solution* jumps between neighbouring points (cases/maps/README.md,
-# "Accuracy"; cases/map_ehl_roller_race.toml): the interpolation is fine, the direct solves are not smooth in
-# (load, speed).  Measured cause (22 Nov 2026): the discrete EHL line contact has several converged solutions
-# at the same (load, speed), outlet spikes 0.09 b apart; which one a solve finds depends on its Newton start.
-_BRANCHES = ("EHL line contact: several converged solutions per (load, speed), outlet spikes 0.09-0.18 b apart; "
-             "at 10 kN, 8.84 m/s they differ by {} on 513-2049 nodes (5.3/6.3 % on 257), not grid-resolvable. "
-             "Both are exact discrete solutions (reference assembly, 257 nodes: |R| free 2.5e-11, cavitated "
-             "multipliers >= +0.014, |p R| 2e-14, load 1e-16 relative; Fischer-Burmeister stalls on 257 and 513). "
-             "Cause: Barus with alpha p_H = 44 (alpha p = 76-87 at the spikes) makes the Poiseuille term "
-             "1e-15..1e-36 of the Couette term across the Hertz zone, below double-precision round-off, so the "
-             "discrete Reynolds equation there is rho h = const and nothing that survives round-off fixes where the "
-             "outlet constriction ends; at alpha = 3.5e-8 (alpha p_H = 33) both starts agree to 1e-15")
-KNOWN_MISSES = {
-    ("ehl_roller_race", "Minimum film thickness [m]"): _BRANCHES.format("h_min 2.7-3.1 %")
-    + "; the report's max 6.1 % (1025 nodes) where a solve lands on a far branch (-7 % at 15 kN)",
-    ("ehl_roller_race", "Film damping [N s/m]"): _BRANCHES.format("C 3.0-3.1 %") + "; report max 3.4 % (1025 nodes)",
-    ("ehl_roller_race", "Approach [m]"): _BRANCHES.format("h00 42-50 nm")
-    + "; the approach crosses zero near 5 kN, 15 m/s, so 45 nm is 3.4 % of |h00| = 1.3 um at 5.6 kN, 11.5 m/s",
-}
+# (map, output) pairs that miss the target, with the measured cause (strict xfail).  None since the
+# roller map uses Eyring flow (22 Nov 2026): its Newtonian h_min, damping and approach missed (max 6.1 /
+# 3.4 / 3.4 %) because the Newtonian line contact had several exact solutions per (load, speed)
+# (coupling/film_points.py, ehl_roller_race_default_params; tests/test_ehl.py pins it).
+KNOWN_MISSES: dict = {}
 
 
 def _accuracy_cases():
