@@ -128,7 +128,7 @@ def build_lubricant(case: FilmCase) -> lub.Lubricant:
         density = lub.Incompressible(d.rho0)
     else:
         density = lub.DowsonHigginson(d.rho0, d.a, d.b)
-    return lub.Lubricant(viscosity, density, getattr(case.lubricant, "eyring_stress", None))
+    return lub.Lubricant(viscosity, density, case.lubricant.eyring_stress)
 
 
 def _check_gap_positive(gap, mesh, case: FilmCase):

@@ -176,6 +176,7 @@ from __future__ import annotations
 import logging
 import time
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 from typing import NamedTuple
 
 import numpy as np
@@ -226,7 +227,7 @@ def _eyring_terms(lub, h, grad_p):
     ``phi`` = Phi(x), x = s |grad p|, s = h/(2 tau0) (:func:`lubrication.lubricant.eyring_flow_factor`);
     ``c2`` = (Phi'/x) s^2, so that d(Phi grad p)/d(grad p) = Phi I + c2 grad p grad p^T;
     ``dphi_dh`` = dPhi/dh = (Phi'/x) x^2/h."""
-    tau0 = getattr(lub, "eyring_stress", None)
+    tau0 = lub.eyring_stress
     if tau0 is None:
         return None
     s = h / (2.0 * tau0)
@@ -640,30 +641,66 @@ class _Problem:
     def film(self, p, h00):
         return h00 + self.rigid + self.deflect(p)
 
+    def _coefficients(self, pq, hq, grad_p):
+        """Pointwise coefficients at the quadrature points, shared by both assemblies: eta, eta',
+        rho, rho', kN = rho h^3/(12 eta), the Eyring factors ``ey`` (:func:`_eyring_terms`, None if
+        Newtonian), k = kN Phi, and the SUPG parameter (Pe = 6 u_m l eta/(h^2 Phi), rho cancels;
+        tau, tau'(Pe))."""
+        lub = self.c.lubricant
+        with np.errstate(over="ignore", invalid="ignore"):
+            eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
+            rho, drho = lub.density(pq), lub.density.derivative(pq)
+        kN = rho * hq**3 / (12 * eta)
+        ey = _eyring_terms(lub, hq, grad_p)
+        k = kN if ey is None else kN * ey["phi"]
+        Pe, tau, dtau_dPe = supg_parameter(self.c.mean_speed, self.dx, rho, hq, k)
+        return SimpleNamespace(eta=eta, deta=deta, rho=rho, drho=drho, kN=kN, ey=ey, k=k, Pe=Pe, tau=tau,
+                               dtau_dPe=dtau_dPe)
+
+    def _coefficient_derivatives(self, cf, pq, hq):
+        """dk/dp, dk/dh, dtau/dp, dtau/dh at fixed grad p (the grad p terms of Eyring flow are
+        assembled by the callers), and rho'' (None for a pressure-independent density).
+
+        d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -tau'(Pe) Pe (2/h + Phi_h/Phi); with Eyring flow
+        k = kN Phi(x), x = h |grad p|/(2 tau0), so dk/dh gains kN Phi' x/h.  rho'' by a central
+        difference on the smooth branch p > 0 (rho' jumps at p = 0, where rho = rho(max(p, 0)) has
+        rho'' = 0 on the flat side)."""
+        eta, rho, drho, kN, ey, Pe, dtau_dPe = cf.eta, cf.rho, cf.drho, cf.kN, cf.ey, cf.Pe, cf.dtau_dPe
+        dlog_eta = _log_slope(eta, cf.deta)
+        dk_dp = hq**3 / 12 * (drho - rho * dlog_eta) / eta
+        dk_dh = rho * 3 * hq**2 / (12 * eta)
+        dtau_dp = dtau_dPe * Pe * dlog_eta
+        dtau_dh = -2.0 * dtau_dPe * Pe / hq
+        if ey is not None:
+            dk_dp = dk_dp * ey["phi"]
+            dk_dh = dk_dh * ey["phi"] + kN * ey["dphi_dh"]
+            dtau_dh = dtau_dh - dtau_dPe * Pe * ey["dphi_dh"] / ey["phi"]
+        d2rho = None
+        if np.any(drho != 0.0):
+            density = self.c.lubricant.density
+            dp_ = 1e-6 * self.ph
+            lo, hi = np.maximum(pq - dp_, 0.5 * pq), pq + dp_
+            with np.errstate(invalid="ignore", divide="ignore"):
+                d2rho = np.where(pq > 0, (density.derivative(hi) - density.derivative(lo)) / (hi - lo), 0.0)
+        return dk_dp, dk_dh, dtau_dp, dtau_dh, d2rho
+
     def assemble(self, p, h00, jac=True):
         """Residual R(p, h00) of the stabilised Reynolds equation and, with
         ``jac``, its exact derivatives A = dR/dp at fixed film and D = dR/dh
         (nodal film), vectorised on the uniform grid (:mod:`lubrication.ehl_assembly`;
         :meth:`assemble_skfem` is the same with scikit-fem forms, for checks)."""
-        c, F, lub = self.c, self.forms, self.c.lubricant
+        c, F = self.c, self.forms
         hn = self.film(p, h00)
         hfloor = self.o.h_floor * self.hscale
         hn_eff = np.maximum(hn, hfloor)
         pv, pg = F.interpolate(p)
         hq, hg = F.interpolate(hn_eff)
         pq = np.maximum(pv, 0.0)
-        with np.errstate(over="ignore", invalid="ignore"):
-            eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
-            rho, drho = lub.density(pq), lub.density.derivative(pq)
-        kN = rho * hq**3 / (12 * eta)
+        cf = self._coefficients(pq, hq, pg)
+        rho, drho, kN, ey, k, Pe, tau, dtau_dPe = cf.rho, cf.drho, cf.kN, cf.ey, cf.k, cf.Pe, cf.tau, cf.dtau_dPe
         um = c.mean_speed
         hdot = c.squeeze_velocity
         dim = F.dim
-        ey = _eyring_terms(lub, hq, pg)
-        k = kN if ey is None else kN * ey["phi"]
-        # SUPG parameter; Pe = 6 u_m l eta/h^2 (rho cancels), differentiated
-        # exactly below: d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -2 tau'(Pe) Pe/h
-        Pe, tau, dtau_dPe = supg_parameter(um, self.dx, rho, hq, k)
         strong = um * (rho * hg[0] + hq * drho * pg[0]) + rho * hdot
         if self.o.consistent_supg:
             # recovered Poiseuille flux F = -k grad p at the nodes (lumped L2
@@ -680,26 +717,10 @@ class _Problem:
         R = F.vector(terms)
         if not jac:
             return R, hn
-        dlog_eta = _log_slope(eta, deta)
-        dk_dp = hq**3 / 12 * (drho - rho * dlog_eta) / eta
-        dk_dh = rho * 3 * hq**2 / (12 * eta)
-        dtau_dp = dtau_dPe * Pe * dlog_eta
-        dtau_dh = -2.0 * dtau_dPe * Pe / hq
-        if ey is not None:
-            # k = kN Phi(x), x = h |grad p|/(2 tau0): dk/dh gains kN Phi' x/h, and the flux
-            # k grad p depends on grad p through Phi (kN Phi'/x s^2 grad p grad p^T); Pe ~ 1/Phi
-            dk_dp = dk_dp * ey["phi"]
-            dk_dh = dk_dh * ey["phi"] + kN * ey["dphi_dh"]
-            dtau_dh = dtau_dh - dtau_dPe * Pe * ey["dphi_dh"] / ey["phi"]
+        dk_dp, dk_dh, dtau_dp, dtau_dh, d2rho = self._coefficient_derivatives(cf, pq, hq)
         # d(strong)/dp_j without the film dependence (that is in D):
         # u_m (rho' h_x + h rho'' p_x) phi_j + u_m rho' h d_x phi_j + rho' hdot phi_j
-        if np.any(drho != 0.0):
-            # rho'' by a central difference on the smooth branch p > 0 (rho' jumps
-            # at p = 0, where rho = rho(max(p, 0)) has rho'' = 0 on the flat side)
-            dp_ = 1e-6 * self.ph
-            lo, hi = np.maximum(pq - dp_, 0.5 * pq), pq + dp_
-            with np.errstate(invalid="ignore", divide="ignore"):
-                d2rho = np.where(pq > 0, (lub.density.derivative(hi) - lub.density.derivative(lo)) / (hi - lo), 0.0)
+        if d2rho is not None:
             d_strong_dp = um * (drho * hg[0] + hq * d2rho * pg[0]) + drho * hdot
         else:
             d_strong_dp = 0.0
@@ -740,24 +761,17 @@ class _Problem:
 
     def assemble_skfem(self, p, h00, jac=True):
         """Reference assembly with scikit-fem forms (the same equations as :meth:`assemble`)."""
-        c, b, lub = self.c, self.basis, self.c.lubricant
+        c, b = self.c, self.basis
         hn = self.film(p, h00)
         hfloor = self.o.h_floor * self.hscale
         hn_eff = np.maximum(hn, hfloor)
         pf, hf = b.interpolate(p), b.interpolate(hn_eff)
         pq, hq = np.maximum(np.asarray(pf), 0.0), np.asarray(hf)
-        with np.errstate(over="ignore", invalid="ignore"):
-            eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
-            rho, drho = lub.density(pq), lub.density.derivative(pq)
-        kN = rho * hq**3 / (12 * eta)
-        ey = _eyring_terms(lub, hq, np.asarray(pf.grad))
-        k = kN if ey is None else kN * ey["phi"]
+        cf = self._coefficients(pq, hq, np.asarray(pf.grad))
+        rho, drho, kN, ey, k, Pe, tau, dtau_dPe = cf.rho, cf.drho, cf.kN, cf.ey, cf.k, cf.Pe, cf.tau, cf.dtau_dPe
         um = c.mean_speed
         u = self.u
         hdot = c.squeeze_velocity
-        # SUPG parameter; Pe = 6 u_m l eta/h^2 (rho cancels), differentiated
-        # exactly below: d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -2 tau'(Pe) Pe/h
-        Pe, tau, dtau_dPe = supg_parameter(um, self.dx, rho, hq, k)
         ugrad_rho_h = um * (rho * hf.grad[0] + hq * drho * pf.grad[0])
         strong = ugrad_rho_h + rho * hdot
         dim = 1 if c.is_line else 2
@@ -775,22 +789,10 @@ class _Problem:
         R = R + asm(_supg_load, b, t=tau * strong, u=u)
         if not jac:
             return R, hn
-        dlog_eta = _log_slope(eta, deta)
-        dk_dp = hq**3 / 12 * (drho - rho * dlog_eta) / eta
-        dk_dh = rho * 3 * hq**2 / (12 * eta)
-        dtau_dp = dtau_dPe * Pe * dlog_eta
-        dtau_dh = -2.0 * dtau_dPe * Pe / hq
-        if ey is not None:
-            dk_dp = dk_dp * ey["phi"]
-            dk_dh = dk_dh * ey["phi"] + kN * ey["dphi_dh"]
-            dtau_dh = dtau_dh - dtau_dPe * Pe * ey["dphi_dh"] / ey["phi"]
+        dk_dp, dk_dh, dtau_dp, dtau_dh, d2rho = self._coefficient_derivatives(cf, pq, hq)
         # d(strong)/dp_j without the h-dependence (in D): u_m (rho' h_x + h rho'' p_x)
         # phi_j + (rho' h u_m) . grad phi_j + rho' hdot phi_j
-        if np.any(drho != 0.0):
-            dp_ = 1e-6 * self.ph
-            lo, hi = np.maximum(pq - dp_, 0.5 * pq), pq + dp_
-            with np.errstate(invalid="ignore", divide="ignore"):
-                d2rho = np.where(pq > 0, (lub.density.derivative(hi) - lub.density.derivative(lo)) / (hi - lo), 0.0)
+        if d2rho is not None:
             d_strong_dp = um * (drho * hf.grad[0] + hq * d2rho * pf.grad[0]) + drho * hdot
         else:
             d_strong_dp = 0.0 * hq
@@ -1594,7 +1596,7 @@ def multigrid_grid(contact: EHLContact, grid: EHLGrid, coarsest_cells: int = 16)
     if contact.is_line:
         raise InputError("ehl.method = 'multigrid' solves point contacts; line contacts use 'auto' "
                          "(active set) or 'fischer_burmeister'")
-    if getattr(contact.lubricant, "eyring_stress", None) is not None:
+    if contact.lubricant.eyring_stress is not None:
         raise InputError(f"lubricant.eyring_stress = {contact.lubricant.eyring_stress!r}: ehl.method = 'multigrid' "
                          "is Newtonian; use 'auto', 'fischer_burmeister' or 'active_set' for Eyring flow")
     cells = grid.nx - 1

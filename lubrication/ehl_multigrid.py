@@ -455,9 +455,6 @@ class MultigridEHL:
     def __init__(self, problem, contact, options: MultigridOptions = MultigridOptions()):
         self.pb, self.c, self.o = problem, contact, options
         lub = contact.lubricant
-        if getattr(lub, "eyring_stress", None) is not None:
-            raise InputError(f"lubricant.eyring_stress = {lub.eyring_stress!r}: the multigrid EHL method is Newtonian; "
-                             "use method 'auto', 'fischer_burmeister' or 'active_set' for Eyring flow")
         self.visc, self.dens = lub.viscosity, lub.density
         self.eta0 = float(self.visc(np.zeros(1))[0])
         self.rho0 = float(self.dens(np.zeros(1))[0])

@@ -218,7 +218,7 @@ class Film:
     def __post_init__(self):
         if self.element not in ELEMENT_ORDERS:
             raise unknown_choice("film.element", self.element, ELEMENT_ORDERS)
-        if getattr(self.lubricant, "eyring_stress", None) is not None:
+        if self.lubricant.eyring_stress is not None:
             raise InputError(f"lubricant.eyring_stress = {self.lubricant.eyring_stress!r}: the Reynolds film solver is "
                              "Newtonian; only the EHL solver (lubrication.ehl, finite elements) has Eyring flow")
         modes = self.gap.modes()
