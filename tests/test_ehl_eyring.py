@@ -77,19 +77,16 @@ def _roller(eyring: bool):
     return params
 
 
-def _roller_solves(params, load, speed, starts):
-    """Solves of one roller point: the default start, then from each of ``starts``: a load factor
-    (the converged state at that multiple of the load) or "newtonian" (the Newtonian state)."""
+def _roller_solves(params, load, speed, factors):
+    """Solves of one roller point: the default start, then from the converged state at each of
+    ``factors`` times the load."""
     from coupling import film_points as fp
 
     length = params["length"]
     c, g, o = fp._ehl_setup(params, load / length, speed)
     out = [solve_ehl(c, g, o)]
-    for f in starts:
-        if f == "newtonian":
-            other = solve_ehl(dataclasses.replace(c, lubricant=dataclasses.replace(c.lubricant, eyring_stress=None)), g, o)
-        else:
-            other = solve_ehl(dataclasses.replace(c, load=f * c.load), g, o)
+    for f in factors:
+        other = solve_ehl(dataclasses.replace(c, load=f * c.load), g, o)
         out.append(solve_ehl(c, g, o, initial=other))
     return out
 
