@@ -18,7 +18,7 @@ import pytest
 from scipy.integrate import quad
 
 from lubrication import Barus, Film, InputError, Lubricant
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, multigrid_grid, solve_ehl
+from lubrication.ehl import EHLContact, EHLGrid, multigrid_grid, solve_ehl
 from lubrication.lubricant import Incompressible, eyring_flow_factor
 
 from test_ehl import _complementarity
