@@ -396,7 +396,7 @@ def hertz_ball_ball(delta: float, radius_eff: float, e_star: float) -> tuple:
 
     >>> Q, K = hertz_ball_ball(1e-6, 4.7625e-3 / 2, 1.0e11)
     >>> round(Q, 3), round(K / (1.5 * Q / 1e-6), 12)
-    (6.507, 1.0)
+    (6.506, 1.0)
     """
     if delta <= 0.0:
         return 0.0, 0.0

@@ -82,7 +82,7 @@ def inclined_slider_pressure(x, h_in, h_out, length, eta, mean_speed):
     their u_b = 2 u_m).  ``mean_speed`` u_m = (U_lower + U_upper)/2 [m/s],
     positive from inlet (x = 0) to outlet.
 
-    >>> round(inclined_slider_pressure(2/3, 2.0, 1.0, 1.0, 1.0, 1.0), 6)
+    >>> round(float(inclined_slider_pressure(2/3, 2.0, 1.0, 1.0, 1.0, 1.0)), 6)
     0.5
     """
     K = _slider_ratio(h_in, h_out)

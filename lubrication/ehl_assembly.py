@@ -37,7 +37,7 @@ class UniformForms:
         dofs = np.asarray(b.element_dofs)  # (n, E)
         n, E = dofs.shape
         dx = np.asarray(b.dx)  # (E, Q)
-        phi = np.array([np.asarray(b.basis[i][0].value) for i in range(n)])  # (n, E, Q)
+        phi = np.array([np.asarray(b.basis[i][0]) for i in range(n)])  # (n, E, Q)
         dphi = np.array([np.asarray(b.basis[i][0].grad) for i in range(n)])  # (n, dim, E, Q)
         scale = np.max(np.abs(dx))
         gscale = np.max(np.abs(dphi))
