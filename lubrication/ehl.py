@@ -104,7 +104,7 @@ The step is then taken and the iteration stops.  An earlier test asked for
 an undamped step (omega = 1) as well; at the round-off floor the line
 search's residual or merit is noise, omega was halved at random and a solve
 at |dp| = 1e-15 p_Hertz ran out of iterations on one machine and not on
-another (tests/test_ehl_roundoff.py perturbs every residual by 1 - 100
+another (tests/test_roundoff.py perturbs every residual by 1 - 100
 round-off units and requires the same state).  Otherwise, after ``max_iter`` steps or ``max_stalls`` stalled
 line searches, :class:`~lubrication.errors.ConvergenceError` naming M and L.
 A converged state satisfies the discrete complementarity (tests/test_ehl.py
@@ -1131,7 +1131,7 @@ def _active_set_newton(P: _Problem, p, h00, W):
             added_any = True
         # convergence on the full (undamped) Newton step, before any line search: at the round-off
         # floor the residual norm is noise, so a backtracking test there can halve omega at random
-        # and an omega == 1 requirement never be met (tests/test_ehl_roundoff.py)
+        # and an omega == 1 requirement never be met (tests/test_roundoff.py)
         # pressure scale: p_Hertz, or the largest pressure where that is smaller (nearly rigid,
         # hydrodynamic contacts), as in the Fischer-Burmeister scheme
         pmax = float(np.max(p))
@@ -1418,7 +1418,7 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None, rtol=None, max_damped=None
             keep = lin.lu if (balance or lin.last_iters < options.precond_refresh) else None
         # convergence on the full (undamped) step, before the line search: at the round-off floor
         # the merit is noise and its Armijo test can halve omega at random, so an omega == 1
-        # requirement is a coin toss between machines (tests/test_ehl_roundoff.py)
+        # requirement is a coin toss between machines (tests/test_roundoff.py)
         full_dp = np.max(np.abs(dp)) / ps
         if full_dp <= tol and abs(dh) / P.hscale <= tol:
             p_try, h_try = p + dp, h00 + dh

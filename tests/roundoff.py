@@ -4,7 +4,7 @@ Every residual the Reynolds (``lubrication.reynolds._Problem.assemble``) and EHL
 (``lubrication.ehl._Problem.assemble``) solvers assemble gets a seeded perturbation of ``ulps``
 units of round-off (machine epsilon) of the size of its own terms, |J| |p| + |R| of the last
 Jacobian assembly of that problem (the sum that round-off is relative to; |R| alone shrinks to
-nothing at convergence).  Used by tests/test_ehl_roundoff.py, and by the audit mode of
+nothing at convergence).  Used by tests/test_roundoff.py, and by the audit mode of
 tests/conftest.py: ``LUBEDYN_ROUNDOFF_ULPS=30 python -m pytest tests/test_ehl.py ...`` runs any
 tests with every residual perturbed, to show that convergence decisions and tolerances hold
 with margin on machines whose last bits differ from this one's.

@@ -1,4 +1,4 @@
-"""EHL convergence decisions are robust to round-off: the same contact converges to the same
+"""Convergence decisions (EHL and film Newton) are robust to round-off: the same contact converges to the same
 state whatever the last bits of the residual are.
 
 Why: on one machine (another BLAS/CPU) paper A's roller with Eyring flow (15 kN, 8.84 m/s)
@@ -66,3 +66,28 @@ def test_point_contact_fischer_burmeister_converges_whatever_the_roundoff(roundo
     s = solve_ehl(c, EHLGrid(nx=65))
     assert s.central_film_thickness == pytest.approx(clean.central_film_thickness, rel=1e-9)
     assert s.minimum_film_thickness == pytest.approx(clean.minimum_film_thickness, rel=1e-9)
+
+
+def test_film_newton_converges_at_its_roundoff_floor(roundoff):
+    """The Reynolds film solver on Martin's rolling cylinder (Reynolds cavitation, P2, 800 graded
+    elements, 40 plain Newton iterations).  Its residual floor is 1.05e-11 |R_0| on this machine
+    (the sparse LU's backward error), 100 times below the residual test's 10 rtol; with residuals
+    perturbed by 30 round-off units it is 1.5e-9 |R_0| and the residual-only test ran out of
+    iterations (measured before the fix: ConvergenceError after 60 iterations with a Newton step of
+    5e-12 |p|).  Now the full Newton step (2e-11 |p| at 30 units, 7e-11 at 100: below rtol 1e-10)
+    ends it, at the unperturbed solution to 1e-9."""
+    import numpy as np
+    from lubrication import Cavitation, CylinderPlane, Film, Lubricant, SolverOptions
+    from lubrication import mesh as meshes
+
+    R_cyl, h0, eta, u = 10e-3, 1e-6, 0.05, 2.0
+    b = np.sqrt(2.0 * R_cyl * h0)
+    pts = meshes.graded(-30.0 * b, 3.0 * b, 800, 0.0, ratio=8.0)
+    film = Film(meshes.interval(0, 0, 0, points=pts), CylinderPlane(R_cyl, h0), Lubricant.newtonian(eta),
+                velocity_lower=(u,), velocity_upper=(u,), element="P2", cavitation=Cavitation("reynolds", 0.0),
+                options=SolverOptions(warm_start_levels=0))
+    clean = film.solve()
+    roundoff(30, 5)
+    noisy = film.solve()
+    assert np.max(np.abs(noisy.pressure - clean.pressure)) < 1e-9 * np.max(clean.pressure)
+    np.testing.assert_array_equal(noisy.full_film, clean.full_film)
