@@ -79,7 +79,20 @@ def test_nested_martin_cylinder_and_jfo_pocket():
     plain 40 iterations, nested 12/2/2 (measured).  Fowell's JFO pocket (P1,
     800 elements): same pressure (measured 5e-12 of p_max) and fluid fraction
     (3e-10 at the reformation node: both stop at the Newton tolerance, last
-    update <= 1e-8) as the plain solve, and the same cavitated nodes."""
+    update <= 1e-8) as the plain solve, and the same cavitated nodes.
+
+    How far "same" can go: the two paths end at one discrete solution up to
+    round-off amplified by the problem's conditioning.  With every residual
+    perturbed by N round-off units (tests/roundoff.py; the audit mode of
+    tests/conftest.py), 8 seeds each, the JFO pocket's two solutions differ
+    linearly in N: pressure at most 3.7e-11 p_max per unit (1.1e-10 at 3,
+    1.1e-9 at 30), fluid fraction at most 2.0e-9 per unit (5.8e-9 at 3, 5.7e-8
+    at 30).  The old bounds, 1e-10 p_max and 1e-8, failed at 2-3 and 5 units:
+    they asked for agreement below what another machine's last bits allow.
+    The bounds below, pressure 1e-9 p_max (the Martin cylinder: 8.6e-14
+    unperturbed, 3.2e-12 at 10 units) and fluid fraction 5e-8, hold at 1 and
+    10 units for all 6 seeds tried and fail from 20 units (2 of 6 seeds): a
+    margin of 10 over one unit of round-off."""
     R_cyl, h0, eta, u = 10e-3, 1e-6, 0.05, 2.0
     b = np.sqrt(2.0 * R_cyl * h0)
     pts = meshes.graded(-30.0 * b, 3.0 * b, 800, 0.0, ratio=8.0)
@@ -89,15 +102,15 @@ def test_nested_martin_cylinder_and_jfo_pocket():
     nested = solve_nested(film)
     assert plain.info["iterations"] > 30
     assert nested.info["nested"][-1][1] <= 4
-    assert np.max(np.abs(nested.pressure - plain.pressure)) < 1e-10 * np.max(plain.pressure)
+    assert np.max(np.abs(nested.pressure - plain.pressure)) < 1e-9 * np.max(plain.pressure)
 
     from test_cavitation import fowell_fem
 
     jfo = fowell_fem(1.0, 800)  # 801 DOFs: below the automatic threshold
     assert "nested" not in jfo.info
     again = solve_nested(jfo.film, levels=3)
-    assert np.max(np.abs(again.pressure - jfo.pressure)) < 1e-10 * np.max(jfo.pressure)
-    assert np.max(np.abs(again.fluid_fraction - jfo.fluid_fraction)) < 1e-8
+    assert np.max(np.abs(again.pressure - jfo.pressure)) < 1e-9 * np.max(jfo.pressure)
+    assert np.max(np.abs(again.fluid_fraction - jfo.fluid_fraction)) < 5e-8
     np.testing.assert_array_equal(again.full_film, jfo.full_film)
 
 
