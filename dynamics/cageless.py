@@ -194,13 +194,28 @@ N_RING_DIAG = 5
 
 # ----------------------------------------------------------------------------- kernels
 @njit(**_JIT)
-def _traction_from_map(ax0, ax1, ax2, vals, opts, Q, ue, srr, counter):
-    """Traction coefficient of an EHL map (load, entrainment speed, slide-to-roll ratio)."""
+def _traction_from_map(tmap, race, Q, ue, vs, counter):
+    """Traction coefficient of the EHL map of ``race`` (load, entrainment speed, slide-to-roll ratio).
+
+    Below the map's first slide-to-roll node the coefficient is linear in the SRR
+    (coupling.film_points, "Traction axis").  ``tmap`` is None in a model without
+    traction maps: numba prunes the ``is None`` branch by type, so such a model never
+    compiles the map readers (about a third of the cold compile of ``rhs``)."""
+    if tmap is None:
+        return math.nan
+    ax0, ax1, ax2, vals, opts = tmap
+    sq = vs / ue
+    s_lo = math.exp(ax2[race][0]) if opts[C.MO_LOG2] == 1 else ax2[race][0]
+    lin = 1.0
+    if sq < s_lo:
+        lin, sq = sq / s_lo, s_lo * (1.0 + 1e-12)
     if opts[C.MO_METHOD] == HERMITE:
-        return hermite3(ax0, ax1, ax2, opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2], vals, opts[C.MO_LOGV],
-                        Q, ue, srr, opts[C.MO_MODE], counter)
-    return interp3(ax0, ax1, ax2, opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2], vals[0], opts[C.MO_LOGV],
-                   opts[C.MO_METHOD], Q, ue, srr, opts[C.MO_MODE], counter)
+        mu = hermite3(ax0[race], ax1[race], ax2[race], opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2],
+                      vals[race], opts[C.MO_LOGV], Q, ue, sq, opts[C.MO_MODE], counter)
+    else:
+        mu = interp3(ax0[race], ax1[race], ax2[race], opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2],
+                     vals[race][0], opts[C.MO_LOGV], opts[C.MO_METHOD], Q, ue, sq, opts[C.MO_MODE], counter)
+    return lin * abs(mu)
 
 
 @njit(inline='always', **_JIT)
@@ -273,15 +288,7 @@ def _race_contact(c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K, ctr0, ct
     ft2 = 0.0
     if vs > 0.0:
         if race >= 0 and ue > 0.0:
-            tax0, tax1, tax2, tvals, topts = tmap
-            # below the map's first slide-to-roll node: linear in the SRR (coupling.film_points, "Traction axis")
-            sq = vs / ue
-            s_lo = math.exp(tax2[race][0]) if topts[C.MO_LOG2] == 1 else tax2[race][0]
-            lin = 1.0
-            if sq < s_lo:
-                lin, sq = sq / s_lo, s_lo * (1.0 + 1e-12)
-            mu = lin * abs(_traction_from_map(tax0[race], tax1[race], tax2[race], tvals[race], topts, Q, ue, sq,
-                                              counter))
+            mu = _traction_from_map(tmap, race, Q, ue, vs, counter)
         else:
             mu = traction_coefficient(vs, ue, mu_lim, srr_ref, v_reg)
         f = -mu * Q / vs
@@ -1049,7 +1056,8 @@ class CagelessBearing:
 
     # numba arguments ----------------------------------------------------------
     def args(self) -> tuple:
-        """The numba tuple ``(iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap)``.
+        """The numba tuple ``(iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap)``
+        (the five film-map entries None without a film map, ``tmap`` None without traction maps).
 
         Built once per model and cached: ``counter`` (int64[1]) counts film-map
         queries outside the map's axes over every run with these args
@@ -1122,19 +1130,14 @@ class CagelessBearing:
         for k, az in enumerate(self.slot_azimuths_deg):
             slots[k, 0] = math.radians(az)
             slots[k, 1] = RACES[self.slot_race]
+        # a model without a film map or traction maps passes None in their places: numba then prunes the
+        # map readers by type and never compiles them (the args' types select the compiled variant)
+        map_ax0 = map_ax1 = map_ax2 = map_vals = map_opts = None
         if self.film == "map":
             map_ax0, map_ax1, map_ax2, map_vals, map_opts = _map_arrays(self.film_map, MAP_SPEED_AXES[
                 self.film_map_speed_axis])
-        else:
-            map_ax0 = map_ax1 = map_ax2 = np.zeros(2)
-            map_vals = np.zeros((1, 2, 2, 2))
-            map_opts = np.zeros(C.MO_SIZE, dtype=np.int64)
         counter = np.zeros(1, dtype=np.int64)
-        if self.traction == "map":
-            tmap = _traction_arrays(self.traction_maps)
-        else:
-            z = np.zeros((2, 2))
-            tmap = (z, z, z, np.zeros((2, 1, 2, 2, 2)), np.zeros(C.MO_SIZE, dtype=np.int64))
+        tmap = _traction_arrays(self.traction_maps) if self.traction == "map" else None
         return (iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap)
 
     # state layout ---------------------------------------------------------------
