@@ -478,6 +478,15 @@ def _delay(x) -> int:
 
 def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str = "",
         smoke: bool = False) -> DynamicsRun:
+    """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold
+    cache are reported as they compile (:func:`coupling.compilation.report_compilation`)."""
+    from .compilation import report_compilation
+
+    with report_compilation():
+        return _run(case, out_dir, name=name, source=source, smoke=smoke)
+
+
+def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) -> DynamicsRun:
     from dynamics.analysis import collision_events, collision_summary
     from dynamics.cageless import (
         D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, D_QO, D_SPIN, forces_many, rhs)

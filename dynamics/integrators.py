@@ -1101,6 +1101,9 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
                          dt=dt if method == "rk4" else 0.0)
     Y, work = new_run(y0, t_out, float(h0) if method != "rk4" else 0.0)
     wall0 = time.perf_counter()
+    # a first call that fills no row: it compiles (or loads) the kernel and makes the initial step choice,
+    # so that a bar starts after any compilation message (a resumed run is bit-identical)
+    kernel(t_out, args, params, Y, work, 1)
     bar = None
     if progress:
         from tqdm.auto import tqdm
