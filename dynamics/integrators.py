@@ -1095,17 +1095,19 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     # each call returns once the rows up to a chunk's last output time are filled; the integrator's whole
     # state stays in `work`, so the chunks only decide when control comes back for the bar (the run is
     # bit-identical to a one-chunk run, tests/test_chunking.py)
-    stops = np.unique(np.linspace(0, m - 1, n_chunks + 1).round().astype(np.int64))[1:] + 1
+    # (a one-chunk run skips the chunk arithmetic: on a cheap rhs the Python steps cost more than the kernel)
+    stops = [m] if n_chunks == 1 else (np.unique(np.linspace(0, m - 1, n_chunks + 1).round().astype(np.int64))[1:]
+                                       + 1).tolist()
     params = make_params(rtol=rtol if method != "rk4" else 0.0, atol=atol if method != "rk4" else 0.0,
                          h_max=h_max if method != "rk4" else 0.0, max_steps=max_steps, use_fd=jac is None,
                          dt=dt if method == "rk4" else 0.0)
     Y, work = new_run(y0, t_out, float(h0) if method != "rk4" else 0.0)
     wall0 = time.perf_counter()
-    # a first call that fills no row: it compiles (or loads) the kernel and makes the initial step choice,
-    # so that a bar starts after any compilation message (a resumed run is bit-identical)
-    kernel(t_out, args, params, Y, work, 1)
     bar = None
     if progress:
+        # a first call that fills no row: it compiles (or loads) the kernel and makes the initial step
+        # choice, so that the bar starts after any compilation message (the run resumes bit-identically)
+        kernel(t_out, args, params, Y, work, 1)
         from tqdm.auto import tqdm
 
         bar = tqdm(total=float(t_out[-1] - t_out[0]), unit="s", desc=f"{method} simulated time", disable=None,
@@ -1113,7 +1115,7 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     try:
         shown = 1
         for i_stop in stops:
-            kernel(t_out, args, params, Y, work, int(i_stop))
+            kernel(t_out, args, params, Y, work, i_stop)
             filled = int(work[W_FILLED])
             status = int(work[W_STATUS])
             if status != STATUS_OK:
@@ -1130,12 +1132,11 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     finally:
         if bar is not None:
             bar.close()
-    totals = work[[W_ACCEPTED, W_REJECTED, W_NFEV]]
     wall = time.perf_counter() - wall0
     stats = {
-        "Accepted steps [-]": int(totals[0]),
-        "Rejected steps [-]": int(totals[1]),
-        "RHS evaluations [-]": int(totals[2]),
+        "Accepted steps [-]": int(work[W_ACCEPTED]),
+        "Rejected steps [-]": int(work[W_REJECTED]),
+        "RHS evaluations [-]": int(work[W_NFEV]),
         "Wall time [s]": wall,
     }
     logger.debug("%s: %s", method, stats)
