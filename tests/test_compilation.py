@@ -73,5 +73,6 @@ def test_cli_shows_compilation_lines_on_a_terminal_without_verbose(monkeypatch):
         _, outer = _fresh_kernels()
         with cli._logging_to_stderr(0), report_compilation():
             outer(np.float64(1.0))
-        assert ("lubedyn: INFO: coupling.compilation: compiling kernels (first run only): 1 " in err.getvalue()) == shown
+        line = "lubedyn: INFO: coupling.compilation: compiling kernels (first run only): 1 "
+        assert (line in err.getvalue()) == shown
     assert logging.getLogger("coupling.compilation").level == logging.NOTSET  # restored
