@@ -688,9 +688,8 @@ class OneShot:
     kernel (a numba dispatcher: its ``stats`` show cache hits); ``py_func`` the same call in plain Python.
     """
 
-    def __init__(self, method, kernel, n_callables=0, plain=None):
+    def __init__(self, method, kernel, n_callables=0):
         self.method, self.kernel, self.n_callables = method, kernel, n_callables
-        self._plain = plain
 
     @property
     def stats(self):
@@ -698,8 +697,7 @@ class OneShot:
 
     @property
     def py_func(self):
-        plain = self._plain if self._plain is not None else self.kernel.py_func
-        return OneShot(self.method, _PlainKernel(plain), self.n_callables)
+        return OneShot(self.method, _PlainKernel(self.kernel.py_func), self.n_callables)
 
     def __call__(self, *a):
         callables, a = a[:self.n_callables], a[self.n_callables:]
