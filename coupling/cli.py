@@ -202,11 +202,17 @@ def _logging_to_stderr(verbosity: int):
     root.setLevel(level)
     for lg in quiet.values():
         lg.setLevel(logging.DEBUG if verbosity >= 2 else logging.ERROR)
+    # "compiling kernels (first run only)" (coupling.compilation, INFO) on a terminal even without -v
+    compiling = logging.getLogger("coupling.compilation")
+    saved_compiling = compiling.level
+    if sys.stderr.isatty():
+        compiling.setLevel(min(level, logging.INFO))
     try:
         yield
     finally:
         root.removeHandler(handler)
         root.setLevel(saved[0])
+        compiling.setLevel(saved_compiling)
         for name, lg in quiet.items():
             lg.setLevel(saved[1][name])
 

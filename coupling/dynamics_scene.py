@@ -369,8 +369,16 @@ LYAPUNOV_SAMPLES = 8000
 
 
 def _lyapunov_per_direction(case, t, centres, shaft_speed) -> dict:
-    """Largest exponent of ball ``analysis.ball``'s x, y, z time series (Rosenstein)."""
-    from dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution
+    """Largest exponent of ball ``analysis.ball``'s x, y, z time series (Rosenstein).
+
+    A direction whose record after the transient is too short for the method
+    (the delay, the first zero of the autocorrelation, and the mean period of
+    the x and y motion follow the ball-train orbit, about 16 ms at 10,000 rpm,
+    so a record needs several of those) or that does not move gets ``None``
+    and a ``"..., note"`` entry saying why; that is an expected outcome of a
+    short run, logged at INFO, not a warning."""
+    from dynamics.errors import DynamicsInputError
+    from dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution, rosenstein_shortfall
 
     out = {}
     keep = np.flatnonzero(t >= case.analysis.transient)
@@ -383,14 +391,22 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed) -> dict:
     for i, axis in enumerate("xyz"):
         x = centres[keep, j, i]
         key = f"Largest Lyapunov exponent, ball {j} {axis}"
+        out[f"{key} [1/s]"] = None
         if np.ptp(x) <= 1e-15 * max(1.0, float(np.max(np.abs(x)))):
-            out[f"{key} [1/s]"] = None  # a coordinate that does not move (planar z)
+            out[f"{key}, note"] = "not computed: the coordinate does not move"  # planar z
+            continue
+        delay = _delay(x)
+        reason = rosenstein_shortfall(x, dt, dim=6, delay=delay)
+        if reason:
+            out[f"{key}, note"] = (f"not computed: the record after analysis.transient "
+                                   f"({(x.size - 1) * dt:.4g} s) has {reason}; run longer")
+            log.info("Lyapunov exponent of ball %d %s: %s", j, axis, out[f"{key}, note"])
             continue
         try:
-            res = largest_lyapunov_rosenstein(x, dt, dim=6, delay=_delay(x))
-        except Exception as exc:  # too short a record: say so in the summary, do not fail the run
+            res = largest_lyapunov_rosenstein(x, dt, dim=6, delay=delay)
+        except DynamicsInputError as exc:  # no divergence rise to fit: say so in the summary, do not fail
+            out[f"{key}, note"] = f"not computed: {exc}"
             log.warning("Lyapunov exponent of ball %d %s not computed: %s", j, axis, exc)
-            out[f"{key} [1/s]"] = None
             continue
         out[f"{key} [1/s]"] = float(res.exponent)
         out[f"{key} [1/rev]"] = float(per_shaft_revolution(res.exponent, shaft_speed))
@@ -462,6 +478,15 @@ def _delay(x) -> int:
 
 def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str = "",
         smoke: bool = False) -> DynamicsRun:
+    """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold
+    cache are reported as they compile (:func:`coupling.compilation.report_compilation`)."""
+    from .compilation import report_compilation
+
+    with report_compilation():
+        return _run(case, out_dir, name=name, source=source, smoke=smoke)
+
+
+def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) -> DynamicsRun:
     from dynamics.analysis import collision_events, collision_summary
     from dynamics.cageless import (
         D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, D_QO, D_SPIN, forces_many, rhs)

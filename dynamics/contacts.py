@@ -372,6 +372,8 @@ def _film(h, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts,
     if film_kind == FILM_CLOSED_FORM:
         return squeeze_film_closed_form(h, v, p)
     if film_kind == FILM_MAP:
+        if map_vals is None:  # no map given (numba prunes this by type: the map reader is not compiled)
+            return math.nan, math.nan
         return _film_map(h, v, ue, p, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
     return 0.0, 0.0
 

@@ -31,6 +31,21 @@ reached are NaN, and the float64 array ``stats`` indexed by the constants
 1 ``max_steps`` reached, 2 step-size underflow, 3 non-finite state; ``H_NEXT``
 is the step proposed for a continuation; ``N_FILLED`` the number of valid rows).
 
+Resumable runs
+--------------
+Underneath, each method is one *resumable* kernel ``kernel(t_out, args,
+params, Y, work, i_stop)`` (callables first in the generic form): ``Y`` holds
+the output rows, ``work`` the integrator's complete state (t, the next step h,
+the PI controller's memory, the rejection flag, the step counters, the current
+state and the derivative at it: DOPRI5's FSAL stage, ROS2's f0), and a call
+returns as soon as ``i_stop`` rows are filled, after a whole step (rows that
+step passed beyond ``i_stop`` come from its dense output as in one call).  The
+next call goes on from ``work``, so a run split into any number of calls is
+bit-identical to one call: :func:`integrate` splits a run only to update its
+progress bar, and the bar cannot change a result (``tests/test_chunking.py``).
+The one-call forms above (:class:`OneShot`) allocate ``Y`` and ``work``
+(:func:`new_run`) and make a single call.
+
 Caching (measured, numba 0.68)
 ------------------------------
 A ``cache=True`` kernel that receives the rhs *as an argument* never hits the
@@ -187,71 +202,91 @@ def _dense_eval(rcont, theta, out):
             rcont[3, j] + theta1 * rcont[4, j])))
 
 
-# kernel sources: rhs is the first parameter; see `specialise` -------------------
-def _rk4_impl(rhs, y0, t_out, dt, args):
-    n = y0.shape[0]
+# resumable kernels ---------------------------------------------------------------
+# A kernel advances a run held in two arrays and may be called any number of times: ``Y`` (m, n) the
+# output rows (row 0 = y0) and ``work`` the integrator's complete state (the scalars below, then the
+# current state y and the derivative at it: DOPRI5's FSAL stage k1, ROS2's f0).  A call returns once
+# ``i_stop`` rows are filled (a step is never cut short for it: rows the last step passed are filled from
+# its dense output, and the next call goes on from the state after that step), when the run ends or
+# when it fails.  Every quantity that decides the next step (t, h, the PI controller's memory, the
+# rejection flag, the counters, the step budget) lives in ``work``, so any split into calls gives the
+# bit-identical run of a single call: a progress display cannot change a result.
+W_T, W_H, W_FACOLD, W_REJECT, W_ACCEPTED, W_REJECTED, W_NFEV, W_STATUS, W_H_NEXT, W_FILLED, W_NONFINITE, \
+    W_PHASE = range(12)
+N_WORK_SCALARS = 12  # y at [N_WORK_SCALARS, N_WORK_SCALARS + n), the derivative at y after it
+PHASE_NEW, PHASE_RUNNING, PHASE_DONE = 0.0, 1.0, 2.0
+# params (float64 array) of a kernel call
+P_RTOL, P_ATOL, P_H_MAX, P_MAX_STEPS, P_USE_FD, P_DT = range(6)
+N_PARAMS = 6
+
+
+# kernel sources: the callables (rhs, jac) are the leading parameters; see `specialise` ------------
+def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
+    n = Y.shape[1]
     m = t_out.shape[0]
-    Y = np.full((m, n), np.nan)
-    stats = np.zeros(N_STATS)
-    y = y0.copy()
+    dt = params[P_DT]
+    y = work[N_WORK_SCALARS:N_WORK_SCALARS + n].copy()
     k1 = np.empty(n)
     k2 = np.empty(n)
     k3 = np.empty(n)
     k4 = np.empty(n)
     tmp = np.empty(n)
-    Y[0, :] = y
-    accepted = 0
-    status = STATUS_OK
-    t_reached = t_out[0]
-    filled = 1
-    for i in range(1, m):
-        t_start = t_out[i - 1]
-        interval = t_out[i] - t_start
-        nsub = max(1, int(math.ceil(interval / dt * (1.0 - 1e-12))))
-        h = interval / nsub
-        for s in range(nsub):
-            t = t_start + s * h
-            rhs(t, y, args, k1)
-            for j in range(n):
-                tmp[j] = y[j] + 0.5 * h * k1[j]
-            rhs(t + 0.5 * h, tmp, args, k2)
-            for j in range(n):
-                tmp[j] = y[j] + 0.5 * h * k2[j]
-            rhs(t + 0.5 * h, tmp, args, k3)
-            for j in range(n):
-                tmp[j] = y[j] + h * k3[j]
-            rhs(t + h, tmp, args, k4)
-            for j in range(n):
-                tmp[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
-            if not _all_finite(tmp):
-                status = STATUS_NONFINITE
+    accepted = int(work[W_ACCEPTED])
+    filled = int(work[W_FILLED])
+    status = int(work[W_STATUS])
+    t_reached = work[W_T] if work[W_PHASE] != PHASE_NEW else t_out[0]
+    if status == STATUS_OK and work[W_PHASE] != PHASE_DONE:
+        for i in range(filled, min(i_stop, m)):
+            t_start = t_out[i - 1]
+            interval = t_out[i] - t_start
+            nsub = max(1, int(math.ceil(interval / dt * (1.0 - 1e-12))))
+            h = interval / nsub
+            for s in range(nsub):
+                t = t_start + s * h
+                rhs(t, y, args, k1)
+                for j in range(n):
+                    tmp[j] = y[j] + 0.5 * h * k1[j]
+                rhs(t + 0.5 * h, tmp, args, k2)
+                for j in range(n):
+                    tmp[j] = y[j] + 0.5 * h * k2[j]
+                rhs(t + 0.5 * h, tmp, args, k3)
+                for j in range(n):
+                    tmp[j] = y[j] + h * k3[j]
+                rhs(t + h, tmp, args, k4)
+                for j in range(n):
+                    tmp[j] = y[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+                if not _all_finite(tmp):
+                    status = STATUS_NONFINITE
+                    break
+                y[:] = tmp
+                accepted += 1
+                t_reached = t + h
+            if status != STATUS_OK:
                 break
-            y[:] = tmp
-            accepted += 1
-            t_reached = t + h
-        if status != STATUS_OK:
-            break
-        t_reached = t_out[i]
-        Y[i, :] = y
-        filled = i + 1
-    stats[ACCEPTED] = accepted
-    stats[NFEV] = 4 * accepted + (4 if status == STATUS_NONFINITE else 0)
-    stats[STATUS] = status
-    stats[T_REACHED] = t_reached
-    stats[H_NEXT] = dt
-    stats[N_FILLED] = filled
-    return Y, stats
+            t_reached = t_out[i]
+            Y[i, :] = y
+            filled = i + 1
+    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
+    work[W_T] = t_reached
+    work[W_ACCEPTED] = accepted
+    work[W_NFEV] = 4 * accepted + (4 if status == STATUS_NONFINITE else 0)
+    work[W_STATUS] = status
+    work[W_H_NEXT] = dt
+    work[W_FILLED] = filled
+    work[W_PHASE] = PHASE_DONE if (status != STATUS_OK or filled >= m) else PHASE_RUNNING
 
 
-def _dopri5_impl(rhs, y0, t_out, args, rtol, atol, h0, h_max, max_steps):
-    n = y0.shape[0]
+def _dopri5_impl(rhs, t_out, args, params, Y, work, i_stop):
+    n = Y.shape[1]
     m = t_out.shape[0]
-    Y = np.full((m, n), np.nan)
-    stats = np.zeros(N_STATS)
-    y = y0.copy()
+    rtol = params[P_RTOL]
+    atol = params[P_ATOL]
+    h_max = params[P_H_MAX]
+    max_steps = params[P_MAX_STEPS]
+    y = work[N_WORK_SCALARS:N_WORK_SCALARS + n].copy()
+    k1 = work[N_WORK_SCALARS + n:N_WORK_SCALARS + 2 * n].copy()
     y1 = np.empty(n)
     ytmp = np.empty(n)
-    k1 = np.empty(n)
     k2 = np.empty(n)
     k3 = np.empty(n)
     k4 = np.empty(n)
@@ -259,155 +294,174 @@ def _dopri5_impl(rhs, y0, t_out, args, rtol, atol, h0, h_max, max_steps):
     k6 = np.empty(n)
     k7 = np.empty(n)
     rcont = np.empty((5, n))
-    t = t_out[0]
     t_end = t_out[m - 1]
-    Y[0, :] = y
-    filled = 1
-    accepted = 0
-    rejected = 0
-    status = STATUS_OK
     if h_max <= 0.0:
-        h_max = t_end - t
-    rhs(t, y, args, k1)
-    nfev = 1
-    h_next = 0.0
-    if not (_all_finite(y) and _all_finite(k1)):
-        status = STATUS_NONFINITE
-    elif m > 1:
-        h = h0
-        if h <= 0.0:  # Hairer's HINIT, order 5
-            dnf = 0.0
-            dny = 0.0
-            for j in range(n):
-                sk = atol + rtol * abs(y[j])
-                dnf += (k1[j] / sk) ** 2
-                dny += (y[j] / sk) ** 2
-            if dnf <= 1e-10 or dny <= 1e-10:
-                h = 1e-6
-            else:
-                h = 0.01 * math.sqrt(dny / dnf)
-            h = min(h, h_max)
-            for j in range(n):
-                ytmp[j] = y[j] + h * k1[j]
-            rhs(t + h, ytmp, args, k2)
-            nfev += 1
-            der2 = 0.0
-            for j in range(n):
-                sk = atol + rtol * abs(y[j])
-                der2 += ((k2[j] - k1[j]) / sk) ** 2
-            der2 = math.sqrt(der2) / h
-            der12 = max(abs(der2), math.sqrt(dnf))
-            if not np.isfinite(der12):
-                h1 = 1e-6 * h
-            elif der12 <= 1e-15:
-                h1 = max(1e-6, abs(h) * 1e-3)
-            else:
-                h1 = (0.01 / der12) ** 0.2
-            h = min(100.0 * abs(h), h1, h_max)
-        h = min(h, h_max)
+        h_max = t_end - t_out[0]
+    t = work[W_T]
+    h = work[W_H]
+    facold = work[W_FACOLD]
+    reject = work[W_REJECT] != 0.0
+    accepted = int(work[W_ACCEPTED])
+    rejected = int(work[W_REJECTED])
+    nfev = int(work[W_NFEV])
+    status = int(work[W_STATUS])
+    h_next = work[W_H_NEXT]
+    filled = int(work[W_FILLED])
+    n_nonfinite = int(work[W_NONFINITE])
+    phase = work[W_PHASE]
+    if phase == PHASE_NEW:
+        t = t_out[0]
+        rhs(t, y, args, k1)
+        nfev = 1
+        h_next = 0.0
         facold = 1e-4
         reject = False
         n_nonfinite = 0
-        while True:
-            if accepted + rejected >= max_steps:
-                status = STATUS_MAX_STEPS
-                break
-            if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
-                status = STATUS_UNDERFLOW
-                break
-            h_proposed = h
-            last = False
-            if t + 1.01 * h >= t_end:
-                h = t_end - t
-                last = True
-            for j in range(n):
-                ytmp[j] = y[j] + h * A21 * k1[j]
-            rhs(t + C2 * h, ytmp, args, k2)
-            for j in range(n):
-                ytmp[j] = y[j] + h * (A31 * k1[j] + A32 * k2[j])
-            rhs(t + C3 * h, ytmp, args, k3)
-            for j in range(n):
-                ytmp[j] = y[j] + h * (A41 * k1[j] + A42 * k2[j] + A43 * k3[j])
-            rhs(t + C4 * h, ytmp, args, k4)
-            for j in range(n):
-                ytmp[j] = y[j] + h * (A51 * k1[j] + A52 * k2[j] + A53 * k3[j] + A54 * k4[j])
-            rhs(t + C5 * h, ytmp, args, k5)
-            for j in range(n):
-                ytmp[j] = y[j] + h * (A61 * k1[j] + A62 * k2[j] + A63 * k3[j] + A64 * k4[j] + A65 * k5[j])
-            rhs(t + h, ytmp, args, k6)
-            for j in range(n):
-                y1[j] = y[j] + h * (A71 * k1[j] + A73 * k3[j] + A74 * k4[j] + A75 * k5[j] + A76 * k6[j])
-            rhs(t + h, y1, args, k7)
-            nfev += 6
-            err = 0.0
-            for j in range(n):
-                sk = atol + rtol * max(abs(y[j]), abs(y1[j]))
-                e = h * (E1 * k1[j] + E3 * k3[j] + E4 * k4[j] + E5 * k5[j] + E6 * k6[j] + E7 * k7[j])
-                err += (e / sk) ** 2
-            err = math.sqrt(err / n)
-            if not np.isfinite(err):
-                rejected += 1
-                n_nonfinite += 1
-                if n_nonfinite >= MAX_NONFINITE_TRIALS:
-                    status = STATUS_NONFINITE
-                    break
-                h = 0.1 * h
-                if 0.1 * abs(h) <= abs(t) * UROUND:  # shrinking cannot cure it: say non-finite, not underflow
-                    status = STATUS_NONFINITE
-                    break
-                reject = True
-                continue
-            n_nonfinite = 0
-            fac11 = err ** EXPO1
-            fac = fac11 / facold ** BETA
-            fac = max(FACC2, min(FACC1, fac / SAFE))
-            hnew = h / fac
-            if err <= 1.0:
-                facold = max(err, 1e-4)
-                accepted += 1
+        phase = PHASE_RUNNING
+        if not (_all_finite(y) and _all_finite(k1)):
+            status = STATUS_NONFINITE
+        elif m > 1:
+            if h <= 0.0:  # Hairer's HINIT, order 5
+                dnf = 0.0
+                dny = 0.0
                 for j in range(n):
-                    rcont[0, j] = y[j]
-                    ydiff = y1[j] - y[j]
-                    rcont[1, j] = ydiff
-                    bspl = h * k1[j] - ydiff
-                    rcont[2, j] = bspl
-                    rcont[3, j] = ydiff - h * k7[j] - bspl
-                    rcont[4, j] = h * (D1 * k1[j] + D3 * k3[j] + D4 * k4[j] + D5 * k5[j] + D6 * k6[j]
-                                       + D7 * k7[j])
-                t_old = t
-                t = t_end if last else t + h
-                while filled < m and t_out[filled] <= t:
-                    if filled == m - 1 and last:
-                        Y[filled, :] = y1
-                    else:
-                        _dense_eval(rcont, (t_out[filled] - t_old) / h, ytmp)
-                        Y[filled, :] = ytmp
-                    filled += 1
-                y[:] = y1
-                k1[:] = k7
-                if hnew > h_max:
-                    hnew = h_max
-                if reject:
-                    hnew = min(hnew, h)
-                reject = False
-                if last:
-                    h_next = h_proposed
-                    break
-                h = hnew
-                h_next = hnew
-            else:
-                hnew = h / min(FACC1, fac11 / SAFE)
-                reject = True
-                rejected += 1
-                h = hnew
-    stats[ACCEPTED] = accepted
-    stats[REJECTED] = rejected
-    stats[NFEV] = nfev
-    stats[STATUS] = status
-    stats[T_REACHED] = t
-    stats[H_NEXT] = h_next
-    stats[N_FILLED] = filled
-    return Y, stats
+                    sk = atol + rtol * abs(y[j])
+                    dnf += (k1[j] / sk) ** 2
+                    dny += (y[j] / sk) ** 2
+                if dnf <= 1e-10 or dny <= 1e-10:
+                    h = 1e-6
+                else:
+                    h = 0.01 * math.sqrt(dny / dnf)
+                h = min(h, h_max)
+                for j in range(n):
+                    ytmp[j] = y[j] + h * k1[j]
+                rhs(t + h, ytmp, args, k2)
+                nfev += 1
+                der2 = 0.0
+                for j in range(n):
+                    sk = atol + rtol * abs(y[j])
+                    der2 += ((k2[j] - k1[j]) / sk) ** 2
+                der2 = math.sqrt(der2) / h
+                der12 = max(abs(der2), math.sqrt(dnf))
+                if not np.isfinite(der12):
+                    h1 = 1e-6 * h
+                elif der12 <= 1e-15:
+                    h1 = max(1e-6, abs(h) * 1e-3)
+                else:
+                    h1 = (0.01 / der12) ** 0.2
+                h = min(100.0 * abs(h), h1, h_max)
+            h = min(h, h_max)
+    if status != STATUS_OK or filled >= m:
+        phase = PHASE_DONE
+    while phase == PHASE_RUNNING and filled < i_stop:
+        if accepted + rejected >= max_steps:
+            status = STATUS_MAX_STEPS
+            break
+        if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
+            status = STATUS_UNDERFLOW
+            break
+        h_proposed = h
+        last = False
+        if t + 1.01 * h >= t_end:
+            h = t_end - t
+            last = True
+        for j in range(n):
+            ytmp[j] = y[j] + h * A21 * k1[j]
+        rhs(t + C2 * h, ytmp, args, k2)
+        for j in range(n):
+            ytmp[j] = y[j] + h * (A31 * k1[j] + A32 * k2[j])
+        rhs(t + C3 * h, ytmp, args, k3)
+        for j in range(n):
+            ytmp[j] = y[j] + h * (A41 * k1[j] + A42 * k2[j] + A43 * k3[j])
+        rhs(t + C4 * h, ytmp, args, k4)
+        for j in range(n):
+            ytmp[j] = y[j] + h * (A51 * k1[j] + A52 * k2[j] + A53 * k3[j] + A54 * k4[j])
+        rhs(t + C5 * h, ytmp, args, k5)
+        for j in range(n):
+            ytmp[j] = y[j] + h * (A61 * k1[j] + A62 * k2[j] + A63 * k3[j] + A64 * k4[j] + A65 * k5[j])
+        rhs(t + h, ytmp, args, k6)
+        for j in range(n):
+            y1[j] = y[j] + h * (A71 * k1[j] + A73 * k3[j] + A74 * k4[j] + A75 * k5[j] + A76 * k6[j])
+        rhs(t + h, y1, args, k7)
+        nfev += 6
+        err = 0.0
+        for j in range(n):
+            sk = atol + rtol * max(abs(y[j]), abs(y1[j]))
+            e = h * (E1 * k1[j] + E3 * k3[j] + E4 * k4[j] + E5 * k5[j] + E6 * k6[j] + E7 * k7[j])
+            err += (e / sk) ** 2
+        err = math.sqrt(err / n)
+        if not np.isfinite(err):
+            rejected += 1
+            n_nonfinite += 1
+            if n_nonfinite >= MAX_NONFINITE_TRIALS:
+                status = STATUS_NONFINITE
+                break
+            h = 0.1 * h
+            if 0.1 * abs(h) <= abs(t) * UROUND:  # shrinking cannot cure it: say non-finite, not underflow
+                status = STATUS_NONFINITE
+                break
+            reject = True
+            continue
+        n_nonfinite = 0
+        fac11 = err ** EXPO1
+        fac = fac11 / facold ** BETA
+        fac = max(FACC2, min(FACC1, fac / SAFE))
+        hnew = h / fac
+        if err <= 1.0:
+            facold = max(err, 1e-4)
+            accepted += 1
+            for j in range(n):
+                rcont[0, j] = y[j]
+                ydiff = y1[j] - y[j]
+                rcont[1, j] = ydiff
+                bspl = h * k1[j] - ydiff
+                rcont[2, j] = bspl
+                rcont[3, j] = ydiff - h * k7[j] - bspl
+                rcont[4, j] = h * (D1 * k1[j] + D3 * k3[j] + D4 * k4[j] + D5 * k5[j] + D6 * k6[j]
+                                   + D7 * k7[j])
+            t_old = t
+            t = t_end if last else t + h
+            while filled < m and t_out[filled] <= t:
+                if filled == m - 1 and last:
+                    Y[filled, :] = y1
+                else:
+                    _dense_eval(rcont, (t_out[filled] - t_old) / h, ytmp)
+                    Y[filled, :] = ytmp
+                filled += 1
+            y[:] = y1
+            k1[:] = k7
+            if hnew > h_max:
+                hnew = h_max
+            if reject:
+                hnew = min(hnew, h)
+            reject = False
+            if last:
+                h_next = h_proposed
+                phase = PHASE_DONE
+                break
+            h = hnew
+            h_next = hnew
+        else:
+            hnew = h / min(FACC1, fac11 / SAFE)
+            reject = True
+            rejected += 1
+            h = hnew
+    if status != STATUS_OK:
+        phase = PHASE_DONE
+    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
+    work[N_WORK_SCALARS + n:N_WORK_SCALARS + 2 * n] = k1
+    work[W_T] = t
+    work[W_H] = h
+    work[W_FACOLD] = facold
+    work[W_REJECT] = 1.0 if reject else 0.0
+    work[W_ACCEPTED] = accepted
+    work[W_REJECTED] = rejected
+    work[W_NFEV] = nfev
+    work[W_STATUS] = status
+    work[W_H_NEXT] = h_next
+    work[W_FILLED] = filled
+    work[W_NONFINITE] = n_nonfinite
+    work[W_PHASE] = phase
 
 
 ROS2_GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
@@ -429,151 +483,254 @@ def _hermite(y0, f0, y1, f1, h, theta, out):
             (1.0 - 2.0 * theta) * dy + (theta - 1.0) * h * f0[j] + theta * h * f1[j])
 
 
-def _ros2_impl(rhs, jac, y0, t_out, args, rtol, atol, h0, h_max, max_steps, use_fd):
-    n = y0.shape[0]
+def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
+    n = Y.shape[1]
     m = t_out.shape[0]
-    Y = np.full((m, n), np.nan)
-    stats = np.zeros(N_STATS)
-    y = y0.copy()
+    rtol = params[P_RTOL]
+    atol = params[P_ATOL]
+    h_max = params[P_H_MAX]
+    max_steps = params[P_MAX_STEPS]
+    use_fd = params[P_USE_FD] != 0.0
+    y = work[N_WORK_SCALARS:N_WORK_SCALARS + n].copy()
+    f0 = work[N_WORK_SCALARS + n:N_WORK_SCALARS + 2 * n].copy()
     y1 = np.empty(n)
     ytmp = np.empty(n)
-    f0 = np.empty(n)
     f1 = np.empty(n)
     fnew = np.empty(n)
     k1 = np.empty(n)
     k2 = np.empty(n)
     J = np.empty((n, n))
     W = np.empty((n, n))
-    t = t_out[0]
     t_end = t_out[m - 1]
-    Y[0, :] = y
-    filled = 1
-    accepted = 0
-    rejected = 0
-    status = STATUS_OK
     if h_max <= 0.0:
-        h_max = t_end - t
-    rhs(t, y, args, f0)
-    nfev = 1
-    h_next = 0.0
-    if not (_all_finite(y) and _all_finite(f0)):
-        status = STATUS_NONFINITE
-    elif m > 1:
-        h = h0
-        if h <= 0.0:
-            d0 = 0.0
-            d1 = 0.0
-            for j in range(n):
-                sk = atol + rtol * abs(y[j])
-                d0 += (y[j] / sk) ** 2
-                d1 += (f0[j] / sk) ** 2
-            d0 = math.sqrt(d0 / n)
-            d1 = math.sqrt(d1 / n)
-            h = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-        h = min(h, h_max)
-        need_jac = True
+        h_max = t_end - t_out[0]
+    t = work[W_T]
+    h = work[W_H]
+    accepted = int(work[W_ACCEPTED])
+    rejected = int(work[W_REJECTED])
+    nfev = int(work[W_NFEV])
+    status = int(work[W_STATUS])
+    h_next = work[W_H_NEXT]
+    filled = int(work[W_FILLED])
+    n_nonfinite = int(work[W_NONFINITE])
+    # a call returns only after an accepted step (or at the end), where the Jacobian is due anyway,
+    # so J itself need not be carried
+    need_jac = True
+    phase = work[W_PHASE]
+    if phase == PHASE_NEW:
+        t = t_out[0]
+        rhs(t, y, args, f0)
+        nfev = 1
+        h_next = 0.0
         n_nonfinite = 0
-        while True:
-            if accepted + rejected >= max_steps:
-                status = STATUS_MAX_STEPS
-                break
-            if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
-                status = STATUS_UNDERFLOW
-                break
-            if need_jac:
-                if use_fd:
-                    for j in range(n):
-                        delta = FD_SQRT_EPS * (abs(y[j]) + atol / rtol)
-                        ytmp[:] = y
-                        ytmp[j] = y[j] + delta
-                        rhs(t, ytmp, args, fnew)
-                        for i in range(n):
-                            J[i, j] = (fnew[i] - f0[i]) / delta
-                    nfev += n
-                else:
-                    jac(t, y, args, J)
-                need_jac = False
-            h_proposed = h
-            last = False
-            if t + 1.01 * h >= t_end:
-                h = t_end - t
-                last = True
-            for i in range(n):
+        phase = PHASE_RUNNING
+        if not (_all_finite(y) and _all_finite(f0)):
+            status = STATUS_NONFINITE
+        elif m > 1:
+            if h <= 0.0:
+                d0 = 0.0
+                d1 = 0.0
                 for j in range(n):
-                    W[i, j] = -ROS2_GAMMA * h * J[i, j]
-                W[i, i] += 1.0
-            ok = _all_finite(W.ravel())
-            if ok:
-                Winv = np.linalg.inv(W)
-                k1[:] = Winv @ f0
+                    sk = atol + rtol * abs(y[j])
+                    d0 += (y[j] / sk) ** 2
+                    d1 += (f0[j] / sk) ** 2
+                d0 = math.sqrt(d0 / n)
+                d1 = math.sqrt(d1 / n)
+                h = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+            h = min(h, h_max)
+    if status != STATUS_OK or filled >= m:
+        phase = PHASE_DONE
+    while phase == PHASE_RUNNING and filled < i_stop:
+        if accepted + rejected >= max_steps:
+            status = STATUS_MAX_STEPS
+            break
+        if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
+            status = STATUS_UNDERFLOW
+            break
+        if need_jac:
+            if use_fd:
                 for j in range(n):
-                    ytmp[j] = y[j] + h * k1[j]
-                rhs(t + h, ytmp, args, f1)
-                nfev += 1
-                for j in range(n):
-                    f1[j] -= 2.0 * k1[j]
-                k2[:] = Winv @ f1
-                err = 0.0
-                for j in range(n):
-                    y1[j] = y[j] + h * (1.5 * k1[j] + 0.5 * k2[j])
-                    sk = atol + rtol * max(abs(y[j]), abs(y1[j]))
-                    err += (0.5 * h * (k1[j] + k2[j]) / sk) ** 2
-                err = math.sqrt(err / n)
+                    delta = FD_SQRT_EPS * (abs(y[j]) + atol / rtol)
+                    ytmp[:] = y
+                    ytmp[j] = y[j] + delta
+                    rhs(t, ytmp, args, fnew)
+                    for i in range(n):
+                        J[i, j] = (fnew[i] - f0[i]) / delta
+                nfev += n
             else:
-                err = np.nan
-            if not np.isfinite(err):
+                jac(t, y, args, J)
+            need_jac = False
+        h_proposed = h
+        last = False
+        if t + 1.01 * h >= t_end:
+            h = t_end - t
+            last = True
+        for i in range(n):
+            for j in range(n):
+                W[i, j] = -ROS2_GAMMA * h * J[i, j]
+            W[i, i] += 1.0
+        ok = _all_finite(W.ravel())
+        if ok:
+            Winv = np.linalg.inv(W)
+            k1[:] = Winv @ f0
+            for j in range(n):
+                ytmp[j] = y[j] + h * k1[j]
+            rhs(t + h, ytmp, args, f1)
+            nfev += 1
+            for j in range(n):
+                f1[j] -= 2.0 * k1[j]
+            k2[:] = Winv @ f1
+            err = 0.0
+            for j in range(n):
+                y1[j] = y[j] + h * (1.5 * k1[j] + 0.5 * k2[j])
+                sk = atol + rtol * max(abs(y[j]), abs(y1[j]))
+                err += (0.5 * h * (k1[j] + k2[j]) / sk) ** 2
+            err = math.sqrt(err / n)
+        else:
+            err = np.nan
+        if not np.isfinite(err):
+            rejected += 1
+            n_nonfinite += 1
+            if n_nonfinite >= MAX_NONFINITE_TRIALS:
+                status = STATUS_NONFINITE
+                break
+            h = 0.1 * h
+            continue
+        n_nonfinite = 0
+        fac = min(5.0, max(0.2, 0.9 / math.sqrt(max(err, 1e-10))))
+        if err <= 1.0:
+            rhs(t + h, y1, args, fnew)
+            nfev += 1
+            if not _all_finite(fnew):
                 rejected += 1
-                n_nonfinite += 1
-                if n_nonfinite >= MAX_NONFINITE_TRIALS:
-                    status = STATUS_NONFINITE
-                    break
-                h = 0.1 * h
+                h = 0.5 * h
                 continue
-            n_nonfinite = 0
-            fac = min(5.0, max(0.2, 0.9 / math.sqrt(max(err, 1e-10))))
-            if err <= 1.0:
-                rhs(t + h, y1, args, fnew)
-                nfev += 1
-                if not _all_finite(fnew):
-                    rejected += 1
-                    h = 0.5 * h
-                    continue
-                accepted += 1
-                t_old = t
-                t = t_end if last else t + h
-                while filled < m and t_out[filled] <= t:
-                    if filled == m - 1 and last:
-                        Y[filled, :] = y1
-                    else:
-                        _hermite(y, f0, y1, fnew, h, (t_out[filled] - t_old) / h, ytmp)
-                        Y[filled, :] = ytmp
-                    filled += 1
-                y[:] = y1
-                f0[:] = fnew
-                need_jac = True
-                hnew = min(h * fac, h_max)
-                if last:
-                    h_next = h_proposed
-                    break
-                h = hnew
-                h_next = hnew
-            else:
-                rejected += 1
-                h = h * fac
-    stats[ACCEPTED] = accepted
-    stats[REJECTED] = rejected
-    stats[NFEV] = nfev
-    stats[STATUS] = status
-    stats[T_REACHED] = t
-    stats[H_NEXT] = h_next
-    stats[N_FILLED] = filled
-    return Y, stats
+            accepted += 1
+            t_old = t
+            t = t_end if last else t + h
+            while filled < m and t_out[filled] <= t:
+                if filled == m - 1 and last:
+                    Y[filled, :] = y1
+                else:
+                    _hermite(y, f0, y1, fnew, h, (t_out[filled] - t_old) / h, ytmp)
+                    Y[filled, :] = ytmp
+                filled += 1
+            y[:] = y1
+            f0[:] = fnew
+            need_jac = True
+            hnew = min(h * fac, h_max)
+            if last:
+                h_next = h_proposed
+                phase = PHASE_DONE
+                break
+            h = hnew
+            h_next = hnew
+        else:
+            rejected += 1
+            h = h * fac
+    if status != STATUS_OK:
+        phase = PHASE_DONE
+    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
+    work[N_WORK_SCALARS + n:N_WORK_SCALARS + 2 * n] = f0
+    work[W_T] = t
+    work[W_H] = h
+    work[W_ACCEPTED] = accepted
+    work[W_REJECTED] = rejected
+    work[W_NFEV] = nfev
+    work[W_STATUS] = status
+    work[W_H_NEXT] = h_next
+    work[W_FILLED] = filled
+    work[W_NONFINITE] = n_nonfinite
+    work[W_PHASE] = phase
 
 
-#: generic kernels taking the rhs as an argument (no cross-process cache: see module docstring)
-rk4 = njit(cache=False)(_rk4_impl)
-dopri5 = njit(cache=False)(_dopri5_impl)
-ros2 = njit(cache=False)(_ros2_impl)
+def new_run(y0, t_out, h0=0.0):
+    """Fresh ``(Y, work)`` of a run from ``y0`` at ``t_out[0]`` (``h0``: the adaptive methods' first step,
+    0: automatic)."""
+    n, m = y0.shape[0], t_out.shape[0]
+    Y = np.full((m, n), np.nan)
+    Y[0] = y0
+    work = np.zeros(N_WORK_SCALARS + 2 * n)
+    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y0
+    work[W_H] = h0
+    work[W_FILLED] = 1
+    work[W_PHASE] = PHASE_NEW
+    return Y, work
+
+
+def run_stats(work):
+    """The ``stats`` array (``ACCEPTED ... N_FILLED``) of a run's ``work``."""
+    stats = np.zeros(N_STATS)
+    stats[ACCEPTED] = work[W_ACCEPTED]
+    stats[REJECTED] = work[W_REJECTED]
+    stats[NFEV] = work[W_NFEV]
+    stats[STATUS] = work[W_STATUS]
+    stats[T_REACHED] = work[W_T]
+    stats[H_NEXT] = work[W_H_NEXT]
+    stats[N_FILLED] = work[W_FILLED]
+    return stats
+
+
+def make_params(rtol=0.0, atol=0.0, h_max=0.0, max_steps=0, use_fd=True, dt=0.0):
+    """The ``params`` array of a kernel call."""
+    params = np.zeros(N_PARAMS)
+    params[P_RTOL], params[P_ATOL], params[P_H_MAX] = rtol, atol, h_max
+    params[P_MAX_STEPS], params[P_USE_FD], params[P_DT] = max_steps, 1.0 if use_fd else 0.0, dt
+    return params
+
+
+class OneShot:
+    """A whole run in one call, ``(Y, stats) = kernel(y0, t_out, ...)``, over a resumable kernel.
+
+    ``rk4(y0, t_out, dt, args)``, ``dopri5(y0, t_out, args, rtol, atol, h0, h_max, max_steps)``,
+    ``ros2(y0, t_out, args, rtol, atol, h0, h_max, max_steps, use_fd)``; ``n_callables`` leading
+    callables (the generic kernels' rhs, jac) are passed on first.  ``kernel`` is the resumable
+    kernel (a numba dispatcher: its ``stats`` show cache hits); ``py_func`` the same call in plain Python.
+    """
+
+    def __init__(self, method, kernel, n_callables=0):
+        self.method, self.kernel, self.n_callables = method, kernel, n_callables
+
+    @property
+    def stats(self):
+        return self.kernel.stats
+
+    @property
+    def py_func(self):
+        return OneShot(self.method, _PlainKernel(self.kernel.py_func), self.n_callables)
+
+    def __call__(self, *a):
+        callables, a = a[:self.n_callables], a[self.n_callables:]
+        if self.method == "rk4":
+            y0, t_out, dt, args = a
+            h0, params = 0.0, make_params(dt=dt)
+        else:
+            y0, t_out, args, rtol, atol, h0, h_max, max_steps = a[:8]
+            use_fd = a[8] if self.method == "ros2" else True
+            params = make_params(rtol, atol, h_max, max_steps, use_fd)
+        y0 = np.asarray(y0, dtype=np.float64)
+        t_out = np.asarray(t_out, dtype=np.float64)
+        Y, work = new_run(y0, t_out, h0)
+        self.kernel(*callables, t_out, args, params, Y, work, t_out.shape[0])
+        return Y, run_stats(work)
+
+
+class _PlainKernel:
+    def __init__(self, func):
+        self.func = func
+        self.py_func = func
+
+    def __call__(self, *a):
+        return self.func(*a)
+
+
+#: generic kernels taking the callables as arguments (no cross-process cache: see module docstring)
+_rk4_generic = njit(cache=False)(_rk4_impl)
+_dopri5_generic = njit(cache=False)(_dopri5_impl)
+_ros2_generic = njit(cache=False)(_ros2_impl)
+rk4 = OneShot("rk4", _rk4_generic, 1)
+dopri5 = OneShot("dopri5", _dopri5_generic, 1)
+ros2 = OneShot("ros2", _ros2_generic, 2)
 
 
 # specialisation with a cross-process cache --------------------------------------
@@ -729,7 +886,7 @@ def _load_generated(impl, callables, paths):
     return module.kernel
 
 
-_GENERIC = {_rk4_impl: rk4, _dopri5_impl: dopri5, _ros2_impl: ros2}
+_GENERIC = {_rk4_impl: _rk4_generic, _dopri5_impl: _dopri5_generic, _ros2_impl: _ros2_generic}
 
 
 def register_generic(impl, jitted):
@@ -791,19 +948,25 @@ class IntegrationResult:
     method: str = "dopri5"
 
 
-def kernel_for(method, rhs, jac=None):
-    """The compiled kernel of ``method`` specialised to ``rhs`` (cached across processes).
-
-    Same call as the generic kernel without the leading callables:
-    ``rk4: (y0, t_out, dt, args)``, ``dopri5: (y0, t_out, args, rtol, atol, h0, h_max, max_steps)``,
-    ``ros2: (y0, t_out, args, rtol, atol, h0, h_max, max_steps, use_fd)``.
-    """
+def resumable_kernel(method, rhs, jac=None):
+    """The resumable kernel of ``method`` specialised to ``rhs`` (cached across processes):
+    ``kernel(t_out, args, params, Y, work, i_stop)`` (see :func:`new_run`, :func:`make_params`)."""
     if method not in METHODS:
         raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {METHODS}")
     if method == "ros2":
         return specialise(_ros2_impl, rhs=rhs, jac=no_jac if jac is None else jac)
     impl = _rk4_impl if method == "rk4" else _dopri5_impl
     return specialise(impl, rhs=rhs)
+
+
+def kernel_for(method, rhs, jac=None):
+    """The compiled kernel of ``method`` specialised to ``rhs`` (cached across processes), whole run in one call.
+
+    Same call as the generic kernel without the leading callables:
+    ``rk4: (y0, t_out, dt, args)``, ``dopri5: (y0, t_out, args, rtol, atol, h0, h_max, max_steps)``,
+    ``ros2: (y0, t_out, args, rtol, atol, h0, h_max, max_steps, use_fd)``; returns ``(Y, stats)``.
+    """
+    return OneShot(method, resumable_kernel(method, rhs, jac))
 
 
 def _check_positive(key, value):
@@ -841,9 +1004,11 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     max_steps : int
         Step budget (accepted + rejected) of the whole run (DOPRI5).
     progress : bool
-        Show a tqdm bar of simulated time (the run is split in chunks; DOPRI5
-        carries its step size over chunk boundaries and restarts from a true
-        step value, so results agree with a one-chunk run within the tolerance).
+        Show a tqdm bar of simulated time.  The kernel then returns to Python
+        after each of up to 200 chunks of output samples to update the bar; it
+        carries its whole state across (step size, controller memory, FSAL
+        stage, counters) and never shortens a step at a chunk boundary, so the
+        result is bit-identical to a run without the bar.
     omega_max : float, optional
         Highest angular frequency [rad/s] of the linearised system (e.g.
         sqrt(k_contact / m_ball)).  With RK4, ``dt * omega_max`` beyond
@@ -852,7 +1017,8 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     h0 : float
         DOPRI5 initial step (0: automatic).
     n_chunks : int, optional
-        Number of kernel calls (default 1, or up to 200 when ``progress``).
+        Number of kernel calls (default 1, or up to 200 when ``progress``); it
+        does not change the result.
     jac : numba dispatcher, optional
         ``jac(t, y, args, J)`` writing the n x n Jacobian (ROS2 only); forward differences if None.
 
@@ -919,68 +1085,56 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
             logger.info("dopri5: steps are stability-limited near h = %.3g s (omega_max = %.3g rad/s)",
                         limit / omega_max, omega_max)
 
-    kernel = kernel_for(method, rhs, jac)
+    kernel = resumable_kernel(method, rhs, jac)
     m = t_out.size
     if n_chunks is None:
         n_chunks = min(m - 1, 200) if progress else 1
     n_chunks = max(1, min(int(n_chunks), m - 1))
-    # (a one-chunk run without a bar skips the chunk arithmetic, the output copy and tqdm: on a cheap rhs
-    # those Python steps cost several times the kernel, e.g. 50 us against 8 us for one 2-state impact)
-    if n_chunks == 1:
-        edges = [0, m - 1]
-    else:
-        edges = np.unique(np.linspace(0, m - 1, n_chunks + 1).round().astype(np.int64)).tolist()
-
-    Y = None
-    if len(edges) > 2:
-        Y = np.full((m, y0.size), np.nan)
-        Y[0] = y0
-    totals = np.zeros(3)
-    h_next = float(h0)
+    # each call returns once the rows up to a chunk's last output time are filled; the integrator's whole
+    # state stays in `work`, so the chunks only decide when control comes back for the bar (the run is
+    # bit-identical to a one-chunk run, tests/test_chunking.py)
+    # (a one-chunk run skips the chunk arithmetic: on a cheap rhs the Python steps cost more than the kernel)
+    stops = [m] if n_chunks == 1 else (np.unique(np.linspace(0, m - 1, n_chunks + 1).round().astype(np.int64))[1:]
+                                       + 1).tolist()
+    params = make_params(rtol=rtol if method != "rk4" else 0.0, atol=atol if method != "rk4" else 0.0,
+                         h_max=h_max if method != "rk4" else 0.0, max_steps=max_steps, use_fd=jac is None,
+                         dt=dt if method == "rk4" else 0.0)
+    Y, work = new_run(y0, t_out, float(h0) if method != "rk4" else 0.0)
     wall0 = time.perf_counter()
     bar = None
     if progress:
+        # a first call that fills no row: it compiles (or loads) the kernel and makes the initial step
+        # choice, so that the bar starts after any compilation message (the run resumes bit-identically)
+        kernel(t_out, args, params, Y, work, 1)
         from tqdm.auto import tqdm
 
         bar = tqdm(total=float(t_out[-1] - t_out[0]), unit="s", desc=f"{method} simulated time", disable=None,
                    bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]")
     try:
-        for i0, i1 in zip(edges[:-1], edges[1:]):
-            t_chunk = t_out[i0:i1 + 1] if Y is not None else t_out
-            y_start = Y[i0].copy() if Y is not None else y0
-            if method == "rk4":
-                Yc, st = kernel(y_start, t_chunk, dt, args)
-            else:
-                budget = max(max_steps - int(totals[0] + totals[1]), 0)
-                if method == "ros2":
-                    Yc, st = kernel(y_start, t_chunk, args, rtol, atol, h_next, h_max, budget, jac is None)
-                else:
-                    Yc, st = kernel(y_start, t_chunk, args, rtol, atol, h_next, h_max, budget)
-            totals += st[:3]
-            filled = int(st[N_FILLED])
-            if Y is None:  # one chunk: the kernel's output is the result (rows not reached are NaN)
-                Y = Yc
-            else:
-                Y[i0:i0 + filled] = Yc[:filled]
-            status = int(st[STATUS])
+        shown = 1
+        for i_stop in stops:
+            kernel(t_out, args, params, Y, work, i_stop)
+            filled = int(work[W_FILLED])
+            status = int(work[W_STATUS])
             if status != STATUS_OK:
-                n_good = i0 + filled
                 raise IntegrationError(
-                    f"{method} stopped at t = {st[T_REACHED]:.6g} s of {t_out[-1]:.6g} s: "
+                    f"{method} stopped at t = {work[W_T]:.6g} s of {t_out[-1]:.6g} s: "
                     f"{STATUS_MESSAGES.get(status, 'unknown status')} (status {status}; "
-                    f"{int(totals[0])} accepted, {int(totals[1])} rejected steps)",
-                    status=status, t_reached=st[T_REACHED], t=t_out[:n_good].copy(), y=Y[:n_good].copy())
-            h_next = st[H_NEXT]
-            if bar is not None:
-                bar.update(float(t_chunk[-1] - t_chunk[0]))
+                    f"{int(work[W_ACCEPTED])} accepted, {int(work[W_REJECTED])} rejected steps)",
+                    status=status, t_reached=work[W_T], t=t_out[:filled].copy(), y=Y[:filled].copy())
+            if bar is not None and filled > shown:
+                bar.update(float(t_out[filled - 1] - t_out[shown - 1]))
+                shown = filled
+            if filled >= m:
+                break
     finally:
         if bar is not None:
             bar.close()
     wall = time.perf_counter() - wall0
     stats = {
-        "Accepted steps [-]": int(totals[0]),
-        "Rejected steps [-]": int(totals[1]),
-        "RHS evaluations [-]": int(totals[2]),
+        "Accepted steps [-]": int(work[W_ACCEPTED]),
+        "Rejected steps [-]": int(work[W_REJECTED]),
+        "RHS evaluations [-]": int(work[W_NFEV]),
         "Wall time [s]": wall,
     }
     logger.debug("%s: %s", method, stats)

@@ -441,6 +441,40 @@ def mean_period(x, dt):
     return 1.0 / fm
 
 
+def _rosenstein_record(x, dt, dim, delay, theiler, t_follow):
+    """``(reason, theiler, n_follow)``: ``reason`` is "" when the record is long enough for Rosenstein's
+    method, else why not (the neighbour search needs M - n_follow >= 2 theiler + 10 embedded points,
+    M = N - (dim - 1) delay)."""
+    theiler = int(round(mean_period(x, dt) / dt)) if theiler is None else int(theiler)
+    n_follow = int(round((t_follow if t_follow is not None else 0.2 * x.size * dt) / dt)) + 1
+    M = x.size - (dim - 1) * delay
+    if M - n_follow >= 2 * theiler + 10:
+        return "", theiler, n_follow
+    return (f"{x.size} samples: too short for dim = {dim}, delay = {delay}, theiler = {theiler}, "
+            f"follow = {n_follow} samples (the delay embedding spans {(dim - 1) * delay} samples, the "
+            f"neighbour search needs {2 * theiler + 10} more beyond the {n_follow} followed)"), theiler, n_follow
+
+
+def rosenstein_shortfall(x, dt, *, dim, delay, theiler=None, t_follow=None) -> str:
+    """Why the series ``x`` is too short for :func:`largest_lyapunov_rosenstein` with these
+    settings ("" if it is long enough).  A record shorter than a few mean periods of the signal plus
+    the embedding span cannot give an exponent; callers that meet such a record report this reason
+    instead of a number.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(500) * 1e-3
+    >>> rosenstein_shortfall(np.sin(2 * np.pi * 2.0 * t), 1e-3, dim=6, delay=125)[:34]
+    '500 samples: too short for dim = 6'
+    >>> rosenstein_shortfall(np.sin(2 * np.pi * 50.0 * t), 1e-3, dim=3, delay=5)
+    ''
+    """
+    x = np.asarray(x, dtype=np.float64)
+    dt = _positive("dt", dt)
+    return _rosenstein_record(x, dt, int(dim), int(delay), theiler, t_follow)[0]
+
+
 def largest_lyapunov_rosenstein(x, dt, *, dim, delay, theiler=None, t_follow=None, fit_range=None):
     """Largest Lyapunov exponent [1/s] of a scalar series by Rosenstein's method.
 
@@ -472,13 +506,10 @@ def largest_lyapunov_rosenstein(x, dt, *, dim, delay, theiler=None, t_follow=Non
         raise DynamicsInputError(f"dim = {dim} and delay = {delay} must be >= 1")
     if x.ndim != 1 or not np.all(np.isfinite(x)):
         raise DynamicsInputError("x must be a 1-D array of finite numbers")
+    reason, theiler, n_follow = _rosenstein_record(x, dt, dim, delay, theiler, t_follow)
+    if reason:
+        raise DynamicsInputError(f"x has {reason}")
     M = x.size - (dim - 1) * delay
-    theiler = int(round(mean_period(x, dt) / dt)) if theiler is None else int(theiler)
-    n_follow = int(round((t_follow if t_follow is not None else 0.2 * x.size * dt) / dt)) + 1
-    if M - n_follow < 2 * theiler + 10:
-        raise DynamicsInputError(
-            f"x has {x.size} samples: too short for dim = {dim}, delay = {delay}, "
-            f"theiler = {theiler}, follow = {n_follow} samples")
     X = delay_embedding(x, dim, delay)
     nn = nearest_neighbours(X, M - n_follow, theiler)
     div = _rosenstein_divergence(X, nn, n_follow)

@@ -56,3 +56,38 @@ def test_map_queries_outside_the_axes_are_counted_and_reported(capsys, tmp_path,
     s = json.loads((tmp_path / "summary.json").read_text())
     assert s["Ball-ball film"] == "map" and s["Film map queries outside axes [-]"] > 0
     assert any("queried outside their axes" in r.getMessage() for r in caplog.records)
+
+
+def test_main_job_smoke_states_why_a_lyapunov_exponent_is_missing_without_a_warning(capsys, tmp_path, caplog):
+    """The main job's [smoke] run (1 ms, 501 samples) is far too short for Rosenstein's method on
+    ball 0 (delay ~170 samples x 5 = ~850 > 501): the summary says so per direction, and nothing is
+    logged at WARNING (it used to warn on every run of the main job, smoke or not)."""
+    caplog.set_level("INFO")
+    code, _, err = run(capsys, "run", SHORT, "--smoke", "--set", "output.write=[]", "--out", tmp_path)
+    assert code == 0, err
+    assert "WARNING" not in err and not [r for r in caplog.records if r.levelname == "WARNING"]
+    s = json.loads((tmp_path / "summary.json").read_text())
+    for axis in "xyz":
+        assert s[f"Largest Lyapunov exponent, ball 0 {axis} [1/s]"] is None
+        note = s[f"Largest Lyapunov exponent, ball 0 {axis}, note"]
+        assert note.startswith("not computed: the record after analysis.transient (0.001 s) has 501 samples: too short")
+    assert s["Lyapunov exponent 1, whole system (Benettin) [1/s]"] > 0.0  # the whole-system exponents still come
+
+
+def test_rosenstein_shortfall_agrees_with_the_estimator():
+    """The reason the scene writes is the estimator's own check: a record it accepts gives '', one it
+    refuses gives the refusal's text."""
+    import numpy as np
+
+    from dynamics.errors import DynamicsInputError
+    from dynamics.lyapunov import largest_lyapunov_rosenstein, rosenstein_shortfall
+
+    t = np.arange(4000) * 1e-3
+    x = np.sin(2 * np.pi * 7.0 * t) + 0.3 * np.sin(2 * np.pi * 7.0 * np.sqrt(2.0) * t)
+    assert rosenstein_shortfall(x, 1e-3, dim=4, delay=10) == ""
+    short = x[:300]
+    reason = rosenstein_shortfall(short, 1e-3, dim=4, delay=30)
+    assert reason.startswith("300 samples: too short for dim = 4, delay = 30")
+    with pytest.raises(DynamicsInputError, match="too short") as info:
+        largest_lyapunov_rosenstein(short, 1e-3, dim=4, delay=30)
+    assert str(info.value) == f"x has {reason}"
