@@ -29,6 +29,8 @@ string with units)::
     [boundary]   ambient, pressures = {name = p}, sealed = [names]
     [solver]     rtol, max_iter, linear_solver = auto | direct | amg, amg_tol
     [output]     write = ["vtu", "png"], film_coefficients = false
+    [validity]   max_pressure, min_film, max_reynolds: warn when a result leaves the model's range
+    [limits]     memory = "40 GiB", map_points (every scene: :mod:`coupling.limits`)
     [smoke]      a partial case merged over this one by ``--smoke``
 
 Boundary names: interval ``left right``; rectangle ``left right bottom top``;
@@ -280,6 +282,7 @@ GapModel = Annotated[
     Field(discriminator="type"),
 ]
 SLIDERS = ("inclined_slider", "step_slider", "pocketed_slider")
+JOURNAL_MIN_NX = 3  # fewest cells around a periodic journal mesh (lubrication.mesh.PERIODIC_MIN_CELLS)
 ROUND = ("sphere_plane", "sphere_sphere", "ellipsoid_plane")
 
 # ---------------------------------------------------------------------------
@@ -405,6 +408,28 @@ class OutputModel(_Model):
     film_coefficients: bool = False
 
 
+def _memory_size(value):
+    if value is None:
+        return None
+    from .limits import parse_bytes
+
+    try:
+        return parse_bytes(value)
+    except ValueError as exc:
+        raise PydanticCustomError("quantity", "{text}", {"text": str(exc)}) from None
+
+
+class LimitsModel(_Model):
+    """Size limits checked before a run allocates anything (:mod:`coupling.limits`).
+
+    ``memory``: the most memory a run may need by its estimate, e.g. ``"40 GiB"`` (omitted: the
+    environment variable ``LUBEDYN_MEMORY_LIMIT``, else 80 % of the memory available);
+    ``map_points``: the most grid points a map scene may solve."""
+
+    memory: Annotated[int | None, BeforeValidator(_memory_size)] = None
+    map_points: PositiveInt = 1_000_000
+
+
 BOUNDARIES = {
     "interval": ("left", "right"),
     "rectangle": ("left", "right", "bottom", "top"),
@@ -426,6 +451,7 @@ class FilmCase(_Model):
     boundary: BoundaryModel = Field(default_factory=BoundaryModel)
     solver: SolverModel = Field(default_factory=SolverModel)
     output: OutputModel = Field(default_factory=OutputModel)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
     @property
@@ -468,6 +494,11 @@ class FilmCase(_Model):
             ext = getattr(m, key)
             if ext is not None and not ext[1] > ext[0]:
                 raise _root_rule(f"mesh.{key}", ext, "must be [lo, hi] with hi > lo")
+        if m.domain == "journal" and m.nx < JOURNAL_MIN_NX:
+            # measured: nx = 1 -> scikit-fem "duplicate index" (an element is its own periodic neighbour),
+            # nx = 2 -> the two cells share both seams and the boundaries are lost; nx = 3 solves
+            raise _root_rule("mesh.nx", m.nx, f"must be >= {JOURNAL_MIN_NX} for a journal (periodic in theta: with "
+                             "fewer cells around the circumference an element meets itself across the seam)")
         if m.domain == "disk" and m.radius is None:
             raise _root_rule("mesh.radius", None, "is required for domain = 'disk' (the film's outer radius, e.g. '0.3 mm')")
         unused = {"interval": ("y", "radius"), "rectangle": ("radius",), "journal": ("x", "y", "radius"),
@@ -801,6 +832,7 @@ class EHLCase(_Model):
     traction: TractionModel = Field(default_factory=TractionModel)
     solver: EHLSolverModel = Field(default_factory=EHLSolverModel)
     output: EHLOutputModel = Field(default_factory=EHLOutputModel)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
     @property
