@@ -46,7 +46,7 @@ from lubrication.errors import ConvergenceError, InputError
 
 from . import bearing as bearings
 from . import outputs
-from .config import CASES_DIR, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
+from .config import CASES_DIR, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
 
 log = logging.getLogger(__name__)
 
@@ -191,6 +191,7 @@ class DynamicsCase(_Model):
     integrator: IntegratorTable = Field(default_factory=IntegratorTable)
     analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
     @model_validator(mode="after")
@@ -320,10 +321,50 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
         y0 = model.initial_state()
     except DynamicsInputError as exc:
         raise InputError(_case_words(str(exc))) from None
+    check_size(case, model)  # before the output times exist
     ig = case.integrator
     n = int(round(ig.duration / ig.sample_interval))
     t_out = np.linspace(0.0, n * ig.sample_interval, n + 1)
     return DynamicsSetup(model=model, y0=y0, t_out=t_out, map_path=map_path, map_info=info)
+
+
+def values_per_sample(model) -> int:
+    """Numbers a run keeps per output sample: the state, every ball's contact diagnostics, the ring's,
+    and the ball centres and contact mid-points of the analysis (3 each per ball)."""
+    from dynamics.cageless import DIAG_NAMES, N_RING_DIAG
+
+    return len(model.state_layout()) + model.n_balls * (len(DIAG_NAMES) + 6) + N_RING_DIAG
+
+
+# bytes per stored number: float64, times 2 for the copies made while analysing and writing
+BYTES_PER_VALUE = 16
+
+
+def sample_count(case: DynamicsCase) -> int:
+    ig = case.integrator
+    return int(round(ig.duration / ig.sample_interval)) + 1
+
+
+def check_size(case: DynamicsCase, model) -> None:
+    """Refuse a run whose samples cannot fit the memory limit, or whose fixed RK4 steps exceed
+    ``integrator.max_steps`` (:mod:`coupling.limits`)."""
+    from . import limits
+
+    ig = case.integrator
+    n = ig.duration / ig.sample_interval + 1
+    # name the key that made the count: the one farthest from its default
+    defaults = IntegratorTable()
+    if ig.duration / defaults.duration >= defaults.sample_interval / ig.sample_interval:
+        key = f"integrator.duration = {ig.duration:g} s (integrator.sample_interval = {ig.sample_interval:g} s)"
+    else:
+        key = f"integrator.sample_interval = {ig.sample_interval:g} s (integrator.duration = {ig.duration:g} s)"
+    per = values_per_sample(model)
+    limits.check_memory(case, f"{key}: {n:.3g} samples of {per} values", n * per * BYTES_PER_VALUE,
+                        "sample less often or simulate less time")
+    if ig.method == "rk4" and ig.dt is not None and ig.duration / ig.dt > ig.max_steps:
+        raise InputError(f"integrator.dt = {ig.dt:g} s: {ig.duration / ig.dt:.3g} fixed RK4 steps over integrator."
+                         f"duration = {ig.duration:g} s, more than integrator.max_steps = {ig.max_steps}; use a "
+                         "larger step or a shorter duration, or raise integrator.max_steps")
 
 
 def describe(case: DynamicsCase, setup: DynamicsSetup) -> str:

@@ -53,7 +53,7 @@ from pydantic_core import PydanticCustomError
 from lubrication.errors import InputError
 
 from . import maps, outputs
-from .config import _Model, resolved_toml
+from .config import LimitsModel, _Model, resolved_toml
 from .units import DIMENSIONS, UnitError, parse_quantity, parse_units
 
 log = logging.getLogger(__name__)
@@ -114,6 +114,7 @@ class CaseModel(_Model):
     params: dict[str, Any] = {}
     build: BuildModel = Field(default_factory=BuildModel)
     output: MapOutputModel = Field(default_factory=MapOutputModel)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
     @model_validator(mode="after")
