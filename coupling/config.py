@@ -782,6 +782,7 @@ class BearingModel(_Model):
             if self.effective_length is not None:
                 raise rule("effective_length", self.effective_length, "is for type = 'roller' only")
             self.diametral_clearance = self.diametral_clearance or 0.0
+            self._ball_geometry()
             if self.stribeck_constant is None:
                 self.stribeck_constant = STRIBECK["point"]
         else:
@@ -804,6 +805,24 @@ class BearingModel(_Model):
         if self.type == "roller" and self.axial_load > 0.0 and self.contact_angle == 0.0:
             raise rule("axial_load", self.axial_load, "needs contact_angle > 0")
         return self
+
+
+    def _ball_geometry(self):
+        """Grooves wider than the ball, the ball inside the pitch circle, and a clearance that leaves
+        the free contact angle below 90 deg (cos beta0 = 1 - P_d / (2 B D) > 0), in that order, so that
+        each message names the key that is wrong."""
+        D = self.element_diameter
+        if not D < self.pitch_diameter:
+            raise rule("element_diameter", D, f"must be < pitch_diameter = {self.pitch_diameter:g} m")
+        for key in ("inner_groove_radius", "outer_groove_radius"):
+            if not getattr(self, key) > 0.5 * D:
+                raise rule(key, getattr(self, key), f"must be > element_diameter/2 = {0.5 * D:g} m (the groove "
+                           "must be wider than the ball: conformity r/D > 0.5)")
+        bd = self.inner_groove_radius + self.outer_groove_radius - D
+        if not self.diametral_clearance < 2.0 * bd:
+            raise rule("diametral_clearance", self.diametral_clearance, f"must be < 2 B D = {2 * bd:g} m, where "
+                       f"the free contact angle reaches 90 deg (B D = inner_groove_radius + outer_groove_radius - "
+                       f"element_diameter = {bd:g} m)")
 
 
 class DimensionlessModel(_Model):

@@ -78,6 +78,42 @@ class BearingTable(_Model):
     ring_mass: Q("mass", gt=0) = 3.0
     ring_inertia: Q("moment of inertia", gt=0) = 1.45e-5
     rotor_inertia: Q("moment of inertia", gt=0) = 2e-3
+    # the rings' outer diameter and bore (6206 catalogue: 62 mm, 30 mm): they bound the slot depth
+    outer_diameter: PositiveLength = 62e-3
+    bore: PositiveLength = 30e-3
+
+    @model_validator(mode="after")
+    def _geometry(self):
+        """In this order, so that each message names the key that is wrong: the ball inside the pitch
+        circle, grooves wider than the ball, a clearance in the model's range (-0.05 B D, 4 B D),
+        rings around the races."""
+        D, dm = self.ball_diameter, self.pitch_diameter
+        if not D < dm:
+            raise rule("ball_diameter", D, f"must be < pitch_diameter = {dm:g} m")
+        for key in ("inner_groove_radius", "outer_groove_radius"):
+            if not getattr(self, key) > 0.5 * D:
+                raise rule(key, getattr(self, key), f"must be > ball_diameter/2 = {0.5 * D:g} m (the groove must "
+                           "be wider than the ball: conformity r/D > 0.5)")
+        bd = self.inner_groove_radius + self.outer_groove_radius - D
+        if not -0.05 * bd < self.diametral_clearance < 4.0 * bd:
+            raise rule("diametral_clearance", self.diametral_clearance, f"must be in ({-0.05 * bd:g}, {4 * bd:g}) m, "
+                       f"i.e. (-0.05 B D, 4 B D) with B D = inner_groove_radius + outer_groove_radius - "
+                       f"ball_diameter = {bd:g} m (negative: interference, i.e. preload)")
+        if not self.outer_diameter > dm + D:
+            raise rule("outer_diameter", self.outer_diameter, f"must be > pitch_diameter + ball_diameter = "
+                       f"{dm + D:g} m (the outer race)")
+        if not self.bore < dm - D:
+            raise rule("bore", self.bore, f"must be < pitch_diameter - ball_diameter = {dm - D:g} m (the inner race)")
+        return self
+
+    def ring_wall(self, race: str) -> float:
+        """Thickness [m] of a ring under its groove bottom."""
+        D, dm = self.ball_diameter, self.pitch_diameter
+        return 0.5 * (self.outer_diameter - dm - D) if race == "outer" else 0.5 * (dm - D - self.bore)
+
+    def race_radius(self, race: str) -> float:
+        """Radius [m] of a race's groove bottom."""
+        return 0.5 * (self.pitch_diameter + (self.ball_diameter if race == "outer" else -self.ball_diameter))
 
 
 class SlotsTable(_Model):
@@ -196,12 +232,42 @@ class DynamicsCase(_Model):
 
     @model_validator(mode="after")
     def _checks(self):
+        self._slot_geometry()
         if self.analysis.ball >= self.bearing.n_balls:
             raise rule("analysis.ball", self.analysis.ball, f"must be < bearing.n_balls = {self.bearing.n_balls}")
         if self.analysis.transient >= self.integrator.duration:
             raise rule("analysis.transient", self.analysis.transient,
                        f"must be < integrator.duration = {self.integrator.duration:g} s")
         return self
+
+
+    def _slot_geometry(self):
+        """Slots that fit their ring: shallower than the ring's wall under the groove, narrower than the
+        groove, shorter than the arc to the next slot (or than the race), edges rounded within the slot."""
+        s, b = self.slots, self.bearing
+        if not s.azimuths:
+            return
+        wall = b.ring_wall(s.race)
+        if not s.depth < wall:
+            what = ("(bearing.outer_diameter - pitch_diameter - ball_diameter)/2" if s.race == "outer" else
+                    "(pitch_diameter - ball_diameter - bearing.bore)/2")
+            raise rule("slots.depth", s.depth, f"must be < {wall:g} m, the {s.race} ring's wall under the groove "
+                       f"({what})")
+        groove = 2.0 * min(b.inner_groove_radius, b.outer_groove_radius)
+        if not s.width < groove:
+            raise rule("slots.width", s.width, f"must be < {groove:g} m, the groove diameter (2 x the smaller "
+                       "groove radius)")
+        radius = b.race_radius(s.race)
+        az = sorted(a % (2.0 * math.pi) for a in s.azimuths)
+        gaps = [b2 - a2 for a2, b2 in zip(az, az[1:] + [az[0] + 2.0 * math.pi])]
+        arc = min(gaps) * radius
+        if not s.length < arc:
+            where = "the race's circumference" if len(az) == 1 else "the arc between the closest two slots"
+            raise rule("slots.length", s.length, f"must be < {arc:g} m, {where} on the {s.race} race "
+                       f"(radius {radius:g} m)")
+        if not s.edge_radius < min(0.5 * s.width, s.depth):
+            raise rule("slots.edge_radius", s.edge_radius, f"must be < {min(0.5 * s.width, s.depth):g} m (half "
+                       "the slot width and its depth)")
 
 
 CaseModel = DynamicsCase
