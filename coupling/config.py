@@ -61,6 +61,8 @@ contact, x the entrainment direction; the contact comes from exactly one of
                  limiting_shear_slope, eyring_stress
     [solver]     rtol, max_iter, max_step
     [output]     write = ["vtu", "png"]
+    [validity]   max_pressure, min_film, max_reynolds (as for films; max_pressure default 4 GPa)
+    [limits]     memory, map_points
     [smoke]      a partial case merged over this one by ``--smoke``
 
 >>> case = load_case_text('scene = "film"\\n[gap]\\ntype = "sphere_plane"\\nradius = "5 mm"\\n'
@@ -419,6 +421,28 @@ def _memory_size(value):
         raise PydanticCustomError("quantity", "{text}", {"text": str(exc)}) from None
 
 
+FILM_MAX_PRESSURE = 3e9  # Pa: validity.max_pressure of film scenes (ValidityModel)
+EHL_MAX_PRESSURE = 4e9  # Pa: validity.max_pressure of EHL scenes
+
+
+class ValidityModel(_Model):
+    """Where the scene's model holds; a result outside gets a warning (logged, and listed under
+    "Warnings" in summary.json), never a refusal.
+
+    ``max_pressure``: the largest pressure the model is trusted at (film scenes 3 GPa: beyond it the
+    solids of a rigid-surface film would deform and the viscosity law is extrapolated; EHL scenes
+    4 GPa: about the contact-pressure limit of hardened bearing steel, ISO 76's 4.2 GPa, past which
+    the Barus/Roelands laws are extrapolated beyond their measured range).  ``min_film``: the
+    composite surface roughness sigma [m]; a minimum film below it means asperity contact, outside a
+    full-film model (default 0.1 um where no roughness is given).  ``max_reynolds``: the largest
+    film Reynolds number rho U h / eta (rho0, eta0, the fastest surface speed U and the thickest film
+    h, a conservative upper bound) for laminar, inertia-free flow (default 1000)."""
+
+    max_pressure: Q("pressure", gt=0) | None = None  # None: the scene's default (3 GPa film, 4 GPa EHL)
+    min_film: Q("length", ge=0) = 1e-7
+    max_reynolds: Q("dimensionless", gt=0) = 1000.0
+
+
 class LimitsModel(_Model):
     """Size limits checked before a run allocates anything (:mod:`coupling.limits`).
 
@@ -451,6 +475,7 @@ class FilmCase(_Model):
     boundary: BoundaryModel = Field(default_factory=BoundaryModel)
     solver: SolverModel = Field(default_factory=SolverModel)
     output: OutputModel = Field(default_factory=OutputModel)
+    validity: ValidityModel = Field(default_factory=ValidityModel)
     limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
@@ -466,6 +491,8 @@ class FilmCase(_Model):
         self._resolve_domain()
         self._resolve_motion()
         self._check_boundaries()
+        if self.validity.max_pressure is None:
+            self.validity.max_pressure = FILM_MAX_PRESSURE
         return self
 
     def _resolve_domain(self):
@@ -851,6 +878,7 @@ class EHLCase(_Model):
     traction: TractionModel = Field(default_factory=TractionModel)
     solver: EHLSolverModel = Field(default_factory=EHLSolverModel)
     output: EHLOutputModel = Field(default_factory=EHLOutputModel)
+    validity: ValidityModel = Field(default_factory=ValidityModel)
     limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
@@ -912,6 +940,8 @@ class EHLCase(_Model):
                     raise _root_rule(f"grid.{key}", getattr(g, key), "is not used by a line contact")
         elif g.y_max is None:
             g.y_max = 3.0
+        if self.validity.max_pressure is None:
+            self.validity.max_pressure = EHL_MAX_PRESSURE
         return self
 
     def _require_physics(self):

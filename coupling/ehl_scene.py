@@ -36,7 +36,7 @@ from lubrication.errors import InputError
 from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, multigrid_grid, solve_ehl
 
 from . import bearing as bearings
-from . import limits, outputs
+from . import limits, outputs, validity
 from .config import EHLCase, resolved_toml
 
 log = logging.getLogger(__name__)
@@ -243,6 +243,15 @@ def summarise(case: EHLCase, setup: EHLSetup, solution) -> dict:
     return out
 
 
+def film_reynolds_number(contact: EHLContact, solution) -> float:
+    """rho0 U h_c / eta0 with the faster surface's speed U = u_m (1 + |SRR|/2) and the central film
+    h_c, at the lubricant's ambient density and viscosity (an upper bound in the contact)."""
+    lub = contact.lubricant
+    rho0 = getattr(lub.density, "rho0", 1000.0)
+    speed = contact.mean_speed * (1.0 + 0.5 * abs(contact.slide_to_roll or 0.0))
+    return rho0 * speed * solution.central_film_thickness / lub.viscosity.eta0
+
+
 @dataclass
 class EHLRun:
     """What :func:`run` produced: the setup, the solution, the summary and the files written."""
@@ -266,7 +275,13 @@ def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smo
     t_build = time.perf_counter() - t0
     log.info("%s", describe(case, setup))
     solution = solve_ehl(setup.contact, setup.grid, setup.options)
-    summary = outputs.run_summary(case, name, smoke, summarise(case, setup, solution), t0, t_build)
+    scene_summary = summarise(case, setup, solution)
+    reynolds = film_reynolds_number(setup.contact, solution)
+    scene_summary["Film Reynolds number [-]"] = reynolds
+    validity.report(scene_summary, validity.warnings_for(
+        case.validity, max_pressure=solution.maximum_pressure, min_film=solution.minimum_film_thickness,
+        reynolds=reynolds, model="the isothermal EHL model"))
+    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
     result = EHLRun(case=case, setup=setup, solution=solution, summary=summary)
     if out_dir is None:
         return result

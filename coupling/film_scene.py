@@ -33,7 +33,7 @@ import lubrication as lub
 from lubrication import mesh as meshes
 from lubrication.errors import InputError
 
-from . import limits, outputs
+from . import limits, outputs, validity
 from .config import CASES_DIR as CASES
 from .config import FilmCase, resolved_toml
 
@@ -264,6 +264,20 @@ def summarise(case: FilmCase, solution, coefficients=None) -> dict:
     return out
 
 
+def film_reynolds_number(case: FilmCase, solution) -> float:
+    """rho0 U h_max / eta0: the fastest surface (or squeeze) speed U, the thickest film on the mesh,
+    the lubricant's density and viscosity at ambient pressure (a conservative upper bound: the
+    viscosity laws only rise with pressure)."""
+    mo = case.motion
+    speeds = [float(np.linalg.norm(mo.velocity_lower)), abs(mo.squeeze)]
+    if mo.speed is not None:
+        speeds.append(abs(mo.speed) * case.gap.radius)
+    elif mo.velocity_upper is not None:
+        speeds.append(float(np.linalg.norm(mo.velocity_upper)))
+    h_max = float(np.max(solution.film_thickness))
+    return case.lubricant.density.rho0 * max(speeds) * h_max / case.lubricant.viscosity.eta0
+
+
 @dataclass
 class FilmRun:
     """What :func:`run` produced: the solution, the summary and the files written."""
@@ -288,7 +302,13 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     log.info("%s", describe(case, film))
     solution = lub.solve(film)
     coefficients = solution.coefficients() if case.output.film_coefficients else None
-    summary = outputs.run_summary(case, name, smoke, summarise(case, solution, coefficients), t0, t_build)
+    scene_summary = summarise(case, solution, coefficients)
+    reynolds = film_reynolds_number(case, solution)
+    scene_summary["Film Reynolds number [-]"] = reynolds
+    validity.report(scene_summary, validity.warnings_for(
+        case.validity, max_pressure=solution.p_max, min_film=solution.h_min, reynolds=reynolds,
+        model="the rigid-surface Reynolds film"))
+    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
     result = FilmRun(case=case, film=film, solution=solution, summary=summary)
     if out_dir is None:
         return result
