@@ -835,16 +835,15 @@ class BearingModel(_Model):
 
 
     def _ball_geometry(self):
-        """Grooves wider than the ball, the ball inside the pitch circle, and a clearance that leaves
-        the free contact angle below 90 deg (cos beta0 = 1 - P_d / (2 B D) > 0), in that order, so that
-        each message names the key that is wrong."""
+        """The ball inside the pitch circle and a clearance that leaves the free contact angle below
+        90 deg (cos beta0 = 1 - P_d / (2 B D) > 0), checked only once the grooves are wider than the
+        ball (else :mod:`coupling.bearing` names the groove radius), so that each message names the
+        key that is wrong."""
         D = self.element_diameter
         if not D < self.pitch_diameter:
             raise rule("element_diameter", D, f"must be < pitch_diameter = {self.pitch_diameter:g} m")
-        for key in ("inner_groove_radius", "outer_groove_radius"):
-            if not getattr(self, key) > 0.5 * D:
-                raise rule(key, getattr(self, key), f"must be > element_diameter/2 = {0.5 * D:g} m (the groove "
-                           "must be wider than the ball: conformity r/D > 0.5)")
+        if not min(self.inner_groove_radius, self.outer_groove_radius) > 0.5 * D:
+            return  # the groove radius is what is wrong: coupling.bearing names it ("must be > D/2")
         bd = self.inner_groove_radius + self.outer_groove_radius - D
         if not self.diametral_clearance < 2.0 * bd:
             raise rule("diametral_clearance", self.diametral_clearance, f"must be < 2 B D = {2 * bd:g} m, where "

@@ -5,7 +5,8 @@ result's largest pressure, smallest film and film Reynolds number; each
 threshold comes from the case's ``[validity]`` table
 (:class:`coupling.config.ValidityModel`, with its documented defaults).
 Every warning is logged (WARNING) as one line and listed under
-``"Warnings"`` in summary.json; the run itself is not refused.
+``"Warnings"`` in summary.json (the key is absent when there is none); the
+run itself is not refused.
 
 >>> from coupling.config import ValidityModel
 >>> v = ValidityModel(max_pressure="3 GPa")
@@ -37,8 +38,10 @@ def warnings_for(validity, *, max_pressure: float, min_film: float, reynolds: fl
 
 
 def report(summary: dict, warnings: list[str]) -> dict:
-    """Log each warning and list them under ``"Warnings"`` in ``summary`` (always present)."""
+    """Log each warning and list them under ``"Warnings"`` in ``summary`` (only when there is one: a
+    result inside every range keeps the summary's values scalar)."""
     for text in warnings:
         log.warning("%s", text)
-    summary["Warnings"] = list(warnings)
+    if warnings:
+        summary["Warnings"] = list(warnings)
     return summary
