@@ -247,3 +247,16 @@ def test_long_map_builds_are_announced(monkeypatch, caplog):
     assert [r.getMessage() for r in caplog.records] == [
         "axes.central_gap.n = 1000: 1000 x 12 x 20 = 2.4e+05 map points: the build will take about 117 h on 2 "
         "process(es) (3.5 s of one core per point, measured at the default resolution)"]
+
+
+def test_dopri5_runs_beyond_max_steps_are_refused():
+    """A 1e9 s drop sampled every 1e6 s fits in memory (1001 samples) but needs at least 6.7e13 adaptive
+    steps (mean step at most 10 x the measured 1.48 us); the bundled 0.1 s runs need 6,700 at that bound."""
+    from coupling import dynamics_scene
+
+    case = load_case(CASES_DIR / "cageless_6206_10krpm_short.toml",
+                     overrides=["integrator.duration=1e9", "integrator.sample_interval=1e6"])
+    with pytest.raises(InputError, match=r"integrator.duration = 1e\+09 s needs at least 6.67e\+13 DOPRI5 steps .* "
+                                         r"more than integrator.max_steps = 50000000"):
+        dynamics_scene.build(case)
+    dynamics_scene.build(load_case(CASES_DIR / "cageless_6206_10krpm.toml"))
