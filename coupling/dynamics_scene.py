@@ -435,11 +435,12 @@ def check_size(case: DynamicsCase, model) -> None:
         raise InputError(f"integrator.dt = {ig.dt:g} s: {ig.duration / ig.dt:.3g} fixed RK4 steps over integrator."
                          f"duration = {ig.duration:g} s, more than integrator.max_steps = {ig.max_steps}; use a "
                          "larger step or a shorter duration, or raise integrator.max_steps")
-    if ig.method == "dopri5" and ig.duration / DOPRI5_LONGEST_MEAN_STEP > ig.max_steps:
-        raise InputError(f"integrator.duration = {ig.duration:g} s needs at least {ig.duration / DOPRI5_LONGEST_MEAN_STEP:.3g}"
-                         f" DOPRI5 steps (the mean step is at most {DOPRI5_LONGEST_MEAN_STEP:g} s: 10 times the "
-                         f"1.48 us measured on the 10,000 rpm drop), more than integrator.max_steps = "
-                         f"{ig.max_steps}; simulate less time, or raise integrator.max_steps")
+    steps = ig.duration / DOPRI5_LONGEST_MEAN_STEP
+    if ig.method == "dopri5" and steps > ig.max_steps:
+        raise InputError(f"integrator.duration = {ig.duration:g} s needs at least {steps:.3g} DOPRI5 steps (the "
+                         f"mean step is at most {DOPRI5_LONGEST_MEAN_STEP:g} s: 10 times the 1.48 us measured on "
+                         f"the 10,000 rpm drop), more than integrator.max_steps = {ig.max_steps}; simulate less "
+                         "time, or raise integrator.max_steps")
 
 
 def describe(case: DynamicsCase, setup: DynamicsSetup) -> str:

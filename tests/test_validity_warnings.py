@@ -46,8 +46,9 @@ def test_journal_at_1e9_rpm_is_warned(capsys, tmp_path):
 
 def test_jfo_pocket_at_1e6_m_per_s_is_warned(capsys, tmp_path):
     summary, lines = run_cli(capsys, tmp_path, "fowell_pocket", "motion.velocity_lower=1e6")
-    assert [w.split(":")[0] for w in summary["Warnings"]] == ["Maximum pressure 9.43e+12 Pa is above validity.max_pressure = 3e+09 Pa",
-                                                              "Film Reynolds number rho U h / eta = 2.04e+05 is above validity.max_reynolds = 1e+03"]
+    assert [w.split(":")[0] for w in summary["Warnings"]] == [
+        "Maximum pressure 9.43e+12 Pa is above validity.max_pressure = 3e+09 Pa",
+        "Film Reynolds number rho U h / eta = 2.04e+05 is above validity.max_reynolds = 1e+03"]
     assert len(lines) == 2
 
 
