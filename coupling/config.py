@@ -29,6 +29,8 @@ string with units)::
     [boundary]   ambient, pressures = {name = p}, sealed = [names]
     [solver]     rtol, max_iter, linear_solver = auto | direct | amg, amg_tol
     [output]     write = ["vtu", "png"], film_coefficients = false
+    [validity]   max_pressure, min_film, max_reynolds: warn when a result leaves the model's range
+    [limits]     memory = "40 GiB", map_points (every scene: :mod:`coupling.limits`)
     [smoke]      a partial case merged over this one by ``--smoke``
 
 Boundary names: interval ``left right``; rectangle ``left right bottom top``;
@@ -59,6 +61,8 @@ contact, x the entrainment direction; the contact comes from exactly one of
                  limiting_shear_slope, eyring_stress
     [solver]     rtol, max_iter, max_step
     [output]     write = ["vtu", "png"]
+    [validity]   max_pressure, min_film, max_reynolds (as for films; max_pressure default 4 GPa)
+    [limits]     memory, map_points
     [smoke]      a partial case merged over this one by ``--smoke``
 
 >>> case = load_case_text('scene = "film"\\n[gap]\\ntype = "sphere_plane"\\nradius = "5 mm"\\n'
@@ -280,6 +284,7 @@ GapModel = Annotated[
     Field(discriminator="type"),
 ]
 SLIDERS = ("inclined_slider", "step_slider", "pocketed_slider")
+JOURNAL_MIN_NX = 3  # fewest cells around a periodic journal mesh (lubrication.mesh.PERIODIC_MIN_CELLS)
 ROUND = ("sphere_plane", "sphere_sphere", "ellipsoid_plane")
 
 # ---------------------------------------------------------------------------
@@ -405,6 +410,50 @@ class OutputModel(_Model):
     film_coefficients: bool = False
 
 
+def _memory_size(value):
+    if value is None:
+        return None
+    from .limits import parse_bytes
+
+    try:
+        return parse_bytes(value)
+    except ValueError as exc:
+        raise PydanticCustomError("quantity", "{text}", {"text": str(exc)}) from None
+
+
+FILM_MAX_PRESSURE = 3e9  # Pa: validity.max_pressure of film scenes (ValidityModel)
+EHL_MAX_PRESSURE = 4e9  # Pa: validity.max_pressure of EHL scenes
+
+
+class ValidityModel(_Model):
+    """Where the scene's model holds; a result outside gets a warning (logged, and listed under
+    "Warnings" in summary.json), never a refusal.
+
+    ``max_pressure``: the largest pressure the model is trusted at (film scenes 3 GPa: beyond it the
+    solids of a rigid-surface film would deform and the viscosity law is extrapolated; EHL scenes
+    4 GPa: about the contact-pressure limit of hardened bearing steel, ISO 76's 4.2 GPa, past which
+    the Barus/Roelands laws are extrapolated beyond their measured range).  ``min_film``: the
+    composite surface roughness sigma [m]; a minimum film below it means asperity contact, outside a
+    full-film model (default 0.1 um where no roughness is given).  ``max_reynolds``: the largest
+    film Reynolds number rho U h / eta (rho0, eta0, the fastest surface speed U and the thickest film
+    h, a conservative upper bound) for laminar, inertia-free flow (default 1000)."""
+
+    max_pressure: Q("pressure", gt=0) | None = None  # None: the scene's default (3 GPa film, 4 GPa EHL)
+    min_film: Q("length", ge=0) = 1e-7
+    max_reynolds: Q("dimensionless", gt=0) = 1000.0
+
+
+class LimitsModel(_Model):
+    """Size limits checked before a run allocates anything (:mod:`coupling.limits`).
+
+    ``memory``: the most memory a run may need by its estimate, e.g. ``"40 GiB"`` (omitted: the
+    environment variable ``LUBEDYN_MEMORY_LIMIT``, else 80 % of the memory available);
+    ``map_points``: the most grid points a map scene may solve."""
+
+    memory: Annotated[int | None, BeforeValidator(_memory_size)] = None
+    map_points: PositiveInt = 1_000_000
+
+
 BOUNDARIES = {
     "interval": ("left", "right"),
     "rectangle": ("left", "right", "bottom", "top"),
@@ -426,6 +475,8 @@ class FilmCase(_Model):
     boundary: BoundaryModel = Field(default_factory=BoundaryModel)
     solver: SolverModel = Field(default_factory=SolverModel)
     output: OutputModel = Field(default_factory=OutputModel)
+    validity: ValidityModel = Field(default_factory=ValidityModel)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
     @property
@@ -440,6 +491,8 @@ class FilmCase(_Model):
         self._resolve_domain()
         self._resolve_motion()
         self._check_boundaries()
+        if self.validity.max_pressure is None:
+            self.validity.max_pressure = FILM_MAX_PRESSURE
         return self
 
     def _resolve_domain(self):
@@ -468,6 +521,11 @@ class FilmCase(_Model):
             ext = getattr(m, key)
             if ext is not None and not ext[1] > ext[0]:
                 raise _root_rule(f"mesh.{key}", ext, "must be [lo, hi] with hi > lo")
+        if m.domain == "journal" and m.nx < JOURNAL_MIN_NX:
+            # measured: nx = 1 -> scikit-fem "duplicate index" (an element is its own periodic neighbour),
+            # nx = 2 -> the two cells share both seams and the boundaries are lost; nx = 3 solves
+            raise _root_rule("mesh.nx", m.nx, f"must be >= {JOURNAL_MIN_NX} for a journal (periodic in theta: with "
+                             "fewer cells around the circumference an element meets itself across the seam)")
         if m.domain == "disk" and m.radius is None:
             raise _root_rule("mesh.radius", None, "is required for domain = 'disk' (the film's outer radius, e.g. '0.3 mm')")
         unused = {"interval": ("y", "radius"), "rectangle": ("radius",), "journal": ("x", "y", "radius"),
@@ -751,6 +809,7 @@ class BearingModel(_Model):
             if self.effective_length is not None:
                 raise rule("effective_length", self.effective_length, "is for type = 'roller' only")
             self.diametral_clearance = self.diametral_clearance or 0.0
+            self._ball_geometry()
             if self.stribeck_constant is None:
                 self.stribeck_constant = STRIBECK["point"]
         else:
@@ -773,6 +832,23 @@ class BearingModel(_Model):
         if self.type == "roller" and self.axial_load > 0.0 and self.contact_angle == 0.0:
             raise rule("axial_load", self.axial_load, "needs contact_angle > 0")
         return self
+
+
+    def _ball_geometry(self):
+        """The ball inside the pitch circle and a clearance that leaves the free contact angle below
+        90 deg (cos beta0 = 1 - P_d / (2 B D) > 0), checked only once the grooves are wider than the
+        ball (else :mod:`coupling.bearing` names the groove radius), so that each message names the
+        key that is wrong."""
+        D = self.element_diameter
+        if not D < self.pitch_diameter:
+            raise rule("element_diameter", D, f"must be < pitch_diameter = {self.pitch_diameter:g} m")
+        if not min(self.inner_groove_radius, self.outer_groove_radius) > 0.5 * D:
+            return  # the groove radius is what is wrong: coupling.bearing names it ("must be > D/2")
+        bd = self.inner_groove_radius + self.outer_groove_radius - D
+        if not self.diametral_clearance < 2.0 * bd:
+            raise rule("diametral_clearance", self.diametral_clearance, f"must be < 2 B D = {2 * bd:g} m, where "
+                       f"the free contact angle reaches 90 deg (B D = inner_groove_radius + outer_groove_radius - "
+                       f"element_diameter = {bd:g} m)")
 
 
 class DimensionlessModel(_Model):
@@ -801,6 +877,8 @@ class EHLCase(_Model):
     traction: TractionModel = Field(default_factory=TractionModel)
     solver: EHLSolverModel = Field(default_factory=EHLSolverModel)
     output: EHLOutputModel = Field(default_factory=EHLOutputModel)
+    validity: ValidityModel = Field(default_factory=ValidityModel)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
     @property
@@ -861,6 +939,8 @@ class EHLCase(_Model):
                     raise _root_rule(f"grid.{key}", getattr(g, key), "is not used by a line contact")
         elif g.y_max is None:
             g.y_max = 3.0
+        if self.validity.max_pressure is None:
+            self.validity.max_pressure = EHL_MAX_PRESSURE
         return self
 
     def _require_physics(self):

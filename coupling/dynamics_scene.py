@@ -46,7 +46,7 @@ from lubrication.errors import ConvergenceError, InputError
 
 from . import bearing as bearings
 from . import outputs
-from .config import CASES_DIR, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
+from .config import CASES_DIR, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
 
 log = logging.getLogger(__name__)
 
@@ -78,6 +78,42 @@ class BearingTable(_Model):
     ring_mass: Q("mass", gt=0) = 3.0
     ring_inertia: Q("moment of inertia", gt=0) = 1.45e-5
     rotor_inertia: Q("moment of inertia", gt=0) = 2e-3
+    # the rings' outer diameter and bore (6206 catalogue: 62 mm, 30 mm): they bound the slot depth
+    outer_diameter: PositiveLength = 62e-3
+    bore: PositiveLength = 30e-3
+
+    @model_validator(mode="after")
+    def _geometry(self):
+        """In this order, so that each message names the key that is wrong: the ball inside the pitch
+        circle, grooves wider than the ball, a clearance in the model's range (-0.05 B D, 4 B D),
+        rings around the races."""
+        D, dm = self.ball_diameter, self.pitch_diameter
+        if not D < dm:
+            raise rule("ball_diameter", D, f"must be < pitch_diameter = {dm:g} m")
+        for key in ("inner_groove_radius", "outer_groove_radius"):
+            if not getattr(self, key) > 0.5 * D:
+                raise rule(key, getattr(self, key), f"must be > ball_diameter/2 = {0.5 * D:g} m (the groove must "
+                           "be wider than the ball: conformity r/D > 0.5)")
+        bd = self.inner_groove_radius + self.outer_groove_radius - D
+        if not -0.05 * bd < self.diametral_clearance < 4.0 * bd:
+            raise rule("diametral_clearance", self.diametral_clearance, f"must be in ({-0.05 * bd:g}, {4 * bd:g}) m, "
+                       f"i.e. (-0.05 B D, 4 B D) with B D = inner_groove_radius + outer_groove_radius - "
+                       f"ball_diameter = {bd:g} m (negative: interference, i.e. preload)")
+        if not self.outer_diameter > dm + D:
+            raise rule("outer_diameter", self.outer_diameter, f"must be > pitch_diameter + ball_diameter = "
+                       f"{dm + D:g} m (the outer race)")
+        if not self.bore < dm - D:
+            raise rule("bore", self.bore, f"must be < pitch_diameter - ball_diameter = {dm - D:g} m (the inner race)")
+        return self
+
+    def ring_wall(self, race: str) -> float:
+        """Thickness [m] of a ring under its groove bottom."""
+        D, dm = self.ball_diameter, self.pitch_diameter
+        return 0.5 * (self.outer_diameter - dm - D) if race == "outer" else 0.5 * (dm - D - self.bore)
+
+    def race_radius(self, race: str) -> float:
+        """Radius [m] of a race's groove bottom."""
+        return 0.5 * (self.pitch_diameter + (self.ball_diameter if race == "outer" else -self.ball_diameter))
 
 
 class SlotsTable(_Model):
@@ -191,16 +227,47 @@ class DynamicsCase(_Model):
     integrator: IntegratorTable = Field(default_factory=IntegratorTable)
     analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
     @model_validator(mode="after")
     def _checks(self):
+        self._slot_geometry()
         if self.analysis.ball >= self.bearing.n_balls:
             raise rule("analysis.ball", self.analysis.ball, f"must be < bearing.n_balls = {self.bearing.n_balls}")
         if self.analysis.transient >= self.integrator.duration:
             raise rule("analysis.transient", self.analysis.transient,
                        f"must be < integrator.duration = {self.integrator.duration:g} s")
         return self
+
+
+    def _slot_geometry(self):
+        """Slots that fit their ring: shallower than the ring's wall under the groove, narrower than the
+        groove, shorter than the arc to the next slot (or than the race), edges rounded within the slot."""
+        s, b = self.slots, self.bearing
+        if not s.azimuths:
+            return
+        wall = b.ring_wall(s.race)
+        if not s.depth < wall:
+            what = ("(bearing.outer_diameter - pitch_diameter - ball_diameter)/2" if s.race == "outer" else
+                    "(pitch_diameter - ball_diameter - bearing.bore)/2")
+            raise rule("slots.depth", s.depth, f"must be < {wall:g} m, the {s.race} ring's wall under the groove "
+                       f"({what})")
+        groove = 2.0 * min(b.inner_groove_radius, b.outer_groove_radius)
+        if not s.width < groove:
+            raise rule("slots.width", s.width, f"must be < {groove:g} m, the groove diameter (2 x the smaller "
+                       "groove radius)")
+        radius = b.race_radius(s.race)
+        az = sorted(a % (2.0 * math.pi) for a in s.azimuths)
+        gaps = [b2 - a2 for a2, b2 in zip(az, az[1:] + [az[0] + 2.0 * math.pi])]
+        arc = min(gaps) * radius
+        if not s.length < arc:
+            where = "the race's circumference" if len(az) == 1 else "the arc between the closest two slots"
+            raise rule("slots.length", s.length, f"must be < {arc:g} m, {where} on the {s.race} race "
+                       f"(radius {radius:g} m)")
+        if not s.edge_radius < min(0.5 * s.width, s.depth):
+            raise rule("slots.edge_radius", s.edge_radius, f"must be < {min(0.5 * s.width, s.depth):g} m (half "
+                       "the slot width and its depth)")
 
 
 CaseModel = DynamicsCase
@@ -320,10 +387,60 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
         y0 = model.initial_state()
     except DynamicsInputError as exc:
         raise InputError(_case_words(str(exc))) from None
+    check_size(case, model)  # before the output times exist
     ig = case.integrator
     n = int(round(ig.duration / ig.sample_interval))
     t_out = np.linspace(0.0, n * ig.sample_interval, n + 1)
     return DynamicsSetup(model=model, y0=y0, t_out=t_out, map_path=map_path, map_info=info)
+
+
+def values_per_sample(model) -> int:
+    """Numbers a run keeps per output sample: the state, every ball's contact diagnostics, the ring's,
+    and the ball centres and contact mid-points of the analysis (3 each per ball)."""
+    from dynamics.cageless import DIAG_NAMES, N_RING_DIAG
+
+    return len(model.state_layout()) + model.n_balls * (len(DIAG_NAMES) + 6) + N_RING_DIAG
+
+
+# bytes per stored number: float64, times 2 for the copies made while analysing and writing
+BYTES_PER_VALUE = 16
+# The adaptive step is set by the stiff ball-race contacts: 13,519 accepted steps over the 20 ms of the
+# 10,000 rpm drop (1.48 us mean).  A run whose duration would need more than max_steps steps of ten
+# times that is refused before it integrates for hours and fails at the step limit.
+DOPRI5_LONGEST_MEAN_STEP = 1.5e-5
+
+
+def sample_count(case: DynamicsCase) -> int:
+    ig = case.integrator
+    return int(round(ig.duration / ig.sample_interval)) + 1
+
+
+def check_size(case: DynamicsCase, model) -> None:
+    """Refuse a run whose samples cannot fit the memory limit, or whose fixed RK4 steps exceed
+    ``integrator.max_steps`` (:mod:`coupling.limits`)."""
+    from . import limits
+
+    ig = case.integrator
+    n = ig.duration / ig.sample_interval + 1
+    # name the key that made the count: the one farthest from its default
+    defaults = IntegratorTable()
+    if ig.duration / defaults.duration >= defaults.sample_interval / ig.sample_interval:
+        key = f"integrator.duration = {ig.duration:g} s (integrator.sample_interval = {ig.sample_interval:g} s)"
+    else:
+        key = f"integrator.sample_interval = {ig.sample_interval:g} s (integrator.duration = {ig.duration:g} s)"
+    per = values_per_sample(model)
+    limits.check_memory(case, f"{key}: {n:.3g} samples of {per} values", n * per * BYTES_PER_VALUE,
+                        "sample less often or simulate less time")
+    if ig.method == "rk4" and ig.dt is not None and ig.duration / ig.dt > ig.max_steps:
+        raise InputError(f"integrator.dt = {ig.dt:g} s: {ig.duration / ig.dt:.3g} fixed RK4 steps over integrator."
+                         f"duration = {ig.duration:g} s, more than integrator.max_steps = {ig.max_steps}; use a "
+                         "larger step or a shorter duration, or raise integrator.max_steps")
+    steps = ig.duration / DOPRI5_LONGEST_MEAN_STEP
+    if ig.method == "dopri5" and steps > ig.max_steps:
+        raise InputError(f"integrator.duration = {ig.duration:g} s needs at least {steps:.3g} DOPRI5 steps (the "
+                         f"mean step is at most {DOPRI5_LONGEST_MEAN_STEP:g} s: 10 times the 1.48 us measured on "
+                         f"the 10,000 rpm drop), more than integrator.max_steps = {ig.max_steps}; simulate less "
+                         "time, or raise integrator.max_steps")
 
 
 def describe(case: DynamicsCase, setup: DynamicsSetup) -> str:

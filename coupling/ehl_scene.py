@@ -36,7 +36,7 @@ from lubrication.errors import InputError
 from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, multigrid_grid, solve_ehl
 
 from . import bearing as bearings
-from . import outputs
+from . import limits, outputs, validity
 from .config import EHLCase, resolved_toml
 
 log = logging.getLogger(__name__)
@@ -44,6 +44,14 @@ log = logging.getLogger(__name__)
 FIELD_FILES = (("ehl.vtu", "vtu"), ("profiles.png", "png"))
 
 DEFAULT_E_STAR = 1.0e11  # Pa, the modulus scale of a [dimensionless] case without [materials]
+
+# Finest line-contact grid of the Newton methods: the largest measured to converge (ehl_roller_slice:
+# 2049 nodes in 29 s, 4097 in 89 s; 8193 did not converge in 80 Newton iterations, 394 s).  Nested
+# iteration solves every coarser grid first, so a finer request runs for hours before it fails.
+MAX_LINE_GRID = 4097
+# Peak resident memory per node of the multigrid point solver (measured, M = 100, L = 10: 513 x 513
+# 300 MB, 1025 x 1025 1.2 GB above the 300 MB of a 129 x 129 run: 1.15 kB per node), about twice that:
+MULTIGRID_BYTES_PER_NODE = 2048
 
 
 @dataclass(frozen=True)
@@ -113,6 +121,14 @@ def build(case: EHLCase) -> EHLSetup:
     if options.method == "multigrid":
         # refuses line contacts and grids that do not coarsen to 16 cells (found by validate, not only by run)
         grid = multigrid_grid(contact, grid)
+        nodes = grid.nx * grid.ny
+        limits.check_memory(case, f"grid.nx = {g.nx}: {grid.nx} x {grid.ny} = {nodes:.3g} grid nodes (multigrid)",
+                            nodes * MULTIGRID_BYTES_PER_NODE, "use a coarser grid")
+    elif contact.is_line and g.nx > MAX_LINE_GRID:
+        raise InputError(f"grid.nx = {g.nx} is too fine for a line contact: the Newton solver's work grows about "
+                         f"as nx^2 (measured on the roller slice: 2049 nodes 29 s, 4097 nodes 89 s, 8193 nodes not "
+                         f"converged in 80 iterations after 394 s) and every coarser grid is solved first; use "
+                         f"nx <= {MAX_LINE_GRID}")
     elif not contact.is_line and limit is not None and g.nx > limit:  # found by validate, not only by run
         raise InputError(f"grid.nx = {g.nx} is too fine for a point contact: the EHL solver converges for point "
                          f"contacts up to {limit} nodes per side (lubrication.ehl.EHLOptions.max_point_grid); "
@@ -227,6 +243,15 @@ def summarise(case: EHLCase, setup: EHLSetup, solution) -> dict:
     return out
 
 
+def film_reynolds_number(contact: EHLContact, solution) -> float:
+    """rho0 U h_c / eta0 with the faster surface's speed U = u_m (1 + |SRR|/2) and the central film
+    h_c, at the lubricant's ambient density and viscosity (an upper bound in the contact)."""
+    lub = contact.lubricant
+    rho0 = getattr(lub.density, "rho0", 1000.0)
+    speed = contact.mean_speed * (1.0 + 0.5 * abs(contact.slide_to_roll or 0.0))
+    return rho0 * speed * solution.central_film_thickness / lub.viscosity.eta0
+
+
 @dataclass
 class EHLRun:
     """What :func:`run` produced: the setup, the solution, the summary and the files written."""
@@ -250,7 +275,13 @@ def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smo
     t_build = time.perf_counter() - t0
     log.info("%s", describe(case, setup))
     solution = solve_ehl(setup.contact, setup.grid, setup.options)
-    summary = outputs.run_summary(case, name, smoke, summarise(case, setup, solution), t0, t_build)
+    scene_summary = summarise(case, setup, solution)
+    reynolds = film_reynolds_number(setup.contact, solution)
+    scene_summary["Film Reynolds number [-]"] = reynolds
+    validity.report(scene_summary, validity.warnings_for(
+        case.validity, max_pressure=solution.maximum_pressure, min_film=solution.minimum_film_thickness,
+        reynolds=reynolds, model="the isothermal EHL model"))
+    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
     result = EHLRun(case=case, setup=setup, solution=solution, summary=summary)
     if out_dir is None:
         return result

@@ -33,7 +33,8 @@ import lubrication as lub
 from lubrication import mesh as meshes
 from lubrication.errors import InputError
 
-from . import outputs
+from . import limits, outputs, validity
+from .config import CASES_DIR as CASES
 from .config import FilmCase, resolved_toml
 
 log = logging.getLogger(__name__)
@@ -142,8 +143,54 @@ def _check_gap_positive(gap, mesh, case: FilmCase):
         )
 
 
+# Peak resident memory per degree of freedom of a film run (mesh, assembly, sparse LU, K and C),
+# measured (ru_maxrss growth): 1-D 0.7-1.3 kB (2e4-2e5 cells, P1 and P2); 2-D journal 3.3-4.1 kB
+# (256 x 64 to 512 x 128, P1 and P2, quad and tri; it grows slowly with the LU's fill).  About twice that:
+BYTES_PER_DOF = {1: 2048, 2: 8192}
+
+
+def film_dofs(case: FilmCase) -> int:
+    """Degrees of freedom of a case's film, from its mesh keys alone (no mesh is built): exact for
+    the meshes of :func:`build_mesh`, except that a slider's step or pocket edges count one node
+    each (:func:`grid_with_breakpoints` usually moves a node there instead of adding one).
+
+    >>> from coupling.config import load_case
+    >>> film_dofs(load_case(CASES / "journal_finite.toml", smoke=True))  # 32 x 8 cells, P2, periodic in x
+    1088
+    """
+    m = case.mesh
+    k = 2 if m.element == "P2" else 1
+    if m.domain == "disk":
+        verts, edges, cells = 5, 8, 4  # scikit-fem's init_circle(0); each refinement splits every triangle in 4
+        for _ in range(m.refinements):
+            verts, edges, cells = verts + edges, 2 * edges + 3 * cells, 4 * cells
+        return verts + (edges if k == 2 else 0)
+    nx = m.nx + sum(1 for b in _breakpoints(case) if m.x is None or m.x[0] < b < m.x[1])
+    if m.domain == "interval":
+        return k * nx + 1
+    if m.domain == "journal":
+        return k * m.nx * (k * m.ny + 1)
+    return (k * nx + 1) * (k * m.ny + 1)
+
+
+def check_size(case: FilmCase) -> int:
+    """Refuse a film whose estimated memory exceeds the limit (:mod:`coupling.limits`); its DOFs."""
+    dofs = film_dofs(case)
+    m = case.mesh
+    if m.domain == "disk":
+        subject = f"mesh.refinements = {m.refinements}"
+    elif m.domain == "interval":
+        subject = f"mesh.nx = {m.nx}"
+    else:
+        subject = f"mesh.nx = {m.nx} with mesh.ny = {m.ny}"
+    limits.check_memory(case, f"{subject}: {dofs:.3g} degrees of freedom ({m.element}, {case.dim}-D)",
+                        dofs * BYTES_PER_DOF[case.dim], "use a coarser mesh")
+    return dofs
+
+
 def build_film(case: FilmCase) -> lub.Film:
     """The :class:`~lubrication.Film` of a validated case (no solve)."""
+    check_size(case)  # before any array of the mesh's size exists
     gap = build_gap(case)
     mesh = build_mesh(case)
     _check_gap_positive(gap, mesh, case)
@@ -217,6 +264,20 @@ def summarise(case: FilmCase, solution, coefficients=None) -> dict:
     return out
 
 
+def film_reynolds_number(case: FilmCase, solution) -> float:
+    """rho0 U h_max / eta0: the fastest surface (or squeeze) speed U, the thickest film on the mesh,
+    the lubricant's density and viscosity at ambient pressure (a conservative upper bound: the
+    viscosity laws only rise with pressure)."""
+    mo = case.motion
+    speeds = [float(np.linalg.norm(mo.velocity_lower)), abs(mo.squeeze)]
+    if mo.speed is not None:
+        speeds.append(abs(mo.speed) * case.gap.radius)
+    elif mo.velocity_upper is not None:
+        speeds.append(float(np.linalg.norm(mo.velocity_upper)))
+    h_max = float(np.max(solution.film_thickness))
+    return case.lubricant.density.rho0 * max(speeds) * h_max / case.lubricant.viscosity.eta0
+
+
 @dataclass
 class FilmRun:
     """What :func:`run` produced: the solution, the summary and the files written."""
@@ -241,7 +302,13 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     log.info("%s", describe(case, film))
     solution = lub.solve(film)
     coefficients = solution.coefficients() if case.output.film_coefficients else None
-    summary = outputs.run_summary(case, name, smoke, summarise(case, solution, coefficients), t0, t_build)
+    scene_summary = summarise(case, solution, coefficients)
+    reynolds = film_reynolds_number(case, solution)
+    scene_summary["Film Reynolds number [-]"] = reynolds
+    validity.report(scene_summary, validity.warnings_for(
+        case.validity, max_pressure=solution.p_max, min_film=solution.h_min, reynolds=reynolds,
+        model="the rigid-surface Reynolds film"))
+    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
     result = FilmRun(case=case, film=film, solution=solution, summary=summary)
     if out_dir is None:
         return result

@@ -15,7 +15,7 @@ units, checked against the unit in the axis name)::
     resolution = "default"
     [build]
     method = "hermite" | "pchip" | "linear"   # interpolation (dynamics.interp)
-    workers = 0                 # local processes; 0: every usable core
+    workers = 0                 # local processes; 0: every usable core; capped at the points of a pass
     scheduler = ""              # Dask scheduler address ("tcp://host:8786"): solve there instead
     cache_dir = ""              # solved points and built maps; "" -> <out>/.map-cache
     accuracy_points = 20        # random off-grid points solved directly for the accuracy report
@@ -26,6 +26,7 @@ units, checked against the unit in the axis name)::
     map_file = ""               # "" -> <kind>.npz
     field_frames = 6            # .pvd frames: nodes of the first axis (evenly picked) ...
     field_at = {}               # ... with the other axes at their middle node unless given here
+    [limits]                    # memory = "40 GiB", map_points = 1000000 (coupling.limits)
     [smoke]                     # partial case merged by --smoke
 
 Outputs of ``run``: ``<kind>.npz`` (:meth:`FilmMap.save`), ``map.png`` (each
@@ -53,7 +54,7 @@ from pydantic_core import PydanticCustomError
 from lubrication.errors import InputError
 
 from . import maps, outputs
-from .config import _Model, resolved_toml
+from .config import LimitsModel, _Model, resolved_toml
 from .units import DIMENSIONS, UnitError, parse_quantity, parse_units
 
 log = logging.getLogger(__name__)
@@ -114,6 +115,7 @@ class CaseModel(_Model):
     params: dict[str, Any] = {}
     build: BuildModel = Field(default_factory=BuildModel)
     output: MapOutputModel = Field(default_factory=MapOutputModel)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
 
     @model_validator(mode="after")
@@ -144,6 +146,9 @@ class CaseModel(_Model):
                     setattr(over, bound, parse_quantity(value, dim))
                 except UnitError as exc:
                     raise _rule(f"axes.{key}.{bound}", value, str(exc)) from None
+            if over.n is not None and over.n > self.limits.map_points:  # before any array of n nodes exists
+                raise _rule(f"axes.{key}.n", over.n, f"is more than limits.map_points = {self.limits.map_points} "
+                            "points on one axis; use fewer nodes (or raise limits.map_points)")
             if over.nodes is not None:
                 if any(getattr(over, k) is not None for k in ("lo", "hi", "n")):
                     raise _rule(f"axes.{key}.nodes", over.nodes, "cannot be combined with lo, hi, n; give one or the other")
@@ -213,11 +218,60 @@ class MapSetup:
         return int(np.prod([a.n for a in self.axes]))
 
 
+# Measured CPU seconds per point at each kind's default resolution (the shipped maps' provenance:
+# build time x workers / points): ball_ball (fine) 844 s x 2 / 480, EHL ball inner race 960 s / 168,
+# outer race 353 s / 168, roller race 39 s x 2 / 693.  Other kinds: 1 s.
+SECONDS_PER_POINT = {"ball_ball": 3.5, "ehl_ball_inner_race": 5.7, "ehl_ball_outer_race": 2.1,
+                     "ehl_roller_race": 0.11}
+# Memory per map point while a map is built: the point's dict and its hash, the result's dict of
+# outputs (about 1 kB in CPython), the value arrays; about four times that:
+BYTES_PER_POINT = 4096
+WARN_HOURS = 1.0  # a build estimated to take longer is announced with a warning
+
+
+def check_size(case: CaseModel, axes) -> None:
+    """Refuse a map with more points than ``limits.map_points`` or more memory than the limit; warn
+    when the estimated build time exceeds WARN_HOURS (:mod:`coupling.limits`)."""
+    from . import limits
+
+    points = int(np.prod([a.n for a in axes], dtype=float))
+    largest = max(axes, key=lambda a: a.n)
+    shape = " x ".join(str(a.n) for a in axes)
+    subject = f"axes.{largest.key}.n = {largest.n}: {shape} = {points:.3g} map points"
+    if points > case.limits.map_points:
+        raise InputError(f"{subject}, more than limits.map_points = {case.limits.map_points}; use fewer nodes "
+                         "(or raise limits.map_points)")
+    limits.check_memory(case, subject, points * BYTES_PER_POINT, "use fewer nodes")
+    workers = effective_workers(case, points, quiet=True) if not case.build.scheduler else 1
+    hours = points * SECONDS_PER_POINT.get(case.kind, 1.0) / workers / 3600.0
+    if hours > WARN_HOURS:
+        log.warning("%s: the build will take about %.3g h on %d process(es) (%.3g s of one core per point, "
+                    "measured at the default resolution)", subject, hours, workers,
+                    SECONDS_PER_POINT.get(case.kind, 1.0))
+
+
+def effective_workers(case: CaseModel, points: int, quiet: bool = False) -> int:
+    """Local processes of a build: ``build.workers`` (0: the usable cores), capped at the most points
+    one pass solves (the grid or the accuracy points); a warning when above the usable cores."""
+    cores = maps.default_workers()
+    asked = case.build.workers or cores
+    most = max(points, case.build.accuracy_points, 1)
+    workers = min(asked, most)
+    if not quiet:
+        if workers < asked:
+            log.info("build.workers = %d capped at %d: no pass solves more points", asked, workers)
+        if workers > cores:
+            log.warning("build.workers = %d is more than the %d usable core(s): the extra processes only share "
+                        "them and each holds its own memory", workers, cores)
+    return workers
+
+
 def build(case: CaseModel) -> MapSetup:
     """Kind, parameters and axes of a validated case (no solve)."""
     kind = maps.get_kind(case.kind)
     params = {**kind.default_params(), **case.params}
     axes = maps.resolve_axes(kind, {k: v.model_dump(exclude_none=True) for k, v in case.axes.items()})
+    check_size(case, axes)
     by_key = {a.key: a for a in axes}
     for key in case.output.field_at:
         if key not in by_key or key == axes[0].key:
@@ -229,7 +283,7 @@ def build(case: CaseModel) -> MapSetup:
 def describe(case: CaseModel, setup: MapSetup) -> str:
     axes = " x ".join(f"{a.name} {a.lo:.4g}..{a.hi:.4g} ({a.n}, {a.scale})" for a in setup.axes)
     where = f"Dask scheduler {case.build.scheduler}" if case.build.scheduler else \
-        f"{case.build.workers or maps.default_workers()} local process(es)"
+        f"{effective_workers(case, setup.points, quiet=True)} local process(es)"
     return (f"map scene: kind {setup.kind.name}, {axes} = {setup.points} points + {case.build.accuracy_points} "
             f"accuracy points on {where}, {case.build.method} interpolation")
 
@@ -334,7 +388,8 @@ def run(case: CaseModel, out_dir=None, *, name: str = "map", source: str = "", s
     log.info("%s", describe(case, setup))
     b = case.build
     cache = Path(b.cache_dir) if b.cache_dir else (Path(out_dir) / ".map-cache" if out_dir is not None else None)
-    fmap = maps.build_map(setup.kind, case.params, setup.axes, method=b.method, workers=b.workers or None,
+    workers = None if b.scheduler else effective_workers(case, setup.points)
+    fmap = maps.build_map(setup.kind, case.params, setup.axes, method=b.method, workers=workers,
                           scheduler=b.scheduler or None, cache_dir=cache, progress=True,
                           accuracy_points=b.accuracy_points, seed=b.seed, on_failure=b.on_failure)
     summary = outputs.run_summary(case, name, smoke, summarise(case, setup, fmap), t0, t_build)

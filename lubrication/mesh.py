@@ -19,6 +19,8 @@ from skfem.mesh.mesh_dg import MeshDG
 
 from .errors import InputError
 
+PERIODIC_MIN_CELLS = 3  # fewest cells across a periodic direction
+
 
 def _tag(mesh, names):
     """Name boundary facets by tests on their midpoints.
@@ -76,6 +78,11 @@ def rectangle(xs, ys, cell: str = "quad", periodic_x: bool = False) -> skfem.Mes
         raise InputError(f"mesh cell = {cell!r} is not allowed; choose 'quad' or 'tri'")
     if len(xs) < 2 or len(ys) < 2:
         raise InputError("a rectangle mesh needs at least 2 points in each direction")
+    if periodic_x and len(xs) < PERIODIC_MIN_CELLS + 1:
+        # 1 cell: scikit-fem's "duplicate index" (the element is its own periodic neighbour); 2 cells: the
+        # two share both seams and the boundary facets are lost
+        raise InputError(f"a periodic rectangle mesh needs at least {PERIODIC_MIN_CELLS} cells along x "
+                         f"(got {len(xs) - 1})")
     if periodic_x:
         cls = skfem.MeshQuad1DG if cell == "quad" else skfem.MeshTri1DG
         m = cls.init_tensor(xs, ys, periodic=[0])

@@ -95,3 +95,73 @@ def test_pressure_divergence_is_reported_for_barus_pole():
                 velocity_lower=(2.0,), options=SolverOptions(max_iter=30))
     with pytest.raises(ConvergenceError):
         film.solve()
+
+
+# --------------------------------------------------------------------------- bearing and slot geometry
+from coupling.config import CASES_DIR, CaseError, load_case  # noqa: E402
+
+DROP = CASES_DIR / "cageless_6206_10krpm_short.toml"
+EHL_BALL = CASES_DIR / "ehl_ball_inner_race.toml"
+
+
+@pytest.mark.parametrize("case, override, message", [
+    # an inner groove radius smaller than the ball gave "bearing.diametral_clearance = 0.0 m must lie in
+    # (2.86e-05, -0.002288) m": the key that is wrong is the groove radius
+    (DROP, "bearing.inner_groove_radius='4 mm'",
+     "bearing.inner_groove_radius = 0.004 must be > ball_diameter/2 = 0.0047625 m"),
+    (DROP, "bearing.outer_groove_radius='4.5 mm'",
+     "bearing.outer_groove_radius = 0.0045 must be > ball_diameter/2 = 0.0047625 m"),
+    (DROP, "bearing.diametral_clearance='2 mm'",
+     "bearing.diametral_clearance = 0.002 must be in (-1.665e-05, 0.001332) m"),
+    (DROP, "bearing.ball_diameter='50 mm'", "bearing.ball_diameter = 0.05 must be < pitch_diameter = 0.046005 m"),
+    # 1 mm gave "gamma = D cos(alpha)/d_m = -0.1038; it must be < 1"
+    (EHL_BALL, "bearing.inner_groove_radius='4 mm'", "bearing.inner_groove_radius = 0.004 m must be > D/2"),
+    (EHL_BALL, "bearing.diametral_clearance='1 mm'",
+     "bearing.diametral_clearance = 0.001 must be < 2 B D = 0.000666 m, where the free contact angle reaches 90 deg"),
+    # slots: a slot deeper than the ring ran silently
+    (DROP, "slots.depth='20 mm'",
+     "slots.depth = 0.02 must be < 0.003235 m, the outer ring's wall under the groove"),
+    (DROP, "slots.race='inner'", None),
+    (DROP, "slots.length='200 mm'", "slots.length = 0.2 must be < 0.174453 m, the race's circumference"),
+    (DROP, "slots.azimuths=['0 deg', '10 deg']",
+     "slots.length = 0.0115 must be < 0.00484591 m, the arc between the closest two slots"),
+    (DROP, "slots.width='10 mm'", "slots.width = 0.01 must be < 0.00981 m, the groove diameter"),
+    (DROP, "slots.edge_radius='1 mm'", "slots.edge_radius = 0.001 must be < 0.001 m"),
+    (DROP, "bearing.outer_diameter='55 mm'", "bearing.outer_diameter = 0.055 must be > pitch_diameter + "
+                                             "ball_diameter = 0.05553 m"),
+])
+def test_bearing_geometry_names_the_wrong_key(case, override, message):
+    if case == EHL_BALL and override.startswith("bearing.inner_groove"):
+        from coupling import ehl_scene  # the bearing's contact names it (tests/test_cli.py, exit 2)
+
+        with pytest.raises(InputError, match=r"bearing.inner_groove_radius = 0.004 m must be > D/2"):
+            ehl_scene.build(load_case(case, overrides=[override]))
+        return
+    if message is None:  # the same slot in the inner ring fits its 3.24 mm wall
+        assert load_case(case, overrides=[override]).slots.race == "inner"
+        return
+    with pytest.raises(CaseError) as info:
+        load_case(case, overrides=[override])
+    text = str(info.value)
+    assert text.startswith(message), text
+    assert "\n" not in text
+
+
+def test_no_range_message_is_reversed():
+    """Every "(lo, hi)" or "[lo, hi]" interval a bad bearing or slot value produces reads lo < hi."""
+    import re
+
+    overrides = [f"bearing.{k}='{v} mm'" for k in ("inner_groove_radius", "outer_groove_radius")
+                 for v in (1, 4, 4.76)] + [f"bearing.diametral_clearance='{v} mm'" for v in (-1, 1, 2, 5)]
+    from coupling import dynamics_scene, ehl_scene
+
+    checked = 0
+    for case, scene in ((DROP, dynamics_scene), (EHL_BALL, ehl_scene)):
+        for o in overrides:
+            try:
+                scene.build(load_case(case, overrides=[o]))  # the case, then the model built from it
+            except InputError as exc:
+                checked += 1
+                for lo, hi in re.findall(r"[(\[](-?[0-9.e+-]+), (-?[0-9.e+-]+)[)\]]", str(exc)):
+                    assert float(lo) < float(hi), str(exc)
+    assert checked == 2 * len(overrides)  # every one is refused (1 mm of clearance: no equilibrium under the load)
