@@ -91,3 +91,25 @@ def test_film_newton_converges_at_its_roundoff_floor(roundoff):
     noisy = film.solve()
     assert np.max(np.abs(noisy.pressure - clean.pressure)) < 1e-9 * np.max(clean.pressure)
     np.testing.assert_array_equal(noisy.full_film, clean.full_film)
+
+
+def test_fine_linear_film_converges_at_its_roundoff_floor():
+    """A 1-D inclined slider (K = 1) on 1e5 P1 cells (AMG-CG linear solves): linear, so the first
+    Newton step is exact up to the linear solver's tolerance, but its residual floor (0.2 eps of its terms, measured) is 1.8e-7 of |R_0| and its
+    Newton update 5e-10 |p| (cond ~ N^2): before the round-off-floor test it ran out of 60
+    iterations.  Now it stops in 2 and matches the closed-form pressure to 1e-7 p_max (measured
+    3.3e-10; 5.7e-7 on 1e3 cells, whose h^2 scaling would give 6e-11 here: the rest is round-off
+    and the linear solver)."""
+    import numpy as np
+    from lubrication import Film, InclinedSlider, Lubricant
+    from lubrication import mesh
+    from lubrication.closed_form import inclined_slider_pressure
+
+    L, eta, U = 0.01, 0.01, 1.0
+    film = Film(mesh.interval(0, L, 100_000), InclinedSlider(2e-6, 1e-6, L), Lubricant.newtonian(eta),
+                velocity_lower=(U,))
+    s = film.solve()
+    x = s.basis.doflocs[0]
+    ref = inclined_slider_pressure(x, 2e-6, 1e-6, L, eta, U / 2)
+    assert s.info["iterations"] <= 3
+    assert np.max(np.abs(s.pressure - ref)) < 1e-7 * np.max(ref)
