@@ -53,6 +53,11 @@ def dead_pid() -> int:
     return proc.pid
 
 
+posix_signals = pytest.mark.skipif(not hasattr(os, "killpg"), reason="POSIX process groups and signals")
+proc_children = pytest.mark.skipif(not Path(f"/proc/self/task/{os.getpid()}/children").exists(),
+                                   reason="needs Linux /proc/<pid>/task/<tid>/children")
+
+
 def cli_process(*argv, **kwargs):
     """``python -m coupling.cli ARGV`` from this source tree, in its own process group."""
     env = {**os.environ, "PYTHONPATH": str(WORKTREE)}
@@ -285,6 +290,7 @@ def test_kill_in_the_middle_of_a_commit_leaves_every_file_listed(tmp_path, monke
 # item 4 (f): a closed stdout; item 6: --help
 
 
+@posix_signals
 @pytest.mark.parametrize("argv", [("run", SLIDER, "--dry-run"), ("cases",)])
 def test_closed_stdout_exits_141_quietly(argv):
     """The reader of the pipe is gone before lubedyn writes (``lubedyn ... | head`` with head done):
@@ -348,6 +354,7 @@ def test_exceptions_caused_by_an_interrupt_are_interrupts(capsys, monkeypatch):
         cli.main(["info"])
 
 
+@posix_signals
 def test_ctrl_c_at_any_moment_of_a_dynamics_run(tmp_path):
     """SIGINT at a sweep of moments of a dynamics run (while scipy, numba kernels, VTK load, during the
     integration): each ends with exit 130, the one line 'lubedyn: interrupted', no traceback and no
@@ -421,6 +428,8 @@ def wait_for(condition, timeout=60.0):
         time.sleep(0.02)
 
 
+@posix_signals
+@proc_children
 def test_ctrl_c_during_a_map_build_stops_at_once_and_keeps_the_points(tmp_path):
     """Ctrl-C (SIGINT to the process group, as a terminal sends it) while 2 workers solve 45 points of
     0.3 s (7 s of work): exit 130 within 3 s with one line; every point finished is in the cache (at
@@ -442,6 +451,8 @@ def test_ctrl_c_during_a_map_build_stops_at_once_and_keeps_the_points(tmp_path):
     assert not (tmp_path / "out" / "summary.json").exists()
 
 
+@posix_signals
+@proc_children
 def test_workers_die_with_a_killed_parent(tmp_path):
     """SIGKILL of the CLI process during a map build: its pool workers end within 5 s (they used to
     live on as orphans holding the parent's pipes); the points they finished are in the cache."""
