@@ -70,12 +70,19 @@ def _case_path(text: str) -> Path:
         raise CaseError(f"case file {text!r} is a directory; expected a .toml case file")
     if not path.exists() and path.suffix == "" and (CASES_DIR / f"{text}.toml").is_file():
         return CASES_DIR / f"{text}.toml"
-    if not path.exists() and path.suffix in ("", ".toml") and len(path.parts) == 1:
-        names = [p.stem for p in bundled_cases()]
-        close = difflib.get_close_matches(path.stem, names, n=3)
+    if path.exists():
+        return path
+    if path.suffix in ("", ".toml") and len(path.parts) == 1:
+        close = difflib.get_close_matches(path.stem, [p.stem for p in bundled_cases()], n=3)
         if close:
             raise CaseError(f"case file {text!r} not found, nor a bundled case of that name; did you mean "
                             f"{' or '.join(map(repr, close))}? ('lubedyn cases' lists them)")
+    if path.parent.is_dir():  # a typo in a path: the case files next to it
+        siblings = {p.name: p for p in path.parent.glob("*.toml")}
+        close = difflib.get_close_matches(path.name, list(siblings), n=3)
+        if close:
+            raise CaseError(f"case file {text!r} not found; did you mean "
+                            f"{' or '.join(repr(str(siblings[c])) for c in close)}?")
     return path
 
 

@@ -95,15 +95,20 @@ def test_directory_as_case_file_says_it_is_a_directory(tmp_path, capsys):
     one_line_error(err, f"case file {str(tmp_path)!r} is a directory; expected a .toml case file")
 
 
-@pytest.mark.parametrize("typo, meant", [("journal_finit", "journal_finite"), ("rayleigh_stp", "rayleigh_step"),
-                                         ("inclined_slider.tom", None)])
-def test_bundled_name_typo_gets_did_you_mean(capsys, typo, meant):
+@pytest.mark.parametrize("typo, meant", [
+    ("journal_finit", "'journal_finite'"), ("rayleigh_stp.toml", "'rayleigh_step'"),
+    (str(CASES_DIR / "inclined_sldier.toml"), repr(str(CASES_DIR / "inclined_slider.toml"))),
+    ("inclined_slider.tom", None), ("nothing_like_a_case", None)])
+def test_case_name_typo_gets_did_you_mean(tmp_path, monkeypatch, capsys, typo, meant):
+    """A bare name close to a bundled case, or a path close to a case file next to it: 'did you mean'."""
+    monkeypatch.chdir(tmp_path)
     code, _, err = run(capsys, "validate", typo)
     assert code == 2
     if meant:
-        one_line_error(err, f"case file {typo!r} not found", f"did you mean {meant!r}?")
-    else:  # not a bare name: just "not found"
-        one_line_error(err, "not found")
+        one_line_error(err, f"case file {typo!r} not found", f"did you mean {meant}")
+    else:
+        one_line_error(err, f"case file {typo!r} not found")
+        assert "did you mean" not in err
 
 
 def test_empty_out_is_refused_and_nothing_is_written(tmp_path, capsys, monkeypatch):
@@ -209,6 +214,38 @@ def test_stale_staging_folders_of_dead_runs_are_removed(tmp_path, capsys):
     assert not any(p.exists() for p in (*stale, legacy_old))
     assert live.is_dir() and legacy_new.is_dir()
     assert (out / "summary.json").is_file()
+
+
+@posix_signals
+def test_run_killed_while_writing_leaves_nothing_after_the_next_run(tmp_path, capsys):
+    """SIGKILL of a real run in the middle of its write (the fields and the plot staged, the summary
+    not yet): the previous outputs stay whole, and the next run removes the staging folder (it used
+    to stay for ever, one more with each kill)."""
+    out = tmp_path / "out"
+    assert run(capsys, "run", SLIDER, "--smoke", "--out", out)[0] == 0
+    before = {k: v for k, v in tree(out).items()}
+    script = textwrap.dedent(f"""
+        import os, signal, sys
+        sys.path.insert(0, {str(WORKTREE)!r})
+        from coupling import cli, outputs
+        real = outputs.write_json
+        def killed(path, mapping):
+            if path.name == "summary.json" and path.parent.name.startswith(".staging-"):
+                os.kill(os.getpid(), signal.SIGKILL)
+            return real(path, mapping)
+        outputs.write_json = killed
+        cli.main(["run", {str(SLIDER)!r}, "--smoke", "--set", "motion.velocity_lower=50 m/s", "--out", {str(out)!r}])
+    """)
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == -signal.SIGKILL
+    staging = list(out.glob(".staging-*"))
+    assert len(staging) == 1 and {p.name for p in staging[0].iterdir()} == {"case.resolved.toml", "film.vtu",
+                                                                            "pressure.png"}
+    assert {k: v for k, v in tree(out).items() if not k.startswith(".staging-")} == before
+    assert run(capsys, "run", SLIDER, "--smoke", "--out", out)[0] == 0
+    assert not list(out.glob(".staging-*"))
+    assert sorted(p.name for p in out.iterdir()) == ["case.resolved.toml", "film.vtu", "manifest.json",
+                                                     "pressure.png", "summary.json"]
 
 
 def test_rerun_with_fewer_outputs_replaces_the_previous_run(tmp_path, capsys):
