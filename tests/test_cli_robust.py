@@ -435,6 +435,7 @@ delay = {delay}
 log_dir = "{log_dir}"
 [build]
 workers = 2
+accuracy_points = 0
 [output]
 write = ["map"]
 """
@@ -472,7 +473,7 @@ def test_ctrl_c_during_a_map_build_stops_at_once_and_keeps_the_points(tmp_path):
     0.3 s (7 s of work): exit 130 within 3 s with one line; every point finished is in the cache (at
     most the 2 in flight are lost); the rerun solves only the rest.  Before: the build ran every queued
     point to the end, and points came to the cache only per finished line of 5."""
-    proc, logs, store, _ = map_process(tmp_path, 0.3)
+    proc, logs, store, script = map_process(tmp_path, 0.3)
     wait_for(lambda: store.is_dir() and len(list(store.glob("*.json"))) >= 3)
     workers = children(proc.pid)
     t0 = time.monotonic()
@@ -486,6 +487,12 @@ def test_ctrl_c_during_a_map_build_stops_at_once_and_keeps_the_points(tmp_path):
     calls = len(list(logs.iterdir()))
     assert 3 <= cached < 45 and calls - cached <= 2, (cached, calls)
     assert not (tmp_path / "out" / "summary.json").exists()
+    # the rerun takes the points the workers stored and solves only the rest
+    rerun = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert rerun.returncode == 0, rerun.stderr
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["Points from cache [-]"] == cached and summary["Points solved [-]"] == 45 - cached
+    assert len(list(logs.iterdir())) == calls + 45 - cached
 
 
 @posix_signals
