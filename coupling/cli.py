@@ -132,8 +132,13 @@ def _load(args):
 
     from .config import read_toml, validate_raw
 
+    from .config import CaseError
+
     path = _case_path(args.case)
-    raw = read_toml(path)
+    try:
+        raw = read_toml(path)
+    except OSError as exc:  # e.g. no read permission: an input error, not a failed run
+        raise CaseError(f"case file {str(path)!r} cannot be read: {exc.strerror or exc}") from None
     try:
         return path, raw, validate_raw(raw, smoke=args.smoke, overrides=args.set or ())
     except InputError as exc:

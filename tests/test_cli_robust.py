@@ -111,6 +111,24 @@ def test_case_name_typo_gets_did_you_mean(tmp_path, monkeypatch, capsys, typo, m
         assert "did you mean" not in err
 
 
+def test_unreadable_case_file_is_an_input_error(tmp_path, capsys, monkeypatch):
+    """A case file that cannot be read (no permission: simulated, the tests may run as root): exit 2
+    naming the file and the cause (was exit 1 with the raw errno text)."""
+    case = tmp_path / "locked.toml"
+    case.write_text(SLIDER.read_text())
+    real = Path.read_text
+
+    def locked(self, *args, **kwargs):
+        if self == case:
+            raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(self))
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(Path, "read_text", locked)
+    code, _, err = run(capsys, "validate", case)
+    assert code == 2
+    one_line_error(err, f"case file {str(case)!r} cannot be read: Permission denied")
+
+
 def test_empty_out_is_refused_and_nothing_is_written(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     code, _, err = run(capsys, "run", SLIDER, "--smoke", "--out", "")
