@@ -43,6 +43,7 @@ MANIFEST_FORMAT = "lubedyn run manifest"
 _STAGING, _OLD = ".staging-", ".old-"
 _OWNED = re.compile(r"^\.(?:staging|old)-(\d+)-")  # hidden folders of a commit, with the owning process id
 _LEGACY_AGE = 600.0  # [s] a staging folder without a process id (older lubedyn) is stale after this
+_active: set = set()  # staging folders of this process being written
 
 
 class OutputError(LubedynError, OSError):
@@ -277,6 +278,7 @@ def staged(out_dir):
         stage = Path(tempfile.mkdtemp(prefix=f"{_STAGING}{os.getpid()}-", dir=out))
     except OSError as exc:
         raise OutputError(out, _cause(exc)) from exc
+    _active.add(stage)
     try:
         yield stage
         _commit(stage, out)
@@ -286,6 +288,14 @@ def staged(out_dir):
             error = OutputError(out / error.path.relative_to(stage), error.cause)
         raise error from exc
     finally:
+        shutil.rmtree(stage, ignore_errors=True)
+        _active.discard(stage)
+
+
+def discard_staging() -> None:
+    """Remove the staging folders of the outputs this process is writing (the CLI calls it when it
+    ends at once on Ctrl-C; the files already in place stay whole)."""
+    for stage in list(_active):
         shutil.rmtree(stage, ignore_errors=True)
 
 
