@@ -540,3 +540,37 @@ def test_workers_die_with_a_killed_parent(tmp_path):
     assert proc.stdout.read() == ""  # the pipes close: no worker holds them any more
     cached = len(list(store.glob("*.json")))
     assert cached >= 2 and len(list(logs.iterdir())) - cached <= 2
+
+
+@posix_signals
+@pytest.mark.parametrize("platform", ["linux", "darwin"])
+def test_die_with_parent_on_linux_and_elsewhere(platform):
+    """The means a map worker uses to end with its parent: Linux prctl(PR_SET_PDEATHSIG), elsewhere a
+    thread polling getppid() (exercised here by posing as macOS).  The parent is SIGKILLed; the child
+    must be gone within 3 s."""
+    if platform == "linux" and not sys.platform.startswith("linux"):
+        pytest.skip("prctl is Linux only")
+    script = textwrap.dedent(f"""
+        import multiprocessing, os, sys, time
+        sys.path.insert(0, {str(WORKTREE)!r})
+        from coupling import maps
+
+        def child(parent):
+            sys.platform = {platform!r}
+            os.write(1, f"means={{maps._die_with_parent(parent)}}\\n".encode())  # one write: no interleaving
+            time.sleep(60)
+
+        if __name__ == "__main__":
+            p = multiprocessing.get_context("fork").Process(target=child, args=(os.getpid(),))
+            p.start()
+            os.write(1, f"pid={{p.pid}}\\n".encode())
+            time.sleep(60)
+    """)
+    parent = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    lines = dict(parent.stdout.readline().strip().split("=") for _ in range(2))
+    child_pid, means = int(lines["pid"]), lines["means"]
+    assert means == ("prctl" if platform == "linux" else "watchdog thread")
+    assert alive(child_pid)
+    parent.kill()
+    parent.wait()
+    wait_for(lambda: not alive(child_pid), timeout=3)
