@@ -27,9 +27,12 @@ module             responsibility
 ``dynamics_scene`` dynamics scene: the cage-less ball bearing of paper B ->
                    integrate -> collisions, Lyapunov exponents, spectrum,
                    time series, ``.pvd`` of balls, rings and films, PNGs
-``outputs``        atomic writers (temporary file + rename) for run outputs
+``outputs``        atomic writers (temporary file + rename) for run outputs;
+                   a run's folder: staging, ``manifest.json``, stale
+                   staging folders of killed runs removed
 ``cli``            ``lubedyn run | validate | cases | info``; exit codes
-                   0 ok, 2 input error, 1 failed solve
+                   0 ok, 1 failed solve, 2 input error, 3 output not
+                   writable, 130 interrupted, 141 stdout closed
 =================  ==========================================================
 
 Planned: the dynamics scene of paper A (tapered roller bearing).  ``coupling``
@@ -37,9 +40,17 @@ imports ``lubrication`` and ``dynamics``; never the other way round.
 """
 from __future__ import annotations
 
-try:
+
+def __getattr__(name: str):
+    """``__version__`` looked up on first use: importing ``coupling`` (and so starting the CLI, whose
+    SIGINT handling begins in ``cli.main``) stays free of ``importlib.metadata`` (40 ms)."""
+    if name != "__version__":
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     from importlib.metadata import PackageNotFoundError, version
 
-    __version__ = version("lubedyn")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0+unknown"
+    try:
+        value = version("lubedyn")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree
+        value = "0+unknown"
+    globals()["__version__"] = value
+    return value

@@ -12,10 +12,17 @@
 ``--dry-run`` validates and builds the mesh and film, prints the plan and the
 resolved case, and writes nothing.
 
-Exit codes: 0 success; 2 input error (bad TOML, unknown key, wrong unit,
-value out of range, missing file, impossible geometry); 1 a solve that did not
-converge or an output that could not be written.  Errors are one line on
-stderr, prefixed ``lubedyn: error:``, with no traceback.
+Exit codes: 0 success; 1 a solve that did not converge; 2 input error (bad
+TOML, unknown key, wrong unit, value out of range, missing file, impossible
+geometry, an empty ``--out``); 3 an output that cannot be written (read-only
+folder, a file where a folder is needed, disk full); 130 interrupted (Ctrl-C);
+141 standard output closed before everything was written (``| head``).
+Errors are one line on stderr, prefixed ``lubedyn: error:``, with no
+traceback; an interrupt prints ``lubedyn: interrupted``.
+
+Nothing heavy is imported before :func:`main` has installed its SIGINT
+handler, so that a Ctrl-C at any moment (while scipy, VTK or numba load)
+ends with that one line.
 """
 from __future__ import annotations
 
@@ -23,13 +30,26 @@ import argparse
 import contextlib
 import logging
 import os
+import signal
 import sys
+import threading
 from pathlib import Path
 
-from lubrication.errors import ConvergenceError, InputError
-
-EXIT_OK, EXIT_FAILED, EXIT_INPUT = 0, 1, 2
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_OUTPUT, EXIT_INTERRUPTED, EXIT_PIPE = 0, 1, 2, 3, 130, 141
 log = logging.getLogger("lubedyn")
+_interrupt = threading.Event()  # set by the SIGINT handler of main()
+
+
+class _StdoutClosed(Exception):
+    """Standard output was closed by its reader (``lubedyn ... | head``)."""
+
+
+def _say(*args) -> None:
+    """``print`` to stdout; a closed pipe ends the command quietly (:class:`_StdoutClosed`)."""
+    try:
+        print(*args)
+    except BrokenPipeError:
+        raise _StdoutClosed from None
 
 
 class _Parser(argparse.ArgumentParser):
@@ -40,19 +60,113 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _case_path(text: str) -> Path:
-    from .config import CASES_DIR
+    """The case file of ``text``: a path, or the name of a bundled case (with "did you mean")."""
+    import difflib
+
+    from .config import CASES_DIR, CaseError, bundled_cases
 
     path = Path(text)
+    if path.is_dir():
+        raise CaseError(f"case file {text!r} is a directory; expected a .toml case file")
     if not path.exists() and path.suffix == "" and (CASES_DIR / f"{text}.toml").is_file():
         return CASES_DIR / f"{text}.toml"
+    if path.exists():
+        return path
+    if path.suffix in ("", ".toml") and len(path.parts) == 1:
+        close = difflib.get_close_matches(path.stem, [p.stem for p in bundled_cases()], n=3)
+        if close:
+            raise CaseError(f"case file {text!r} not found, nor a bundled case of that name; did you mean "
+                            f"{' or '.join(map(repr, close))}? ('lubedyn cases' lists them)")
+    if path.parent.is_dir():  # a typo in a path: the case files next to it
+        siblings = {p.name: p for p in path.parent.glob("*.toml")}
+        close = difflib.get_close_matches(path.name, list(siblings), n=3)
+        if close:
+            raise CaseError(f"case file {text!r} not found; did you mean "
+                            f"{' or '.join(repr(str(siblings[c])) for c in close)}?")
     return path
 
 
+def _smoke_keys(table: dict, prefix: str = "") -> list[str]:
+    """Dotted keys of the values of a (nested) ``[smoke]`` table."""
+    keys = []
+    for key, value in table.items():
+        if isinstance(value, dict):
+            keys += _smoke_keys(value, prefix + key + ".")
+        else:
+            keys.append(prefix + key)
+    return keys
+
+
+def _in_smoke(exc, raw: dict) -> Exception:
+    """``exc`` (an error of the ``[smoke]`` variant only) re-worded to say so: ``smoke.KEY ...`` when it
+    names a key that the ``[smoke]`` table sets, else ``in [smoke]: ...``."""
+    from .config import CaseError
+
+    text = _one_line(exc)
+    keys = sorted(_smoke_keys(raw.get("smoke") or {}), key=len, reverse=True)
+    for key in keys:
+        if text.startswith(key) and text[len(key):len(key) + 1] in (" ", ":", ".", "[", ""):
+            return CaseError(f"smoke.{text}")
+    return CaseError(f"in [smoke]: {text}")
+
+
+def _check_smoke(raw: dict, overrides, exc) -> Exception:
+    """``exc`` raised by the ``--smoke`` variant of a case: if the case without its ``[smoke]`` table
+    validates and builds, the error lives in ``[smoke]`` and is re-worded to say so."""
+    from lubrication.errors import InputError
+
+    from .config import validate_raw
+
+    if not isinstance(raw.get("smoke"), dict):
+        return exc
+    try:
+        base = validate_raw(raw, smoke=False, overrides=overrides)
+        _scene(base)[1](base)
+    except InputError:
+        return exc  # the error is not the smoke table's alone
+    return _in_smoke(exc, raw)
+
+
 def _load(args):
-    from .config import load_case
+    from lubrication.errors import InputError
+
+    from .config import read_toml, validate_raw
+
+    from .config import CaseError
 
     path = _case_path(args.case)
-    return path, load_case(path, smoke=args.smoke, overrides=args.set or ())
+    try:
+        raw = read_toml(path)
+    except OSError as exc:  # e.g. no read permission: an input error, not a failed run
+        raise CaseError(f"case file {str(path)!r} cannot be read: {exc.strerror or exc}") from None
+    try:
+        return path, raw, validate_raw(raw, smoke=args.smoke, overrides=args.set or ())
+    except InputError as exc:
+        if args.smoke:
+            raise _check_smoke(raw, args.set or (), exc) from None
+        raise
+
+
+def _out_dir(args, path: Path) -> Path:
+    """The output folder: ``--out`` or ``runs/<case stem>``; refuses an empty ``--out`` (input error)
+    and, before any work, a folder that cannot be made (:class:`coupling.outputs.OutputError`)."""
+    from lubrication.errors import InputError
+
+    from .outputs import OutputError
+
+    if args.out is not None and not args.out.strip():
+        raise InputError(f"--out = {args.out!r}: an empty path; give a folder (default runs/{path.stem})")
+    out = Path(args.out) if args.out is not None else Path("runs") / path.stem
+    if out.exists() and not out.is_dir():
+        raise OutputError(out, "it is a file, not a folder")
+    parent = out
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if parent.exists() and not parent.is_dir():
+        raise OutputError(out, f"{parent} is a file, not a folder")
+    if parent.is_dir() and not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(out, f"permission denied on {parent}")
+    return out
 
 
 def _scene(case):
@@ -71,52 +185,72 @@ def _scene(case):
 
 
 def cmd_run(args) -> int:
+    from lubrication.errors import InputError
+
     from .config import resolved_toml
 
-    path, case = _load(args)
+    path, raw, case = _load(args)
     scene, build = _scene(case)
-    out = Path(args.out) if args.out else Path("runs") / path.stem
+    out = _out_dir(args, path)
     if args.dry_run:
-        built = build(case)
-        print(f"dry run: {scene.describe(case, built)}")
-        print(f"dry run: would write {out}/summary.json, case.resolved.toml"
-              + "".join(f", {f}" for f, k in scene.FIELD_FILES if k in case.output.write))
-        print(resolved_toml(case, f"dry run of {path}"))
+        try:
+            built = build(case)
+        except InputError as exc:
+            raise (_check_smoke(raw, args.set or (), exc) if args.smoke else exc) from None
+        _say(f"dry run: {scene.describe(case, built)}")
+        _say(f"dry run: would write {out}/summary.json, case.resolved.toml"
+             + "".join(f", {f}" for f, k in scene.FIELD_FILES if k in case.output.write) + ", manifest.json")
+        _say(resolved_toml(case, f"dry run of {path}"))
         return EXIT_OK
-    result = scene.run(case, out, name=path.stem, source=str(path), smoke=args.smoke)
+    try:
+        result = scene.run(case, out, name=path.stem, source=str(path), smoke=args.smoke)
+    except InputError as exc:
+        if not args.smoke:
+            raise
+        try:  # an error of the smoke variant's build: say that it lives in [smoke]
+            build(case)
+        except InputError:
+            raise _check_smoke(raw, args.set or (), exc) from None
+        raise
     s = result.summary
     if hasattr(scene, "headline"):  # the scene chooses what to show
         for line in scene.headline(s):
-            print(line)
-        print(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
+            _say(line)
+        _say(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
         return EXIT_OK
     shown = [k for k in s if k.startswith(("Load [", "Load per unit width [", "Load per length [", "Maximum pressure",
                                            "Hertz pressure", "Central film", "Minimum film", "Attitude angle",
                                            "Eccentricity ratio"))]
     for key in shown:
         if isinstance(s[key], (int, float)):
-            print(f"{key:<36} {s[key]:.6g}")
+            _say(f"{key:<36} {s[key]:.6g}")
     if "Newton iterations [-]" in s:
-        print(f"{'Newton iterations [-]':<36} {s.get('Newton iterations [-]')}, "
-              f"{s.get('Degrees of freedom [-]')} dofs, {s['Run time [s]']:.3g} s")
+        _say(f"{'Newton iterations [-]':<36} {s.get('Newton iterations [-]')}, "
+             f"{s.get('Degrees of freedom [-]')} dofs, {s['Run time [s]']:.3g} s")
     else:
-        print(f"{'Run time [s]':<36} {s['Run time [s]']:.3g}")
-    print(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
+        _say(f"{'Run time [s]':<36} {s['Run time [s]']:.3g}")
+    _say(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
     return EXIT_OK
 
 
 def cmd_validate(args) -> int:
-    from .config import read_toml, validate_raw
+    from lubrication.errors import InputError
 
-    path = _case_path(args.case)
-    raw = read_toml(path)
-    case = validate_raw(raw, smoke=args.smoke, overrides=args.set or ())
+    from .config import validate_raw
+
+    path, raw, case = _load(args)
     scene, build = _scene(case)
-    built = build(case)
+    try:
+        built = build(case)
+    except InputError as exc:
+        raise (_check_smoke(raw, args.set or (), exc) if args.smoke else exc) from None
     if not args.smoke and isinstance(raw.get("smoke"), dict):  # the smoke variant must be valid too
-        smoke_case = validate_raw(raw, smoke=True, overrides=args.set or ())
-        _scene(smoke_case)[1](smoke_case)
-    print(f"OK {path}: {scene.describe(case, built)}")
+        try:  # the base case is valid: an error here lives in [smoke]
+            smoke_case = validate_raw(raw, smoke=True, overrides=args.set or ())
+            _scene(smoke_case)[1](smoke_case)
+        except InputError as exc:
+            raise _in_smoke(exc, raw) from None
+    _say(f"OK {path}: {scene.describe(case, built)}")
     return EXIT_OK
 
 
@@ -132,7 +266,7 @@ def cmd_cases(args) -> int:
             description = tomllib.loads(path.read_text(encoding="utf-8")).get("description", "")
         except (OSError, tomllib.TOMLDecodeError) as exc:
             description = f"(unreadable: {' '.join(str(exc).split())})"
-        print(f"{path.stem:<{width}}  {description}")
+        _say(f"{path.stem:<{width}}  {description}")
     return EXIT_OK
 
 
@@ -157,7 +291,7 @@ def _versions() -> dict:
 
 def cmd_info(args) -> int:
     for key, value in _versions().items():
-        print(f"{key:<11} {value}")
+        _say(f"{key:<11} {value}")
     return EXIT_OK
 
 
@@ -165,8 +299,14 @@ def _parser() -> argparse.ArgumentParser:
     verbose = argparse.ArgumentParser(add_help=False)
     verbose.add_argument("-v", "--verbose", action="count", default=argparse.SUPPRESS,
                          help="more log output (-v info, -vv debug)")
-    p = _Parser(prog="lubedyn", description="Lubricant films and EHL contacts by finite elements; bearing dynamics (planned).",
-                parents=[verbose])
+    p = _Parser(prog="lubedyn", parents=[verbose], formatter_class=argparse.RawDescriptionHelpFormatter,
+                description="Lubricant films by finite elements, film maps and rolling-bearing dynamics.\n\n"
+                            "scenes: film (Reynolds films: sliders, pockets, journals, squeeze films),\n"
+                            "        ehl (isothermal EHL point and line contacts),\n"
+                            "        map (film maps swept over their axes, local processes or Dask),\n"
+                            "        dynamics (the cage-less ball bearing in numba: drop, steady, free)",
+                epilog="exit codes: 0 ok, 1 solve did not converge, 2 input error, 3 output cannot be written,\n"
+                       "130 interrupted, 141 stdout closed early")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     def with_case(sp):
@@ -217,25 +357,138 @@ def _logging_to_stderr(verbosity: int):
             lg.setLevel(saved[1][name])
 
 
+def _interrupted(exc: BaseException) -> bool:
+    """Whether ``exc`` comes from a Ctrl-C: the SIGINT handler ran, or a KeyboardInterrupt is in its
+    chain (numba's ``SystemError: CPUDispatcher ... returned a result with an exception set``, VTK's
+    ``ImportError: Failed to load vtkCommonMath`` when the interrupt lands inside their C code)."""
+    if _interrupt.is_set():
+        return True
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
+_program = False  # main() runs as the program (argv from sys.argv), not called by Python code
+
+
+def _exit_interrupted() -> int:
+    """The one line; as a program, end the process now (``os._exit(130)``) after removing the staging
+    folders of the outputs being written.
+
+    A KeyboardInterrupt raised into library code can leave it half-initialised (VTK's and llvmlite's
+    imports and object caches catch it, print it and go on; a numba dispatcher returns a
+    ``SystemError``) and the run then crashed or went on: in sweeps of SIGINT over a dynamics run,
+    tracebacks, segfaults (SIGSEGV in 8 of 105 interrupts over three sweeps) and runs that finished
+    regardless.
+    Ending at once loses nothing: outputs are written atomically, a staging folder of a killed run is
+    removed by the next run, map points are stored as they are solved, and map workers die with
+    their parent."""
+    _error_line("lubedyn: interrupted")
+    if _program:
+        outputs = sys.modules.get("coupling.outputs")
+        if outputs is not None:
+            outputs.discard_staging()
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(Exception):
+                stream.flush()
+        os._exit(EXIT_INTERRUPTED)
+    return EXIT_INTERRUPTED
+
+
+def _on_sigint(signum, frame):
+    _interrupt.set()
+    if _program:
+        _exit_interrupted()
+    raise KeyboardInterrupt
+
+
+@contextlib.contextmanager
+def _sigint_flag():
+    """While a command runs: SIGINT sets :data:`_interrupt`; as a program it ends the process
+    (:func:`_exit_interrupted`), called from Python it raises KeyboardInterrupt.  Only in the main
+    thread and where Python's default handler is installed (a handler of the caller is left alone).
+    As a program, SIGINT is ignored once the command is done (an interrupt during the interpreter's
+    exit gave status -2)."""
+    _interrupt.clear()
+    install = (threading.current_thread() is threading.main_thread()
+               and signal.getsignal(signal.SIGINT) is signal.default_int_handler)
+    if install:
+        signal.signal(signal.SIGINT, _on_sigint)
+    try:
+        yield
+    finally:
+        if install:
+            signal.signal(signal.SIGINT, signal.SIG_IGN if _program else signal.default_int_handler)
+
+
+def _quiet_stdout() -> None:
+    """After a closed pipe: point stdout at devnull so that the interpreter's final flush is silent."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):  # stdout is not a file (captured in a test)
+        pass
+
+
 def main(argv=None) -> int:
-    """Entry point of the ``lubedyn`` console script; returns the exit code."""
+    """Entry point of the ``lubedyn`` console script; returns the exit code.
+
+    With ``argv`` None (the program: the console script, ``python -m coupling.cli``) an interrupt
+    ends the process at once (:func:`_exit_interrupted`); called with a list, it raises
+    KeyboardInterrupt through the command and returns 130."""
+    global _program
     os.environ.setdefault("MPLBACKEND", "Agg")
     args = _parser().parse_args(argv)
+    _program = argv is None
+    with _sigint_flag():
+        try:
+            with _logging_to_stderr(getattr(args, "verbose", 0)):
+                code = args.func(args)
+            try:
+                sys.stdout.flush()
+            except BrokenPipeError:
+                raise _StdoutClosed from None
+            if _interrupt.is_set():  # a Ctrl-C that a callback dropped: the user asked to stop
+                raise KeyboardInterrupt
+            return code
+        except _StdoutClosed:
+            _quiet_stdout()
+            return EXIT_PIPE
+        except BaseException as exc:  # noqa: BLE001 - every exit path gives one line and an exit code
+            if isinstance(exc, SystemExit):
+                raise
+            if _interrupted(exc):
+                return _exit_interrupted()
+            from lubrication.errors import ConvergenceError, InputError
+
+            from .outputs import OutputError
+
+            if isinstance(exc, InputError):
+                code = EXIT_INPUT
+            elif isinstance(exc, ConvergenceError):
+                code = EXIT_FAILED
+            elif isinstance(exc, OutputError):
+                code = EXIT_OUTPUT
+            elif isinstance(exc, OSError):
+                code = EXIT_FAILED
+            else:
+                raise
+            _error_line(f"lubedyn: error: {_one_line(exc)}")
+            return code
+
+
+def _error_line(text: str) -> None:
     try:
-        with _logging_to_stderr(getattr(args, "verbose", 0)):
-            return args.func(args)
-    except InputError as exc:
-        print(f"lubedyn: error: {_one_line(exc)}", file=sys.stderr)
-        return EXIT_INPUT
-    except ConvergenceError as exc:
-        print(f"lubedyn: error: {_one_line(exc)}", file=sys.stderr)
-        return EXIT_FAILED
-    except OSError as exc:
-        print(f"lubedyn: error: {_one_line(exc)}", file=sys.stderr)
-        return EXIT_FAILED
-    except KeyboardInterrupt:
-        print("lubedyn: error: interrupted", file=sys.stderr)
-        return 130
+        if text == "lubedyn: interrupted" and sys.stderr.isatty():
+            text = "\r\x1b[K" + text  # over a progress bar that will not be closed
+        print(text, file=sys.stderr)
+    except (OSError, ValueError):  # stderr closed as well: nothing to tell
+        pass
 
 
 def _one_line(exc: BaseException) -> str:

@@ -6,7 +6,11 @@ parameters) on the tensor grid of its axes.  :func:`build_map` runs the solves
 (local processes by default, a Dask cluster when a scheduler is given, a
 progress bar, every solved point persisted at once so that a killed build
 resumes, the whole map rebuilt only when its inputs change) and returns a
-:class:`FilmMap`.
+:class:`FilmMap`.  Local workers store each point as they solve it, ignore
+SIGINT (the parent handles Ctrl-C), and die with the parent (Linux
+``PR_SET_PDEATHSIG``, else a thread that watches the parent's id); an
+interrupt or any error cancels the pending points and stops the workers at
+once, keeping every point already solved.
 
 :class:`FilmMap`
     axes (:class:`MapAxis`: name with unit, nodes, ``log``/``linear``), one
@@ -60,6 +64,7 @@ node (in index space), and the map lists it under
 from __future__ import annotations
 
 import concurrent.futures as cf
+import contextlib
 import dataclasses
 import hashlib
 import inspect
@@ -773,10 +778,19 @@ def _solve_point(evaluate, params, point):
         return "failed", f"{type(exc).__name__}: {' '.join(str(exc).split())}"
 
 
-def _solve_chunk(evaluate, params, points):
+def _solve_chunk(evaluate, params, points, store_root=None, keys=None):
     """Worker: :func:`_solve_point` for each point of a chunk, in order, in one process (a kind may
-    cache work shared by the chunk, e.g. an EHL solve shared by every slide-to-roll ratio)."""
-    return [_solve_point(evaluate, params, p) for p in points]
+    cache work shared by the chunk, e.g. an EHL solve shared by every slide-to-roll ratio).  With
+    ``store_root`` (a local folder), each solved point is stored at once (``keys``: the point hashes),
+    so that an interrupted or killed build keeps every point finished before it stopped."""
+    store = _PointStore(store_root) if store_root is not None else None
+    out = []
+    for i, p in enumerate(points):
+        status, payload = _solve_point(evaluate, params, p)
+        if store is not None and status == "ok":
+            store.put(keys[i], p, payload)
+        out.append((status, payload))
+    return out
 
 
 def _chunks(points, todo) -> list:
@@ -789,13 +803,89 @@ def _chunks(points, todo) -> list:
 
 
 def _limit_threads():
-    """Pool initializer: one BLAS thread per worker process (the workers already fill the cores)."""
+    """One BLAS thread per worker process (the workers already fill the cores)."""
     try:
         from threadpoolctl import threadpool_limits
 
         threadpool_limits(1)
     except Exception:  # noqa: BLE001 - threadpoolctl is optional
         pass
+
+
+def _die_with_parent(parent_pid: int) -> str:
+    """Make this (worker) process end when ``parent_pid`` does; returns the means used.
+
+    Linux: ``prctl(PR_SET_PDEATHSIG, SIGKILL)``, then a check that the parent did not die before it
+    took effect.  Elsewhere: a daemon thread that polls ``os.getppid()`` twice a second."""
+    import signal
+    import sys
+
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            if libc.prctl(1, int(signal.SIGKILL), 0, 0, 0) == 0:  # 1 = PR_SET_PDEATHSIG
+                if os.getppid() != parent_pid:  # the parent died before prctl: nobody will signal us
+                    os._exit(1)
+                return "prctl"
+        except (OSError, AttributeError):  # pragma: no cover - no libc prctl
+            pass
+    import threading
+
+    def watch():
+        while os.getppid() == parent_pid:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="lubedyn-parent-watch", daemon=True).start()
+    return "watchdog thread"
+
+
+def _init_worker(parent_pid: int):
+    """Pool initializer: ignore SIGINT (the parent handles Ctrl-C and stops the workers), die with the
+    parent, one BLAS thread."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})  # blocked by the parent while forking
+    _die_with_parent(parent_pid)
+    _limit_threads()
+
+
+@contextlib.contextmanager
+def _sigint_blocked():
+    """Block SIGINT in this thread while workers are forked (they inherit the mask and set SIG_IGN
+    before unblocking), so that a Ctrl-C at that moment reaches the parent only."""
+    import signal
+    import threading
+
+    can = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
+    if can:
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        if can:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
+def _stop_pool(pool, timeout: float = 3.0):
+    """Cancel every pending chunk and end the workers now (an interrupt or an error): the points
+    they finished are already stored."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in processes:
+        with contextlib.suppress(Exception):
+            proc.terminate()
+    deadline = time.monotonic() + timeout
+    for proc in processes:
+        with contextlib.suppress(Exception):
+            proc.join(max(0.0, deadline - time.monotonic()))
+            if proc.is_alive():
+                proc.kill()
+                proc.join(1.0)
 
 
 def default_workers() -> int:
@@ -826,9 +916,9 @@ class _PointStore:
                 log.warning("ignoring unreadable cached point %s", path)
         return None
 
-    def put(self, key, point, result):
+    def put(self, key, point, result, *, write=True):
         self.memory[key] = result
-        if self.root is not None:
+        if self.root is not None and write:
             outputs.write_text(self.root / f"{key}.json",
                                json.dumps({"point": point, "outputs": result}, default=_json_default))
 
@@ -853,10 +943,10 @@ def solve_points(kind, params: dict, points: list, *, workers=None, scheduler=No
 
     bar = tqdm(total=len(todo), desc=desc, unit="pt", disable=None if progress else True, leave=False)
 
-    def accept(i, status, payload):
+    def accept(i, status, payload, stored=False):
         if status == "ok":
             results[i] = payload
-            store.put(keys[i], points[i], payload)
+            store.put(keys[i], points[i], payload, write=not stored)
             info["solved"] += 1
         else:
             info["failed"].append((i, points[i], payload))
@@ -876,12 +966,21 @@ def solve_points(kind, params: dict, points: list, *, workers=None, scheduler=No
 
             info["backend"] = f"local processes ({workers})"
             ctx = multiprocessing.get_context("fork") if hasattr(os, "fork") else None
-            with cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_limit_threads) as pool:
-                futures = {pool.submit(_solve_chunk, kind.evaluate, params, [points[i] for i in chunk]): chunk
-                           for chunk in _chunks(points, todo)}
+            pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
+                                          initargs=(os.getpid(),))
+            root = str(store.root) if store.root is not None else None
+            try:
+                with _sigint_blocked():
+                    futures = {pool.submit(_solve_chunk, kind.evaluate, params, [points[i] for i in chunk],
+                                           root, [keys[i] for i in chunk]): chunk
+                               for chunk in _chunks(points, todo)}
                 for fut in cf.as_completed(futures):
                     for i, r in zip(futures[fut], fut.result()):
-                        accept(i, *r)
+                        accept(i, *r, stored=root is not None)
+            except BaseException:  # Ctrl-C or an error: do not wait for the queued points
+                _stop_pool(pool)
+                raise
+            pool.shutdown(wait=True)
     finally:
         bar.close()
     return results, info
@@ -908,9 +1007,14 @@ def _solve_dask(kind, params, points, todo, scheduler, accept) -> str:
         futures = client.map(_solve_chunk, [kind.evaluate] * len(chunks), [params] * len(chunks),
                              [[points[i] for i in chunk] for chunk in chunks], pure=False)
         index = {f.key: chunk for f, chunk in zip(futures, chunks)}
-        for fut in as_completed(futures):
-            for i, r in zip(index[fut.key], fut.result()):
-                accept(i, *r)
+        try:
+            for fut in as_completed(futures):
+                for i, r in zip(index[fut.key], fut.result()):
+                    accept(i, *r)
+        except BaseException:  # Ctrl-C or an error: cancel what the cluster has not done yet
+            with contextlib.suppress(Exception):
+                client.cancel(futures)
+            raise
         return f"dask ({client.scheduler.address})"
     finally:
         if own:

@@ -5,6 +5,18 @@ file that was already there whole (either the old one or the new one).
 in a hidden staging folder and moved into place only once every one of them
 has been written.
 
+A run owns its output folder.  :func:`staged` records what a run wrote in
+``manifest.json`` (case, scene, time, every file) and, when the new files are
+in place, removes the files of the previous run's manifest that the new run
+did not write: the folder holds one run, never a mix.  Files that no manifest
+lists (the user's own, or those of a lubedyn older than the manifest) are
+never deleted; they are kept and named in a warning.  Hidden entries (the map
+point cache ``.map-cache``) are not part of a run and are kept.  The staging
+folder's name carries the writing process's id (``.staging-<pid>-*``); a run
+removes the staging folders of processes that no longer exist (a run killed
+while writing).  Any failure to write raises :class:`OutputError` naming the
+path and the cause.
+
 >>> import tempfile, pathlib
 >>> d = pathlib.Path(tempfile.mkdtemp())
 >>> write_json(d / "summary.json", {"Load [N]": 1.5}).name
@@ -17,10 +29,45 @@ import json
 import logging
 import os
 import shutil
+import re
 import tempfile
+import time
 from pathlib import Path
 
+from lubrication.errors import LubedynError
+
 log = logging.getLogger(__name__)
+
+MANIFEST = "manifest.json"
+MANIFEST_FORMAT = "lubedyn run manifest"
+_STAGING, _OLD = ".staging-", ".old-"
+_OWNED = re.compile(r"^\.(?:staging|old)-(\d+)-")  # hidden folders of a commit, with the owning process id
+_LEGACY_AGE = 600.0  # [s] a staging folder without a process id (older lubedyn) is stale after this
+_active: set = set()  # staging folders of this process being written
+
+
+class OutputError(LubedynError, OSError):
+    """An output that cannot be written: names the path and the cause (the CLI's exit code 3)."""
+
+    def __init__(self, path, cause):
+        self.path = Path(path)
+        self.cause = cause
+        super().__init__(f"cannot write {self.path}: {cause}")
+
+
+def _cause(exc: OSError) -> str:
+    if isinstance(exc, OutputError):
+        return exc.cause
+    if isinstance(exc, (FileExistsError, NotADirectoryError)):
+        return "a file is in the way where a folder is needed"
+    return " ".join((exc.strerror or str(exc) or type(exc).__name__).split())
+
+
+def output_error(exc: OSError, path) -> OutputError:
+    """``exc`` as an :class:`OutputError` on ``exc.filename`` (else ``path``)."""
+    if isinstance(exc, OutputError):
+        return exc
+    return OutputError(exc.filename if getattr(exc, "filename", None) else path, _cause(exc))
 
 
 def _umask() -> int:
@@ -32,17 +79,20 @@ def _umask() -> int:
 def write_bytes(path, data: bytes) -> Path:
     """Write ``data`` to ``path`` through a temporary file and a rename."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    tmp = None
     try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp creates 0600; give the usual mode
         os.replace(tmp, path)
+    except OSError as exc:
+        raise OutputError(path, _cause(exc)) from exc
     finally:
-        if os.path.exists(tmp):
+        if tmp is not None and os.path.exists(tmp):
             os.remove(tmp)
     log.debug("wrote %s", path)
     return path
@@ -80,28 +130,172 @@ def save_figure(path, figure, dpi: int = 120) -> Path:
     return write_bytes(path, buffer.getvalue())
 
 
+def _pid_alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError):  # another user's process, or no way to tell: keep its folder
+        return True
+    return True
+
+
+def remove_stale(out_dir) -> list[Path]:
+    """Remove the staging folders (``.staging-<pid>-*``, ``.old-<pid>-*``) in ``out_dir`` whose
+    process no longer exists (a run killed while writing); returns the folders removed.  Staging
+    folders without a process id (an older lubedyn) are removed when not modified for 10 minutes."""
+    out = Path(out_dir)
+    removed = []
+    try:
+        entries = list(out.iterdir())
+    except OSError:
+        return removed
+    for entry in entries:
+        name = entry.name
+        if not name.startswith((_STAGING, _OLD)) or entry.is_symlink() or not entry.is_dir():
+            continue
+        match = _OWNED.match(name)
+        if match is not None:
+            stale = not _pid_alive(int(match.group(1)))
+        else:
+            try:
+                stale = time.time() - entry.stat().st_mtime > _LEGACY_AGE
+            except OSError:
+                continue
+        if stale:
+            shutil.rmtree(entry, ignore_errors=True)
+            if not entry.exists():
+                log.info("removed %s, left by a run that was killed while writing", entry)
+                removed.append(entry)
+    return removed
+
+
+def read_manifest(out_dir) -> dict | None:
+    """The manifest of the run that last wrote ``out_dir`` (None: none, or unreadable)."""
+    path = Path(out_dir) / MANIFEST
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return None
+    except (OSError, ValueError, UnicodeDecodeError):
+        log.warning("ignoring unreadable %s", path)
+        return None
+    if not isinstance(data, dict) or data.get("format") != MANIFEST_FORMAT or not isinstance(data.get("files"), list):
+        log.warning("ignoring %s: not a lubedyn run manifest", path)
+        return None
+    return data
+
+
+def _inside(out: Path, rel) -> Path | None:
+    """``out / rel`` if ``rel`` is a plain relative path below ``out`` (no ``..``, not absolute, not hidden)."""
+    if not isinstance(rel, str) or not rel or rel == MANIFEST:
+        return None
+    parts = Path(rel).parts
+    if Path(rel).is_absolute() or any(p in ("", ".", "..") for p in parts) or parts[0].startswith("."):
+        return None
+    return out / rel
+
+
+def _files_below(root: Path) -> list[str]:
+    return sorted(p.relative_to(root).as_posix() for p in root.rglob("*") if p.is_file() or p.is_symlink())
+
+
+def _manifest(stage: Path, files) -> dict:
+    from . import __version__
+
+    summary = {}
+    try:
+        summary = json.loads((stage / "summary.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        pass
+    return {"format": MANIFEST_FORMAT, "version": 1, "lubedyn version": __version__,
+            "case": summary.get("Case", "") if isinstance(summary, dict) else "",
+            "scene": summary.get("Scene", "") if isinstance(summary, dict) else "",
+            "written [UTC]": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+            "files": sorted(files)}
+
+
+def _commit(stage: Path, out: Path) -> None:
+    """Move the staged files into ``out`` and make the folder hold this run only.
+
+    Order (a kill at any point leaves every file lubedyn wrote listed in a manifest): record the
+    union of the previous and the new files, move the new files in, remove the previous run's
+    files that this run did not write, record the new files alone."""
+    new = _files_below(stage)
+    previous = read_manifest(out)
+    old = {f for f in previous["files"] if _inside(out, f) is not None} if previous else set()
+    if previous is not None and old - set(new):
+        write_json(out / MANIFEST, _manifest(stage, old | set(new)))
+    for item in sorted(stage.iterdir()):
+        target = out / item.name
+        if item.is_dir() and target.is_dir() and not target.is_symlink():
+            # a folder of fields (frames/): move the old one aside, put the new one in, drop the old
+            aside = Path(tempfile.mkdtemp(prefix=f"{_OLD}{os.getpid()}-{item.name}-", dir=out))
+            os.replace(target, aside / item.name)
+            os.replace(item, target)
+            shutil.rmtree(aside, ignore_errors=True)
+        else:
+            os.replace(item, target)
+        log.info("wrote %s", target)
+    for rel in sorted(old - set(new)):
+        path = out / rel
+        if path.is_file() or path.is_symlink():
+            path.unlink()
+            log.info("removed %s (written by the previous run, not by this one)", path)
+        parent = path.parent
+        while parent != out and parent.is_dir() and not any(parent.iterdir()):
+            parent.rmdir()
+            parent = parent.parent
+    if previous is None:
+        written = {f.split("/")[0] for f in new}
+        foreign = sorted(p.name for p in out.iterdir() if not p.name.startswith(".") and p.name != MANIFEST
+                         and p.name not in written)
+        if foreign:
+            log.warning("%s had no %s: kept %d file(s) that this run did not write (%s); "
+                        "remove them if they are from an older run", out, MANIFEST, len(foreign),
+                        ", ".join(foreign[:5]) + (", ..." if len(foreign) > 5 else ""))
+    write_json(out / MANIFEST, _manifest(out, new))
+
+
 @contextlib.contextmanager
 def staged(out_dir):
     """Yield a staging folder inside ``out_dir``; on success move its files into
-    ``out_dir`` (one rename each), on failure discard it.  Either way the
-    staging folder is removed."""
+    ``out_dir`` (one rename each), record them in ``manifest.json`` and remove
+    the previous run's files that this run did not write; on failure discard
+    it.  Either way the staging folder is removed.  Stale staging folders of
+    killed runs are removed first.  An ``OSError`` becomes :class:`OutputError`."""
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=".staging-", dir=out))
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        if not out.is_dir():
+            raise NotADirectoryError(0, "not a folder", str(out))
+    except OSError as exc:
+        raise OutputError(out, _cause(exc)) from exc
+    remove_stale(out)
+    try:
+        stage = Path(tempfile.mkdtemp(prefix=f"{_STAGING}{os.getpid()}-", dir=out))
+    except OSError as exc:
+        raise OutputError(out, _cause(exc)) from exc
+    _active.add(stage)
     try:
         yield stage
-        for item in sorted(stage.iterdir()):
-            target = out / item.name
-            if item.is_dir() and target.is_dir():
-                # a folder of fields (frames/): move the old one aside, put the new one in, drop the old
-                old = Path(tempfile.mkdtemp(prefix=f".old-{item.name}-", dir=out))
-                os.replace(target, old / item.name)
-                os.replace(item, target)
-                shutil.rmtree(old, ignore_errors=True)
-            else:
-                os.replace(item, target)
-            log.info("wrote %s", target)
+        _commit(stage, out)
+    except OSError as exc:
+        error = output_error(exc, out)
+        with contextlib.suppress(ValueError):  # name the file as the user knows it, not its staging copy
+            error = OutputError(out / error.path.relative_to(stage), error.cause)
+        raise error from exc
     finally:
+        shutil.rmtree(stage, ignore_errors=True)
+        _active.discard(stage)
+
+
+def discard_staging() -> None:
+    """Remove the staging folders of the outputs this process is writing (the CLI calls it when it
+    ends at once on Ctrl-C; the files already in place stay whole)."""
+    for stage in list(_active):
         shutil.rmtree(stage, ignore_errors=True)
 
 

@@ -169,7 +169,7 @@ def test_failing_run_keeps_existing_outputs(tmp_path, capsys):
     out = tmp_path / "out"
     assert run(capsys, "run", POCKET, "--smoke", "--out", out)[0] == 0
     before = {p.name: p.read_bytes() for p in out.iterdir()}
-    assert set(before) == {"summary.json", "case.resolved.toml", "film.vtu", "pressure.png"}
+    assert set(before) == {"summary.json", "case.resolved.toml", "film.vtu", "pressure.png", "manifest.json"}
     code, _, err = run(capsys, "run", POCKET, "--smoke", "--set", "solver.max_iter=1", "--out", out)
     assert code == 1
     after = {p.name: p.read_bytes() for p in out.iterdir()}
@@ -178,7 +178,8 @@ def test_failing_run_keeps_existing_outputs(tmp_path, capsys):
 
 
 def test_failure_while_writing_keeps_existing_outputs(tmp_path, capsys, monkeypatch):
-    """Outputs are staged and moved into place only when all are written."""
+    """Outputs are staged and moved into place only when all are written; a failure to write exits 3
+    with one line naming the folder and the cause."""
     import lubrication.solution
 
     out = tmp_path / "out"
@@ -190,8 +191,8 @@ def test_failure_while_writing_keeps_existing_outputs(tmp_path, capsys, monkeypa
 
     monkeypatch.setattr(lubrication.solution.FilmSolution, "plot_pressure", broken_plot)
     code, _, err = run(capsys, "run", POCKET, "--smoke", "--set", "motion.velocity_lower=2 m/s", "--out", out)
-    assert code == 1
-    assert_one_line_error(err, "disk full (simulated)")
+    assert code == 3
+    assert_one_line_error(err, f"cannot write {out}: disk full (simulated)")
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before  # no staging folder left either
 
 
@@ -352,7 +353,8 @@ def test_ehl_run_writes_a_vtu_that_pyvista_and_meshio_read(tmp_path, capsys):
     code, stdout, err = run(capsys, "run", write_case(tmp_path, EHL_MOES), "--out", out)
     assert code == 0 and err == ""
     assert "Central film thickness [m]" in stdout
-    assert {p.name for p in out.iterdir()} == {"summary.json", "case.resolved.toml", "ehl.vtu", "profiles.png"}
+    assert {p.name for p in out.iterdir()} == {"summary.json", "case.resolved.toml", "ehl.vtu", "profiles.png",
+                                               "manifest.json"}
     s = json.loads((out / "summary.json").read_text())
     assert s["Scene"] == "ehl" and s["Contact"] == "point"
     assert s["Moes M [-]"] == pytest.approx(20, rel=1e-12) and s["Moes L [-]"] == pytest.approx(10, rel=1e-12)
