@@ -472,7 +472,7 @@ class EHLOptions:
         for key, value, allowed in (("method", self.method, EHL_METHODS),
                                     ("first_order_start", self.first_order_start, FIRST_ORDER_STARTS)):
             if value not in allowed:
-                raise unknown_choice(f"ehl.{key}", value, allowed)
+                raise unknown_choice(f"solver.{key}", value, allowed)
         if self.multigrid is not None:
             from .ehl_multigrid import MultigridOptions
 
@@ -1180,7 +1180,7 @@ def _active_set_newton(P: _Problem, p, h00, W):
         raise ConvergenceError(
             f"EHL solve did not converge in {options.max_iter} Newton iterations at M = {contact.moes_M:.4g}, "
             f"L = {contact.moes_L:.4g}: last |dp|/p_Hertz = {history[-1][0]:.2e}, load error {history[-1][2]:.2e} "
-            "(ehl.max_iter; heavily loaded contacts need fine grids: M = 1000 line contacts converge on 513+ nodes)"
+            "(solver.max_iter; heavily loaded contacts need fine grids: M = 1000 line contacts converge on 513+ nodes)"
         )
     return p, h00, history, gm
 
@@ -1455,14 +1455,14 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None, rtol=None, max_damped=None
             if stalls >= options.max_stalls:
                 err = ConvergenceError(
                     f"EHL Newton line search stalled {stalls} times at M = {contact.moes_M:.4g}, "
-                    f"L = {contact.moes_L:.4g} ({P.N} nodes; merit {theta0:.2e}; ehl.max_stalls)")
+                    f"L = {contact.moes_L:.4g} ({P.N} nodes; merit {theta0:.2e}; EHLOptions.max_stalls)")
                 err.iterate = (np.maximum(p + omega * dp, 0.0), h00 + omega * dh)
                 raise err
         damped += omega < 1.0
         if max_damped is not None and damped > max_damped:
             err = ConvergenceError(
                 f"EHL Newton needed more than {max_damped} damped steps at M = {contact.moes_M:.4g}, "
-                f"L = {contact.moes_L:.4g} ({P.N} nodes; ehl.max_damped)")
+                f"L = {contact.moes_L:.4g} ({P.N} nodes; EHLOptions.max_damped)")
             err.iterate = (np.maximum(p, 0.0), h00)
             raise err
         p = p + omega * dp
@@ -1481,7 +1481,7 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None, rtol=None, max_damped=None
         err = ConvergenceError(
             f"EHL solve did not converge in {max_iter} Newton iterations at M = {contact.moes_M:.4g}, "
             f"L = {contact.moes_L:.4g}: last |dp|/p_Hertz = {history[-1][0]:.2e}, load error {history[-1][2]:.2e} "
-            f"({stalls} line-search stalls; ehl.max_iter)"
+            f"({stalls} line-search stalls; solver.max_iter)"
         )
         err.iterate = (np.maximum(p, 0.0), h00)
         raise err
@@ -1518,10 +1518,10 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
     if not contact.is_line and grid.nx > options.max_point_grid:
         raise InputError(
             f"grid.nx = {grid.nx} for a point contact: point contacts are solved up to {options.max_point_grid} "
-            f"nodes per side by the Newton methods (ehl.max_point_grid: the largest grid measured to converge, "
+            f"nodes per side by the Newton methods (lubrication.ehl.EHLOptions.max_point_grid: the largest grid measured to converge, "
             f"M = 100, L = 10; a Newton step costs about 5 s of one core on 257 x 257 and the sparse-LU "
             f"preconditioner's fill grows faster than the grid); use nx <= {options.max_point_grid}, or "
-            f"ehl.method = 'multigrid'"
+            f"solver.method = 'multigrid'"
         )
     coarsest = 129 if contact.is_line else 33
     nests = initial is None and sequence and grid.nx > coarsest and (grid.nx - 1) % 2 == 0
@@ -1656,10 +1656,10 @@ def multigrid_grid(contact: EHLContact, grid: EHLGrid, coarsest_cells: int = 16)
     grid (``coarsest_cells`` cells along x).  nx must be coarsest_cells 2^k + 1
     (17, 33, 65, 129, 257, 513, 1025 by default)."""
     if contact.is_line:
-        raise InputError("ehl.method = 'multigrid' solves point contacts; line contacts use 'auto' "
+        raise InputError("solver.method = 'multigrid' solves point contacts; line contacts use 'auto' "
                          "(active set) or 'fischer_burmeister'")
     if contact.lubricant.eyring_stress is not None:
-        raise InputError(f"lubricant.eyring_stress = {contact.lubricant.eyring_stress!r}: ehl.method = 'multigrid' "
+        raise InputError(f"lubricant.eyring_stress = {contact.lubricant.eyring_stress!r}: solver.method = 'multigrid' "
                          "is Newtonian; use 'auto', 'fischer_burmeister' or 'active_set' for Eyring flow")
     cells = grid.nx - 1
     k = 0
@@ -1668,12 +1668,12 @@ def multigrid_grid(contact: EHLContact, grid: EHLGrid, coarsest_cells: int = 16)
         k += 1
     if cells != coarsest_cells:
         allowed = ", ".join(str(coarsest_cells * 2**i + 1) for i in range(7))
-        raise InputError(f"grid.nx = {grid.nx} for ehl.method = 'multigrid': nx - 1 must be {coarsest_cells} "
+        raise InputError(f"grid.nx = {grid.nx} for solver.method = 'multigrid': nx - 1 must be {coarsest_cells} "
                          f"times a power of 2 (the coarsest grid has {coarsest_cells} cells); use one of {allowed}")
     step = 2**k
     if grid.ny is not None:
         if (grid.ny - 1) % step or (grid.ny - 1) // step < 4:
-            raise InputError(f"grid.ny = {grid.ny} for ehl.method = 'multigrid' with nx = {grid.nx}: ny - 1 must be "
+            raise InputError(f"grid.ny = {grid.ny} for solver.method = 'multigrid' with nx = {grid.nx}: ny - 1 must be "
                              f"a multiple of {step} and at least {4 * step}")
         return grid
     hp = hertz.point_contact(contact.hertz_load(), contact.radius_x, contact.radius_y, contact.e_star)
@@ -1694,8 +1694,8 @@ def _solve_multigrid(contact: EHLContact, grid: EHLGrid, options: EHLOptions, in
     t0, c0 = time.perf_counter(), time.process_time()
     mopt = options.multigrid if options.multigrid is not None else MultigridOptions()
     if contact.squeeze_velocity != 0.0:
-        raise InputError(f"squeeze_velocity = {contact.squeeze_velocity!r} with ehl.method = 'multigrid': the "
-                         "multigrid solver is steady; use the Newton methods (ehl.method = 'auto') for squeeze")
+        raise InputError(f"squeeze_velocity = {contact.squeeze_velocity!r} with solver.method = 'multigrid': the "
+                         "multigrid solver is steady; use the Newton methods (solver.method = 'auto') for squeeze")
     g = multigrid_grid(contact, grid, mopt.coarsest_cells)
     P = _Problem(contact, g, options)
     P.uniform_weights()  # load and outputs without the FEM assembly templates
@@ -1802,8 +1802,8 @@ def ehl_normal_coefficients(contact: EHLContact, grid: EHLGrid = EHLGrid(nx=33),
     if contact.load is None:
         raise InputError("ehl_normal_coefficients needs a contact with 'load' (the steady state), not 'approach'")
     if options.method == "multigrid":
-        raise InputError("ehl.method = 'multigrid' for normal coefficients: the multigrid solver is steady and has "
-                         "no Jacobian; use ehl.method = 'auto' (Newton) for stiffness and damping")
+        raise InputError("solver.method = 'multigrid' for normal coefficients: the multigrid solver is steady and has "
+                         "no Jacobian; use solver.method = 'auto' (Newton) for stiffness and damping")
     t0 = time.perf_counter()
     sol = steady if steady is not None else solve_ehl(contact, grid, options)
     P = sol.problem

@@ -409,7 +409,7 @@ def test_multigrid_method_refuses_line_contacts_at_validate(capsys):
     solve, in one line naming the key, the value and what is allowed."""
     code, _, err = run(capsys, "validate", CASES_DIR / "ehl_roller_slice.toml", "--set", "solver.method=multigrid")
     assert code == 2
-    assert_one_line_error(err, "ehl.method = 'multigrid' solves point contacts", "line contacts use 'auto'")
+    assert_one_line_error(err, "solver.method = 'multigrid' solves point contacts", "line contacts use 'auto'")
 
 
 def test_multigrid_stops_clearly_on_paper_b_elongated_contact(tmp_path, capsys):

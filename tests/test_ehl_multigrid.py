@@ -271,7 +271,7 @@ def test_where_the_multigrid_stops_is_pinned():
 def test_multigrid_inputs_are_checked():
     with pytest.raises(InputError, match="solves point contacts"):
         solve_ehl(EHLContact.from_moes(20, 10, line=True), EHLGrid(nx=129), MG)
-    with pytest.raises(InputError, match="grid.nx = 100 for ehl.method = 'multigrid'"):
+    with pytest.raises(InputError, match="grid.nx = 100 for solver.method = 'multigrid'"):
         solve_ehl(EHLContact.from_moes(20, 10), EHLGrid(nx=100), MG)
     with pytest.raises(InputError, match="multigrid.gamma"):
         MultigridOptions(gamma=3)

@@ -221,7 +221,7 @@ def test_hamrock_dowson_ellipticity(k):
 
 
 def test_unknown_solver_options_are_refused():
-    with pytest.raises(InputError, match="ehl.method = 'fischer_burmeistr' is not allowed.*did you mean"):
+    with pytest.raises(InputError, match="solver.method = 'fischer_burmeistr' is not allowed.*did you mean"):
         EHLOptions(method="fischer_burmeistr")
     with pytest.raises(InputError, match="normal coefficients method"):
         ehl_normal_coefficients(EHLContact.from_moes(20, 10), method="linearized")
