@@ -1152,11 +1152,15 @@ def _active_set_newton(P: _Problem, p, h00, W):
         # on the free-node residual norm (at most 4 halvings); p + omega dp >= 0
         # on free nodes up to round-off because p >= 0 and p + dp >= 0 there
         omega = 1.0 / max(np.max(np.abs(dp)) / (options.max_step * P.ph), 1.0)
-        r0 = np.linalg.norm(R[idx])
+        # (a trial far outside the basin can overflow the norm: inf is "no decrease", no warning)
+        with np.errstate(over="ignore"):
+            r0 = np.linalg.norm(R[idx])
         for _ in range(4):
             trial = np.maximum(p + omega * dp, 0.0)
             Rt = P.assemble(trial, h00 + omega * dh, jac=False)[0]
-            if np.linalg.norm(Rt[idx]) <= r0 or r0 == 0.0:
+            with np.errstate(over="ignore"):
+                decreased = np.linalg.norm(Rt[idx]) <= r0
+            if decreased or r0 == 0.0:
                 break
             omega *= 0.5
         p_new = np.maximum(p + omega * dp, 0.0)

@@ -58,12 +58,36 @@ proc_children = pytest.mark.skipif(not Path(f"/proc/self/task/{os.getpid()}/chil
                                    reason="needs Linux /proc/<pid>/task/<tid>/children")
 
 
+_PROCESSES: list = []
+
+
+def _tracked(proc):
+    """Register a child so that the fixture below closes its pipes (and ends it) after the test."""
+    _PROCESSES.append(proc)
+    return proc
+
+
+@pytest.fixture(autouse=True)
+def _close_children():
+    """Every child's pipes are closed and the child ended after its test: left open they are
+    ResourceWarnings (errors under the suite's warning filter) and leaked descriptors."""
+    yield
+    while _PROCESSES:
+        proc = _PROCESSES.pop()
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        for stream in (proc.stdin, proc.stdout, proc.stderr):
+            if stream is not None:
+                stream.close()
+
+
 def cli_process(*argv, **kwargs):
     """``python -m coupling.cli ARGV`` from this source tree, in its own process group."""
     env = {**os.environ, "PYTHONPATH": str(WORKTREE)}
-    return subprocess.Popen([sys.executable, "-m", "coupling.cli", *map(str, argv)], cwd=WORKTREE, env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
-                            **kwargs)
+    return _tracked(subprocess.Popen([sys.executable, "-m", "coupling.cli", *map(str, argv)], cwd=WORKTREE, env=env,
+                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                     start_new_session=True, **kwargs))
 
 
 def alive(pid: int) -> bool:
@@ -478,8 +502,8 @@ def map_process(tmp_path, delay, program=True):
             sys.exit(cli.main())
         sys.exit(cli.main(argv))
     """)
-    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, start_new_session=True)
+    proc = _tracked(subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                     text=True, start_new_session=True))
     return proc, logs, tmp_path / "out" / ".map-cache" / "points" / "test_squeeze", script
 
 
@@ -566,7 +590,7 @@ def test_die_with_parent_on_linux_and_elsewhere(platform):
             os.write(1, f"pid={{p.pid}}\\n".encode())
             time.sleep(60)
     """)
-    parent = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    parent = _tracked(subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True))
     lines = dict(parent.stdout.readline().strip().split("=") for _ in range(2))
     child_pid, means = int(lines["pid"]), lines["means"]
     assert means == ("prctl" if platform == "linux" else "watchdog thread")
