@@ -293,7 +293,7 @@ def test_error_based_stop_agrees_with_a_tight_solve(M):
     """The default error-based stop (algebraic error of H_c, H_min and the load
     at most min(0.02 x discretisation error, 5e-5), relative) against a solve
     to a projected residual of 1e-9: H_c, H_min and the load within 1e-4
-    (measured on 129 x 129: within 4e-5), in fewer cycles than the residual
+    (measured on 129 x 129: within 4e-6), in fewer cycles than the residual
     stop at rtol 1e-5; the stop rule and its figures are in the history."""
     c = EHLContact.from_moes(M, 10)
     g = EHLGrid(nx=129)
