@@ -738,7 +738,8 @@ class MultigridEHL:
             if res <= o.rtol and abs(load_err) <= o.load_rtol:
                 history[-1].update(stop="residual", stop_detail=(
                     f"relative projected residual {res:.1e} <= rtol {o.rtol:.0e} and load error {abs(load_err):.1e} "
-                    f"<= {o.load_rtol:.0e}"))
+                    f"<= {o.load_rtol:.0e}" + (f"; error-based stop not met: {self._describe(test)}"
+                                               if o.stop == "error" else "")))
                 break
             if o.stop == "error" and test["met"]:
                 history[-1].update(stop="error", stop_detail=(

@@ -316,11 +316,20 @@ def test_error_based_stop_agrees_with_a_tight_solve(M):
 
 def test_error_based_stop_that_cannot_be_met_says_so():
     """Three cycles are too few for the error-based stop at M = 100 on 129 x
-    129: the error names the cycle limit and the estimate that missed its limit."""
+    129: the error names the cycle limit and the estimate that missed its
+    limit.  M = 1000 on 129 x 129 (an under-resolved outlet constriction whose
+    H_min moves by 1e-3 per cycle while the residual falls) meets the residual
+    test first: the stop is "residual" and its detail says that the error test
+    was not met, and by how much."""
     with pytest.raises(ConvergenceError, match=r"did not converge in 3 cycles at M = 100, L = 10 on 129 x 129 nodes.*"
                                                r"error-based stop not met: algebraic error of (H_c|H_min|load) "
                                                r"\d\.\de-\d\d \(limit \d\.\de-\d\d"):
         solve_ehl(EHLContact.from_moes(100, 10), EHLGrid(nx=129), _mg(max_cycles=3))
+    s = solve_ehl(EHLContact.from_moes(1000, 10), EHLGrid(nx=129), MG)
+    last = s.info["history"][-1]
+    assert last["stop"] == "residual" and s.info["residual"] <= 1e-5
+    assert "; error-based stop not met: algebraic error of H_min" in last["stop_detail"]
+    assert last["error_Hmin"] > MultigridOptions().error_cap
 
 
 def test_stop_options_are_checked():
