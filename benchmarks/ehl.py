@@ -332,7 +332,7 @@ def plot(data, stem):
     a3.axvline(10.0, color="k", lw=0.8, ls=":")
     a3.set_xlabel("CPU time of one core [s] (dotted: 10 s)")
     a3.set_ylabel("|H_c / H_c,ref - 1| (multigrid Richardson reference)")
-    a3.set_title("Circles, L = 10: multigrid error stop (solid), residual stop (hollow), FEM Newton (dashed)",
+    a3.set_title("Circles, L = 10: multigrid (solid; hollow: residual stop), FEM Newton (dashed)",
                  fontsize=9)
     a3.legend(fontsize=6, ncol=2)
     _common.save_figure(fig, RESULTS / f"{stem}.png")
