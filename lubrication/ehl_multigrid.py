@@ -665,14 +665,16 @@ class MultigridEHL:
             e_disc = abs(q - coarse[key]) / p / abs(q) if coarse is not None else None
             limit = o.error_cap if e_disc is None else min(o.error_fraction * e_disc, o.error_cap)
             out[name] = dict(algebraic_error=e_alg, discretisation_error=e_disc, limit=limit)
-            if worst is None or e_alg / limit > worst[0]:
-                worst = (e_alg / limit, name)
+            ratio = e_alg / limit if limit > 0.0 else np.inf  # limit 0: coarse and fine H equal to the digit
+            if worst is None or ratio > worst[0]:
+                worst = (ratio, name)
             if name == "H_c":
                 load_limit = limit
         e_load = abs(h[-1]["load_error"] or 0.0)
         out["load"] = dict(algebraic_error=e_load, limit=load_limit)
-        if e_load / load_limit > worst[0]:
-            worst = (e_load / load_limit, "load")
+        ratio = e_load / load_limit if load_limit > 0.0 else np.inf
+        if ratio > worst[0]:
+            worst = (ratio, "load")
         out["worst"] = worst[1]
         out["met"] = len(h) >= 3 and worst[0] <= 1.0
         return out
@@ -736,12 +738,6 @@ class MultigridEHL:
             detail = f"; error-based stop not met: {self._describe(test)}" if o.stop == "error" else ""
             if not (np.isfinite(res) and np.isfinite(self.H00)) or res > 1e3 * max(res0, 1e-300):
                 raise self._fail("diverged", k, cyc, res, detail)
-            if res <= o.rtol and abs(load_err) <= o.load_rtol:
-                history[-1].update(stop="residual", stop_detail=(
-                    f"relative projected residual {res:.1e} <= rtol {o.rtol:.0e} and load error {abs(load_err):.1e} "
-                    f"<= {o.load_rtol:.0e}" + (f"; error-based stop not met: {self._describe(test)}"
-                                               if o.stop == "error" else "")))
-                break
             if o.stop == "error" and test["met"]:
                 history[-1].update(stop="error", stop_detail=(
                     f"algebraic error estimates (relative) H_c {test['H_c']['algebraic_error']:.1e}, H_min "
@@ -749,11 +745,16 @@ class MultigridEHL:
                     f"min({o.error_fraction:g} x discretisation error, {o.error_cap:.0e}); worst: "
                     + self._describe(test)))
                 break
+            if res <= o.rtol and abs(load_err) <= o.load_rtol:
+                history[-1].update(stop="residual", stop_detail=(
+                    f"relative projected residual {res:.1e} <= rtol {o.rtol:.0e} and load error {abs(load_err):.1e} "
+                    f"<= {o.load_rtol:.0e}" + (f"; error-based stop not met: {self._describe(test)}"
+                                               if o.stop == "error" else "")))
+                break
             if cyc > o.stall_cycles and res > o.stall_factor * history[-1 - o.stall_cycles]["residual"]:
                 raise self._fail("stagnated", k, cyc, res, detail)
         else:
             raise self._fail(f"did not converge in {o.max_cycles} cycles", k, o.max_cycles, history[-1]["residual"],
                              f"; error-based stop not met: {self._describe(test)}" if o.stop == "error" and test
                              else "")
-        self.stop_test = test
         return self.levels[k].P.copy(), self.H00, history
