@@ -29,7 +29,13 @@ Scenes
    the three finest multigrid grids (129, 257, 513; the reference of both
    methods in the PNG, since both converge to the same H_c: M = 100, 4.648).
    The numba kernels are compiled (or loaded from the cache) by a warm-up
-   solve before the timed runs.
+   solve before the timed runs.  Each grid is solved with the default
+   error-based stop and with the former residual stop (projected residual
+   1e-5), twice each, interleaved in the same process (CPU-time medians and
+   their ratio, ``cpu_ratio_error_to_residual_stop``); for M <= 200 on
+   257 x 257 and 513 x 513 also a tight solve (``tight``: cycles until the
+   estimated algebraic errors are below 1e-6, with its final residual),
+   against which both stops' H_c, H_min and load are compared.
 
 Timings are medians of ``--repeats`` runs on this machine (noted in the
 JSON); compare ratios, not seconds, across machines.  Point rows also record
@@ -51,6 +57,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import _common  # noqa: E402
 
 from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl  # noqa: E402
+from lubrication.ehl_multigrid import MultigridOptions  # noqa: E402
 from lubrication.film_formulas import moes_line_central, nijenbanning_central  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
@@ -105,31 +112,77 @@ def point_series(M, L, grids, repeats):
     return point_reference(dict(M=M, L=L, nvm_Hc=float(nijenbanning_central(M, L)), grids=rows))
 
 
-MG_OPTIONS = EHLOptions(method="multigrid")
+MG_OPTIONS = EHLOptions(method="multigrid")  # default: error-based stop (MultigridOptions.stop = "error")
+# the former default, run interleaved with it in the same process: cycles until the projected residual is 1e-5
+MG_RESIDUAL = EHLOptions(method="multigrid", multigrid=MultigridOptions(stop="residual"))
+# accuracy reference of both: cycles until H_c, H_min and the load change by less than 1e-6 (the error test with
+# its cap at 1e-6 and the residual test out of reach; at M = 20 on 257^2 H_min still moves by 1e-6 per cycle after
+# 60 cycles, so 1e-7 is out of reach).  The projected residual stalls at 1e-7 (M = 20, 257^2) to 5e-6 (M = 20,
+# 513^2) where free-boundary nodes flip, so a residual tolerance cannot serve as the reference; the reference's own
+# final residual is recorded next to it.
+MG_TIGHT = EHLOptions(method="multigrid", multigrid=MultigridOptions(stop="error", error_cap=1e-6, rtol=1e-14,
+                                                                     load_rtol=1e-14, max_cycles=60,
+                                                                     stall_cycles=100))
 
 
-def multigrid_series(M, L, grids):
-    import os
+def _mg_run(c, n, options):
     import time
+
+    cpu0, t0 = time.process_time(), time.perf_counter()
+    s = solve_ehl(c, EHLGrid(nx=n), options)
+    return s, time.process_time() - cpu0, time.perf_counter() - t0
+
+
+def multigrid_series(M, L, grids, repeats=2, tight_grids=()):
+    """Each grid: the error-based stop (default) and the residual stop, ``repeats``
+    times each, interleaved (A B B A ...), CPU-time medians; on ``tight_grids``
+    also a tight solve, against which both stops' H_c, H_min and load are compared."""
+    import os
 
     c = EHLContact.from_moes(M, L)
     rows = []
     for n in grids:
         load = os.getloadavg()[0]
-        cpu0, t0 = time.process_time(), time.perf_counter()
+        runs = {"error": [], "residual": []}
         try:
-            s = solve_ehl(c, EHLGrid(nx=n), MG_OPTIONS)
+            for i in range(repeats):
+                order = ("error", "residual") if i % 2 == 0 else ("residual", "error")
+                for name in order:
+                    runs[name].append(_mg_run(c, n, MG_OPTIONS if name == "error" else MG_RESIDUAL))
         except Exception as exc:
-            rows.append(dict(nx=n, error=str(exc), cpu_s=time.process_time() - cpu0,
-                             time_s=time.perf_counter() - t0, load_average=load))
+            rows.append(dict(nx=n, error=str(exc), load_average=load))
             continue
-        rows.append(dict(nx=n, time_s=time.perf_counter() - t0, cpu_s=time.process_time() - cpu0,
-                         solver_wall_s=s.info["wall_time"], solver_cpu_s=s.info["cpu_time"],
-                         setup_wall_s=s.info["setup_time"], load_average=load,
-                         Hc=H(c, s.central_film_thickness), Hmin=H(c, s.minimum_film_thickness),
-                         cycles=s.info["cycles"], work_units=s.info["work_units"], residual=s.info["residual"],
-                         load_error=s.info["load_error"], unknowns=s.info["unknowns"],
-                         max_pressure_over_hertz=s.maximum_pressure / s.problem.ph))
+        s = runs["error"][0][0]
+        cpu = float(np.median([r[1] for r in runs["error"]]))
+        row = dict(nx=n, time_s=float(np.median([r[2] for r in runs["error"]])), cpu_s=cpu,
+                   solver_cpu_s=float(np.median([r[0].info["cpu_time"] for r in runs["error"]])),
+                   setup_wall_s=s.info["setup_time"], load_average=load,
+                   Hc=H(c, s.central_film_thickness), Hmin=H(c, s.minimum_film_thickness),
+                   cycles=s.info["cycles"], work_units=s.info["work_units"], residual=s.info["residual"],
+                   load_error=s.info["load_error"], unknowns=s.info["unknowns"],
+                   stop=s.info["history"][-1]["stop"], stop_detail=s.info["history"][-1]["stop_detail"],
+                   max_pressure_over_hertz=s.maximum_pressure / s.problem.ph)
+        r = runs["residual"][0][0]
+        rcpu = float(np.median([x[1] for x in runs["residual"]]))
+        row["residual_stop"] = dict(cpu_s=rcpu, time_s=float(np.median([x[2] for x in runs["residual"]])),
+                                    Hc=H(c, r.central_film_thickness), Hmin=H(c, r.minimum_film_thickness),
+                                    cycles=r.info["cycles"], work_units=r.info["work_units"],
+                                    residual=r.info["residual"])
+        row["cpu_ratio_error_to_residual_stop"] = cpu / rcpu
+        if n in tight_grids:
+            try:
+                t, tcpu, _ = _mg_run(c, n, MG_TIGHT)
+            except Exception as exc:
+                row["tight"] = dict(error=str(exc))
+            else:
+                row["tight"] = dict(cpu_s=tcpu, Hc=H(c, t.central_film_thickness), Hmin=H(c, t.minimum_film_thickness),
+                                    cycles=t.info["cycles"], residual=t.info["residual"])
+                for tag, sol in (("error_stop", s), ("residual_stop", r)):
+                    row["tight"][f"{tag}_relative_difference"] = dict(
+                        Hc=sol.central_film_thickness / t.central_film_thickness - 1,
+                        Hmin=sol.minimum_film_thickness / t.minimum_film_thickness - 1,
+                        load=sol.load / t.load - 1)
+        rows.append(row)
     series = dict(M=M, L=L, nvm_Hc=float(nijenbanning_central(M, L)), grids=rows)
     return point_reference(series)
 
@@ -215,7 +268,9 @@ def main(argv=None):
         solve_ehl(EHLContact.from_moes(100, 10), EHLGrid(nx=33), MG_OPTIONS)  # numba compile / cache load
         data["multigrid_warmup"] = dict(wall_s=time.perf_counter() - t0, cpu_s=time.process_time() - c0)
     for M, g in mg_cases.items():
-        data["multigrid"] = [s for s in data["multigrid"] if s["M"] != M] + [multigrid_series(M, 10.0, g)]
+        tight = [n for n in g if n >= 257 and M <= 200] if not args.quick else g
+        data["multigrid"] = [s for s in data["multigrid"] if s["M"] != M] + [
+            multigrid_series(M, 10.0, g, repeats=1 if args.quick else 2, tight_grids=tight)]
         _common.write_json(RESULTS / f"{stem}.json", data)
     plot(data, stem)
 
@@ -264,6 +319,11 @@ def plot(data, stem):
         if ref and ok:
             a3.loglog([r["cpu_s"] for r in ok], [max(abs(r["Hc"] / ref - 1), 1e-6) for r in ok], "o-", color=f"C{i}",
                       label=f"multigrid M={s['M']:g}")
+            rs = [r for r in ok if "residual_stop" in r]
+            if rs:  # the same grids with the former residual stop (hollow): same error, more CPU
+                a3.loglog([r["residual_stop"]["cpu_s"] for r in rs],
+                          [max(abs(r["residual_stop"]["Hc"] / ref - 1), 1e-6) for r in rs], "o:", mfc="none",
+                          color=f"C{i}", alpha=0.7, label=f"residual stop M={s['M']:g}")
         fem = next((p for p in data["point"] if p["M"] == s["M"]), None)
         fok = [r for r in (fem or {}).get("grids", []) if "Hc" in r and r.get("cpu_s")]
         if ref and fok:
@@ -272,7 +332,8 @@ def plot(data, stem):
     a3.axvline(10.0, color="k", lw=0.8, ls=":")
     a3.set_xlabel("CPU time of one core [s] (dotted: 10 s)")
     a3.set_ylabel("|H_c / H_c,ref - 1| (multigrid Richardson reference)")
-    a3.set_title("Circles, L = 10: multigrid (solid), FEM Newton (dashed)")
+    a3.set_title("Circles, L = 10: multigrid (solid; hollow: residual stop), FEM Newton (dashed)",
+                 fontsize=9)
     a3.legend(fontsize=6, ncol=2)
     _common.save_figure(fig, RESULTS / f"{stem}.png")
     for s in data["line"]:
@@ -289,6 +350,16 @@ def plot(data, stem):
             f"{r['nx']}: Hc={r['Hc']:.4f} ({r['cpu_s']:.2f} s CPU, {r['time_s']:.2f} s wall, {r['cycles']} cycles)"
             if "Hc" in r else f"{r['nx']}: FAILED ({r['error'][:60]})" for r in s["grids"])
               + f"; NVM {s['nvm_Hc']:.4f}, ref {(s.get('reference') or {}).get('value')}")
+    for s in data.get("multigrid", []):
+        for r in s["grids"]:
+            if "residual_stop" not in r:
+                continue
+            rs = r["residual_stop"]
+            td = (r.get("tight") or {}).get("error_stop_relative_difference")
+            print(f"  M={s['M']:g} {r['nx']}^2: error stop {r['cycles']} cyc {r['work_units']:.0f} WU {r['cpu_s']:.2f} s"
+                  f" | residual stop {rs['cycles']} cyc {rs['work_units']:.0f} WU {rs['cpu_s']:.2f} s"
+                  f" | ratio {r['cpu_ratio_error_to_residual_stop']:.2f}"
+                  + (f" | vs tight: Hc {td['Hc']:+.1e} Hmin {td['Hmin']:+.1e} load {td['load']:+.1e}" if td else ""))
 
 
 if __name__ == "__main__":

@@ -240,6 +240,9 @@ def summarise(case: EHLCase, setup: EHLSetup, solution) -> dict:
         "Linear solver": str(solution.info.get("linear", "")),
         "Scheme": str(solution.info.get("scheme", "")),
     })
+    last = (solution.info.get("history") or [{}])[-1]
+    if solution.info.get("method") == "multigrid" and "stop" in last:  # which stop rule ended the cycles, and why
+        out["Multigrid stop"] = f"{last['stop']}: {last['stop_detail']}"
     return out
 
 
