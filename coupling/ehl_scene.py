@@ -13,7 +13,10 @@ race), or from Moes' M and L.  ``run(case, out_dir)`` solves and writes
   film thickness of :mod:`lubrication.film_formulas` for comparison
   (Hamrock-Dowson for points; Dowson-Toyoda, Pan-Hamrock and Moes for
   lines), the bearing data when there is a ``[bearing]``, solver information
-  and timings;
+  and timings, ``"Stop reason"`` (why the solver stopped, with its figures)
+  and ``"Warnings"`` (the solver's a-posteriori checks,
+  :func:`lubrication.ehl.check_solution`, and the validity ranges of
+  :mod:`coupling.validity`; absent when there is none);
 - ``case.resolved.toml``: the case as run, in SI with every default;
 - ``ehl.vtu`` (``EHLSolution.save``: "Pressure [Pa]", "Film thickness [m]",
   "Elastic deflection [m]") and ``profiles.png`` (centre-line pressure and
@@ -240,6 +243,8 @@ def summarise(case: EHLCase, setup: EHLSetup, solution) -> dict:
         "Linear solver": str(solution.info.get("linear", "")),
         "Scheme": str(solution.info.get("scheme", "")),
     })
+    if solution.info.get("stop_reason"):  # why the solver stopped, with its figures
+        out["Stop reason"] = f"{solution.info['stop_reason']}: {solution.info.get('stop_detail', '')}".rstrip(": ")
     last = (solution.info.get("history") or [{}])[-1]
     if solution.info.get("method") == "multigrid" and "stop" in last:  # which stop rule ended the cycles, and why
         out["Multigrid stop"] = f"{last['stop']}: {last['stop_detail']}"
@@ -281,9 +286,15 @@ def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smo
     scene_summary = summarise(case, setup, solution)
     reynolds = film_reynolds_number(setup.contact, solution)
     scene_summary["Film Reynolds number [-]"] = reynolds
-    validity.report(scene_summary, validity.warnings_for(
+    # the solver's a-posteriori checks (lubrication.ehl.check_solution: closed-form film, coarser
+    # level) were logged by the solve; they join the validity warnings in summary.json
+    checks = list(solution.info.get("warnings", []))
+    found = validity.warnings_for(
         case.validity, max_pressure=solution.maximum_pressure, min_film=solution.minimum_film_thickness,
-        reynolds=reynolds, model="the isothermal EHL model"))
+        reynolds=reynolds, model="the isothermal EHL model")
+    validity.report(scene_summary, found)
+    if checks:
+        scene_summary["Warnings"] = checks + found
     summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
     result = EHLRun(case=case, setup=setup, solution=solution, summary=summary)
     if out_dir is None:
