@@ -631,11 +631,14 @@ class MultigridEHL:
 
     def _fail(self, what, k, cycle, res, detail=""):
         lv = self.levels[k]
-        return ConvergenceError(
+        err = ConvergenceError(
             f"EHL multigrid {what} at M = {self.c.moes_M:.4g}, L = {self.c.moes_L:.4g} on {lv.shape[0]} x "
             f"{lv.shape[1]} nodes, cycle {cycle}: relative residual {res:.2e} (tolerance {self.o.rtol:.0e}){detail}; "
             f"heavier loads need finer grids (measured: M = 3000, L = 10 stagnates on 257 x 257 and converges on "
             f"513 x 513), see EHLOptions.multigrid")
+        reason = "iteration limit" if what.startswith("did not converge") else what  # diverged, stagnated
+        err.stop = dict(reason=reason, detail=str(err))
+        return err
 
     def _films(self, lv):
         """(H at the node nearest X = Y = 0, min H) of level ``lv``'s pressure."""

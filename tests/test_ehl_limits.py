@@ -164,3 +164,18 @@ line = true
 nx = {nx}
 """)
     return path
+
+
+def test_errors_carry_their_stop_reason():
+    """Every EHL error names why it stopped: the line contact M = 1000 on 129 nodes reaches the film
+    floor ('film collapsed', the measured clear stop of issue 20 item 1); a multigrid cut at 3 cycles
+    ('iteration limit')."""
+    from lubrication.ehl_multigrid import MultigridOptions
+
+    with pytest.raises(ConvergenceError, match="film-thickness floor") as floor:
+        solve_ehl(_line(1000, 10), EHLGrid(nx=129))
+    assert floor.value.stop["reason"] == "film collapsed"
+    mg = EHLOptions(method="multigrid", multigrid=MultigridOptions(max_cycles=3, stop="residual"))
+    with pytest.raises(ConvergenceError, match="did not converge in 3 cycles") as cut:
+        solve_ehl(EHLContact.from_moes(100, 10), EHLGrid(nx=129), mg)
+    assert cut.value.stop["reason"] == "iteration limit"
