@@ -188,8 +188,8 @@ Moes; multigrid M = 1000 on 129 x 129, -35 %): :func:`check_solution`
 compares it with the closed form and with the one-level-coarser solution and
 warns (``EHLOptions(strict=True)``: raises), naming the grid needed.
 ``EHLOptions.max_work`` bounds the Newton steps of one :func:`solve_ehl`
-call, every start and fallback included (measured need: 40.5 steps on the
-requested grid for M = 1000 on 129 x 129).
+call, every start and fallback included (default :data:`DEFAULT_MAX_WORK`:
+100 for points, 400 for lines, about 2.5 times the most measured to converge).
 
 Normal film coefficients: :func:`ehl_normal_coefficients`.
 
@@ -492,8 +492,9 @@ class EHLOptions:
     # WARNING and lists it in info["warnings"], True raises ConvergenceError instead (tests)
     strict: bool = False
     # work budget of one solve_ehl call, in Newton steps on the requested grid (a step on a coarser
-    # level counts its share of the nodes), every start and fallback included; None: unbounded
-    max_work: float | None = 400.0
+    # level counts its share of the nodes), every start and fallback included; None: the default of
+    # the contact kind, DEFAULT_MAX_WORK (math.inf: unbounded)
+    max_work: float | None = None
 
     def __post_init__(self):
         for key, value, allowed in (("method", self.method, EHL_METHODS),
@@ -1608,7 +1609,9 @@ def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOption
     outer = _BUDGET.get()
     token = None
     if outer is None:  # the outermost call owns the budget; nested calls (a map's points) spend their own
-        token = _BUDGET.set(dict(limit=options.max_work, spent=0.0, nodes=_grid_nodes(contact, grid)))
+        limit = options.max_work if options.max_work is not None else \
+            DEFAULT_MAX_WORK["line" if contact.is_line else "point"]
+        token = _BUDGET.set(dict(limit=limit, spent=0.0, nodes=_grid_nodes(contact, grid)))
     try:
         with threadpool_limits(limits=1, user_api="blas"):
             sol = _solve_ehl(contact, grid, options, initial, sequence, _final, _stage_info)
@@ -1624,6 +1627,12 @@ def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOption
 
 # ---------------------------------------------------------------- work budget
 _BUDGET = contextvars.ContextVar("ehl_work_budget", default=None)
+# Default EHLOptions.max_work, about 2.5 times the most work measured to converge (Newton steps on
+# the requested grid, all starts and fallbacks): points 40.5 (M = 1000, L = 10, 129 x 129; M = 20:
+# 37.5, through the fallback chain; the bundled ball case 13.9), lines 142.7 (M = 20, L = 10 on 1025
+# nodes, through the fallback; the bundled roller slice 40.3).  A line step is cheap (dense LU; 1025
+# nodes: 0.01 s), a point step on 129 x 129 is 1.5 - 3.5 s.
+DEFAULT_MAX_WORK = {"point": 100.0, "line": 400.0}
 
 
 def _grid_nodes(contact, grid):

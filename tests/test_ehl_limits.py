@@ -123,7 +123,7 @@ def test_point_newton_work_budget_stops_with_a_reason():
         solve_ehl(c, EHLGrid(nx=65), EHLOptions(max_work=2))
     assert e.value.stop["reason"] == "work budget"
     s = solve_ehl(c, EHLGrid(nx=65))
-    assert 5.0 < s.info["work"] < 40.0  # measured 12.8 units, against the default 400
+    assert 5.0 < s.info["work"] < 40.0  # measured 12.8 units, against the default 100 for points
 
 
 def test_iteration_limit_hint_is_computed_from_the_state():
