@@ -1617,6 +1617,11 @@ def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOption
             sol = _solve_ehl(contact, grid, options, initial, sequence, _final, _stage_info)
         if token is not None:
             sol.info["work"] = _BUDGET.get()["spent"]
+    except ConvergenceError as exc:
+        if token is not None:  # the work this failure took, next to its reason
+            exc.stop = dict(getattr(exc, "stop", None) or dict(reason="not converged", detail=str(exc)),
+                            work=_BUDGET.get()["spent"])
+        raise
     finally:
         if token is not None:
             _BUDGET.reset(token)

@@ -179,3 +179,12 @@ def test_errors_carry_their_stop_reason():
     with pytest.raises(ConvergenceError, match="did not converge in 3 cycles") as cut:
         solve_ehl(EHLContact.from_moes(100, 10), EHLGrid(nx=129), mg)
     assert cut.value.stop["reason"] == "iteration limit"
+
+
+def test_a_failed_solve_reports_the_work_it_took():
+    """A failed solve's ``.stop`` holds the work spent (Newton steps on the requested grid): here
+    the first-order start's 2 iterations on the 129 requested nodes (no coarser level, no fallback)."""
+    with pytest.raises(ConvergenceError) as exc:
+        solve_ehl(_line(20, 10), EHLGrid(nx=129), EHLOptions(max_iter=2))
+    assert exc.value.stop["reason"] == "iteration limit"
+    assert exc.value.stop["work"] == 2.0
