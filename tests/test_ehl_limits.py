@@ -188,3 +188,19 @@ def test_a_failed_solve_reports_the_work_it_took():
         solve_ehl(_line(20, 10), EHLGrid(nx=129), EHLOptions(max_iter=2))
     assert exc.value.stop["reason"] == "iteration limit"
     assert exc.value.stop["work"] == 2.0
+
+
+def test_hint_names_the_test_that_refused_a_converged_step():
+    """Issue 20 item 7 (the Eyring line contact at M = 7.3 of issue 12): when the Newton step met
+    rtol but the state was refused, the hint says which test refused it with its figures, and names
+    no grid at a load the grid resolves (M = 7.3 on 257 nodes; resolved up to M = 298)."""
+    from lubrication.ehl import _iteration_limit_hint
+
+    s = solve_ehl(_line(7.3, 10), EHLGrid(nx=257))
+    history = [(1e-8, 1e-9, 0.0, n) for n in (20, 20, 21, 20, 21, 20)]
+    rejected = dict(iteration=6, load=(1e-8, 1e-6), multiplier=(3e-5, 1e-7))
+    hint = _iteration_limit_hint(s.problem, history, rejected, s.film_thickness)
+    assert hint.startswith("the Newton step met rtol 1e-07 (last at iteration 6) but a cavitated node's "
+                           "multiplier -3.0e-05 p_ref below -1e-07 refused the state")
+    assert "the cavitated set keeps changing (20 ... 21 nodes over the last six steps)" in hint
+    assert "grid.nx" not in hint and "1000" not in hint
