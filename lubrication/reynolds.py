@@ -42,7 +42,10 @@ Each Newton step solves one sparse linear system in the free nodes; a node is
 either a pressure unknown (full film) or a void-fraction unknown (cavitated).
 Symmetric systems (constant lubricant, no JFO) above
 :data:`DIRECT_SOLVER_MAX_DOFS` unknowns go to classical (Ruge-Stuben) AMG
-preconditioned CG, all others to SuperLU.
+preconditioned CG, all others to SuperLU.  AMG-CG stalls on graded meshes: if
+its first solve has not reached ``amg_tol`` in :func:`amg_probe_iterations`
+iterations (mean factor :data:`AMG_STALL_FACTOR`), SuperLU takes over for the
+rest of the solve and ``info["linear_solver"]`` says so.
 
 JFO with P2 elements is inaccurate: use P1
 -----------------------------------------
@@ -119,6 +122,24 @@ LINEAR_SOLVERS = ("auto", "direct", "amg")
 #                 P2 journal 147k: 1.2 against 4.7 s)
 # AMG pressures agreed with SuperLU's to 4e-12 (max norm) on all of them.
 DIRECT_SOLVER_MAX_DOFS = 60_000
+# "auto": AMG-CG whose first solve converges more slowly than this mean factor per CG
+# iteration has stalled, and SuperLU takes over (SolverOptions).  The crossover above was
+# measured on uniform meshes; on geometrically graded ones (cell ratio 1.02-1.1 about a
+# contact, P2 quads) Ruge-Stuben AMG-CG degrades with the grading.  Measured (sphere-plane,
+# full film, one reduced system, amg_tol 1e-10, maxiter 200; iterations, mean factor, time
+# against SuperLU):
+#   14k DOFs: uniform 13 its, 0.14, 0.34 s vs 0.08 s; ratio 1.05: 50 its, 0.63, 0.37 s;
+#             ratio 1.1: 133 its, 0.84, 1.10 s
+#   25k DOFs, ratio 1.1: 200 its stopped at 7e-8 (5.2 s vs 0.20 s)
+#   57k DOFs, ratio 1.05: 200 its stopped at 1.3e-7 (11.6 s vs 0.65 s); ratio 1.1: 200 its
+#             stopped at 1.2e-2 (10.1 s vs 0.62 s; pressure error 3.4e-3 of max p)
+#   89k DOFs, ratio 1.05: 200 its stopped at 5e-4 (smoothed aggregation: 200 its, 2e-7: no
+#             better, so the fallback is SuperLU); the whole Reynolds-cavitation solve (nested,
+#             8 Newton iterations) took 92.8 s against 15.3 s with SuperLU, 22.6 s with the
+#             fallback (same load to 1e-15)
+# while uniform meshes need 9-17 iterations (factor 0.1-0.25) from 14k to 1M DOFs.  0.5 leaves
+# a margin of 2x over the uniform factors and catches every graded case above.
+AMG_STALL_FACTOR = 0.5
 # automatic nested iteration (SolverOptions.warm_start_levels = None) from this
 # many unknowns.  Measured (median of 7, nested against cold): long journal P2
 # 768/1152/1536 DOFs 27/29/32 ms against 27/44/74 ms (cold needs 41/-/80
@@ -510,10 +531,17 @@ class _Problem:
         return R, A, Jr
 
     def solve_linear(self, M, rhs, symmetric: bool):
+        """Solve ``M x = rhs`` with the solver that ``film.options.linear_solver`` picks.
+
+        ``"auto"`` checks AMG-CG on its first solve (:data:`AMG_STALL_FACTOR`): if CG has
+        not reached ``amg_tol`` within :func:`amg_probe_iterations` iterations, AMG has
+        stalled (graded meshes), this system and every later one of the solve go to SuperLU,
+        and ``linear_solver_used`` says why."""
         opts = self.film.options
         n = M.shape[0]
         use_amg = opts.linear_solver == "amg" or (
             opts.linear_solver == "auto" and symmetric and n > DIRECT_SOLVER_MAX_DOFS
+            and getattr(self, "amg_stall", None) is None
         )
         if use_amg:
             import pyamg
@@ -522,20 +550,50 @@ class _Problem:
             # 1.5-7.5 s for smoothed aggregation (whose Jacobi prolongation smoother
             # estimates spectral radii; 7.5 s with both cores busy), 9 CG
             # iterations against 11
+            probe = opts.linear_solver == "auto" and not getattr(self, "amg_checked", False)
+            maxiter = amg_probe_iterations(opts.amg_tol) if probe else 200
             ml = pyamg.ruge_stuben_solver(M.tocsr())
             residuals = []
-            x = ml.solve(rhs, tol=opts.amg_tol, accel="cg", maxiter=200, residuals=residuals)
-            if residuals and residuals[-1] > opts.amg_tol * max(residuals[0], 1e-300):
+            x = ml.solve(rhs, tol=opts.amg_tol, accel="cg", maxiter=maxiter, residuals=residuals)
+            iterations = len(residuals) - 1
+            relative = residuals[-1] / max(residuals[0], 1e-300) if residuals else 0.0
+            self.amg_checked = True
+            if probe and relative > opts.amg_tol:
+                self.amg_stall = (relative, iterations)
+                self.linear_solver_used = (f"direct (SuperLU) after AMG-CG stalled: residual {relative:.2e} "
+                                           f"after {iterations} iterations")
+                log.info("linear solver auto: AMG-CG (Ruge-Stuben) stalled on the first of %d unknowns "
+                         "(relative residual %.2e > amg_tol %.1e after %d iterations: mean convergence factor "
+                         "%.2f > %.2f); SuperLU solves this system and the rest of the solve", n, relative,
+                         opts.amg_tol, iterations, relative ** (1.0 / max(iterations, 1)), AMG_STALL_FACTOR)
+                return self._direct(M, rhs)
+            if relative > opts.amg_tol:
                 log.warning("AMG-CG stopped at relative residual %.2e > amg_tol %.1e after %d iterations",
-                            residuals[-1] / max(residuals[0], 1e-300), opts.amg_tol, len(residuals) - 1)
+                            relative, opts.amg_tol, iterations)
             self.linear_solver_used = "amg (pyamg Ruge-Stuben + CG)"
             return x
-        self.linear_solver_used = "direct (SuperLU)"
+        if getattr(self, "amg_stall", None) is None:
+            self.linear_solver_used = "direct (SuperLU)"
+        return self._direct(M, rhs)
+
+    @staticmethod
+    def _direct(M, rhs):
         # an exactly singular matrix gives non-finite values, which the Newton loop reports as
         # one clear ConvergenceError (no scipy MatrixRankWarning on the user's terminal)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", spla.MatrixRankWarning)
             return spla.spsolve(M.tocsc(), rhs)
+
+
+def amg_probe_iterations(amg_tol: float) -> int:
+    """CG iterations that AMG-CG gets on its first solve under ``linear_solver = "auto"``:
+    those that reach ``amg_tol`` at the mean convergence factor :data:`AMG_STALL_FACTOR`
+    (34 at 1e-10).
+
+    >>> amg_probe_iterations(1e-10)
+    34
+    """
+    return int(np.ceil(np.log(amg_tol) / np.log(AMG_STALL_FACTOR)))
 
 
 ROUNDOFF_FLOOR = 1e3  # machine epsilons of the residual's terms: see _at_roundoff_floor
