@@ -259,6 +259,7 @@ def summarise(case: FilmCase, solution, coefficients=None) -> dict:
         "Element": case.mesh.element,
         "Cavitation model": case.cavitation.model,
         "Linear solver": str(info.get("linear_solver", "")),
+        "Stop reason": str(info.get("stop reason", "")),
         "Mesh cells [-]": int(film.mesh.t.shape[1]),
     })
     return out

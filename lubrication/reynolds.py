@@ -596,6 +596,65 @@ def amg_probe_iterations(amg_tol: float) -> int:
     return int(np.ceil(np.log(amg_tol) / np.log(AMG_STALL_FACTOR)))
 
 
+CYCLE_WINDOW = 10  # last iterations that _diagnose reads
+
+
+def _diagnose(history, repeat, prob, complementarity) -> tuple[str, str]:
+    """Why a Reynolds solve ran out of iterations, and what to do, from its iteration history
+    (``(|R|/|R0|, |dp|/|p|, cavitated nodes)`` per iteration) and its state.
+
+    Criteria, in this order: active-set cycling (a set seen before, or a set that changed in
+    every one of the last :data:`CYCLE_WINDOW` iterations), a residual stagnating (the last
+    window brought it no lower than half its earlier best), Newton steps not shrinking, else
+    still converging (more iterations)."""
+    film = prob.film
+    last = history[-CYCLE_WINDOW:]
+    res = np.array([h[0] for h in history])
+    steps = np.array([h[1] for h in history])
+    counts = [h[2] for h in last]
+    changes = sum(1 for a, b in zip(history[-CYCLE_WINDOW - 1:-1], last) if a[2] != b[2])
+    recent_repeat = repeat is not None and repeat[0] > len(history) - CYCLE_WINDOW
+    tail = f"|R|/|R0| = {res[-1]:.3e}, |dp|/|p| = {steps[-1]:.3e}"
+    if complementarity and len(history) >= 2 and (recent_repeat or changes >= min(CYCLE_WINDOW, len(history) - 1)):
+        what = (f"the cavitated set of iteration {repeat[0]} repeats that of iteration {repeat[1]}"
+                if recent_repeat else "the cavitated set changed in every iteration")
+        reason = (f"active-set cycling: {what}; {min(counts)} to {max(counts)} cavitated nodes over the last "
+                  f"{len(last)} iterations, |R|/|R0| between {min(h[0] for h in last):.2e} and "
+                  f"{max(h[0] for h in last):.2e}")
+        supply = np.concatenate([prob.p_fixed[prob.fixed]])
+        hdot = prob.hdot
+        separating = float(np.sum((hdot > 0) * prob.basis.dx) / np.sum(prob.basis.dx))
+        if prob.cav.model == "jfo" and np.all(supply <= prob.cav.pressure):
+            hint = (f"every boundary pressure is at or below cavitation.pressure = {prob.cav.pressure:.4g} Pa: "
+                    "a JFO film without lubricant supply has starved solutions besides the flooded one; give a "
+                    "boundary pressure above the cavitation pressure")
+        elif separating > 0:
+            hint = (f"the gap opens (dh/dt > 0) over {100 * separating:.0f} % of the film, max dh/dt = "
+                    f"{np.max(hdot):.3g} m/s: the semismooth active-set Newton method does not settle on the "
+                    "cavitation boundary of a separating squeeze; reduce the separating velocity, or use "
+                    "cavitation.model = 'reynolds'")
+        else:
+            hint = "the cavitation boundary does not settle on this mesh; try a finer mesh or solver.max_iter"
+        return reason, hint
+    earlier = res[:-CYCLE_WINDOW]
+    if earlier.size and np.min(res[-CYCLE_WINDOW:]) >= 0.5 * np.min(earlier):
+        best = int(np.argmin(res)) + 1
+        reason = (f"residual stagnating at {res[-1]:.3e} of |R0| (best {res[best - 1]:.3e} at iteration {best}), "
+                  f"|dp|/|p| = {steps[-1]:.3e}")
+        if not prob.linear:
+            hint = ("the pressure-dependent lubricant makes the Newton iteration stall: the film may have no "
+                    "solution at this load and speed; reduce them, or check the viscosity law")
+        else:
+            hint = f"solver.rtol = {film.options.rtol:.0e} may be below what round-off allows on this mesh"
+        return reason, hint
+    if len(steps) > CYCLE_WINDOW and steps[-1] >= 0.5 * steps[-CYCLE_WINDOW - 1]:
+        reason = f"Newton steps not shrinking: |dp|/|p| = {steps[-1]:.3e}, {steps[-CYCLE_WINDOW - 1]:.3e} {CYCLE_WINDOW} iterations earlier, |R|/|R0| = {res[-1]:.3e}"
+        return reason, "the iteration does not contract here; check the gap, boundary pressures and speeds"
+    return (f"still converging: {tail}, residual from {res[max(0, len(res) - CYCLE_WINDOW - 1)]:.3e} over the last "
+            f"{min(len(res), CYCLE_WINDOW + 1) - 1} iterations",
+            f"raise solver.max_iter = {film.options.max_iter}")
+
+
 ROUNDOFF_FLOOR = 1e3  # machine epsilons of the residual's terms: see _at_roundoff_floor
 
 
@@ -692,6 +751,8 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
     history = []
     converged = False
     prev_full = None
+    seen_sets = {}  # active set (bytes of the full-film mask) -> first iteration that had it
+    repeat = None  # (iteration, earlier iteration) of the last active set seen before
     for it in range(1, film.options.max_iter + 1):
         if complementarity and (it > 1 or initial is not None):
             if jfo:
@@ -755,6 +816,11 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         same_set = (not complementarity) or (prev_full is not None and np.array_equal(full, prev_full))
         prev_full = full.copy()
         if complementarity:
+            key = np.packbits(full).tobytes()
+            if key in seen_sets and not same_set:
+                repeat = (it, seen_sets[key])
+            seen_sets.setdefault(key, it)
+        if complementarity:
             # is the complementarity system itself satisfied at the new iterate?
             if jfo:
                 feasible = np.all(p[free] >= pcav - 1e-9 * pscale) and np.all(r[free] >= -1e-9)
@@ -770,16 +836,29 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         if same_set and feasible and (tiny_step or (small_step and (
                 rnorm <= film.options.rtol * 10 or _at_roundoff_floor(R, Jp, Jr, p, r, res_mask)))):
             converged = True
+            step_text = f"|dp|/|p| = {np.max(np.abs(dp)) / pscale:.2e}"
+            if rnorm <= film.options.rtol * 10:
+                stop = f"tolerance met: |R|/|R0| = {rnorm:.2e} <= 10 rtol, {step_text}"
+            elif tiny_step:
+                stop = f"Newton step below rtol: {step_text} <= {film.options.rtol:.0e} (|R|/|R0| = {rnorm:.2e})"
+            else:
+                stop = f"round-off floor: |R|/|R0| = {rnorm:.2e} at the round-off of its terms, {step_text}"
+            if complementarity:
+                stop += f"; active set unchanged ({history[-1][2]} cavitated nodes)"
             break
         if prob.linear and not complementarity and rnorm <= film.options.rtol * 10:
             converged = True
+            stop = f"tolerance met: |R|/|R0| = {rnorm:.2e} <= 10 rtol (linear film)"
             break
     if not converged:
-        raise ConvergenceError(
+        reason, hint = _diagnose(history, repeat, prob, complementarity)
+        exc = ConvergenceError(
             f"Reynolds solve ({model} cavitation) did not converge in {film.options.max_iter} "
-            f"iterations: |R|/|R0| = {history[-1][0]:.3e}, |dp|/|p| = {history[-1][1]:.3e} "
-            f"(solver.max_iter, solver.rtol; a very thin film or extreme pressures make it harder)"
+            f"iterations: {reason} ({hint})"
         )
+        exc.stop_reason = f"iteration limit: {reason}"
+        exc.hint = hint
+        raise exc
     if model == "half_sommerfeld":
         p = np.maximum(p, pcav)
         full = (p > pcav) | fixed
@@ -791,9 +870,10 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         linear_solver=getattr(prob, "linear_solver_used", "direct (SuperLU)"),
         dofs=N,
     )
+    info["stop reason"] = stop
     log.info(
-        "Reynolds %s/%s: %d dofs, %d iterations, %.3f s, %s",
-        film.element, model, N, info["iterations"], info["wall_time"], info["linear_solver"],
+        "Reynolds %s/%s: %d dofs, %d iterations, %.3f s, %s; %s",
+        film.element, model, N, info["iterations"], info["wall_time"], info["linear_solver"], stop,
     )
     return FilmSolution(film=film, problem=prob, pressure_dofs=p, fluid_fraction_dofs=theta, full_film=full, info=info)
 
