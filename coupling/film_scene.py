@@ -327,7 +327,8 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     scene_summary["Film Reynolds number [-]"] = reynolds
     validity.report(scene_summary, validity.warnings_for(
         case.validity, max_pressure=solution.p_max, min_film=solution.h_min, reynolds=reynolds,
-        model="the rigid-surface Reynolds film") + resolution_warnings(case, solution))
+        model="the rigid-surface Reynolds film") + resolution_warnings(case, solution)
+        + [w for w in (solution.fluid_fraction_warning(),) if w])
     summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
     result = FilmRun(case=case, film=film, solution=solution, summary=summary)
     if out_dir is None:
