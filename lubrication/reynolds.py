@@ -75,6 +75,17 @@ tests/roundoff.py, 1.5e-9 ||R_0|| > 10 rtol, while the Newton update was
 Otherwise, after ``max_iter`` iterations,
 :class:`~lubrication.errors.ConvergenceError`.
 
+Stop reasons: a converged solve records in ``info["stop reason"]`` which test
+stopped it ("tolerance met", "Newton step below rtol", "round-off floor",
+with |R|/|R0|, |dp|/|p| and the cavitated-node count).  A failed one says
+what failed, read from its iteration history by :func:`_diagnose`
+(active-set cycling with the node counts, line search stalled, residual
+stagnating, steps not shrinking, still converging), with a hint computed from
+the film (no supply above the cavitation pressure, the share of the film that
+separates, the viscosity reached); the exception carries ``stop_reason`` and
+``hint``.  Non-finite iterates name the viscosity reached for
+pressure-dependent lubricants instead of the boundary conditions.
+
 Linearised film coefficients
 ----------------------------
 For a gap mode q_j (see :mod:`lubrication.gaps`), one extra linear solve with
@@ -599,7 +610,21 @@ def amg_probe_iterations(amg_tol: float) -> int:
 CYCLE_WINDOW = 10  # last iterations that _diagnose reads
 
 
-def _diagnose(history, repeat, prob, complementarity) -> tuple[str, str]:
+def _divergence_hint(prob, p_last) -> str:
+    """Why the pressure may have diverged, from the lubricant and the last finite iterate."""
+    lub = prob.film.lubricant
+    if prob.linear:
+        return ("a film with constant lubricant properties is linear: a non-finite pressure means a singular "
+                "or ill-posed system; check the gap and the boundary pressures")
+    gauge = float(np.max(p_last) - prob.film.ambient_pressure)
+    with np.errstate(over="ignore", invalid="ignore"):
+        eta0, eta = float(lub.viscosity(np.array(0.0))), float(lub.viscosity(np.array(gauge)))
+    return (f"the viscosity rose from {eta0:.3g} to {eta:.3g} Pa s at the last finite iterate's largest "
+            f"pressure {gauge:.3g} Pa: the film may have no solution at this load and speed (e.g. beyond the "
+            "Barus pole); reduce them, or use a viscosity law that stays finite")
+
+
+def _diagnose(history, repeat, prob, complementarity, steps_taken=()) -> tuple[str, str]:
     """Why a Reynolds solve ran out of iterations, and what to do, from its iteration history
     (``(|R|/|R0|, |dp|/|p|, cavitated nodes)`` per iteration) and its state.
 
@@ -636,6 +661,12 @@ def _diagnose(history, repeat, prob, complementarity) -> tuple[str, str]:
         else:
             hint = "the cavitation boundary does not settle on this mesh; try a finer mesh or solver.max_iter"
         return reason, hint
+    damped = list(steps_taken)[-CYCLE_WINDOW:]
+    if len(damped) >= min(CYCLE_WINDOW, len(history)) and damped and max(damped) < 0.05:
+        reason = (f"line search stalled: backtracking cut the Newton step to at most {max(damped):.3g} in each "
+                  f"of the last {len(damped)} iterations, {tail}")
+        return reason, ("the Newton direction does not reduce the residual: the pressure-dependent lubricant may "
+                        "have no film at this load and speed; reduce them, or check the viscosity law")
     earlier = res[:-CYCLE_WINDOW]
     if earlier.size and np.min(res[-CYCLE_WINDOW:]) >= 0.5 * np.min(earlier):
         best = int(np.argmin(res)) + 1
@@ -751,6 +782,7 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
     history = []
     converged = False
     prev_full = None
+    steps_taken = []  # Newton step length of each iteration (< 1: damped by backtracking)
     seen_sets = {}  # active set (bytes of the full-film mask) -> first iteration that had it
     repeat = None  # (iteration, earlier iteration) of the last active set seen before
     for it in range(1, film.options.max_iter + 1):
@@ -778,10 +810,11 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         if idx.size:
             z[idx] = prob.solve_linear(Mred, rhs[idx], symmetric)
         if not np.all(np.isfinite(z)):
-            raise ConvergenceError(
-                f"Reynolds Newton iteration {it}: the linear solve produced non-finite values "
-                "(singular Jacobian: check boundary conditions and the gap)"
-            )
+            why = ("singular Jacobian: check boundary conditions and the gap" if prob.linear and np.all(np.isfinite(p))
+                   else _divergence_hint(prob, p))
+            exc = ConvergenceError(f"Reynolds Newton iteration {it}: the linear solve produced non-finite values ({why})")
+            exc.stop_reason = f"non-finite linear solve at iteration {it}"
+            raise exc
         dp = dp_known + np.where(full & free, z, 0.0)
         dr = dr_known + (np.where(~full & free, z, 0.0) if jfo else 0.0)
         # damped update for nonlinear laws (simple backtracking on ||R||)
@@ -795,15 +828,18 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
                     break
                 step *= 0.5
             p_new = p + step * dp
+        p_old = p
         p, r = p_new, r_new
+        steps_taken.append(step)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             R, Jp, Jr = prob.assemble(p, r, with_void=jfo)
         if not (np.all(np.isfinite(R)) and np.all(np.isfinite(p))):
-            raise ConvergenceError(
+            exc = ConvergenceError(
                 f"Reynolds Newton iteration {it}: the pressure diverged (non-finite residual; "
-                f"max pressure {np.nanmax(np.abs(p)):.3e} Pa). For pressure-dependent viscosity the "
-                "film may have no solution at this load and speed (e.g. beyond the Barus pole)"
+                f"max pressure {np.nanmax(np.abs(p)):.3e} Pa): {_divergence_hint(prob, p_old)}"
             )
+            exc.stop_reason = f"film diverged at iteration {it}"
+            raise exc
         if complementarity:
             res_mask = free & (full if not jfo else np.ones(N, dtype=bool))
         else:
@@ -851,7 +887,7 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
             stop = f"tolerance met: |R|/|R0| = {rnorm:.2e} <= 10 rtol (linear film)"
             break
     if not converged:
-        reason, hint = _diagnose(history, repeat, prob, complementarity)
+        reason, hint = _diagnose(history, repeat, prob, complementarity, steps_taken)
         exc = ConvergenceError(
             f"Reynolds solve ({model} cavitation) did not converge in {film.options.max_iter} "
             f"iterations: {reason} ({hint})"

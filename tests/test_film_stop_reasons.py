@@ -113,3 +113,56 @@ def test_jfo_negative_fluid_fraction_is_warned(tmp_path):
         "motion.mode_velocities.x=-0.2"])
     summary = film_scene.run(case).summary
     assert any(w.startswith("Fluid fraction down to -") for w in summary["Warnings"])
+
+
+def test_barus_pole_names_the_viscosity_not_the_boundary_conditions():
+    """An inclined slider with a Barus film past its pole: the Jacobian becomes non-finite at
+    iteration 3 because the viscosity overflows (8.9e16 Pa at the last finite iterate).  The old
+    message blamed "boundary conditions and the gap"; the new one names the viscosity."""
+    from lubrication import Barus
+
+    film = Film(meshes.interval(0, 0.02, 40), InclinedSlider(2e-6, 1e-6, 0.02), Lubricant(Barus(0.01, 1e-6)),
+                velocity_lower=(2.0,), options=SolverOptions(max_iter=30))
+    with pytest.raises(ConvergenceError, match=r"the viscosity rose from 0.01 to inf Pa s .* Barus pole") as err:
+        film.solve()
+    assert "boundary conditions" not in str(err.value)
+    assert err.value.stop_reason == "non-finite linear solve at iteration 3"
+
+
+@pytest.mark.parametrize("case, expected", [
+    # (|R|/|R0|, |dp|/|p|, cavitated nodes) per iteration, step lengths
+    ("cycle", "active-set cycling: the cavitated set of iteration 12 repeats that of iteration 10"),
+    ("changing", "active-set cycling: the cavitated set changed in every iteration; 10 to 19 cavitated nodes"),
+    ("stagnating", "residual stagnating at 1.000e-03 of |R0| (best 1.000e-03 at iteration 3)"),
+    ("line search", "line search stalled: backtracking cut the Newton step to at most 0.0156"),
+    ("steps", "Newton steps not shrinking: |dp|/|p| = 1.000e-01"),
+    ("converging", "still converging: |R|/|R0| = 1.000e-11"),
+])
+def test_diagnosis_reads_the_history(case, expected):
+    """The failure classifier on synthetic histories of 20 iterations (one per criterion)."""
+    from lubrication.reynolds import _diagnose, _Problem
+
+    film = Film(meshes.interval(0, 0.02, 10), InclinedSlider(20e-6, 10e-6, 0.02), Lubricant.newtonian(0.01),
+                velocity_lower=(1.0,), cavitation=Cavitation("reynolds"))
+    prob = _Problem(film)
+    n = 20
+    steps_taken = [1.0] * n
+    repeat = None
+    complementarity = case in ("cycle", "changing")
+    if case == "cycle":
+        history = [(1e-3, 1e-1, 10 + (i % 2)) for i in range(n)]
+        repeat = (12, 10)
+    elif case == "changing":
+        history = [(1e-3, 1e-1, 10 + (i % 10)) for i in range(n)]
+    elif case == "stagnating":
+        history = [(max(1e-3, 10.0 ** -i), 10.0 ** -i, 0) for i in range(1, n + 1)]
+    elif case == "line search":
+        history = [(0.5, 0.01, 0) for i in range(n)]
+        steps_taken = [1 / 64] * n
+    elif case == "steps":
+        history = [(10.0 ** -(i / 4), 0.1, 0) for i in range(n)]
+    else:
+        history = [(10.0 ** -(i * 11 / (n - 1)), 10.0 ** -(i * 11 / (n - 1)), 0) for i in range(n)]
+    reason, hint = _diagnose(history, repeat, prob, complementarity, steps_taken)
+    assert reason.startswith(expected), reason
+    assert hint
