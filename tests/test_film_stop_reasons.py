@@ -116,17 +116,19 @@ def test_jfo_negative_fluid_fraction_is_warned(tmp_path):
 
 
 def test_barus_pole_names_the_viscosity_not_the_boundary_conditions():
-    """An inclined slider with a Barus film past its pole: the Jacobian becomes non-finite at
-    iteration 3 because the viscosity overflows (8.9e16 Pa at the last finite iterate).  The old
-    message blamed "boundary conditions and the gap"; the new one names the viscosity."""
+    """An inclined slider with a Barus film past its pole: measured, the Jacobian becomes
+    non-finite at iteration 3 because the viscosity overflows (8.9e16 Pa at the last finite
+    iterate); with residuals perturbed by 1-10 round-off units (tests/roundoff.py) the pressure
+    itself diverges one iteration earlier (viscosity 7e8 Pa s at 2.5e7 Pa).  The old message of
+    the first path blamed "boundary conditions and the gap"; both now name the viscosity."""
     from lubrication import Barus
 
-    film = Film(meshes.interval(0, 0.02, 40), InclinedSlider(2e-6, 1e-6, 0.02), Lubricant(Barus(0.01, 1e-6)),
+    film = Film(meshes.interval(0, 0.02, 40), InclinedSlider(20e-7, 10e-7, 0.02), Lubricant(Barus(0.01, 1e-6)),
                 velocity_lower=(2.0,), options=SolverOptions(max_iter=30))
-    with pytest.raises(ConvergenceError, match=r"the viscosity rose from 0.01 to inf Pa s .* Barus pole") as err:
+    with pytest.raises(ConvergenceError, match=r"the viscosity rose from 0.01 to \S+ Pa s .* Barus pole") as err:
         film.solve()
     assert "boundary conditions" not in str(err.value)
-    assert err.value.stop_reason == "non-finite linear solve at iteration 3"
+    assert re.fullmatch(r"(non-finite linear solve|film diverged) at iteration [23]", err.value.stop_reason)
 
 
 @pytest.mark.parametrize("case, expected", [
