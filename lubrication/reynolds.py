@@ -628,8 +628,8 @@ def _diagnose(history, repeat, prob, complementarity, steps_taken=()) -> tuple[s
     """Why a Reynolds solve ran out of iterations, and what to do, from its iteration history
     (``(|R|/|R0|, |dp|/|p|, cavitated nodes)`` per iteration) and its state.
 
-    Criteria, in this order: active-set cycling (a set seen before, or a set that changed in
-    every one of the last :data:`CYCLE_WINDOW` iterations), a residual stagnating (the last
+    Criteria, in this order: active-set cycling (a set seen before, or a cavitated-node count
+    that changed in each of the last :data:`CYCLE_WINDOW` iterations), a residual stagnating (the last
     window brought it no lower than half its earlier best), Newton steps not shrinking, else
     still converging (more iterations)."""
     film = prob.film
@@ -637,12 +637,13 @@ def _diagnose(history, repeat, prob, complementarity, steps_taken=()) -> tuple[s
     res = np.array([h[0] for h in history])
     steps = np.array([h[1] for h in history])
     counts = [h[2] for h in last]
-    changes = sum(1 for a, b in zip(history[-CYCLE_WINDOW - 1:-1], last) if a[2] != b[2])
+    pairs = list(zip(history[:-1], history[1:]))[-CYCLE_WINDOW:]
+    changes = sum(1 for a, b in pairs if a[2] != b[2])
     recent_repeat = repeat is not None and repeat[0] > len(history) - CYCLE_WINDOW
     tail = f"|R|/|R0| = {res[-1]:.3e}, |dp|/|p| = {steps[-1]:.3e}"
-    if complementarity and len(history) >= 2 and (recent_repeat or changes >= min(CYCLE_WINDOW, len(history) - 1)):
+    if complementarity and (recent_repeat or (len(pairs) == CYCLE_WINDOW and changes == CYCLE_WINDOW)):
         what = (f"the cavitated set of iteration {repeat[0]} repeats that of iteration {repeat[1]}"
-                if recent_repeat else "the cavitated set changed in every iteration")
+                if recent_repeat else f"the cavitated node count changed in each of the last {CYCLE_WINDOW} iterations")
         reason = (f"active-set cycling: {what}; {min(counts)} to {max(counts)} cavitated nodes over the last "
                   f"{len(last)} iterations, |R|/|R0| between {min(h[0] for h in last):.2e} and "
                   f"{max(h[0] for h in last):.2e}")
