@@ -629,9 +629,10 @@ def _diagnose(history, repeat, prob, complementarity, steps_taken=()) -> tuple[s
     (``(|R|/|R0|, |dp|/|p|, cavitated nodes)`` per iteration) and its state.
 
     Criteria, in this order: active-set cycling (a set seen before, or a cavitated-node count
-    that changed in each of the last :data:`CYCLE_WINDOW` iterations), a residual stagnating (the last
-    window brought it no lower than half its earlier best), Newton steps not shrinking, else
-    still converging (more iterations)."""
+    that changed in each of the last :data:`CYCLE_WINDOW` iterations), line search stalled
+    (backtracking below 0.05 in each of them), a residual stagnating (the last window brought
+    it no lower than half its earlier best), Newton steps not shrinking, else still converging
+    (more iterations)."""
     film = prob.film
     last = history[-CYCLE_WINDOW:]
     res = np.array([h[0] for h in history])
@@ -647,7 +648,7 @@ def _diagnose(history, repeat, prob, complementarity, steps_taken=()) -> tuple[s
         reason = (f"active-set cycling: {what}; {min(counts)} to {max(counts)} cavitated nodes over the last "
                   f"{len(last)} iterations, |R|/|R0| between {min(h[0] for h in last):.2e} and "
                   f"{max(h[0] for h in last):.2e}")
-        supply = np.concatenate([prob.p_fixed[prob.fixed]])
+        supply = prob.p_fixed[prob.fixed]
         hdot = prob.hdot
         separating = float(np.sum((hdot > 0) * prob.basis.dx) / np.sum(prob.basis.dx))
         if prob.cav.model == "jfo" and np.all(supply <= prob.cav.pressure):
@@ -680,7 +681,8 @@ def _diagnose(history, repeat, prob, complementarity, steps_taken=()) -> tuple[s
             hint = f"solver.rtol = {film.options.rtol:.0e} may be below what round-off allows on this mesh"
         return reason, hint
     if len(steps) > CYCLE_WINDOW and steps[-1] >= 0.5 * steps[-CYCLE_WINDOW - 1]:
-        reason = f"Newton steps not shrinking: |dp|/|p| = {steps[-1]:.3e}, {steps[-CYCLE_WINDOW - 1]:.3e} {CYCLE_WINDOW} iterations earlier, |R|/|R0| = {res[-1]:.3e}"
+        reason = (f"Newton steps not shrinking: |dp|/|p| = {steps[-1]:.3e}, {steps[-CYCLE_WINDOW - 1]:.3e} "
+                  f"{CYCLE_WINDOW} iterations earlier, |R|/|R0| = {res[-1]:.3e}")
         return reason, "the iteration does not contract here; check the gap, boundary pressures and speeds"
     return (f"still converging: {tail}, residual from {res[max(0, len(res) - CYCLE_WINDOW - 1)]:.3e} over the last "
             f"{min(len(res), CYCLE_WINDOW + 1) - 1} iterations",
@@ -813,7 +815,8 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         if not np.all(np.isfinite(z)):
             why = ("singular Jacobian: check boundary conditions and the gap" if prob.linear and np.all(np.isfinite(p))
                    else _divergence_hint(prob, p))
-            exc = ConvergenceError(f"Reynolds Newton iteration {it}: the linear solve produced non-finite values ({why})")
+            exc = ConvergenceError(
+                f"Reynolds Newton iteration {it}: the linear solve produced non-finite values ({why})")
             exc.stop_reason = f"non-finite linear solve at iteration {it}"
             raise exc
         dp = dp_known + np.where(full & free, z, 0.0)
