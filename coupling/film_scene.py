@@ -259,6 +259,7 @@ def summarise(case: FilmCase, solution, coefficients=None) -> dict:
         "Element": case.mesh.element,
         "Cavitation model": case.cavitation.model,
         "Linear solver": str(info.get("linear_solver", "")),
+        "Stop reason": str(info.get("stop reason", "")),
         "Mesh cells [-]": int(film.mesh.t.shape[1]),
     })
     return out
@@ -276,6 +277,25 @@ def film_reynolds_number(case: FilmCase, solution) -> float:
         speeds.append(float(np.linalg.norm(mo.velocity_upper)))
     h_max = float(np.max(solution.film_thickness))
     return case.lubricant.density.rho0 * max(speeds) * h_max / case.lubricant.viscosity.eta0
+
+
+def resolution_warnings(case: FilmCase, solution) -> list[str]:
+    """The film's minimum-gap resolution guard
+    (:meth:`~lubrication.FilmSolution.resolution_warning`), naming the case's mesh keys that
+    would resolve the zone (every direction refined by the factor, rounded up; a disk by
+    whole refinements); [] when resolved."""
+    text = solution.resolution_warning()
+    if text is None:
+        return []
+    k = solution.info["min_gap_refine"]
+    m = case.mesh
+    if m.domain == "disk":
+        need = f"mesh.refinements = {m.refinements + int(math.ceil(math.log2(k)))}"
+    elif m.domain == "interval":
+        need = f"mesh.nx = {m.nx * k}"
+    else:
+        need = f"mesh.nx = {m.nx * k} with mesh.ny = {m.ny * k}"
+    return [f"{text} ({need}, or finer)"]
 
 
 @dataclass
@@ -307,7 +327,8 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     scene_summary["Film Reynolds number [-]"] = reynolds
     validity.report(scene_summary, validity.warnings_for(
         case.validity, max_pressure=solution.p_max, min_film=solution.h_min, reynolds=reynolds,
-        model="the rigid-surface Reynolds film"))
+        model="the rigid-surface Reynolds film") + resolution_warnings(case, solution)
+        + [w for w in (solution.fluid_fraction_warning(),) if w])
     summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
     result = FilmRun(case=case, film=film, solution=solution, summary=summary)
     if out_dir is None:

@@ -42,7 +42,10 @@ Each Newton step solves one sparse linear system in the free nodes; a node is
 either a pressure unknown (full film) or a void-fraction unknown (cavitated).
 Symmetric systems (constant lubricant, no JFO) above
 :data:`DIRECT_SOLVER_MAX_DOFS` unknowns go to classical (Ruge-Stuben) AMG
-preconditioned CG, all others to SuperLU.
+preconditioned CG, all others to SuperLU.  AMG-CG stalls on graded meshes: if
+its first solve has not reached ``amg_tol`` in :func:`amg_probe_iterations`
+iterations (mean factor :data:`AMG_STALL_FACTOR`), SuperLU takes over for the
+rest of the solve and ``info["linear_solver"]`` says so.
 
 JFO with P2 elements is inaccurate: use P1
 -----------------------------------------
@@ -71,6 +74,17 @@ tests/roundoff.py, 1.5e-9 ||R_0|| > 10 rtol, while the Newton update was
 2e-11 |p|: the old residual-only test ran out of iterations there).
 Otherwise, after ``max_iter`` iterations,
 :class:`~lubrication.errors.ConvergenceError`.
+
+Stop reasons: a converged solve records in ``info["stop reason"]`` which test
+stopped it ("tolerance met", "Newton step below rtol", "round-off floor",
+with |R|/|R0|, |dp|/|p| and the cavitated-node count).  A failed one says
+what failed, read from its iteration history by :func:`_diagnose`
+(active-set cycling with the node counts, line search stalled, residual
+stagnating, steps not shrinking, still converging), with a hint computed from
+the film (no supply above the cavitation pressure, the share of the film that
+separates, the viscosity reached); the exception carries ``stop_reason`` and
+``hint``.  Non-finite iterates name the viscosity reached for
+pressure-dependent lubricants instead of the boundary conditions.
 
 Linearised film coefficients
 ----------------------------
@@ -119,6 +133,24 @@ LINEAR_SOLVERS = ("auto", "direct", "amg")
 #                 P2 journal 147k: 1.2 against 4.7 s)
 # AMG pressures agreed with SuperLU's to 4e-12 (max norm) on all of them.
 DIRECT_SOLVER_MAX_DOFS = 60_000
+# "auto": AMG-CG whose first solve converges more slowly than this mean factor per CG
+# iteration has stalled, and SuperLU takes over (SolverOptions).  The crossover above was
+# measured on uniform meshes; on geometrically graded ones (cell ratio 1.02-1.1 about a
+# contact, P2 quads) Ruge-Stuben AMG-CG degrades with the grading.  Measured (sphere-plane,
+# full film, one reduced system, amg_tol 1e-10, maxiter 200; iterations, mean factor, time
+# against SuperLU):
+#   14k DOFs: uniform 13 its, 0.14, 0.34 s vs 0.08 s; ratio 1.05: 50 its, 0.63, 0.37 s;
+#             ratio 1.1: 133 its, 0.84, 1.10 s
+#   25k DOFs, ratio 1.1: 200 its stopped at 7e-8 (5.2 s vs 0.20 s)
+#   57k DOFs, ratio 1.05: 200 its stopped at 1.3e-7 (11.6 s vs 0.65 s); ratio 1.1: 200 its
+#             stopped at 1.2e-2 (10.1 s vs 0.62 s; pressure error 3.4e-3 of max p)
+#   89k DOFs, ratio 1.05: 200 its stopped at 5e-4 (smoothed aggregation: 200 its, 2e-7: no
+#             better, so the fallback is SuperLU); the whole Reynolds-cavitation solve (nested,
+#             8 Newton iterations) took 92.8 s against 15.3 s with SuperLU, 22.6 s with the
+#             fallback (same load to 1e-15)
+# while uniform meshes need 9-17 iterations (factor 0.1-0.25) from 14k to 1M DOFs.  0.5 leaves
+# a margin of 2x over the uniform factors and catches every graded case above.
+AMG_STALL_FACTOR = 0.5
 # automatic nested iteration (SolverOptions.warm_start_levels = None) from this
 # many unknowns.  Measured (median of 7, nested against cold): long journal P2
 # 768/1152/1536 DOFs 27/29/32 ms against 27/44/74 ms (cold needs 41/-/80
@@ -510,10 +542,17 @@ class _Problem:
         return R, A, Jr
 
     def solve_linear(self, M, rhs, symmetric: bool):
+        """Solve ``M x = rhs`` with the solver that ``film.options.linear_solver`` picks.
+
+        ``"auto"`` checks AMG-CG on its first solve (:data:`AMG_STALL_FACTOR`): if CG has
+        not reached ``amg_tol`` within :func:`amg_probe_iterations` iterations, AMG has
+        stalled (graded meshes), this system and every later one of the solve go to SuperLU,
+        and ``linear_solver_used`` says why."""
         opts = self.film.options
         n = M.shape[0]
         use_amg = opts.linear_solver == "amg" or (
             opts.linear_solver == "auto" and symmetric and n > DIRECT_SOLVER_MAX_DOFS
+            and getattr(self, "amg_stall", None) is None
         )
         if use_amg:
             import pyamg
@@ -522,20 +561,132 @@ class _Problem:
             # 1.5-7.5 s for smoothed aggregation (whose Jacobi prolongation smoother
             # estimates spectral radii; 7.5 s with both cores busy), 9 CG
             # iterations against 11
+            probe = opts.linear_solver == "auto" and not getattr(self, "amg_checked", False)
+            maxiter = amg_probe_iterations(opts.amg_tol) if probe else 200
             ml = pyamg.ruge_stuben_solver(M.tocsr())
             residuals = []
-            x = ml.solve(rhs, tol=opts.amg_tol, accel="cg", maxiter=200, residuals=residuals)
-            if residuals and residuals[-1] > opts.amg_tol * max(residuals[0], 1e-300):
+            x = ml.solve(rhs, tol=opts.amg_tol, accel="cg", maxiter=maxiter, residuals=residuals)
+            iterations = len(residuals) - 1
+            relative = residuals[-1] / max(residuals[0], 1e-300) if residuals else 0.0
+            self.amg_checked = True
+            if probe and relative > opts.amg_tol:
+                self.amg_stall = (relative, iterations)
+                self.linear_solver_used = (f"direct (SuperLU) after AMG-CG stalled: residual {relative:.2e} "
+                                           f"after {iterations} iterations")
+                log.info("linear solver auto: AMG-CG (Ruge-Stuben) stalled on the first of %d unknowns "
+                         "(relative residual %.2e > amg_tol %.1e after %d iterations: mean convergence factor "
+                         "%.2f > %.2f); SuperLU solves this system and the rest of the solve", n, relative,
+                         opts.amg_tol, iterations, relative ** (1.0 / max(iterations, 1)), AMG_STALL_FACTOR)
+                return self._direct(M, rhs)
+            if relative > opts.amg_tol:
                 log.warning("AMG-CG stopped at relative residual %.2e > amg_tol %.1e after %d iterations",
-                            residuals[-1] / max(residuals[0], 1e-300), opts.amg_tol, len(residuals) - 1)
+                            relative, opts.amg_tol, iterations)
             self.linear_solver_used = "amg (pyamg Ruge-Stuben + CG)"
             return x
-        self.linear_solver_used = "direct (SuperLU)"
+        if getattr(self, "amg_stall", None) is None:
+            self.linear_solver_used = "direct (SuperLU)"
+        return self._direct(M, rhs)
+
+    @staticmethod
+    def _direct(M, rhs):
         # an exactly singular matrix gives non-finite values, which the Newton loop reports as
         # one clear ConvergenceError (no scipy MatrixRankWarning on the user's terminal)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", spla.MatrixRankWarning)
             return spla.spsolve(M.tocsc(), rhs)
+
+
+def amg_probe_iterations(amg_tol: float) -> int:
+    """CG iterations that AMG-CG gets on its first solve under ``linear_solver = "auto"``:
+    those that reach ``amg_tol`` at the mean convergence factor :data:`AMG_STALL_FACTOR`
+    (34 at 1e-10).
+
+    >>> amg_probe_iterations(1e-10)
+    34
+    """
+    return int(np.ceil(np.log(amg_tol) / np.log(AMG_STALL_FACTOR)))
+
+
+CYCLE_WINDOW = 10  # last iterations that _diagnose reads
+
+
+def _divergence_hint(prob, p_last) -> str:
+    """Why the pressure may have diverged, from the lubricant and the last finite iterate."""
+    lub = prob.film.lubricant
+    if prob.linear:
+        return ("a film with constant lubricant properties is linear: a non-finite pressure means a singular "
+                "or ill-posed system; check the gap and the boundary pressures")
+    gauge = float(np.max(p_last) - prob.film.ambient_pressure)
+    with np.errstate(over="ignore", invalid="ignore"):
+        eta0, eta = float(lub.viscosity(np.array(0.0))), float(lub.viscosity(np.array(gauge)))
+    return (f"the viscosity rose from {eta0:.3g} to {eta:.3g} Pa s at the last finite iterate's largest "
+            f"pressure {gauge:.3g} Pa: the film may have no solution at this load and speed (e.g. beyond the "
+            "Barus pole); reduce them, or use a viscosity law that stays finite")
+
+
+def _diagnose(history, repeat, prob, complementarity, steps_taken=()) -> tuple[str, str]:
+    """Why a Reynolds solve ran out of iterations, and what to do, from its iteration history
+    (``(|R|/|R0|, |dp|/|p|, cavitated nodes)`` per iteration) and its state.
+
+    Criteria, in this order: active-set cycling (a set seen before, or a cavitated-node count
+    that changed in each of the last :data:`CYCLE_WINDOW` iterations), line search stalled
+    (backtracking below 0.05 in each of them), a residual stagnating (the last window brought
+    it no lower than half its earlier best), Newton steps not shrinking, else still converging
+    (more iterations)."""
+    film = prob.film
+    last = history[-CYCLE_WINDOW:]
+    res = np.array([h[0] for h in history])
+    steps = np.array([h[1] for h in history])
+    counts = [h[2] for h in last]
+    pairs = list(zip(history[:-1], history[1:]))[-CYCLE_WINDOW:]
+    changes = sum(1 for a, b in pairs if a[2] != b[2])
+    recent_repeat = repeat is not None and repeat[0] > len(history) - CYCLE_WINDOW
+    tail = f"|R|/|R0| = {res[-1]:.3e}, |dp|/|p| = {steps[-1]:.3e}"
+    if complementarity and (recent_repeat or (len(pairs) == CYCLE_WINDOW and changes == CYCLE_WINDOW)):
+        what = (f"the cavitated set of iteration {repeat[0]} repeats that of iteration {repeat[1]}"
+                if recent_repeat else f"the cavitated node count changed in each of the last {CYCLE_WINDOW} iterations")
+        reason = (f"active-set cycling: {what}; {min(counts)} to {max(counts)} cavitated nodes over the last "
+                  f"{len(last)} iterations, |R|/|R0| between {min(h[0] for h in last):.2e} and "
+                  f"{max(h[0] for h in last):.2e}")
+        supply = prob.p_fixed[prob.fixed]
+        hdot = prob.hdot
+        separating = float(np.sum((hdot > 0) * prob.basis.dx) / np.sum(prob.basis.dx))
+        if prob.cav.model == "jfo" and np.all(supply <= prob.cav.pressure):
+            hint = (f"every boundary pressure is at or below cavitation.pressure = {prob.cav.pressure:.4g} Pa: "
+                    "a JFO film without lubricant supply has starved solutions besides the flooded one; give a "
+                    "boundary pressure above the cavitation pressure")
+        elif separating > 0:
+            hint = (f"the gap opens (dh/dt > 0) over {100 * separating:.0f} % of the film, max dh/dt = "
+                    f"{np.max(hdot):.3g} m/s: the semismooth active-set Newton method does not settle on the "
+                    "cavitation boundary of a separating squeeze; reduce the separating velocity, or use "
+                    "cavitation.model = 'reynolds'")
+        else:
+            hint = "the cavitation boundary does not settle on this mesh; try a finer mesh or solver.max_iter"
+        return reason, hint
+    damped = list(steps_taken)[-CYCLE_WINDOW:]
+    if len(damped) >= min(CYCLE_WINDOW, len(history)) and damped and max(damped) < 0.05:
+        reason = (f"line search stalled: backtracking cut the Newton step to at most {max(damped):.3g} in each "
+                  f"of the last {len(damped)} iterations, {tail}")
+        return reason, ("the Newton direction does not reduce the residual: the pressure-dependent lubricant may "
+                        "have no film at this load and speed; reduce them, or check the viscosity law")
+    earlier = res[:-CYCLE_WINDOW]
+    if earlier.size and np.min(res[-CYCLE_WINDOW:]) >= 0.5 * np.min(earlier):
+        best = int(np.argmin(res)) + 1
+        reason = (f"residual stagnating at {res[-1]:.3e} of |R0| (best {res[best - 1]:.3e} at iteration {best}), "
+                  f"|dp|/|p| = {steps[-1]:.3e}")
+        if not prob.linear:
+            hint = ("the pressure-dependent lubricant makes the Newton iteration stall: the film may have no "
+                    "solution at this load and speed; reduce them, or check the viscosity law")
+        else:
+            hint = f"solver.rtol = {film.options.rtol:.0e} may be below what round-off allows on this mesh"
+        return reason, hint
+    if len(steps) > CYCLE_WINDOW and steps[-1] >= 0.5 * steps[-CYCLE_WINDOW - 1]:
+        reason = (f"Newton steps not shrinking: |dp|/|p| = {steps[-1]:.3e}, {steps[-CYCLE_WINDOW - 1]:.3e} "
+                  f"{CYCLE_WINDOW} iterations earlier, |R|/|R0| = {res[-1]:.3e}")
+        return reason, "the iteration does not contract here; check the gap, boundary pressures and speeds"
+    return (f"still converging: {tail}, residual from {res[max(0, len(res) - CYCLE_WINDOW - 1)]:.3e} over the last "
+            f"{min(len(res), CYCLE_WINDOW + 1) - 1} iterations",
+            f"raise solver.max_iter = {film.options.max_iter}")
 
 
 ROUNDOFF_FLOOR = 1e3  # machine epsilons of the residual's terms: see _at_roundoff_floor
@@ -634,6 +785,9 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
     history = []
     converged = False
     prev_full = None
+    steps_taken = []  # Newton step length of each iteration (< 1: damped by backtracking)
+    seen_sets = {}  # active set (bytes of the full-film mask) -> first iteration that had it
+    repeat = None  # (iteration, earlier iteration) of the last active set seen before
     for it in range(1, film.options.max_iter + 1):
         if complementarity and (it > 1 or initial is not None):
             if jfo:
@@ -659,10 +813,12 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         if idx.size:
             z[idx] = prob.solve_linear(Mred, rhs[idx], symmetric)
         if not np.all(np.isfinite(z)):
-            raise ConvergenceError(
-                f"Reynolds Newton iteration {it}: the linear solve produced non-finite values "
-                "(singular Jacobian: check boundary conditions and the gap)"
-            )
+            why = ("singular Jacobian: check boundary conditions and the gap" if prob.linear and np.all(np.isfinite(p))
+                   else _divergence_hint(prob, p))
+            exc = ConvergenceError(
+                f"Reynolds Newton iteration {it}: the linear solve produced non-finite values ({why})")
+            exc.stop_reason = f"non-finite linear solve at iteration {it}"
+            raise exc
         dp = dp_known + np.where(full & free, z, 0.0)
         dr = dr_known + (np.where(~full & free, z, 0.0) if jfo else 0.0)
         # damped update for nonlinear laws (simple backtracking on ||R||)
@@ -676,15 +832,18 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
                     break
                 step *= 0.5
             p_new = p + step * dp
+        p_old = p
         p, r = p_new, r_new
+        steps_taken.append(step)
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             R, Jp, Jr = prob.assemble(p, r, with_void=jfo)
         if not (np.all(np.isfinite(R)) and np.all(np.isfinite(p))):
-            raise ConvergenceError(
+            exc = ConvergenceError(
                 f"Reynolds Newton iteration {it}: the pressure diverged (non-finite residual; "
-                f"max pressure {np.nanmax(np.abs(p)):.3e} Pa). For pressure-dependent viscosity the "
-                "film may have no solution at this load and speed (e.g. beyond the Barus pole)"
+                f"max pressure {np.nanmax(np.abs(p)):.3e} Pa): {_divergence_hint(prob, p_old)}"
             )
+            exc.stop_reason = f"film diverged at iteration {it}"
+            raise exc
         if complementarity:
             res_mask = free & (full if not jfo else np.ones(N, dtype=bool))
         else:
@@ -696,6 +855,11 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         log.debug("Reynolds iteration %d: |R|/|R0| = %.3e, |dp|/|p| = %.3e, cavitated nodes %d", it, rnorm, dnorm, np.sum(~full))
         same_set = (not complementarity) or (prev_full is not None and np.array_equal(full, prev_full))
         prev_full = full.copy()
+        if complementarity:
+            key = np.packbits(full).tobytes()
+            if key in seen_sets and not same_set:
+                repeat = (it, seen_sets[key])
+            seen_sets.setdefault(key, it)
         if complementarity:
             # is the complementarity system itself satisfied at the new iterate?
             if jfo:
@@ -712,16 +876,29 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         if same_set and feasible and (tiny_step or (small_step and (
                 rnorm <= film.options.rtol * 10 or _at_roundoff_floor(R, Jp, Jr, p, r, res_mask)))):
             converged = True
+            step_text = f"|dp|/|p| = {np.max(np.abs(dp)) / pscale:.2e}"
+            if rnorm <= film.options.rtol * 10:
+                stop = f"tolerance met: |R|/|R0| = {rnorm:.2e} <= 10 rtol, {step_text}"
+            elif tiny_step:
+                stop = f"Newton step below rtol: {step_text} <= {film.options.rtol:.0e} (|R|/|R0| = {rnorm:.2e})"
+            else:
+                stop = f"round-off floor: |R|/|R0| = {rnorm:.2e} at the round-off of its terms, {step_text}"
+            if complementarity:
+                stop += f"; active set unchanged ({history[-1][2]} cavitated nodes)"
             break
         if prob.linear and not complementarity and rnorm <= film.options.rtol * 10:
             converged = True
+            stop = f"tolerance met: |R|/|R0| = {rnorm:.2e} <= 10 rtol (linear film)"
             break
     if not converged:
-        raise ConvergenceError(
+        reason, hint = _diagnose(history, repeat, prob, complementarity, steps_taken)
+        exc = ConvergenceError(
             f"Reynolds solve ({model} cavitation) did not converge in {film.options.max_iter} "
-            f"iterations: |R|/|R0| = {history[-1][0]:.3e}, |dp|/|p| = {history[-1][1]:.3e} "
-            f"(solver.max_iter, solver.rtol; a very thin film or extreme pressures make it harder)"
+            f"iterations: {reason} ({hint})"
         )
+        exc.stop_reason = f"iteration limit: {reason}"
+        exc.hint = hint
+        raise exc
     if model == "half_sommerfeld":
         p = np.maximum(p, pcav)
         full = (p > pcav) | fixed
@@ -733,9 +910,10 @@ def _solve_single(film: Film, initial=None) -> "FilmSolution":
         linear_solver=getattr(prob, "linear_solver_used", "direct (SuperLU)"),
         dofs=N,
     )
+    info["stop reason"] = stop
     log.info(
-        "Reynolds %s/%s: %d dofs, %d iterations, %.3f s, %s",
-        film.element, model, N, info["iterations"], info["wall_time"], info["linear_solver"],
+        "Reynolds %s/%s: %d dofs, %d iterations, %.3f s, %s; %s",
+        film.element, model, N, info["iterations"], info["wall_time"], info["linear_solver"], stop,
     )
     return FilmSolution(film=film, problem=prob, pressure_dofs=p, fluid_fraction_dofs=theta, full_film=full, info=info)
 

@@ -86,6 +86,26 @@ def _umask() -> int:
     return mask
 
 
+# Elements across the minimum-gap zone (h < 2 h_min; FilmSolution.min_gap_elements) below which a
+# film warns.  Measured on the finite journal of cases/journal_finite.toml (L/D = 1, Reynolds
+# cavitation) at eps 0.6/0.9/0.99/0.999 on 32x8 to 256x64 quads; elements across, load error
+# against 256x64 P2 (at eps 0.999 that reference is itself within 0.9 % of 128x32):
+#   P2: 0.13 el. -66 % (eps 0.999 on the bundled smoke mesh 32x8), 0.43 el. -22.5 % (eps 0.999 on
+#       the bundled 64x16), 1.06 el. -5.2 %, 1.96 el. -2.2 % (eps 0.99); 1.66 el. -0.85 %,
+#       3.69 el. -0.26 %, 5.1 el. +0.4 %, 8.6 el. and more within 0.04 %
+#   P1: 1.26 el. -55 %, 2.1 el. -12 %, 3.8 el. -3.6 %, 5.3 el. -3.2 %, 8.75 el. -1.1 %,
+#       17 el. -0.34 % (at eps 0.6 P1 32x8 is 1.6 % low with 12 el.: its error is the whole
+#       film's resolution, not the zone's)
+# Bundled cases: ball_ball_squeeze's smoke mesh has 2.44 el. (P2, -0.4 % against its full mesh,
+# 6 el.), the sphere squeeze 4.5, the journal (eps 0.6) 25 (12 on its smoke mesh).  The P2
+# errors overlap near 2 el. (1.66 el. -0.85 %, 1.96 el. -2.2 %, 2.44 el. -0.4 %): 2.2 (P2)
+# warns for every measured error beyond 1 % (margin 1.12x on 1.96 el.) and passes the bundled
+# smoke meshes (margin 1.11x on 2.44 el.; the estimate depends on the geometry and mesh only,
+# not on the solve, so round-off cannot move it); 12 (P1) warns for every zone-limited error
+# beyond 1 % (margin 1.4x on 8.75 el.).
+MIN_GAP_ELEMENTS = {"P1": 12, "P2": 2.2}
+
+
 @dataclass
 class FilmSolution:
     """Result of :func:`lubrication.reynolds.solve` (see module docstring)."""
@@ -240,6 +260,62 @@ class FilmSolution:
     @property
     def h_min(self) -> float:
         return float(min(np.min(self.problem.h), np.min(self.film_thickness)))
+
+    def min_gap_elements(self) -> float:
+        """Elements across the minimum-gap zone (where h < 2 h_min), estimated from the gap's
+        slope: ``4 h_min / max(|grad h| h_K)`` over the elements of the zone (h_K: element size;
+        for a parabolic gap h_min (1 + (x/a)^2) the zone is 2a wide and the slope at its edge
+        gives exactly its number of elements).  Central differences of the gap at the
+        quadrature points (step 1e-3 h_K), so a step in the gap (zero slope on both sides) does
+        not count; a gap with no slope in the zone gives ``inf``."""
+        prob = self.problem
+        x, h = prob.x, prob.h
+        hk = prob._element_size()
+        h_min = float(np.min(h))
+        zone = np.min(h, axis=1) < 2.0 * h_min
+        xz = x[:, zone]
+        delta = 1e-3 * hk[zone][None, :, None] * np.ones(xz.shape[1:])
+        slope2 = np.zeros(xz.shape[1:])
+        for d in range(xz.shape[0]):
+            step = np.zeros_like(xz)
+            step[d] = delta[0]
+            dh = np.asarray(self.film.gap(xz + step)) - np.asarray(self.film.gap(xz - step))
+            slope2 = slope2 + (dh / (2.0 * delta[0])) ** 2
+        rise = np.max(np.sqrt(slope2) * hk[zone][:, None])
+        return float(4.0 * h_min / rise) if rise > 0 else float("inf")
+
+    def resolution_warning(self) -> str | None:
+        """One line if the minimum-gap zone has fewer than :data:`MIN_GAP_ELEMENTS` elements
+        across (:meth:`min_gap_elements`) for the element order, else None.  The text names the
+        refinement needed (``refine`` below: the factor, rounded up)."""
+        n = self.min_gap_elements()
+        need = MIN_GAP_ELEMENTS[self.film.element]
+        if not n < need:
+            return None
+        factor = int(np.ceil(need / max(n, 1e-3)))
+        self.info["min_gap_refine"] = factor
+        return (f"Minimum-gap zone (h < 2 h_min = {2 * self.h_min:.3g} m) resolved by {n:.2g} elements across, "
+                f"fewer than {need} for {self.film.element}: the load converges in the iterations but not in "
+                f"the mesh; refine the mesh about {factor}x across that zone")
+
+    def fluid_fraction_warning(self) -> str | None:
+        """One line if a JFO film's fluid fraction leaves [0, 1] at a node (below -1e-9): the
+        complementarity bounds the void fraction r = 1 - theta from below only, so a film that
+        would need more gas than gap (theta < 0) converges to a state no fluid can be in.
+        Measured on the bundled journal with JFO cavitation (P1, 64x16, supply 1e5 Pa at the ends)
+        and its centre moving along x at v: theta_min 0.106 at v = 0, -0.13 at +0.05 m/s,
+        -0.40 at -0.01 m/s, -0.27 at -0.2 m/s; 96x24 at -0.5 m/s: -651."""
+        if self.film.cavitation.model != "jfo":
+            return None
+        theta = self.fluid_fraction_dofs[self.problem.free]
+        low = float(np.min(theta)) if theta.size else 1.0
+        if low >= -1e-9:
+            return None
+        where = self.basis.doflocs[:, self.problem.free][:, int(np.argmin(theta))]
+        return (f"Fluid fraction down to {low:.3g} at x = {np.array2string(where, precision=4)} m (JFO allows "
+                "[0, 1]): the Newton iteration converged to a state with more gas than gap, which is no film; "
+                "the mass-conserving transport does not hold here (e.g. a separating squeeze); do not use its "
+                "loads, or use cavitation model 'reynolds'")
 
     @property
     def p_max(self) -> float:

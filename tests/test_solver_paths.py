@@ -117,3 +117,55 @@ def test_nested_martin_cylinder_and_jfo_pocket():
 def test_warm_start_levels_is_validated():
     with pytest.raises(InputError, match="warm_start_levels"):
         SolverOptions(warm_start_levels=-1)
+
+
+def _geometric_axis(half, cells, ratio):
+    """2 ``cells`` + 1 points on [-half, half], cell sizes growing by ``ratio`` away from 0."""
+    w = ratio ** np.arange(cells)
+    x = np.concatenate([[0.0], np.cumsum(w)]) / np.sum(w) * half
+    return np.concatenate([-x[::-1], x[1:]])
+
+
+@pytest.mark.parametrize("ratio, stalls", [(1.1, True), (1.0, False)])
+def test_auto_linear_solver_leaves_a_stalled_amg(monkeypatch, caplog, ratio, stalls):
+    """Issue 20, item 8.  Sphere-plane squeeze film on a P2 quad mesh of 60 x 60 cells graded
+    geometrically (cell ratio 1.1 away from the contact) or uniform, 14161 DOFs; the "auto"
+    switch is lowered below that size so that AMG-CG is tried.
+
+    Measured with amg_tol 1e-10: Ruge-Stuben AMG-CG needs 133 iterations on the graded mesh
+    (mean factor 0.84; at 57k DOFs it stops after 200 at 1.2e-2) against 13 on the uniform one
+    (factor 0.14).  The probe budget is 34 iterations (factor 0.5): the graded mesh goes to
+    SuperLU after it (relative residual 4.9e-2 left, far above 1e-10) and gives SuperLU's
+    pressures (same solve: agreement to 1e-12 required); the uniform mesh keeps AMG (13 < 34
+    iterations, a margin of 2.6x) and agrees with SuperLU to 1e-8 (measured 1e-11)."""
+    import logging
+
+    from lubrication import reynolds
+
+    monkeypatch.setattr(reynolds, "DIRECT_SOLVER_MAX_DOFS", 1000)
+    xs = _geometric_axis(1e-3, 30, ratio)
+    film = Film(meshes.rectangle(xs, xs), SpherePlane(10e-3, 1e-6), Lubricant.newtonian(0.01), squeeze=-1e-3,
+                element="P2")
+    direct = film.with_(options=SolverOptions(linear_solver="direct")).solve()
+    with caplog.at_level(logging.INFO, logger="lubrication.reynolds"):
+        auto = film.solve()
+    stall_lines = [r.getMessage() for r in caplog.records if r.getMessage().startswith("linear solver auto")]
+    used = auto.info["linear_solver"]
+    if stalls:
+        assert used.startswith("direct (SuperLU) after AMG-CG stalled: residual")
+        assert "after 34 iterations" in used
+        assert float(used.split("residual ")[1].split()[0]) > 1e-6
+        assert len(stall_lines) == 1 and "stalled on the first of 14161 unknowns" in stall_lines[0]
+        assert np.max(np.abs(auto.pressure - direct.pressure)) <= 1e-12 * direct.p_max
+    else:
+        assert used == "amg (pyamg Ruge-Stuben + CG)" and not stall_lines
+        assert np.max(np.abs(auto.pressure - direct.pressure)) <= 1e-8 * direct.p_max
+    assert auto.load == pytest.approx(direct.load, rel=1e-8)
+
+
+def test_amg_probe_budget():
+    """The probe budget is the iterations a mean factor of 0.5 needs to reach amg_tol."""
+    from lubrication.reynolds import AMG_STALL_FACTOR, amg_probe_iterations
+
+    assert AMG_STALL_FACTOR == 0.5
+    assert amg_probe_iterations(1e-10) == 34 and amg_probe_iterations(1e-6) == 20

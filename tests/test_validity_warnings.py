@@ -55,11 +55,11 @@ def test_jfo_pocket_at_1e6_m_per_s_is_warned(capsys, tmp_path):
 def test_film_thinner_than_the_roughness_is_warned():
     """A sphere 50 nm from a plane (default roughness 0.1 um), and the same film with a stated roughness
     of 10 nm: no warning."""
-    case = load_case(CASES_DIR / "sphere_plane_squeeze.toml", overrides=["gap.h0='50 nm'", "mesh.refinements=2"])
+    case = load_case(CASES_DIR / "sphere_plane_squeeze.toml", overrides=["gap.h0='50 nm'", "mesh.refinements=5"])
     s = film_scene.run(case).summary
     assert s["Warnings"] == ["Minimum film thickness 5e-08 m is below validity.min_film = 1e-07 m (the surface "
                              "roughness): asperities would touch, outside a full-film model"]
-    case = load_case(CASES_DIR / "sphere_plane_squeeze.toml", overrides=["gap.h0='50 nm'", "mesh.refinements=2",
+    case = load_case(CASES_DIR / "sphere_plane_squeeze.toml", overrides=["gap.h0='50 nm'", "mesh.refinements=5",
                                                                         "validity.min_film='10 nm'"])
     assert "Warnings" not in film_scene.run(case).summary
 
