@@ -23,7 +23,9 @@ a terminal) and writes
   spectrum with the bearing frequencies marked;
 - ``summary.json``: Lyapunov exponents (largest, per direction, from each
   coordinate's time series by Rosenstein's method, in 1/s and per shaft
-  revolution), collision counts and largest forces by direction, ball and
+  revolution; the whole system's by Benettin's), each with its uncertainty
+  and a verdict (positive beyond two uncertainties or not), collision counts
+  and largest forces by direction, ball and
   inner-ring slip, integrator statistics, timings.
 
 Everything is computed before anything is written; the files are staged and
@@ -493,7 +495,9 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed) -> dict:
     the x and y motion follow the ball-train orbit, about 16 ms at 10,000 rpm,
     so a record needs several of those) or that does not move gets ``None``
     and a ``"..., note"`` entry saying why; that is an expected outcome of a
-    short run, logged at INFO, not a warning."""
+    short run, logged at INFO, not a warning.  A computed exponent comes with
+    ``"... uncertainty [1/s]"`` and ``"... verdict"`` ("positive" beyond two
+    uncertainties, or "not positive"; :class:`dynamics.lyapunov.RosensteinResult`)."""
     from dynamics.errors import DynamicsInputError
     from dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution, rosenstein_shortfall
 
@@ -527,6 +531,10 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed) -> dict:
             continue
         out[f"{key} [1/s]"] = float(res.exponent)
         out[f"{key} [1/rev]"] = float(per_shaft_revolution(res.exponent, shaft_speed))
+        # spread over neighbouring fit windows / level resolution (dynamics.lyapunov), and whether the
+        # exponent is positive beyond it
+        out[f"{key} uncertainty [1/s]"] = float(res.uncertainty)
+        out[f"{key} verdict"] = res.verdict
     return out
 
 
@@ -572,10 +580,14 @@ def _benettin(case, model, t, Y, shaft_speed) -> dict:
                             frozen=memory_states(model))
     out = {"Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,
            "Benettin time [s]": time.perf_counter() - t_c}
-    for i, lam in enumerate(res.exponents):
+    for i, (lam, u, verdict) in enumerate(zip(res.exponents, res.uncertainty, res.verdicts)):
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/s]"] = float(lam)
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/rev]"] = float(per_shaft_revolution(lam,
                                                                                                        shaft_speed))
+        # batch means over 10 blocks of the averaging time (dynamics.lyapunov.batch_means_uncertainty)
+        out[f"Lyapunov exponent {i + 1}, whole system (Benettin) uncertainty [1/s]"] = (
+            float(u) if np.isfinite(u) else None)
+        out[f"Lyapunov exponent {i + 1}, whole system (Benettin) verdict"] = verdict
     running = res.running[:, 0]
     half = running[len(running) // 2]
     out["Benettin largest exponent, change over the second half [-]"] = (
@@ -619,7 +631,10 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
     log.info("integrating %s", describe(case, setup))
     try:
         res = integrate(rhs, setup.y0, setup.t_out, model.args(), method=ig.method, rtol=ig.rtol, atol=ig.atol,
-                        dt=ig.dt, max_steps=ig.max_steps, progress=progress, omega_max=model.omega_max(setup.y0),
+                        dt=ig.dt, max_steps=ig.max_steps, progress=progress,
+                        # the highest contact rate at y0 and, with RK4, again at the state after every chunk
+                        # (a contact that stiffens later in the run stops it, naming the stable step)
+                        omega_max=model.omega_max,
                         # 200 kernel calls on a terminal or not: the result is bit-identical to one call
                         # (tests/test_chunking.py), and control comes back to Python between them, so a
                         # Ctrl-C in a pipe is taken within one chunk (the 0.1 s drop integrates in 1.4 s
@@ -628,6 +643,8 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
     except DynamicsInputError as exc:
         raise InputError(str(exc)) from None
     except IntegrationError as exc:
+        if ig.method == "rk4":  # the reason names the step that would be stable (or the step budget)
+            raise ConvergenceError(f"{exc} (integrator.method = 'rk4', integrator.dt = {ig.dt:g} s)") from None
         raise ConvergenceError(f"{exc} (integrator.method = {ig.method!r}, rtol = {ig.rtol:g}; "
                                "tighten the tolerance or reduce integrator.dt)") from None
     t_int = time.perf_counter() - t0 - t_build

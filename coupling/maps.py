@@ -487,9 +487,10 @@ class FilmMap:
     def __call__(self, output: str, *coords, mode: str = "raise", counter=None, grad: bool = False):
         """Interpolate ``output`` at broadcast ``coords`` (one array per axis, SI).
 
-        ``mode``: "raise" (InputError for a point outside the axes), "clamp"
-        (move it to the nearest end; ``counter[0]`` counts such points), or
-        "nan".  ``grad=True`` also returns d output/d coordinate, shape (..., ndim).
+        ``mode``: "raise" (InputError for a point outside the axes or with a
+        NaN coordinate), "clamp" (move it to the nearest end; ``counter[0]``
+        counts such points, and points with a NaN coordinate, which give
+        NaN), or "nan" (NaN for both).  ``grad=True`` also returns d output/d coordinate, shape (..., ndim).
         """
         if len(coords) != self.ndim:
             raise InputError(f"{output}: give {self.ndim} coordinates ({', '.join(a.name for a in self.axes)}), "
@@ -504,7 +505,15 @@ class FilmMap:
         kmode = interp.CLAMP if mode == "clamp" else interp.NAN
         v, g = interp.evaluate(ka.axes, ka.logs, ka.values, ka.logv, ka.method, points, kmode, counter, grad=True)
         if mode == "raise":
-            bad = np.isnan(v) & ~np.isnan(points).any(axis=1)
+            nan_rows = np.isnan(points).any(axis=1)
+            if nan_rows.any():
+                first = int(np.flatnonzero(nan_rows)[0])
+                names = [a.name for a, x in zip(self.axes, points[first]) if np.isnan(x)]
+                raise InputError(f"map {self.provenance.get('kind', '')} {output}: {int(nan_rows.sum())} point(s) "
+                                 f"with a NaN coordinate, first point {first} ({', '.join(names)} = nan); "
+                                 f"every coordinate must be a number (mode='clamp' counts such points, "
+                                 f"mode='nan' returns NaN)")
+            bad = np.isnan(v)
             if bad.any():
                 q = points[np.flatnonzero(bad)[0]]
                 where = [f"{a.name} = {x:.6g} (axis {a.lo:.6g} .. {a.hi:.6g})" for a, x in zip(self.axes, q)

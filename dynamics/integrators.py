@@ -28,7 +28,8 @@ Kernels
 Both return ``(Y, stats)``: ``Y`` of shape ``(len(t_out), len(y0))``, rows not
 reached are NaN, and the float64 array ``stats`` indexed by the constants
 ``ACCEPTED, REJECTED, NFEV, STATUS, T_REACHED, H_NEXT, N_FILLED`` (status: 0 ok,
-1 ``max_steps`` reached, 2 step-size underflow, 3 non-finite state; ``H_NEXT``
+1 ``max_steps`` reached, 2 step-size underflow, 3 non-finite state, 4 unstable
+fixed step (RK4's growth guard, on in :func:`integrate`; see its Notes); ``H_NEXT``
 is the step proposed for a continuation; ``N_FILLED`` the number of valid rows).
 
 Resumable runs
@@ -93,7 +94,9 @@ resolve the contact, at an n x n Jacobian and inverse per step) is not the
 default for the ball collisions; it is there for scenes with a stiff mode
 that is not of interest (e.g. a very stiff film damper).  The driver refuses
 an RK4 step beyond the stability limit when the caller gives the highest
-frequency ``omega_max``.
+frequency ``omega_max`` (a callable ``omega_max(y)`` is checked again after
+every chunk), and RK4's growth guard stops a run whose stages show a mode
+beyond the limit that grows (:func:`integrate`, Notes).
 
 Stiffness of the cage-less bearing (measured, benchmarks/dynamics.py)
 ----------------------------------------------------------------------
@@ -147,12 +150,13 @@ logger = logging.getLogger(__name__)
 # stats indices and status codes ------------------------------------------------
 ACCEPTED, REJECTED, NFEV, STATUS, T_REACHED, H_NEXT, N_FILLED = range(7)
 N_STATS = 7
-STATUS_OK, STATUS_MAX_STEPS, STATUS_UNDERFLOW, STATUS_NONFINITE = 0, 1, 2, 3
+STATUS_OK, STATUS_MAX_STEPS, STATUS_UNDERFLOW, STATUS_NONFINITE, STATUS_UNSTABLE = 0, 1, 2, 3, 4
 STATUS_MESSAGES = {
     STATUS_OK: "ok",
     STATUS_MAX_STEPS: "the step budget max_steps was used up",
     STATUS_UNDERFLOW: "the step size underflowed (h below 10 x machine epsilon x |t|)",
     STATUS_NONFINITE: "the state or its derivative became non-finite (NaN/inf)",
+    STATUS_UNSTABLE: "the fixed step is beyond the RK4 stability limit (the solution grows from step to step)",
 }
 
 # Dormand-Prince 5(4) coefficients (Hairer's DOPRI5) ----------------------------
@@ -212,12 +216,20 @@ def _dense_eval(rcont, theta, out):
 # rejection flag, the counters, the step budget) lives in ``work``, so any split into calls gives the
 # bit-identical run of a single call: a progress display cannot change a result.
 W_T, W_H, W_FACOLD, W_REJECT, W_ACCEPTED, W_REJECTED, W_NFEV, W_STATUS, W_H_NEXT, W_FILLED, W_NONFINITE, \
-    W_PHASE = range(12)
-N_WORK_SCALARS = 12  # y at [N_WORK_SCALARS, N_WORK_SCALARS + n), the derivative at y after it
+    W_PHASE, W_HRHO, W_HRHO_MAX, W_UNSTABLE_STEPS, W_STREAK_NORM, W_LIMIT = range(17)
+N_WORK_SCALARS = 17  # y at [N_WORK_SCALARS, N_WORK_SCALARS + n), the derivative at y after it
 PHASE_NEW, PHASE_RUNNING, PHASE_DONE = 0.0, 1.0, 2.0
 # params (float64 array) of a kernel call
-P_RTOL, P_ATOL, P_H_MAX, P_MAX_STEPS, P_USE_FD, P_DT = range(6)
-N_PARAMS = 6
+P_RTOL, P_ATOL, P_H_MAX, P_MAX_STEPS, P_USE_FD, P_DT, P_GUARD = range(7)
+N_PARAMS = 7
+
+# RK4 growth guard (see `_rk4_impl`): limits of |h lambda| on the imaginary and the real axis (values of
+# `stability_limit`, pinned in tests/test_integrators.py), the consecutive steps beyond the limit and the
+# growth of |f(y)| over them that stop a run
+RK4_LIMIT_IMAGINARY = 2.0 * math.sqrt(2.0)
+RK4_LIMIT_REAL = 2.785293563405282
+GUARD_MIN_STEPS = 5
+GUARD_GROWTH = 2.0
 
 
 # kernel sources: the callables (rhs, jac) are the leading parameters; see `specialise` ------------
@@ -225,7 +237,13 @@ def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
     n = Y.shape[1]
     m = t_out.shape[0]
     dt = params[P_DT]
+    guard = params[P_GUARD] != 0.0
     y = work[N_WORK_SCALARS:N_WORK_SCALARS + n].copy()
+    hrho_max = work[W_HRHO_MAX]
+    last_hrho = work[W_HRHO]
+    unstable_steps = int(work[W_UNSTABLE_STEPS])
+    streak_norm = work[W_STREAK_NORM]
+    last_limit = work[W_LIMIT]
     k1 = np.empty(n)
     k2 = np.empty(n)
     k3 = np.empty(n)
@@ -258,6 +276,44 @@ def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
                 if not _all_finite(tmp):
                     status = STATUS_NONFINITE
                     break
+                if guard:
+                    # h^2 J^2 from the stages: k2 - k1 = J (h/2) k1 and k3 - k2 = J (h/2) (k2 - k1) (k2, k3 at
+                    # the same time), so k3 - k2 = (h/2)^2 J^2 k1 to first order, a power iterate of J^2
+                    s11 = 0.0
+                    s21 = 0.0
+                    s31 = 0.0
+                    s33 = 0.0
+                    for j in range(n):
+                        d = k3[j] - k2[j]
+                        s11 += k1[j] * k1[j]
+                        s21 += (k2[j] - k1[j]) * k1[j]
+                        s31 += d * k1[j]
+                        s33 += d * d
+                    if s11 > 0.0:
+                        hrho = 2.0 * math.sqrt(math.sqrt(s33 / s11))
+                        # sign of (h lambda)^2: negative for an oscillation (limit on the imaginary axis);
+                        # a real lambda > 0 (k2 - k1 = (h/2) J k1 along k1) is growth of the exact solution,
+                        # where RK4 is stable at any step (R(z) < e^z): never counted
+                        if s31 < 0.0:
+                            limit = RK4_LIMIT_IMAGINARY
+                        elif s21 < 0.0:
+                            limit = RK4_LIMIT_REAL
+                        else:
+                            limit = math.inf
+                        if hrho > hrho_max:
+                            hrho_max = hrho
+                        if hrho > limit:
+                            if unstable_steps == 0:
+                                streak_norm = math.sqrt(s11)
+                            unstable_steps += 1
+                            last_hrho = hrho
+                            last_limit = limit
+                            if unstable_steps >= GUARD_MIN_STEPS and math.sqrt(s11) >= GUARD_GROWTH * streak_norm:
+                                status = STATUS_UNSTABLE
+                                work[W_H] = h  # the step taken (<= dt: output intervals are cut evenly)
+                                break
+                        else:
+                            unstable_steps = 0
                 y[:] = tmp
                 accepted += 1
                 t_reached = t + h
@@ -269,7 +325,12 @@ def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
     work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
     work[W_T] = t_reached
     work[W_ACCEPTED] = accepted
-    work[W_NFEV] = 4 * accepted + (4 if status == STATUS_NONFINITE else 0)
+    work[W_NFEV] = 4 * accepted + (4 if (status == STATUS_NONFINITE or status == STATUS_UNSTABLE) else 0)
+    work[W_HRHO] = last_hrho
+    work[W_HRHO_MAX] = hrho_max
+    work[W_UNSTABLE_STEPS] = unstable_steps
+    work[W_STREAK_NORM] = streak_norm
+    work[W_LIMIT] = last_limit
     work[W_STATUS] = status
     work[W_H_NEXT] = dt
     work[W_FILLED] = filled
@@ -671,11 +732,12 @@ def run_stats(work):
     return stats
 
 
-def make_params(rtol=0.0, atol=0.0, h_max=0.0, max_steps=0, use_fd=True, dt=0.0):
-    """The ``params`` array of a kernel call."""
+def make_params(rtol=0.0, atol=0.0, h_max=0.0, max_steps=0, use_fd=True, dt=0.0, guard=False):
+    """The ``params`` array of a kernel call (``guard``: RK4's growth guard, see :func:`integrate`)."""
     params = np.zeros(N_PARAMS)
     params[P_RTOL], params[P_ATOL], params[P_H_MAX] = rtol, atol, h_max
     params[P_MAX_STEPS], params[P_USE_FD], params[P_DT] = max_steps, 1.0 if use_fd else 0.0, dt
+    params[P_GUARD] = 1.0 if guard else 0.0
     return params
 
 
@@ -938,7 +1000,10 @@ class IntegrationResult:
         States at ``t``.
     stats : dict
         ``"Accepted steps [-]"``, ``"Rejected steps [-]"``, ``"RHS evaluations [-]"``,
-        ``"Wall time [s]"``.
+        ``"Wall time [s]"``, ``"Integrator stop reason"`` (a run that stops early
+        raises instead, with the reason), and for RK4 ``"Largest estimated
+        h*|lambda| (RK4) [-]"`` (the growth guard's largest stage estimate: the
+        margin to the stability limit 2.785-2.828).
     method : str
     """
 
@@ -1009,11 +1074,16 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
         carries its whole state across (step size, controller memory, FSAL
         stage, counters) and never shortens a step at a chunk boundary, so the
         result is bit-identical to a run without the bar.
-    omega_max : float, optional
+    omega_max : float or callable, optional
         Highest angular frequency [rad/s] of the linearised system (e.g.
-        sqrt(k_contact / m_ball)).  With RK4, ``dt * omega_max`` beyond
-        :func:`stability_limit` is refused; with DOPRI5 an ``h_max`` beyond it
-        is reported in the log (the step control will reject there).
+        sqrt(k_contact / m_ball)), or a callable ``omega_max(y) -> float``
+        that estimates it at a state.  With RK4, ``dt * omega_max`` beyond
+        :func:`stability_limit` is refused at ``y0`` (DynamicsInputError); a
+        callable is evaluated again at the state reached after every chunk
+        and a run whose contacts stiffen beyond the limit stops there
+        (IntegrationError, status ``STATUS_UNSTABLE``, naming the stable
+        step).  With DOPRI5 an ``h_max`` beyond the limit is reported in the
+        log (the step control will reject there).
     h0 : float
         DOPRI5 initial step (0: automatic).
     n_chunks : int, optional
@@ -1025,6 +1095,25 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     Returns
     -------
     IntegrationResult
+
+    Notes
+    -----
+    RK4 growth guard (always on in this driver, with or without ``omega_max``).
+    The stages give a power iterate of ``h^2 J^2`` for free: ``k2 - k1 =
+    J (h/2) k1`` and ``k3 - k2 = J (h/2)(k2 - k1)`` (``k2``, ``k3`` at the same
+    time), so ``(h rho)^2 ~ 4 |k3 - k2| / |k1|`` estimates the largest
+    ``|h lambda|`` at the current state (exact for ``J^2 = -omega^2 I``, any
+    state scaling), and the sign of ``(k3 - k2) . k1`` that of ``(h
+    lambda)^2`` (negative: an oscillation, limit 2.828 on the imaginary axis;
+    positive: a real lambda, whose sign is that of ``(k2 - k1) . k1``: a decay
+    has the limit 2.785 on the real axis, a growth (lambda > 0, as in a
+    blow-up) has none and is never counted).  A run stops with
+    ``STATUS_UNSTABLE`` when the estimate exceeds the limit on
+    ``GUARD_MIN_STEPS`` (5) consecutive steps *and* ``|f(y)|`` has grown by
+    ``GUARD_GROWTH`` (2) over them: a single stiff contact (about one step long
+    at h omega ~ 2.8) or rounding noise at an equilibrium does not stop a run,
+    a mode that grows does.  The check adds three dot products per step and
+    never changes a run that stays stable.
 
     Raises
     ------
@@ -1074,6 +1163,10 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
         h_max = float(h_max)
         if not (h_max >= 0.0 and math.isfinite(h_max)):
             raise DynamicsInputError(f"h_max = {h_max!r} must be >= 0 (0: no limit)")
+    omega_of_state = None
+    if callable(omega_max):
+        omega_of_state = omega_max
+        omega_max = omega_of_state(y0)
     if omega_max is not None:
         omega_max = _check_positive("omega_max", omega_max)
         limit = stability_limit(method, "imaginary") if method != "ros2" else math.inf
@@ -1098,7 +1191,7 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
                                        + 1).tolist()
     params = make_params(rtol=rtol if method != "rk4" else 0.0, atol=atol if method != "rk4" else 0.0,
                          h_max=h_max if method != "rk4" else 0.0, max_steps=max_steps, use_fd=jac is None,
-                         dt=dt if method == "rk4" else 0.0)
+                         dt=dt if method == "rk4" else 0.0, guard=method == "rk4")
     Y, work = new_run(y0, t_out, float(h0) if method != "rk4" else 0.0)
     wall0 = time.perf_counter()
     bar = None
@@ -1116,12 +1209,17 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
             kernel(t_out, args, params, Y, work, i_stop)
             filled = int(work[W_FILLED])
             status = int(work[W_STATUS])
+            if status == STATUS_OK and omega_of_state is not None and method == "rk4" and filled < m:
+                omega_now = float(omega_of_state(work[N_WORK_SCALARS:N_WORK_SCALARS + y0.size].copy()))
+                limit = stability_limit("rk4", "imaginary")
+                if not math.isfinite(omega_now) or dt * omega_now > limit:
+                    status = STATUS_UNSTABLE
+                    work[W_STATUS] = status
+                    work[W_HRHO] = dt * omega_now
             if status != STATUS_OK:
-                raise IntegrationError(
-                    f"{method} stopped at t = {work[W_T]:.6g} s of {t_out[-1]:.6g} s: "
-                    f"{STATUS_MESSAGES.get(status, 'unknown status')} (status {status}; "
-                    f"{int(work[W_ACCEPTED])} accepted, {int(work[W_REJECTED])} rejected steps)",
-                    status=status, t_reached=work[W_T], t=t_out[:filled].copy(), y=Y[:filled].copy())
+                raise IntegrationError(_stop_message(method, status, work, t_out, dt, omega_of_state is not None),
+                                       status=status, t_reached=work[W_T], t=t_out[:filled].copy(),
+                                       y=Y[:filled].copy())
             if bar is not None and filled > shown:
                 bar.update(float(t_out[filled - 1] - t_out[shown - 1]))
                 shown = filled
@@ -1136,9 +1234,35 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
         "Rejected steps [-]": int(work[W_REJECTED]),
         "RHS evaluations [-]": int(work[W_NFEV]),
         "Wall time [s]": wall,
+        "Integrator stop reason": "reached the last output time",
     }
+    if method == "rk4":
+        stats["Largest estimated h*|lambda| (RK4) [-]"] = float(work[W_HRHO_MAX])
     logger.debug("%s: %s", method, stats)
     return IntegrationResult(t=t_out, y=Y, stats=stats, method=method)
+
+
+def _stop_message(method, status, work, t_out, dt, by_state):
+    """The one-line reason of an early stop, with the figures that show it."""
+    head = (f"{method} stopped at t = {work[W_T]:.6g} s of {t_out[-1]:.6g} s: "
+            f"{STATUS_MESSAGES.get(status, 'unknown status')}")
+    counts = f"{int(work[W_ACCEPTED])} accepted, {int(work[W_REJECTED])} rejected steps"
+    if status != STATUS_UNSTABLE:
+        return f"{head} (status {status}; {counts})"
+    hrho = float(work[W_HRHO])
+    limit = stability_limit("rk4", "imaginary")
+    h = dt
+    if by_state and int(work[W_UNSTABLE_STEPS]) < GUARD_MIN_STEPS:
+        figures = f"dt * omega_max(y) = {hrho:.4g} > {limit:.4g} at the state reached"
+    else:
+        h = float(work[W_H]) or dt
+        limit = float(work[W_LIMIT])
+        axis = "imaginary axis: an oscillation" if limit == RK4_LIMIT_IMAGINARY else "real axis: a decay"
+        figures = (f"estimated |h lambda| = {hrho:.4g} > {limit:.4g} ({axis}) on {int(work[W_UNSTABLE_STEPS])} "
+                   f"consecutive steps while |f(y)| grew {GUARD_GROWTH:g}x or more")
+    now = f"dt = {dt:.4g} s now" if abs(h - dt) <= 1e-9 * dt else f"steps of {h:.4g} s now, dt = {dt:.4g} s"
+    return (f"{head}: {figures}; a stable step is dt <= {h * limit / hrho:.4g} s "
+            f"({now}; status {status}; {counts})")
 
 
 # cold-start measurement ------------------------------------------------------------

@@ -89,7 +89,10 @@ read and write it on every query, adding 0 or 1: not for sharing between
 threads); the run reports the count.  ``mode = 1``: the kernel returns NaN (gradients NaN) and the caller
 raises.  Never extrapolation.  The gradient at a clamped point is the one-sided
 derivative of the interpolant at the boundary (useful as a stiffness; it is not
-the zero derivative of the clamped function).  A NaN coordinate gives NaN.
+the zero derivative of the clamped function).  A NaN coordinate gives NaN in
+both modes; mode 0 counts it in ``counter[0]`` like a query outside (it has no
+place on the axes), so a run that clamps reports it, and mode 1's caller
+raises (:meth:`coupling.maps.FilmMap.__call__` names the NaN coordinate).
 
 Signatures (``ax*``: float64 1-D, ``values``: float64 of ndim 1, 2, 3, C order,
 shape (n0[, n1[, n2]]); ``log*``, ``logv``, ``method``, ``mode``: int;
@@ -229,12 +232,12 @@ def _cell(ax, x, log):
 
 @njit(**_INLINE)
 def _refuse(nan, out, mode, counter):
-    """True when the query returns NaN (a NaN coordinate, or outside the axes in mode 1); otherwise
-    a query outside the axes (clamped) adds 1 to ``counter[0]``.  The counter is written on every
+    """True when the query returns NaN (a NaN coordinate, or outside the axes in mode 1); in mode 0 a
+    query outside the axes (clamped) or with a NaN coordinate adds 1 to ``counter[0]``.  The counter is written on every
     query (adding 0 or 1): a conditional store, like an early return, stops numba from pruning the
     atomic reference counting of the array arguments, which would cost more than the rest of a query."""
     refuse = nan or (out != 0 and mode == 1)
-    counter[0] += 0 if refuse else out
+    counter[0] += (1 if (nan or out != 0) else 0) if mode == 0 else 0
     return refuse
 
 
@@ -413,6 +416,8 @@ def interp1_grad(ax0, log0, values, logv, method, x0, mode, counter):
     """(v, dv/dx0) at x0; see the module docstring."""
     t0 = _coord_call(x0, log0)
     if t0 != t0:
+        if mode == 0:
+            counter[0] += 1
         return np.nan, np.nan
     i, c0, o0 = _locate_call(ax0, t0)
     if o0:
@@ -429,6 +434,8 @@ def interp1(ax0, log0, values, logv, method, x0, mode, counter):
     """v at x0; see the module docstring."""
     t0 = _coord_call(x0, log0)
     if t0 != t0:
+        if mode == 0:
+            counter[0] += 1
         return np.nan
     i, c0, o0 = _locate_call(ax0, t0)
     if o0:
@@ -485,6 +492,8 @@ def interp2_grad(ax0, ax1, log0, log1, values, logv, method, x0, x1, mode, count
     t0 = _coord_call(x0, log0)
     t1 = _coord_call(x1, log1)
     if t0 != t0 or t1 != t1:
+        if mode == 0:
+            counter[0] += 1
         return np.nan, np.nan, np.nan
     i, c0, o0 = _locate_call(ax0, t0)
     j, c1, o1 = _locate_call(ax1, t1)
@@ -509,6 +518,8 @@ def interp2(ax0, ax1, log0, log1, values, logv, method, x0, x1, mode, counter):
     t0 = _coord_call(x0, log0)
     t1 = _coord_call(x1, log1)
     if t0 != t0 or t1 != t1:
+        if mode == 0:
+            counter[0] += 1
         return np.nan
     i, s0, o0 = _locate_call(ax0, t0)
     j, s1, o1 = _locate_call(ax1, t1)
@@ -591,6 +602,8 @@ def interp3_grad(ax0, ax1, ax2, log0, log1, log2, values, logv, method, x0, x1, 
     t1 = _coord_call(x1, log1)
     t2 = _coord_call(x2, log2)
     if t0 != t0 or t1 != t1 or t2 != t2:
+        if mode == 0:
+            counter[0] += 1
         return np.nan, np.nan, np.nan, np.nan
     i, c0, o0 = _locate_call(ax0, t0)
     j, c1, o1 = _locate_call(ax1, t1)
@@ -624,6 +637,8 @@ def interp3(ax0, ax1, ax2, log0, log1, log2, values, logv, method, x0, x1, x2, m
     t1 = _coord_call(x1, log1)
     t2 = _coord_call(x2, log2)
     if t0 != t0 or t1 != t1 or t2 != t2:
+        if mode == 0:
+            counter[0] += 1
         return np.nan
     i, s0, o0 = _locate_call(ax0, t0)
     j, s1, o1 = _locate_call(ax1, t1)

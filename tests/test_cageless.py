@@ -149,7 +149,10 @@ def test_rotor_drop_friction_law():
     model = cg.CagelessBearing(scenario="drop", speed_rpm=10000.0)
     y0 = model.initial_state()
     assert y0[7] == 0.0 and y0[8] == pytest.approx(10000 * math.pi / 30)
-    res, diag, ring = _run(model, y0, 1e-3, 2e-6, n_out=11)
+    # dt = 1 us: at 2 us RK4 is beyond its real-axis limit for the race traction of the balls at rest
+    # (rate ~1.5e6 1/s, h lambda ~ 3 > 2.785; integrators module docstring), the ball slips chatter for
+    # the first steps and the growth guard stops the run (issue 20); at 1 us its estimate stays <= 2.54
+    res, diag, ring = _run(model, y0, 1e-3, 1e-6, n_out=11)
     decel = model.rotor_friction * model.radial_load * model.rotor_contact_radius / model.rotor_inertia
     np.testing.assert_allclose(res.y[:, 8], y0[8] - decel * res.t, rtol=1e-9)
     np.testing.assert_allclose(ring[1:, 4], model.rotor_friction * model.radial_load * model.rotor_contact_radius,

@@ -372,3 +372,101 @@ def test_stale_kernel_source_is_refused_and_the_generic_kernel_used(monkeypatch,
     Y, st = kernel(np.array([1.0]), np.array([0.0, 0.5, 1.0]), (), 1e-10, 1e-12, 0.0, 0.0, 10**6)
     np.testing.assert_allclose(Y[:, 0], np.exp(-2.0 * np.array([0.0, 0.5, 1.0])), rtol=1e-8)
     assert not list(tmp_path.glob("k_dopri5_impl__*.py"))
+
+
+# RK4 growth guard (issue 20, item 3) ---------------------------------------------------------------
+def _rk4_oscillator(h_omega, omega=1e5, periods=20):
+    """integrate() with RK4 on x'' = -omega^2 x (unscaled state (x, v): |v| = omega |x|), one step per
+    output interval, no omega_max: the bare call the guard must protect."""
+    h = h_omega / omega
+    n = int(round(periods * 2 * math.pi / h_omega))
+    return I.integrate(linear, [1.0, 0.0], np.arange(n + 1) * h, oscillator(omega), method="rk4",
+                       dt=h * (1 + 1e-13))
+
+
+def test_rk4_guard_pins_the_oscillation_limit():
+    """Issue 20, item 3: RK4 without omega_max past its stability limit returned finite garbage
+    (|x|/x0 = 20 after 20 periods at h omega = 2.86, 1e20 at 3.49).  Just below the limit 2 sqrt 2 =
+    2.828 the run completes and equals the amplification factor |R(i h omega)|^N (the guard changes
+    nothing); at 2.86 and 3.49 it stops with STATUS_UNSTABLE, names the imaginary-axis limit and the
+    stable step 2.828/omega, within the first quarter of the run (10 and 4 steps), and the samples have grown to
+    2.1x (2.86) and 76x (3.49: |R| = 3.7 a step) instead of 20x and 1e20 (the guard stops once |f(y)|
+    has doubled over >= 5 steps above the limit; bounds asserted 2.5x and 200x).  The stage estimate of h omega is exact
+    for J^2 = -omega^2 I at any state scaling (omega = 1e5 here); margins: 2.80 is 1 % below the
+    limit, 2.86 1.1 % above it."""
+    res = _rk4_oscillator(2.80)
+    n = res.t.size - 1
+    R = abs(np.polynomial.Polynomial(I.STABILITY_POLYNOMIALS["rk4"])(2.80j))
+    amp = np.hypot(res.y[-1, 0], res.y[-1, 1] / 1e5)
+    assert amp == pytest.approx(R ** n, rel=1e-8) and amp < 0.1
+    assert res.stats["Largest estimated h*|lambda| (RK4) [-]"] == pytest.approx(2.80, rel=1e-9)
+    assert res.stats["Integrator stop reason"] == "reached the last output time"
+    for h_omega, growth in ((2.86, 2.5), (3.49, 200.0)):
+        with pytest.raises(IntegrationError, match=r"beyond the RK4 stability limit.*estimated \|h lambda\| = "
+                           rf"{h_omega:.3g} > 2\.828 \(imaginary axis: an oscillation\).*a stable step is "
+                           r"dt <= 2\.828e-05 s") as info:
+            _rk4_oscillator(h_omega)
+        e = info.value
+        assert e.status == I.STATUS_UNSTABLE
+        assert np.abs(e.y[:, 0]).max() < growth and e.t_reached < 0.25 * 20 * 2 * math.pi / 1e5
+
+
+def test_rk4_guard_pins_the_real_axis_limit_and_ignores_growth():
+    """A decay y' = -y: h = 2.78 runs (below the real-axis limit 2.785, the result is R(-2.78)^N
+    exactly), h = 2.80 stops naming the real-axis limit.  A growing solution is not an instability:
+    y' = +y at h = 3 (|h lambda| beyond every limit, but lambda > 0) runs to its (inaccurate) end, and
+    the blow-up y' = y^2 still stops as non-finite (test_status_non_finite), not as unstable."""
+    t_out = np.arange(201) * 2.78
+    res = I.integrate(linear, [1.0], t_out, decay(1.0), method="rk4", dt=2.78 * (1 + 1e-13))
+    R = np.polynomial.Polynomial(I.STABILITY_POLYNOMIALS["rk4"])(-2.78)
+    assert res.y[-1, 0] == pytest.approx(R ** 200, rel=1e-10)
+    with pytest.raises(IntegrationError, match=r"> 2\.785 \(real axis: a decay\).*a stable step is dt <= 2\.785 s"):
+        I.integrate(linear, [1.0], np.arange(201) * 2.80, decay(1.0), method="rk4", dt=2.80 * (1 + 1e-13))
+    grow = I.integrate(linear, [1.0], np.arange(21) * 3.0, decay(-1.0), method="rk4", dt=3.0 * (1 + 1e-13))
+    R = np.polynomial.Polynomial(I.STABILITY_POLYNOMIALS["rk4"])(3.0)
+    assert grow.y[-1, 0] == pytest.approx(R ** 20, rel=1e-10)
+
+
+def test_rk4_guard_never_changes_a_stable_run():
+    """The guard only reads the stages: van der Pol (a nonlinear relaxation cycle) gives bit-identical
+    states and counters with the guard on and off, and the estimate stays far below the limit."""
+    kernel = I.resumable_kernel("rk4", van_der_pol)
+    t_out = np.linspace(0.0, 20.0, 201)
+    out = []
+    for guard in (False, True):
+        Y, work = I.new_run(np.array([2.0, 0.0]), t_out)
+        kernel(t_out, (2.0,), I.make_params(dt=2e-3, guard=guard), Y, work, t_out.size)
+        out.append((Y, I.run_stats(work)))
+        assert work[I.W_STATUS] == I.STATUS_OK
+    assert np.array_equal(out[0][0], out[1][0]) and np.array_equal(out[0][1], out[1][1])
+    assert 0.0 < work[I.W_HRHO_MAX] < 0.1  # van der Pol mu = 2 has |lambda| <~ 10: h |lambda| <~ 0.02
+
+
+@njit(cache=True)
+def stiffening(t, y, args, dydt):
+    """x'' = -omega0^2 (1 + s) x with s' = args[1]: a contact that stiffens along the run."""
+    dydt[0] = y[1]
+    dydt[1] = -args[0] ** 2 * (1.0 + y[2]) * y[0]
+    dydt[2] = args[1]
+
+
+def test_rk4_omega_max_callable_is_checked_after_every_chunk():
+    """The dynamics scene passes model.omega_max (a callable): it is evaluated at y0 (refused there as
+    input beyond the limit) and at the state after every chunk.  Here omega = omega0 sqrt(1 + s) with s
+    = 1.1 t (omega0 = 1): dt omega crosses 2.828 at s = (2.828/dt)^2 - 1 = 7 (t = 6.36) for dt = 1; with
+    20 chunks of 1 s the run stops at the chunk end t = 7 (s = 7.7, dt omega = 2.950), naming dt *
+    omega_max(y) and the stable step 2.828 / 2.950 = 0.9589 s.  With a float at t0 only, the growth
+    guard stops it later (t = 13, the estimate 3.98 then; true dt omega = 3.9), before the state
+    overflows."""
+    omega_of = lambda y: math.sqrt(1.0 + y[2])  # noqa: E731
+    t_out = np.arange(21.0)  # one step of dt = 1 s per output interval
+    with pytest.raises(IntegrationError, match=r"dt \* omega_max\(y\) = 2\.95 > 2\.828 at the state reached; "
+                                               r"a stable step is dt <= 0\.9589 s") as info:
+        I.integrate(stiffening, [1.0, 0.0, 0.0], t_out, (1.0, 1.1), method="rk4", dt=1.0, omega_max=omega_of,
+                    n_chunks=20)
+    assert info.value.status == I.STATUS_UNSTABLE and info.value.t_reached == pytest.approx(7.0)
+    with pytest.raises(DynamicsInputError, match="beyond the RK4 stability limit"):
+        I.integrate(stiffening, [1.0, 0.0, 9.0], t_out, (1.0, 1.1), method="rk4", dt=1.0, omega_max=omega_of)
+    with pytest.raises(IntegrationError, match="estimated") as info:
+        I.integrate(stiffening, [1.0, 0.0, 0.0], t_out, (1.0, 1.1), method="rk4", dt=1.0, omega_max=1.0)
+    assert 7.0 < info.value.t_reached < 16.0 and np.isfinite(info.value.y).all()

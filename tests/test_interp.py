@@ -177,7 +177,8 @@ def test_convergence_orders():
 @pytest.mark.parametrize("fn", _compiled_and_plain("interp2"))
 def test_out_of_axes_clamp_counts_and_nan_mode(fn):
     """Clamp mode: the value at the nearest end (never extrapolated) and one count per query with any
-    coordinate outside; NaN mode: NaN and no count; a NaN coordinate gives NaN."""
+    coordinate outside; NaN mode: NaN and no count; a NaN coordinate gives NaN in both modes and is
+    counted in clamp mode (issue 20: a run that clamps reports it; before, it passed uncounted)."""
     x, y = np.linspace(0, 1, 5), np.geomspace(1.0, 100.0, 4)
     ax = (prepare_axis(x, False), prepare_axis(y, True))
     V = x[:, None] + np.log(y)[None, :]
@@ -190,7 +191,11 @@ def test_out_of_axes_clamp_counts_and_nan_mode(fn):
     assert counter[0] == 3
     assert np.isnan(fn(*args, 2.0, 10.0, 1, counter))
     assert np.isnan(fn(*args, np.nan, 10.0, 0, counter))
-    assert counter[0] == 3
+    assert counter[0] == 4
+    assert np.isnan(fn(*args, 0.5, np.nan, 1, counter))
+    assert counter[0] == 4
+    assert np.isnan(fn(*args, 0.5, np.nan, 0, counter))
+    assert counter[0] == 5
 
 
 def test_kernels_callable_from_another_njit_function():
@@ -364,8 +369,8 @@ def test_hermite_cells_equal_the_tensor_hermite_form(ndim):
 def test_hermite3_clamp_count_and_nan(name, plain):
     """3-D hermite and cells kernels (single-exit code): a query outside is clamped to the end value of
     v = 1 + x + 2 y - z (reproduced exactly) with one count; mode 1 gives NaN without a count; a NaN
-    coordinate gives NaN without a count in both modes; the gradient at a clamped point is the
-    one-sided derivative (1, 2, -1)."""
+    coordinate gives NaN in both modes, counted in mode 0 only (issue 20); the gradient at a clamped
+    point is the one-sided derivative (1, 2, -1)."""
     fn = getattr(interp, name)
     fn = fn.py_func if plain else fn
     ax = (np.linspace(0, 1, 4), np.linspace(0, 2, 3), np.linspace(-1, 1, 5))
@@ -384,8 +389,9 @@ def test_hermite3_clamp_count_and_nan(name, plain):
         assert np.allclose(r[1:], (1.0, 2.0, -1.0), atol=1e-12)
     assert call(0.5, 1.0, 0.5, 0)[0] == pytest.approx(1.0 + 0.5 + 2.0 - 0.5, abs=1e-12) and counter[0] == 1
     assert np.all(np.isnan(call(0.5, 3.0, 0.5, 1))) and counter[0] == 1
-    assert np.all(np.isnan(call(np.nan, 1.0, 0.5, 0))) and counter[0] == 1
-    assert np.all(np.isnan(call(0.5, 1.0, np.nan, 1))) and counter[0] == 1
+    assert np.all(np.isnan(call(np.nan, 1.0, 0.5, 0))) and counter[0] == 2
+    assert np.all(np.isnan(call(0.5, 1.0, np.nan, 1))) and counter[0] == 2
+    assert np.all(np.isnan(call(0.5, np.nan, 3.0, 0))) and counter[0] == 3  # NaN and outside: one count
 
 
 @pytest.mark.parametrize("name", ["hermite3", "hermite3_grad", "hermite3_cells_grad"])

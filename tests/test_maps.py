@@ -162,6 +162,32 @@ def test_signed_output_is_not_logged_and_out_of_axes_raises_or_clamps():
     assert out[2] == pytest.approx(fmap("Force [N]", 1e-5, 0.05), rel=1e-14)
 
 
+@pytest.mark.parametrize("method", ["hermite", "linear"])
+def test_nan_coordinate_raises_in_raise_mode_and_is_counted_in_clamp_mode(method):
+    """Issue 20, item 5: a NaN coordinate in the default "raise" mode returned NaN (the check skipped
+    NaN points); it now raises InputError naming the axis and the number of such points.  "clamp"
+    returns NaN for it and counts it with the points outside (one count per point), "nan" returns NaN
+    without a count; finite points in the same query keep their exact values (F linear in v)."""
+    p = squeeze_params()
+    axes = (MapAxis.uniform(GAP, 1e-7, 1e-5, 9, "log"), MapAxis.uniform(SPEED, -0.1, 0.1, 5, "linear"))
+    h, v = np.meshgrid(axes[0].nodes, axes[1].nodes, indexing="ij")
+    fmap = FilmMap(axes, {"Force [N]": squeeze_exact(p, h, v)[0]}, method=method)
+    hq = axes[0].nodes[3]
+    with pytest.raises(InputError, match=r"2 point\(s\) with a NaN coordinate, first point 1 "
+                                         r"\(Approach speed \[m/s\] = nan\)"):
+        fmap("Force [N]", [hq, hq, np.nan], [0.05, np.nan, 0.05])
+    with pytest.raises(InputError, match=r"NaN coordinate, first point 0 \(Central gap \[m\] = nan\)"):
+        fmap("Force [N]", np.nan, 0.05, grad=True)
+    counter = np.zeros(1, np.int64)
+    out = fmap("Force [N]", [hq, hq, np.nan, 2e-5], [0.05, np.nan, 0.05, 0.05], mode="clamp", counter=counter)
+    assert counter[0] == 3  # two NaN points and one outside
+    assert np.isnan(out[1]) and np.isnan(out[2])
+    assert out[0] == pytest.approx(squeeze_exact(p, hq, 0.05)[0], rel=1e-12)
+    counter[0] = 0
+    out = fmap("Force [N]", [hq, hq], [0.05, np.nan], mode="nan", counter=counter)
+    assert counter[0] == 0 and np.isnan(out[1]) and np.isfinite(out[0])
+
+
 def test_save_load_round_trip_and_format_check(tmp_path):
     """Saved and loaded maps interpolate identically and keep provenance, fits and log flags; a file
     with another format version is refused with a message naming it."""
