@@ -541,10 +541,12 @@ class MultigridEHL:
 
     def coefficients(self, lv, H):
         p = self.pb.ph * np.maximum(lv.P, 0.0)
-        with np.errstate(over="ignore"):
+        # a diverging iterate overflows the viscosity (inf / inf = nan below): no warning here, the
+        # cycle's non-finite residual stops the solve with "diverged"
+        with np.errstate(over="ignore", invalid="ignore"):
             eta = self.visc(p) / self.eta0
-        rho = self.dens(p) / self.rho0
-        eps = rho * np.maximum(H, 0.0) ** 3 / (eta * self.lam)
+            rho = self.dens(p) / self.rho0
+            eps = rho * np.maximum(H, 0.0) ** 3 / (eta * self.lam)
         return rho, eps
 
     def residual(self, lv, H=None):
@@ -629,13 +631,21 @@ class MultigridEHL:
         load_err = ((self.load(lv) - self.target) / self.target) if self.target is not None else 0.0
         return res, load_err, H
 
+    def _hint(self, lv) -> str:
+        """What to try, from the contact's load parameter (measured, L = 10 and 20)."""
+        if self.c.moes_M >= 1000:
+            return ("heavy loads need finer grids (measured: M = 3000, L = 10 stagnates on 257 x 257 and "
+                    "converges on 513 x 513)")
+        return (f"M = {self.c.moes_M:.4g} is not a heavy load; light loads at high L stop on fine grids "
+                "(measured: M = 10-50, L = 20 stagnate or diverge on 257 x 257 and 513 x 513, M = 10-20 "
+                "converge on 129 x 129): try a coarser grid, or solver.method = 'auto'")
+
     def _fail(self, what, k, cycle, res, detail=""):
         lv = self.levels[k]
         err = ConvergenceError(
             f"EHL multigrid {what} at M = {self.c.moes_M:.4g}, L = {self.c.moes_L:.4g} on {lv.shape[0]} x "
             f"{lv.shape[1]} nodes, cycle {cycle}: relative residual {res:.2e} (tolerance {self.o.rtol:.0e}){detail}; "
-            f"heavier loads need finer grids (measured: M = 3000, L = 10 stagnates on 257 x 257 and converges on "
-            f"513 x 513), see EHLOptions.multigrid")
+            f"{self._hint(lv)}, see EHLOptions.multigrid")
         reason = "iteration limit" if what.startswith("did not converge") else what  # diverged, stagnated
         err.stop = dict(reason=reason, detail=str(err))
         return err

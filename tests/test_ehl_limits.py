@@ -204,3 +204,17 @@ def test_hint_names_the_test_that_refused_a_converged_step():
                            "multiplier -3.0e-05 p_ref below -1e-07 refused the state")
     assert "the cavitated set keeps changing (20 ... 21 nodes over the last six steps)" in hint
     assert "grid.nx" not in hint and "1000" not in hint
+
+
+def test_multigrid_light_load_high_L_stops_with_a_hint_from_the_state():
+    """Where the multigrid stops at light load: M = 10, L = 20 on 257 x 257 (measured: stagnates at
+    cycle 7; 129 x 129 converges).  Before, its iterate overflowed the viscosity with a numpy
+    RuntimeWarning (an error in this suite) and the message advised finer grids for heavier loads;
+    now the error names the light load and the coarser grid that works."""
+    from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
+    from lubrication.errors import ConvergenceError
+
+    c = EHLContact.from_moes(10, 20)
+    with pytest.raises(ConvergenceError, match="M = 10 is not a heavy load.*try a coarser grid"):
+        solve_ehl(c, EHLGrid(nx=257), EHLOptions(method="multigrid"))
+    assert solve_ehl(c, EHLGrid(nx=129), EHLOptions(method="multigrid")).info["stop_reason"] == "tolerance met"
