@@ -316,6 +316,22 @@ def write_pvd(path, frames) -> Path:
     return outputs.write_text(path, "\n".join(lines) + "\n")
 
 
+def _build_stop_reason(provenance: dict) -> str:
+    """Why the build ended: every point solved (or loaded), or how many failed and were filled, with
+    each distinct error (their messages carry the solver's own stop reason)."""
+    if "loaded from cache" in provenance:
+        return "loaded from cache"
+    filled = provenance.get("filled points", [])
+    if not filled:
+        return "every point solved"
+    errors = {}
+    for f in filled:
+        errors[f["error"]] = errors.get(f["error"], 0) + 1
+    shown = "; ".join(f"{n} x {msg}" for msg, n in sorted(errors.items(), key=lambda kv: -kv[1])[:3])
+    return (f"{len(filled)} of {provenance.get('points', '?')} points failed and were filled from their nearest "
+            f"solved neighbour: {shown}")
+
+
 def summarise(case: CaseModel, setup: MapSetup, fmap: maps.FilmMap) -> dict:
     """Flat summary: the map's identity, build information, accuracy and fit errors per output."""
     p = fmap.provenance
@@ -329,6 +345,7 @@ def summarise(case: CaseModel, setup: MapSetup, fmap: maps.FilmMap) -> dict:
         "Points solved [-]": p.get("points solved", 0),
         "Points from cache [-]": p.get("points from cache", 0),
         "Filled (failed) points [-]": len(p.get("filled points", [])),
+        "Map build stop reason": _build_stop_reason(p),
         "Backend": p.get("backend", ""),
         "Map build time [s]": p.get("build time [s]", 0.0),
         "Map loaded from cache": "loaded from cache" in p,
