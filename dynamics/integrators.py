@@ -190,6 +190,43 @@ METHODS = ("dopri5", "rk4", "ros2")
 
 # small helpers (no rhs: ordinary cached kernels) ------------------------------
 @njit(cache=True)
+def _load_state(work):
+    """The adaptive kernels' (DOPRI5, ROS2) resumable counters from ``work``: (t, h, accepted,
+    rejected, nfev, status, h_next, filled, n_nonfinite, phase)."""
+    return (work[W_T], work[W_H], int(work[W_ACCEPTED]), int(work[W_REJECTED]), int(work[W_NFEV]),
+            int(work[W_STATUS]), work[W_H_NEXT], int(work[W_FILLED]), int(work[W_NONFINITE]), work[W_PHASE])
+
+
+@njit(cache=True)
+def _store_state(work, y, f, t, h, accepted, rejected, nfev, status, h_next, filled, n_nonfinite, phase):
+    """Write back what :func:`_load_state` read, with the state ``y`` and its derivative ``f``."""
+    n = y.shape[0]
+    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
+    work[N_WORK_SCALARS + n:N_WORK_SCALARS + 2 * n] = f
+    work[W_T] = t
+    work[W_H] = h
+    work[W_ACCEPTED] = accepted
+    work[W_REJECTED] = rejected
+    work[W_NFEV] = nfev
+    work[W_STATUS] = status
+    work[W_H_NEXT] = h_next
+    work[W_FILLED] = filled
+    work[W_NONFINITE] = n_nonfinite
+    work[W_PHASE] = phase
+
+
+@njit(cache=True)
+def _budget_status(accepted, rejected, max_steps, t, h):
+    """STATUS_MAX_STEPS when the step budget is spent, STATUS_UNDERFLOW when the step is below the
+    round-off of t, else STATUS_OK (checked before every adaptive step)."""
+    if accepted + rejected >= max_steps:
+        return STATUS_MAX_STEPS
+    if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
+        return STATUS_UNDERFLOW
+    return STATUS_OK
+
+
+@njit(cache=True)
 def _all_finite(x):
     for v in x:
         if not np.isfinite(v):
@@ -358,18 +395,9 @@ def _dopri5_impl(rhs, t_out, args, params, Y, work, i_stop):
     t_end = t_out[m - 1]
     if h_max <= 0.0:
         h_max = t_end - t_out[0]
-    t = work[W_T]
-    h = work[W_H]
+    t, h, accepted, rejected, nfev, status, h_next, filled, n_nonfinite, phase = _load_state(work)
     facold = work[W_FACOLD]
     reject = work[W_REJECT] != 0.0
-    accepted = int(work[W_ACCEPTED])
-    rejected = int(work[W_REJECTED])
-    nfev = int(work[W_NFEV])
-    status = int(work[W_STATUS])
-    h_next = work[W_H_NEXT]
-    filled = int(work[W_FILLED])
-    n_nonfinite = int(work[W_NONFINITE])
-    phase = work[W_PHASE]
     if phase == PHASE_NEW:
         t = t_out[0]
         rhs(t, y, args, k1)
@@ -415,11 +443,8 @@ def _dopri5_impl(rhs, t_out, args, params, Y, work, i_stop):
     if status != STATUS_OK or filled >= m:
         phase = PHASE_DONE
     while phase == PHASE_RUNNING and filled < i_stop:
-        if accepted + rejected >= max_steps:
-            status = STATUS_MAX_STEPS
-            break
-        if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
-            status = STATUS_UNDERFLOW
+        status = _budget_status(accepted, rejected, max_steps, t, h)
+        if status != STATUS_OK:
             break
         h_proposed = h
         last = False
@@ -509,20 +534,9 @@ def _dopri5_impl(rhs, t_out, args, params, Y, work, i_stop):
             h = hnew
     if status != STATUS_OK:
         phase = PHASE_DONE
-    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
-    work[N_WORK_SCALARS + n:N_WORK_SCALARS + 2 * n] = k1
-    work[W_T] = t
-    work[W_H] = h
+    _store_state(work, y, k1, t, h, accepted, rejected, nfev, status, h_next, filled, n_nonfinite, phase)
     work[W_FACOLD] = facold
     work[W_REJECT] = 1.0 if reject else 0.0
-    work[W_ACCEPTED] = accepted
-    work[W_REJECTED] = rejected
-    work[W_NFEV] = nfev
-    work[W_STATUS] = status
-    work[W_H_NEXT] = h_next
-    work[W_FILLED] = filled
-    work[W_NONFINITE] = n_nonfinite
-    work[W_PHASE] = phase
 
 
 ROS2_GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
@@ -565,19 +579,10 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
     t_end = t_out[m - 1]
     if h_max <= 0.0:
         h_max = t_end - t_out[0]
-    t = work[W_T]
-    h = work[W_H]
-    accepted = int(work[W_ACCEPTED])
-    rejected = int(work[W_REJECTED])
-    nfev = int(work[W_NFEV])
-    status = int(work[W_STATUS])
-    h_next = work[W_H_NEXT]
-    filled = int(work[W_FILLED])
-    n_nonfinite = int(work[W_NONFINITE])
+    t, h, accepted, rejected, nfev, status, h_next, filled, n_nonfinite, phase = _load_state(work)
     # a call returns only after an accepted step (or at the end), where the Jacobian is due anyway,
     # so J itself need not be carried
     need_jac = True
-    phase = work[W_PHASE]
     if phase == PHASE_NEW:
         t = t_out[0]
         rhs(t, y, args, f0)
@@ -602,11 +607,8 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
     if status != STATUS_OK or filled >= m:
         phase = PHASE_DONE
     while phase == PHASE_RUNNING and filled < i_stop:
-        if accepted + rejected >= max_steps:
-            status = STATUS_MAX_STEPS
-            break
-        if 0.1 * abs(h) <= abs(t) * UROUND or h <= 0.0:
-            status = STATUS_UNDERFLOW
+        status = _budget_status(accepted, rejected, max_steps, t, h)
+        if status != STATUS_OK:
             break
         if need_jac:
             if use_fd:
@@ -691,18 +693,7 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
             h = h * fac
     if status != STATUS_OK:
         phase = PHASE_DONE
-    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
-    work[N_WORK_SCALARS + n:N_WORK_SCALARS + 2 * n] = f0
-    work[W_T] = t
-    work[W_H] = h
-    work[W_ACCEPTED] = accepted
-    work[W_REJECTED] = rejected
-    work[W_NFEV] = nfev
-    work[W_STATUS] = status
-    work[W_H_NEXT] = h_next
-    work[W_FILLED] = filled
-    work[W_NONFINITE] = n_nonfinite
-    work[W_PHASE] = phase
+    _store_state(work, y, f0, t, h, accepted, rejected, nfev, status, h_next, filled, n_nonfinite, phase)
 
 
 def new_run(y0, t_out, h0=0.0):
