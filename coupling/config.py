@@ -1182,10 +1182,17 @@ def read_toml(path) -> dict:
 
 
 def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
-    """Merge the smoke table (if ``smoke``) and the overrides, then validate."""
+    """Merge the smoke table (if ``smoke``) and the overrides, then validate.
+
+    Overrides of the ``[smoke]`` table itself (``--set smoke.mesh.nx=8``) are applied to it before
+    it is merged, so that they take part in the smoke variant (and its validation) as if the file
+    said them; every other override is applied after the merge."""
+    overrides = list(overrides)
+    to_smoke = [o for o in overrides if parse_override(o)[0][0] == "smoke"]
+    raw = apply_overrides(raw, to_smoke)
     if smoke and isinstance(raw.get("smoke"), dict):
         raw = deep_merge(raw, raw["smoke"])
-    raw = apply_overrides(raw, overrides)
+    raw = apply_overrides(raw, [o for o in overrides if o not in to_smoke])
     scene = raw.get("scene")
     if scene is None:
         raise CaseError(f"scene is required; choose one of {', '.join(map(repr, SCENES))}")

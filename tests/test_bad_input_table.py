@@ -122,6 +122,13 @@ def _bad_smoke(tmp_path):
     return [path, "--smoke"], 2, ["smoke.mesh.element = 'P7'"]
 
 
+def _bad_smoke_set(tmp_path):
+    """An override of the [smoke] table itself: applied to it before the merge (it used to be applied
+    after, where it changed nothing and was never checked)."""
+    return [CASES_DIR / "journal_finite.toml", "--smoke", "--set", "smoke.mesh.element=P7"], 2, [
+        "[smoke]", "mesh.element = 'P7'"]
+
+
 def _toml_syntax(tmp_path):
     path = tmp_path / "broken.toml"
     path.write_text('scene = "film"\n[gap\n')
@@ -150,7 +157,7 @@ def _empty_out(tmp_path):
     return ["rayleigh_step", "--out", ""], 2, ["--out = ''"]
 
 
-EXTRA = [_bad_smoke, _toml_syntax, _directory, _typo, _missing, _out_is_a_file, _empty_out]
+EXTRA = [_bad_smoke, _bad_smoke_set, _toml_syntax, _directory, _typo, _missing, _out_is_a_file, _empty_out]
 
 
 @pytest.mark.parametrize("make", EXTRA, ids=[f.__name__.lstrip("_") for f in EXTRA])

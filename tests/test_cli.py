@@ -424,3 +424,11 @@ def test_multigrid_stops_clearly_on_paper_b_elongated_contact(tmp_path, capsys):
     assert_one_line_error(err, "EHL multigrid stagnated at M = 1001, L = 25.44 on 129 x 33 nodes",
                           "relative residual")
     assert not out.exists() or not any(out.iterdir())
+
+
+def test_set_of_the_smoke_table_takes_part_in_the_smoke_variant(capsys):
+    """``--smoke --set smoke.mesh.nx=7``: the override edits [smoke] before it is merged, so the smoke
+    run has 7 cells (it used to be applied after the merge and change nothing)."""
+    code, out, _ = run(capsys, "run", "rayleigh_step", "--smoke", "--set", "smoke.mesh.nx=7", "--dry-run")
+    assert code == 0
+    assert "mesh with 7 cells" in out
