@@ -48,9 +48,11 @@ within R (their digest cannot be compared with a tolerance) and listed as "bits 
 ``--ignore TEXT`` skips keys containing TEXT (explicit, printed).  Cases recorded in only one
 file are differences.
 
-Run time (2 shared cores, numba cache warm; measured 2026-11-24): ``--smoke`` about 75 s for the
-18 bundled cases (dynamics cases about 3 s each, the map builds 3-25 s); ``--full``: see
-``benchmarks/README.md`` ("Case summaries").
+Run time (2 shared cores, load 1-2.6, 2026-11-24): ``--smoke`` 65-67 s for the 18 bundled cases
+with a warm numba cache (dynamics cases about 2.8 s each, map builds 3-24 s, films and EHL about
+1 s), 77 s with a cold one; ``--full`` more than 15 minutes (the ball-ball map 190 s, the
+inner-race EHL map 457 s, the outer-race and roller maps not measured; per case in
+``benchmarks/README.md``, "Case summaries").
 """
 from __future__ import annotations
 
