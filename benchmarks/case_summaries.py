@@ -50,9 +50,8 @@ file are differences.
 
 Run time (2 shared cores, load 1-2.6, 2026-11-24): ``--smoke`` 65-67 s for the 18 bundled cases
 with a warm numba cache (dynamics cases about 2.8 s each, map builds 3-24 s, films and EHL about
-1 s), 77 s with a cold one; ``--full`` more than 15 minutes (the ball-ball map 190 s, the
-inner-race EHL map 457 s, the outer-race and roller maps not measured; per case in
-``benchmarks/README.md``, "Case summaries").
+1 s), 77 s with a cold one; ``--full`` about 16 minutes (934 s; the EHL ball maps 457 and
+164 s, the ball-ball map 190 s; per case in ``benchmarks/README.md``, "Case summaries").
 """
 from __future__ import annotations
 
