@@ -173,16 +173,21 @@ def film_dofs(case: FilmCase) -> int:
     return (k * nx + 1) * (k * m.ny + 1)
 
 
+def _mesh_keys(m, refine: int = 1) -> str:
+    """The mesh's size keys as a case states them, every direction refined by ``refine`` (a disk by
+    the whole refinements that give at least that factor)."""
+    if m.domain == "disk":
+        return f"mesh.refinements = {m.refinements + int(math.ceil(math.log2(refine)))}"
+    if m.domain == "interval":
+        return f"mesh.nx = {m.nx * refine}"
+    return f"mesh.nx = {m.nx * refine} with mesh.ny = {m.ny * refine}"
+
+
 def check_size(case: FilmCase) -> int:
     """Refuse a film whose estimated memory exceeds the limit (:mod:`coupling.limits`); its DOFs."""
     dofs = film_dofs(case)
     m = case.mesh
-    if m.domain == "disk":
-        subject = f"mesh.refinements = {m.refinements}"
-    elif m.domain == "interval":
-        subject = f"mesh.nx = {m.nx}"
-    else:
-        subject = f"mesh.nx = {m.nx} with mesh.ny = {m.ny}"
+    subject = _mesh_keys(m)
     limits.check_memory(case, f"{subject}: {dofs:.3g} degrees of freedom ({m.element}, {case.dim}-D)",
                         dofs * BYTES_PER_DOF[case.dim], "use a coarser mesh")
     return dofs
@@ -287,15 +292,7 @@ def resolution_warnings(case: FilmCase, solution) -> list[str]:
     text = solution.resolution_warning()
     if text is None:
         return []
-    k = solution.info["min_gap_refine"]
-    m = case.mesh
-    if m.domain == "disk":
-        need = f"mesh.refinements = {m.refinements + int(math.ceil(math.log2(k)))}"
-    elif m.domain == "interval":
-        need = f"mesh.nx = {m.nx * k}"
-    else:
-        need = f"mesh.nx = {m.nx * k} with mesh.ny = {m.ny * k}"
-    return [f"{text} ({need}, or finer)"]
+    return [f"{text} ({_mesh_keys(case.mesh, solution.info['min_gap_refine'])}, or finer)"]
 
 
 @dataclass

@@ -1426,7 +1426,7 @@ def _largest_negative_multiplier(P: _Problem, A, D, R, cav, p_ref):
     neg = np.flatnonzero(cav & (R < 0))
     if neg.size == 0:
         return 0.0
-    rows = (A + D @ P.K_local()).tocsr()[neg]
+    rows = sp.csr_matrix(A)[neg] + sp.csr_matrix(D)[neg] @ P.K_local()  # only the rows asked for
     rowmax = np.asarray(abs(rows).max(axis=1).todense()).ravel()
     return float(np.max(-R[neg] / (p_ref * np.maximum(rowmax, 1e-300))))
 
