@@ -35,6 +35,8 @@ import sys
 import threading
 from pathlib import Path
 
+from lubrication.errors import close_matches, did_you_mean
+
 EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_OUTPUT, EXIT_INTERRUPTED, EXIT_PIPE = 0, 1, 2, 3, 130, 141
 log = logging.getLogger("lubedyn")
 _interrupt = threading.Event()  # set by the SIGINT handler of main()
@@ -61,8 +63,6 @@ class _Parser(argparse.ArgumentParser):
 
 def _case_path(text: str) -> Path:
     """The case file of ``text``: a path, or the name of a bundled case (with "did you mean")."""
-    import difflib
-
     from .config import CASES_DIR, CaseError, bundled_cases
 
     path = Path(text)
@@ -73,13 +73,13 @@ def _case_path(text: str) -> Path:
     if path.exists():
         return path
     if path.suffix in ("", ".toml") and len(path.parts) == 1:
-        close = difflib.get_close_matches(path.stem, [p.stem for p in bundled_cases()], n=3)
-        if close:
-            raise CaseError(f"case file {text!r} not found, nor a bundled case of that name; did you mean "
-                            f"{' or '.join(map(repr, close))}? ('lubedyn cases' lists them)")
+        hint = did_you_mean(path.stem, [p.stem for p in bundled_cases()])
+        if hint:
+            raise CaseError(f"case file {text!r} not found, nor a bundled case of that name{hint} "
+                            "('lubedyn cases' lists them)")
     if path.parent.is_dir():  # a typo in a path: the case files next to it
         siblings = {p.name: p for p in path.parent.glob("*.toml")}
-        close = difflib.get_close_matches(path.name, list(siblings), n=3)
+        close = close_matches(path.name, siblings)
         if close:
             raise CaseError(f"case file {text!r} not found; did you mean "
                             f"{' or '.join(repr(str(siblings[c])) for c in close)}?")

@@ -73,7 +73,6 @@ contact, x the entrainment direction; the contact comes from exactly one of
 from __future__ import annotations
 
 import copy
-import difflib
 import math
 import re
 import tomllib
@@ -85,7 +84,7 @@ from typing import Annotated, Any, ClassVar, Literal, Union
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, model_validator
 from pydantic_core import PydanticCustomError
 
-from lubrication.errors import InputError
+from lubrication.errors import InputError, did_you_mean
 
 from .bearing import STRIBECK
 from .units import UnitError, parse_quantity, si_unit
@@ -555,7 +554,7 @@ class FilmCase(_Model):
             if name not in modes:
                 raise _root_rule(f"motion.mode_velocities.{name}", mo.mode_velocities[name],
                                  f"is not a mode of gap.type = {self.gap.type!r}; modes: {', '.join(modes)}"
-                                 + _did_you_mean(name, modes))
+                                 + did_you_mean(name, modes))
 
     def _check_boundaries(self):
         names = BOUNDARIES[self.mesh.domain]
@@ -563,11 +562,11 @@ class FilmCase(_Model):
         for name, value in b.pressures.items():
             if name not in names:
                 raise _root_rule(f"boundary.pressures.{name}", value, f"names no boundary of domain = "
-                                 f"{self.mesh.domain!r}; boundaries: {', '.join(names)}" + _did_you_mean(name, names))
+                                 f"{self.mesh.domain!r}; boundaries: {', '.join(names)}" + did_you_mean(name, names))
         for name in b.sealed:
             if name not in names:
                 raise _root_rule("boundary.sealed", name, f"names no boundary of domain = {self.mesh.domain!r}; "
-                                 f"boundaries: {', '.join(names)}" + _did_you_mean(name, names))
+                                 f"boundaries: {', '.join(names)}" + did_you_mean(name, names))
             if name in b.pressures:
                 raise _root_rule("boundary.sealed", name, "is also given a pressure in boundary.pressures")
         if set(b.sealed) >= set(names):
@@ -576,13 +575,6 @@ class FilmCase(_Model):
 
 def _root_rule(key, value, text):
     return PydanticCustomError("case_rule", "{text}", {"key": key, "value": value, "text": text, "root": True})
-
-
-def _did_you_mean(value, allowed) -> str:
-    allowed = [str(a) for a in allowed]
-    close = [a for a in allowed if a.lower() == str(value).lower()]
-    close = close or difflib.get_close_matches(str(value), allowed, n=3)
-    return f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
 
 
 # ---------------------------------------------------------------------------
@@ -1073,7 +1065,7 @@ def format_error(error: dict, root=None) -> str:
     if kind == "extra_forbidden":
         parent, ppath = _locate(root, loc[:-1])
         allowed = list(parent.model_fields) if isinstance(parent, type) else []
-        hint = _did_you_mean(loc[-1], allowed)
+        hint = did_you_mean(loc[-1], allowed)
         where = f" in [{ppath}]" if ppath else " at the top level"
         return f"{path}: unknown key{where}{hint}" + (f" (allowed: {', '.join(allowed)})" if allowed else "")
     if kind == "missing":
@@ -1089,11 +1081,11 @@ def format_error(error: dict, root=None) -> str:
         return f"{path} is required{hint}"
     if kind == "literal_error":
         allowed = _expected_list(ctx.get("expected", ""))
-        return f"{path} = {_show(value)} is not allowed; choose one of {', '.join(map(repr, allowed))}" + _did_you_mean(value, allowed)
+        return f"{path} = {_show(value)} is not allowed; choose one of {', '.join(map(repr, allowed))}" + did_you_mean(value, allowed)
     if kind == "union_tag_invalid":
         allowed = _expected_list(ctx.get("expected_tags", ""))
         return (f"{path}.type = {ctx.get('tag')!r} is not allowed; choose one of "
-                f"{', '.join(map(repr, allowed))}" + _did_you_mean(ctx.get("tag"), allowed))
+                f"{', '.join(map(repr, allowed))}" + did_you_mean(ctx.get("tag"), allowed))
     if kind == "union_tag_not_found":
         tags = [t for m in (model if isinstance(model, tuple) else ()) if isinstance(m, type)
                 for t in typing.get_args(m.model_fields["type"].annotation)]
@@ -1201,7 +1193,7 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
                         f"this version runs scene = {', '.join(map(repr, SCENES))}")
     if scene not in SCENES:
         raise CaseError(f"scene = {_show(scene)} is not allowed; choose one of {', '.join(map(repr, SCENES))}"
-                        + _did_you_mean(scene, SCENES + PLANNED_SCENES))
+                        + did_you_mean(scene, SCENES + PLANNED_SCENES))
     model = case_model(scene)
     try:
         return model.model_validate(raw)

@@ -51,7 +51,7 @@ import numpy as np
 from pydantic import Field, model_validator
 from pydantic_core import PydanticCustomError
 
-from lubrication.errors import InputError
+from lubrication.errors import InputError, did_you_mean
 
 from . import maps, outputs
 from .config import LimitsModel, _Model, resolved_toml
@@ -122,19 +122,13 @@ class CaseModel(_Model):
     def _resolve(self):
         known = maps.kinds()
         if self.kind not in known:
-            import difflib
-
-            close = difflib.get_close_matches(self.kind, list(known), n=3)
-            hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+            hint = did_you_mean(self.kind, known)
             raise _rule("kind", self.kind, f"is not a map kind; choose one of {', '.join(map(repr, known))}{hint}")
         kind = known[self.kind]
         by_key = {maps.axis_key(a.name): a for a in kind.axes}
         for key, over in self.axes.items():
             if key not in by_key:
-                import difflib
-
-                close = difflib.get_close_matches(key, list(by_key), n=3)
-                hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+                hint = did_you_mean(key, by_key)
                 raise _rule(f"axes.{key}", None, f"is not an axis of kind {self.kind!r}{hint} "
                             f"(axes: {', '.join(by_key)})")
             dim = _dimension(maps.axis_unit(by_key[key].name))
@@ -173,10 +167,7 @@ class CaseModel(_Model):
         defaults = kind.default_params()
         for key, value in list(self.params.items()):
             if key not in defaults:
-                import difflib
-
-                close = difflib.get_close_matches(key, list(defaults), n=3)
-                hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+                hint = did_you_mean(key, defaults)
                 raise _rule(f"params.{key}", value, f"is not a parameter of kind {self.kind!r}{hint} "
                             f"(parameters: {', '.join(defaults)})")
             self.params[key] = _param_value(key, value, defaults[key])

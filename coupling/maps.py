@@ -82,7 +82,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from dynamics import interp
-from lubrication.errors import ConvergenceError, InputError, unknown_choice
+from lubrication.errors import ConvergenceError, InputError, did_you_mean, unknown_choice
 
 from . import outputs
 
@@ -1186,10 +1186,7 @@ def accuracy_report(fmap: FilmMap, kind, params: dict, n: int, *, seed: int = 0,
 
 
 def _unknown_key(path: str, what: str, key: str, allowed) -> InputError:
-    import difflib
-
-    close = difflib.get_close_matches(str(key), [str(a) for a in allowed], n=3)
-    hint = f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+    hint = did_you_mean(key, allowed)
     return InputError(f"{path}: {what}{hint} (allowed: {', '.join(map(str, allowed))})")
 
 

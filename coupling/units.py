@@ -22,6 +22,8 @@ from __future__ import annotations
 import math
 import re
 
+from lubrication.errors import did_you_mean
+
 # dimension exponents: (length, mass, time, angle, temperature)
 _DIMS = ("m", "kg", "s", "rad", "K")
 
@@ -101,11 +103,8 @@ def _unit(symbol: str) -> tuple[float, tuple[int, ...]]:
     if len(symbol) > 1 and symbol[0] in _PREFIXES and symbol[1:] in _PREFIXABLE:
         factor, dim = _UNITS[symbol[1:]]
         return _PREFIXES[symbol[0]] * factor, dim
-    import difflib
-
     known = sorted(set(_UNITS) | {p + u for p in "numkMG" for u in _PREFIXABLE})
-    close = difflib.get_close_matches(symbol, known, n=3)
-    hint = f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+    hint = did_you_mean(symbol, known)
     raise UnitError(f"has an unknown unit {symbol!r}{hint}")
 
 
