@@ -33,12 +33,12 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from benchmarks import _common  # noqa: E402
+from benchmarks import _common, interp_cells  # noqa: E402
 from coupling import maps  # noqa: E402
 from dynamics import interp  # noqa: E402
 
 GAP, SPEED = "Central gap [m]", "Approach speed [m/s]"
-HERMITE_CELLS = getattr(interp, "HERMITE_CELLS", -1)  # absent before the per-cell kernels (before/after runs)
+HERMITE_CELLS = interp_cells.HERMITE_CELLS
 
 
 # ---------------------------------------------------------------- analytic kind
@@ -99,10 +99,8 @@ def query_cost(repeats=5, n=200_000):
         vals = np.ascontiguousarray(V[(slice(None),) * nd + (0,) * (3 - nd)])
         deriv = interp.hermite_data(tuple(axes[:nd]), vals)
         methods = [(interp.LINEAR, "linear"), (interp.PCHIP, "pchip"), (interp.HERMITE, "hermite")]
-        cells = None
-        if hasattr(interp, "hermite_cells_data"):  # (absent from older versions: before/after runs)
-            cells = interp.hermite_cells_data(tuple(axes[:nd]), deriv)
-            methods.append((interp.HERMITE_CELLS, "hermite-cells"))
+        cells = interp_cells.hermite_cells_data(tuple(axes[:nd]), deriv)
+        methods.append((HERMITE_CELLS, "hermite-cells"))
         for method, mname in methods:
             for qname, q in (("random", rand), ("sweep", sweep)):
                 pts = np.ascontiguousarray(q[:, :nd])
@@ -111,24 +109,27 @@ def query_cost(repeats=5, n=200_000):
                 def value():
                     if method == HERMITE_CELLS:
                         if nd == 1:
-                            return interp.csum1(axes[0], 1, cells, 0, x0, 0, counter)
+                            return interp_cells.csum1(axes[0], 1, cells, 0, x0, 0, counter)
                         if nd == 2:
-                            return interp.csum2(axes[0], axes[1], 1, 0, cells, 0, pts, 0, counter)
-                        return interp.csum3(axes[0], axes[1], axes[2], 1, 0, 0, cells, 0, pts, 0, counter)
+                            return interp_cells.csum2(axes[0], axes[1], 1, 0, cells, 0, pts, 0, counter)
+                        return interp_cells.csum3(axes[0], axes[1], axes[2], 1, 0, 0, cells, 0, pts, 0, counter)
                     if method == interp.HERMITE:
                         if nd == 1:
-                            return interp.hsum1(axes[0], 1, deriv, 0, x0, 0, counter)
+                            return interp_cells.hsum1(axes[0], 1, deriv, 0, x0, 0, counter)
                         if nd == 2:
-                            return interp.hsum2(axes[0], axes[1], 1, 0, deriv, 0, pts, 0, counter)
-                        return interp.hsum3(axes[0], axes[1], axes[2], 1, 0, 0, deriv, 0, pts, 0, counter)
+                            return interp_cells.hsum2(axes[0], axes[1], 1, 0, deriv, 0, pts, 0, counter)
+                        return interp_cells.hsum3(axes[0], axes[1], axes[2], 1, 0, 0, deriv, 0, pts, 0, counter)
                     if nd == 1:
-                        return interp.sum1(axes[0], 1, vals, 0, method, x0, 0, counter)
+                        return interp_cells.sum1(axes[0], 1, vals, 0, method, x0, 0, counter)
                     if nd == 2:
-                        return interp.sum2(axes[0], axes[1], 1, 0, vals, 0, method, pts, 0, counter)
-                    return interp.sum3(axes[0], axes[1], axes[2], 1, 0, 0, vals, 0, method, pts, 0, counter)
+                        return interp_cells.sum2(axes[0], axes[1], 1, 0, vals, 0, method, pts, 0, counter)
+                    return interp_cells.sum3(axes[0], axes[1], axes[2], 1, 0, 0, vals, 0, method, pts, 0, counter)
 
                 def grad():
-                    data = {interp.HERMITE: deriv, HERMITE_CELLS: cells}.get(method, vals)
+                    if method == HERMITE_CELLS:
+                        interp_cells.evaluate_cells(tuple(axes[:nd]), logs[:nd], cells, 0, pts, 0, counter, grad=True)
+                        return
+                    data = deriv if method == interp.HERMITE else vals
                     interp.evaluate(tuple(axes[:nd]), logs[:nd], data, 0, method, pts, 0, counter, grad=True)
 
                 value()
