@@ -58,7 +58,7 @@ import _common  # noqa: E402
 
 from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl  # noqa: E402
 from lubrication.ehl_multigrid import MultigridOptions  # noqa: E402
-from lubrication.film_formulas import moes_line_central, nijenbanning_central  # noqa: E402
+from lubrication.laws.film import moes_line_central, nijenbanning_central  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
 # points: a failing solve stops after 40 Newton steps (default 80) to bound the run time

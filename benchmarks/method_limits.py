@@ -153,7 +153,7 @@ def _H(c, h):
 
 def ehl_line(Ms, grids):
     from lubrication.ehl import EHLContact, EHLGrid, solve_ehl
-    from lubrication.film_formulas import moes_line_central
+    from lubrication.laws.film import moes_line_central
 
     rows = []
     for M in Ms:
@@ -178,7 +178,7 @@ def ehl_line(Ms, grids):
 
 def ehl_point_multigrid(Ms, grids):
     from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
-    from lubrication.film_formulas import nijenbanning_central
+    from lubrication.laws.film import nijenbanning_central
 
     options = EHLOptions(method="multigrid")
     # compile (or load from the cache) the multigrid's numba kernels outside the timed points

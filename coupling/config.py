@@ -54,7 +54,7 @@ contact, x the entrainment direction; the contact comes from exactly one of
                  diametral_clearance (balls), effective_length (rollers),
                  contact_angle, inner_speed, outer_speed, radial_load,
                  axial_load, stribeck_constant, load_distribution =
-                 stribeck | quasi_static (balls): see :mod:`coupling.bearing`
+                 stribeck | quasi_static (balls): see :mod:`lubrication.laws.bearing`
     [dimensionless]  M, L, eta0 (Moes' parameters; EHLContact.from_moes)
     [grid]       nx (2^k + 1), ny, x_min, x_max, y_max (in Hertz semi-axes)
     [traction]   model = newtonian | limiting_shear | eyring, limiting_shear_stress,
@@ -86,7 +86,7 @@ from pydantic_core import PydanticCustomError
 
 from lubrication.errors import InputError, did_you_mean
 
-from .bearing import STRIBECK
+from lubrication.laws.bearing import STRIBECK
 from .units import UnitError, parse_quantity, si_unit
 
 SCENES = ("film", "ehl", "map", "dynamics")
@@ -379,7 +379,7 @@ class DensityModel(_Model):
 
 class LubricantModel(_Model):
     """viscosity, density; eyring_stress tau0 (EHL scenes only): Reynolds-Eyring shear thinning of the
-    Poiseuille flow (:mod:`lubrication.lubricant`), omitted = Newtonian."""
+    Poiseuille flow (:mod:`lubrication.laws.lubricant`), omitted = Newtonian."""
 
     viscosity: Annotated[ViscosityModel, BeforeValidator(_viscosity_shorthand)]
     density: DensityModel = Field(default_factory=DensityModel)
@@ -671,7 +671,7 @@ class MaterialsModel(_Model):
 
     @property
     def e_star(self) -> float:
-        from lubrication.elastic import reduced_modulus
+        from lubrication.laws.contact import reduced_modulus
 
         return reduced_modulus(self.modulus1, self.poisson1, self.modulus2, self.poisson2)
 
@@ -770,7 +770,7 @@ class EHLOutputModel(_Model):
 
 
 class BearingModel(_Model):
-    """The bearing the contact is taken from (:mod:`coupling.bearing`): the
+    """The bearing the contact is taken from (:mod:`lubrication.laws.bearing`): the
     most loaded element on ``race``.  Balls: groove radii, optional diametral
     clearance; the contact angle follows from the axial load unless given.
     Rollers: line contact of ``effective_length`` at ``contact_angle``."""
@@ -829,13 +829,13 @@ class BearingModel(_Model):
     def _ball_geometry(self):
         """The ball inside the pitch circle and a clearance that leaves the free contact angle below
         90 deg (cos beta0 = 1 - P_d / (2 B D) > 0), checked only once the grooves are wider than the
-        ball (else :mod:`coupling.bearing` names the groove radius), so that each message names the
+        ball (else :mod:`lubrication.laws.bearing` names the groove radius), so that each message names the
         key that is wrong."""
         D = self.element_diameter
         if not D < self.pitch_diameter:
             raise rule("element_diameter", D, f"must be < pitch_diameter = {self.pitch_diameter:g} m")
         if not min(self.inner_groove_radius, self.outer_groove_radius) > 0.5 * D:
-            return  # the groove radius is what is wrong: coupling.bearing names it ("must be > D/2")
+            return  # the groove radius is what is wrong: lubrication.laws.bearing names it ("must be > D/2")
         bd = self.inner_groove_radius + self.outer_groove_radius - D
         if not self.diametral_clearance < 2.0 * bd:
             raise rule("diametral_clearance", self.diametral_clearance, f"must be < 2 B D = {2 * bd:g} m, where "

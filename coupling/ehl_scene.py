@@ -3,14 +3,14 @@
 ``build(case)`` turns an :class:`~coupling.config.EHLCase` (SI) into the
 contact, grid and options of :func:`lubrication.ehl.solve_ehl`; the contact
 comes from the reduced or body radii and the operating point, from a
-bearing (:mod:`coupling.bearing`: the most loaded element's contact with one
+bearing (:mod:`lubrication.laws.bearing`: the most loaded element's contact with one
 race), or from Moes' M and L.  ``run(case, out_dir)`` solves and writes
 
 - ``summary.json``: :meth:`~lubrication.ehl.EHLSolution.summary` (film
   thickness, pressure, load, friction, Moes M and L, Newton iterations) plus
   the inputs in SI (reduced radii and modulus, speeds, load), the Hertz
   contact (pressure, semi-axes), Hamrock-Dowson U, G, W and the closed-form
-  film thickness of :mod:`lubrication.film_formulas` for comparison
+  film thickness of :mod:`lubrication.laws.film` for comparison
   (Hamrock-Dowson for points; Dowson-Toyoda, Pan-Hamrock and Moes for
   lines), the bearing data when there is a ``[bearing]``, solver information
   and timings, ``"Stop reason"`` (why the solver stopped, with its figures)
@@ -34,11 +34,12 @@ import math
 import time
 from dataclasses import dataclass, field
 
-from lubrication import film_formulas, hertz
+from lubrication.laws import contact as hertz
+from lubrication.laws import film as film_formulas
 from lubrication.errors import InputError
 from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, multigrid_grid, solve_ehl
 
-from . import bearing as bearings
+from lubrication.laws import bearing as bearings
 from . import limits, outputs, validity
 from .config import EHLCase, resolved_toml
 

@@ -92,7 +92,7 @@ Entrainment from the bearing kinematics: neighbouring balls spin the same way
 (both roll on the inner race), so at the gap their surfaces move in
 *opposite* directions, each at the ball's surface speed about its own centre
 (11.5 m/s at paper B's 10,000 rpm: the race entrainment speed of
-:func:`coupling.bearing.entrainment_speed`).  The mean (entraining) velocity
+:func:`lubrication.laws.bearing.entrainment_speed`).  The mean (entraining) velocity
 u_e = (u_1 + u_2)/2 is zero for equal spins and equals R (omega_A -
 omega_B)/2 for unequal ones (a 1 % spin difference: 0.058 m/s); the sliding
 speed u_2 - u_1 ~ 2 x 11.5 m/s is large but, for a rigid Newtonian film, does
@@ -378,7 +378,7 @@ SHAFT_SPEED_A = 2400 * 2 * math.pi / 60  # rad/s, figure 5
 
 
 def _reduced_modulus(E1, nu1, E2, nu2):
-    from lubrication.elastic import reduced_modulus
+    from lubrication.laws.contact import reduced_modulus
 
     return reduced_modulus(E1, nu1, E2, nu2)
 
@@ -930,24 +930,21 @@ EHL_OUTPUTS = (
 
 
 def _ball_race_geometry(race: str, contact_angle: float) -> tuple:
-    """(R_x, R_y) [m] of a 6206 ball on its ``race`` at ``contact_angle`` [rad] (coupling.bearing)."""
-    from . import bearing
+    """(R_x, R_y) [m] of a 6206 ball on its ``race`` at ``contact_angle`` [rad] (lubrication.laws.bearing)."""
+    from lubrication.laws import bearing
 
     groove = INNER_GROOVE_RADIUS if race == "inner" else OUTER_GROOVE_RADIUS
-    f = bearing.conformity(BALL_DIAMETER, groove)
-    return (bearing.race_radius_x(BALL_DIAMETER, PITCH_DIAMETER_6206, contact_angle, race),
-            bearing.groove_radius_y(BALL_DIAMETER, f))
+    return bearing.race_radii(BALL_DIAMETER, PITCH_DIAMETER_6206, groove, race, contact_angle)
 
 
 def _paper_b_contact_angle() -> float:
-    """Contact angle [rad] of the 6206 (zero clearance) under paper B's axial load 200 N (coupling.bearing)."""
-    from . import bearing
+    """Contact angle [rad] of the 6206 (zero clearance) under paper B's axial load 200 N (lubrication.laws.bearing)."""
+    from lubrication.laws import bearing
 
-    f_i = bearing.conformity(BALL_DIAMETER, INNER_GROOVE_RADIUS)
-    f_o = bearing.conformity(BALL_DIAMETER, OUTER_GROOVE_RADIUS)
+    r_i, r_o = INNER_GROOVE_RADIUS, OUTER_GROOVE_RADIUS
     e_star = _reduced_modulus(BALL_MODULUS, BALL_POISSON, RING_MODULUS, RING_POISSON)
-    K_n = bearing.deflection_constant(BALL_DIAMETER, PITCH_DIAMETER_6206, f_i, f_o, 0.0, e_star)
-    return bearing.thrust_contact_angle(200.0, N_BALLS, BALL_DIAMETER, f_i, f_o, K_n, 0.0)
+    K_n = bearing.deflection_constant(BALL_DIAMETER, PITCH_DIAMETER_6206, r_i, r_o, 0.0, e_star)
+    return bearing.thrust_contact_angle(200.0, N_BALLS, BALL_DIAMETER, r_i, r_o, K_n, 0.0)
 
 
 def _ehl_ball_params(race: str) -> dict:
@@ -1013,7 +1010,7 @@ def ehl_roller_race_default_params() -> dict:
     kN, 8.84 m/s: 5.177 -> 5.114 um; the inlet is Newtonian) and h_min/h_c
     becomes 0.76 (Newtonian: 0.90-0.95, branch-dependent).
     """
-    from . import bearing
+    from lubrication.laws import bearing
 
     rx = bearing.race_radius_x(ROLLER_MEAN_DIAMETER, ROLLER_PITCH_DIAMETER, ROLLER_INNER_CONTACT_ANGLE, "inner")
     return {

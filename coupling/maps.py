@@ -739,7 +739,8 @@ def sha256_text(text: str) -> str:
 
 
 def code_fingerprint(kind) -> dict:
-    """sha256 of the kind's source file and of ``lubrication/*.py`` (the solver), and the lubedyn version."""
+    """sha256 of the kind's source file and of ``lubrication/**/*.py`` (the solver and the laws), and the
+    lubedyn version."""
     from . import __version__
 
     out = {"lubedyn": __version__}
@@ -751,8 +752,9 @@ def code_fingerprint(kind) -> dict:
     import lubrication
 
     digest = hashlib.sha256()
-    for p in sorted(Path(lubrication.__file__).parent.glob("*.py")):
-        digest.update(p.name.encode())
+    root = Path(lubrication.__file__).parent
+    for p in sorted(root.rglob("*.py")):
+        digest.update(p.relative_to(root).as_posix().encode())
         digest.update(p.read_bytes())
     out["lubrication sources"] = digest.hexdigest()
     return out

@@ -6,9 +6,9 @@ module          responsibility
 ``integrators`` RK4, Dormand-Prince 5(4) with dense output, the whole time
                 loop in numba; ``integrate`` driver with progress and checks
 ``rotations``   unit quaternions, Euler's equations (numba)
-``contacts``    Hertz (exact / Hamrock-Brewe), Hunt-Crossley damping,
-                traction curve, ball-ball film + Hertz series law, Thornton
-                collision phases, film-rupture friction
+``contacts``    kernels: Hertz force with Hunt-Crossley damping, traction
+                curve, ball-ball film + Hertz series law, Thornton collision
+                phases, film-rupture friction (set-up laws: lubrication.laws)
 ``cageless``    cage-less 6206 ball bearing of paper B: ``CagelessBearing``,
                 ``rhs``, ``forces``, ``forces_many``
 ``interp``      map interpolation kernels (multilinear, monotone cubic, log
@@ -20,6 +20,8 @@ module          responsibility
 ``errors``      ``DynamicsInputError``, ``IntegrationError``
 ==============  ==============================================================
 
-``dynamics`` never imports ``lubrication`` or ``coupling``: it sees films only
-as plain arrays (map axes and values) and closed forms.
+``dynamics`` imports from ``lubrication`` only the laws written once for both
+layers (:mod:`lubrication.laws`) and the error tree (:mod:`lubrication.errors`),
+never a film solver, and never ``coupling``: it sees films only as plain
+arrays (map axes and values) and closed forms.
 """

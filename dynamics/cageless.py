@@ -141,6 +141,10 @@ from dataclasses import dataclass, fields
 import numpy as np
 from numba import njit
 
+from lubrication.laws import bearing as laws_bearing
+from lubrication.laws import contact as laws_contact
+from lubrication.laws.film import hamrock_dowson_central
+
 from . import contacts as C
 from .contacts import (
     BB_HCUT,
@@ -918,7 +922,7 @@ class CagelessBearing:
         _check_choice("scenario", self.scenario, SCENARIOS)
         _check_choice("film", self.film, FILM_KINDS)
         _check_choice("traction", self.traction, TRACTIONS)
-        _check_choice("hertz_method", self.hertz_method, C.HERTZ_METHODS)
+        _check_choice("hertz_method", self.hertz_method, laws_contact.METHODS)
         _check_choice("slot_race", self.slot_race, RACES)
         Z = self.n_balls
         if int(Z) != Z or Z < 3:
@@ -986,33 +990,34 @@ class CagelessBearing:
 
     @property
     def e_star_race(self) -> float:
-        return C.reduced_modulus(self.ball_modulus, self.ball_poisson, self.ring_modulus, self.ring_poisson)
+        return laws_contact.reduced_modulus(self.ball_modulus, self.ball_poisson, self.ring_modulus, self.ring_poisson)
 
     @property
     def e_star_ball(self) -> float:
-        return C.reduced_modulus(self.ball_modulus, self.ball_poisson, self.ball_modulus, self.ball_poisson)
+        return laws_contact.reduced_modulus(self.ball_modulus, self.ball_poisson, self.ball_modulus, self.ball_poisson)
 
     def hertz_constants(self) -> tuple[float, float]:
         """(K_i, K_o) [N/m^1.5] of the ball-race contacts (zero contact angle)."""
         D, dm = self.ball_diameter, self.pitch_diameter
         es = self.e_star_race
-        Ki = C.hertz_constant(*C.race_radii(D, dm, self.inner_groove_radius, "inner"), es, self.hertz_method)
-        Ko = C.hertz_constant(*C.race_radii(D, dm, self.outer_groove_radius, "outer"), es, self.hertz_method)
+        Ki = laws_contact.hertz_constant(*laws_bearing.race_radii(D, dm, self.inner_groove_radius, "inner"), es, self.hertz_method)
+        Ko = laws_contact.hertz_constant(*laws_bearing.race_radii(D, dm, self.outer_groove_radius, "outer"), es, self.hertz_method)
         return Ki, Ko
 
     def race_film_reference_load(self) -> float:
-        """Reference load [N] of the race films: Stribeck's most loaded ball 4.37 F_r / Z
-        (or the axial share F_a / Z when larger); at least 1 N."""
-        return max(4.37 * self.radial_load / self.n_balls, self.axial_load / self.n_balls, 1.0)
+        """Reference load [N] of the race films: Stribeck's most loaded ball c F_r / Z, c = 4.37
+        (:data:`lubrication.laws.bearing.STRIBECK`), or the axial share F_a / Z when larger; at least 1 N."""
+        return max(laws_bearing.STRIBECK["point"] * self.radial_load / self.n_balls, self.axial_load / self.n_balls,
+                   1.0)
 
     def race_film_coefficients(self) -> tuple[float, float]:
         """(c_i, c_o) of the race films h_c = c u_e^0.67 [m with u_e in m/s].
 
-        Hamrock & Dowson (1977) central film of an elliptic contact,
-        h_c / R_x = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k)),
+        Hamrock & Dowson (1977) central film of an elliptic contact
+        (:func:`lubrication.laws.film.hamrock_dowson_central`),
         U = eta0 u_e / (E' R_x), G = alpha E', W = Q / (E' R_x^2), E' = 2 E*,
         k = a/b from the exact ellipse (m = 1 - (b/a)^2 of
-        :func:`dynamics.contacts.ellipticity_parameter`), evaluated at
+        :func:`lubrication.laws.contact.ellipticity_parameter`), evaluated at
         :meth:`race_film_reference_load` (the film depends on the load only as
         Q^-0.067: a tenfold load changes it by 14 %).  Isothermal, fully
         flooded, smooth surfaces; the film adds h_c to the solids' approach."""
@@ -1021,12 +1026,12 @@ class CagelessBearing:
         q = self.race_film_reference_load()
         out = []
         for race, groove in (("inner", self.inner_groove_radius), ("outer", self.outer_groove_radius)):
-            rx, ry = C.race_radii(D, dm, groove, race)
-            k = 1.0 / math.sqrt(1.0 - C.ellipticity_parameter(ry / rx))
+            rx, ry = laws_bearing.race_radii(D, dm, groove, race)
+            k = 1.0 / math.sqrt(1.0 - laws_contact.ellipticity_parameter(ry / rx))
             U1 = self.viscosity / (e_prime * rx)  # U per (m/s)
             G = self.pressure_viscosity * e_prime
             W = q / (e_prime * rx * rx)
-            out.append(2.69 * U1**0.67 * G**0.53 * W**-0.067 * (1.0 - 0.61 * math.exp(-0.73 * k)) * rx)
+            out.append(hamrock_dowson_central(U1, G, W, k) * rx)
         return out[0], out[1]
 
     def race_film_thickness(self, entrainment_speed: float) -> tuple[float, float]:
@@ -1037,8 +1042,8 @@ class CagelessBearing:
     @property
     def contact_angle_free(self) -> float:
         """Free contact angle [rad] from the clearance: cos b0 = 1 - P_d/(2 B D) (0 for P_d <= 0)."""
-        BD = self.inner_groove_radius + self.outer_groove_radius - self.ball_diameter
-        return math.acos(min(1.0, 1.0 - self.diametral_clearance / (2.0 * BD)))
+        return laws_bearing.free_contact_angle(self.ball_diameter, self.inner_groove_radius, self.outer_groove_radius,
+                                               self.diametral_clearance)
 
     @property
     def omega_inner(self) -> float:
@@ -1058,7 +1063,7 @@ class CagelessBearing:
 
     def cage_speed(self, contact_angle: float = 0.0) -> float:
         """Epicyclic ball-train speed omega_i (1 - D cos a/d_m)/2 [rad/s]."""
-        return 0.5 * self.omega_inner * (1.0 - self.ball_diameter * math.cos(contact_angle) / self.pitch_diameter)
+        return laws_bearing.cage_speed(self.ball_diameter, self.pitch_diameter, contact_angle, self.omega_inner)
 
     # numba arguments ----------------------------------------------------------
     def args(self) -> tuple:
@@ -1120,10 +1125,10 @@ class CagelessBearing:
         P[P_REI] = P[P_RIC] - math.sqrt(self.inner_groove_radius**2 - hw * hw)
         es = self.e_star_race
         re = self.slot_edge_radius
-        rxo, ryo = C.relative_radii([2.0 / D, -1.0 / P[P_REO]], [2.0 / D, 1.0 / re])
-        rxi, ryi = C.relative_radii([2.0 / D, 1.0 / P[P_REI]], [2.0 / D, 1.0 / re])
-        P[P_KEO] = C.hertz_constant(max(rxo, ryo), min(rxo, ryo), es, self.hertz_method)
-        P[P_KEI] = C.hertz_constant(max(rxi, ryi), min(rxi, ryi), es, self.hertz_method)
+        rxo, ryo = laws_contact.relative_radii([2.0 / D, -1.0 / P[P_REO]], [2.0 / D, 1.0 / re])
+        rxi, ryi = laws_contact.relative_radii([2.0 / D, 1.0 / P[P_REI]], [2.0 / D, 1.0 / re])
+        P[P_KEO] = laws_contact.hertz_constant(max(rxo, ryo), min(rxo, ryo), es, self.hertz_method)
+        P[P_KEI] = laws_contact.hertz_constant(max(rxi, ryi), min(rxi, ryi), es, self.hertz_method)
         P[P_QSTAB] = self.quaternion_stabilisation
         bbp = C.ball_ball_parameters(
             ball_radius=Rb, e_star=self.e_star_ball, yield_stress=self.yield_stress,
@@ -1329,7 +1334,7 @@ class CagelessBearing:
         nr = 3 if six else 2
         y = self._pack(ring, psi, np.full(Z, 0.5 * self.pitch_diameter), np.zeros(Z), psidot, spin)
         Ki, Ko = self.hertz_constants()
-        Kn = C.series_constant(Ki, Ko)
+        Kn = laws_contact.series_constant(Ki, Ko)
         fscale = max(self.radial_load, self.axial_load, 1.0) / Z
         scale = (max(self.radial_load, self.axial_load, 1.0) / (Z * Kn)) ** (2.0 / 3.0)
         dydt = np.empty_like(y)

@@ -1,4 +1,4 @@
-r"""Contact laws of the ball bearing: Hertz point contact, contact damping,
+r"""Contact kernels of the ball bearing: Hertz force with contact damping,
 traction, and the ball-ball collision through the oil film.
 
 Set-up functions (plain Python, run once) compute constants; the ``@njit``
@@ -9,21 +9,11 @@ direction, concave radii negative); delta the elastic approach [m].
 
 Hertz point contact (``Q = K delta^1.5``)
 -----------------------------------------
-Exact (Johnson, *Contact Mechanics*, 1985, sec. 3.9 and 4.2): with K(e), E(e)
-the complete elliptic integrals of modulus e (``scipy.special.ellipk/ellipe``
-take m = e^2 = 1 - (b/a)^2), the ellipse follows from::
-
-    R_a/R_b = ((a/b)^2 E - K)/(K - E)                       (solved for m)
-    a^3 = 3 Q R_a (K - E)/(pi E* m),  b = a sqrt(1 - m),  p0 = 3 Q/(2 pi a b)
-    delta = p0 b K/E*   =>   K_hertz = Q/delta^1.5  (delta at Q = 1 N)
-
-and the circle (R_a = R_b = R) gives K_hertz = (4/3) E* sqrt(R).  Hamrock &
-Brewe (1983) is the option ``method="hamrock_brewe"``:
-k = 1.0339 (R_a/R_b)^0.636, E = 1.0003 + 0.5968 R_b/R_a, F = 1.5277 + 0.6023
-ln(R_a/R_b), delta = F (9/(2 E R) (Q/(pi k E'))^2)^(1/3), E' = 2 E*,
-1/R = 1/R_a + 1/R_b.  (This module must not import :mod:`lubrication`; its
-:mod:`lubrication.hertz` is the independent implementation the tests compare
-with.)
+The set-up laws (reduced modulus, relative radii, the exact and Hamrock-Brewe
+ellipse, K_hertz = Q/delta^1.5, springs in series, the Hunt-Crossley alpha)
+are written once in :mod:`lubrication.laws.contact` and the race radii in
+:mod:`lubrication.laws.bearing`; this module imports nothing else from
+:mod:`lubrication`.
 
 Contact damping (Hunt & Crossley 1975)
 --------------------------------------
@@ -108,15 +98,11 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.optimize import brentq
-from scipy.special import ellipe, ellipk
 
 from .errors import DynamicsInputError
 from .interp import HERMITE, hermite3_grad, interp3_grad
 
 _JIT = dict(cache=True, fastmath=False, error_model="numpy")
-
-HERTZ_METHODS = ("exact", "hamrock_brewe")
 
 # ball-ball collision phases (returned by ball_ball_normal)
 PHASE_SEPARATED, PHASE_FILM, PHASE_ELASTIC, PHASE_PLASTIC, PHASE_RECOVERY = 0, 1, 2, 3, 4
@@ -149,100 +135,6 @@ def _positive(key, value):
     if not (value > 0.0 and math.isfinite(value)):
         raise DynamicsInputError(f"{key} = {value!r} must be a finite number > 0")
     return value
-
-
-def reduced_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:
-    """E* = 1/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) [Pa]."""
-    _positive("elastic modulus E1 [Pa]", E1)
-    _positive("elastic modulus E2 [Pa]", E2)
-    for key, nu in (("Poisson ratio nu1", nu1), ("Poisson ratio nu2", nu2)):
-        if not -1.0 < nu < 0.5:
-            raise DynamicsInputError(f"{key} = {nu!r} must lie in (-1, 0.5)")
-    return 1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2)
-
-
-def relative_radii(curvatures_x, curvatures_y):
-    """Relative principal radii (R_x, R_y) [m] of two bodies from their
-    principal curvatures [1/m] (convex positive, concave negative) in the
-    rolling (x) and transverse (y) directions."""
-    sx, sy = float(np.sum(curvatures_x)), float(np.sum(curvatures_y))
-    if not (sx > 0.0 and sy > 0.0):
-        raise DynamicsInputError(
-            f"contact curvature sums (x: {sx:g} 1/m, y: {sy:g} 1/m) must be > 0 (the surfaces must not conform)")
-    return 1.0 / sx, 1.0 / sy
-
-
-def race_radii(D: float, d_m: float, groove_radius: float, race: str, alpha: float = 0.0):
-    """(R_x, R_y) [m] of a ball on the ``race`` ("inner"/"outer") groove of radius
-    ``groove_radius`` at contact angle ``alpha``: R_x = (D/2)(1 -+ gamma),
-    gamma = D cos(alpha)/d_m, R_y = r D/(2 r - D)."""
-    gamma = D * math.cos(alpha) / d_m
-    if race not in ("inner", "outer"):
-        raise DynamicsInputError(f"race = {race!r} is not allowed; choose 'inner' or 'outer'")
-    if not groove_radius > 0.5 * D:
-        raise DynamicsInputError(f"{race} groove radius = {groove_radius:g} m must be > D/2 = {0.5 * D:g} m")
-    rx = 0.5 * D * (1.0 - gamma if race == "inner" else 1.0 + gamma)
-    return rx, groove_radius * D / (2.0 * groove_radius - D)
-
-
-def _ratio_residual(m, ratio):
-    K, E = ellipk(m), ellipe(m)
-    return (E / (1.0 - m) - K) / (K - E) - ratio
-
-
-def ellipticity_parameter(radius_ratio: float) -> float:
-    """m = 1 - (b/a)^2 of the contact ellipse for R_a/R_b = ``radius_ratio`` >= 1 (exact)."""
-    if not radius_ratio >= 1.0:
-        raise DynamicsInputError(f"radius ratio R_a/R_b = {radius_ratio!r} must be >= 1")
-    if radius_ratio - 1.0 < 1e-6:
-        return 4.0 * (radius_ratio - 1.0) / 3.0  # series R_a/R_b = 1 + 3m/4 + O(m^2)
-    return brentq(_ratio_residual, 1e-14, 1.0 - 1e-15, args=(radius_ratio,), xtol=1e-16, rtol=1e-15)
-
-
-def hertz_approach(load, radius_a, radius_b, e_star, method="exact"):
-    """(a, b, delta) [m] of a Hertz point contact under ``load`` [N]."""
-    if method not in HERTZ_METHODS:
-        raise DynamicsInputError(f"hertz method = {method!r} is not allowed; choose one of {HERTZ_METHODS}")
-    load = _positive("contact load [N]", load)
-    Ra, Rb = _positive("relative radius R_a [m]", radius_a), _positive("relative radius R_b [m]", radius_b)
-    e_star = _positive("reduced modulus E* [Pa]", e_star)
-    Ra, Rb = max(Ra, Rb), min(Ra, Rb)
-    if method == "hamrock_brewe":
-        k = 1.0339 * (Ra / Rb) ** 0.636
-        Eb = 1.0003 + 0.5968 * Rb / Ra
-        F = 1.5277 + 0.6023 * math.log(Ra / Rb)
-        R = 1.0 / (1.0 / Ra + 1.0 / Rb)
-        Ep = 2.0 * e_star
-        a = (6.0 * k * k * Eb * load * R / (math.pi * Ep)) ** (1.0 / 3.0)
-        b = (6.0 * Eb * load * R / (math.pi * k * Ep)) ** (1.0 / 3.0)
-        return a, b, F * (9.0 / (2.0 * Eb * R) * (load / (math.pi * k * Ep)) ** 2) ** (1.0 / 3.0)
-    m = ellipticity_parameter(Ra / Rb)
-    if m < 1e-12:
-        a = (3.0 * load * Ra / (4.0 * e_star)) ** (1.0 / 3.0)
-        return a, a, a * a / Ra
-    K, E = ellipk(m), ellipe(m)
-    a = (3.0 * load * Ra * (K - E) / (math.pi * e_star * m)) ** (1.0 / 3.0)
-    b = a * math.sqrt(1.0 - m)
-    p0 = 3.0 * load / (2.0 * math.pi * a * b)
-    return a, b, p0 * b * K / e_star
-
-
-def hertz_constant(radius_a: float, radius_b: float, e_star: float, method: str = "exact") -> float:
-    """K [N/m^1.5] of ``Q = K delta^1.5`` (delta at Q = 1 N, to the power -3/2)."""
-    return hertz_approach(1.0, radius_a, radius_b, e_star, method)[2] ** -1.5
-
-
-def series_constant(K1: float, K2: float) -> float:
-    """K of two Hertz contacts in series (same load): (K1^-2/3 + K2^-2/3)^-3/2."""
-    return (K1 ** (-2.0 / 3.0) + K2 ** (-2.0 / 3.0)) ** -1.5
-
-
-def hunt_crossley_alpha(restitution: float, impact_speed: float) -> float:
-    """alpha [s/m] of the Hunt-Crossley law for a restitution coefficient at an
-    impact speed (Hunt & Crossley 1975: alpha = 3 (1 - e)/(2 v))."""
-    if not 0.0 < restitution <= 1.0:
-        raise DynamicsInputError(f"restitution = {restitution!r} must lie in (0, 1]")
-    return 1.5 * (1.0 - restitution) / _positive("impact speed [m/s]", impact_speed)
 
 
 def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alpha=0.0, viscosity=0.0,

@@ -1,22 +1,26 @@
-"""Exceptions of the dynamics layer (no import of :mod:`lubrication`).
+"""Exceptions of the dynamics layer, in lubedyn's one error tree (:mod:`lubrication.errors`).
 
-``DynamicsInputError`` marks bad input to a dynamics routine (wrong shape, a
-non-positive tolerance, a fixed step beyond the stability limit): one line that
+``DynamicsInputError`` (an :class:`~lubrication.errors.InputError`) marks bad
+input to a dynamics routine (wrong shape, a non-positive tolerance, a fixed
+step beyond the stability limit): one line that
 names the key, the value and what is allowed.  ``IntegrationError`` marks an
 integration that failed (step budget exhausted, step-size underflow, a
 non-finite state); it carries the status code, the time reached and the last
 good output sample so that a caller can save what was computed.  Both derive
-from builtin classes (``ValueError`` / ``RuntimeError``) so that the coupling
-layer can map them onto its own exit codes without importing this module.
+from :class:`~lubrication.errors.LubedynError` and builtin classes
+(``ValueError`` / ``RuntimeError``): the laws both layers share raise
+``InputError``, and one ``except InputError`` catches a user mistake from either.
 """
 from __future__ import annotations
 
+from lubrication.errors import InputError, LubedynError
 
-class DynamicsError(Exception):
+
+class DynamicsError(LubedynError):
     """Base class of every error raised on purpose by :mod:`dynamics`."""
 
 
-class DynamicsInputError(DynamicsError, ValueError):
+class DynamicsInputError(DynamicsError, InputError):
     """Bad input: names the key, the value and what is allowed."""
 
 

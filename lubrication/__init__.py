@@ -4,8 +4,13 @@
 module             responsibility
 =================  ==========================================================
 ``errors``         ``InputError`` (exit 2), ``ConvergenceError`` (exit 1)
-``lubricant``      viscosity (constant, Barus, Roelands) and density
-                   (incompressible, Dowson-Higginson) laws with d/dp
+``laws``           the laws written once for films and dynamics (also
+                   imported by ``dynamics``): ``contact`` (Hertz point and
+                   line, reduced modulus, stiffness), ``bearing`` (geometry,
+                   kinematics, Stribeck, load distribution), ``lubricant``
+                   (viscosity, density, d/dp), ``film`` (closed-form EHL film
+                   thickness: Hamrock-Dowson, Nijenbanning, Dowson-Toyoda,
+                   Pan-Hamrock, Moes), ``collision`` (ball-ball), ``traction``
 ``gaps``           film thickness h(x) of sliders, journals, spheres,
                    cylinders, ellipsoids, pockets; rigid-body modes
 ``mesh``           1-D, rectangle (periodic in x), disk (straight or curved)
@@ -14,36 +19,43 @@ module             responsibility
                    complementarity (Reynolds, JFO) solvers, film K and C
 ``solution``       ``FilmSolution``: loads, moments, friction, flow, VTK, plots
 ``closed_form``    analytic film results used for verification
-``hertz``          Hertz point (exact elliptic integrals, Hamrock-Brewe) and
-                   line contact
 ``elastic``        half-space deflection by FFT of exact influence
                    coefficients (point and line contacts)
 ``ehl``            isothermal EHL line and point contacts: Reynolds FEM +
                    FFT elasticity + load balance, Newton, traction laws
 ``ehl_multigrid``  FAS multigrid EHL point-contact solver (Venner & Lubrecht;
                    numba line relaxation, FFT deflection)
-``film_formulas``  closed-form EHL film thickness (Hamrock-Dowson,
-                   Nijenbanning, Dowson-Toyoda, Pan-Hamrock, Moes)
 =================  ==========================================================
 
 Nothing here imports ``dynamics``; ``coupling`` joins the two.
 """
+import importlib
+
 from .errors import ConvergenceError, InputError, LubedynError
-from .gaps import (
-    CylinderPlane,
-    EllipsoidPlane,
-    FunctionGap,
-    Gap,
-    InclinedSlider,
-    JournalBearing,
-    PocketedSlider,
-    SpherePlane,
-    SphereSphere,
-    StepSlider,
-)
-from .lubricant import Barus, ConstantViscosity, DowsonHigginson, Incompressible, Lubricant, Roelands
-from .reynolds import Cavitation, Film, SolverOptions, film_coefficients, solve, solve_nested
-from .solution import FilmSolution
+
+# The solvers load on first use (PEP 562), so that ``import lubrication.laws`` -- the ground floor that
+# :mod:`dynamics` imports -- does not import scikit-fem.
+_LAZY = {
+    **dict.fromkeys(("CylinderPlane", "EllipsoidPlane", "FunctionGap", "Gap", "InclinedSlider", "JournalBearing",
+                     "PocketedSlider", "SpherePlane", "SphereSphere", "StepSlider"), ".gaps"),
+    **dict.fromkeys(("Barus", "ConstantViscosity", "DowsonHigginson", "Incompressible", "Lubricant", "Roelands"),
+                    ".laws.lubricant"),
+    **dict.fromkeys(("Cavitation", "Film", "SolverOptions", "film_coefficients", "solve", "solve_nested"), ".reynolds"),
+    "FilmSolution": ".solution",
+}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
 
 __all__ = [
     "Barus", "Cavitation", "ConstantViscosity", "ConvergenceError", "CylinderPlane",

@@ -8,7 +8,7 @@ Equations (SI, gauge pressure p, x the entrainment direction)::
     int p dA = W                                                    (load balance)
     p >= 0, R(p) >= 0, p R(p) = 0                                   (outlet cavitation)
 
-u_m = (u_1 + u_2)/2 along +x, eta(p) and rho(p) from :mod:`lubrication.lubricant`.
+u_m = (u_1 + u_2)/2 along +x, eta(p) and rho(p) from :mod:`lubrication.laws.lubricant`.
 Line contacts drop y (loads per unit length, the strip kernel of
 :mod:`lubrication.elastic`).
 
@@ -29,7 +29,7 @@ where k -> 0 and the Galerkin transport alone would oscillate.
 Reynolds-Eyring flow (``Lubricant(eyring_stress=tau0)``): k becomes
 k Phi(x), x = h |grad p|/(2 tau0), Phi = 3 (x cosh x - sinh x)/x^3 (the
 Poiseuille flow of the sinh law in pure rolling,
-:func:`lubrication.lubricant.eyring_flow_factor`); the flux then depends on
+:func:`lubrication.laws.lubricant.eyring_flow_factor`); the flux then depends on
 grad p nonlinearly, and the Jacobian carries its tensor part
 k Phi'/x (h/(2 tau0))^2 grad p grad p^T, dPhi/dh, and the SUPG parameter's
 dependence on grad p (Pe ~ 1/Phi).  The pressure still does not depend on
@@ -215,11 +215,13 @@ import scipy.sparse.linalg as spla
 from skfem import BilinearForm, LinearForm, asm
 from skfem.helpers import dot, grad
 
-from . import hertz, mesh as meshes
+from . import mesh as meshes
+from .laws import contact as hertz
+from .laws.contact import hamrock_brewe_radius_ratio
 from .elastic import ElasticKernel
 from .ehl_assembly import UniformForms
 from .errors import ConvergenceError, InputError, require_positive, unknown_choice
-from .lubricant import Lubricant, eyring_flow_factor
+from .laws.lubricant import Lubricant, eyring_flow_factor
 from .reynolds import _advection, _diffusion, _flux_load, _mass, _source_load, _streamline, make_basis
 
 log = logging.getLogger(__name__)
@@ -253,7 +255,7 @@ def _log_slope(eta, deta):
 def _eyring_terms(lub, h, grad_p):
     """Reynolds-Eyring factors at the quadrature points (None for a Newtonian lubricant).
 
-    ``phi`` = Phi(x), x = s |grad p|, s = h/(2 tau0) (:func:`lubrication.lubricant.eyring_flow_factor`);
+    ``phi`` = Phi(x), x = s |grad p|, s = h/(2 tau0) (:func:`lubrication.laws.lubricant.eyring_flow_factor`);
     ``c2`` = (Phi'/x) s^2, so that d(Phi grad p)/d(grad p) = Phi I + c2 grad p grad p^T;
     ``dphi_dh`` = dPhi/dh = (Phi'/x) x^2/h."""
     tau0 = lub.eyring_stress
@@ -354,11 +356,7 @@ class EHLContact:
     @property
     def G(self) -> float:
         """Material parameter alpha E' (alpha: Barus, or Roelands' low-pressure slope)."""
-        visc = self.lubricant.viscosity
-        alpha = getattr(visc, "alpha", None)
-        if alpha is None and hasattr(visc, "z"):
-            alpha = visc.z * (np.log(visc.eta0) + 9.67) / visc.p0
-        return (alpha or 0.0) * self.e_prime
+        return self.lubricant.viscosity.pressure_viscosity * self.e_prime
 
     @property
     def W(self) -> float:
@@ -382,7 +380,7 @@ class EHLContact:
         only if ``mean_speed`` is None (then alpha = L/((2U)^(1/4) E')), else
         alpha is chosen from L at that speed.  Returns a Barus lubricant.
         """
-        from .lubricant import Barus, Incompressible
+        from .laws.lubricant import Barus, Incompressible
 
         Ep = 2 * e_star
         if mean_speed is None:
@@ -409,7 +407,7 @@ class EHLContact:
         radius ratio R_y/R_x (entrainment along the minor axis, k >= 1) is
         the one whose Hertz ellipse has a/b = k: exactly (``ellipticity=
         "exact"``), inverting the elliptic-integral relation of
-        :mod:`lubrication.hertz`, R_y/R_x = (E(m)/(1 - m) - K(m))/(K(m) - E(m)),
+        :mod:`lubrication.laws.contact`, R_y/R_x = (E(m)/(1 - m) - K(m))/(K(m) - E(m)),
         m = 1 - 1/k^2; or by Hamrock & Brewe's fit k = 1.0339 (R_y/R_x)^0.636
         (``"hamrock_brewe"``).  Returns a Barus lubricant.
 
@@ -420,7 +418,7 @@ class EHLContact:
         from scipy.special import ellipe, ellipk
 
         from .errors import unknown_choice
-        from .lubricant import Barus, Incompressible
+        from .laws.lubricant import Barus, Incompressible
 
         for key, val in (("W", W), ("U", U)):
             require_positive(f"Hamrock-Dowson {key}", val)
@@ -436,7 +434,7 @@ class EHLContact:
         if not k >= 1.0:
             raise InputError(f"ellipticity k = {k!r} must be >= 1 (entrainment along the minor axis)")
         if ellipticity == "hamrock_brewe":
-            ratio = max(k / 1.0339, 1.0) ** (1 / 0.636)
+            ratio = hamrock_brewe_radius_ratio(k)
         elif k == 1.0:
             ratio = 1.0
         else:
@@ -1032,7 +1030,7 @@ def _film_guess(c: EHLContact) -> float:
     3 to 17 times too thick for M = 20 ... 200, L = 10, and its Newton
     iteration did not recover: measured failures at M = 40, 50, 100 on 33 x 33.)
     """
-    from .film_formulas import dowson_toyoda_central, nijenbanning_central
+    from .laws.film import dowson_toyoda_central, nijenbanning_central
 
     U, G, W = c.U, max(c.G, 1e-3), c.W
     if c.is_line:
@@ -1697,8 +1695,8 @@ def closed_form_central_film(contact: EHLContact):
     or None outside the conditions it was fitted and measured for: a Barus, incompressible,
     Newtonian lubricant, given load, a line or circular contact, and Moes' M and L inside
     :data:`FORMULA_ENVELOPE` (Moes' line formula; Nijenbanning-Venner-Moes for circles)."""
-    from .film_formulas import moes_line_central, nijenbanning_central
-    from .lubricant import Barus, Incompressible
+    from .laws.film import moes_line_central, nijenbanning_central
+    from .laws.lubricant import Barus, Incompressible
 
     lub = contact.lubricant
     if (contact.load is None or lub.eyring_stress is not None or not isinstance(lub.viscosity, Barus)

@@ -37,16 +37,6 @@ import scipy.fft
 from .errors import InputError, require_positive
 
 
-def reduced_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:
-    """E* [Pa] with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2."""
-    require_positive("elastic modulus E1 [Pa]", E1)
-    require_positive("elastic modulus E2 [Pa]", E2)
-    for key, nu in (("poisson ratio nu1", nu1), ("poisson ratio nu2", nu2)):
-        if not -1.0 < nu < 0.5:
-            raise InputError(f"{key} = {nu!r} must be in (-1, 0.5)")
-    return 1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2)
-
-
 def _F(X, Y):
     X = np.asarray(X, dtype=float)
     Y = np.asarray(Y, dtype=float)
@@ -86,7 +76,7 @@ class ElasticKernel:
     spacing : tuple
         Cell sizes ``(dx,)`` or ``(dx, dy)`` [m].
     e_star : float
-        Reduced modulus E* [Pa] (see :func:`reduced_modulus`).
+        Reduced modulus E* [Pa] (see :func:`lubrication.laws.contact.reduced_modulus`).
     """
 
     shape: tuple

@@ -5,7 +5,7 @@ Equation (strong form, film plane x, gauge pressure p, fluid fraction theta)::
     div( rho h^3/(12 eta) grad p ) = div( rho h theta u_m ) + rho theta dh/dt
 
 with u_m = (U_lower + U_upper)/2 the *mean* of the two surface velocities,
-eta(p), rho(p) from :mod:`lubrication.lubricant`, and dh/dt the local
+eta(p), rho(p) from :mod:`lubrication.laws.lubricant`, and dh/dt the local
 (Eulerian) rate of change of the gap, including rigid-mode velocities.  The
 squeeze term is quasi-steady (d(theta)/dt and d(rho)/dt are not carried).
 
@@ -115,7 +115,7 @@ from skfem.mesh.mesh_dg import MeshDG
 from . import mesh as meshes
 from .errors import ConvergenceError, InputError, unknown_choice
 from .gaps import Gap
-from .lubricant import Lubricant
+from .laws.lubricant import Lubricant
 
 log = logging.getLogger(__name__)
 

@@ -1,4 +1,4 @@
-"""Bearing kinematics and load sharing (coupling.bearing) against what they must satisfy.
+"""Bearing kinematics and load sharing (lubrication.laws.bearing) against what they must satisfy.
 
 The 6206 of paper B: D = 9.525 mm, d_m = 46.005 mm, r_i = 4.905 mm,
 r_o = 4.953 mm, Z = 14, E* = 113.6 GPa.
@@ -8,30 +8,30 @@ import math
 import numpy as np
 import pytest
 
-from coupling import bearing
-from lubrication.elastic import reduced_modulus
+from lubrication.laws import bearing
+from lubrication.laws.contact import reduced_modulus
 
 D, DM, Z = 9.525e-3, 46.005e-3, 14
-FI, FO = 4.905e-3 / D, 4.953e-3 / D
+RI, RO = 4.905e-3, 4.953e-3  # groove radii [m]
 E_STAR = reduced_modulus(207e9, 0.29, 208e9, 0.3)
-K_N = bearing.deflection_constant(D, DM, FI, FO, 0.0, E_STAR)
+K_N = bearing.deflection_constant(D, DM, RI, RO, 0.0, E_STAR)
 
 
 def test_quasi_static_radial_load_recovers_stribecks_constant():
     """Zero clearance, radial load only: Z Q_max / F_r = 4.37 (Stribeck's
     value for point contacts, Harris & Kotzalas sec. 7.4); measured 4.373
     with 14 balls.  With clearance the constant grows (the classical 5)."""
-    Q, beta, delta_a, _ = bearing.ball_load_distribution(2000.0, 0.0, Z, D, FI, FO, K_N)
+    Q, beta, delta_a, _ = bearing.ball_load_distribution(2000.0, 0.0, Z, D, RI, RO, K_N)
     assert Z * Q.max() / 2000.0 == pytest.approx(4.37, rel=2e-3)
     assert np.all(beta == 0.0) and delta_a == 0.0
-    Q, _, _, _ = bearing.ball_load_distribution(2000.0, 0.0, Z, D, FI, FO, K_N, clearance=20e-6)
+    Q, _, _, _ = bearing.ball_load_distribution(2000.0, 0.0, Z, D, RI, RO, K_N, clearance=20e-6)
     assert 4.9 < Z * Q.max() / 2000.0 < 5.5  # measured 5.17
 
 
 def test_quasi_static_axial_load_is_the_thrust_solution():
     """Axial load only: every ball at the thrust contact angle, carrying F_a/(Z sin a)."""
-    Q, beta, _, _ = bearing.ball_load_distribution(0.0, 200.0, Z, D, FI, FO, K_N)
-    alpha = bearing.thrust_contact_angle(200.0, Z, D, FI, FO, K_N)
+    Q, beta, _, _ = bearing.ball_load_distribution(0.0, 200.0, Z, D, RI, RO, K_N)
+    alpha = bearing.thrust_contact_angle(200.0, Z, D, RI, RO, K_N)
     assert math.degrees(alpha) == pytest.approx(9.027, abs=1e-3)
     np.testing.assert_allclose(beta, alpha, rtol=1e-12)
     np.testing.assert_allclose(Q, 200.0 / (Z * math.sin(alpha)), rtol=1e-9)
@@ -41,11 +41,11 @@ def test_combined_load_balance_and_stribeck_upper_estimate():
     """The equilibrium carries F_r and F_a; the Stribeck estimate with the
     axial share (723 N) lies above the equilibrium's most loaded ball (611 N)."""
     Fr, Fa = 2000.0, 200.0
-    Q, beta, _, _ = bearing.ball_load_distribution(Fr, Fa, Z, D, FI, FO, K_N)
+    Q, beta, _, _ = bearing.ball_load_distribution(Fr, Fa, Z, D, RI, RO, K_N)
     psi = 2 * np.pi * np.arange(Z) / Z
     assert np.sum(Q * np.cos(beta) * np.cos(psi)) == pytest.approx(Fr, rel=1e-9)
     assert np.sum(Q * np.sin(beta)) == pytest.approx(Fa, rel=1e-9)
-    alpha = bearing.thrust_contact_angle(Fa, Z, D, FI, FO, K_N)
+    alpha = bearing.thrust_contact_angle(Fa, Z, D, RI, RO, K_N)
     stribeck = bearing.stribeck_max_load(Fr, Fa, Z, alpha, 4.37)
     assert Q.max() < stribeck
     assert Q.max() == pytest.approx(610.8, rel=1e-3) and stribeck == pytest.approx(723.2, rel=1e-3)

@@ -1,7 +1,7 @@
 """The cage-less 6206 ball bearing (dynamics.cageless), issue 5 section 5:
 quasi-static load distribution from a damped settling run against Jones' rigid-ring
-model (coupling.bearing) and Stribeck's 4.37 Fr/(Z cos a); Hertz deflection against
-load (lubrication.hertz); ball-train speed against epicyclic kinematics in the
+model (lubrication.laws.bearing) and Stribeck's 4.37 Fr/(Z cos a); Hertz deflection against
+load (lubrication.laws.contact); ball-train speed against epicyclic kinematics in the
 no-slip limit; energy and angular momentum in a frictionless undamped run; the
 rotor-drop friction law; bad input."""
 import math
@@ -9,11 +9,11 @@ import math
 import numpy as np
 import pytest
 
-from coupling import bearing as cb
+from lubrication.laws import bearing as cb
 from dynamics import cageless as cg
 from dynamics.errors import DynamicsInputError
 from dynamics.integrators import integrate
-from lubrication import hertz
+from lubrication.laws import contact as hertz
 
 FR = 2000.0
 
@@ -38,9 +38,9 @@ def settled():
 
 def _jones(model):
     D = model.ball_diameter
-    fi, fo = model.inner_groove_radius / D, model.outer_groove_radius / D
-    Kn = cb.deflection_constant(D, model.pitch_diameter, fi, fo, 0.0, model.e_star_race)
-    return cb.ball_load_distribution(FR, 0.0, model.n_balls, D, fi, fo, Kn)
+    ri, ro = model.inner_groove_radius, model.outer_groove_radius
+    Kn = cb.deflection_constant(D, model.pitch_diameter, ri, ro, 0.0, model.e_star_race)
+    return cb.ball_load_distribution(FR, 0.0, model.n_balls, D, ri, ro, Kn)
 
 
 def test_settled_load_distribution(settled):
@@ -61,7 +61,7 @@ def test_settled_load_distribution(settled):
 
 def test_hertz_deflection_against_load(settled):
     """Each loaded contact: the overlap measured from the ball and groove-centre
-    positions is the Hertz approach of lubrication.hertz at that load (0.1 %)."""
+    positions is the Hertz approach of lubrication.laws.contact at that load (0.1 %)."""
     model, res, diag = settled
     y = res.y[-1]
     d = diag[-1]

@@ -19,7 +19,7 @@ from scipy.integrate import quad
 
 from lubrication import Barus, Film, InputError, Lubricant
 from lubrication.ehl import EHLContact, EHLGrid, multigrid_grid, solve_ehl
-from lubrication.lubricant import Incompressible, eyring_flow_factor
+from lubrication.laws.lubricant import Incompressible, eyring_flow_factor
 
 from test_ehl import _complementarity
 

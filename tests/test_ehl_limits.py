@@ -33,7 +33,7 @@ from coupling.config import load_case
 from lubrication import ConvergenceError
 from lubrication.ehl import (EHLContact, EHLGrid, EHLOptions, check_solution, closed_form_central_film,
                              solve_ehl)
-from lubrication.film_formulas import moes_line_central
+from lubrication.laws.film import moes_line_central
 
 
 def _line(M, L):

@@ -22,7 +22,7 @@ from lubrication import ConvergenceError
 from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, ehl_normal_coefficients, solve_ehl
 from lubrication.ehl_multigrid import MultigridOptions, band_solve, line_relax, reynolds_operator
 from lubrication.errors import InputError
-from lubrication.film_formulas import nijenbanning_central
+from lubrication.laws.film import nijenbanning_central
 
 MG = EHLOptions(method="multigrid")
 
@@ -208,7 +208,7 @@ def test_roelands_compressible_contact_extrapolates_to_the_fem_newton():
     against 2.4000e-7 m (0.05 %)."""
     import dataclasses
 
-    from lubrication.lubricant import DowsonHigginson, Lubricant, Roelands
+    from lubrication.laws.lubricant import DowsonHigginson, Lubricant, Roelands
 
     c0 = EHLContact.from_moes(100, 10)
     lub = Lubricant(Roelands(c0.lubricant.viscosity.eta0, alpha=c0.lubricant.viscosity.alpha), DowsonHigginson(850.0))

@@ -6,7 +6,7 @@
 - default parameters against the numbers derived in the cases (reduced
   modulus, contact angle, reduced radii of paper B's 6206; paper A's roller);
 - contact laws (plain-float functions the dynamics port to numba):
-  Hertz ball-ball against lubrication.hertz (exact elliptic-integral code at
+  Hertz ball-ball against lubrication.laws.contact (exact elliptic-integral code at
   the circular limit) and Johnson's formulas; the series law against a
   two-spring force balance solved by brentq; first yield against Hertz p0 =
   1.6 Y; Thornton's model against his closed-form coefficient of
@@ -31,8 +31,8 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
 from coupling import film_points as fp
-from lubrication import film_formulas as ff
-from lubrication import hertz
+from lubrication.laws import film as ff
+from lubrication.laws import contact as hertz
 from lubrication.closed_form import sphere_plane_squeeze_force
 
 E_STAR_B = 1.0 / ((1 - 0.29**2) / 207e9 + (1 - 0.3**2) / 208e9)  # paper B ball/ring, 113.64 GPa
@@ -91,7 +91,7 @@ def test_default_params_reproduce_the_papers_derived_numbers():
 
 
 def test_hertz_ball_ball_matches_elliptic_hertz_code_and_johnson():
-    """Q(delta) = (4/3) E* sqrt(R) delta^1.5 against lubrication.hertz.point_contact (exact
+    """Q(delta) = (4/3) E* sqrt(R) delta^1.5 against lubrication.laws.contact.point_contact (exact
     elliptic integrals, circular limit) for two paper B balls (R_eff = 2.381 mm, E* of two
     207 GPa/0.29 balls): the approach of 100 N maps back to 100 N; K = 1.5 Q/delta and
     against a central difference; Johnson's a = (3 Q R/(4 E*))^(1/3) = 0.1165 mm and

@@ -2,7 +2,7 @@
 (CagelessBearing(race_film="closed_form")).
 
 (1) The film thickness is Hamrock-Dowson's, recomputed here through an
-independent path (lubrication.hertz ellipse, lubrication.film_formulas).
+independent path (lubrication.laws.contact ellipse, lubrication.laws.film).
 (2) A film of constant thickness on every contact is equivalent, for the
 loads, to a negative clearance: the balls are free radially, so only the sum
 of the inner and outer approaches matters and a film h_i + h_o acts as a
@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from dynamics.cageless import D_QI, D_QO, CagelessBearing, forces
-from lubrication import hertz
-from lubrication.film_formulas import hamrock_dowson_central
+from lubrication.laws import contact as hertz
+from lubrication.laws.film import hamrock_dowson_central
 
 
 def test_film_thickness_is_hamrock_dowson():

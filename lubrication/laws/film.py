@@ -45,19 +45,26 @@ Line contacts:
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+
+def _exp(x):
+    """exp of a float with ``math`` (the scalar path the bearing models use), of an array with numpy."""
+    return math.exp(x) if isinstance(x, (int, float)) else np.exp(x)
 
 # ---------------------------------------------------------------- point contacts
 
 
 def hamrock_dowson_central(U, G, W, k):
     """Hamrock-Dowson (1977) central film H_c = h_c/R_x of a point contact with ellipticity ``k`` = a/b."""
-    return 2.69 * U**0.67 * G**0.53 * W**-0.067 * (1.0 - 0.61 * np.exp(-0.73 * k))
+    return 2.69 * U**0.67 * G**0.53 * W**-0.067 * (1.0 - 0.61 * _exp(-0.73 * k))
 
 
 def hamrock_dowson_minimum(U, G, W, k):
     """Hamrock-Dowson (1977) minimum film H_min = h_min/R_x of a point contact with ellipticity ``k`` = a/b."""
-    return 3.63 * U**0.68 * G**0.49 * W**-0.073 * (1.0 - np.exp(-0.68 * k))
+    return 3.63 * U**0.68 * G**0.49 * W**-0.073 * (1.0 - _exp(-0.68 * k))
 
 
 def nijenbanning_central(M, L):

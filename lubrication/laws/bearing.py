@@ -16,7 +16,7 @@ Lubrication* (1981), ch. 3.
 Curvature (x the rolling direction)::
 
     inner race: R_x = (D/2)(1 - gamma)        outer race: R_x = (D/2)(1 + gamma)
-    ball races: R_y = f D/(2 f - 1)           roller races: line contact (R_y -> inf)
+    ball races: R_y = f D/(2 f - 1) = r D/(2 r - D)     roller races: line contact (R_y -> inf)
 
 Kinematics (pure rolling)::
 
@@ -61,8 +61,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lubrication import hertz
-from lubrication.errors import ConvergenceError, InputError
+from ..errors import ConvergenceError, InputError
+from . import contact as hertz
 
 STRIBECK = {"point": 4.37, "line": 4.08}
 
@@ -90,9 +90,20 @@ def conformity(D: float, groove_radius: float, key: str = "groove radius") -> fl
     return f
 
 
-def groove_radius_y(D: float, f: float) -> float:
-    """Reduced radius across the rolling direction of a ball in a groove: f D/(2 f - 1) [m]."""
-    return f * D / (2.0 * f - 1.0)
+def groove_radius_y(D: float, r: float) -> float:
+    """Reduced radius across the rolling direction of a ball in a groove of radius ``r``:
+    r D/(2 r - D) = f D/(2 f - 1) [m]."""
+    return r * D / (2.0 * r - D)
+
+
+def race_radii(D: float, d_m: float, groove_radius: float, race: str, alpha: float = 0.0) -> tuple[float, float]:
+    """(R_x, R_y) [m] of a ball on the ``race`` ("inner"/"outer") groove of radius ``groove_radius`` at
+    contact angle ``alpha``: R_x = (D/2)(1 -+ gamma), R_y = r D/(2 r - D)."""
+    if race not in ("inner", "outer"):
+        raise InputError(f"race = {race!r} is not allowed; choose 'inner' or 'outer'")
+    if not groove_radius > 0.5 * D:
+        raise InputError(f"{race} groove radius = {groove_radius:g} m must be > D/2 = {0.5 * D:g} m")
+    return race_radius_x(D, d_m, alpha, race), groove_radius_y(D, groove_radius)
 
 
 def cage_speed(D, d_m, alpha, omega_inner, omega_outer=0.0) -> float:
@@ -120,33 +131,34 @@ def stribeck_max_load(radial_load, axial_load, n_elements, alpha, constant) -> f
 # ---------------------------------------------------------------- ball bearings
 
 
-def free_contact_angle(D, f_inner, f_outer, clearance=0.0) -> float:
-    """beta0 from cos beta0 = 1 - P_d/(2 B D) [rad] (0 for zero clearance)."""
-    BD = (f_inner + f_outer - 1.0) * D
+def free_contact_angle(D, r_inner, r_outer, clearance=0.0) -> float:
+    """beta0 from cos beta0 = 1 - P_d/(2 B D), B D = r_i + r_o - D [rad] (0 for zero or negative
+    clearance, a preload)."""
+    BD = r_inner + r_outer - D
     c = 1.0 - clearance / (2.0 * BD)
-    if not -1.0 < c <= 1.0:
+    if not -1.0 < c:
         raise InputError(f"bearing.diametral_clearance = {clearance:g} m is larger than the groove geometry allows "
                          f"(must be < 4 B D = {4 * BD:g} m)")
-    return math.acos(c)
+    return math.acos(min(1.0, c))
 
 
-def deflection_constant(D, d_m, f_inner, f_outer, alpha, e_star) -> float:
+def deflection_constant(D, d_m, r_inner, r_outer, alpha, e_star) -> float:
     """K_n [N/m^1.5] of the inner and outer contacts in series, Q = K_n delta^1.5 (Hertz)."""
     inv = 0.0
-    for race, f in (("inner", f_inner), ("outer", f_outer)):
-        hp = hertz.point_contact(1.0, race_radius_x(D, d_m, alpha, race), groove_radius_y(D, f), e_star)
+    for race, r in (("inner", r_inner), ("outer", r_outer)):
+        hp = hertz.point_contact(1.0, race_radius_x(D, d_m, alpha, race), groove_radius_y(D, r), e_star)
         inv += hp.approach  # delta at Q = 1 N, i.e. K^(-2/3)
     return inv**-1.5
 
 
-def thrust_contact_angle(axial_load, n_elements, D, f_inner, f_outer, K_n, clearance=0.0) -> float:
+def thrust_contact_angle(axial_load, n_elements, D, r_inner, r_outer, K_n, clearance=0.0) -> float:
     """Contact angle [rad] of every ball under an axial load alone (Harris & Kotzalas sec. 7.3)."""
     from scipy.optimize import brentq
 
-    beta0 = free_contact_angle(D, f_inner, f_outer, clearance)
+    beta0 = free_contact_angle(D, r_inner, r_outer, clearance)
     if axial_load <= 0.0:
         return beta0
-    BD = (f_inner + f_outer - 1.0) * D
+    BD = r_inner + r_outer - D
     target = axial_load / (n_elements * K_n * BD**1.5)
 
     def residual(beta):
@@ -158,14 +170,14 @@ def thrust_contact_angle(axial_load, n_elements, D, f_inner, f_outer, K_n, clear
     return brentq(residual, beta0, hi, xtol=1e-15, rtol=1e-14)
 
 
-def ball_load_distribution(radial_load, axial_load, n_elements, D, f_inner, f_outer, K_n, clearance=0.0):
+def ball_load_distribution(radial_load, axial_load, n_elements, D, r_inner, r_outer, K_n, clearance=0.0):
     """Element loads Q_j [N] and contact angles beta_j [rad] at psi_j = 2 pi j/Z,
     and the ring displacements (delta_a, delta_r) [m], by Jones' rigid-ring model."""
     from scipy.optimize import brentq, root
 
     Z = int(n_elements)
-    beta0 = free_contact_angle(D, f_inner, f_outer, clearance)
-    BD = (f_inner + f_outer - 1.0) * D
+    beta0 = free_contact_angle(D, r_inner, r_outer, clearance)
+    BD = r_inner + r_outer - D
     psi = 2.0 * np.pi * np.arange(Z) / Z
 
     def state(delta_a, delta_r):
@@ -175,7 +187,7 @@ def ball_load_distribution(radial_load, axial_load, n_elements, D, f_inner, f_ou
         return K_n * np.maximum(delta, 0.0) ** 1.5, np.arctan2(s_a, s_r)
 
     if radial_load <= 0.0:  # every ball alike
-        beta = thrust_contact_angle(axial_load, Z, D, f_inner, f_outer, K_n, clearance)
+        beta = thrust_contact_angle(axial_load, Z, D, r_inner, r_outer, K_n, clearance)
         # s_r = B D cos(beta0) (no radial shift) and tan(beta) = s_a/s_r
         delta_a = BD * math.cos(beta0) * math.tan(beta) - BD * math.sin(beta0)
         Q, b = state(delta_a, 0.0)
@@ -194,7 +206,7 @@ def ball_load_distribution(radial_load, axial_load, n_elements, D, f_inner, f_ou
         delta_r = brentq(radial, 0.0, hi, xtol=1e-18, rtol=1e-14)
         Q, b = state(delta_a, delta_r)
         return Q, b, delta_a, delta_r
-    beta_t = thrust_contact_angle(axial_load, Z, D, f_inner, f_outer, K_n, clearance)
+    beta_t = thrust_contact_angle(axial_load, Z, D, r_inner, r_outer, K_n, clearance)
     x0 = np.array([BD * math.cos(beta0) * math.tan(beta_t) - BD * math.sin(beta0), 2.0 * scale]) / scale
 
     def residual(x):
@@ -250,23 +262,24 @@ def ball_race_contact(*, race, ball_diameter, pitch_diameter, inner_groove_radiu
     the contact angle is then the most loaded ball's own).
     """
     D, d_m = ball_diameter, pitch_diameter
-    f_i = conformity(D, inner_groove_radius, "inner_groove_radius")
-    f_o = conformity(D, outer_groove_radius, "outer_groove_radius")
+    conformity(D, inner_groove_radius, "inner_groove_radius")
+    conformity(D, outer_groove_radius, "outer_groove_radius")
+    r_i, r_o = inner_groove_radius, outer_groove_radius
     if radial_load <= 0.0 and axial_load <= 0.0:
         raise InputError("bearing.radial_load and bearing.axial_load are both 0: no ball is loaded")
-    beta0 = free_contact_angle(D, f_i, f_o, clearance)
-    K_n = deflection_constant(D, d_m, f_i, f_o, beta0, e_star)
+    beta0 = free_contact_angle(D, r_i, r_o, clearance)
+    K_n = deflection_constant(D, d_m, r_i, r_o, beta0, e_star)
     if contact_angle is None:
-        contact_angle = thrust_contact_angle(axial_load, n_balls, D, f_i, f_o, K_n, clearance)
+        contact_angle = thrust_contact_angle(axial_load, n_balls, D, r_i, r_o, K_n, clearance)
     stribeck = stribeck_max_load(radial_load, axial_load, n_balls, contact_angle, stribeck_constant)
     load = stribeck
     if load_distribution == "quasi_static":
-        Q, beta, _, _ = ball_load_distribution(radial_load, axial_load, n_balls, D, f_i, f_o, K_n, clearance)
+        Q, beta, _, _ = ball_load_distribution(radial_load, axial_load, n_balls, D, r_i, r_o, K_n, clearance)
         j = int(np.argmax(Q))
         load, contact_angle = float(Q[j]), float(beta[j])
-    f = f_i if race == "inner" else f_o
+    r = r_i if race == "inner" else r_o
     return RaceContact(
-        race=race, radius_x=race_radius_x(D, d_m, contact_angle, race), radius_y=groove_radius_y(D, f),
+        race=race, radius_x=race_radius_x(D, d_m, contact_angle, race), radius_y=groove_radius_y(D, r),
         mean_speed=entrainment_speed(D, d_m, contact_angle, inner_speed, outer_speed), load=load,
         contact_angle=contact_angle, gamma=pitch_ratio(D, d_m, contact_angle),
         cage_speed=cage_speed(D, d_m, contact_angle, inner_speed, outer_speed), stribeck_constant=stribeck_constant,

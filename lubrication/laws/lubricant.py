@@ -41,7 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError, require_positive
+from ..errors import InputError, require_positive
 
 ROELANDS_P0 = 1.96e8  # Pa
 
@@ -60,6 +60,7 @@ class ConstantViscosity:
         require_positive("viscosity eta0 [Pa s]", self.eta0)
 
     is_constant = True
+    pressure_viscosity = 0.0  #: d ln(eta)/dp at p = 0 [1/Pa]
 
     def __call__(self, p):
         return np.full_like(np.asarray(p, dtype=float), self.eta0)
@@ -81,6 +82,11 @@ class Barus:
         require_positive("viscosity eta0 [Pa s]", self.eta0)
         if self.alpha < 0:
             raise InputError(f"pressure-viscosity alpha [1/Pa] = {self.alpha!r} must be >= 0")
+
+    @property
+    def pressure_viscosity(self) -> float:
+        """d ln(eta)/dp at p = 0 [1/Pa]: alpha."""
+        return self.alpha
 
     def __call__(self, p):
         return self.eta0 * np.exp(self.alpha * _pos(p))
@@ -112,6 +118,11 @@ class Roelands:
     @property
     def _c(self):
         return np.log(self.eta0) + 9.67
+
+    @property
+    def pressure_viscosity(self) -> float:
+        """d ln(eta)/dp at p = 0 [1/Pa]: the ``alpha`` given, else z (ln eta0 + 9.67)/p0 (Roelands' slope)."""
+        return self.alpha if self.alpha is not None else self.z * (np.log(self.eta0) + 9.67) / self.p0
 
     def __call__(self, p):
         return self.eta0 * np.exp(self._c * ((1.0 + _pos(p) / self.p0) ** self.z - 1.0))

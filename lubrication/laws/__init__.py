@@ -1,0 +1,23 @@
+"""The laws written once: the ground floor that both :mod:`lubrication` and :mod:`dynamics` import.
+
+=============  ===============================================================
+module         laws
+=============  ===============================================================
+``contact``    reduced modulus, relative radii, Hertz point contact (exact
+               elliptic integrals, Hamrock-Brewe fits), line contact, contact
+               stiffness Q = K delta^1.5, springs in series, Hunt-Crossley alpha
+``bearing``    rolling-bearing geometry and kinematics: race radii, pitch
+               ratio, cage and entrainment speeds, free and thrust contact
+               angles, Stribeck's most loaded element, Jones' load distribution
+``lubricant``  viscosity (constant, Barus, Roelands) and density
+               (incompressible, Dowson-Higginson) with d/dp, Eyring flow factor
+``film``       closed-form EHL film thickness (Hamrock-Dowson, Nijenbanning,
+               Dowson-Toyoda, Pan-Hamrock, Moes)
+=============  ===============================================================
+
+Everything here is a pure function of floats (or a frozen SI dataclass) with
+its published source in the docstring; nothing imports a solver.  Each law is
+tested against its source (``tests/test_laws_*.py``), and
+``benchmarks/code_size.py`` checks that no law constant has a second copy
+outside this package.
+"""
