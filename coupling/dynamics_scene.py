@@ -790,7 +790,7 @@ class _Scene3D:
     def frame(self, y, diag_row, D_BBN, D_H):
         import pyvista as pv
 
-        from .film_points import hertz_ball_ball_contact
+        from lubrication.laws.contact import point_contact
 
         m = self.setup.model
         pts, tris, body, pres = [], [], [], []
@@ -827,7 +827,8 @@ class _Scene3D:
             e1 /= np.linalg.norm(e1)
             e2 = np.cross(n, e1)
             h0 = float(diag_row[j, D_H])
-            a_h, p0, _ = hertz_ball_ball_contact(F, self.r_eff, self.e_star)
+            hp = point_contact(F, self.r_eff, self.r_eff, self.e_star)
+            a_h, p0 = hp.a, hp.p0
             size = max(3 * a_h, 3 * math.sqrt(2 * self.r_eff * max(h0, 1e-9)))
             r = r_unit * size
             if h0 > 0:

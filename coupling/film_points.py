@@ -36,7 +36,7 @@ curve v = h0^2/(3 alpha eta0 R_eff) (3.8e-4 m/s at h0 = 0.05 um, 0.15 m/s at
 1 um, 15 m/s at 10 um for paper B's oil), which no rectangular (h0, v) grid
 avoids.  Beyond Lambda ~ 1 the film pressure is high enough to deform the
 balls: that is the EHL squeeze regime, where the paper puts the film
-stiffness in series with Hertz (:func:`series_stiffness`).
+stiffness in series with Hertz (:func:`lubrication.laws.collision.series_stiffness`).
 :func:`squeeze_number` and :func:`approach_speed` convert.
 
 Polar axes (the map's coordinates).  Entrainment has its own number,
@@ -246,31 +246,31 @@ was rebuilt:
   stiffness in series with the same Hertz term, eq. 15), and C_v = C_f the
   film damping.  Rebuilt from the physics: the film and the elastic bodies
   carry the same force and their compressions add, so compliances add:
-  :func:`series_stiffness` ``K = K_film K_H/(K_film + K_H)``; the damping of
+  :func:`lubrication.laws.collision.series_stiffness` ``K = K_film K_H/(K_film + K_H)``; the damping of
   a dashpot in series with a spring is not a plain damping, but the paper
   takes C_v = C_f (film damping alone) and so do we
-  (:func:`series_film_hertz`).
+  (:func:`lubrication.laws.collision.series_film_hertz`).
 - eqs. (9)/(13)/(14): Hertz stiffness of the ball-ball contact.  For two
   equal balls the contact is circular (kappa = 1, J1 = J2 = pi/2 in the
   paper's elliptic integrals) and Hertz gives (Johnson 1985, eq. 4.23)
   Q = (4/3) E* sqrt(R_eff) delta^(3/2), K_H = dQ/d delta = 2 E* sqrt(R_eff
-  delta) = 1.5 Q/delta (:func:`hertz_ball_ball`).
+  delta) = 1.5 Q/delta (:func:`lubrication.laws.collision.hertz_force`).
 - eqs. (10)-(12), the collision phases: elastic (Hertz) loading; elastic-
   plastic loading beyond first yield (the paper's "yield stress" sigma and
   a force linear in delta, eq. 11); recovery (eq. 12: a Hertz law in
   delta - delta_sigma, a residual indentation).  That is Thornton's (1997,
-  J. Appl. Mech. 64, 383) model, implemented as :func:`thornton_force` with
+  J. Appl. Mech. 64, 383) model, implemented as :func:`lubrication.laws.collision.thornton_force` with
   first yield at p0 = 1.6 Y (Johnson 1985, sec. 6.2, nu = 0.3)
-  (:func:`yield_onset`).
+  (:func:`lubrication.laws.collision.yield_onset`).
 - eq. (17), the film friction coefficient, printed "mu = 3 eta U h e^(alpha
   p)(alpha p - 1) + 1 alpha^2 p^3": Newtonian Barus shear eta0 exp(alpha p)
   U/h integrated over a Hertzian pressure p0 sqrt(1 - r^2/a^2) and divided
   by the load gives mu = 3 eta0 U [e^(alpha p0)(alpha p0 - 1) + 1]/(h alpha^2
-  p0^3) (:func:`barus_hertz_friction_coefficient`): the printed formula with
+  p0^3) (:func:`lubrication.laws.collision.barus_hertz_friction_coefficient`): the printed formula with
   p = p0.
 - eqs. (19)-(21), film rupture: the friction coefficient is the fluid value
   weighted by the film's share of the load plus the boundary value mu_b
-  weighted by the asperity share (:func:`mixed_friction_coefficient`).  The
+  weighted by the asperity share (:func:`lubrication.laws.collision.mixed_friction_coefficient`).  The
   paper's fit of the asperity load share against the film parameter
   lambda ("17 e^(-2.84 lambda) + 1.44e-4 (lambda - 2)^1.1 ... 4 lambda^7.8")
   cannot be rebuilt from the extraction; the share is an input here.
@@ -381,174 +381,6 @@ def _reduced_modulus(E1, nu1, E2, nu2):
     from lubrication.laws.contact import reduced_modulus
 
     return reduced_modulus(E1, nu1, E2, nu2)
-
-
-# ====================================================================== contact laws
-# plain-float functions, ported to numba by dynamics/
-
-
-def hertz_ball_ball(delta: float, radius_eff: float, e_star: float) -> tuple:
-    """Hertz force and tangent stiffness of a circular contact: ``(Q [N], K [N/m])``.
-
-    Q = (4/3) E* sqrt(R_eff) delta^(3/2), K = dQ/d delta = 2 E* sqrt(R_eff delta)
-    (Johnson 1985, eqs. 4.22-4.23); (0, 0) for delta <= 0.  Two equal balls of
-    radius R: R_eff = R/2.
-
-    >>> Q, K = hertz_ball_ball(1e-6, 4.7625e-3 / 2, 1.0e11)
-    >>> round(Q, 3), round(K / (1.5 * Q / 1e-6), 12)
-    (6.506, 1.0)
-    """
-    if delta <= 0.0:
-        return 0.0, 0.0
-    s = math.sqrt(radius_eff * delta)
-    return (4.0 / 3.0) * e_star * s * delta, 2.0 * e_star * s
-
-
-def hertz_ball_ball_contact(load: float, radius_eff: float, e_star: float) -> tuple:
-    """Inverse Hertz: ``(a, p0, delta)`` [m, Pa, m] of a circular contact under ``load`` [N].
-
-    a = (3 Q R_eff/(4 E*))^(1/3), p0 = 3 Q/(2 pi a^2), delta = a^2/R_eff (Johnson eqs. 4.22-4.23).
-    """
-    a = (3.0 * load * radius_eff / (4.0 * e_star)) ** (1.0 / 3.0)
-    return a, 3.0 * load / (2.0 * math.pi * a * a), a * a / radius_eff
-
-
-def series_stiffness(k_film: float, k_hertz: float) -> float:
-    """Film and Hertz springs in series (paper B eq. 8 rebuilt): K_f K_H/(K_f + K_H) [N/m].
-
-    Either stiffness <= 0 (no film load, or no contact) makes the other one
-    act alone: the series law holds only where both carry the same force.
-    """
-    if k_film <= 0.0:
-        return max(k_hertz, 0.0)
-    if k_hertz <= 0.0:
-        return k_film
-    return k_film * k_hertz / (k_film + k_hertz)
-
-
-def series_film_hertz(k_film: float, c_film: float, delta: float, radius_eff: float, e_star: float) -> tuple:
-    """Paper B's equivalent contact (eq. 8): ``(K_v, C_v)`` = (series film/Hertz stiffness, film damping).
-
-    The Hertz stiffness is taken at the elastic approach ``delta`` [m] that
-    the contact force produces (:func:`hertz_ball_ball`).
-    """
-    _, k_h = hertz_ball_ball(delta, radius_eff, e_star)
-    return series_stiffness(k_film, k_h), c_film
-
-
-def yield_onset(radius_eff: float, e_star: float, yield_stress: float) -> tuple:
-    """First yield of a circular Hertz contact: ``(p_y, delta_y, Q_y)``.
-
-    Yield starts below the surface when p0 = 1.6 Y (Tresca/von Mises, nu = 0.3;
-    Johnson 1985, sec. 6.2).  With a = pi p0 R/(2 E*)::
-
-        delta_y = (pi p_y/(2 E*))^2 R_eff,   Q_y = pi^3 p_y^3 R_eff^2/(6 E*^2)
-    """
-    p_y = 1.6 * yield_stress
-    delta_y = (math.pi * p_y / (2.0 * e_star)) ** 2 * radius_eff
-    q_y = math.pi**3 * p_y**3 * radius_eff**2 / (6.0 * e_star**2)
-    return p_y, delta_y, q_y
-
-
-def thornton_force(delta: float, delta_max: float, radius_eff: float, e_star: float, p_y: float) -> float:
-    """Normal force [N] of Thornton's (1997) elastic-perfectly-plastic impact model.
-
-    Phases (paper B, eqs. 10-12): ``delta`` the current overlap, ``delta_max``
-    the largest overlap reached so far in this collision (the dynamics keeps
-    it; delta_max >= delta), ``p_y`` the limiting contact pressure
-    (1.6 Y at first yield, :func:`yield_onset`; delta_y, Q_y from it).
-
-    - elastic, delta_max <= delta_y: Hertz, Q = (4/3) E* R^0.5 delta^1.5;
-    - elastic-plastic loading, delta = delta_max > delta_y:
-      Q = Q_y + pi p_y R (delta - delta_y);
-    - recovery (unloading, delta < delta_max, delta_max > delta_y): Hertz with
-      a larger radius R_p and a residual indentation delta_p::
-
-          Q_max = Q_y + pi p_y R (delta_max - delta_y)
-          R_p   = (4 E*/(3 Q_max)) ((2 Q_max + Q_y)/(2 pi p_y))^(3/2)
-          delta_p = delta_max - (3 Q_max/(4 E* sqrt(R_p)))^(2/3)
-          Q = (4/3) E* sqrt(R_p) (delta - delta_p)^1.5   (0 for delta <= delta_p)
-    """
-    if delta <= 0.0:
-        return 0.0
-    delta_y = (math.pi * p_y / (2.0 * e_star)) ** 2 * radius_eff
-    if delta_max <= delta_y:
-        return (4.0 / 3.0) * e_star * math.sqrt(radius_eff) * delta**1.5
-    q_y = math.pi**3 * p_y**3 * radius_eff**2 / (6.0 * e_star**2)
-    q_max = q_y + math.pi * p_y * radius_eff * (delta_max - delta_y)
-    if delta >= delta_max:
-        return q_y + math.pi * p_y * radius_eff * (delta - delta_y)
-    r_p = (4.0 * e_star / (3.0 * q_max)) * ((2.0 * q_max + q_y) / (2.0 * math.pi * p_y)) ** 1.5
-    delta_p = delta_max - (3.0 * q_max / (4.0 * e_star * math.sqrt(r_p))) ** (2.0 / 3.0)
-    if delta <= delta_p:
-        return 0.0
-    return (4.0 / 3.0) * e_star * math.sqrt(r_p) * (delta - delta_p) ** 1.5
-
-
-def barus_hertz_friction_coefficient(eta0: float, alpha: float, sliding_speed: float, film: float, p0: float) -> float:
-    """Film friction coefficient of paper B eq. (17) rebuilt [-].
-
-    Newtonian shear eta0 exp(alpha p) U/h over a Hertzian pressure
-    p0 sqrt(1 - r^2/a^2) on a circle, divided by the load (2/3) pi a^2 p0::
-
-        mu = 3 eta0 U [e^(alpha p0) (alpha p0 - 1) + 1] / (h alpha^2 p0^3)
-
-    which tends to 1.5 eta0 U/(h p0) as alpha -> 0 (isoviscous: friction
-    eta0 U pi a^2/h over load (2/3) pi a^2 p0).
-    """
-    x = alpha * p0
-    if x < 1e-4:  # series: e^x (x - 1) + 1 = x^2/2 + x^3/3 + ...
-        bracket_over_x2 = 0.5 + x / 3.0
-    else:
-        bracket_over_x2 = (math.exp(x) * (x - 1.0) + 1.0) / (x * x)
-    return 3.0 * eta0 * sliding_speed * bracket_over_x2 / (film * p0)
-
-
-def mixed_friction_coefficient(mu_fluid: float, mu_boundary: float, asperity_share: float) -> float:
-    """Film-rupture (mixed) friction coefficient, paper B eqs. (19)-(21) rebuilt [-].
-
-    mu = mu_fluid (1 - s) + mu_boundary s with s = Q_asperity/Q in [0, 1]
-    (clipped): fluid friction on the film's share of the load, boundary
-    friction mu_b on the asperities'.
-    """
-    s = min(max(asperity_share, 0.0), 1.0)
-    return mu_fluid * (1.0 - s) + mu_boundary * s
-
-
-def barus_squeeze_film(h0: float, v: float, eta0: float, alpha: float, radius_eff: float) -> tuple:
-    """Closed-form rigid Barus squeeze film of two balls: ``(F [N], K [N/m], C [N s/m])``.
-
-    Infinite parabolic film, incompressible oil, no entrainment, Reynolds
-    cavitation at ambient (module docstring).  With F_iso = 6 pi eta0
-    R_eff^2 v/h0, Lambda = 3 alpha eta0 R_eff v/h0^2,
-    I(L) = 2 sqrt(L) artanh(sqrt(L)) + ln(1 - L) = sum_k L^(k+1)/((k + 1)(2k + 1))
-    and I'(L) = artanh(sqrt(L))/sqrt(L)::
-
-        F = F_iso I(L)/L,   C = dF/dv = 6 pi eta0 R_eff^2 I'(L)/h0,
-        K = -dF/dh0 = (F_iso/h0) (2 I'(L) - I(L)/L)
-
-    alpha = 0 gives the isoviscous F = F_iso, K = F/h0, C = F/v.
-    Separation (v <= 0): (0, 0, 0).  At and beyond the pole (L >= 1) the
-    rigid film has no solution: returns (F(1) = 2 ln 2 F_iso, inf, inf); the
-    caller must switch to the elastic contact law there.  Plain floats only
-    (numba-portable).  Within 0.2 % of the map kind ``ball_ball`` with an
-    incompressible oil and h_a = 1000 h0; Dowson-Higginson adds ~1 %.
-    """
-    if v <= 0.0:
-        return 0.0, 0.0, 0.0
-    c_iso = 6.0 * math.pi * eta0 * radius_eff * radius_eff / h0  # C of the isoviscous film
-    f_iso = c_iso * v
-    lam = 3.0 * alpha * eta0 * radius_eff * v / (h0 * h0)
-    if lam >= 1.0:
-        return 2.0 * math.log(2.0) * f_iso, math.inf, math.inf
-    if lam < 1e-4:  # series (also alpha = 0): I/L = 1 + L/6 + L^2/15, I' = 1 + L/3 + L^2/5
-        g = 1.0 + lam / 6.0 + lam * lam / 15.0
-        dI = 1.0 + lam / 3.0 + lam * lam / 5.0
-    else:
-        s = math.sqrt(lam)
-        g = (2.0 * s * math.atanh(s) + math.log1p(-lam)) / lam
-        dI = math.atanh(s) / s
-    return f_iso * g, f_iso / h0 * (2.0 * dI - g), c_iso * dI
 
 
 # ====================================================================== ball-ball film

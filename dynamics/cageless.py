@@ -43,7 +43,7 @@ angle of the load line, atan(n_z/n_r) at the outer race and atan(-n_z/n_r)
 at the inner race (equal for a ball loaded only by the two races).
 K is the exact Hertz constant of :mod:`dynamics.contacts` at the zero-angle
 curvature (its change with the angle through gamma is < 0.1 %).  Traction:
-the closed-form curve mu(SRR) of :func:`dynamics.contacts.traction_coefficient`
+the closed-form curve mu(SRR) of :func:`lubrication.laws.traction.traction_coefficient`
 against the tangential sliding velocity v_s = (v + w x (D/2) n) - v_race(p);
 entrainment u_e = |((v_ball + v_race)/2 - v_p)_t| with v_p the velocity of the
 contact point (it moves with the ball's orbit).  Spin and rolling-resistance
@@ -145,17 +145,11 @@ from lubrication.laws import bearing as laws_bearing
 from lubrication.laws import contact as laws_contact
 from lubrication.laws.film import hamrock_dowson_central
 
+from lubrication.laws.collision import BB_HCUT, BB_K, BB_VREG, ball_ball_parameters, hertz_force
+from lubrication.laws.traction import traction_coefficient
+
 from . import contacts as C
-from .contacts import (
-    BB_HCUT,
-    FILM_KINDS,
-    FILM_NONE,
-    ball_ball_friction_coefficient,
-    ball_ball_normal,
-    hertz_force,
-    plastic_memory_rate,
-    traction_coefficient,
-)
+from .contacts import FILM_KINDS, FILM_NONE, ball_ball_friction_coefficient, ball_ball_normal, plastic_memory_rate
 from .errors import DynamicsInputError
 from .interp import HERMITE, hermite3, interp3
 
@@ -595,7 +589,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
                 vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                 if vs > 0.0:
                     mu = ball_ball_friction_coefficient(h, bbp)
-                    ft = mu * Fn * math.tanh(vs / bbp[C.BB_VREG])
+                    ft = mu * Fn * math.tanh(vs / bbp[BB_VREG])
                     t0, t1, t2 = -ft * s0 / vs, -ft * s1 / vs, -ft * s2 / vs  # on k
                     f0 += t0
                     f1 += t1
@@ -1130,7 +1124,7 @@ class CagelessBearing:
         P[P_KEO] = laws_contact.hertz_constant(max(rxo, ryo), min(rxo, ryo), es, self.hertz_method)
         P[P_KEI] = laws_contact.hertz_constant(max(rxi, ryi), min(rxi, ryi), es, self.hertz_method)
         P[P_QSTAB] = self.quaternion_stabilisation
-        bbp = C.ball_ball_parameters(
+        bbp = ball_ball_parameters(
             ball_radius=Rb, e_star=self.e_star_ball, yield_stress=self.yield_stress,
             damping_alpha=self.ball_ball_damping, viscosity=self.viscosity if self.film != "none" else 0.0,
             rupture_thickness=self.film_rupture_thickness, cutoff_gap=self.film_cutoff_gap,
@@ -1422,7 +1416,7 @@ def bearing_energy(model: CagelessBearing, y: np.ndarray) -> float:
             if delta > 0.0:
                 E += 0.4 * K * delta**2.5
     if model.ball_ball:
-        Kbb = args[2][C.BB_K]
+        Kbb = args[2][BB_K]
         for j in range(Z):
             k = (j + 1) % Z
             gap = float(np.linalg.norm(pos[k] - pos[j])) - model.ball_diameter

@@ -67,23 +67,6 @@ physical equivalents used here are:
   squeeze force of :mod:`coupling.film_points` (kind ``ball_ball``: axes
   central gap, squeeze number or approach speed, entrainment speed; see
   :func:`_film_map`).
-* Collision phases (Thornton 1997, elastic-perfectly plastic spheres, J.
-  Appl. Mech. 64:383), the physical content of eqs. 9-12: elastic Hertz
-  F = K delta^1.5 up to the yield approach delta_y = (pi p_y/(2 E*))^2 R_eff
-  (F_y = K delta_y^1.5); plastic loading F = F_y + pi p_y R_eff (delta -
-  delta_y) (linear in delta: eq. 11); recovery (unloading and reloading below
-  delta_max) Hertz with the enlarged radius R_p and residual indentation
-  delta_p::
-
-      a_m^2 = (2 F_max + F_y)/(2 pi p_y),  R_p = 4 E* a_m^3/(3 F_max),
-      delta_p = delta_max - a_m^2/R_p,     F = (4/3) E* sqrt(R_p) (delta - delta_p)^1.5
-
-  (eq. 12 with delta_sigma = delta_p).  p_y = 1.6 sigma_y (onset of yield
-  below a Hertz contact, Johnson sec. 6.2).  The largest approach delta_max
-  is a state of the bearing (one per ball pair): d(delta_max)/dt =
-  d(delta_e)/dt while delta_e >= delta_max and loading, and when the pair has
-  separated the memory decays with tau_mem (the dented spot rolls out of the
-  contact; each collision meets fresh surface).
 * Friction (the physical content of eqs. 16-21, the film-rupture friction):
   the tangential force on the sliding surfaces is mu F_n tanh(|v_s|/v_reg)
   against the sliding velocity, with mu = mu_b f_a + mu_f (1 - f_a), f_a =
@@ -96,26 +79,19 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
-from .errors import DynamicsInputError
+from lubrication.laws.collision import (BB_ALPHA, BB_HCUT, BB_HR, BB_MUB, BB_MUF, BB_R, BB_SQF, BB_TAU, PHASE_FILM,
+                                        PHASE_PLASTIC, PHASE_RECOVERY, PHASE_SEPARATED, squeeze_film_closed_form,
+                                        thornton_force)
+
 from .interp import HERMITE, hermite3_grad, interp3_grad
 
 _JIT = dict(cache=True, fastmath=False, error_model="numpy")
 
-# ball-ball collision phases (returned by ball_ball_normal)
-PHASE_SEPARATED, PHASE_FILM, PHASE_ELASTIC, PHASE_PLASTIC, PHASE_RECOVERY = 0, 1, 2, 3, 4
-PHASE_NAMES = ("separated", "film", "elastic", "elastic-plastic", "recovery")
-
 # film kinds
 FILM_NONE, FILM_CLOSED_FORM, FILM_MAP = 0, 1, 2
 FILM_KINDS = {"none": FILM_NONE, "closed_form": FILM_CLOSED_FORM, "map": FILM_MAP}
-
-# indices of the ball-ball parameter vector (see ball_ball_parameters)
-(BB_K, BB_R, BB_ESTAR, BB_PY, BB_DY, BB_FY, BB_ALPHA, BB_C0, BB_HR, BB_HCUT, BB_MUF, BB_MUB, BB_VREG, BB_TAU,
- BB_SQF) = range(15)
-BB_SIZE = 15
 
 # map options (int64 array ``map_opts``): log flags of the three axes and the values, interp method, mode,
 # kind of the second axis (MAP_AXIS_APPROACH: approach speed v [m/s]; MAP_AXIS_SQUEEZE: squeeze number
@@ -130,132 +106,7 @@ MAP_AXIS_APPROACH, MAP_AXIS_SQUEEZE, MAP_AXIS_POLAR = 0, 1, 2
 # ------------------------------------------------------------------ set-up (Python)
 
 
-def _positive(key, value):
-    value = float(value)
-    if not (value > 0.0 and math.isfinite(value)):
-        raise DynamicsInputError(f"{key} = {value!r} must be a finite number > 0")
-    return value
-
-
-def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alpha=0.0, viscosity=0.0,
-                         rupture_thickness=1e-7, cutoff_gap=None, mu_film=0.03, mu_boundary=0.1,
-                         slip_regularisation=0.01, memory_time=1e-4, pressure_viscosity=0.0) -> np.ndarray:
-    """Parameter vector (indices ``BB_*``) of the ball-ball collision law.
-
-    ``yield_stress`` [Pa] None: elastic only (p_y = inf).  ``viscosity`` [Pa s]
-    of the squeeze film (closed form); ``rupture_thickness`` h_r [m],
-    ``cutoff_gap`` h_cut [m] (default R/10), ``memory_time`` tau_mem [s],
-    ``pressure_viscosity`` alpha [m^2/N] (only for a map over the squeeze number).
-    """
-    R = _positive("ball radius [m]", ball_radius)
-    Reff = 0.5 * R
-    e_star = _positive("E* [Pa]", e_star)
-    p = np.zeros(BB_SIZE)
-    p[BB_K] = 4.0 / 3.0 * e_star * math.sqrt(Reff)
-    p[BB_R] = Reff
-    p[BB_ESTAR] = e_star
-    if yield_stress is None:
-        p[BB_PY], p[BB_DY], p[BB_FY] = np.inf, np.inf, np.inf
-    else:
-        py = 1.6 * _positive("yield stress [Pa]", yield_stress)
-        dy = (math.pi * py / (2.0 * e_star)) ** 2 * Reff
-        p[BB_PY], p[BB_DY], p[BB_FY] = py, dy, p[BB_K] * dy**1.5
-    if damping_alpha < 0.0:
-        raise DynamicsInputError(f"ball-ball damping alpha = {damping_alpha!r} must be >= 0 [s/m]")
-    p[BB_ALPHA] = damping_alpha
-    if viscosity < 0.0:
-        raise DynamicsInputError(f"viscosity = {viscosity!r} must be >= 0 [Pa s]")
-    p[BB_C0] = 6.0 * math.pi * viscosity * Reff**2
-    p[BB_HR] = _positive("film rupture thickness [m]", rupture_thickness)
-    p[BB_HCUT] = _positive("film cut-off gap [m]", 0.1 * R if cutoff_gap is None else cutoff_gap)
-    for key, mu in (("mu_film", mu_film), ("mu_boundary", mu_boundary)):
-        if not 0.0 <= mu < 10.0:
-            raise DynamicsInputError(f"{key} = {mu!r} must lie in [0, 10)")
-    p[BB_MUF], p[BB_MUB] = mu_film, mu_boundary
-    p[BB_VREG] = _positive("slip regularisation speed [m/s]", slip_regularisation)
-    p[BB_TAU] = _positive("plastic memory time [s]", memory_time)
-    p[BB_SQF] = 3.0 * pressure_viscosity * viscosity * Reff
-    return p
-
-
 # ------------------------------------------------------------------ kernels
-
-
-@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
-def hertz_force(delta, delta_dot, K, alpha):
-    """Hunt-Crossley Hertz force ``K delta^1.5 (1 + alpha delta_dot)``, >= 0; 0 for delta <= 0."""
-    if delta <= 0.0:
-        return 0.0
-    f = K * delta * math.sqrt(delta) * (1.0 + alpha * delta_dot)
-    return f if f > 0.0 else 0.0
-
-
-@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
-def traction_coefficient(slip_speed, entrainment_speed, mu_lim, srr_ref, v_reg):
-    """``mu_lim tanh(|v_s| / max(srr_ref |u_e|, v_reg))`` (>= 0)."""
-    scale = srr_ref * abs(entrainment_speed)
-    if scale < v_reg:
-        scale = v_reg
-    return mu_lim * math.tanh(abs(slip_speed) / scale)
-
-
-@njit(**_JIT)
-def thornton_force(delta, delta_max, p):
-    """Elastic-perfectly plastic sphere contact (Thornton 1997), without damping.
-
-    Returns ``(F, dF/ddelta, phase)`` for the solid approach ``delta`` and the
-    largest approach so far ``delta_max`` (parameters ``p`` from
-    :func:`ball_ball_parameters`).  phase: 2 elastic, 3 plastic loading, 4
-    recovery (below delta_max after yielding)."""
-    if delta <= 0.0:
-        return 0.0, 0.0, PHASE_SEPARATED
-    K, R, es, py, dy, Fy = p[BB_K], p[BB_R], p[BB_ESTAR], p[BB_PY], p[BB_DY], p[BB_FY]
-    if delta <= dy and delta_max <= dy:
-        s = math.sqrt(delta)
-        return K * delta * s, 1.5 * K * s, PHASE_ELASTIC
-    if delta >= delta_max:  # on the loading envelope, beyond yield
-        if delta <= dy:
-            s = math.sqrt(delta)
-            return K * delta * s, 1.5 * K * s, PHASE_ELASTIC
-        return Fy + math.pi * py * R * (delta - dy), math.pi * py * R, PHASE_PLASTIC
-    Fm = Fy + math.pi * py * R * (delta_max - dy)
-    am2 = (2.0 * Fm + Fy) / (2.0 * math.pi * py)
-    Rp = 4.0 * es * am2 * math.sqrt(am2) / (3.0 * Fm)
-    dp = delta_max - am2 / Rp
-    x = delta - dp
-    if x <= 0.0:
-        return 0.0, 0.0, PHASE_SEPARATED
-    Kp = 4.0 / 3.0 * es * math.sqrt(Rp)
-    s = math.sqrt(x)
-    return Kp * x * s, 1.5 * Kp * s, PHASE_RECOVERY
-
-
-@njit(**_JIT)
-def residual_indentation(delta_max, p):
-    """delta_p [m] left after unloading from ``delta_max`` (0 if never yielded)."""
-    dy = p[BB_DY]
-    if delta_max <= dy:
-        return 0.0
-    R, es, py, Fy = p[BB_R], p[BB_ESTAR], p[BB_PY], p[BB_FY]
-    Fm = Fy + math.pi * py * R * (delta_max - dy)
-    am2 = (2.0 * Fm + Fy) / (2.0 * math.pi * py)
-    Rp = 4.0 * es * am2 * math.sqrt(am2) / (3.0 * Fm)
-    return delta_max - am2 / Rp
-
-
-@njit(**_JIT)
-def squeeze_film_closed_form(h, v, p):
-    """Rigid isoviscous squeeze film between two spheres (R_eff = R/2) and its
-    derivative d/dh: ``C0 v [1/(h + h_r) - 1/(h_cut + h_r)]`` for v > 0 and
-    h < h_cut, else 0 (cavitated during separation; starved beyond h_cut).
-
-    Reynolds' sphere-plane squeeze film F = 6 pi eta R^2 v/h (h << R) with
-    the rupture thickness h_r as an offset that bounds it at contact."""
-    if v <= 0.0 or h >= p[BB_HCUT]:
-        return 0.0, 0.0
-    hr = p[BB_HR]
-    inv = 1.0 / (h + hr)
-    return p[BB_C0] * v * (inv - 1.0 / (p[BB_HCUT] + hr)), -p[BB_C0] * v * inv * inv
 
 
 @njit(**_JIT)

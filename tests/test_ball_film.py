@@ -23,6 +23,7 @@ from scipy.optimize import brentq
 
 import lubrication as lub
 from coupling import film_points as fp
+from lubrication.laws import collision
 from lubrication.closed_form import sphere_plane_squeeze_force
 
 H0 = 1e-6
@@ -192,18 +193,18 @@ def test_closed_form_barus_film_derivatives_and_map_agreement(squeeze):
     p = params(density_law="incompressible", resolution="fine")
     Reff, eta0, alpha = 0.5 * p["ball_radius"], p["eta0"], p["alpha"]
     v = fp.approach_speed(H0, squeeze, p)
-    F, K, C = fp.barus_squeeze_film(H0, v, eta0, alpha, Reff)
+    F, K, C = collision.barus_squeeze_film(H0, v, eta0, alpha, Reff)
     assert F == pytest.approx(fp.squeeze_force_barus(H0, squeeze, alpha, Reff, 1e8), rel=1e-7)
     dh, dv = 1e-5 * H0, 1e-5 * v
-    assert K == pytest.approx(-(fp.barus_squeeze_film(H0 + dh, v, eta0, alpha, Reff)[0]
-                                - fp.barus_squeeze_film(H0 - dh, v, eta0, alpha, Reff)[0]) / (2 * dh), rel=1e-6)
-    assert C == pytest.approx((fp.barus_squeeze_film(H0, v + dv, eta0, alpha, Reff)[0]
-                               - fp.barus_squeeze_film(H0, v - dv, eta0, alpha, Reff)[0]) / (2 * dv), rel=1e-6)
+    assert K == pytest.approx(-(collision.barus_squeeze_film(H0 + dh, v, eta0, alpha, Reff)[0]
+                                - collision.barus_squeeze_film(H0 - dh, v, eta0, alpha, Reff)[0]) / (2 * dh), rel=1e-6)
+    assert C == pytest.approx((collision.barus_squeeze_film(H0, v + dv, eta0, alpha, Reff)[0]
+                               - collision.barus_squeeze_film(H0, v - dv, eta0, alpha, Reff)[0]) / (2 * dv), rel=1e-6)
     out = fp.evaluate_ball_ball(p, point(squeeze=squeeze))
     assert out["Force [N]"] == pytest.approx(F, rel=3e-3)
     assert out["Stiffness [N/m]"] == pytest.approx(K, rel=3e-3)
     assert out["Damping [N s/m]"] == pytest.approx(C, rel=3e-3)
-    assert fp.barus_squeeze_film(H0, -v, eta0, alpha, Reff) == (0.0, 0.0, 0.0)
-    iso = fp.barus_squeeze_film(H0, v, eta0, 0.0, Reff)
+    assert collision.barus_squeeze_film(H0, -v, eta0, alpha, Reff) == (0.0, 0.0, 0.0)
+    iso = collision.barus_squeeze_film(H0, v, eta0, 0.0, Reff)
     assert iso == pytest.approx((6 * math.pi * eta0 * Reff**2 * v / H0,) * 1
                                 + (6 * math.pi * eta0 * Reff**2 * v / H0**2, 6 * math.pi * eta0 * Reff**2 / H0), rel=1e-12)

@@ -9,6 +9,8 @@ import pytest
 from scipy.optimize import brentq
 
 from dynamics import contacts as C
+from lubrication.laws import collision as LC
+from lubrication.laws.traction import traction_coefficient
 from dynamics import interp
 from lubrication.laws.contact import hunt_crossley_alpha, reduced_modulus
 
@@ -30,8 +32,8 @@ def _no_map():
 def test_ball_ball_stiffness_is_the_circular_hertz_law():
     """Two balls: K = (4/3) E* sqrt(R/2) (Hertz, sphere on sphere; Johnson 1985, eq. 4.23)."""
     R = 0.5 * D
-    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL)
-    assert p[C.BB_K] == pytest.approx(4 / 3 * ES_BALL * math.sqrt(R / 2), rel=1e-14)
+    p = LC.ball_ball_parameters(ball_radius=R, e_star=ES_BALL)
+    assert p[LC.BB_K] == pytest.approx(4 / 3 * ES_BALL * math.sqrt(R / 2), rel=1e-14)
 
 
 def _impact(force, v0, mass, dt):
@@ -53,7 +55,7 @@ def _impact(force, v0, mass, dt):
 @pytest.mark.parametrize("compiled", [True, False])
 def test_hunt_crossley_restitution(compiled):
     """Hunt & Crossley: 1 - e = (2/3) alpha v for small alpha v (first order)."""
-    hf = _k(C.hertz_force, compiled)
+    hf = _k(LC.hertz_force, compiled)
     K, v0 = 3e10, 0.5
     alpha = hunt_crossley_alpha(0.999, v0)
     e = _impact(lambda x, v: hf(x, v, K, alpha), v0, M_BALL, 2e-8)
@@ -69,10 +71,10 @@ def test_hunt_crossley_restitution(compiled):
 def test_thornton_restitution(compiled, ratio):
     """Elastic / elastic-plastic / recovery phases against Thornton's (1997) closed form
     e = sqrt(6 sqrt3/5) sqrt(1 - x^2/6) [x/(x + 2 sqrt(6/5 - x^2/5))]^(1/4), x = V_y/V_i."""
-    tf, rate = _k(C.thornton_force, compiled), _k(C.plastic_memory_rate, compiled)
-    p = C.ball_ball_parameters(ball_radius=0.5 * D, e_star=ES_BALL, yield_stress=1.7e9)
+    tf, rate = _k(LC.thornton_force, compiled), _k(C.plastic_memory_rate, compiled)
+    p = LC.ball_ball_parameters(ball_radius=0.5 * D, e_star=ES_BALL, yield_stress=1.7e9)
     ms = 0.5 * M_BALL
-    K, dy = p[C.BB_K], p[C.BB_DY]
+    K, dy = p[LC.BB_K], p[LC.BB_DY]
     vy = math.sqrt(4.0 * K * dy**2.5 / (5.0 * ms))  # (2/5) K dy^2.5 = m* Vy^2/2
     v0 = ratio * vy
     dt = 1e-3 * (ms / (1.5 * K * dy**0.5)) ** 0.5 / ratio**0.2
@@ -96,9 +98,9 @@ def test_thornton_restitution(compiled, ratio):
     x = 1.0 / ratio
     e_th = math.sqrt(6 * math.sqrt(3) / 5) * math.sqrt(1 - x * x / 6) * (x / (x + 2 * math.sqrt(6 / 5 - x * x / 5))) ** 0.25
     assert -s[1] / v0 == pytest.approx(e_th, rel=1e-5)
-    assert {C.PHASE_ELASTIC, C.PHASE_PLASTIC, C.PHASE_RECOVERY} <= phases
+    assert {LC.PHASE_ELASTIC, LC.PHASE_PLASTIC, LC.PHASE_RECOVERY} <= phases
     # the residual indentation is where the recovery curve reaches zero
-    dp = C.residual_indentation(s[2], p)
+    dp = LC.residual_indentation(s[2], p)
     assert tf(dp * (1 + 1e-9) + 1e-18, s[2], p)[0] == pytest.approx(0.0, abs=1e-6 * K * dy**1.5)
     assert dp > 0.0
 
@@ -110,8 +112,8 @@ def test_series_law_matches_brentq_reference(compiled):
     bbn = _k(C.ball_ball_normal, compiled)
     R = 0.5 * D
     eta = 0.05
-    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=eta, rupture_thickness=1e-7)
-    K, C0, hr, hcut = p[C.BB_K], 6 * math.pi * eta * (R / 2) ** 2, 1e-7, 0.1 * R
+    p = LC.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=eta, rupture_thickness=1e-7)
+    K, C0, hr, hcut = p[LC.BB_K], 6 * math.pi * eta * (R / 2) ** 2, 1e-7, 0.1 * R
     dummy = _no_map()
     for g, v in [(5e-6, 0.3), (2e-7, 0.05), (-1e-7, 0.5), (-1e-6, 2.0)]:
         F, h, x, phase, share = bbn(g, v, 0.0, 0.0, p, C.FILM_CLOSED_FORM, *dummy)
@@ -122,7 +124,7 @@ def test_series_law_matches_brentq_reference(compiled):
         xr = brentq(phi, max(-g, 0.0), 1e-3, xtol=1e-20, rtol=1e-14)
         assert F == pytest.approx(K * xr**1.5, rel=1e-8)
         assert h == pytest.approx(g + xr, rel=1e-6, abs=1e-15)
-        assert phase == C.PHASE_FILM
+        assert phase == LC.PHASE_FILM
         # share of the approach taken by the solids: d(x)/d(-g) of the reference root (finite difference)
         eps = 1e-4 * max(abs(g), xr)
         x2 = brentq(lambda y: K * y**1.5 - C0 * v * (1 / (g - eps + y + hr) - 1 / (hcut + hr)), max(eps - g, 0.0),
@@ -130,7 +132,7 @@ def test_series_law_matches_brentq_reference(compiled):
         assert share == pytest.approx((x2 - xr) / eps, rel=1e-3)
     # separation: the film cavitates, Hertz unloads through the ruptured film
     F, h, x, phase, share = bbn(-1e-6, -0.5, 0.0, 0.0, p, C.FILM_CLOSED_FORM, *dummy)
-    assert F == pytest.approx(K * 1e-6**1.5, rel=1e-12) and h == 0.0 and phase == C.PHASE_ELASTIC
+    assert F == pytest.approx(K * 1e-6**1.5, rel=1e-12) and h == 0.0 and phase == LC.PHASE_ELASTIC
     assert bbn(1e-6, -0.5, 0.0, 0.0, p, C.FILM_CLOSED_FORM, *dummy)[0] == 0.0
     # film "none": plain Hertz
     assert bbn(-2e-6, 0.3, 0.0, 0.0, p, C.FILM_NONE, *dummy)[0] == pytest.approx(K * 2e-6**1.5, rel=1e-12)
@@ -142,8 +144,8 @@ def test_rigid_squeeze_film_approach_is_analytic():
     v(h) = v0 - (C0/m*) [ln((h0 + h_r)/(h + h_r)) - (h0 - h)/(h_cut + h_r)]."""
     R = 0.5 * D
     eta = 0.05
-    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=eta)
-    C0, hr, hcut = p[C.BB_C0], p[C.BB_HR], p[C.BB_HCUT]
+    p = LC.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=eta)
+    C0, hr, hcut = p[LC.BB_C0], p[LC.BB_HR], p[LC.BB_HCUT]
     ms = 0.5 * M_BALL
     dummy = _no_map()
     g0, v0 = 1e-4, 0.02
@@ -178,17 +180,17 @@ def test_map_option_reproduces_tabulated_closed_form(method, speed_axis):
 
     R = 0.5 * D
     alpha = 1.85e-8
-    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=0.05, pressure_viscosity=alpha)
+    p = LC.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=0.05, pressure_viscosity=alpha)
     gaps = np.geomspace(1e-9, 4e-4, 161)
     ax0 = interp.prepare_axis(gaps, True)
     if speed_axis == "approach_speed":
         speeds = np.geomspace(1e-4, 10.0, 41)
-        vals = np.array([[C.squeeze_film_closed_form(h, v, p)[0] for v in speeds] for h in gaps])
+        vals = np.array([[LC.squeeze_film_closed_form(h, v, p)[0] for v in speeds] for h in gaps])
         axes, logs = (ax0, interp.prepare_axis(speeds, True)), (1, 1)
     else:  # Lambda = 3 alpha eta R_eff v/h^2; a third (entrainment) axis on which nothing depends
         lam = np.geomspace(1e-16, 1e10, 131)  # isoviscous: any Lambda (a Barus map stops below 1)
         ue = np.array([0.0, 0.05])
-        vals = np.array([[[C.squeeze_film_closed_form(h, L * h * h / p[C.BB_SQF], p)[0]] * 2 for L in lam]
+        vals = np.array([[[LC.squeeze_film_closed_form(h, L * h * h / p[LC.BB_SQF], p)[0]] * 2 for L in lam]
                          for h in gaps])
         axes, logs = (ax0, interp.prepare_axis(lam, True), interp.prepare_axis(ue, False)), (1, 1, 0)
     u = interp.prepare_values(np.maximum(vals, 1e-300), True)
@@ -210,7 +212,7 @@ def test_map_option_reproduces_tabulated_closed_form(method, speed_axis):
 
 @pytest.mark.parametrize("compiled", [True, False])
 def test_traction_curve_limits(compiled):
-    tc = _k(C.traction_coefficient, compiled)
+    tc = _k(traction_coefficient, compiled)
     assert tc(5.0, 10.0, 0.07, 0.02, 0.05) == pytest.approx(0.07, rel=1e-12)  # SRR 0.5 >> 0.02: limiting
     # initial slope mu_lim/s0 in SRR
     assert tc(1e-5, 10.0, 0.07, 0.02, 0.05) / 1e-6 == pytest.approx(0.07 / 0.02, rel=1e-8)
@@ -219,26 +221,8 @@ def test_traction_curve_limits(compiled):
 
 
 def test_film_rupture_friction_blend():
-    p = C.ball_ball_parameters(ball_radius=0.5 * D, e_star=ES_BALL, mu_film=0.03, mu_boundary=0.12,
+    p = LC.ball_ball_parameters(ball_radius=0.5 * D, e_star=ES_BALL, mu_film=0.03, mu_boundary=0.12,
                                rupture_thickness=1e-7)
     assert C.ball_ball_friction_coefficient(0.0, p) == pytest.approx(0.12, rel=1e-15)
     assert C.ball_ball_friction_coefficient(1e-7, p) == pytest.approx(0.12 / math.e + 0.03 * (1 - 1 / math.e))
     assert C.ball_ball_friction_coefficient(5e-6, p) == pytest.approx(0.03, rel=1e-12)
-
-
-@pytest.mark.parametrize("compiled", [True, False])
-def test_thornton_matches_film_points_reference(compiled):
-    """The collision phases against the map-physics helper's plain-Python reference
-    (coupling.film_points.thornton_force, written independently from the paper)."""
-    from coupling import film_points as fp
-
-    tf = _k(C.thornton_force, compiled)
-    R = 0.5 * D
-    p = C.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, yield_stress=1.7e9)
-    py, dy, _ = fp.yield_onset(R / 2, ES_BALL, 1.7e9)
-    assert p[C.BB_DY] == pytest.approx(dy, rel=1e-14) and p[C.BB_PY] == pytest.approx(py, rel=1e-14)
-    for dmax in (0.0, 0.5 * dy, 3 * dy, 40 * dy):
-        for frac in (0.05, 0.5, 0.9, 0.999, 1.0, 1.3):
-            delta = frac * max(dmax, dy)
-            ref = fp.thornton_force(delta, max(dmax, delta), R / 2, ES_BALL, py)
-            assert tf(delta, dmax, p)[0] == pytest.approx(ref, rel=1e-12, abs=1e-12 * p[C.BB_FY])

@@ -31,6 +31,7 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
 from coupling import film_points as fp
+from lubrication.laws import collision
 from lubrication.laws import film as ff
 from lubrication.laws import contact as hertz
 from lubrication.closed_form import sphere_plane_squeeze_force
@@ -89,6 +90,17 @@ def test_default_params_reproduce_the_papers_derived_numbers():
 
 # ---------------------------------------------------------------- contact laws
 
+def _hertz_ball_ball(delta, Reff, e_star):
+    """(Q, dQ/d delta) of the laws' Hertz force kernel (no damping) for two balls of R_eff = Reff."""
+    K = 4.0 / 3.0 * e_star * math.sqrt(Reff)
+    return collision.hertz_force.py_func(delta, 0.0, K, 0.0), (1.5 * K * math.sqrt(delta) if delta > 0 else 0.0)
+
+
+def _thornton(delta, delta_max, Reff, e_star, p_y):
+    """Force of the laws' Thornton kernel for two balls of R_eff = Reff and limiting pressure p_y."""
+    p = collision.ball_ball_parameters(ball_radius=2.0 * Reff, e_star=e_star, yield_stress=p_y / 1.6)
+    return collision.thornton_force.py_func(delta, delta_max, p)[0]
+
 
 def test_hertz_ball_ball_matches_elliptic_hertz_code_and_johnson():
     """Q(delta) = (4/3) E* sqrt(R) delta^1.5 against lubrication.laws.contact.point_contact (exact
@@ -99,17 +111,16 @@ def test_hertz_ball_ball_matches_elliptic_hertz_code_and_johnson():
     Reff = 0.5 * 4.7625e-3
     e_star = 207e9 / (2 * (1 - 0.29**2))
     hp = hertz.point_contact(100.0, Reff, Reff, e_star)
-    Q, K = fp.hertz_ball_ball(hp.approach, Reff, e_star)
+    Q, K = _hertz_ball_ball(hp.approach, Reff, e_star)
     assert Q == pytest.approx(100.0, rel=1e-12)
     assert K == pytest.approx(hp.stiffness, rel=1e-12)
     d = 1e-6 * hp.approach
-    fd = (fp.hertz_ball_ball(hp.approach + d, Reff, e_star)[0] - fp.hertz_ball_ball(hp.approach - d, Reff, e_star)[0]) / (2 * d)
+    fd = (_hertz_ball_ball(hp.approach + d, Reff, e_star)[0] - _hertz_ball_ball(hp.approach - d, Reff, e_star)[0]) / (2 * d)
     assert K == pytest.approx(fd, rel=1e-8)
-    a, p0, delta = fp.hertz_ball_ball_contact(100.0, Reff, e_star)
-    assert (a, p0, delta) == pytest.approx((hp.a, hp.p0, hp.approach), rel=1e-12)
+    a, p0 = hp.a, hp.p0
     assert a == pytest.approx(0.1165e-3, rel=1e-3)
     assert p0 == pytest.approx(3.52e9, rel=2e-3)
-    assert fp.hertz_ball_ball(-1e-6, Reff, e_star) == (0.0, 0.0)
+    assert _hertz_ball_ball(-1e-6, Reff, e_star) == (0.0, 0.0)
 
 
 def test_series_stiffness_matches_two_spring_force_balance():
@@ -124,12 +135,12 @@ def test_series_stiffness_matches_two_spring_force_balance():
     force = lambda s: brentq(lambda F: delta_h(F) + F / k_f - s, 1e-3, 1e4, xtol=1e-14, rtol=1e-15)  # noqa: E731
     ds = 1e-5 * s0
     dFds = (force(s0 + ds) - force(s0 - ds)) / (2 * ds)
-    _, K_h = fp.hertz_ball_ball(delta_h(F0), Reff, e_star)
-    assert fp.series_stiffness(k_f, K_h) == pytest.approx(dFds, rel=1e-7)
-    K_v, C_v = fp.series_film_hertz(k_f, 12.5, delta_h(F0), Reff, e_star)
+    _, K_h = _hertz_ball_ball(delta_h(F0), Reff, e_star)
+    assert collision.series_stiffness(k_f, K_h) == pytest.approx(dFds, rel=1e-7)
+    K_v, C_v = collision.series_film_hertz(k_f, 12.5, delta_h(F0), Reff, e_star)
     assert (K_v, C_v) == pytest.approx((dFds, 12.5), rel=1e-7)
-    assert fp.series_stiffness(3.0, 3.0) == 1.5
-    assert fp.series_stiffness(0.0, 5.0) == 5.0 and fp.series_stiffness(5.0, 0.0) == 5.0
+    assert collision.series_stiffness(3.0, 3.0) == 1.5
+    assert collision.series_stiffness(0.0, 5.0) == 5.0 and collision.series_stiffness(5.0, 0.0) == 5.0
 
 
 def test_yield_onset_is_where_hertz_peak_pressure_reaches_1_6_Y():
@@ -138,7 +149,7 @@ def test_yield_onset_is_where_hertz_peak_pressure_reaches_1_6_Y():
     pi^3 (2.72 GPa)^3 (2.381 mm)^2/(6 (113.1 GPa)^2) = 46 N: ball-ball collisions above ~46 N
     are elastic-plastic."""
     Reff, e_star, Y = 0.5 * 4.7625e-3, 207e9 / (2 * (1 - 0.29**2)), 1.7e9
-    p_y, delta_y, q_y = fp.yield_onset(Reff, e_star, Y)
+    p_y, delta_y, q_y = collision.yield_onset(Reff, e_star, Y)
     hp = hertz.point_contact(q_y, Reff, Reff, e_star)
     assert p_y == 1.6 * Y
     assert hp.p0 == pytest.approx(p_y, rel=1e-12)
@@ -150,7 +161,7 @@ def _thornton_rebound(V, m, Reff, e_star, p_y):
     """Coefficient of restitution of a collision integrated with solve_ivp: loading until the
     relative speed vanishes (delta_max), then unloading along the recovery law."""
     def load(t, y):
-        return [y[1], -fp.thornton_force(y[0], y[0], Reff, e_star, p_y) / m]
+        return [y[1], -_thornton(y[0], y[0], Reff, e_star, p_y) / m]
 
     stop = lambda t, y: y[1]  # noqa: E731
     stop.terminal, stop.direction = True, -1
@@ -158,11 +169,11 @@ def _thornton_rebound(V, m, Reff, e_star, p_y):
     dmax = s1.y_events[0][0][0]
 
     def unload(t, y):
-        return [y[1], -fp.thornton_force(y[0], dmax, Reff, e_star, p_y) / m]
+        return [y[1], -_thornton(y[0], dmax, Reff, e_star, p_y) / m]
 
-    q_max = fp.thornton_force(dmax, dmax, Reff, e_star, p_y)
+    q_max = _thornton(dmax, dmax, Reff, e_star, p_y)
     # residual indentation: where the recovery force vanishes
-    delta_p = brentq(lambda d: fp.thornton_force(d, dmax, Reff, e_star, p_y) - 1e-12 * q_max, 0.0, dmax * (1 - 1e-12))
+    delta_p = brentq(lambda d: _thornton(d, dmax, Reff, e_star, p_y) - 1e-12 * q_max, 0.0, dmax * (1 - 1e-12))
     out = lambda t, y: y[0] - delta_p  # noqa: E731
     out.terminal, out.direction = True, -1
     s2 = solve_ivp(unload, (0, 1.0), [dmax, 0.0], events=out, method="DOP853", rtol=1e-12, atol=[1e-18, 1e-12], max_step=1e-7)
@@ -178,7 +189,7 @@ def test_thornton_collision_restitution_matches_closed_form(ratio):
     (V_y = 0.266 m/s).  Measured agreement 6e-11 (e = 1, 0.931, 0.773); asserted 1e-8."""
     Reff, e_star, p_y = 0.5 * 4.7625e-3, 207e9 / (2 * (1 - 0.29**2)), 1.6 * 1.7e9
     m = 0.5 * 3.55e-3
-    _, delta_y, _ = fp.yield_onset(Reff, e_star, p_y / 1.6)
+    _, delta_y, _ = collision.yield_onset(Reff, e_star, p_y / 1.6)
     V_y = math.sqrt(2 * (8 / 15) * e_star * math.sqrt(Reff) * delta_y**2.5 / m)
     x = 1.0 / ratio
     e = math.sqrt(6 * math.sqrt(3) / 5) * math.sqrt(1 - x * x / 6) * (x / (x + 2 * math.sqrt(6 / 5 - x * x / 5))) ** 0.25
@@ -189,14 +200,14 @@ def test_thornton_force_is_continuous_across_phases():
     """Loading reaches Q_y at delta_y from both the elastic and the elastic-plastic branch; the
     recovery law starts at Q_max at delta_max (values from :func:`yield_onset`, Hertz)."""
     Reff, e_star, Y = 0.5 * 4.7625e-3, E_STAR_B, 1.7e9
-    p_y, delta_y, q_y = fp.yield_onset(Reff, e_star, Y)
-    below = fp.thornton_force(delta_y * (1 - 1e-12), delta_y * (1 - 1e-12), Reff, e_star, p_y)
-    above = fp.thornton_force(delta_y * (1 + 1e-12), delta_y * (1 + 1e-12), Reff, e_star, p_y)
+    p_y, delta_y, q_y = collision.yield_onset(Reff, e_star, Y)
+    below = _thornton(delta_y * (1 - 1e-12), delta_y * (1 - 1e-12), Reff, e_star, p_y)
+    above = _thornton(delta_y * (1 + 1e-12), delta_y * (1 + 1e-12), Reff, e_star, p_y)
     assert below == pytest.approx(q_y, rel=1e-9) and above == pytest.approx(q_y, rel=1e-9)
     dmax = 4 * delta_y
-    q_max = fp.thornton_force(dmax, dmax, Reff, e_star, p_y)
+    q_max = _thornton(dmax, dmax, Reff, e_star, p_y)
     assert q_max == pytest.approx(q_y + math.pi * p_y * Reff * 3 * delta_y, rel=1e-12)
-    assert fp.thornton_force(dmax * (1 - 1e-12), dmax, Reff, e_star, p_y) == pytest.approx(q_max, rel=1e-9)
+    assert _thornton(dmax * (1 - 1e-12), dmax, Reff, e_star, p_y) == pytest.approx(q_max, rel=1e-9)
 
 
 def test_film_friction_coefficient_matches_quadrature():
@@ -206,9 +217,9 @@ def test_film_friction_coefficient_matches_quadrature():
     Q = 2 / 3 * math.pi * a * a * p0
     num, _ = quad(lambda r: eta0 * math.exp(alpha * p0 * math.sqrt(1 - (r / a) ** 2)) * U / h * 2 * math.pi * r, 0, a,
                   epsrel=1e-12)
-    assert fp.barus_hertz_friction_coefficient(eta0, alpha, U, h, p0) == pytest.approx(num / Q, rel=1e-9)
-    assert fp.barus_hertz_friction_coefficient(eta0, 1e-20, U, h, p0) == pytest.approx(1.5 * eta0 * U / (h * p0), rel=1e-9)
-    assert fp.mixed_friction_coefficient(0.02, 0.1, 0.25) == pytest.approx(0.04, rel=1e-12)
+    assert collision.barus_hertz_friction_coefficient(eta0, alpha, U, h, p0) == pytest.approx(num / Q, rel=1e-9)
+    assert collision.barus_hertz_friction_coefficient(eta0, 1e-20, U, h, p0) == pytest.approx(1.5 * eta0 * U / (h * p0), rel=1e-9)
+    assert collision.mixed_friction_coefficient(0.02, 0.1, 0.25) == pytest.approx(0.04, rel=1e-12)
 
 
 def _polar(h0, rho, theta_deg):

@@ -1,0 +1,270 @@
+r"""Collision laws of two lubricated balls (paper B, sec. 2.2, rebuilt), written once for films and dynamics.
+
+Hertz force with contact damping (Hunt & Crossley 1975): ``Q = K delta^1.5 (1 + alpha d delta/dt)``,
+clipped at 0 (no adhesion); K from :func:`lubrication.laws.contact.hertz_constant`.
+
+Collision phases (Thornton 1997, elastic-perfectly plastic spheres, J.
+Appl. Mech. 64:383), the physical content of eqs. 9-12: elastic Hertz
+F = K delta^1.5 up to the yield approach delta_y = (pi p_y/(2 E*))^2 R_eff
+(F_y = K delta_y^1.5); plastic loading F = F_y + pi p_y R_eff (delta -
+delta_y) (linear in delta: eq. 11); recovery (unloading and reloading below
+delta_max) Hertz with the enlarged radius R_p and residual indentation
+delta_p::
+
+    a_m^2 = (2 F_max + F_y)/(2 pi p_y),  R_p = 4 E* a_m^3/(3 F_max),
+    delta_p = delta_max - a_m^2/R_p,     F = (4/3) E* sqrt(R_p) (delta - delta_p)^1.5
+
+(eq. 12 with delta_sigma = delta_p).  p_y = 1.6 sigma_y (onset of yield
+below a Hertz contact, Johnson sec. 6.2).  The largest approach delta_max
+is a state of the bearing (one per ball pair): d(delta_max)/dt =
+d(delta_e)/dt while delta_e >= delta_max and loading, and when the pair has
+separated the memory decays with tau_mem (the dented spot rolls out of the
+contact; each collision meets fresh surface).
+
+Rigid isoviscous squeeze film of two spheres (R_eff = R/2; Reynolds' sphere-plane squeeze,
+e.g. Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film Lubrication*, 2004, ch. 10):
+F = C0 v/h with C0 = 6 pi eta R_eff^2 (:func:`squeeze_film_closed_form`).
+
+The parameters of a ball pair travel as one float vector (indices ``BB_*``, made by
+:func:`ball_ball_parameters`) so that numba kernels take one array.  The kernels are ``@njit``:
+:mod:`dynamics` calls them compiled, Python callers call the same code (compiled on first call, or
+``.py_func`` for the interpreted one).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..errors import InputError
+from .contact import positive as _positive
+
+#: numba options of the law kernels: IEEE semantics (no fastmath), division by zero gives inf/NaN
+JIT = dict(cache=True, fastmath=False, error_model="numpy")
+_JIT = JIT
+
+# ball-ball collision phases (returned by ball_ball_normal)
+PHASE_SEPARATED, PHASE_FILM, PHASE_ELASTIC, PHASE_PLASTIC, PHASE_RECOVERY = 0, 1, 2, 3, 4
+PHASE_NAMES = ("separated", "film", "elastic", "elastic-plastic", "recovery")
+
+# indices of the ball-ball parameter vector (see ball_ball_parameters)
+(BB_K, BB_R, BB_ESTAR, BB_PY, BB_DY, BB_FY, BB_ALPHA, BB_C0, BB_HR, BB_HCUT, BB_MUF, BB_MUB, BB_VREG, BB_TAU,
+ BB_SQF) = range(15)
+BB_SIZE = 15
+
+
+# ------------------------------------------------------------------ set-up (Python)
+
+
+def yield_onset(radius_eff: float, e_star: float, yield_stress: float) -> tuple[float, float, float]:
+    """First yield of a circular Hertz contact: ``(p_y, delta_y, Q_y)`` [Pa, m, N].
+
+    Yield starts below the surface when p0 = 1.6 Y (Tresca/von Mises, nu = 0.3; Johnson 1985,
+    sec. 6.2).  With a = pi p0 R/(2 E*): delta_y = (pi p_y/(2 E*))^2 R_eff and
+    Q_y = K delta_y^1.5 = pi^3 p_y^3 R_eff^2/(6 E*^2), K = (4/3) E* sqrt(R_eff)."""
+    p_y = 1.6 * _positive("yield stress [Pa]", yield_stress)
+    delta_y = (math.pi * p_y / (2.0 * e_star)) ** 2 * radius_eff
+    return p_y, delta_y, 4.0 / 3.0 * e_star * math.sqrt(radius_eff) * delta_y**1.5
+
+
+def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alpha=0.0, viscosity=0.0,
+                         rupture_thickness=1e-7, cutoff_gap=None, mu_film=0.03, mu_boundary=0.1,
+                         slip_regularisation=0.01, memory_time=1e-4, pressure_viscosity=0.0) -> np.ndarray:
+    """Parameter vector (indices ``BB_*``) of the ball-ball collision law.
+
+    ``yield_stress`` [Pa] None: elastic only (p_y = inf).  ``viscosity`` [Pa s]
+    of the squeeze film (closed form); ``rupture_thickness`` h_r [m],
+    ``cutoff_gap`` h_cut [m] (default R/10), ``memory_time`` tau_mem [s],
+    ``pressure_viscosity`` alpha [m^2/N] (only for a map over the squeeze number).
+    """
+    R = _positive("ball radius [m]", ball_radius)
+    Reff = 0.5 * R
+    e_star = _positive("E* [Pa]", e_star)
+    p = np.zeros(BB_SIZE)
+    p[BB_K] = 4.0 / 3.0 * e_star * math.sqrt(Reff)
+    p[BB_R] = Reff
+    p[BB_ESTAR] = e_star
+    if yield_stress is None:
+        p[BB_PY], p[BB_DY], p[BB_FY] = np.inf, np.inf, np.inf
+    else:
+        p[BB_PY], p[BB_DY], p[BB_FY] = yield_onset(Reff, e_star, yield_stress)
+    if damping_alpha < 0.0:
+        raise InputError(f"ball-ball damping alpha = {damping_alpha!r} must be >= 0 [s/m]")
+    p[BB_ALPHA] = damping_alpha
+    if viscosity < 0.0:
+        raise InputError(f"viscosity = {viscosity!r} must be >= 0 [Pa s]")
+    p[BB_C0] = 6.0 * math.pi * viscosity * Reff**2
+    p[BB_HR] = _positive("film rupture thickness [m]", rupture_thickness)
+    p[BB_HCUT] = _positive("film cut-off gap [m]", 0.1 * R if cutoff_gap is None else cutoff_gap)
+    for key, mu in (("mu_film", mu_film), ("mu_boundary", mu_boundary)):
+        if not 0.0 <= mu < 10.0:
+            raise InputError(f"{key} = {mu!r} must lie in [0, 10)")
+    p[BB_MUF], p[BB_MUB] = mu_film, mu_boundary
+    p[BB_VREG] = _positive("slip regularisation speed [m/s]", slip_regularisation)
+    p[BB_TAU] = _positive("plastic memory time [s]", memory_time)
+    p[BB_SQF] = 3.0 * pressure_viscosity * viscosity * Reff
+    return p
+
+
+# ------------------------------------------------------------------ paper B's film and friction laws (Python)
+
+
+def series_stiffness(k_film: float, k_hertz: float) -> float:
+    """Film and Hertz springs in series (paper B eq. 8 rebuilt): K_f K_H/(K_f + K_H) [N/m].
+
+    Either stiffness <= 0 (no film load, or no contact) makes the other one
+    act alone: the series law holds only where both carry the same force.
+    """
+    if k_film <= 0.0:
+        return max(k_hertz, 0.0)
+    if k_hertz <= 0.0:
+        return k_film
+    return k_film * k_hertz / (k_film + k_hertz)
+
+
+def series_film_hertz(k_film: float, c_film: float, delta: float, radius_eff: float, e_star: float) -> tuple:
+    """Paper B's equivalent contact (eq. 8): ``(K_v, C_v)`` = (series film/Hertz stiffness, film damping).
+
+    The Hertz stiffness dQ/d delta = 2 E* sqrt(R_eff delta) (Johnson 1985, eqs. 4.22-4.23) is taken
+    at the elastic approach ``delta`` [m] that the contact force produces (0 for delta <= 0).
+    """
+    k_h = 2.0 * e_star * math.sqrt(radius_eff * delta) if delta > 0.0 else 0.0
+    return series_stiffness(k_film, k_h), c_film
+
+
+def barus_hertz_friction_coefficient(eta0: float, alpha: float, sliding_speed: float, film: float, p0: float) -> float:
+    """Film friction coefficient of paper B eq. (17) rebuilt [-].
+
+    Newtonian shear eta0 exp(alpha p) U/h over a Hertzian pressure
+    p0 sqrt(1 - r^2/a^2) on a circle, divided by the load (2/3) pi a^2 p0::
+
+        mu = 3 eta0 U [e^(alpha p0) (alpha p0 - 1) + 1] / (h alpha^2 p0^3)
+
+    which tends to 1.5 eta0 U/(h p0) as alpha -> 0 (isoviscous: friction
+    eta0 U pi a^2/h over load (2/3) pi a^2 p0).
+    """
+    x = alpha * p0
+    if x < 1e-4:  # series: e^x (x - 1) + 1 = x^2/2 + x^3/3 + ...
+        bracket_over_x2 = 0.5 + x / 3.0
+    else:
+        bracket_over_x2 = (math.exp(x) * (x - 1.0) + 1.0) / (x * x)
+    return 3.0 * eta0 * sliding_speed * bracket_over_x2 / (film * p0)
+
+
+def mixed_friction_coefficient(mu_fluid: float, mu_boundary: float, asperity_share: float) -> float:
+    """Film-rupture (mixed) friction coefficient, paper B eqs. (19)-(21) rebuilt [-].
+
+    mu = mu_fluid (1 - s) + mu_boundary s with s = Q_asperity/Q in [0, 1]
+    (clipped): fluid friction on the film's share of the load, boundary
+    friction mu_b on the asperities'.
+    """
+    s = min(max(asperity_share, 0.0), 1.0)
+    return mu_fluid * (1.0 - s) + mu_boundary * s
+
+
+def barus_squeeze_film(h0: float, v: float, eta0: float, alpha: float, radius_eff: float) -> tuple:
+    """Closed-form rigid Barus squeeze film of two balls: ``(F [N], K [N/m], C [N s/m])``.
+
+    Infinite parabolic film, incompressible oil, no entrainment, Reynolds
+    cavitation at ambient (module docstring).  With F_iso = 6 pi eta0
+    R_eff^2 v/h0, Lambda = 3 alpha eta0 R_eff v/h0^2,
+    I(L) = 2 sqrt(L) artanh(sqrt(L)) + ln(1 - L) = sum_k L^(k+1)/((k + 1)(2k + 1))
+    and I'(L) = artanh(sqrt(L))/sqrt(L)::
+
+        F = F_iso I(L)/L,   C = dF/dv = 6 pi eta0 R_eff^2 I'(L)/h0,
+        K = -dF/dh0 = (F_iso/h0) (2 I'(L) - I(L)/L)
+
+    alpha = 0 gives the isoviscous F = F_iso, K = F/h0, C = F/v.
+    Separation (v <= 0): (0, 0, 0).  At and beyond the pole (L >= 1) the
+    rigid film has no solution: returns (F(1) = 2 ln 2 F_iso, inf, inf); the
+    caller must switch to the elastic contact law there.  Plain floats only
+    (numba-portable).  Within 0.2 % of the map kind ``ball_ball`` with an
+    incompressible oil and h_a = 1000 h0; Dowson-Higginson adds ~1 %.
+    """
+    if v <= 0.0:
+        return 0.0, 0.0, 0.0
+    c_iso = 6.0 * math.pi * eta0 * radius_eff * radius_eff / h0  # C of the isoviscous film
+    f_iso = c_iso * v
+    lam = 3.0 * alpha * eta0 * radius_eff * v / (h0 * h0)
+    if lam >= 1.0:
+        return 2.0 * math.log(2.0) * f_iso, math.inf, math.inf
+    if lam < 1e-4:  # series (also alpha = 0): I/L = 1 + L/6 + L^2/15, I' = 1 + L/3 + L^2/5
+        g = 1.0 + lam / 6.0 + lam * lam / 15.0
+        dI = 1.0 + lam / 3.0 + lam * lam / 5.0
+    else:
+        s = math.sqrt(lam)
+        g = (2.0 * s * math.atanh(s) + math.log1p(-lam)) / lam
+        dI = math.atanh(s) / s
+    return f_iso * g, f_iso / h0 * (2.0 * dI - g), c_iso * dI
+
+
+# ------------------------------------------------------------------ kernels
+
+
+@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
+def hertz_force(delta, delta_dot, K, alpha):
+    """Hunt-Crossley Hertz force ``K delta^1.5 (1 + alpha delta_dot)``, >= 0; 0 for delta <= 0."""
+    if delta <= 0.0:
+        return 0.0
+    f = K * delta * math.sqrt(delta) * (1.0 + alpha * delta_dot)
+    return f if f > 0.0 else 0.0
+
+
+@njit(**_JIT)
+def thornton_force(delta, delta_max, p):
+    """Elastic-perfectly plastic sphere contact (Thornton 1997), without damping.
+
+    Returns ``(F, dF/ddelta, phase)`` for the solid approach ``delta`` and the
+    largest approach so far ``delta_max`` (parameters ``p`` from
+    :func:`ball_ball_parameters`).  phase: 2 elastic, 3 plastic loading, 4
+    recovery (below delta_max after yielding)."""
+    if delta <= 0.0:
+        return 0.0, 0.0, PHASE_SEPARATED
+    K, R, es, py, dy, Fy = p[BB_K], p[BB_R], p[BB_ESTAR], p[BB_PY], p[BB_DY], p[BB_FY]
+    if delta <= dy and delta_max <= dy:
+        s = math.sqrt(delta)
+        return K * delta * s, 1.5 * K * s, PHASE_ELASTIC
+    if delta >= delta_max:  # on the loading envelope, beyond yield
+        if delta <= dy:
+            s = math.sqrt(delta)
+            return K * delta * s, 1.5 * K * s, PHASE_ELASTIC
+        return Fy + math.pi * py * R * (delta - dy), math.pi * py * R, PHASE_PLASTIC
+    Fm = Fy + math.pi * py * R * (delta_max - dy)
+    am2 = (2.0 * Fm + Fy) / (2.0 * math.pi * py)
+    Rp = 4.0 * es * am2 * math.sqrt(am2) / (3.0 * Fm)
+    dp = delta_max - am2 / Rp
+    x = delta - dp
+    if x <= 0.0:
+        return 0.0, 0.0, PHASE_SEPARATED
+    Kp = 4.0 / 3.0 * es * math.sqrt(Rp)
+    s = math.sqrt(x)
+    return Kp * x * s, 1.5 * Kp * s, PHASE_RECOVERY
+
+
+@njit(**_JIT)
+def residual_indentation(delta_max, p):
+    """delta_p [m] left after unloading from ``delta_max`` (0 if never yielded)."""
+    dy = p[BB_DY]
+    if delta_max <= dy:
+        return 0.0
+    R, es, py, Fy = p[BB_R], p[BB_ESTAR], p[BB_PY], p[BB_FY]
+    Fm = Fy + math.pi * py * R * (delta_max - dy)
+    am2 = (2.0 * Fm + Fy) / (2.0 * math.pi * py)
+    Rp = 4.0 * es * am2 * math.sqrt(am2) / (3.0 * Fm)
+    return delta_max - am2 / Rp
+
+
+@njit(**_JIT)
+def squeeze_film_closed_form(h, v, p):
+    """Rigid isoviscous squeeze film between two spheres (R_eff = R/2) and its
+    derivative d/dh: ``C0 v [1/(h + h_r) - 1/(h_cut + h_r)]`` for v > 0 and
+    h < h_cut, else 0 (cavitated during separation; starved beyond h_cut).
+
+    Reynolds' sphere-plane squeeze film F = 6 pi eta R^2 v/h (h << R) with
+    the rupture thickness h_r as an offset that bounds it at contact."""
+    if v <= 0.0 or h >= p[BB_HCUT]:
+        return 0.0, 0.0
+    hr = p[BB_HR]
+    inv = 1.0 / (h + hr)
+    return p[BB_C0] * v * (inv - 1.0 / (p[BB_HCUT] + hr)), -p[BB_C0] * v * inv * inv
