@@ -373,6 +373,8 @@ def _interrupted(exc: BaseException) -> bool:
 
 
 _program = False  # main() runs as the program (argv from sys.argv), not called by Python code
+_main_pid = os.getpid()  # the process that prints "lubedyn: interrupted" (not a forked child)
+_exiting = False
 
 
 def _exit_interrupted() -> int:
@@ -387,6 +389,12 @@ def _exit_interrupted() -> int:
     Ending at once loses nothing: outputs are written atomically, a staging folder of a killed run is
     removed by the next run, map points are stored as they are solved, and map workers die with
     their parent."""
+    global _exiting
+    if _program and (_exiting or os.getpid() != _main_pid):
+        # a second signal while exiting, or a forked child of a library that inherited the handler:
+        # the line is the parent's to print, once
+        os._exit(EXIT_INTERRUPTED)
+    _exiting = True
     _error_line("lubedyn: interrupted")
     if _program:
         outputs = sys.modules.get("coupling.outputs")
@@ -441,10 +449,10 @@ def main(argv=None) -> int:
     With ``argv`` None (the program: the console script, ``python -m coupling.cli``) an interrupt
     ends the process at once (:func:`_exit_interrupted`); called with a list, it raises
     KeyboardInterrupt through the command and returns 130."""
-    global _program
+    global _program, _main_pid, _exiting
     os.environ.setdefault("MPLBACKEND", "Agg")
     args = _parser().parse_args(argv)
-    _program = argv is None
+    _program, _main_pid, _exiting = argv is None, os.getpid(), False
     with _sigint_flag():
         try:
             with _logging_to_stderr(getattr(args, "verbose", 0)):

@@ -85,8 +85,9 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationEr
 from pydantic_core import PydanticCustomError
 
 from lubrication.errors import InputError, did_you_mean
-
 from lubrication.laws.bearing import STRIBECK
+from lubrication.laws.lubricant import DowsonHigginson
+
 from .units import UnitError, parse_quantity, si_unit
 
 SCENES = ("film", "ehl", "map", "dynamics")
@@ -372,8 +373,8 @@ class DensityModel(_Model):
                 if getattr(self, key) is not None:
                     raise rule(key, getattr(self, key), "is not used by law = 'incompressible'")
         else:
-            self.a = 0.6e-9 if self.a is None else self.a
-            self.b = 1.7e-9 if self.b is None else self.b
+            self.a = DowsonHigginson.a if self.a is None else self.a  # the law's published constants
+            self.b = DowsonHigginson.b if self.b is None else self.b
         return self
 
 

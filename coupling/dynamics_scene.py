@@ -45,8 +45,8 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from lubrication.errors import ConvergenceError, InputError
-
 from lubrication.laws import bearing as bearings
+
 from . import outputs
 from .config import CASES_DIR, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
 

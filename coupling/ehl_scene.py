@@ -34,12 +34,12 @@ import math
 import time
 from dataclasses import dataclass, field
 
+from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, multigrid_grid, solve_ehl
+from lubrication.errors import InputError
+from lubrication.laws import bearing as bearings
 from lubrication.laws import contact as hertz
 from lubrication.laws import film as film_formulas
-from lubrication.errors import InputError
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, multigrid_grid, solve_ehl
 
-from lubrication.laws import bearing as bearings
 from . import limits, outputs, validity
 from .config import EHLCase, resolved_toml
 

@@ -154,7 +154,8 @@ class Incompressible:
 
 @dataclass(frozen=True)
 class DowsonHigginson:
-    """rho0 (1 + a p / (1 + b p)); ``rho0`` [kg/m^3], a, b [1/Pa]."""
+    """rho0 (1 + a p / (1 + b p)); ``rho0`` [kg/m^3], a, b [1/Pa] (Dowson & Higginson 1966, *Elasto-
+    hydrodynamic Lubrication*: a = 0.6e-9, b = 1.7e-9 1/Pa for mineral oils, rho -> 1.353 rho0 as p -> inf)."""
 
     rho0: float
     a: float = 0.6e-9
