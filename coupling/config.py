@@ -88,6 +88,7 @@ from lubrication.errors import InputError, did_you_mean
 from lubrication.laws.bearing import STRIBECK
 from lubrication.laws.lubricant import DowsonHigginson
 
+from .parameters import apply_parameter_set
 from .units import UnitError, parse_quantity, si_unit
 
 SCENES = ("film", "ehl", "map", "dynamics")
@@ -1175,7 +1176,9 @@ def read_toml(path) -> dict:
 
 
 def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
-    """Merge the smoke table (if ``smoke``) and the overrides, then validate.
+    """Merge the smoke table (if ``smoke``) and the overrides, fill in the values of the case's
+    parameter set (``parameters = "Zhang2024"``: :func:`coupling.parameters.apply_parameter_set`; the
+    file and the overrides win), then validate.
 
     Overrides of the ``[smoke]`` table itself (``--set smoke.mesh.nx=8``) are applied to it before
     it is merged, so that they take part in the smoke variant (and its validation) as if the file
@@ -1195,6 +1198,10 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
     if scene not in SCENES:
         raise CaseError(f"scene = {_show(scene)} is not allowed; choose one of {', '.join(map(repr, SCENES))}"
                         + did_you_mean(scene, SCENES + PLANNED_SCENES))
+    try:
+        raw = apply_parameter_set(raw)
+    except InputError as exc:
+        raise CaseError(str(exc)) from None
     model = case_model(scene)
     try:
         return model.model_validate(raw)

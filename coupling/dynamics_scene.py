@@ -62,27 +62,27 @@ PositiveTime = Q("time", gt=0)
 
 # ---------------------------------------------------------------------------- case model
 class BearingTable(_Model):
-    """Geometry, materials and masses (defaults: paper B Tables 1, 2 and 4;
-    the ring mass, rotor inertia and ring inertia are not given in the paper)."""
+    """Geometry, materials and masses.  No paper data as defaults: a case names its parameter set
+    (``parameters = "Zhang2024"``, :mod:`coupling.parameters`) or gives every value."""
 
-    n_balls: PositiveInt = 14
-    ball_diameter: PositiveLength = 9.525e-3
-    pitch_diameter: PositiveLength = 46.005e-3
-    inner_groove_radius: PositiveLength = 4.905e-3
-    outer_groove_radius: PositiveLength = 4.953e-3
+    n_balls: PositiveInt
+    ball_diameter: PositiveLength
+    pitch_diameter: PositiveLength
+    inner_groove_radius: PositiveLength
+    outer_groove_radius: PositiveLength
     diametral_clearance: Q("length", ge=0) = 0.0
-    ball_modulus: Q("pressure", gt=0) = 207e9
-    ball_poisson: Q("dimensionless", gt=-1, lt=0.5) = 0.29
-    ring_modulus: Q("pressure", gt=0) = 208e9
-    ring_poisson: Q("dimensionless", gt=-1, lt=0.5) = 0.3
+    ball_modulus: Q("pressure", gt=0)
+    ball_poisson: Q("dimensionless", gt=-1, lt=0.5)
+    ring_modulus: Q("pressure", gt=0)
+    ring_poisson: Q("dimensionless", gt=-1, lt=0.5)
     ball_density: Q("density", gt=0) = 7850.0
     ball_mass: Q("mass", gt=0) | None = None
-    ring_mass: Q("mass", gt=0) = 3.0
-    ring_inertia: Q("moment of inertia", gt=0) = 1.45e-5
-    rotor_inertia: Q("moment of inertia", gt=0) = 2e-3
+    ring_mass: Q("mass", gt=0)
+    ring_inertia: Q("moment of inertia", gt=0)
+    rotor_inertia: Q("moment of inertia", gt=0)
     # the rings' outer diameter and bore (6206 catalogue: 62 mm, 30 mm): they bound the slot depth
-    outer_diameter: PositiveLength = 62e-3
-    bore: PositiveLength = 30e-3
+    outer_diameter: PositiveLength
+    bore: PositiveLength
 
     @model_validator(mode="after")
     def _geometry(self):
@@ -119,13 +119,13 @@ class BearingTable(_Model):
 
 
 class SlotsTable(_Model):
-    """Local functional slots (paper B Table 4).  ``azimuths = []``: no slot."""
+    """Local functional slots (paper B: :mod:`coupling.parameters.zhang2024`).  ``azimuths = []``: no slot."""
 
-    race: Literal["outer", "inner"] = "outer"
-    azimuths: list[Q("angle")] = Field(default_factory=lambda: [math.radians(270.0)])
-    width: PositiveLength = 3.5e-3
-    length: PositiveLength = 11.5e-3
-    depth: PositiveLength = 1e-3
+    race: Literal["outer", "inner"]
+    azimuths: list[Q("angle")]
+    width: PositiveLength
+    length: PositiveLength
+    depth: PositiveLength
     edge_radius: PositiveLength = 2e-4
 
 
@@ -135,9 +135,9 @@ class OperatingTable(_Model):
     ``speed``) or "free" (no rotor)."""
 
     scenario: Literal["drop", "steady", "free"] = "drop"
-    speed: Q("angular velocity", gt=0) = 10000 * 2 * math.pi / 60
-    radial_load: Force = 2000.0
-    axial_load: Force = 200.0
+    speed: Q("angular velocity", gt=0)
+    radial_load: Force
+    axial_load: Force
     gravity: Q("acceleration", ge=0) = 9.81
     drop_speed: Q("velocity", ge=0) = 0.0
     rotor_friction: Q("dimensionless", ge=0) = 0.1
@@ -170,8 +170,8 @@ class FilmsTable(_Model):
     ball_ball: Literal["none", "closed_form", "map"] = "closed_form"
     map: str | None = None
     race: Literal["none", "closed_form"] = "none"  # EHL films on the ball-race contacts (Hamrock-Dowson)
-    pressure_viscosity: Q("inverse pressure", ge=0) = 1.85e-8
-    viscosity: Q("dynamic viscosity", gt=0) = 0.050
+    pressure_viscosity: Q("inverse pressure", ge=0)
+    viscosity: Q("dynamic viscosity", gt=0)
     rupture_thickness: PositiveLength = 1e-7
     friction_film: Q("dimensionless", ge=0) = 0.03
     friction_boundary: Q("dimensionless", ge=0) = 0.1
@@ -221,11 +221,11 @@ class DynamicsCase(_Model):
 
     scene: Literal["dynamics"]
     description: str = ""
-    bearing: BearingTable = Field(default_factory=BearingTable)
-    slots: SlotsTable = Field(default_factory=SlotsTable)
-    operating: OperatingTable = Field(default_factory=OperatingTable)
+    bearing: BearingTable
+    slots: SlotsTable
+    operating: OperatingTable
     model: ModelTable = Field(default_factory=ModelTable)
-    films: FilmsTable = Field(default_factory=FilmsTable)
+    films: FilmsTable
     integrator: IntegratorTable = Field(default_factory=IntegratorTable)
     analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)

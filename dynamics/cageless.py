@@ -831,18 +831,23 @@ def _traction_arrays(maps):
     return axes[0], axes[1], axes[2], np.ascontiguousarray(np.stack(vals)), opts
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class CagelessBearing:
-    """Cage-less deep-groove ball bearing (SI units; defaults: paper B, Tables 1, 2, 4).
+    """Cage-less deep-groove ball bearing (SI units).
+
+    The bearing's data (geometry, materials, masses, loads, speed, oil, slots) have no defaults:
+    paper B's come from its parameter set, ``coupling.parameters.zhang2024.cageless_bearing()``
+    (Tables 1, 2, 4 and the values it had to assume); the defaults left are model options and
+    numerical settings.
 
     Geometry: ``n_balls`` Z, ``ball_diameter`` D, ``pitch_diameter`` d_m,
     groove radii r_i, r_o (groove bottoms at d_m/2 -+ D/2 - P_d/4, P_d the
-    ``diametral_clearance``).  Materials: E, nu of the balls (207 GPa, 0.29)
-    and rings (208 GPa, 0.3; Table 2).  ``ball_mass`` None: from
-    ``ball_density`` (3.55 g; the paper prints 0.01 kg).  ``ring_mass``: inner
-    ring plus the rotor share it carries (not given in the paper: 3 kg
-    assumed); ``ring_inertia`` the inner ring alone about its axis (6206 inner
-    ring ~1.45e-5 kg m^2); ``rotor_inertia`` (inf: driven rotor).
+    ``diametral_clearance``).  Materials: E, nu of the balls and the rings.
+    ``ball_mass`` None: from ``ball_density``.  ``ring_mass``: inner ring plus
+    the rotor share it carries; ``ring_inertia`` the inner ring alone about its
+    axis; ``rotor_inertia`` (inf: driven rotor).  Slots: ``slot_azimuths_deg``
+    (empty: none) on ``slot_race``, each ``slot_width`` x ``slot_length`` x
+    ``slot_depth``.
     Options: ``dof`` ("6dof", "planar"), ``film`` ("none", "closed_form",
     "map" with ``film_map``), ``scenario`` ("steady", "drop", "free"),
     ``traction`` ("closed_form"; "map" is a reserved slot), ``hertz_method``
@@ -852,25 +857,25 @@ class CagelessBearing:
     diameters; 40 deg assumed): a load that needs more is refused.
     """
 
-    n_balls: int = 14
-    ball_diameter: float = 9.525e-3
-    pitch_diameter: float = 46.005e-3
-    inner_groove_radius: float = 4.905e-3
-    outer_groove_radius: float = 4.953e-3
+    n_balls: int
+    ball_diameter: float
+    pitch_diameter: float
+    inner_groove_radius: float
+    outer_groove_radius: float
     diametral_clearance: float = 0.0
-    ball_modulus: float = 207e9
-    ball_poisson: float = 0.29
-    ring_modulus: float = 208e9
-    ring_poisson: float = 0.3
+    ball_modulus: float
+    ball_poisson: float
+    ring_modulus: float
+    ring_poisson: float
     ball_density: float = 7850.0
     ball_mass: float | None = None
-    ring_mass: float = 3.0
-    ring_inertia: float = 1.45e-5
-    rotor_inertia: float = 2e-3
-    radial_load: float = 2000.0
-    axial_load: float = 200.0
+    ring_mass: float
+    ring_inertia: float
+    rotor_inertia: float
+    radial_load: float
+    axial_load: float
     gravity: float = 9.81
-    speed_rpm: float = 10000.0
+    speed_rpm: float
     scenario: str = "steady"
     drop_speed: float = 0.0
     rotor_friction: float = 0.1
@@ -889,8 +894,8 @@ class CagelessBearing:
     film: str = "closed_form"
     film_map: tuple | None = None
     film_map_speed_axis: str = "squeeze_number"
-    pressure_viscosity: float = 1.85e-8
-    viscosity: float = 0.050
+    pressure_viscosity: float
+    viscosity: float
     film_rupture_thickness: float = 1e-7
     film_cutoff_gap: float | None = None
     yield_stress: float | None = 1.7e9
@@ -899,11 +904,11 @@ class CagelessBearing:
     ball_ball_mu_boundary: float = 0.1
     ball_ball_slip_regularisation: float = 0.01
     plastic_memory_time: float = 1e-4
-    slot_azimuths_deg: tuple = (270.0,)
-    slot_race: str = "outer"
-    slot_width: float = 3.5e-3
-    slot_length: float = 11.5e-3
-    slot_depth: float = 1e-3
+    slot_azimuths_deg: tuple
+    slot_race: str
+    slot_width: float
+    slot_length: float
+    slot_depth: float
     slot_edge_radius: float = 2e-4
     slot_blend: float = 2e-4
     quaternion_stabilisation: float = 10.0

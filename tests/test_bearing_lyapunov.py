@@ -12,13 +12,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dynamics.cageless import CagelessBearing, rhs, rhs_scaled
+from dynamics.cageless import rhs, rhs_scaled
 from dynamics.lyapunov import lyapunov_spectrum
+from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def conservative():
-    model = CagelessBearing(n_balls=6, dof="planar", axial_load=0.0, scenario="steady", race_damping=0.0,
+    model = paper_b(n_balls=6, dof="planar", axial_load=0.0, scenario="steady", race_damping=0.0,
                             traction_limit=0.0, ball_ball=False, slot_azimuths_deg=())
     y0 = model.initial_state()
     y0[4] += 0.01  # kick the inner ring (0.01 m/s) so that the contacts oscillate

@@ -14,6 +14,7 @@ from dynamics import cageless as cg
 from dynamics.errors import DynamicsInputError
 from dynamics.integrators import integrate
 from lubrication.laws import contact as hertz
+from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
 FR = 2000.0
 
@@ -30,7 +31,7 @@ def settled():
     """Planar bearing at rest, zero clearance, loaded suddenly by F_r from the unloaded
     geometry, settled by the Hunt-Crossley contact damping (alpha = 2 s/m; the
     ring's damping ratio is ~0.2) over 5 ms."""
-    model = cg.CagelessBearing(dof="planar", axial_load=0.0, radial_load=FR, gravity=0.0, slot_azimuths_deg=(),
+    model = paper_b(dof="planar", axial_load=0.0, radial_load=FR, gravity=0.0, slot_azimuths_deg=(),
                                speed_rpm=0.0, race_damping=2.0, ring_mass=0.5)
     res, diag, _ = _run(model, model.initial_state(settle=False), 5e-3, 1e-6, n_out=51)
     return model, res, diag
@@ -92,7 +93,7 @@ def test_ball_train_speed_epicyclic(dof):
     """Balls start at rest on a ring turning at 1000 rpm (preload 8 um, no radial
     load, no gravity): traction drives them to free rolling; with no cage and no drag
     the steady ball train runs at omega_i (1 - D/d_m)/2 and spins at -omega_c d_m/D."""
-    model = cg.CagelessBearing(dof=dof, axial_load=0.0, radial_load=0.0, gravity=0.0, slot_azimuths_deg=(),
+    model = paper_b(dof=dof, axial_load=0.0, radial_load=0.0, gravity=0.0, slot_azimuths_deg=(),
                                speed_rpm=1000.0, diametral_clearance=-8e-6, traction_limit=0.3, ball_ball=False)
     y0 = model.initial_state()
     for j in range(model.n_balls):
@@ -114,7 +115,7 @@ def test_frictionless_undamped_run_conserves_energy_and_angular_momentum(dof):
     neighbours collide elastically, Hertz without film, plasticity, damping or
     friction).  The mechanical energy and the angular momentum about the axis
     are invariants (the outer ring is fixed, its forces pass through the axis)."""
-    model = cg.CagelessBearing(dof=dof, axial_load=0.0, radial_load=0.0, gravity=0.0, slot_azimuths_deg=(),
+    model = paper_b(dof=dof, axial_load=0.0, radial_load=0.0, gravity=0.0, slot_azimuths_deg=(),
                                scenario="free", diametral_clearance=-8e-6, traction_limit=0.0, race_damping=0.0,
                                film="none", yield_stress=None, ball_ball_mu_boundary=0.0, ball_ball_mu_film=0.0)
     y0 = model.initial_state()
@@ -146,7 +147,7 @@ def test_frictionless_undamped_run_conserves_energy_and_angular_momentum(dof):
 def test_rotor_drop_friction_law():
     """Rotor drop: while the rotor slips on the inner ring (tanh ~ 1) it decelerates
     at mu F_r r_c/J_rotor exactly, whatever the balls do."""
-    model = cg.CagelessBearing(scenario="drop", speed_rpm=10000.0)
+    model = paper_b(scenario="drop", speed_rpm=10000.0)
     y0 = model.initial_state()
     assert y0[7] == 0.0 and y0[8] == pytest.approx(10000 * math.pi / 30)
     # dt = 1 us: at 2 us RK4 is beyond its real-axis limit for the race traction of the balls at rest
@@ -163,7 +164,7 @@ def test_rotor_drop_friction_law():
 def test_slot_takes_groove_support_away():
     """The bottom ball over the outer-ring slot loses its groove contact and rests on
     the slot edges, the radial load moves to its neighbours."""
-    plain = cg.CagelessBearing(dof="planar", axial_load=0.0, slot_azimuths_deg=(), scenario="drop")
+    plain = paper_b(dof="planar", axial_load=0.0, slot_azimuths_deg=(), scenario="drop")
     slot = plain.replace(slot_azimuths_deg=(270.0,))
     d0 = cg.forces(0.0, plain.initial_state(), plain.args())[0]
     d1 = cg.forces(0.0, slot.initial_state(), slot.args())[0]
@@ -174,7 +175,7 @@ def test_slot_takes_groove_support_away():
 @pytest.mark.parametrize("dof", ["planar", "6dof"])
 def test_kernel_compiled_matches_python(dof):
     kw = dict(axial_load=0.0) if dof == "planar" else {}
-    model = cg.CagelessBearing(dof=dof, scenario="drop", **kw)
+    model = paper_b(dof=dof, scenario="drop", **kw)
     y = model.initial_state()
     b = model.ball_offset(1)
     y[b + 3 if dof == "planar" else b + 8] += 5.0  # a ball moving towards its neighbour
@@ -214,7 +215,7 @@ def test_slot_weight_skip_keeps_every_slot_point(compiled, race):
     """The rhs skips points far from a slot with a dot product before its atan2 (a 2.6x faster rhs
     came partly from that); no point the arc-length test keeps may be lost: points at
     |s| = far (1 -+ 1e-6), inside the slot and all round the race, against a numpy reference."""
-    model = cg.CagelessBearing(slot_azimuths_deg=(270.0, 30.0), slot_race=race)
+    model = paper_b(slot_azimuths_deg=(270.0, 30.0), slot_race=race)
     a = model.args()
     P, slots = a[1], a[3]
     theta = 0.7 if race == "inner" else 0.0  # an inner-ring slot turns with the ring
@@ -241,14 +242,14 @@ def test_slot_weight_skip_keeps_every_slot_point(compiled, race):
 
 def test_bad_input():
     with pytest.raises(DynamicsInputError, match="do not fit the pitch circle"):
-        cg.CagelessBearing(n_balls=16)
+        paper_b(n_balls=16)
     with pytest.raises(DynamicsInputError, match="axial_load"):
-        cg.CagelessBearing(dof="planar")
+        paper_b(dof="planar")
     with pytest.raises(DynamicsInputError, match="did you mean '6dof'"):
-        cg.CagelessBearing(dof="6dfo")
+        paper_b(dof="6dfo")
     with pytest.raises(DynamicsInputError, match="film_map"):
-        cg.CagelessBearing(film="map")
+        paper_b(film="map")
     with pytest.raises(DynamicsInputError, match="unknown bearing parameter 'radial_lod'"):
-        cg.CagelessBearing().replace(radial_lod=1.0)
+        paper_b().replace(radial_lod=1.0)
     with pytest.raises(DynamicsInputError, match="axial_load = 1e[+]06 N"):
-        cg.CagelessBearing(axial_load=1e6, slot_azimuths_deg=()).initial_state()
+        paper_b(axial_load=1e6, slot_azimuths_deg=()).initial_state()

@@ -18,7 +18,7 @@ from coupling import film_points as fp
 from coupling.config import CASES_DIR
 from coupling.maps import FilmMap
 from dynamics import contacts as C
-from dynamics.cageless import CagelessBearing
+from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +26,7 @@ def polar():
     fmap = FilmMap.load(CASES_DIR / "maps" / "ball_ball.npz")
     assert fmap.is_polar()
     params = fmap.provenance.get("params") or fp.ball_ball_default_params()
-    model = CagelessBearing(n_balls=6, dof="planar", axial_load=0.0, film="map",
+    model = paper_b(n_balls=6, dof="planar", axial_load=0.0, film="map",
                             film_map=fmap.dynamics_film_map(), viscosity=float(params["eta0"]),
                             pressure_viscosity=float(params["alpha"]))
     args = model.args()

@@ -1,5 +1,5 @@
 """Closed-form EHL films on the ball-race contacts of the cage-less bearing
-(CagelessBearing(race_film="closed_form")).
+(paper_b(race_film="closed_form")).
 
 (1) The film thickness is Hamrock-Dowson's, recomputed here through an
 independent path (lubrication.laws.contact ellipse, lubrication.laws.film).
@@ -14,13 +14,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dynamics.cageless import D_QI, D_QO, CagelessBearing, forces
+from dynamics.cageless import D_QI, D_QO, forces
 from lubrication.laws import contact as hertz
 from lubrication.laws.film import hamrock_dowson_central
+from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
 
 def test_film_thickness_is_hamrock_dowson():
-    m = CagelessBearing(race_film="closed_form", scenario="steady")
+    m = paper_b(race_film="closed_form", scenario="steady")
     D, dm = m.ball_diameter, m.pitch_diameter
     ue = 0.25 * dm * (1 - (D / dm) ** 2) * m.omega_inner  # epicyclic entrainment speed, 11.53 m/s
     got = m.race_film_thickness(ue)
@@ -37,11 +38,11 @@ def test_film_thickness_is_hamrock_dowson():
 
 def test_a_film_acts_as_a_negative_clearance_on_the_loads():
     kw = dict(scenario="steady", slot_azimuths_deg=(), ball_ball=False)
-    wet = CagelessBearing(race_film="closed_form", **kw)
+    wet = paper_b(race_film="closed_form", **kw)
     D, dm = wet.ball_diameter, wet.pitch_diameter
     ue = 0.25 * dm * (1 - (D / dm) ** 2) * wet.omega_inner
     h_total = sum(wet.race_film_thickness(ue))
-    dry = CagelessBearing(race_film="none", diametral_clearance=-2 * h_total, **kw)
+    dry = paper_b(race_film="none", diametral_clearance=-2 * h_total, **kw)
     loads = []
     for model in (wet, dry):
         diag, _, _ = forces(0.0, model.initial_state(), model.args())
@@ -50,6 +51,6 @@ def test_a_film_acts_as_a_negative_clearance_on_the_loads():
     assert qi_w.max() == pytest.approx(qi_d.max(), rel=2e-3)
     assert np.allclose(qo_w, qo_d, rtol=0, atol=2e-3 * qo_d.max())
     # and the film does change the loads: the preload spreads them over more balls
-    plain = CagelessBearing(race_film="none", **kw)
+    plain = paper_b(race_film="none", **kw)
     diag, _, _ = forces(0.0, plain.initial_state(), plain.args())
     assert (qi_w > 1.0).sum() > (diag[:, D_QI] > 1.0).sum() or qi_w.max() < 0.99 * diag[:, D_QI].max()

@@ -1,0 +1,81 @@
+"""Paper A: Wu, Xu & Deng, "Analysis of Dynamic Characteristics of Grease-Lubricated Tapered Roller
+Bearings", *Shock and Vibration* 2018, 7183042.
+
+Table 1 (bearing, cage, materials, grease at 30 C), Table 2 (Herschel-Bulkley rheology of three
+greases at 15-70 C) and the operating points of Figs. 5-16.  The paper's own inconsistencies, and
+the choices made here, are those of ``shared/reference/paper_A_notes.md`` (section 2): the two
+roller end diameters are printed swapped (the large end is 24.76 mm); the pitch diameter is the
+sum of the two raceway radii; what the paper does not give is ``source="assumed"`` with a reason.
+The tapered-roller model that uses all of it is still to come; today the roller EHL cases use the
+raceway, roller and grease values.
+"""
+from . import Parameter as P
+
+NAME = "Wu2018"
+CITATION = ("Z.-H. Wu, Y.-Q. Xu, S.-E. Deng, Shock and Vibration 2018, 7183042 "
+            "(grease-lubricated tapered roller bearing)")
+
+#: Herschel-Bulkley tau = tau_y + phi |D|^n of Table 2: grease -> [(T [C], tau_y [Pa], phi [Pa s^n], n)]
+GREASE_TABLE = {
+    "polyurea": [(15, 501.7, 11.87, 0.7731), (30, 351.8, 8.44, 0.7196), (50, 305.5, 6.16, 0.6621),
+                 (70, 188.5, 6.10, 0.7378)],
+    "lithium": [(15, 904.5, 54.35, 0.3053), (30, 805.2, 46.23, 0.3125), (50, 710.4, 41.13, 0.3151),
+                (70, 339.8, 52.96, 0.3203)],
+    "calcium": [(15, 990.8, 64.82, 0.3349), (30, 649.5, 49.23, 0.5344), (50, 336.1, 30.59, 0.5256),
+                (70, 296.0, 35.88, 0.4356)],
+}
+
+VALUES = {
+    # bearing (Table 1)
+    "n_rollers": P(17, "count", "Table 1"),
+    "effective_length": P("42.06 mm", "length", "Table 1"),
+    "roller_large_end_diameter": P("24.76 mm", "length", "Table 1",
+                                   "printed as the small end: the two end diameters are swapped in print "
+                                   "(half-taper atan(3.455/42.06) = 4.70 deg ~ (15 - 5)/2 deg)"),
+    "roller_small_end_diameter": P("17.85 mm", "length", "Table 1", "printed as the large end (see above)"),
+    "roller_mean_diameter": P("21.305 mm", "length", "Table 1", "(24.76 + 17.85)/2"),
+    "roller_end_sphere_radius": P("136.20 mm", "length", "Table 1"),
+    "outer_contact_angle": P("15 deg", "angle", "Table 1", "cup raceway"),
+    "inner_contact_angle": P("5 deg", "angle", "Table 1", "cone raceway"),
+    "flange_contact_angle": P("83 deg", "angle", "Table 1"),
+    "outer_raceway_radius": P("99.52 mm", "length", "Table 1"),
+    "inner_raceway_radius": P("78.48 mm", "length", "Table 1"),
+    "pitch_diameter": P("178.00 mm", "length", "Table 1", "2 x (78.48 + 99.52)/2: the raceway radii's mean"),
+    "guide_land_clearance": P("0.5 mm", "length", "Table 1",
+                              "read as diametral (0.25 mm radial), as eq. 43's (r_y - r_d)/2 suggests"),
+    "guide_land_width": P("4.93 mm", "length", "Table 1"),
+    "cage_outer_diameter": P("205.76 mm", "length", "Table 1"),
+    "cage_inner_diameter": P("196.10 mm", "length", "Table 1"),
+    "cage_thickness": P("5 mm", "length", "Table 1"),
+    "pocket_clearance": P("0.27 mm", "length", "Table 1"),
+    # materials (Table 1)
+    "steel_modulus": P("205 GPa", "pressure", "Table 1"),
+    "steel_poisson": P(0.3, "dimensionless", "Table 1"),
+    "cage_modulus": P("8.3 GPa", "pressure", "Table 1", "polyamide, inner-ring guided"),
+    "cage_poisson": P(0.28, "dimensionless", "Table 1"),
+    # grease and base oil (Tables 1 and 2)
+    "grease_yield_stress": P("351.8 Pa", "pressure", "Table 1", "polyurea grease at 30 C"),
+    "grease_plastic_viscosity": P(8.44, "dimensionless", "Table 1",
+                                  "phi in Pa s^n (n = 0.7196), polyurea at 30 C; the paper's eqs. 12, 25, 34-35, "
+                                  "40 and 44 use it as a Newtonian viscosity"),
+    "grease_power_law_exponent": P(0.7196, "dimensionless", "Table 1"),
+    "pressure_viscosity": P("4.662e-8 m^2/N", "inverse pressure", "Table 1", "polyurea grease at 30 C only"),
+    "base_oil_viscosity": P("0.1 Pa s", "dynamic viscosity", "assumed",
+                            "not in the paper; a 0.1 Pa s base oil gives a 5.4 um raceway film at 2.4 krpm"),
+    "base_oil_density": P("870 kg/m^3", "density", "assumed", "mineral base oil: not in the paper"),
+    # operating point of Fig. 5
+    "radial_load": P("20 kN", "force", "Fig. 5"),
+    "inner_speed": P("2400 rpm", "angular velocity", "Fig. 5"),
+    "simulated_time": P("0.18 s", "time", "Sec. 4", "from a quasi-static start; means over 0.1-0.18 s"),
+}
+
+#: where each case schema takes each value (the roller EHL contact of the ``ehl`` scene)
+SCENES = {
+    "ehl": {
+        "bearing.element_diameter": "roller_mean_diameter", "bearing.pitch_diameter": "pitch_diameter",
+        "bearing.n_elements": "n_rollers", "bearing.effective_length": "effective_length",
+        "materials.modulus1": "steel_modulus", "materials.poisson1": "steel_poisson",
+        "lubricant.viscosity.eta0": "base_oil_viscosity", "lubricant.viscosity.alpha": "pressure_viscosity",
+        "lubricant.density.rho0": "base_oil_density",
+    },
+}
