@@ -289,6 +289,8 @@ import numpy as np
 
 from lubrication.errors import ConvergenceError, InputError, unknown_choice
 
+from .parameters import printed, si
+
 log = logging.getLogger(__name__)
 
 
@@ -351,30 +353,31 @@ class PointKind:
 
 
 # ---------------------------------------------------------------- paper data
-# Paper B (Zhang et al. 2024), copied from shared/reference/seed_parameters.toml
-# ([cageless_ball_bearing], Tables 1, 2, 4); never read at run time.
-BALL_RADIUS = 4.7625e-3  # m, Table 2
-BALL_DIAMETER = 9.525e-3  # m, Table 4
-PITCH_DIAMETER_6206 = 46.005e-3  # m, Table 4
-INNER_GROOVE_RADIUS = 4.905e-3  # m, Table 4
-OUTER_GROOVE_RADIUS = 4.953e-3  # m, Table 4
-N_BALLS = 14  # Table 2
-BALL_MODULUS, BALL_POISSON = 207e9, 0.29  # Pa, Tables 1 and 2
-RING_MODULUS, RING_POISSON = 208e9, 0.3  # Pa, Table 2 (208,000 MPa)
-OIL_ETA0 = 0.050  # Pa s, Table 1
-OIL_ALPHA = 1.85e-8  # m^2/N, Table 1
-OIL_RHO0 = 992.0  # kg/m^3, Table 1
-SHAFT_SPEED_B = 10000 * 2 * math.pi / 60  # rad/s: the film-solution speed of paper B
-# Paper A (Wu, Xu & Deng 2018), [tapered_roller_bearing]: Table 1 (end diameters
-# swapped as noted in the parameter file), figure 5 operating point.
-ROLLER_MEAN_DIAMETER = 0.5 * (24.76e-3 + 17.85e-3)  # m
-ROLLER_PITCH_DIAMETER = 2 * 0.5 * (78.48e-3 + 99.52e-3)  # m, raceway radii
-ROLLER_INNER_CONTACT_ANGLE = math.radians(5.0)
-ROLLER_EFFECTIVE_LENGTH = 42.06e-3  # m
-ROLLER_MODULUS, ROLLER_POISSON = 205e9, 0.3
+# The kinds' default parameters come from the papers' parameter sets (coupling.parameters): paper B
+# (Zhang2024: Tables 1, 2, 4) for the ball kinds, paper A (Wu2018: Table 1, figure 5) for the roller.
+BALL_RADIUS = si("Zhang2024", "ball_radius")
+BALL_DIAMETER = si("Zhang2024", "ball_diameter")
+PITCH_DIAMETER_6206 = si("Zhang2024", "pitch_diameter")
+INNER_GROOVE_RADIUS = si("Zhang2024", "inner_groove_radius")
+OUTER_GROOVE_RADIUS = si("Zhang2024", "outer_groove_radius")
+N_BALLS = si("Zhang2024", "n_balls")
+BALL_MODULUS, BALL_POISSON = si("Zhang2024", "ball_modulus"), si("Zhang2024", "ball_poisson")
+RING_MODULUS, RING_POISSON = si("Zhang2024", "ring_modulus"), si("Zhang2024", "ring_poisson")
+OIL_ETA0 = si("Zhang2024", "viscosity")
+OIL_ALPHA = si("Zhang2024", "pressure_viscosity")
+OIL_RHO0 = si("Zhang2024", "density")
+PAPER_B_AXIAL_LOAD = si("Zhang2024", "axial_load")
+SHAFT_SPEED_B = printed("Zhang2024", "speed", "rpm") * 2 * math.pi / 60  # rad/s: the film-solution speed
+ROLLER_MEAN_DIAMETER = si("Wu2018", "roller_mean_diameter")
+ROLLER_PITCH_DIAMETER = si("Wu2018", "pitch_diameter")
+ROLLER_INNER_CONTACT_ANGLE = math.radians(printed("Wu2018", "inner_contact_angle", "deg"))
+ROLLER_EFFECTIVE_LENGTH = si("Wu2018", "effective_length")
+ROLLER_MODULUS, ROLLER_POISSON = si("Wu2018", "steel_modulus"), si("Wu2018", "steel_poisson")
 ROLLER_EYRING_STRESS = 5e6  # Pa, Reynolds-Eyring tau0 of the roller map (assumed; ehl_roller_race_default_params)
-GREASE_ALPHA = 4.662e-8  # m^2/N, Table 1 (polyurea grease, 30 C)
-SHAFT_SPEED_A = 2400 * 2 * math.pi / 60  # rad/s, figure 5
+GREASE_ALPHA = si("Wu2018", "pressure_viscosity")
+ROLLER_BASE_OIL_ETA0 = si("Wu2018", "base_oil_viscosity")  # assumed (paper A gives none)
+ROLLER_BASE_OIL_RHO0 = si("Wu2018", "base_oil_density")  # assumed
+SHAFT_SPEED_A = printed("Wu2018", "inner_speed", "rpm") * 2 * math.pi / 60  # rad/s, figure 5
 
 
 def _reduced_modulus(E1, nu1, E2, nu2):
@@ -776,7 +779,7 @@ def _paper_b_contact_angle() -> float:
     r_i, r_o = INNER_GROOVE_RADIUS, OUTER_GROOVE_RADIUS
     e_star = _reduced_modulus(BALL_MODULUS, BALL_POISSON, RING_MODULUS, RING_POISSON)
     K_n = bearing.deflection_constant(BALL_DIAMETER, PITCH_DIAMETER_6206, r_i, r_o, 0.0, e_star)
-    return bearing.thrust_contact_angle(200.0, N_BALLS, BALL_DIAMETER, r_i, r_o, K_n, 0.0)
+    return bearing.thrust_contact_angle(PAPER_B_AXIAL_LOAD, N_BALLS, BALL_DIAMETER, r_i, r_o, K_n, 0.0)
 
 
 def _ehl_ball_params(race: str) -> dict:
@@ -850,9 +853,9 @@ def ehl_roller_race_default_params() -> dict:
         "radius_x": rx,
         "radius_y": 0.0,
         "e_star": _reduced_modulus(ROLLER_MODULUS, ROLLER_POISSON, ROLLER_MODULUS, ROLLER_POISSON),
-        "eta0": 0.1,
+        "eta0": ROLLER_BASE_OIL_ETA0,
         "alpha": GREASE_ALPHA,
-        "rho0": 870.0,
+        "rho0": ROLLER_BASE_OIL_RHO0,
         "viscosity_law": "barus",
         "density_law": "incompressible",
         "eyring_stress": ROLLER_EYRING_STRESS,

@@ -75,6 +75,16 @@ def si(set_name: str, name: str):
     return values[name].si()
 
 
+def printed(set_name: str, name: str, unit: str) -> float:
+    """The number of parameter ``name`` as printed, which must be in ``unit`` (e.g. ``"rpm"``, ``"deg"``):
+    for callers that convert it themselves (``math.radians``, rpm to rad/s)."""
+    value = parameter_set(set_name).VALUES[name].value
+    number, _, given = str(value).partition(" ")
+    if given != unit:
+        raise InputError(f"parameter {name} of {set_name} is {value!r}, not in {unit}")
+    return float(number)
+
+
 def _get(raw: dict, path: list[str]):
     node = raw
     for part in path:

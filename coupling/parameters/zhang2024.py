@@ -84,18 +84,13 @@ SCENES = {
 }
 
 
-def _rpm(text: str) -> float:
-    """The number of a speed written in rpm (the model's ``speed_rpm``), without a round trip to rad/s."""
-    number, unit = text.split()
-    assert unit == "rpm", text
-    return float(number)
-
-
 def cageless_bearing(**overrides):
     """Paper B's bearing as a :class:`dynamics.cageless.CagelessBearing` (SI values of :data:`VALUES`),
     with ``overrides`` (any field of the model) applied: the Python-side twin of a dynamics case that
     says ``parameters = "Zhang2024"``."""
     from dynamics.cageless import CagelessBearing
+
+    from . import printed
 
     v = {name: p.si() for name, p in VALUES.items()}
     kwargs = dict(
@@ -105,7 +100,7 @@ def cageless_bearing(**overrides):
         ball_poisson=v["ball_poisson"], ring_modulus=v["ring_modulus"], ring_poisson=v["ring_poisson"],
         ball_density=v["ball_density"], ring_mass=v["ring_mass"], ring_inertia=v["ring_inertia"],
         rotor_inertia=v["rotor_inertia"], radial_load=v["radial_load"], axial_load=v["axial_load"],
-        speed_rpm=_rpm(VALUES["speed"].value), viscosity=v["viscosity"],
+        speed_rpm=printed(NAME, "speed", "rpm"), viscosity=v["viscosity"],
         pressure_viscosity=v["pressure_viscosity"], slot_race=v["slot_race"],
         slot_azimuths_deg=tuple(float(a.split()[0]) for a in v["slot_azimuths"]), slot_width=v["slot_width"],
         slot_length=v["slot_length"], slot_depth=v["slot_depth"],
