@@ -88,7 +88,8 @@ from lubrication.errors import InputError, did_you_mean
 from lubrication.laws.bearing import STRIBECK
 from lubrication.laws.lubricant import DowsonHigginson
 
-from .parameters import apply_parameter_set
+from .parameters import SETS as PARAMETER_SETS
+from .parameters import apply_parameter_set, parameter_set
 from .units import UnitError, parse_quantity, si_unit
 
 SCENES = ("film", "ehl", "map", "dynamics")
@@ -1198,6 +1199,7 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
     if scene not in SCENES:
         raise CaseError(f"scene = {_show(scene)} is not allowed; choose one of {', '.join(map(repr, SCENES))}"
                         + did_you_mean(scene, SCENES + PLANNED_SCENES))
+    named_set = raw.get("parameters") is not None
     try:
         raw = apply_parameter_set(raw)
     except InputError as exc:
@@ -1206,7 +1208,13 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
     try:
         return model.model_validate(raw)
     except ValidationError as exc:
-        raise CaseError(format_validation_error(exc, model)) from None
+        text = format_validation_error(exc, model)
+        if " is required" in text and not named_set:
+            sets = [n for n in PARAMETER_SETS if scene in parameter_set(n).SCENES]
+            if sets:
+                text += (f"; or name a paper's values: parameters = {sets[0]!r} (sets for scene = {scene!r}: "
+                         f"{', '.join(map(repr, sets))}; coupling.parameters)")
+        raise CaseError(text) from None
 
 
 def load_case(path, *, smoke: bool = False, overrides=()) -> Case:

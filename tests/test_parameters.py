@@ -1,0 +1,127 @@
+"""Parameter sets (coupling.parameters): each paper's values against the independent transcription of
+its tables in shared/reference/seed_parameters.toml (read here), every value cited, and the case-file
+merge (the set fills, the file and --set overrides win, errors are one line)."""
+import math
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from coupling import parameters as P
+from coupling.config import CaseError, load_case, load_case_text, resolved_toml
+
+SEED = Path(__file__).resolve().parents[2] / "shared" / "reference" / "seed_parameters.toml"
+CASES = Path(__file__).resolve().parents[1] / "cases"
+
+needs_seed = pytest.mark.skipif(not SEED.is_file(), reason="shared/reference/seed_parameters.toml not beside the checkout")
+
+
+@pytest.mark.parametrize("name", list(P.SETS))
+def test_every_value_is_cited_and_converts(name):
+    module = P.parameter_set(name)
+    assert module.NAME == name and module.CITATION
+    for key, p in module.VALUES.items():
+        assert p.source, key
+        if p.source == "assumed":
+            assert p.note, f"{key}: an assumed value says why"
+        p.si()  # converts (a unit of the declared dimension)
+    for scene, mapping in module.SCENES.items():
+        for case_key, pname in mapping.items():
+            assert pname in module.VALUES, (scene, case_key)
+
+
+@needs_seed
+def test_zhang2024_against_the_transcribed_tables():
+    seed = tomllib.loads(SEED.read_text())["cageless_ball_bearing"]
+    si = lambda n: P.si("Zhang2024", n)  # noqa: E731
+    assert si("n_balls") == seed["n_balls"]
+    for key, seed_key in (("ball_diameter", "ball_diameter_mm"), ("ball_radius", "ball_radius_mm"),
+                          ("pitch_diameter", "pitch_diameter_mm"), ("inner_groove_radius", "inner_groove_radius_mm"),
+                          ("outer_groove_radius", "outer_groove_radius_mm"), ("outer_diameter", "outside_diameter_mm"),
+                          ("bore", "bore_mm")):
+        assert si(key) == pytest.approx(seed[seed_key] * 1e-3, rel=1e-15), key
+    assert si("ball_modulus") == pytest.approx(seed["ball_elastic_modulus_GPa"] * 1e9, rel=1e-15)
+    assert si("ring_modulus") == pytest.approx(seed["ring_elastic_modulus_GPa"] * 1e9, rel=1e-15)
+    assert (si("ball_poisson"), si("ring_poisson")) == (seed["ball_poisson"], seed["ring_poisson"])
+    assert (si("radial_load"), si("axial_load")) == (seed["radial_load_N"], seed["axial_load_N"])
+    assert P.printed("Zhang2024", "speed", "rpm") == seed["shaft_speed_rpm"][0]
+    clearance = (seed["outer_groove_bottom_diameter_mm"] - seed["inner_groove_bottom_diameter_mm"]
+                 - 2 * seed["ball_diameter_mm"]) * 1e-3
+    assert si("diametral_clearance") == pytest.approx(clearance, abs=1e-12)
+    slot, oil = seed["functional_slot"], seed["lubricant"]
+    assert (si("slot_width"), si("slot_length"), si("slot_depth")) == pytest.approx(
+        (slot["width_mm"] * 1e-3, slot["length_mm"] * 1e-3, slot["depth_mm"] * 1e-3), rel=1e-15)
+    assert si("viscosity") == oil["viscosity_Pa_s"]
+    assert si("pressure_viscosity") == oil["pressure_viscosity_coefficient_m2_per_N"]
+    assert si("density") == oil["density_kg_per_m3"]
+
+
+@needs_seed
+def test_wu2018_against_the_transcribed_tables():
+    seed = tomllib.loads(SEED.read_text())["tapered_roller_bearing"]
+    si = lambda n: P.si("Wu2018", n)  # noqa: E731
+    assert si("n_rollers") == seed["n_rollers"]
+    # the printed end diameters are swapped (paper_A_notes.md, section 2): the large end is the larger
+    ends = sorted((seed["roller_large_end_diameter_mm"], seed["roller_small_end_diameter_mm"]))
+    assert (si("roller_small_end_diameter"), si("roller_large_end_diameter")) == pytest.approx(
+        (ends[0] * 1e-3, ends[1] * 1e-3), rel=1e-15)
+    assert si("roller_mean_diameter") == pytest.approx(0.5 * sum(ends) * 1e-3, rel=1e-15)
+    assert si("pitch_diameter") == pytest.approx(
+        (seed["outer_raceway_radius_mm"] + seed["inner_raceway_radius_mm"]) * 1e-3, rel=1e-15)
+    for key, seed_key in (("effective_length", "roller_effective_length_mm"),
+                          ("roller_end_sphere_radius", "roller_end_sphere_radius_mm"),
+                          ("guide_land_clearance", "guide_land_clearance_mm"), ("pocket_clearance", "pocket_clearance_mm"),
+                          ("cage_outer_diameter", "cage_outer_diameter_mm"), ("cage_thickness", "cage_thickness_mm")):
+        assert si(key) == pytest.approx(seed[seed_key] * 1e-3, rel=1e-15), key
+    assert P.printed("Wu2018", "outer_contact_angle", "deg") == seed["outer_contact_angle_deg"]
+    assert P.printed("Wu2018", "inner_contact_angle", "deg") == seed["inner_contact_angle_deg"]
+    assert si("steel_modulus") == pytest.approx(seed["roller_race_elastic_modulus_GPa"] * 1e9, rel=1e-15)
+    assert si("cage_modulus") == pytest.approx(seed["cage_elastic_modulus_GPa"] * 1e9, rel=1e-15)
+    grease = seed["grease_30C"]
+    assert si("grease_yield_stress") == grease["yield_stress_Pa"]
+    assert si("grease_plastic_viscosity") == grease["plastic_viscosity_Pa_s_n"]
+    assert si("pressure_viscosity") == grease["pressure_viscosity_coefficient_m2_per_N"]
+    table = seed["grease_table"]
+    for grease_name, rows in P.parameter_set("Wu2018").GREASE_TABLE.items():
+        assert [list(r) for r in rows] == table[grease_name]
+
+
+def test_a_case_takes_the_set_and_overrides_it():
+    base = (CASES / "cageless_6206_10krpm_short.toml").read_text()
+    case = load_case_text(base)
+    assert case.bearing.ball_diameter == 9.525e-3 and case.films.viscosity == 0.05
+    assert case.slots.azimuths == [pytest.approx(math.radians(270.0), rel=1e-14)]
+    over = load_case_text(base, overrides=["bearing.ball_diameter=9 mm", "films.viscosity=0.1 Pa s"])
+    assert over.bearing.ball_diameter == 9e-3 and over.films.viscosity == 0.1
+    assert over.bearing.pitch_diameter == case.bearing.pitch_diameter  # the rest from the set
+    # the resolved case lists every value and is valid without the set
+    again = load_case_text(resolved_toml(case))
+    assert again.bearing == case.bearing and again.films == case.films and again.slots == case.slots
+
+
+def test_the_python_twin_of_a_case_is_the_same_bearing():
+    """coupling.parameters.zhang2024.cageless_bearing() and a case naming Zhang2024 build the same model."""
+    from coupling.dynamics_scene import bearing_kwargs
+    from coupling.parameters.zhang2024 import cageless_bearing
+    from dynamics.cageless import CagelessBearing
+
+    case = load_case(CASES / "cageless_6206_steady.toml")
+    from_case = CagelessBearing(**bearing_kwargs(case))
+    twin = cageless_bearing(scenario="steady", speed_rpm=from_case.speed_rpm)
+    for field in ("n_balls", "ball_diameter", "pitch_diameter", "inner_groove_radius", "outer_groove_radius",
+                  "ball_modulus", "ring_modulus", "ring_mass", "ring_inertia", "rotor_inertia", "radial_load",
+                  "axial_load", "viscosity", "pressure_viscosity", "slot_width", "slot_length", "slot_depth"):
+        assert getattr(twin, field) == getattr(from_case, field), field
+    assert twin.slot_azimuths_deg == pytest.approx(from_case.slot_azimuths_deg, rel=1e-14)
+
+
+@pytest.mark.parametrize("text, match", [
+    ('scene = "dynamics"\nparameters = "Zhang2025"\n', r"parameters = 'Zhang2025' is not allowed; choose one of 'Zhang2024', 'Wu2018'; did you mean 'Zhang2024'\?"),
+    ('scene = "dynamics"\nparameters = 3\n', "parameters = 3 must be the name of a parameter set"),
+    ('scene = "dynamics"\nparameters = "Wu2018"\n', r"parameters = 'Wu2018' does not describe scene = 'dynamics'; it gives values for scene = 'ehl'"),
+    ('scene = "dynamics"\n[operating]\nspeed = "1000 rpm"\n', r"bearing is required.*; or name a paper's values: parameters = 'Zhang2024'"),
+])
+def test_bad_parameter_sets_are_one_line(text, match):
+    with pytest.raises(CaseError, match=match) as info:
+        load_case_text(text)
+    assert "\n" not in str(info.value)
