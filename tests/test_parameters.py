@@ -1,5 +1,5 @@
 """Parameter sets (coupling.parameters): each paper's values against the independent transcription of
-its tables in shared/reference/seed_parameters.toml (read here), every value cited, and the case-file
+its tables in tests/data/seed_parameters.toml (a copy of shared/reference/seed_parameters.toml), every value cited, and the case-file
 merge (the set fills, the file and --set overrides win, errors are one line)."""
 import math
 import tomllib
@@ -10,10 +10,8 @@ import pytest
 from coupling import parameters as P
 from coupling.config import CaseError, load_case, load_case_text, resolved_toml
 
-SEED = Path(__file__).resolve().parents[2] / "shared" / "reference" / "seed_parameters.toml"
+SEED = Path(__file__).resolve().parent / "data" / "seed_parameters.toml"  # the papers' tables, transcribed
 CASES = Path(__file__).resolve().parents[1] / "cases"
-
-needs_seed = pytest.mark.skipif(not SEED.is_file(), reason="shared/reference/seed_parameters.toml not beside the checkout")
 
 
 @pytest.mark.parametrize("name", list(P.SETS))
@@ -30,7 +28,6 @@ def test_every_value_is_cited_and_converts(name):
             assert pname in module.VALUES, (scene, case_key)
 
 
-@needs_seed
 def test_zhang2024_against_the_transcribed_tables():
     seed = tomllib.loads(SEED.read_text())["cageless_ball_bearing"]
     si = lambda n: P.si("Zhang2024", n)  # noqa: E731
@@ -56,7 +53,6 @@ def test_zhang2024_against_the_transcribed_tables():
     assert si("density") == oil["density_kg_per_m3"]
 
 
-@needs_seed
 def test_wu2018_against_the_transcribed_tables():
     seed = tomllib.loads(SEED.read_text())["tapered_roller_bearing"]
     si = lambda n: P.si("Wu2018", n)  # noqa: E731
