@@ -141,6 +141,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 from numba import njit
 
+from lubrication.errors import did_you_mean
 from lubrication.laws import bearing as laws_bearing
 from lubrication.laws import contact as laws_contact
 from lubrication.laws.film import hamrock_dowson_central
@@ -749,10 +750,7 @@ def forces_many(t, Y, args):
 # ----------------------------------------------------------------------------- model builder
 def _check_choice(key, value, allowed):
     if value not in allowed:
-        import difflib
-
-        close = difflib.get_close_matches(str(value), list(allowed), n=2)
-        hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+        hint = did_you_mean(value, allowed, n=2)
         raise DynamicsInputError(f"{key} = {value!r} is not allowed; choose one of {', '.join(map(repr, allowed))}{hint}")
 
 
@@ -1378,11 +1376,8 @@ class CagelessBearing:
         kw = {f.name: getattr(self, f.name) for f in fields(self)}
         unknown = set(changes) - set(kw)
         if unknown:
-            import difflib
-
             key = sorted(unknown)[0]
-            close = difflib.get_close_matches(key, list(kw), n=2)
-            hint = f"; did you mean {' or '.join(map(repr, close))}?" if close else ""
+            hint = did_you_mean(key, kw, n=2)
             raise DynamicsInputError(f"unknown bearing parameter {key!r}{hint}")
         kw.update(changes)
         return CagelessBearing(**kw)
