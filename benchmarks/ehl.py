@@ -23,7 +23,7 @@ Scenes
    extrapolation of the three finest converged grids.  Failures are recorded
    with the solver's message.
 3. The same circular contacts with ``ehl.method = "multigrid"`` (FAS
-   multigrid, lubrication/ehl_multigrid.py), M = 20, 50, 100, 200, 500, 1000
+   multigrid, lubrication/ehl/multigrid.py), M = 20, 50, 100, 200, 500, 1000
    on 65 x 65 ... 513 x 513 nodes: H_c, H_min, cycles, work units, wall and
    CPU time, error against NVM and against the Richardson extrapolation of
    the three finest multigrid grids (129, 257, 513; the reference of both
@@ -57,7 +57,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import _common  # noqa: E402
 
 from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl  # noqa: E402
-from lubrication.ehl_multigrid import MultigridOptions  # noqa: E402
+from lubrication.ehl.multigrid import MultigridOptions  # noqa: E402
 from lubrication.laws.film import moes_line_central, nijenbanning_central  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"

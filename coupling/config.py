@@ -757,10 +757,10 @@ class EHLSolverModel(_Model):
     """EHL solver (:mod:`lubrication.ehl`).  ``method``: ``auto`` (FEM with
     Fischer-Burmeister Newton for points, active-set Newton for lines),
     ``fischer_burmeister``, ``active_set``, or ``multigrid`` (FAS multigrid of
-    :mod:`lubrication.ehl_multigrid`: steady point contacts, grids nx = 16 2^k + 1,
+    :mod:`lubrication.ehl.multigrid`: steady point contacts, grids nx = 16 2^k + 1,
     finite differences; 257 x 257 in 2-3 s).  Newton: relative tolerance,
     iteration limit, step limit (in Hertz pressures); the multigrid method has
-    its own tolerances (:class:`lubrication.ehl_multigrid.MultigridOptions`)."""
+    its own tolerances (:class:`lubrication.ehl.multigrid.MultigridOptions`)."""
 
     method: Literal["auto", "fischer_burmeister", "active_set", "multigrid"] = "auto"
     rtol: Q("dimensionless", gt=0, lt=1) = 1e-7

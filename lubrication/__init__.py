@@ -21,10 +21,10 @@ module             responsibility
 ``closed_form``    analytic film results used for verification
 ``elastic``        half-space deflection by FFT of exact influence
                    coefficients (point and line contacts)
-``ehl``            isothermal EHL line and point contacts: Reynolds FEM +
-                   FFT elasticity + load balance, Newton, traction laws
-``ehl_multigrid``  FAS multigrid EHL point-contact solver (Venner & Lubrecht;
-                   numba line relaxation, FFT deflection)
+``ehl``            isothermal EHL line and point contacts (a package: contact,
+                   options, problem, assembly, newton, multigrid, solve,
+                   budget, checks, solution, coefficients): Reynolds FEM + FFT
+                   elasticity + load balance, Newton or FAS multigrid
 =================  ==========================================================
 
 Nothing here imports ``dynamics``; ``coupling`` joins the two.

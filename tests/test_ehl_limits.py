@@ -170,7 +170,7 @@ def test_errors_carry_their_stop_reason():
     """Every EHL error names why it stopped: the line contact M = 1000 on 129 nodes reaches the film
     floor ('film collapsed', the measured clear stop of issue 20 item 1); a multigrid cut at 3 cycles
     ('iteration limit')."""
-    from lubrication.ehl_multigrid import MultigridOptions
+    from lubrication.ehl.multigrid import MultigridOptions
 
     with pytest.raises(ConvergenceError, match="film-thickness floor") as floor:
         solve_ehl(_line(1000, 10), EHLGrid(nx=129))
@@ -194,7 +194,7 @@ def test_hint_names_the_test_that_refused_a_converged_step():
     """Issue 20 item 7 (the Eyring line contact at M = 7.3 of issue 12): when the Newton step met
     rtol but the state was refused, the hint says which test refused it with its figures, and names
     no grid at a load the grid resolves (M = 7.3 on 257 nodes; resolved up to M = 298)."""
-    from lubrication.ehl import _iteration_limit_hint
+    from lubrication.ehl.newton import _iteration_limit_hint
 
     s = solve_ehl(_line(7.3, 10), EHLGrid(nx=257))
     history = [(1e-8, 1e-9, 0.0, n) for n in (20, 20, 21, 20, 21, 20)]

@@ -1,4 +1,4 @@
-"""FAS multigrid EHL point-contact solver (lubrication.ehl_multigrid, ehl.method = "multigrid").
+"""FAS multigrid EHL point-contact solver (lubrication.ehl.multigrid, ehl.method = "multigrid").
 
 Independent references:
 - numpy references of the discrete Reynolds operator and a dense solve of the
@@ -20,7 +20,7 @@ import scipy.sparse.linalg as spla
 
 from lubrication import ConvergenceError
 from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, ehl_normal_coefficients, solve_ehl
-from lubrication.ehl_multigrid import MultigridOptions, band_solve, line_relax, reynolds_operator
+from lubrication.ehl.multigrid import MultigridOptions, band_solve, line_relax, reynolds_operator
 from lubrication.errors import InputError
 from lubrication.laws.film import nijenbanning_central
 
@@ -130,8 +130,8 @@ def test_level_films_equal_the_elastic_kernel():
     """The multigrid's own deflection products (FFT padded to fast lengths on
     fine grids, a dense product on the coarsest) against ElasticKernel.deflect
     (DC-FFT padded to 2n) and its dense direct sum."""
-    from lubrication.ehl import _Problem
-    from lubrication.ehl_multigrid import MultigridEHL
+    from lubrication.ehl.problem import _Problem
+    from lubrication.ehl.multigrid import MultigridEHL
 
     c = EHLContact.from_moes(100, 10, radius_y=0.02)
     g = EHLGrid(nx=65, ny=97)
@@ -152,7 +152,7 @@ def test_level_films_equal_the_elastic_kernel():
 def test_uniform_weights_equal_the_assembled_ones(line):
     """The multigrid's nodal weights (cell area times adjacent cells / 4)
     against the FEM's assembled int phi_i dA."""
-    from lubrication.ehl import _Problem
+    from lubrication.ehl.problem import _Problem
 
     c = EHLContact.from_moes(100, 10, line=line)
     assembled = _Problem(c, EHLGrid(nx=33), EHLOptions()).weights

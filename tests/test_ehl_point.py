@@ -231,7 +231,8 @@ def test_unknown_solver_options_are_refused():
 
 
 def _smooth_state(c, n):
-    from lubrication.ehl import _film_guess, _Problem
+    from lubrication.ehl.newton import _film_guess
+    from lubrication.ehl.problem import _Problem
 
     P = _Problem(c, EHLGrid(nx=n), EHLOptions())
     # a smooth, strictly positive interior pressure: no kink of p+ = max(p, 0)
@@ -307,7 +308,7 @@ def test_eyring_jacobian_is_exact(line):
 @pytest.mark.parametrize("line", [False, True])
 @pytest.mark.parametrize("eyring", [False, True])
 def test_vectorised_assembly_equals_scikit_fem(line, eyring):
-    """The vectorised assembly (lubrication.ehl_assembly) against scikit-fem's
+    """The vectorised assembly (lubrication.ehl.assembly) against scikit-fem's
     ``asm`` of the same forms (``_Problem.assemble_skfem``), with squeeze
     and a compressible lubricant so that every term is present; and with the
     Reynolds-Eyring flow factor (its tensor diffusion and SUPG terms)."""

@@ -136,8 +136,8 @@ import numpy as np
 import scipy.fft
 from numba import njit
 
-from .elastic import ElasticKernel
-from .errors import ConvergenceError, InputError
+from ..elastic import ElasticKernel
+from ..errors import ConvergenceError, InputError
 
 log = logging.getLogger(__name__)
 

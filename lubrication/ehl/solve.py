@@ -1,0 +1,309 @@
+"""solve_ehl: the grid sequence (coarse to fine), the choice of method, the multigrid driver.
+
+Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+from __future__ import annotations
+
+import logging
+
+import time
+
+import numpy as np
+
+from ..errors import ConvergenceError, InputError
+from ..laws import contact as hertz
+from .budget import DEFAULT_MAX_WORK, _BUDGET, _grid_nodes
+from .checks import check_solution
+from .contact import EHLContact
+from .newton import _active_set_newton, _fb_newton, _film_guess, _hertz_guess, _prolong, _stopped
+from .options import EHLGrid, EHLOptions
+from .problem import _Problem
+from .solution import EHLSolution
+
+log = logging.getLogger(__name__)
+
+def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOptions = EHLOptions(),
+              initial=None, sequence: bool = True, _final: bool = True, _stage_info=None) -> EHLSolution:
+    """Solve an EHL contact; see the module docstring for the method.
+
+    With ``sequence=True`` (default) and no ``initial``, grids finer than 129
+    (line) or 33 (point contact) nodes along x are reached by nested iteration: the contact is solved on
+    the grid with (nx - 1)/2 + 1 nodes first (recursively) and its pressure,
+    interpolated, starts the Newton iteration on the finer grid.  This is what
+    makes heavily loaded contacts converge on fine grids (measured: M = 100,
+    L = 10 line contact on 513 nodes fails from the Hertz start and converges
+    from the 257-node solution).
+    """
+    from threadpoolctl import threadpool_limits
+
+    outer = _BUDGET.get()
+    token = None
+    if outer is None:  # the outermost call owns the budget; nested calls (a map's points) spend their own
+        limit = options.max_work if options.max_work is not None else \
+            DEFAULT_MAX_WORK["line" if contact.is_line else "point"]
+        token = _BUDGET.set(dict(limit=limit, spent=0.0, nodes=_grid_nodes(contact, grid)))
+    try:
+        with threadpool_limits(limits=1, user_api="blas"):
+            sol = _solve_ehl(contact, grid, options, initial, sequence, _final, _stage_info)
+        if token is not None:
+            sol.info["work"] = _BUDGET.get()["spent"]
+    except ConvergenceError as exc:
+        if token is not None:  # the work this failure took, next to its reason
+            exc.stop = dict(getattr(exc, "stop", None) or dict(reason="not converged", detail=str(exc)),
+                            work=_BUDGET.get()["spent"])
+        raise
+    finally:
+        if token is not None:
+            _BUDGET.reset(token)
+    if _final:
+        check_solution(sol)
+    return sol
+
+
+# ---------------------------------------------------------------- work budget
+
+def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True, _stage_info=None, _coarse=False,
+               _loose=False, _fallback=True):
+    """:func:`solve_ehl` body (BLAS limited to one thread by the caller: the
+    dense LU of a 561-unknown contact took 0.18 s with two OpenBLAS threads
+    and 0.004 s with one on this project's 2-core machine)."""
+    t0 = time.perf_counter()
+    if options.method == "multigrid":
+        return _solve_multigrid(contact, grid, options, initial)
+    if not contact.is_line and grid.nx > options.max_point_grid:
+        raise InputError(
+            f"grid.nx = {grid.nx} for a point contact: point contacts are solved up to {options.max_point_grid} "
+            f"nodes per side by the Newton methods (lubrication.ehl.EHLOptions.max_point_grid: the largest grid measured to converge, "
+            f"M = 100, L = 10; a Newton step costs about 5 s of one core on 257 x 257 and the sparse-LU "
+            f"preconditioner's fill grows faster than the grid); use nx <= {options.max_point_grid}, or "
+            f"solver.method = 'multigrid'"
+        )
+    coarsest = 129 if contact.is_line else 33
+    nests = initial is None and sequence and grid.nx > coarsest and (grid.nx - 1) % 2 == 0
+    first_start = options.first_order_start
+    if first_start == "auto":
+        # points finer than 129 x 129: every grid (measured on 257 x 257, M =
+        # 100 and 200: the second-order iteration from the prolonged
+        # second-order solution never converged, every step damped)
+        first_start = "every_grid" if (contact.is_line or grid.nx > 129) else "coarsest"
+    if options.consistent_supg and _stage_info is None and not (nests and first_start == "coarsest"):
+        # defect-correction start: the first-order (plain SUPG) solution on the
+        # same grid starts the second-order Newton iteration; started from a
+        # Hertz or prolonged pressure, the second-order scheme alone stalls on
+        # 2-D grids (measured: M = 20, L = 10 on 65 x 65 nodes)
+        import dataclasses
+
+        try:
+            first = _solve_ehl(contact, grid, dataclasses.replace(options, consistent_supg=False), initial=initial,
+                               sequence=sequence, _final=False, _coarse=_coarse, _loose=True)
+            out = _solve_ehl(contact, grid, options, initial=first, sequence=False, _final=_final, _coarse=_coarse,
+                             _stage_info=dict(first_order_iterations=first.info["iterations"],
+                                              first_order_central_film=first.central_film_thickness,
+                                              first_order_time=first.info["wall_time"]))
+        except ConvergenceError as exc:
+            if getattr(exc, "budget", False):  # the work budget is spent: no fallback
+                raise
+            if not (_fallback and not _coarse and nests and options.first_order_start == "auto"):
+                raise
+            # the second-order iteration from the first-order solution of the
+            # same grid failed: the other start, second order from the
+            # prolonged coarse second-order solution (measured need: line
+            # contact M = 20, L = 10 on 1025 nodes, where the outlet-spike node
+            # oscillates from the first-order start and 15 steps converge from
+            # the 513-node solution)
+            log.info("EHL: %s; retrying from the prolonged second-order solution on %d nodes", exc, grid.nx)
+            try:
+                out = _solve_ehl(contact, grid, dataclasses.replace(options, first_order_start="coarsest"),
+                                 sequence=sequence, _final=_final, _fallback=False)
+            except ConvergenceError as exc2:
+                if getattr(exc2, "budget", False):
+                    raise
+                err = ConvergenceError(f"{exc2}; before that, from the first-order start: {exc}")
+                err.stop = getattr(exc2, "stop", None)
+                raise err from exc2
+            out.info["fallback"] = dict(failed_start=str(exc))
+        out.info["wall_time"] = time.perf_counter() - t0
+        return out
+    P = _Problem(contact, grid, options)
+    if nests:
+        coarse_grid = EHLGrid(nx=(grid.nx - 1) // 2 + 1, ny=None if grid.ny is None else (grid.ny - 1) // 2 + 1,
+                              x_min=grid.x_min, x_max=grid.x_max, y_max=grid.y_max)
+        try:
+            coarse = _solve_ehl(contact, coarse_grid, options, sequence=True, _final=False, _coarse=True)
+        except ConvergenceError as exc:
+            if getattr(exc, "budget", False):  # the work budget is spent: no fallback
+                raise
+            # a coarse level is only a start: where it cannot resolve the
+            # outlet constriction (heavy loads), its last iterate still is one
+            if getattr(exc, "partial", None) is None:
+                raise
+            log.info("EHL coarse level %s did not converge (%s); its last iterate starts %d nodes",
+                     coarse_grid.nx, exc, P.N)
+            coarse = exc.partial
+        Pc = coarse.problem
+        coarse_hn = Pc.film(coarse.pressure, coarse.h00)
+        # the coarser level's films, for the a-posteriori check (check_solution)
+        coarse_level = dict(nx=int(Pc.shape[0]), central_film=float(coarse_hn[np.argmin(np.linalg.norm(
+            Pc.basis.doflocs, axis=0))]), minimum_film=float(np.min(coarse_hn)),
+            converged=coarse.film_thickness is not None)
+        initial = EHLSolution(contact, P, _prolong(coarse, P), None, coarse.h00,
+                              dict(coarse_iterations=coarse.info.get("iterations")))
+    balance = contact.load is not None
+    W = contact.load if balance else None
+    if not nests:
+        coarse_level = None
+    if initial is not None and initial.pressure.shape == (P.N,):
+        p, h00 = initial.pressure.copy(), float(initial.h00)
+    elif initial is not None and getattr(initial, "problem", None) is not None:
+        # a solution on another grid (other nx or inlet): its pressure
+        # interpolated (multilinear, 0 outside its domain) onto this grid
+        p, h00 = _prolong(initial, P), float(initial.h00)
+    else:
+        p = _hertz_guess(P)
+        if not balance:
+            p *= 0.0
+        hc = _film_guess(contact)
+        h00 = contact.approach if not balance else hc - float(P.deflect(p)[np.argmin(np.abs(P.rigid))])
+    if not balance:
+        h00 = contact.approach
+    p[P.fixed] = 0.0
+    method = options.method
+    if method == "auto":
+        method = "active_set" if contact.is_line else "fischer_burmeister"
+    newton = _fb_newton if method == "fischer_burmeister" else _active_set_newton
+    budget = {}
+    if method == "fischer_burmeister":
+        if _coarse:
+            budget["max_iter"] = options.coarse_max_iter
+        if _coarse or _loose:
+            # a start for the next stage: converged to coarse_rtol, well below
+            # the change the next grid (or scheme) makes (measured: max|dp| of
+            # 0.2 - 0.5 p_Hertz at the outlet spike from 65 to 129 and 129 to 257)
+            budget["rtol"] = max(options.rtol, options.coarse_rtol)
+        elif options.consistent_supg and _stage_info is None and nests:
+            # second order from the prolonged coarse solution: where it
+            # wanders (damped steps at the outlet spike: measured on 257 x 257,
+            # every step damped, |dp| capped at the spike), fall back early
+            budget["max_damped"] = options.max_damped
+    try:
+        p, h00, history, gm = newton(P, p.copy(), h00, W, **budget)
+    except ConvergenceError as exc:
+        if getattr(exc, "budget", False):  # the work budget is spent: no fallback
+            raise
+        if _coarse and getattr(exc, "iterate", None) is not None:
+            exc.partial = EHLSolution(contact, P, exc.iterate[0], None, exc.iterate[1], {})
+        if _coarse or not (options.consistent_supg and _stage_info is None and nests and _fallback):
+            raise
+        # second order from the prolonged coarse solution failed: the full
+        # defect-correction chain instead (first-order nested iteration from
+        # the coarsest grid, then second order on this grid); measured need:
+        # M = 20, L = 10 on 129 x 129 (the second-order iteration from the
+        # 65 x 65 solution wanders into an oscillating outlet spike)
+        import dataclasses
+
+        log.info("EHL: %s; retrying with first-order nested iteration on %d nodes", exc, P.N)
+        out = _solve_ehl(contact, grid, dataclasses.replace(options, first_order_start="every_grid"),
+                         sequence=True, _final=_final, _coarse=_coarse)
+        out.info["fallback"] = dict(failed_start=str(exc))
+        out.info["wall_time"] = time.perf_counter() - t0
+        return out
+    hn = P.film(p, h00)
+    if _final and np.min(hn) <= options.h_floor * P.hscale * 1.0001:
+        raise _stopped("film collapsed",
+            f"EHL solution touches the film-thickness floor ({options.h_floor:g} of b^2/R_x): the film "
+            f"has collapsed at M = {contact.moes_M:.4g}; refine the grid or reduce the load"
+        )
+    dense = P.N <= (options.dense_max_line if contact.is_line else options.dense_max)
+    linear = "dense LU" if dense else ("GMRES + ILU" if method == "active_set" else "GMRES + sparse LU (local K)")
+    info = dict(iterations=len(history), history=history, wall_time=time.perf_counter() - t0,
+                gmres_iterations=gm, unknowns=int(P.N), linear=linear, method=method,
+                scheme="second order" if options.consistent_supg else "first order", **(_stage_info or {}))
+    info.update(stop_reason=P.stop["reason"], stop_detail=P.stop["detail"])
+    if coarse_level is not None:
+        info["coarse_level"] = coarse_level
+    log.info("EHL M=%.4g L=%.4g: %d unknowns, %d Newton iterations, %.2f s", contact.moes_M, contact.moes_L,
+             P.N, len(history), info["wall_time"])
+    return EHLSolution(contact, P, p, hn, h00, info)
+
+
+def multigrid_grid(contact: EHLContact, grid: EHLGrid, coarsest_cells: int = 16) -> EHLGrid:
+    """The grid that ``method="multigrid"`` solves on: ``grid`` with ``ny``
+    chosen (if not given) so that both cell counts halve down to the coarsest
+    grid (``coarsest_cells`` cells along x).  nx must be coarsest_cells 2^k + 1
+    (17, 33, 65, 129, 257, 513, 1025 by default)."""
+    if contact.is_line:
+        raise InputError("solver.method = 'multigrid' solves point contacts; line contacts use 'auto' "
+                         "(active set) or 'fischer_burmeister'")
+    if contact.lubricant.eyring_stress is not None:
+        raise InputError(f"lubricant.eyring_stress = {contact.lubricant.eyring_stress!r}: solver.method = 'multigrid' "
+                         "is Newtonian; use 'auto', 'fischer_burmeister' or 'active_set' for Eyring flow")
+    cells = grid.nx - 1
+    k = 0
+    while cells % 2 == 0 and cells // 2 >= coarsest_cells:
+        cells //= 2
+        k += 1
+    if cells != coarsest_cells:
+        allowed = ", ".join(str(coarsest_cells * 2**i + 1) for i in range(7))
+        raise InputError(f"grid.nx = {grid.nx} for solver.method = 'multigrid': nx - 1 must be {coarsest_cells} "
+                         f"times a power of 2 (the coarsest grid has {coarsest_cells} cells); use one of {allowed}")
+    step = 2**k
+    if grid.ny is not None:
+        if (grid.ny - 1) % step or (grid.ny - 1) // step < 4:
+            raise InputError(f"grid.ny = {grid.ny} for solver.method = 'multigrid' with nx = {grid.nx}: ny - 1 must be "
+                             f"a multiple of {step} and at least {4 * step}")
+        return grid
+    hp = hertz.point_contact(contact.hertz_load(), contact.radius_x, contact.radius_y, contact.e_star)
+    bx, by = (hp.b, hp.a) if contact.radius_y >= contact.radius_x else (hp.a, hp.b)
+    cy = (grid.nx - 1) * 2 * grid.y_max * by / ((grid.x_max - grid.x_min) * bx)
+    ny = max(4, int(round(cy / step))) * step + 1
+    import dataclasses
+
+    return dataclasses.replace(grid, ny=ny)
+
+
+def _solve_multigrid(contact: EHLContact, grid: EHLGrid, options: EHLOptions, initial=None) -> EHLSolution:
+    """``method="multigrid"``: FAS multigrid (:mod:`lubrication.ehl.multigrid`) on the
+    nodes of :class:`_Problem` (same grid, kernel, film and outputs as the Newton
+    methods).  Steady point contacts, given load or approach."""
+    from .multigrid import MultigridEHL, MultigridOptions
+
+    t0, c0 = time.perf_counter(), time.process_time()
+    mopt = options.multigrid if options.multigrid is not None else MultigridOptions()
+    if contact.squeeze_velocity != 0.0:
+        raise InputError(f"squeeze_velocity = {contact.squeeze_velocity!r} with solver.method = 'multigrid': the "
+                         "multigrid solver is steady; use the Newton methods (solver.method = 'auto') for squeeze")
+    g = multigrid_grid(contact, grid, mopt.coarsest_cells)
+    P = _Problem(contact, g, options)
+    P.uniform_weights()  # load and outputs without the FEM assembly templates
+    t_setup = time.perf_counter() - t0
+    if contact.load is not None:
+        if initial is not None and getattr(initial, "h00", None) is not None:
+            h00 = float(initial.h00)
+        else:
+            p = _hertz_guess(P)
+            h00 = _film_guess(contact) - float(P.deflect(p)[np.argmin(np.abs(P.rigid))])
+    else:
+        h00 = contact.approach
+    mg = MultigridEHL(P, contact, mopt)
+    Pg, H00, history = mg.solve(h00 / P.hscale)
+    p = P.ph * Pg.ravel()[P.flat]
+    h00 = H00 * P.hscale
+    hn = P.film(p, h00)
+    if np.min(hn) <= 0.0:
+        raise _stopped("film collapsed",
+            f"EHL multigrid solution at M = {contact.moes_M:.4g}, L = {contact.moes_L:.4g} on {g.nx} x {g.ny} "
+            f"nodes has a film thickness <= 0 (min {np.min(hn) / P.hscale:.3g} b^2/R_x): the grid does not "
+            "resolve the outlet constriction; refine the grid")
+    info = dict(iterations=len(history) - 1, cycles=len(history) - 1, history=history,
+                work_units=float(mg.work), wall_time=time.perf_counter() - t0, cpu_time=time.process_time() - c0,
+                setup_time=t_setup, unknowns=int(P.N), levels=[lv.shape for lv in mg.levels], method="multigrid",
+                scheme=f"finite differences, order-{mopt.order} upstream wedge", linear="line relaxation (FAS)",
+                residual=history[-1]["residual"], load_error=history[-1]["load_error"],
+                stop_reason="tolerance met", stop_detail=f"{history[-1].get('stop')} stop: "
+                f"{history[-1].get('stop_detail', '')} after {len(history) - 1} cycles")
+    coarse = history[0].get("coarse")
+    if coarse is not None:  # the FMG solution of the next-coarser grid (check_solution)
+        info["coarse_level"] = dict(nx=int(mg.levels[-2].shape[0]), central_film=coarse["H_centre"] * P.hscale,
+                                    minimum_film=coarse["H_min"] * P.hscale, converged=True)
+    log.info("EHL multigrid M=%.4g L=%.4g: %d x %d nodes, %d cycles, %.1f work units, %.2f s", contact.moes_M,
+             contact.moes_L, g.nx, g.ny, info["cycles"], info["work_units"], info["wall_time"])
+    return EHLSolution(contact, P, p, hn, h00, info)
