@@ -99,28 +99,15 @@ contract ``rhs(t, y, args, dydt)``); :func:`forces` / :func:`forces_many`
 collision phase at sampled states, columns :data:`DIAG_NAMES`);
 :func:`bearing_energy`, :func:`angular_momentum_z` (invariants for checks).
 
-Cost (measured, numba 0.68, one core of a loaded 2-core machine)
-----------------------------------------------------------------
-One ``rhs`` call with 14 balls, 6-DOF (205 states), called from a jitted
-loop, minimum of 300 x 100 calls: 3.2 us at the quasi-static start of the
-drop, 3.8-4.0 us during the first ball-ball collisions (1-2 ms), against
-8.3-8.8 / 9.4-10.0 us before the rewrite of 2026-11-22 in the same process
-(bit-identical results: rhs, diagnostics and a 2 ms DOPRI5 trajectory).
-Where the old 8.3 us went (perf + ablation): about a third in atomic
-reference-count pairs (NRT incref/decref; every array view such as
-``y[b+10:b+13]`` or ``Fb[j]`` and every array passed to a non-inlined
-kernel inside the ball loops costs one pair), 7.4 us in the 28 ball-race
-contacts (traction tanh ~1.4 us, slot weights' atan2 and tanh ~1.5 us,
-contact-angle atan2 computed for diagnostics only ~0.6 us), 0.2 us in 13
-small allocations.  Now: the contact kernels take and return scalars and are
-inlined (numba ``inline='always'``), ball kinematics and the quaternion
-algebra are written out on scalars, the contact angle is computed only for
-:func:`forces`, points far from a slot are skipped by a dot product before
-the atan2, and two allocations replace thirteen.  Remaining (at the start
-of the drop): 28 race contacts ~2.0 us (sqrt, tanh, divisions), kinematics,
-equations of motion, ring ~0.6 us; each close ball pair adds ~0.15 us (the
-film/Hertz series root).  The inlining costs compile time once (about +4 s
-CPU for ``rhs`` and ``forces`` together, cached afterwards).
+Speed
+-----
+The contact kernels take and return scalars and are inlined (numba
+``inline='always'``), ball kinematics and the quaternion algebra are written
+out on scalars (no array views in the ball loops: each costs an atomic
+reference-count pair), the contact angle is computed only for
+:func:`forces`, and points far from a slot are skipped by a dot product
+before the atan2.  Measured costs per ``rhs`` call are in
+``benchmarks/README.md`` ("Cost of the bearing right-hand side").
 A model without a film map or traction maps passes None in their places of
 :meth:`CagelessBearing.args`, so numba prunes the map readers by type: the
 rhs call at the start of the drop then takes 2.46 us against 4.42 us with
