@@ -744,10 +744,10 @@ _RHS_COST = {}
 
 def bench_scipy_cheap(repeats, rtol=1e-6):
     """The same comparison on a 2-state rhs (a ball hitting a Hertz half-space,
-    ``dynamics.integrators._contact_rhs``): what the ratio is when the rhs costs nothing."""
+    ``benchmarks/dynamics_tools._contact_rhs``): what the ratio is when the rhs costs nothing."""
     from scipy.integrate import solve_ivp
 
-    from dynamics.integrators import _contact_rhs
+    from benchmarks.dynamics_tools import _contact_rhs
 
     k, m, v = 1e9, 3.5e-3, 0.5
     d_max = math.sqrt(1.875 * m * v * v / k)
@@ -764,7 +764,7 @@ def bench_scipy_cheap(repeats, rtol=1e-6):
         _contact_rhs(t, y, args, dy)
         return dy.copy()
 
-    out = {"what": "2-state Hertz impact (dynamics.integrators._contact_rhs), one impact, same rtol/atol",
+    out = {"what": "2-state Hertz impact (benchmarks/dynamics_tools._contact_rhs), one impact, same rtol/atol",
            "lubedyn dopri5 wall [s]": wall, **res.stats}
     for method in ("RK45", "DOP853"):
         w, _, sol = _common.timed(lambda: solve_ivp(f, (0.0, 2.0 * dur), y0, method=method, rtol=rtol,

@@ -5,6 +5,7 @@ import os
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,6 +14,9 @@ from scipy.integrate import solve_ivp
 
 from dynamics import integrators as I
 from dynamics.errors import DynamicsInputError, IntegrationError
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from benchmarks import dynamics_tools  # noqa: E402
 
 
 @njit(cache=True)
@@ -282,7 +286,7 @@ def test_driver_input_errors():
 
 def test_contact_study_accuracy_limits_the_step():
     """Hertz impact with k = 1e9 N/m, 3.5 g: the step that accuracy needs is below the stability limit."""
-    out = I.contact_step_study(rk4_h_omega=(0.2, 2.8), rtols=())  # DOPRI5 part: numbers in the docstring
+    out = dynamics_tools.contact_step_study(rk4_h_omega=(0.2, 2.8), rtols=())  # DOPRI5 part: numbers in the docstring
     assert out["Omega [rad/s]"] == pytest.approx(math.sqrt(1e9 / 3.5e-3))
     # Hertz impact duration 2.943 delta_max / v (Johnson, Contact Mechanics, eq. 11.24), delta_max from energy
     d_max = math.sqrt(1.875 * 3.5e-3 * 0.25 / 1e9)
