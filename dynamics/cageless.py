@@ -131,9 +131,9 @@ from numba import njit
 from lubrication.errors import did_you_mean
 from lubrication.laws import bearing as laws_bearing
 from lubrication.laws import contact as laws_contact
-from lubrication.laws.film import hamrock_dowson_central
-
 from lubrication.laws.collision import BB_HCUT, BB_K, BB_VREG, ball_ball_parameters, hertz_force
+from lubrication.laws.film import hamrock_dowson_central
+from lubrication.laws.jit import INLINE, JIT
 from lubrication.laws.traction import traction_coefficient
 
 from . import contacts as C
@@ -142,7 +142,6 @@ from .errors import DynamicsInputError
 from .interp import HERMITE, hermite3, interp3
 
 logger = logging.getLogger(__name__)
-_JIT = dict(cache=True, fastmath=False, error_model="numpy")  # a blown-up state gives inf/NaN, not ZeroDivisionError
 
 DOFS = {"planar": 0, "6dof": 1}
 SCENARIOS = {"steady": 0, "drop": 1, "free": 2}
@@ -185,7 +184,7 @@ N_RING_DIAG = 5
 
 
 # ----------------------------------------------------------------------------- kernels
-@njit(**_JIT)
+@njit(**JIT)
 def _traction_from_map(tmap, race, Q, ue, vs, counter):
     """Traction coefficient of the EHL map of ``race`` (load, entrainment speed, slide-to-roll ratio).
 
@@ -210,7 +209,7 @@ def _traction_from_map(tmap, race, Q, ue, vs, counter):
     return lin * abs(mu)
 
 
-@njit(inline='always', **_JIT)
+@njit(**INLINE)
 def _race_contact(c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K, ctr0, ctr1, vc0, vc1, vc2, wr, inner, Rb,
                   alpha, mu_lim, srr_ref, v_reg, hc_coef, tmap, race, counter, want):
     """One ball-race (or slot-edge) contact of a ball (centre c, velocity v,
@@ -290,13 +289,13 @@ def _race_contact(c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K, ctr0, ct
             p0 * fy - p1 * fx)
 
 
-@njit(inline='always', **_JIT)
+@njit(**INLINE)
 def _smooth_in(x, half, blend):
     """~1 for |x| < half, ~0 beyond, over a width ``blend``."""
     return 0.5 * (1.0 - math.tanh((abs(x) - half) / blend))
 
 
-@njit(inline='always', **_JIT)
+@njit(**INLINE)
 def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P, sdir, cfar):
     """Largest slot weight w_s(s) w_z(z) of a point (relative to the race centre)
     and the largest arc weight w_s alone.  Exactly 0 farther than 10 blend widths
@@ -337,7 +336,7 @@ def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P, sdir, cfar):
     return best, best_s
 
 
-@njit(inline='always', **_JIT)
+@njit(**INLINE)
 def _slot_directions(P, slots, ring_theta, sdir, cfar):
     """sdir[k] <- (cos, sin) of slot k's azimuth (plus the ring angle for an
     inner-ring slot); cfar[race] <- cos of 1.01 times the angular reach
@@ -354,7 +353,7 @@ def _slot_directions(P, slots, ring_theta, sdir, cfar):
         sdir[k, 1] = math.sin(az)
 
 
-@njit(inline='always', **_JIT)
+@njit(**INLINE)
 def _ball_races(j, cpos, cvel, cw, y, P, slots, diag, tmap, use_map, counter, want, sdir, cfar):
     """Both race contacts (and slot edges) of ball j: returns the force and
     torque on the ball (6) and the force and z-torque on the inner ring (4);
@@ -451,7 +450,7 @@ def _ball_races(j, cpos, cvel, cw, y, P, slots, diag, tmap, use_map, counter, wa
     return F0, F1, F2, T0, T1, T2, R0, R1, R2, R3
 
 
-@njit(inline='always', **_JIT)
+@njit(**INLINE)
 def _rotate3(w, x, y, z, v0, v1, v2):
     """R(q) v for the unit quaternion (w, x, y, z), scalars (the arithmetic of
     :func:`dynamics.rotations.quat_rotate`; pass (w, -x, -y, -z) for R^T v)."""
@@ -461,7 +460,7 @@ def _rotate3(w, x, y, z, v0, v1, v2):
     return v0 + w * tx + (y * tz - z * ty), v1 + w * ty + (z * tx - x * tz), v2 + w * tz + (x * ty - y * tx)
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _evaluate(t, y, args, dydt, diag, ring_diag):
     iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap = args
     want = diag.shape[0] > 0
@@ -684,13 +683,13 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
         ring_diag[4] = Tf
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def rhs(t, y, args, dydt):
     """Right-hand side ``dy/dt`` of the cage-less bearing (integrator contract)."""
     _evaluate(t, y, args, dydt, np.empty((0, 0)), np.empty(0))
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def rhs_scaled(t, z, args, dzdt):
     """``rhs`` of the scaled state z = y / scale, ``args = (model args, scale)``.
 
@@ -706,7 +705,7 @@ def rhs_scaled(t, z, args, dzdt):
         dzdt[i] /= scale[i]
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def forces(t, y, args):
     """Contact forces at a state: ``(diag (Z, N_DIAG), ring_diag (N_RING_DIAG,), dydt)``.
 
@@ -720,7 +719,7 @@ def forces(t, y, args):
     return diag, ring_diag, dydt
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def forces_many(t, Y, args):
     """:func:`forces` at every row of ``Y`` (shape (m, n)): ``(diag (m, Z, N_DIAG), ring (m, N_RING_DIAG))``."""
     m = Y.shape[0]

@@ -84,10 +84,10 @@ from numba import njit
 from lubrication.laws.collision import (BB_ALPHA, BB_HCUT, BB_HR, BB_MUB, BB_MUF, BB_R, BB_SQF, BB_TAU, PHASE_FILM,
                                         PHASE_PLASTIC, PHASE_RECOVERY, PHASE_SEPARATED, squeeze_film_closed_form,
                                         thornton_force)
+from lubrication.laws.jit import INLINE, JIT
 
 from .interp import HERMITE, hermite3_grad, interp3_grad
 
-_JIT = dict(cache=True, fastmath=False, error_model="numpy")
 
 # film kinds
 FILM_NONE, FILM_CLOSED_FORM, FILM_MAP = 0, 1, 2
@@ -109,7 +109,7 @@ MAP_AXIS_APPROACH, MAP_AXIS_SQUEEZE, MAP_AXIS_POLAR = 0, 1, 2
 # ------------------------------------------------------------------ kernels
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _film(h, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter):
     """Film force F_film(h, v) >= 0 and dF/dh for the chosen film kind."""
     if film_kind == FILM_CLOSED_FORM:
@@ -121,7 +121,7 @@ def _film(h, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts,
     return 0.0, 0.0
 
 
-@njit(inline='always', **_JIT)  # shared by the two film-map readers; inlined like the other leaves
+@njit(**INLINE)  # shared by the two film-map readers; inlined like the other leaves
 def _map3_grad(ax0, ax1, ax2, vals, opts, x0, x1, x2, counter):
     """Value and gradient of a packed 3-axis film map (``opts``: logs, method, mode; see :func:`_film_map`)."""
     if opts[MO_METHOD] == HERMITE:
@@ -131,7 +131,7 @@ def _map3_grad(ax0, ax1, ax2, vals, opts, x0, x1, x2, counter):
                         opts[MO_LOGV], opts[MO_METHOD], x0, x1, x2, opts[MO_MODE], counter)
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     """F and dF/dh (fixed v, u_e) from a ball_ball map on (gap, rho, theta); see :func:`_film_map`."""
     if h >= p[BB_HCUT]:
@@ -168,7 +168,7 @@ def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     return f, d0 + d1 * drho + d2 * dth
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     """Tabulated squeeze force over (gap, approach speed or squeeze number,
     entrainment speed), read with :mod:`dynamics.interp` (``vals`` of shape
@@ -213,7 +213,7 @@ def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     return scale * f, scale * (d0 + d1 * dx1dh)
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _solid(delta, delta_dot, delta_max, p):
     """Solid force with Hunt-Crossley damping (on the Thornton law)."""
     f, k, ph = thornton_force(delta, delta_max, p)
@@ -225,7 +225,7 @@ def _solid(delta, delta_dot, delta_max, p):
     return f2, k * (1.0 + p[BB_ALPHA] * delta_dot), ph
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter):
     """Normal force between two balls through the film (see the module docstring).
 
@@ -299,14 +299,14 @@ def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax
     return F, h, x, phase, share
 
 
-@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
+@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
 def ball_ball_friction_coefficient(h, p):
     """mu = mu_b f_a + mu_f (1 - f_a), f_a = exp(-h/h_r) (asperity load share)."""
     fa = math.exp(-h / p[BB_HR])
     return p[BB_MUB] * fa + p[BB_MUF] * (1.0 - fa)
 
 
-@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
+@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
 def plastic_memory_rate(delta_e, delta_e_dot, delta_max, F, p):
     """d(delta_max)/dt: follows the solid approach (rate ``delta_e_dot``) while
     it grows beyond the memory, decays with tau_mem once the pair carries no load."""

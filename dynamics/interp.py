@@ -112,7 +112,9 @@ import math
 import numpy as np
 from numba import njit
 
-_JIT = dict(cache=True, fastmath=False, nogil=True, error_model="numpy")
+from lubrication.laws.jit import JIT
+
+_JIT = dict(JIT, nogil=True)  # lubedyn's options (lubrication.laws.jit), releasing the GIL for threaded map queries
 _INLINE = dict(_JIT, inline="always")
 _FMA = dict(_JIT, fastmath={"contract"})  # a*b + c -> one fused multiply-add (one rounding fewer)
 

@@ -39,10 +39,8 @@ from numba import njit
 
 from ..errors import InputError
 from .contact import positive as _positive
+from .jit import INLINE, JIT
 
-#: numba options of the law kernels: IEEE semantics (no fastmath), division by zero gives inf/NaN
-JIT = dict(cache=True, fastmath=False, error_model="numpy")
-_JIT = JIT
 
 # ball-ball collision phases (returned by ball_ball_normal)
 PHASE_SEPARATED, PHASE_FILM, PHASE_ELASTIC, PHASE_PLASTIC, PHASE_RECOVERY = 0, 1, 2, 3, 4
@@ -202,7 +200,7 @@ def barus_squeeze_film(h0: float, v: float, eta0: float, alpha: float, radius_ef
 # ------------------------------------------------------------------ kernels
 
 
-@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
+@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
 def hertz_force(delta, delta_dot, K, alpha):
     """Hunt-Crossley Hertz force ``K delta^1.5 (1 + alpha delta_dot)``, >= 0; 0 for delta <= 0."""
     if delta <= 0.0:
@@ -211,7 +209,7 @@ def hertz_force(delta, delta_dot, K, alpha):
     return f if f > 0.0 else 0.0
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def thornton_force(delta, delta_max, p):
     """Elastic-perfectly plastic sphere contact (Thornton 1997), without damping.
 
@@ -242,7 +240,7 @@ def thornton_force(delta, delta_max, p):
     return Kp * x * s, 1.5 * Kp * s, PHASE_RECOVERY
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def residual_indentation(delta_max, p):
     """delta_p [m] left after unloading from ``delta_max`` (0 if never yielded)."""
     dy = p[BB_DY]
@@ -255,7 +253,7 @@ def residual_indentation(delta_max, p):
     return delta_max - am2 / Rp
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def squeeze_film_closed_form(h, v, p):
     """Rigid isoviscous squeeze film between two spheres (R_eff = R/2) and its
     derivative d/dh: ``C0 v [1/(h + h_r) - 1/(h_cut + h_r)]`` for v > 0 and

@@ -11,10 +11,10 @@ import math
 
 from numba import njit
 
-from .collision import JIT as _JIT
+from .jit import INLINE
 
 
-@njit(inline='always', **_JIT)  # small leaf of the bearing rhs (see dynamics.cageless)
+@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
 def traction_coefficient(slip_speed, entrainment_speed, mu_lim, srr_ref, v_reg):
     """``mu_lim tanh(|v_s| / max(srr_ref |u_e|, v_reg))`` (>= 0)."""
     scale = srr_ref * abs(entrainment_speed)
