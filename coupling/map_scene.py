@@ -52,9 +52,10 @@ from pydantic import Field, model_validator
 from pydantic_core import PydanticCustomError
 
 from lubrication.errors import InputError, did_you_mean
+from lubrication.laws.lubricant import DowsonHigginson
 
 from . import maps, outputs
-from .config import LimitsModel, _Model, resolved_toml
+from .config import LimitsModel, LubricantModel, _Model, resolved_toml
 from .units import DIMENSIONS, UnitError, parse_quantity, parse_units
 
 log = logging.getLogger(__name__)
@@ -113,6 +114,7 @@ class CaseModel(_Model):
     kind: str
     axes: dict[str, AxisModel] = {}
     params: dict[str, Any] = {}
+    lubricant: LubricantModel | None = None  # the typed [lubricant] table of every scene, for kinds with an oil
     build: BuildModel = Field(default_factory=BuildModel)
     output: MapOutputModel = Field(default_factory=MapOutputModel)
     limits: LimitsModel = Field(default_factory=LimitsModel)
@@ -165,6 +167,9 @@ class CaseModel(_Model):
             except UnitError as exc:
                 raise _rule(f"output.field_at.{key}", value, str(exc)) from None
         defaults = kind.default_params()
+        if self.lubricant is not None:
+            self.params = {**self.params, **_lubricant_params(self.lubricant, self.kind, defaults, self.params)}
+            self.lubricant = None  # resolved into params: case.resolved.toml lists them there
         for key, value in list(self.params.items()):
             if key not in defaults:
                 hint = did_you_mean(key, defaults)
@@ -174,6 +179,35 @@ class CaseModel(_Model):
         # every default filled in (case.resolved.toml lists the parameters the map was built with)
         self.params = {**{k: v for k, v in defaults.items() if v is not None}, **self.params}
         return self
+
+
+#: the parameters of a map kind that the [lubricant] table sets
+LUBRICANT_PARAMS = ("viscosity_law", "eta0", "alpha", "density_law", "rho0", "eyring_stress")
+
+
+def _lubricant_params(lub, kind_name, defaults, params) -> dict:
+    """The kind parameters of a typed ``[lubricant]`` table (same schema and unit checks as the film and
+    EHL scenes).  A kind takes Barus, Roelands (given by alpha) or constant viscosity, and
+    Dowson-Higginson (with the published a, b) or incompressible density."""
+    if "eta0" not in defaults:
+        raise _rule("lubricant", None, f"kind {kind_name!r} takes no lubricant")
+    both = [k for k in LUBRICANT_PARAMS if k in params]
+    if both:
+        raise _rule(f"params.{both[0]}", params[both[0]], "is set by the [lubricant] table as well; give the "
+                    "lubricant in one place ([lubricant], the typed table of every scene)")
+    visc, dens = lub.viscosity, lub.density
+    if visc.z is not None:
+        raise _rule("lubricant.viscosity.z", visc.z, "map kinds take Roelands' law by alpha; give alpha instead of z")
+    if dens.law == "dowson_higginson" and (dens.a, dens.b) != (DowsonHigginson.a, DowsonHigginson.b):
+        raise _rule("lubricant.density.a", dens.a, "map kinds use Dowson and Higginson's published a, b")
+    out = {"viscosity_law": visc.law, "eta0": visc.eta0, "density_law": dens.law, "rho0": dens.rho0}
+    if visc.alpha is not None:
+        out["alpha"] = visc.alpha
+    if lub.eyring_stress is not None:
+        if "eyring_stress" not in defaults:
+            raise _rule("lubricant.eyring_stress", lub.eyring_stress, f"is not used by kind {kind_name!r}")
+        out["eyring_stress"] = lub.eyring_stress
+    return out
 
 
 def _param_value(key, value, default):

@@ -101,3 +101,28 @@ def test_smoke_and_bad_input(tmp_path, capsys):
         assert _run(tmp_path, text) == 2, message
         err = capsys.readouterr().err
         assert message in err and len(err.strip().splitlines()) == 1, err
+
+
+def test_map_scenes_take_the_typed_lubricant_table():
+    """[lubricant] (the film and EHL scenes' typed table, units checked) sets a kind's oil parameters exactly
+    as the untyped params keys do; giving both, a z for Roelands or a wrong unit is a one-line error
+    naming the key."""
+    from coupling.config import CASES_DIR, CaseError, load_case_text
+
+    base = (CASES_DIR / "map_ehl_ball_inner_race.toml").read_text()
+    table = ('\n[lubricant]\nviscosity = { law = "barus", eta0 = "50 mPa s", alpha = "1.85e-8 m^2/N" }\n'
+             'density = { law = "dowson_higginson", rho0 = "992 kg/m^3" }\n')
+    typed = load_case_text(base + table, smoke=True)
+    untyped = load_case_text(base.replace('resolution = "default"', 'resolution = "default"\neta0 = "0.05 Pa s"\n'
+                                          'alpha = "1.85e-8 m^2/N"\nrho0 = "992 kg/m^3"'), smoke=True)
+    assert typed.params == untyped.params and typed.params["eta0"] == 0.05
+    cases = [
+        (base.replace('resolution = "default"', 'resolution = "default"\neta0 = 0.1') + table, "params.eta0"),
+        (base + table.replace('alpha = "1.85e-8 m^2/N"', 'z = 0.6').replace('"barus"', '"roelands"'),
+         "lubricant.viscosity.z"),
+        (base + table.replace('"50 mPa s"', '"50 mPa"'), "lubricant.viscosity.eta0"),
+    ]
+    for text, key in cases:
+        with pytest.raises(CaseError, match=key.replace(".", r"\.")) as info:
+            load_case_text(text, smoke=True)
+        assert "\n" not in str(info.value)
