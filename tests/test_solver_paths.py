@@ -141,8 +141,9 @@ def test_auto_linear_solver_leaves_a_stalled_amg(monkeypatch, caplog, ratio, sta
     import logging
 
     from lubrication import reynolds
+    from lubrication.reynolds import problem
 
-    monkeypatch.setattr(reynolds, "DIRECT_SOLVER_MAX_DOFS", 1000)
+    monkeypatch.setattr(problem, "DIRECT_SOLVER_MAX_DOFS", 1000)  # where the assembly looks it up
     xs = _geometric_axis(1e-3, 30, ratio)
     film = Film(meshes.rectangle(xs, xs), SpherePlane(10e-3, 1e-6), Lubricant.newtonian(0.01), squeeze=-1e-3,
                 element="P2")

@@ -12,7 +12,7 @@ import numpy as np
 from skfem import asm
 
 from ..errors import InputError, unknown_choice
-from ..reynolds import _source_load
+from ..reynolds.forms import _source_load
 from .contact import EHLContact
 from .newton import _FBLinear, _row_scale
 from .options import EHLGrid, EHLOptions

@@ -13,7 +13,7 @@ from skfem.helpers import dot, grad
 from .. import mesh as meshes
 from ..elastic import ElasticKernel
 from ..laws import contact as hertz
-from ..reynolds import _advection, _diffusion, _flux_load, _mass, _source_load, _streamline, make_basis
+from ..reynolds.forms import _advection, _diffusion, _flux_load, _mass, _source_load, _streamline, make_basis
 from .assembly import UniformForms
 from .contact import EHLContact, _eyring_terms, _log_slope, supg_parameter
 from .options import EHLGrid, EHLOptions

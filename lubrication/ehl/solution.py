@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from skfem import asm
 
-from ..reynolds import _source_load
+from ..reynolds.forms import _source_load
 from .contact import EHLContact
 
 @dataclass

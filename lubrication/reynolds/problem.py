@@ -1,0 +1,209 @@
+"""_Problem: assembly of the Reynolds residual and Jacobian, cavitation sets, linear solves.
+
+Part of :mod:`lubrication.reynolds` (the package docstring gives the equations and sources)."""
+from __future__ import annotations
+
+import logging
+
+import warnings
+
+import numpy as np
+import scipy.sparse.linalg as spla
+import skfem
+from skfem import asm
+from skfem.mesh.mesh_dg import MeshDG
+
+from .. import mesh as meshes
+from ..errors import InputError, unknown_choice
+from .diagnosis import amg_probe_iterations
+from .film import AMG_STALL_FACTOR, DIRECT_SOLVER_MAX_DOFS, Film
+from .forms import (_advection, _as_scalar_field, _as_vector_field, _diffusion, _flux_load, _mass, _source_load,
+    _streamline, interpolate, make_basis)
+
+log = logging.getLogger(__name__)
+
+class _Problem:
+    """Everything about a Film that does not change during the Newton solve."""
+
+    def __init__(self, film: Film):
+        self.film = film
+        self.basis = make_basis(film.mesh, film.element)
+        b = self.basis
+        self.dim = film.mesh.p.shape[0]
+        self.x = np.asarray(b.global_coordinates())  # (dim, nel, nqp)
+        self.h = np.asarray(film.gap(self.x), dtype=float)
+        if not np.all(np.isfinite(self.h)):
+            raise InputError("gap h is not finite everywhere on the film domain")
+        if np.min(self.h) <= 0.0:
+            where = np.unravel_index(np.argmin(self.h), self.h.shape)
+            xm = self.x[(slice(None),) + where]
+            raise InputError(
+                f"gap h = {np.min(self.h):.4g} m at x = {np.array2string(xm, precision=4)} m; "
+                "the film thickness must be > 0 everywhere (the surfaces touch or overlap)"
+            )
+        ul = _as_vector_field(film.velocity_lower, self.x, self.dim, "velocity_lower [m/s]")
+        uu = _as_vector_field(film.velocity_upper, self.x, self.dim, "velocity_upper [m/s]")
+        self.u_lower, self.u_upper = ul, uu
+        self.um = 0.5 * (ul + uu)
+        self.modes = {k: np.asarray(f(self.x), dtype=float) for k, f in film.gap.modes().items()}
+        hdot = _as_scalar_field(film.squeeze, self.x, "squeeze dh/dt [m/s]")
+        for k, qd in film.mode_velocities.items():
+            hdot = hdot + float(qd) * self.modes[k]
+        self.hdot = hdot
+        speed = np.sqrt(np.sum(self.um**2, axis=0))
+        order = 2.0 if film.element == "P2" else 1.0
+        hk = np.broadcast_to(self._element_size()[:, None], speed.shape)
+        self.tau = np.where(speed > 0, hk / (2.0 * order * np.where(speed > 0, speed, 1.0)), 0.0)
+        self.N = b.N
+        self._dirichlet()
+        self.linear = film.lubricant.is_constant
+        self.cav = film.cavitation
+
+    def _element_size(self):
+        m = self.film.mesh
+        # vertex coordinates from the element mapping: on periodic (DG-point)
+        # meshes m.p[:, m.t] does not address the geometry
+        pts = meshes.element_vertices(m)  # (dim, nverts, nel)
+        if self.dim == 1:
+            return np.abs(pts[0, 1] - pts[0, 0])
+        # longest edge of each element
+        nv = pts.shape[1]
+        hk = np.zeros(pts.shape[2])
+        for i in range(nv):
+            for j in range(i + 1, nv):
+                hk = np.maximum(hk, np.linalg.norm(pts[:, i] - pts[:, j], axis=0))
+        if isinstance(m, skfem.MeshQuad1):
+            hk = hk / np.sqrt(2.0)  # diagonal -> side length of a square cell
+        return hk
+
+    def _dirichlet(self):
+        film, b = self.film, self.basis
+        values = np.full(self.N, np.nan)
+        if film.dirichlet is None:
+            facets = film.mesh.boundary_facets()
+            dofs = b.get_dofs(facets).all()
+            values[dofs] = film.ambient_pressure
+        else:
+            names = film.mesh.boundaries or {}
+            for name, value in film.dirichlet.items():
+                if name not in names:
+                    raise unknown_choice("film.dirichlet boundary", name, list(names))
+                values[b.get_dofs(names[name]).all()] = float(value)
+        # on a periodic mesh (periodic in x, lubrication.mesh.rectangle) the seam
+        # dofs sit at x = x_max: measure x distances modulo the period
+        period = float(np.ptp(film.mesh.p[0])) if isinstance(film.mesh, MeshDG) else None
+        for point, value in film.pressure_points:
+            point = np.atleast_1d(np.asarray(point, dtype=float))
+            diff = b.doflocs - point[:, None]
+            if period:
+                diff[0] = (diff[0] + 0.5 * period) % period - 0.5 * period
+            d = np.linalg.norm(diff, axis=0)
+            values[int(np.argmin(d))] = float(value)
+        self.fixed = ~np.isnan(values)
+        if not np.any(self.fixed):
+            raise InputError(
+                "the film has no Dirichlet boundary or pressure point: its pressure is "
+                "undetermined (give film.dirichlet, or pressure_points for a periodic film)"
+            )
+        self.p_fixed = np.where(self.fixed, values, 0.0)
+        self.free = ~self.fixed
+
+    # ------------------------------------------------------------------
+    def coefficients(self, p, r):
+        """Quadrature-point fields for the current iterate."""
+        lub = self.film.lubricant
+        pf = interpolate(self.basis, p)
+        pq = np.asarray(pf) - self.film.ambient_pressure
+        gp = pf.grad
+        eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
+        rho, drho = lub.density(pq), lub.density.derivative(pq)
+        rf = interpolate(self.basis, r, zero=not np.any(r))
+        return dict(pq=pq, gp=gp, eta=eta, deta=deta, rho=rho, drho=drho, r=np.asarray(rf), gr=rf.grad)
+
+    def assemble(self, p, r, with_void: bool):
+        """Residual R, dR/dp and (if ``with_void``) dR/dr at (p, r).
+
+        For pressure-independent lubricants R is affine, R = A p + Jr r + R(0, 0):
+        the matrices are assembled once and reused.
+        """
+        if self.linear and getattr(self, "_cache", None) is not None and (self._cache[1] is not None or not with_void):
+            A, Jr, R0 = self._cache
+            R = A @ p + R0
+            if with_void:
+                R = R + Jr @ r
+            return R, A, Jr
+        b = self.basis
+        c = self.coefficients(p, r)
+        h, um, hdot = self.h, self.um, self.hdot
+        theta = 1.0 - c["r"]
+        k = c["rho"] * h**3 / (12.0 * c["eta"])
+        K0 = asm(_diffusion, b, a=k).tocsr()
+        A = K0
+        if not self.linear:
+            dk = h**3 / 12.0 * (c["drho"] / c["eta"] - c["rho"] * c["deta"] / c["eta"] ** 2)
+            bvec = dk * c["gp"] - c["drho"] * h * theta * um
+            A = (K0 + asm(_advection, b, b=bvec) + asm(_mass, b, c=c["drho"] * theta * hdot)).tocsr()
+        # R = k grad p . grad v - rho h theta um . grad v + rho theta hdot v - SU(r)
+        R = K0 @ p + asm(_flux_load, b, f=-c["rho"] * h * theta * um) + asm(_source_load, b, g=c["rho"] * theta * hdot)
+        Jr = None
+        if with_void:
+            S = asm(_streamline, b, s=self.tau * c["rho"] * h, beta=um)
+            Jr = (asm(_advection, b, b=c["rho"] * h * um) - asm(_mass, b, c=c["rho"] * hdot) - S).tocsr()
+            R = R - S @ r
+        if self.linear:
+            self._cache = (A, Jr, R - A @ p - (Jr @ r if Jr is not None else 0.0))
+        return R, A, Jr
+
+    def solve_linear(self, M, rhs, symmetric: bool):
+        """Solve ``M x = rhs`` with the solver that ``film.options.linear_solver`` picks.
+
+        ``"auto"`` checks AMG-CG on its first solve (:data:`AMG_STALL_FACTOR`): if CG has
+        not reached ``amg_tol`` within :func:`amg_probe_iterations` iterations, AMG has
+        stalled (graded meshes), this system and every later one of the solve go to SuperLU,
+        and ``linear_solver_used`` says why."""
+        opts = self.film.options
+        n = M.shape[0]
+        use_amg = opts.linear_solver == "amg" or (
+            opts.linear_solver == "auto" and symmetric and n > DIRECT_SOLVER_MAX_DOFS
+            and getattr(self, "amg_stall", None) is None
+        )
+        if use_amg:
+            import pyamg
+
+            # classical AMG: on the 1M-DOF benchmark matrix setup 0.9-1.0 s against
+            # 1.5-7.5 s for smoothed aggregation (whose Jacobi prolongation smoother
+            # estimates spectral radii; 7.5 s with both cores busy), 9 CG
+            # iterations against 11
+            probe = opts.linear_solver == "auto" and not getattr(self, "amg_checked", False)
+            maxiter = amg_probe_iterations(opts.amg_tol) if probe else 200
+            ml = pyamg.ruge_stuben_solver(M.tocsr())
+            residuals = []
+            x = ml.solve(rhs, tol=opts.amg_tol, accel="cg", maxiter=maxiter, residuals=residuals)
+            iterations = len(residuals) - 1
+            relative = residuals[-1] / max(residuals[0], 1e-300) if residuals else 0.0
+            self.amg_checked = True
+            if probe and relative > opts.amg_tol:
+                self.amg_stall = (relative, iterations)
+                self.linear_solver_used = (f"direct (SuperLU) after AMG-CG stalled: residual {relative:.2e} "
+                                           f"after {iterations} iterations")
+                log.info("linear solver auto: AMG-CG (Ruge-Stuben) stalled on the first of %d unknowns "
+                         "(relative residual %.2e > amg_tol %.1e after %d iterations: mean convergence factor "
+                         "%.2f > %.2f); SuperLU solves this system and the rest of the solve", n, relative,
+                         opts.amg_tol, iterations, relative ** (1.0 / max(iterations, 1)), AMG_STALL_FACTOR)
+                return self._direct(M, rhs)
+            if relative > opts.amg_tol:
+                log.warning("AMG-CG stopped at relative residual %.2e > amg_tol %.1e after %d iterations",
+                            relative, opts.amg_tol, iterations)
+            self.linear_solver_used = "amg (pyamg Ruge-Stuben + CG)"
+            return x
+        if getattr(self, "amg_stall", None) is None:
+            self.linear_solver_used = "direct (SuperLU)"
+        return self._direct(M, rhs)
+
+    @staticmethod
+    def _direct(M, rhs):
+        # an exactly singular matrix gives non-finite values, which the Newton loop reports as
+        # one clear ConvergenceError (no scipy MatrixRankWarning on the user's terminal)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", spla.MatrixRankWarning)
+            return spla.spsolve(M.tocsc(), rhs)
