@@ -1,6 +1,6 @@
 """EHL scene: validated case -> :class:`~lubrication.ehl.EHLContact` -> solve -> outputs.
 
-``build(case)`` turns an :class:`~coupling.config.EHLCase` (SI) into the
+``build(case)`` turns an :class:`~coupling.ehl_case.EHLCase` (SI) into the
 contact, grid and options of :func:`lubrication.ehl.solve_ehl`; the contact
 comes from the reduced or body radii and the operating point, from a
 bearing (:mod:`lubrication.laws.bearing`: the most loaded element's contact with one
@@ -41,7 +41,8 @@ from lubrication.laws import contact as hertz
 from lubrication.laws import film as film_formulas
 
 from . import limits, outputs, validity
-from .config import EHLCase, resolved_toml
+from .config import resolved_toml
+from .ehl_case import EHLCase
 
 log = logging.getLogger(__name__)
 

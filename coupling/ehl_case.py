@@ -1,0 +1,426 @@
+"""The EHL scene's case schema (``scene = "ehl"``): one isothermal EHL point or line contact.
+
+Layout (x the entrainment direction; the contact comes from exactly one of
+``[contact]`` + ``[operating]``, ``[bearing]`` or ``[dimensionless]``)::
+
+    scene = "ehl"
+    [contact]    radius_x, radius_y (reduced radii) | line = true, length |
+                 body1_radius_x, body1_radius_y, body2_radius_x, body2_radius_y
+    [materials]  modulus1, poisson1, modulus2, poisson2 (body 2 defaults to body 1)
+    [lubricant]  as for films: viscosity law, eta0, alpha; density law
+    [operating]  mean_speed + slide_to_roll | velocity1 + velocity2;
+                 load [N] | load_per_length [N/m] (lines) | approach (h00)
+    [bearing]    type = ball | roller, race = inner | outer, element_diameter,
+                 pitch_diameter, n_elements, inner/outer_groove_radius,
+                 diametral_clearance (balls), effective_length (rollers),
+                 contact_angle, inner_speed, outer_speed, radial_load,
+                 axial_load, stribeck_constant, load_distribution =
+                 stribeck | quasi_static (balls): see :mod:`lubrication.laws.bearing`
+    [dimensionless]  M, L, eta0 (Moes' parameters; EHLContact.from_moes)
+    [grid]       nx (2^k + 1), ny, x_min, x_max, y_max (in Hertz semi-axes)
+    [traction]   model = newtonian | limiting_shear | eyring, limiting_shear_stress,
+                 limiting_shear_slope, eyring_stress
+    [solver]     rtol, max_iter, max_step
+    [output]     write = ["vtu", "png"]
+    [validity]   max_pressure, min_film, max_reynolds (as for films; max_pressure default 4 GPa)
+    [limits]     memory, map_points
+    [smoke]      a partial case merged over this one by ``--smoke``
+
+Read through :func:`coupling.config.load_case` (``CaseModel`` below); built by :mod:`coupling.ehl_scene`.
+"""
+from __future__ import annotations
+
+import math
+from typing import Annotated, Any, ClassVar, Literal
+
+from pydantic import Field, model_validator
+
+from lubrication.laws.bearing import STRIBECK
+
+from .config import (EHL_MAX_PRESSURE, Length, LimitsModel, LubricantModel, PositiveInt, PositiveLength, Q,
+                     ValidityModel, Velocity, _Model, _root_rule, _show, rule)
+
+def _two_power_plus_one(n: int, smallest: int) -> bool:
+    return n >= smallest and (n - 1) & (n - 2) == 0
+
+
+class ContactModel(_Model):
+    """Contact geometry; x is the entrainment (rolling) direction.  One of:
+    the reduced radii (``radius_x`` and ``radius_y``, or ``line = true``);
+    the principal radii of the two bodies (``body1_radius_x`` ...: convex > 0,
+    concave < 0, omitted = flat; 1/R = 1/r1 + 1/r2); or nothing, with a
+    ``[bearing]`` table.  ``length``: effective length of a line contact."""
+
+    radius_x: PositiveLength | None = None
+    radius_y: PositiveLength | None = None
+    line: bool = False
+    length: PositiveLength | None = None
+    body1_radius_x: Length | None = None
+    body1_radius_y: Length | None = None
+    body2_radius_x: Length | None = None
+    body2_radius_y: Length | None = None
+
+    BODY: ClassVar[tuple[str, ...]] = ("body1_radius_x", "body1_radius_y", "body2_radius_x", "body2_radius_y")
+
+    @property
+    def by_bodies(self) -> bool:
+        return any(getattr(self, key) is not None for key in self.BODY)
+
+    @property
+    def given(self) -> list[str]:
+        """The geometry keys that were given (for mode checks)."""
+        return [k for k in ("radius_x", "radius_y", "length") + self.BODY if getattr(self, k) is not None]
+
+    def reduced_radii(self) -> tuple[float | None, float | None]:
+        """(R_x, R_y) [m]; R_y is None for a line contact."""
+        if not self.by_bodies:
+            return self.radius_x, (None if self.line else self.radius_y)
+
+        def combine(a, b):
+            curvature = sum(1.0 / r for r in (a, b) if r is not None)
+            return 1.0 / curvature if curvature > 0 else None
+
+        rx = combine(self.body1_radius_x, self.body2_radius_x)
+        ry = None if self.line else combine(self.body1_radius_y, self.body2_radius_y)
+        return rx, ry
+
+    @model_validator(mode="after")
+    def _geometry(self):
+        for key in self.BODY:
+            value = getattr(self, key)
+            if value is not None and value == 0.0:
+                raise rule(key, value, "must not be 0 (convex > 0, concave < 0; omit it for a flat surface)")
+        if self.by_bodies:
+            for key in ("radius_x", "radius_y"):
+                if getattr(self, key) is not None:
+                    raise rule(key, getattr(self, key), "cannot be combined with body radii (body1_radius_x ...); "
+                               "give the reduced radii or the body radii")
+            for axis in ("x",) + (() if self.line else ("y",)):
+                r1, r2 = getattr(self, f"body1_radius_{axis}"), getattr(self, f"body2_radius_{axis}")
+                curvature = sum(1.0 / r for r in (r1, r2) if r is not None)
+                if r1 is None and r2 is None:
+                    hint = "" if axis == "x" else " (or set line = true)"
+                    raise rule(f"body1_radius_{axis}", None, f"is required: give body1_radius_{axis} and/or "
+                               f"body2_radius_{axis}{hint}")
+                if not curvature > 0.0:
+                    raise rule(f"body1_radius_{axis}", r1, f"and body2_radius_{axis} = {_show(r2) if r2 is not None else 'flat'} "
+                               f"give 1/R_{axis} = {curvature:.4g} 1/m; it must be > 0 (the surfaces conform or separate)")
+        if self.line:
+            for key in ("radius_y", "body1_radius_y", "body2_radius_y"):
+                if getattr(self, key) is not None:
+                    raise rule(key, getattr(self, key), "is not used by a line contact (line = true)")
+        elif self.length is not None:
+            raise rule("length", self.length, "is for line contacts only (line = true)")
+        return self
+
+
+class MaterialsModel(_Model):
+    """Elastic bodies; 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.  Body 2 defaults to body 1."""
+
+    modulus1: Q("pressure", gt=0)
+    poisson1: Q("dimensionless", gt=-1, lt=0.5)
+    modulus2: Q("pressure", gt=0) | None = None
+    poisson2: Q("dimensionless", gt=-1, lt=0.5) | None = None
+
+    @model_validator(mode="after")
+    def _second_body(self):
+        self.modulus2 = self.modulus1 if self.modulus2 is None else self.modulus2
+        self.poisson2 = self.poisson1 if self.poisson2 is None else self.poisson2
+        return self
+
+    @property
+    def e_star(self) -> float:
+        from lubrication.laws.contact import reduced_modulus
+
+        return reduced_modulus(self.modulus1, self.poisson1, self.modulus2, self.poisson2)
+
+
+class OperatingModel(_Model):
+    """Speeds along +x: ``mean_speed`` u_m (with ``slide_to_roll`` = (u2 - u1)/u_m),
+    or the surface speeds ``velocity1``, ``velocity2``.  Load: ``load`` [N]
+    (a line contact with ``contact.length``: N on that length),
+    ``load_per_length`` [N/m] (lines) or ``approach`` h00 [m] (prescribed)."""
+
+    mean_speed: Q("velocity", gt=0) | None = None
+    slide_to_roll: Q("dimensionless") | None = None
+    velocity1: Velocity | None = None
+    velocity2: Velocity | None = None
+    load: Q("force", gt=0) | None = None
+    load_per_length: Q("force per length", gt=0) | None = None
+    approach: Length | None = None
+
+    LOADS: ClassVar[tuple[str, ...]] = ("load", "load_per_length", "approach")
+
+    @model_validator(mode="after")
+    def _speeds_and_load(self):
+        by_surfaces = self.velocity1 is not None or self.velocity2 is not None
+        if by_surfaces:
+            if self.mean_speed is not None:
+                raise rule("mean_speed", self.mean_speed, "cannot be combined with velocity1/velocity2; give one or the other")
+            if self.slide_to_roll is not None:
+                raise rule("slide_to_roll", self.slide_to_roll, "follows from velocity1 and velocity2; give it only with mean_speed")
+            if self.velocity1 is None or self.velocity2 is None:
+                missing = "velocity1" if self.velocity1 is None else "velocity2"
+                raise rule(missing, None, "is required with the other surface velocity (or give mean_speed)")
+            if not self.velocity1 + self.velocity2 > 0.0:
+                raise rule("velocity1", self.velocity1, f"and velocity2 = {_show(self.velocity2)} give a mean "
+                           "(entrainment) speed <= 0 m/s; it must be > 0 (entrainment along +x)")
+        given = [k for k in self.LOADS if getattr(self, k) is not None]
+        if len(given) > 1:
+            raise rule(given[1], getattr(self, given[1]), f"cannot be combined with {given[0]}; give one of "
+                       + ", ".join(self.LOADS))
+        return self
+
+    def speeds(self) -> tuple[float, float]:
+        """(u_m [m/s], slide-to-roll ratio [-])."""
+        if self.velocity1 is not None:
+            um = 0.5 * (self.velocity1 + self.velocity2)
+            return um, (self.velocity2 - self.velocity1) / um
+        return self.mean_speed, self.slide_to_roll or 0.0
+
+
+class GridModel(_Model):
+    """Uniform grid: ``nx`` nodes on x in [x_min, x_max] Hertz semi-axes along x,
+    ``ny`` (default: about square cells) on |y| <= y_max semi-axes across
+    (points only).  nx and ny are 2^k + 1: finer grids are reached by nested
+    iteration from the grid with half the cells."""
+
+    nx: PositiveInt = 65
+    ny: PositiveInt | None = None
+    x_min: Q("dimensionless", lt=0) = -4.5
+    x_max: Q("dimensionless", gt=0) = 1.5
+    y_max: Q("dimensionless", gt=0) | None = None
+
+    @model_validator(mode="after")
+    def _sizes(self):
+        if not _two_power_plus_one(self.nx, 9):
+            raise rule("nx", self.nx, "must be 2^k + 1 (9, 17, 33, 65, 129, 257, 513, ...) for nested iteration")
+        if self.ny is not None and not _two_power_plus_one(self.ny, 5):
+            raise rule("ny", self.ny, "must be 2^k + 1 (5, 9, 17, 33, 65, ...) for nested iteration")
+        return self
+
+
+class TractionModel(_Model):
+    """Shear law for friction: newtonian | limiting_shear (|tau| <= tau_L0 + gamma p) | eyring."""
+
+    model: Literal["newtonian", "limiting_shear", "eyring"] = "newtonian"
+    limiting_shear_stress: Q("pressure", gt=0) = 5e6
+    limiting_shear_slope: Q("dimensionless", ge=0) = 0.08
+    eyring_stress: Q("pressure", gt=0) = 5e6
+
+
+class EHLSolverModel(_Model):
+    """EHL solver (:mod:`lubrication.ehl`).  ``method``: ``auto`` (FEM with
+    Fischer-Burmeister Newton for points, active-set Newton for lines),
+    ``fischer_burmeister``, ``active_set``, or ``multigrid`` (FAS multigrid of
+    :mod:`lubrication.ehl.multigrid`: steady point contacts, grids nx = 16 2^k + 1,
+    finite differences; 257 x 257 in 2-3 s).  Newton: relative tolerance,
+    iteration limit, step limit (in Hertz pressures); the multigrid method has
+    its own tolerances (:class:`lubrication.ehl.multigrid.MultigridOptions`)."""
+
+    method: Literal["auto", "fischer_burmeister", "active_set", "multigrid"] = "auto"
+    rtol: Q("dimensionless", gt=0, lt=1) = 1e-7
+    max_iter: PositiveInt = 80
+    max_step: Q("dimensionless", gt=0) = 2.0
+
+
+class EHLOutputModel(_Model):
+    write: list[Literal["vtu", "png"]] = ["vtu", "png"]
+
+
+class BearingModel(_Model):
+    """The bearing the contact is taken from (:mod:`lubrication.laws.bearing`): the
+    most loaded element on ``race``.  Balls: groove radii, optional diametral
+    clearance; the contact angle follows from the axial load unless given.
+    Rollers: line contact of ``effective_length`` at ``contact_angle``."""
+
+    type: Literal["ball", "roller"]
+    race: Literal["inner", "outer"] = "inner"
+    element_diameter: PositiveLength
+    pitch_diameter: PositiveLength
+    n_elements: Annotated[int, Field(strict=True, ge=3)]
+    inner_groove_radius: PositiveLength | None = None
+    outer_groove_radius: PositiveLength | None = None
+    diametral_clearance: Q("length", ge=0) | None = None
+    effective_length: PositiveLength | None = None
+    contact_angle: Q("angle", ge=0, lt=0.5 * math.pi) | None = None
+    inner_speed: Q("angular velocity") = 0.0
+    outer_speed: Q("angular velocity") = 0.0
+    radial_load: Q("force", ge=0) = 0.0
+    axial_load: Q("force", ge=0) = 0.0
+    stribeck_constant: Q("dimensionless", gt=0) | None = None
+    load_distribution: Literal["stribeck", "quasi_static"] = "stribeck"
+
+    @model_validator(mode="after")
+    def _kind(self):
+        if self.type == "ball":
+            for key in ("inner_groove_radius", "outer_groove_radius"):
+                if getattr(self, key) is None:
+                    raise rule(key, None, "is required for type = 'ball' (length, e.g. '4.905 mm')")
+            if self.effective_length is not None:
+                raise rule("effective_length", self.effective_length, "is for type = 'roller' only")
+            self.diametral_clearance = self.diametral_clearance or 0.0
+            self._ball_geometry()
+            if self.stribeck_constant is None:
+                self.stribeck_constant = STRIBECK["point"]
+        else:
+            for key in ("inner_groove_radius", "outer_groove_radius", "diametral_clearance"):
+                if getattr(self, key) is not None:
+                    raise rule(key, getattr(self, key), "is for type = 'ball' only")
+            for key in ("effective_length", "contact_angle"):
+                if getattr(self, key) is None:
+                    raise rule(key, None, "is required for type = 'roller'")
+            if self.load_distribution != "stribeck":
+                raise rule("load_distribution", self.load_distribution, "'quasi_static' is implemented for "
+                           "type = 'ball' only; use 'stribeck'")
+            if self.stribeck_constant is None:
+                self.stribeck_constant = STRIBECK["line"]
+        if self.inner_speed == self.outer_speed:
+            raise rule("inner_speed", self.inner_speed, f"equals outer_speed = {_show(self.outer_speed)} rad/s: the "
+                       "rings do not turn relative to each other and nothing entrains the lubricant")
+        if self.radial_load == 0.0 and self.axial_load == 0.0:
+            raise rule("radial_load", 0.0, "and axial_load are both 0: no element is loaded")
+        if self.type == "roller" and self.axial_load > 0.0 and self.contact_angle == 0.0:
+            raise rule("axial_load", self.axial_load, "needs contact_angle > 0")
+        return self
+
+
+    def _ball_geometry(self):
+        """The ball inside the pitch circle and a clearance that leaves the free contact angle below
+        90 deg (cos beta0 = 1 - P_d / (2 B D) > 0), checked only once the grooves are wider than the
+        ball (else :mod:`lubrication.laws.bearing` names the groove radius), so that each message names the
+        key that is wrong."""
+        D = self.element_diameter
+        if not D < self.pitch_diameter:
+            raise rule("element_diameter", D, f"must be < pitch_diameter = {self.pitch_diameter:g} m")
+        if not min(self.inner_groove_radius, self.outer_groove_radius) > 0.5 * D:
+            return  # the groove radius is what is wrong: lubrication.laws.bearing names it ("must be > D/2")
+        bd = self.inner_groove_radius + self.outer_groove_radius - D
+        if not self.diametral_clearance < 2.0 * bd:
+            raise rule("diametral_clearance", self.diametral_clearance, f"must be < 2 B D = {2 * bd:g} m, where "
+                       f"the free contact angle reaches 90 deg (B D = inner_groove_radius + outer_groove_radius - "
+                       f"element_diameter = {bd:g} m)")
+
+
+class DimensionlessModel(_Model):
+    """Moes' load and material parameters; the pressure-viscosity coefficient
+    and the load follow at the scales R_x (contact.radius_x, default 10 mm),
+    E* ([materials], default 100 GPa), eta0 and u_m (operating.mean_speed,
+    default 1 m/s): :meth:`lubrication.ehl.EHLContact.from_moes`."""
+
+    M: Q("dimensionless", gt=0)
+    L: Q("dimensionless", ge=0)
+    eta0: Q("dynamic viscosity", gt=0) = 0.04
+
+
+class EHLCase(_Model):
+    """An EHL scene; after validation every value is SI and every default filled in."""
+
+    scene: Literal["ehl"]
+    description: str = ""
+    contact: ContactModel = Field(default_factory=ContactModel)
+    materials: MaterialsModel | None = None
+    lubricant: LubricantModel | None = None
+    operating: OperatingModel = Field(default_factory=OperatingModel)
+    bearing: BearingModel | None = None
+    dimensionless: DimensionlessModel | None = None
+    grid: GridModel = Field(default_factory=GridModel)
+    traction: TractionModel = Field(default_factory=TractionModel)
+    solver: EHLSolverModel = Field(default_factory=EHLSolverModel)
+    output: EHLOutputModel = Field(default_factory=EHLOutputModel)
+    validity: ValidityModel = Field(default_factory=ValidityModel)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
+    smoke: dict[str, Any] | None = None
+
+    @property
+    def is_line(self) -> bool:
+        return self.contact.line
+
+    @property
+    def mode(self) -> str:
+        """'bearing', 'dimensionless' or 'direct': where the contact data come from."""
+        return "bearing" if self.bearing is not None else ("dimensionless" if self.dimensionless is not None else "direct")
+
+    @model_validator(mode="after")
+    def _resolve(self):
+        c, op = self.contact, self.operating
+        if self.bearing is not None and self.dimensionless is not None:
+            raise _root_rule("dimensionless", {}, "cannot be combined with [bearing]; give one")
+        if self.mode == "dimensionless":
+            self._resolve_dimensionless()
+        elif self.mode == "bearing":
+            for key in c.given:
+                raise _root_rule(f"contact.{key}", getattr(c, key), "is not used with [bearing] (the contact follows "
+                                 "from the bearing; remove it or the [bearing] table)")
+            if c.line != (self.bearing.type == "roller"):
+                if c.line:
+                    raise _root_rule("contact.line", True, "does not match bearing.type = 'ball' (a point contact)")
+                c.line = True
+            for key in ("mean_speed", "velocity1", "velocity2") + OperatingModel.LOADS:
+                if getattr(op, key) is not None:
+                    raise _root_rule(f"operating.{key}", getattr(op, key), "is not used with [bearing] (speed and "
+                                     "load follow from the bearing's speeds and loads)")
+            self._require_physics()
+        else:
+            if c.radius_x is None and not c.by_bodies:
+                raise _root_rule("contact.radius_x", None, "is required (length), or give body radii "
+                                 "(body1_radius_x ...), a [bearing] or a [dimensionless] table")
+            if not c.line and not c.by_bodies and c.radius_y is None:
+                raise _root_rule("contact.radius_y", None, "is required for a point contact (length), or set "
+                                 "contact.line = true")
+            if op.mean_speed is None and op.velocity1 is None:
+                raise _root_rule("operating.mean_speed", None, "is required (velocity, e.g. '2 m/s'), or give "
+                                 "operating.velocity1 and operating.velocity2")
+            if all(getattr(op, key) is None for key in OperatingModel.LOADS):
+                raise _root_rule("operating.load", None, "is required (force), or give "
+                                 + ("load_per_length or approach" if c.line else "approach"))
+            if not c.line and op.load_per_length is not None:
+                raise _root_rule("operating.load_per_length", op.load_per_length, "is for line contacts "
+                                 "(contact.line = true); give operating.load [N]")
+            if c.line and op.load is not None and c.length is None:
+                raise _root_rule("operating.load", op.load, "of a line contact needs contact.length (or give "
+                                 "operating.load_per_length [N/m])")
+            self._require_physics()
+        if op.mean_speed is not None and op.slide_to_roll is None:
+            op.slide_to_roll = 0.0
+        g = self.grid
+        if c.line:
+            for key in ("ny", "y_max"):
+                if getattr(g, key) is not None:
+                    raise _root_rule(f"grid.{key}", getattr(g, key), "is not used by a line contact")
+        elif g.y_max is None:
+            g.y_max = 3.0
+        if self.validity.max_pressure is None:
+            self.validity.max_pressure = EHL_MAX_PRESSURE
+        return self
+
+    def _require_physics(self):
+        if self.materials is None:
+            raise _root_rule("materials", None, "is required: [materials] modulus1, poisson1 (and modulus2, "
+                             "poisson2 when the second body differs)")
+        if self.lubricant is None:
+            raise _root_rule("lubricant", None, "is required: [lubricant.viscosity] law, eta0, alpha ... "
+                             "(or [lubricant] viscosity = '0.05 Pa s')")
+
+    def _resolve_dimensionless(self):
+        c, op = self.contact, self.operating
+        if self.lubricant is not None:
+            raise _root_rule("lubricant", {}, "is not used with [dimensionless] (alpha follows from L; "
+                             "give dimensionless.eta0; the density is incompressible)")
+        for key in ("length",) + ContactModel.BODY:
+            if getattr(c, key) is not None:
+                raise _root_rule(f"contact.{key}", getattr(c, key), "is not used with [dimensionless] (give "
+                                 "contact.radius_x, and radius_y for an elliptical contact)")
+        for key in ("velocity1", "velocity2") + OperatingModel.LOADS:
+            if getattr(op, key) is not None:
+                raise _root_rule(f"operating.{key}", getattr(op, key), "is not used with [dimensionless] (the load "
+                                 "follows from M; give operating.mean_speed)")
+        if c.radius_x is None:
+            c.radius_x = 0.01
+        if not c.line and c.radius_y is None:
+            c.radius_y = c.radius_x
+        if op.mean_speed is None:
+            op.mean_speed = 1.0
+
+
+CaseModel = EHLCase
