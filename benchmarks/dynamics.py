@@ -113,7 +113,8 @@ from dynamics.analysis import collision_events  # noqa: E402
 from dynamics.cageless import (  # noqa: E402
     D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, forces, forces_many, rhs)
 from dynamics.errors import DynamicsInputError, IntegrationError  # noqa: E402
-from dynamics.integrators import integrate, kernel_cache_dir, stability_limit  # noqa: E402
+from dynamics.integrators import integrate, stability_limit  # noqa: E402
+from dynamics.specialise import kernel_cache_dir  # noqa: E402
 
 log = logging.getLogger("benchmarks.dynamics")
 ROOT = Path(__file__).resolve().parents[1]
@@ -870,7 +871,8 @@ import numpy as np
 from coupling.config import load_case
 from coupling.dynamics_scene import build
 from dynamics.cageless import rhs
-from dynamics.integrators import integrate, kernel_cache_dir
+from dynamics.integrators import integrate
+from dynamics.specialise import kernel_cache_dir
 t1 = time.perf_counter()
 case = load_case(sys.argv[1])
 s = build(case, sys.argv[1])

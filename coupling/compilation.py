@@ -29,7 +29,7 @@ def kernel_name(dispatcher) -> str:
     module = getattr(py, "__module__", "") or ""
     name = getattr(py, "__qualname__", repr(dispatcher))
     if module.startswith(("_lubedyn_kernels.", "dynamics.kernels.k_")):
-        # k_<impl>__<callable modules and names>[__<hash>]: see dynamics.integrators.generated_module
+        # k_<impl>__<callable modules and names>[__<hash>]: see dynamics.specialise.generated_module
         parts = module.rsplit(".", 1)[1].split("__")
         impl = parts[0][2:].removesuffix("_impl") if parts[0].startswith("k_") else parts[0]
         return f"{impl} kernel ({parts[1] if len(parts) >= 2 else module})"

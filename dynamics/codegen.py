@@ -15,7 +15,7 @@ import argparse
 import logging
 import sys
 
-from . import integrators
+from . import integrators, specialise
 
 log = logging.getLogger(__name__)
 
@@ -36,10 +36,10 @@ def shipped() -> list[tuple]:
 def generate(check: bool = False) -> list[str]:
     """Write (or with ``check``, only compare) the shipped kernel modules; return the names that
     differed from what is on disk (stale modules included)."""
-    directory = integrators.KERNEL_DIR
+    directory = specialise.KERNEL_DIR
     wanted, changed = {}, []
     for impl, callables in shipped():
-        stem, _, text = integrators.generated_module(impl, callables)
+        stem, _, text = specialise.generated_module(impl, callables)
         wanted[stem] = text
     for stem, text in wanted.items():
         path = directory / f"{stem}.py"

@@ -68,7 +68,8 @@ import numpy as np
 from numba import njit
 
 from .errors import DynamicsInputError
-from .integrators import register_generic, specialise, stability_limit
+from .integrators import stability_limit
+from .specialise import register_generic, specialise
 
 logger = logging.getLogger(__name__)
 

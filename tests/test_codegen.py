@@ -11,6 +11,7 @@ import numpy as np
 
 from dynamics import codegen
 from dynamics import integrators as I
+from dynamics import specialise as S
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -33,12 +34,12 @@ def test_a_stale_shipped_kernel_is_refused(tmp_path, monkeypatch, caplog):
     warning naming the file (numba's cache would otherwise keep the old callee code)."""
     from dynamics import cageless
 
-    stem, digest, text = I.generated_module(I._rk4_impl, {"rhs": cageless.rhs})
+    stem, digest, text = S.generated_module(I._rk4_impl, {"rhs": cageless.rhs})
     (tmp_path / f"{stem}.py").write_text(text.replace(digest, "0" * 16))
-    monkeypatch.setattr(I, "KERNEL_DIR", tmp_path)
+    monkeypatch.setattr(S, "KERNEL_DIR", tmp_path)
     monkeypatch.delenv("LUBEDYN_KERNEL_CACHE", raising=False)
-    monkeypatch.setattr(I, "_SPECIALISED", {})
-    with caplog.at_level("WARNING", logger="dynamics.integrators"):
+    monkeypatch.setattr(S, "_SPECIALISED", {})
+    with caplog.at_level("WARNING", logger="dynamics.specialise"):
         kernel = I.specialise(I._rk4_impl, rhs=cageless.rhs)
     assert "out of date" in caplog.text and stem in caplog.text
     assert not kernel.py_func.__module__.startswith("dynamics.kernels")

@@ -13,6 +13,7 @@ from numba import njit
 from scipy.integrate import solve_ivp
 
 from dynamics import integrators as I
+from dynamics import specialise as S
 from dynamics.errors import DynamicsInputError, IntegrationError
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -368,10 +369,10 @@ def test_stale_kernel_source_is_refused_and_the_generic_kernel_used(monkeypatch,
     generator must refuse it, and specialise must fall back to the generic kernel, whose answer is still
     the exact exp(-2 t)."""
     monkeypatch.setenv("LUBEDYN_KERNEL_CACHE", str(tmp_path))
-    real = I.inspect.getsource
-    monkeypatch.setattr(I.inspect, "getsource", lambda f: real(I._rk4_impl) if f is I._dopri5_impl else real(f))
+    real = S.inspect.getsource
+    monkeypatch.setattr(S.inspect, "getsource", lambda f: real(I._rk4_impl) if f is I._dopri5_impl else real(f))
     with pytest.raises(ImportError, match="changed since import"):
-        I._generate_source(I._dopri5_impl, {"rhs": stale_decay})
+        S._generate_source(I._dopri5_impl, {"rhs": stale_decay})
     kernel = I.kernel_for("dopri5", stale_decay)  # the resumable kernel from specialise, run in one call
     Y, st = kernel(np.array([1.0]), np.array([0.0, 0.5, 1.0]), (), 1e-10, 1e-12, 0.0, 0.0, 10**6)
     np.testing.assert_allclose(Y[:, 0], np.exp(-2.0 * np.array([0.0, 0.5, 1.0])), rtol=1e-8)
