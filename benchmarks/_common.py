@@ -85,8 +85,8 @@ def _git() -> dict:
     except (OSError, subprocess.CalledProcessError):
         info["commit"] = None
     digest = hashlib.sha256()
-    for path in sorted((ROOT / "lubrication").glob("*.py")):
-        digest.update(path.name.encode())
+    for path in sorted((ROOT / "lubrication").rglob("*.py")):  # the solvers' packages and the laws too
+        digest.update(path.relative_to(ROOT).as_posix().encode())
         digest.update(path.read_bytes())
     info["lubrication_sources_sha256"] = digest.hexdigest()[:16]
     return info

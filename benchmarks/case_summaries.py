@@ -36,7 +36,7 @@ every bundled case's summary.json, map header and time-series metadata):
 - the machine: ``Backend`` (``local processes (N)``, N = cores) and ``backend``; the map header's
   ``versions`` (Python and library versions);
 - hashes of the source code: ``Map input sha256`` and the header's ``input sha256`` and ``code``
-  (they hash ``lubrication/*.py`` and the kind's source file, so any edit changes them);
+  (they hash ``lubrication/**/*.py`` and the kind's source file, so any edit changes them);
 - paths: ``loaded from cache`` (a path); the resolved case (``case.resolved.toml``) is not kept:
   it is the input and carries the path of the case file.
   Physical times such as ``Simulated time [s]`` or ``Benettin averaging time [s]`` are kept.

@@ -1081,7 +1081,7 @@ def build_map(kind, params: dict | None = None, axes=None, *, method: str = "her
 
     The map's input hash covers the kind's name, the parameters, the axis
     nodes, the method, the number and seed of accuracy points and the code
-    (the kind's source file and ``lubrication/*.py``); each point's hash covers
+    (the kind's source file and ``lubrication/**/*.py``); each point's hash covers
     the kind, parameters, point and code, so points are shared between maps
     whose grids overlap.
     """
