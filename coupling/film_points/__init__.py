@@ -186,7 +186,7 @@ inlets) -- see :func:`ehl_load_response` for the fallbacks.
 
 Inlet length (ball races).  The film is fed from the inlet; a domain that
 starts too close to the contact starves it.  Measured on paper B's races
-(22 Nov 2026, 6.4 cells per b_x, |y| <= 1.5 b_y; change of h_c against an
+(6.4 cells per b_x, |y| <= 1.5 b_y; change of h_c against an
 inlet at -38.5 b_x): inlet at -6 b_x (the earlier default): inner race -9.0 %
 at 50 N / 30 m/s, -2.8 % at 50 N / 6 m/s, -1.4 % at 245 N / 13.4 m/s, -0.4 %
 at 1200 N / 30 m/s (outer race -8.0, -2.7, -1.3, -0.6 %); -13.5 b_x: -0.66 %

@@ -25,9 +25,8 @@ EHL_RESOLUTIONS = {
     # nx on x in [-20, 3] b.  They fix the node *spacing* in Hertz semi-axes (:func:`_ehl_grid`): a
     # case's longer domain gets proportionally more nodes, so that the contact keeps its nodes per
     # Hertz radius (point default: 6.4 cells per b_x, 8 per b_y; line default 11.1 per b).
-    # Measured on paper B's inner contact (Q = 723 N, u_e = 11.54 m/s), lubrication.ehl of
-    # 22 Nov 2026 04:45 UTC (Fischer-Burmeister Newton), (h_c, h_min, K, C, s per point with
-    # the other core busy): 33 x 17: 1.1152 um, 0.842 um, 1.2735e8 N/m, 1631 N s/m, 4 s;
+    # Measured on paper B's inner contact (Q = 723 N, u_e = 11.54 m/s), Fischer-Burmeister Newton,
+    # (h_c, h_min, K, C, s per point with the other core busy): 33 x 17: 1.1152 um, 0.842 um, 1.2735e8 N/m, 1631 N s/m, 4 s;
     # 49 x 25: 1.1217, 0.991, 1.2818e8, 1593, 13 s; 65 x 33: 1.1272, 1.024, 1.2888e8, 1589, 32 s.
     # Roller (20 kN, 6.46 m/s), 129 / 257 / 513 nodes: h_c 4.046 / 3.990 / 3.992 um,
     # K 8.60e8 / 8.02e8 / 7.98e8 N/m, C 3.01e4 / 4.15e4 / 4.43e4 N s/m (the damping converges
@@ -111,7 +110,7 @@ def ehl_roller_race_default_params() -> dict:
     intercept; paper A gives none).  R = (D/2)(1 - gamma), gamma = D cos(5
     deg)/d_m.
 
-    Why Eyring (measured 22 Nov 2026, 257 and 1025 nodes): with a Newtonian
+    Why Eyring (measured on 257 and 1025 nodes): with a Newtonian
     base oil this contact (L = 44-66) has several exact discrete solutions at
     the same load and speed -- starts from 0.8, 0.944, 1.06 and 1.25 times the
     load converge to outlet spikes 0.09 b apart and h_min up to 13 % apart
@@ -341,7 +340,7 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
     # 257 nodes h_min and the damping by ~4 % at 5 kN, 6.5 m/s: a point that needs it is
     # discretised differently from its neighbours.  Extending the domain by whole cells
     # instead, so that the contact's nodes stay put, made the two roller points that need this
-    # fallback (14.1 kN, 3 m/s; 20 kN, 13.9 m/s) fail altogether, measured 22 Nov 2026).  Measured: paper B's inner contact at
+    # fallback (14.1 kN, 3 m/s; 20 kN, 13.9 m/s) fail altogether, as measured).  Measured: paper B's inner contact at
     # Q = 178 N, u_e = 30 m/s on 49 x 25 nodes (M = 120, L = 32) stalls with the default
     # Fischer-Burmeister Newton and converges, to the same h_c to 1e-11, with a
     # first-order start on every grid or with the active-set method; the roller line
