@@ -310,45 +310,49 @@ def _film_map(case: DynamicsCase, source: str | None):
     return path, fmap
 
 
+def _rpm(speed):
+    return speed * 60.0 / (2.0 * math.pi)
+
+
+def _degrees(angles):
+    return tuple(math.degrees(a) for a in angles)
+
+
+#: (model field, case key, conversion or None): how a dynamics case becomes a
+#: :class:`dynamics.cageless.CagelessBearing` (:func:`bearing_kwargs`), and how the model's one-line
+#: errors name the case file's key (:func:`_case_words`).  One table for both directions.
+FIELDS = (
+    *((k, f"bearing.{k}", None) for k in (
+        "n_balls", "ball_diameter", "pitch_diameter", "inner_groove_radius", "outer_groove_radius",
+        "diametral_clearance", "ball_modulus", "ball_poisson", "ring_modulus", "ring_poisson", "ball_density",
+        "ball_mass", "ring_mass", "ring_inertia", "rotor_inertia")),
+    *((k, f"operating.{k}", None) for k in (
+        "radial_load", "axial_load", "gravity", "scenario", "drop_speed", "rotor_friction", "rotor_contact_radius")),
+    ("speed_rpm", "operating.speed", _rpm),
+    ("dof", "model.dof", None), ("hertz_method", "model.hertz", None), ("race_damping", "model.race_damping", None),
+    ("ball_ball", "model.ball_ball", None), ("yield_stress", "model.yield_stress", None),
+    ("traction_limit", "model.traction_limit", None), ("traction_srr", "model.traction_srr", None),
+    ("film", "films.ball_ball", None), ("viscosity", "films.viscosity", None),
+    ("film_rupture_thickness", "films.rupture_thickness", None), ("race_film", "films.race", None),
+    ("pressure_viscosity", "films.pressure_viscosity", None), ("ball_ball_mu_film", "films.friction_film", None),
+    ("ball_ball_mu_boundary", "films.friction_boundary", None),
+    ("slot_azimuths_deg", "slots.azimuths", _degrees), ("slot_race", "slots.race", None),
+    ("slot_width", "slots.width", None), ("slot_length", "slots.length", None), ("slot_depth", "slots.depth", None),
+    ("slot_edge_radius", "slots.edge_radius", None),
+)
+#: fields :func:`build` sets from loaded maps, named by the case key that chose them
+BUILT_FIELDS = {"traction": "model.traction", "traction_maps": "model.traction_maps", "film_map": "films.map"}
+CASE_KEYS = {**{field: key for field, key, _ in FIELDS}, **BUILT_FIELDS}
+
+
 def bearing_kwargs(case: DynamicsCase) -> dict:
-    """The case as keyword arguments of :class:`dynamics.cageless.CagelessBearing`."""
-    b, s, op, m, f = case.bearing, case.slots, case.operating, case.model, case.films
-    return dict(
-        n_balls=b.n_balls, ball_diameter=b.ball_diameter, pitch_diameter=b.pitch_diameter,
-        inner_groove_radius=b.inner_groove_radius, outer_groove_radius=b.outer_groove_radius,
-        diametral_clearance=b.diametral_clearance, ball_modulus=b.ball_modulus, ball_poisson=b.ball_poisson,
-        ring_modulus=b.ring_modulus, ring_poisson=b.ring_poisson, ball_density=b.ball_density,
-        ball_mass=b.ball_mass, ring_mass=b.ring_mass, ring_inertia=b.ring_inertia, rotor_inertia=b.rotor_inertia,
-        radial_load=op.radial_load, axial_load=op.axial_load, gravity=op.gravity,
-        speed_rpm=op.speed * 60.0 / (2.0 * math.pi), scenario=op.scenario, drop_speed=op.drop_speed,
-        rotor_friction=op.rotor_friction, rotor_contact_radius=op.rotor_contact_radius,
-        dof=m.dof, hertz_method=m.hertz, race_damping=m.race_damping, ball_ball=m.ball_ball,
-        yield_stress=m.yield_stress, traction_limit=m.traction_limit, traction_srr=m.traction_srr,
-        film=f.ball_ball, viscosity=f.viscosity, film_rupture_thickness=f.rupture_thickness,
-        race_film=f.race, pressure_viscosity=f.pressure_viscosity,
-        ball_ball_mu_film=f.friction_film, ball_ball_mu_boundary=f.friction_boundary,
-        slot_azimuths_deg=tuple(math.degrees(a) for a in s.azimuths), slot_race=s.race, slot_width=s.width,
-        slot_length=s.length, slot_depth=s.depth, slot_edge_radius=s.edge_radius,
-    )
-
-
-# model field -> case key, so that the model's one-line errors name the case file's key
-CASE_KEYS = {
-    **{k: f"bearing.{k}" for k in ("n_balls", "ball_diameter", "pitch_diameter", "inner_groove_radius",
-                                   "outer_groove_radius", "diametral_clearance", "ball_modulus", "ball_poisson",
-                                   "ring_modulus", "ring_poisson", "ball_density", "ball_mass", "ring_mass",
-                                   "ring_inertia", "rotor_inertia")},
-    **{k: f"operating.{k}" for k in ("radial_load", "axial_load", "gravity", "scenario", "drop_speed",
-                                     "rotor_friction", "rotor_contact_radius")},
-    "speed_rpm": "operating.speed", "dof": "model.dof", "hertz_method": "model.hertz",
-    "race_damping": "model.race_damping", "yield_stress": "model.yield_stress",
-    "traction_limit": "model.traction_limit", "traction_srr": "model.traction_srr", "traction": "model.traction",
-    "traction_maps": "model.traction_maps", "film": "films.ball_ball",
-    "film_map": "films.map", "viscosity": "films.viscosity", "race_film": "films.race",
-    "pressure_viscosity": "films.pressure_viscosity", "film_rupture_thickness": "films.rupture_thickness",
-    "slot_azimuths_deg": "slots.azimuths", "slot_race": "slots.race", "slot_width": "slots.width",
-    "slot_length": "slots.length", "slot_depth": "slots.depth", "slot_edge_radius": "slots.edge_radius",
-}
+    """The case as keyword arguments of :class:`dynamics.cageless.CagelessBearing` (:data:`FIELDS`)."""
+    out = {}
+    for field, key, convert in FIELDS:
+        table, name = key.split(".")
+        value = getattr(getattr(case, table), name)
+        out[field] = convert(value) if convert is not None else value
+    return out
 
 
 def _case_words(message: str) -> str:

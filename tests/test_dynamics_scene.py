@@ -91,3 +91,25 @@ def test_rosenstein_shortfall_agrees_with_the_estimator():
     with pytest.raises(DynamicsInputError, match="too short") as info:
         largest_lyapunov_rosenstein(short, 1e-3, dim=4, delay=30)
     assert str(info.value) == f"x has {reason}"
+
+
+def test_one_table_joins_the_case_schema_and_the_bearing_model():
+    """coupling.dynamics_scene.FIELDS maps case keys onto model fields in both directions: every field
+    of CagelessBearing without a default comes from a case key, every key names a field of the case
+    schema and of the model, so that a model error names the case file's key."""
+    import dataclasses
+
+    from coupling import dynamics_scene as ds
+    from dynamics.cageless import CagelessBearing
+
+    model_fields = {f.name: f for f in dataclasses.fields(CagelessBearing)}
+    required = {n for n, f in model_fields.items()
+                if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING}
+    assert required <= set(ds.CASE_KEYS)
+    for field, key in ds.CASE_KEYS.items():
+        table, name = key.split(".")
+        assert field in model_fields, field
+        assert name in ds.DynamicsCase.model_fields[table].annotation.model_fields, key
+    message = "slot_width = 0.01 m must be < the groove diameter; ball_mass = 1 must be > 0"
+    assert ds._case_words(message) == ("slots.width = 0.01 m must be < the groove diameter; "
+                                       "bearing.ball_mass = 1 must be > 0")
