@@ -5,7 +5,6 @@ Part of :mod:`coupling.film_points` (the package docstring gives the physics and
 from __future__ import annotations
 
 import logging
-
 import numpy as np
 
 from lubrication.errors import ConvergenceError, unknown_choice

@@ -4,7 +4,6 @@ Part of :mod:`lubrication.ehl` (the package docstring gives the equations and so
 from __future__ import annotations
 
 import logging
-
 import time
 from typing import NamedTuple
 

@@ -4,7 +4,6 @@ Part of :mod:`lubrication.reynolds` (the package docstring gives the equations a
 from __future__ import annotations
 
 import logging
-
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
 

@@ -1,0 +1,347 @@
+"""FilmMap: a tabulated film (axes, outputs, provenance) with its interpolation, files and plots.
+
+Part of :mod:`coupling.maps` (the package docstring gives the overview)."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import NamedTuple
+import dataclasses
+import io
+import json
+import math
+
+import numpy as np
+
+from dynamics import interp
+from lubrication.errors import InputError, unknown_choice
+
+from .. import outputs
+from .fit import PowerLawFit, fit_power_law, local_floor, relative_error
+from .registry import FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR
+
+# ---------------------------------------------------------------------------
+# the map
+
+
+class KernelArrays(NamedTuple):
+    """What :mod:`dynamics.interp` needs for one output (see its docstring).
+
+    ``method`` 0 (linear) or 1 (pchip): ``interp3(*axes, *logs, values, logv, method, x0, x1, x2, mode,
+    counter)``; ``method`` 2 (hermite): ``values`` is the node-derivative array of
+    :func:`dynamics.interp.hermite_data`, shape (2**ndim, n0, ...): ``hermite3(*axes, *logs, values, logv,
+    x0, x1, x2, mode, counter)`` (likewise 1 and 2 axes)."""
+
+    axes: tuple      # prepared node coordinates (log applied on log axes), float64
+    logs: tuple      # 0/1 per axis
+    values: np.ndarray  # prepared values (log applied when logv), C order; hermite: node derivatives
+    logv: int
+    method: int      # interp.LINEAR, interp.PCHIP or interp.HERMITE
+
+
+class FilmMap:
+    """Outputs of a film kind tabulated on axes; see the module docstring.
+
+    Parameters
+    ----------
+    axes : sequence of :class:`MapAxis` (1 to 3)
+    values : {output name: array of shape (n0[, n1[, n2]])}
+    method : "hermite" (cubic Hermite on PCHIP node slopes, default; the fastest cubic), "pchip"
+        (sequential monotone cubic, as scipy's RegularGridInterpolator(method="pchip")) or "linear"
+    log_values : {output: bool}; default: log where every value is > 0
+    provenance, fits, accuracy : dicts (see :func:`build_map`)
+    """
+
+    def __init__(self, axes, values: dict, *, method: str = "hermite", log_values: dict | None = None,
+                 provenance: dict | None = None, fits: dict | None = None, accuracy: dict | None = None):
+        self.axes = tuple(axes)
+        if not 1 <= len(self.axes) <= 3:
+            raise InputError(f"a map has 1 to 3 axes, got {len(self.axes)}")
+        if method not in METHODS:
+            raise unknown_choice("method", method, METHODS)
+        self.method = method
+        shape = tuple(a.n for a in self.axes)
+        self.values = {}
+        for name, arr in values.items():
+            arr = np.ascontiguousarray(arr, dtype=float)
+            if arr.shape != shape:
+                raise InputError(f"values of {name!r} have shape {arr.shape}; the axes need {shape}")
+            self.values[name] = arr
+        log_values = dict(log_values or {})
+        self.log_values = {k: bool(log_values.get(k, bool(np.all(v > 0)))) for k, v in self.values.items()}
+        self.provenance = dict(provenance or {})
+        self.fits = dict(fits or {})
+        self.accuracy = dict(accuracy or {})
+        self._kernel: dict = {}
+
+    # -- description
+    @property
+    def outputs(self) -> tuple:
+        return tuple(self.values)
+
+    @property
+    def shape(self) -> tuple:
+        return tuple(a.n for a in self.axes)
+
+    @property
+    def ndim(self) -> int:
+        return len(self.axes)
+
+    @property
+    def kind(self) -> str:
+        """Name of the point kind the map tabulates ("" when unknown)."""
+        return str(self.provenance.get("kind", ""))
+
+    @property
+    def input_hash(self) -> str:
+        """sha256 of every input of the build (kind, parameters, axes, method, code); "" when unknown."""
+        return str(self.provenance.get("input sha256", {}).get("map", ""))
+
+    def __repr__(self):
+        axes = ", ".join(f"{a.name} {a.lo:.3g}..{a.hi:.3g} ({a.n}, {a.scale})" for a in self.axes)
+        return f"FilmMap({self.provenance.get('kind', '?')}: {axes}; outputs {', '.join(self.outputs)})"
+
+    def _output(self, output: str) -> str:
+        if output not in self.values:
+            raise unknown_choice("output", output, self.outputs)
+        return output
+
+    # -- kernel
+    def kernel_arrays(self, output: str) -> KernelArrays:
+        """Plain arrays of ``output`` for :mod:`dynamics.interp` (``interp2(*ka.axes, *ka.logs, ka.values,
+        ka.logv, ka.method, x0, x1, mode, counter)``)."""
+        output = self._output(output)
+        if output not in self._kernel:
+            logv = self.log_values[output]
+            axes = tuple(interp.prepare_axis(a.nodes, a.log) for a in self.axes)
+            u = interp.prepare_values(self.values[output], logv)
+            if self.method == "hermite":
+                u = interp.hermite_data(axes, u)
+            self._kernel[output] = KernelArrays(axes, tuple(int(a.log) for a in self.axes), u, int(logv),
+                                                interp.METHODS[self.method])
+        return self._kernel[output]
+
+    def __call__(self, output: str, *coords, mode: str = "raise", counter=None, grad: bool = False):
+        """Interpolate ``output`` at broadcast ``coords`` (one array per axis, SI).
+
+        ``mode``: "raise" (InputError for a point outside the axes or with a
+        NaN coordinate), "clamp" (move it to the nearest end; ``counter[0]``
+        counts such points, and points with a NaN coordinate, which give
+        NaN), or "nan" (NaN for both).  ``grad=True`` also returns d output/d coordinate, shape (..., ndim).
+        """
+        if len(coords) != self.ndim:
+            raise InputError(f"{output}: give {self.ndim} coordinates ({', '.join(a.name for a in self.axes)}), "
+                             f"got {len(coords)}")
+        if mode not in ("raise", "clamp", "nan"):
+            raise unknown_choice("mode", mode, ("raise", "clamp", "nan"))
+        ka = self.kernel_arrays(output)
+        arrays = np.broadcast_arrays(*[np.asarray(c, dtype=float) for c in coords])
+        shape = arrays[0].shape
+        points = np.stack([a.ravel() for a in arrays], axis=1)
+        counter = np.zeros(1, dtype=np.int64) if counter is None else counter
+        kmode = interp.CLAMP if mode == "clamp" else interp.NAN
+        v, g = interp.evaluate(ka.axes, ka.logs, ka.values, ka.logv, ka.method, points, kmode, counter, grad=True)
+        if mode == "raise":
+            nan_rows = np.isnan(points).any(axis=1)
+            if nan_rows.any():
+                first = int(np.flatnonzero(nan_rows)[0])
+                names = [a.name for a, x in zip(self.axes, points[first]) if np.isnan(x)]
+                raise InputError(f"map {self.provenance.get('kind', '')} {output}: {int(nan_rows.sum())} point(s) "
+                                 f"with a NaN coordinate, first point {first} ({', '.join(names)} = nan); "
+                                 f"every coordinate must be a number (mode='clamp' counts such points, "
+                                 f"mode='nan' returns NaN)")
+            bad = np.isnan(v)
+            if bad.any():
+                q = points[np.flatnonzero(bad)[0]]
+                where = [f"{a.name} = {x:.6g} (axis {a.lo:.6g} .. {a.hi:.6g})" for a, x in zip(self.axes, q)
+                         if not a.lo <= x <= a.hi]
+                raise InputError(f"map {self.provenance.get('kind', '')} {output}: {int(bad.sum())} point(s) outside "
+                                 f"the axes, first {', '.join(where)}; extend the axes or query with mode='clamp'")
+        v = v.reshape(shape)
+        return (v, g.reshape(shape + (self.ndim,))) if grad else v
+
+    # -- dynamics
+    def is_polar(self) -> bool:
+        """True for a ball_ball map on the polar axes (gap, pressure number, squeeze angle)."""
+        return [a.name for a in self.axes][1:] == [POLAR_AXES[0], POLAR_AXES[1]]
+
+    def dynamics_film_map(self, output: str = "Force [N]"):
+        """Kernel arrays of ``output`` for :class:`dynamics.cageless.CagelessBearing` (``film = "map"``).
+
+        A map on (gap, squeeze number or approach speed, entrainment speed): its kernel arrays.  A polar
+        ball_ball map (:mod:`coupling.film_points`, "Polar axes"): ``(*kernel_arrays, "polar")`` when the
+        bearing kernel reads polar axes (``dynamics.contacts.MAP_AXIS_POLAR``); otherwise the map resampled
+        on the (gap, squeeze number, entrainment speed) nodes that kernel reads (:func:`cartesian_resample`;
+        transitional: that grid has the cone at zero approach speed that the polar axes remove)."""
+        output = self._output(output)
+        if not self.is_polar():
+            return self.kernel_arrays(output)
+        from dynamics import contacts
+
+        if hasattr(contacts, "MAP_AXIS_POLAR"):
+            return tuple(self.kernel_arrays(output)) + ("polar",)
+        return cartesian_resample(self, output).kernel_arrays(output)
+
+    def grid_points(self) -> np.ndarray:
+        """All nodes as (N, ndim) in C order of the value arrays."""
+        grids = np.meshgrid(*[a.nodes for a in self.axes], indexing="ij")
+        return np.stack([g.ravel() for g in grids], axis=1)
+
+    # -- fit
+    def fit_power_law(self, output: str, cross="auto") -> PowerLawFit | None:
+        """Fit (and keep in ``self.fits``) a power law of ``output``; see :func:`fit_power_law`."""
+        output = self._output(output)
+        fit = fit_power_law(self.axes, self.values[output], output, cross)
+        self.fits[output] = fit
+        return fit
+
+    # -- accuracy
+    def accuracy_against(self, points: np.ndarray, direct: dict) -> dict:
+        """Interpolation error at ``points`` (m, ndim) against ``direct`` {output: (m,) values}:
+        per output ``{"median": .., "max": .., "points": m, "above 3 %": .., "worst point": [...]}``."""
+        report = {}
+        for name, exact in direct.items():
+            if name not in self.values:
+                continue
+            exact = np.asarray(exact, float)
+            approx = self(name, *points.T, mode="nan")
+            err = relative_error(approx, exact, local_floor(self, name, points))
+            ok = np.isfinite(err)
+            if not ok.any():
+                continue
+            worst = int(np.nanargmax(np.where(ok, err, -1)))
+            report[name] = {"median": float(np.median(err[ok])), "max": float(err[ok].max()), "points": int(ok.sum()),
+                            "above 3 %": int(np.sum(err[ok] > 0.03)),
+                            "worst point": [float(x) for x in points[worst]]}
+        return report
+
+    # -- storage
+    def _header(self) -> dict:
+        return {
+            "format": FORMAT, "format_version": FORMAT_VERSION, "method": self.method,
+            "axes": [{"name": a.name, "scale": a.scale, "array": f"axis_{i}"} for i, a in enumerate(self.axes)],
+            "outputs": [{"name": k, "log_values": self.log_values[k], "array": f"values_{i}"}
+                        for i, k in enumerate(self.values)],
+            "provenance": self.provenance,
+            "fits": {k: (dataclasses.asdict(f) if f is not None else None) for k, f in self.fits.items()},
+            "accuracy": self.accuracy,
+        }
+
+    def save(self, path) -> Path:
+        """Write one self-describing ``.npz`` (arrays + JSON header) atomically."""
+        arrays = {f"axis_{i}": a.nodes for i, a in enumerate(self.axes)}
+        arrays.update({f"values_{i}": v for i, v in enumerate(self.values.values())})
+        arrays["header"] = np.array(json.dumps(self._header(), default=_json_default))
+        buffer = io.BytesIO()
+        np.savez_compressed(buffer, **arrays)
+        return outputs.write_bytes(path, buffer.getvalue())
+
+    @classmethod
+    def load(cls, path) -> "FilmMap":
+        """Read a file written by :meth:`save`; checks the format name and version."""
+        path = Path(path)
+        if not path.is_file():
+            raise InputError(f"map file {str(path)!r} not found")
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                header = json.loads(str(data["header"]))
+                arrays = {k: np.array(data[k]) for k in data.files if k != "header"}
+        except (KeyError, ValueError, OSError) as exc:
+            raise InputError(f"map file {str(path)!r} is not a lubedyn film map ({' '.join(str(exc).split())})") from None
+        if header.get("format") != FORMAT:
+            raise InputError(f"map file {str(path)!r}: format {header.get('format')!r}, expected {FORMAT!r}")
+        if header.get("format_version") != FORMAT_VERSION:
+            raise InputError(f"map file {str(path)!r}: format_version = {header.get('format_version')!r}; this "
+                             f"lubedyn reads version {FORMAT_VERSION} (rebuild the map)")
+        axes = [MapAxis(a["name"], arrays[a["array"]], a["scale"]) for a in header["axes"]]
+        values = {o["name"]: arrays[o["array"]] for o in header["outputs"]}
+        fits = {k: (PowerLawFit(**{**f, "exponents": tuple(f["exponents"]), "cross": tuple(f["cross"]),
+                                   "terms": tuple(f.get("terms", ())),
+                                   "quadratic": tuple(tuple(q) for q in f.get("quadratic", ()))})
+                    if f is not None else None) for k, f in header.get("fits", {}).items()}
+        return cls(axes, values, method=header["method"],
+                   log_values={o["name"]: o["log_values"] for o in header["outputs"]},
+                   provenance=header.get("provenance", {}), fits=fits, accuracy=header.get("accuracy", {}))
+
+    # -- plots
+    def plot(self, outputs_=None, *, lines: int = 5):
+        """One panel per output against axis 0, a line per node of axis 1 (up to ``lines``),
+        the other axes at their middle node.  Returns the matplotlib figure."""
+        import matplotlib
+
+        matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
+        names = list(outputs_ or self.outputs)
+        ncol = min(3, len(names))
+        nrow = math.ceil(len(names) / ncol)
+        fig, axs = plt.subplots(nrow, ncol, figsize=(4.6 * ncol, 3.6 * nrow), squeeze=False)
+        a0 = self.axes[0]
+        fine = np.geomspace(a0.lo, a0.hi, 200) if a0.log else np.linspace(a0.lo, a0.hi, 200)
+        picks = [0] if self.ndim == 1 else sorted(set(np.linspace(0, self.axes[1].n - 1, min(lines, self.axes[1].n))
+                                                      .round().astype(int)))
+        mids = [a.nodes[a.n // 2] for a in self.axes[2:]]
+        cmap = plt.get_cmap("viridis")
+        for ax, name in zip(axs.ravel(), names):
+            for c, j in enumerate(picks):
+                coords = [fine] + ([np.full_like(fine, self.axes[1].nodes[j])] if self.ndim > 1 else []) + \
+                         [np.full_like(fine, m) for m in mids]
+                color = cmap(c / max(1, len(picks) - 1))
+                label = f"{self.axes[1].name.split('[')[0].strip()} = {self.axes[1].nodes[j]:.3g}" if self.ndim > 1 else None
+                ax.plot(fine, self(name, *coords, mode="clamp"), color=color, lw=1.2, label=label)
+                index = (slice(None),) + ((j,) if self.ndim > 1 else ()) + tuple(a.n // 2 for a in self.axes[2:])
+                ax.plot(a0.nodes, self.values[name][index], "o", color=color, ms=3)
+            v = self.values[name]
+            if a0.log:
+                ax.set_xscale("log")
+            pos = v[v > 0]
+            if self.log_values[name] or (np.all(v >= 0) and pos.size and pos.max() > 1e3 * pos.min()):
+                ax.set_yscale("log")  # zeros (a cavitated film's force) are left out of a log axis
+            elif np.any(v < 0) and np.any(v > 0):
+                ax.set_yscale("symlog", linthresh=ZERO_FLOOR * np.abs(v).max() * 10)
+            ax.set_xlabel(a0.name)
+            ax.set_ylabel(name)
+            ax.grid(True, which="both", alpha=0.3)
+        if self.ndim > 1:
+            axs.ravel()[0].legend(fontsize=7)
+        for ax in axs.ravel()[len(names):]:
+            ax.set_visible(False)
+        rest = ", ".join(f"{a.name} = {m:.3g}" for a, m in zip(self.axes[2:], mids))
+        fig.suptitle(f"{self.provenance.get('kind', 'map')}: nodes (dots) and {self.method} interpolation (lines)"
+                     + (f"; {rest}" if rest else ""), fontsize=9)
+        fig.tight_layout()
+        return fig
+
+
+_json_default = outputs.json_default
+
+POLAR_AXES = ("Pressure number [-]", "Squeeze angle [rad]")
+CARTESIAN_SQUEEZE = (0.0, 0.01, 0.03, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9)
+CARTESIAN_ENTRAINMENT = (0.0, 0.025, 0.05)
+
+
+def cartesian_resample(fmap: "FilmMap", output: str = "Force [N]", squeeze=CARTESIAN_SQUEEZE,
+                       entrainment=CARTESIAN_ENTRAINMENT, gaps: int = 19) -> "FilmMap":
+    """A polar ball_ball map's ``output`` on (gap, squeeze number, entrainment speed) nodes (approach side).
+
+    Each node (h0, Lambda, u_e) is turned into (rho, theta) (:func:`coupling.film_points.polar_numbers`)
+    and read from the polar map: rho above the axis is clamped, rho below its first node scales the
+    output by rho/rho_lo (isoviscous limit: F, K ~ rho), rho = 0 gives 0."""
+    from .. import film_points as fp
+
+    params = fmap.provenance.get("params") or fp.ball_ball_default_params()
+    g = fmap.axes[0]
+    h_nodes = np.geomspace(g.lo, g.hi, gaps)
+    rho_lo, rho_hi = fmap.axes[1].lo, fmap.axes[1].hi
+    vals = np.zeros((gaps, len(squeeze), len(entrainment)))
+    for i, h0 in enumerate(h_nodes):
+        for j, lam in enumerate(squeeze):
+            for k, ue in enumerate(entrainment):
+                rho, theta = fp.polar_numbers(h0, fp.approach_speed(h0, lam, params), ue, params)
+                if rho <= 0.0:
+                    continue
+                rq = min(max(rho, rho_lo), rho_hi)
+                vals[i, j, k] = float(fmap(output, h0, rq, theta, mode="clamp")) * (rho / rho_lo if rho < rho_lo else 1.0)
+    axes = [MapAxis(g.name, h_nodes, "log"), MapAxis("Squeeze number [-]", np.array(squeeze, float), "linear"),
+            MapAxis("Entrainment speed [m/s]", np.array(entrainment, float), "linear")]
+    prov = {**fmap.provenance, "resampled from": "polar axes (gap, pressure number, squeeze angle)"}
+    return FilmMap(axes, {output: vals}, method=fmap.method, provenance=prov)
