@@ -26,7 +26,7 @@ def test_shipped_kernel_is_used_for_the_bearing(caplog):
     from dynamics import cageless
 
     kernel = I.specialise(I._dopri5_impl, rhs=cageless.rhs)
-    assert kernel.py_func.__module__ == "dynamics.kernels.k_dopri5_impl__dynamics_cageless_rhs"
+    assert kernel.py_func.__module__ == "dynamics.kernels.k_dopri5_impl__dynamics_cageless_kernels_rhs"
 
 
 def test_a_stale_shipped_kernel_is_refused(tmp_path, monkeypatch, caplog):
