@@ -57,7 +57,7 @@ import typing
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, ValidationError, model_validator
 from pydantic_core import PydanticCustomError
 
 from lubrication.errors import InputError, did_you_mean
@@ -138,6 +138,7 @@ def rule(key: str, value, text: str) -> PydanticCustomError:
 
 class _Model(BaseModel):
     model_config = ConfigDict(extra="forbid", validate_default=True)
+    _parameter_set: str | None = PrivateAttr(default=None)  # the set a case named (coupling.parameters)
 
 
 # ---------------------------------------------------------------------------
@@ -787,14 +788,15 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
     if scene not in SCENES:
         raise CaseError(f"scene = {_show(scene)} is not allowed; choose one of {', '.join(map(repr, SCENES))}"
                         + did_you_mean(scene, SCENES + PLANNED_SCENES))
-    named_set = raw.get("parameters") is not None
+    set_name = raw.get("parameters")
+    named_set = set_name is not None
     try:
         raw = apply_parameter_set(raw)
     except InputError as exc:
         raise CaseError(str(exc)) from None
     model = case_model(scene)
     try:
-        return model.model_validate(raw)
+        case = model.model_validate(raw)
     except ValidationError as exc:
         text = format_validation_error(exc, model)
         if " is required" in text and not named_set:
@@ -803,6 +805,8 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
                 text += (f"; or name a paper's values: parameters = {sets[0]!r} (sets for scene = {scene!r}: "
                          f"{', '.join(map(repr, sets))}; coupling.parameters)")
         raise CaseError(text) from None
+    case._parameter_set = set_name
+    return case
 
 
 def load_case(path, *, smoke: bool = False, overrides=()) -> Case:
@@ -824,6 +828,9 @@ def resolved_toml(case: Case, header: str = "") -> str:
 
     data = case.model_dump(exclude_none=True, exclude={"smoke"})
     lines = [f"# {line}" if line else "#" for line in header.splitlines()]
+    if case._parameter_set:
+        lines.append(f"# Values not given by the case file come from parameters = {case._parameter_set!r} "
+                     f"(coupling/parameters/{case._parameter_set.lower()}.py).")
     lines.append("# Resolved case: every value in SI (m, s, kg, Pa, Pa s, m/s, rad/s, rad, 1/Pa, kg/m^3),")
     lines.append("# every default filled in. It is itself a valid case file.")
     return "\n".join(lines) + "\n\n" + tomli_w.dumps(data)

@@ -90,8 +90,10 @@ def test_a_case_takes_the_set_and_overrides_it():
     over = load_case_text(base, overrides=["bearing.ball_diameter=9 mm", "films.viscosity=0.1 Pa s"])
     assert over.bearing.ball_diameter == 9e-3 and over.films.viscosity == 0.1
     assert over.bearing.pitch_diameter == case.bearing.pitch_diameter  # the rest from the set
-    # the resolved case lists every value and is valid without the set
-    again = load_case_text(resolved_toml(case))
+    # the resolved case names the set, lists every value and is valid without the set
+    text = resolved_toml(case)
+    assert "parameters = 'Zhang2024' (coupling/parameters/zhang2024.py)" in text
+    again = load_case_text(text)
     assert again.bearing == case.bearing and again.films == case.films and again.slots == case.slots
 
 
