@@ -119,3 +119,10 @@ def test_bad_input_is_one_line(call, match):
     with pytest.raises(InputError, match=match) as info:
         call()
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("ratio", [1.00001, 1.01, 1.05, 1.5, 4.0, 10.0])
+def test_ellipse_radius_ratio_inverts_the_ellipticity(ratio):
+    """Johnson (1985) eqs. 4.30-4.32: R_a/R_b = (E/(1 - m) - K)/(K - E) and its inverse."""
+    m = L.ellipticity_parameter(ratio)
+    assert L.ellipse_radius_ratio(m) == pytest.approx(ratio, rel=1e-9)

@@ -100,9 +100,15 @@ class HertzPoint:
         return 1.5 * self.load / self.approach
 
 
-def _ratio_residual(m, ratio):
+def ellipse_radius_ratio(m: float) -> float:
+    """R_a/R_b of the contact ellipse with parameter m = 1 - (b/a)^2, 0 < m < 1:
+    (E(m)/(1 - m) - K(m))/(K(m) - E(m)) (Johnson 1985, eqs. 4.30-4.32)."""
     K, E = ellipk(m), ellipe(m)
-    return (E / (1.0 - m) - K) / (K - E) - ratio
+    return (E / (1.0 - m) - K) / (K - E)
+
+
+def _ratio_residual(m, ratio):
+    return ellipse_radius_ratio(m) - ratio
 
 
 def ellipticity_parameter(radius_ratio: float) -> float:
@@ -112,6 +118,10 @@ def ellipticity_parameter(radius_ratio: float) -> float:
     if radius_ratio - 1.0 < 1e-6:
         # series: R_a/R_b = 1 + 3m/4 + O(m^2); K - E cancels catastrophically here
         return 4.0 * (radius_ratio - 1.0) / 3.0
+    if radius_ratio < 1.1:
+        # below m ~ 1e-8 the residual is rounding noise (K - E ~ pi m/4) with spurious sign changes:
+        # bracket from 1e-8 (root m ~ 4/3 (R_a/R_b - 1) > 1.3e-6 here)
+        return brentq(_ratio_residual, 1e-8, 1.0 - 1e-15, args=(radius_ratio,), xtol=1e-16, rtol=1e-15)
     return brentq(_ratio_residual, 1e-14, 1.0 - 1e-15, args=(radius_ratio,), xtol=1e-16, rtol=1e-15)
 
 
