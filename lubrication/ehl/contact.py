@@ -201,9 +201,6 @@ class EHLContact:
         >>> round(c.W / 1e-6, 12), round(c.U / 1e-11, 12), round(c.G / 5000, 12)
         (1.0, 1.0, 1.0)
         """
-        from scipy.special import ellipe, ellipk
-
-        from ..errors import unknown_choice
         from ..laws.lubricant import Barus, Incompressible
 
         for key, val in (("W", W), ("U", U)):
@@ -224,7 +221,5 @@ class EHLContact:
         elif k == 1.0:
             ratio = 1.0
         else:
-            m = 1.0 - 1.0 / k**2
-            K, E = ellipk(m), ellipe(m)
-            ratio = (E / (1.0 - m) - K) / (K - E)
+            ratio = hertz.ellipse_radius_ratio(1.0 - 1.0 / k**2)
         return cls(radius_x, ratio * radius_x, e_star, lub, mean_speed, load=W * Ep * radius_x**2, **kw)
