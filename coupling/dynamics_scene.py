@@ -832,7 +832,9 @@ class _Scene3D:
             e2 = np.cross(n, e1)
             h0 = float(diag_row[j, D_H])
             hp = point_contact(F, self.r_eff, self.r_eff, self.e_star)
-            a_h, p0 = hp.a, hp.p0
+            # np.float64 (the dtype of the load read from the diagnostics): when 3 a_h sets the disc
+            # size, r and the pressure are float64, not the float32 of the pyvista template points
+            a_h, p0 = np.float64(hp.a), hp.p0
             size = max(3 * a_h, 3 * math.sqrt(2 * self.r_eff * max(h0, 1e-9)))
             r = r_unit * size
             if h0 > 0:

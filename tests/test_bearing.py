@@ -73,3 +73,38 @@ def test_bad_bearing_geometry():
         bearing.pitch_ratio(D, 0.5 * D, 0.0)
     with pytest.raises(InputError, match="contact angle > 0"):
         bearing.stribeck_max_load(1000.0, 100.0, Z, 0.0, 4.37)
+
+
+def test_cage_speed_of_pure_rolling():
+    """Harris & Kotzalas, Essential Concepts of Bearing Technology (5th ed.),
+    ch. 8: with the outer ring fixed the cage turns at omega_i (1 - gamma)/2,
+    with the inner ring fixed at omega_o (1 + gamma)/2, gamma = D cos(alpha)/d_m;
+    and rings turning together carry the cage with them."""
+    for alpha in (0.0, math.radians(15.0), math.radians(40.0)):
+        gamma = D * math.cos(alpha) / DM
+        assert bearing.pitch_ratio(D, DM, alpha) == pytest.approx(gamma, rel=1e-15)
+        assert bearing.cage_speed(D, DM, alpha, 1000.0) == pytest.approx(500.0 * (1 - gamma), rel=1e-14)
+        assert bearing.cage_speed(D, DM, alpha, 0.0, 1000.0) == pytest.approx(500.0 * (1 + gamma), rel=1e-14)
+        assert bearing.cage_speed(D, DM, alpha, 700.0, 700.0) == pytest.approx(700.0, rel=1e-14)
+    # the 6206 at 10 000 rpm: gamma = 0.207043 -> 3964.8 rpm
+    assert bearing.cage_speed(D, DM, 0.0, 10000.0) == pytest.approx(3964.8, abs=0.05)
+
+
+def test_free_contact_angle_is_the_groove_geometry():
+    """Harris & Kotzalas (5th ed.), ch. 2: the groove curvature centres are
+    B D = r_i + r_o - D apart; a radial play P_d/2 tilts that line to
+    cos(beta_f) = 1 - P_d/(2 B D).  Checked by placing the ball: both centres
+    at distance r - D/2 from the ball centre, radially P_d/2 apart."""
+    BD = RI + RO - D
+    for clearance in (5e-6, 20e-6, 0.1e-3):
+        beta = bearing.free_contact_angle(D, RI, RO, clearance)
+        # axial offset of the curvature centres when the radial one is BD - P_d/2
+        assert BD * math.cos(beta) == pytest.approx(BD - 0.5 * clearance, rel=1e-12)
+    assert bearing.free_contact_angle(D, RI, RO, 0.0) == 0.0
+    assert bearing.free_contact_angle(D, RI, RO, -1e-6) == 0.0
+
+
+def test_stribeck_constants_are_harris():
+    """Stribeck's constants for zero clearance: 4.37 for point contacts,
+    4.08 for line contacts (Harris & Kotzalas, Essential Concepts, 5th ed., sec. 7.4)."""
+    assert bearing.STRIBECK == {"point": 4.37, "line": 4.08}
