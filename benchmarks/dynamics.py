@@ -157,8 +157,9 @@ def drop_setup():
     return build(case, str(CASE))
 
 
-def variant(model, **changes):
-    """A changed copy of the bearing and its own quasi-static initial state."""
+def variant(model, changes: dict):
+    """A changed copy of the bearing (``changes`` by case key, ``{"model.dof": "planar"}``) and its own
+    quasi-static initial state."""
     m = model.replace(**changes)
     return m, m.initial_state()
 
@@ -430,7 +431,8 @@ def bench_stability(setup, cfg, ref=None, ref_t=None):
         row = {"modulus factor [-]": s}
         try:
             model, y0 = (setup.model, setup.y0) if s == 1.0 else variant(
-                base, ball_modulus=base.ball_modulus * s, ring_modulus=base.ring_modulus * s)
+                base, {"bearing.ball_modulus": base.bearing.ball_modulus * s,
+                       "bearing.ring_modulus": base.bearing.ring_modulus * s})
         except DynamicsInputError as exc:
             row["failed"] = str(exc)
             out["scales"].append(row)
@@ -475,10 +477,10 @@ def bench_stability(setup, cfg, ref=None, ref_t=None):
     modes = {}
     for label, kw in (("as the case", {}),
                       ("traction_slip_regularisation x10 (0.5 m/s)",
-                       dict(traction_slip_regularisation=10.0 * base.traction_slip_regularisation)),
-                      ("no race traction (traction_limit = 0)", dict(traction_limit=0.0)),
-                      ("race_damping x10", dict(race_damping=10.0 * base.race_damping))):
-        m, y0 = (base, setup.y0) if not kw else variant(base, **kw)
+                       {"model.traction_slip_regularisation": 10.0 * base.fidelity.traction_slip_regularisation}),
+                      ("no race traction (traction_limit = 0)", {"model.traction_limit": 0.0}),
+                      ("race_damping x10", {"model.race_damping": 10.0 * base.fidelity.race_damping})):
+        m, y0 = (base, setup.y0) if not kw else variant(base, kw)
         r = {"omega_max() [rad/s]": m.omega_max(y0), **jacobian_spectrum(m, y0)}
         for rtol in (1e-3, 1e-6):
             w, _, res = _common.timed(lambda: run(m, y0, base_t, "dopri5", rtol), repeats=3)
@@ -523,7 +525,7 @@ def answers(model, y0, window, rtol=1e-6, sample=2e-6, repeats=1):
            "inner ring x, y peak-to-peak, second half [um]": [float(np.ptp(rx) * 1e6), float(np.ptp(ry) * 1e6)],
            "largest inner race load [N]": float(diag[:, :, D_QI].max())}
     ctr = getattr(model, "map_counter", None)
-    if ctr is not None and model.film == "map":
+    if ctr is not None and model.films.ball_ball == "map":
         out["film map queries outside axes [-]"] = int(ctr[0])
     return out
 
@@ -534,11 +536,12 @@ def bench_fidelity(setup, cfg, repeats):
            "collision": "a maximal run of 2-us samples with a pair's normal force above 1 N (dynamics.analysis)",
            "load average": load()}
     steady = {}
-    for label, kw in (("6dof, Fa = 0", dict(dof="6dof", axial_load=0.0)),
-                      ("planar, Fa = 0", dict(dof="planar", axial_load=0.0)),
-                      ("6dof, Fa = 200 N", dict(dof="6dof", axial_load=200.0)),
-                      ("6dof, Fa = 0, rtol 1e-7 (integration noise)", dict(dof="6dof", axial_load=0.0))):
-        m, y0 = variant(base, scenario="steady", **kw)
+    for label, kw in (("6dof, Fa = 0", {"model.dof": "6dof", "operating.axial_load": 0.0}),
+                      ("planar, Fa = 0", {"model.dof": "planar", "operating.axial_load": 0.0}),
+                      ("6dof, Fa = 200 N", {"model.dof": "6dof", "operating.axial_load": 200.0}),
+                      ("6dof, Fa = 0, rtol 1e-7 (integration noise)", {"model.dof": "6dof",
+                                                                       "operating.axial_load": 0.0})):
+        m, y0 = variant(base, {"operating.scenario": "steady", **kw})
         steady[label] = answers(m, y0, W, rtol=1e-7 if "1e-7" in label else 1e-6, repeats=repeats)
         log.info("steady %s: %.3f s/ms, %d collisions", label, steady[label]["wall per simulated ms [s]"],
                  steady[label]["collisions above 1 N [-]"])
@@ -548,23 +551,24 @@ def bench_fidelity(setup, cfg, repeats):
 
     fmap = FilmMap.load(MAP)
     arrays = fmap.dynamics_film_map() if hasattr(fmap, "dynamics_film_map") else fmap.kernel_arrays("Force [N]")
-    for label, kw, rtol in (("closed_form", {}, 1e-6), ("map", dict(film="map", film_map=arrays), 1e-6),
-                            ("none", dict(film="none"), 1e-6), ("closed_form, rtol 1e-7 (integration noise)", {},
+    for label, kw, rtol in (("closed_form", {}, 1e-6), ("map", {"films.ball_ball": "map", "films.map": arrays}, 1e-6),
+                            ("none", {"films.ball_ball": "none"}, 1e-6), ("closed_form, rtol 1e-7 (integration noise)", {},
                                                                 1e-7)):
-        m, y0 = (base, setup.y0) if not kw else variant(base, **kw)
+        m, y0 = (base, setup.y0) if not kw else variant(base, kw)
         films[label] = answers(m, y0, W, rtol=rtol, repeats=repeats)
         log.info("drop film %s: %.3f s/ms, %d collisions", label, films[label]["wall per simulated ms [s]"],
                  films[label]["collisions above 1 N [-]"])
     out["drop, ball-ball film"] = films
     costs = {}
     for label, kw in (("drop, 6dof, closed_form film (the case)", {}),
-                      ("drop, 6dof, map film", dict(film="map", film_map=arrays)),
-                      ("drop, 6dof, no film", dict(film="none")),
-                      ("drop, 6dof, no ball-ball contacts", dict(ball_ball=False)),
-                      ("drop, 6dof, no slot", dict(slot_azimuths_deg=())),
-                      ("steady, planar, Fa = 0", dict(scenario="steady", dof="planar", axial_load=0.0)),
-                      ("steady, 6dof, Fa = 0", dict(scenario="steady", axial_load=0.0))):
-        m, y0 = (base, setup.y0) if not kw else variant(base, **kw)
+                      ("drop, 6dof, map film", {"films.ball_ball": "map", "films.map": arrays}),
+                      ("drop, 6dof, no film", {"films.ball_ball": "none"}),
+                      ("drop, 6dof, no ball-ball contacts", {"model.ball_ball": False}),
+                      ("drop, 6dof, no slot", {"slots.azimuths": ()}),
+                      ("steady, planar, Fa = 0", {"operating.scenario": "steady", "model.dof": "planar",
+                                                  "operating.axial_load": 0.0}),
+                      ("steady, 6dof, Fa = 0", {"operating.scenario": "steady", "operating.axial_load": 0.0})):
+        m, y0 = (base, setup.y0) if not kw else variant(base, kw)
         costs[label] = {"states [-]": int(y0.size), "one rhs call [us]": setup_rhs_cost(m, y0) * 1e6}
     out["rhs cost at the initial state (2000 calls from Python)"] = costs
     out["map"] = {"file": str(MAP.relative_to(ROOT)), "kind": getattr(fmap, "kind", None) or fmap.provenance.get("kind"),

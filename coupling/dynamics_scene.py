@@ -310,57 +310,31 @@ def _film_map(case: DynamicsCase, source: str | None):
     return path, fmap
 
 
-def _rpm(speed):
-    return speed * 60.0 / (2.0 * math.pi)
+#: the model's group of each case table (:mod:`dynamics.cageless.groups`): one to one, same field names
+GROUP_OF_TABLE = {"bearing": "bearing", "operating": "operating", "model": "fidelity", "films": "films",
+                  "slots": "slots"}
 
 
-def _degrees(angles):
-    return tuple(math.degrees(a) for a in angles)
+def model_groups(case: DynamicsCase, **built) -> dict:
+    """The case's tables as the model's frozen groups (keyword arguments of
+    :class:`dynamics.cageless.CagelessBearing`).  ``built``: values loaded from files, by case key
+    (``{"films.map": arrays}``), in place of the file names the case gives."""
+    from dynamics.cageless import groups
 
-
-#: (model field, case key, conversion or None): how a dynamics case becomes a
-#: :class:`dynamics.cageless.CagelessBearing` (:func:`bearing_kwargs`), and how the model's one-line
-#: errors name the case file's key (:func:`_case_words`).  One table for both directions.
-FIELDS = (
-    *((k, f"bearing.{k}", None) for k in (
-        "n_balls", "ball_diameter", "pitch_diameter", "inner_groove_radius", "outer_groove_radius",
-        "diametral_clearance", "ball_modulus", "ball_poisson", "ring_modulus", "ring_poisson", "ball_density",
-        "ball_mass", "ring_mass", "ring_inertia", "rotor_inertia")),
-    *((k, f"operating.{k}", None) for k in (
-        "radial_load", "axial_load", "gravity", "scenario", "drop_speed", "rotor_friction", "rotor_contact_radius")),
-    ("speed_rpm", "operating.speed", _rpm),
-    ("dof", "model.dof", None), ("hertz_method", "model.hertz", None), ("race_damping", "model.race_damping", None),
-    ("ball_ball", "model.ball_ball", None), ("yield_stress", "model.yield_stress", None),
-    ("traction_limit", "model.traction_limit", None), ("traction_srr", "model.traction_srr", None),
-    ("film", "films.ball_ball", None), ("viscosity", "films.viscosity", None),
-    ("film_rupture_thickness", "films.rupture_thickness", None), ("race_film", "films.race", None),
-    ("pressure_viscosity", "films.pressure_viscosity", None), ("ball_ball_mu_film", "films.friction_film", None),
-    ("ball_ball_mu_boundary", "films.friction_boundary", None),
-    ("slot_azimuths_deg", "slots.azimuths", _degrees), ("slot_race", "slots.race", None),
-    ("slot_width", "slots.width", None), ("slot_length", "slots.length", None), ("slot_depth", "slots.depth", None),
-    ("slot_edge_radius", "slots.edge_radius", None),
-)
-#: fields :func:`build` sets from loaded maps, named by the case key that chose them
-BUILT_FIELDS = {"traction": "model.traction", "traction_maps": "model.traction_maps", "film_map": "films.map"}
-CASE_KEYS = {**{field: key for field, key, _ in FIELDS}, **BUILT_FIELDS}
-
-
-def bearing_kwargs(case: DynamicsCase) -> dict:
-    """The case as keyword arguments of :class:`dynamics.cageless.CagelessBearing` (:data:`FIELDS`)."""
+    classes = {"bearing": groups.Bearing, "operating": groups.Operating, "fidelity": groups.Fidelity,
+               "films": groups.Films, "slots": groups.Slots}
     out = {}
-    for field, key, convert in FIELDS:
-        table, name = key.split(".")
-        value = getattr(getattr(case, table), name)
-        out[field] = convert(value) if convert is not None else value
+    for table, attr in GROUP_OF_TABLE.items():
+        values = dict(getattr(case, table))
+        values.update({k.partition(".")[2]: v for k, v in built.items() if k.partition(".")[0] == table})
+        if table == "films" and "films.map" not in built:
+            values["map"] = None
+        if table == "model" and "model.traction_maps" not in built:
+            values["traction_maps"] = None
+        if table == "slots":
+            values["azimuths"] = tuple(values["azimuths"])
+        out[attr] = classes[attr].build(values)
     return out
-
-
-def _case_words(message: str) -> str:
-    """The model's error message with its field names replaced by the case keys."""
-    import re
-
-    return re.sub(r"\b(" + "|".join(sorted(CASE_KEYS, key=len, reverse=True)) + r")\b(?= =|\))",
-                  lambda m: CASE_KEYS[m.group(1)], message)
 
 
 def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
@@ -368,11 +342,11 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
     from dynamics.cageless import CagelessBearing
     from dynamics.errors import DynamicsInputError
 
-    kw = bearing_kwargs(case)
+    built = {}
     map_path, info = None, {}
     if case.films.ball_ball == "map":
         map_path, fmap = _film_map(case, source)
-        kw["film_map"] = fmap.dynamics_film_map() if hasattr(fmap, "dynamics_film_map") else fmap.kernel_arrays(
+        built["films.map"] = fmap.dynamics_film_map() if hasattr(fmap, "dynamics_film_map") else fmap.kernel_arrays(
             "Force [N]")
         info = {"Ball-ball film map": str(map_path), "Ball-ball film map hash": fmap.input_hash}
     if case.model.traction == "map":
@@ -387,12 +361,12 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
                                  f"needs kind 'ehl_ball_{race}_race'")
             arrays.append(fmap.kernel_arrays("Traction coefficient [-]"))
             info[f"Traction map, {race} race"] = str(path)
-        kw["traction"], kw["traction_maps"] = "map", tuple(arrays)
+        built["model.traction_maps"] = tuple(arrays)
     try:
-        model = CagelessBearing(**kw)
+        model = CagelessBearing(**model_groups(case, **built))
         y0 = model.initial_state()
-    except DynamicsInputError as exc:
-        raise InputError(_case_words(str(exc))) from None
+    except DynamicsInputError as exc:  # its message names the case key already
+        raise InputError(str(exc)) from None
     check_size(case, model)  # before the output times exist
     ig = case.integrator
     n = int(round(ig.duration / ig.sample_interval))
@@ -480,7 +454,7 @@ def ball_centres(setup: DynamicsSetup, Y: np.ndarray) -> np.ndarray:
     out = np.zeros((Y.shape[0], m.n_balls, 3))
     for j in range(m.n_balls):
         b = m.ball_offset(j)
-        if m.dof == "6dof":
+        if m.fidelity.dof == "6dof":
             out[:, j, :] = Y[:, b:b + 3]
         else:
             out[:, j, 0] = Y[:, b + 1] * np.cos(Y[:, b])
@@ -677,12 +651,12 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
         summary["Rotor speed at end [rpm]"] = float(Omega[-1] * 60 / (2 * math.pi))
         summary["Inner ring slip against rotor at end [-]"] = float(1.0 - omega_i[-1] / Omega[-1])
     # ball slip: orbital speed against the no-slip epicyclic (ball-train) speed of the current ring speed
-    ideal = bearings.cage_speed(model.ball_diameter, model.pitch_diameter, 0.0, omega_i[-1])
+    ideal = bearings.cage_speed(model.bearing.ball_diameter, model.bearing.pitch_diameter, 0.0, omega_i[-1])
     orbital = diag[-1, :, D_PSIDOT]
     summary["Ball-train speed at end [rad/s]"] = float(np.mean(orbital))
     summary["Ball-train slip at end [-]"] = float(1.0 - np.mean(orbital) / ideal) if ideal else None
     if case.films.race == "closed_form":
-        ue = bearings.entrainment_speed(model.ball_diameter, model.pitch_diameter, 0.0, omega_i[-1])
+        ue = bearings.entrainment_speed(model.bearing.ball_diameter, model.bearing.pitch_diameter, 0.0, omega_i[-1])
         h_i, h_o = model.race_film_thickness(ue)
         summary["Inner race film at end, epicyclic speed [m]"] = h_i
         summary["Outer race film at end, epicyclic speed [m]"] = h_o
@@ -738,7 +712,7 @@ def bearing_frequencies(ring_hz: float, model, extra=None) -> dict:
     """Kinematic bearing frequencies [Hz] at an inner-ring speed (outer ring fixed, zero contact angle)."""
     from dynamics.spectra import bearing_frequencies as bf
 
-    return bf(ring_hz, model.ball_diameter, model.pitch_diameter, model.n_balls, 0.0, extra=extra)
+    return bf(ring_hz, model.bearing.ball_diameter, model.bearing.pitch_diameter, model.n_balls, 0.0, extra=extra)
 
 
 # ---------------------------------------------------------------------------- outputs
@@ -768,12 +742,12 @@ class _Scene3D:
 
         m = setup.model
         self.case, self.setup = case, setup
-        self.R = 0.5 * m.ball_diameter
+        self.R = 0.5 * m.bearing.ball_diameter
         self.r_eff = 0.5 * self.R
         self.eta = case.films.viscosity
         self.e_star = m.e_star_ball
-        r_po = 0.5 * m.pitch_diameter + self.R
-        r_pi = 0.5 * m.pitch_diameter - self.R
+        r_po = 0.5 * m.bearing.pitch_diameter + self.R
+        r_pi = 0.5 * m.bearing.pitch_diameter - self.R
         self.outer = pv.Disc(inner=r_po, outer=r_po + 3e-3, r_res=1, c_res=90).triangulate()
         self.inner = pv.Disc(inner=r_pi - 6e-3, outer=r_pi, r_res=1, c_res=90).triangulate()
         self.slots = []

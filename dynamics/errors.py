@@ -21,7 +21,13 @@ class DynamicsError(LubedynError):
 
 
 class DynamicsInputError(DynamicsError, InputError):
-    """Bad input: names the key, the value and what is allowed."""
+    """Bad input: names the key, the value and what is allowed.
+
+    ``key``: the case key the error is about (``"operating.radial_load"``), when there is one."""
+
+    def __init__(self, message, key: str | None = None):
+        super().__init__(message)
+        self.key = key
 
 
 class IntegrationError(DynamicsError, RuntimeError):

@@ -19,8 +19,9 @@ from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E
 
 @pytest.fixture(scope="module")
 def conservative():
-    model = paper_b(n_balls=6, dof="planar", axial_load=0.0, scenario="steady", race_damping=0.0,
-                            traction_limit=0.0, ball_ball=False, slot_azimuths_deg=())
+    model = paper_b(bearing=dict(n_balls=6), model=dict(dof="planar", race_damping=0.0, traction_limit=0.0,
+                                                        ball_ball=False),
+                    operating=dict(axial_load=0.0, scenario="steady"), slots=dict(azimuths=()))
     y0 = model.initial_state()
     y0[4] += 0.01  # kick the inner ring (0.01 m/s) so that the contacts oscillate
     return model, y0

@@ -31,16 +31,16 @@ def settled():
     """Planar bearing at rest, zero clearance, loaded suddenly by F_r from the unloaded
     geometry, settled by the Hunt-Crossley contact damping (alpha = 2 s/m; the
     ring's damping ratio is ~0.2) over 5 ms."""
-    model = paper_b(dof="planar", axial_load=0.0, radial_load=FR, gravity=0.0, slot_azimuths_deg=(),
-                               speed_rpm=0.0, race_damping=2.0, ring_mass=0.5)
+    model = paper_b(model=dict(dof="planar", race_damping=2.0), slots=dict(azimuths=()), bearing=dict(ring_mass=0.5),
+                    operating=dict(axial_load=0.0, radial_load=FR, gravity=0.0, speed=0.0))
     res, diag, _ = _run(model, model.initial_state(settle=False), 5e-3, 1e-6, n_out=51)
     return model, res, diag
 
 
 def _jones(model):
-    D = model.ball_diameter
-    ri, ro = model.inner_groove_radius, model.outer_groove_radius
-    Kn = cb.deflection_constant(D, model.pitch_diameter, ri, ro, 0.0, model.e_star_race)
+    D = model.bearing.ball_diameter
+    ri, ro = model.bearing.inner_groove_radius, model.bearing.outer_groove_radius
+    Kn = cb.deflection_constant(D, model.bearing.pitch_diameter, ri, ro, 0.0, model.e_star_race)
     return cb.ball_load_distribution(FR, 0.0, model.n_balls, D, ri, ro, Kn)
 
 
@@ -66,18 +66,18 @@ def test_hertz_deflection_against_load(settled):
     model, res, diag = settled
     y = res.y[-1]
     d = diag[-1]
-    D, dm = model.ball_diameter, model.pitch_diameter
-    R_oc = dm / 2 + D / 2 - model.outer_groove_radius
-    R_ic = dm / 2 - D / 2 + model.inner_groove_radius
+    D, dm = model.bearing.ball_diameter, model.bearing.pitch_diameter
+    R_oc = dm / 2 + D / 2 - model.bearing.outer_groove_radius
+    R_ic = dm / 2 - D / 2 + model.bearing.inner_groove_radius
     checked = 0
     for j in range(model.n_balls):
         b = model.ball_offset(j)
         c = y[b + 1] * np.array([math.cos(y[b]), math.sin(y[b])])
         rel = c - y[0:2]
-        delta_o = np.linalg.norm(c) - R_oc - (model.outer_groove_radius - D / 2)
-        delta_i = (R_ic - np.linalg.norm(rel)) - (model.inner_groove_radius - D / 2)
-        for delta, Q, race, r in ((delta_i, d[j, cg.D_QI], "inner", model.inner_groove_radius),
-                                  (delta_o, d[j, cg.D_QO], "outer", model.outer_groove_radius)):
+        delta_o = np.linalg.norm(c) - R_oc - (model.bearing.outer_groove_radius - D / 2)
+        delta_i = (R_ic - np.linalg.norm(rel)) - (model.bearing.inner_groove_radius - D / 2)
+        for delta, Q, race, r in ((delta_i, d[j, cg.D_QI], "inner", model.bearing.inner_groove_radius),
+                                  (delta_o, d[j, cg.D_QO], "outer", model.bearing.outer_groove_radius)):
             if Q < 50.0:
                 continue
             rx = 0.5 * D * (1 - D / dm) if race == "inner" else 0.5 * D * (1 + D / dm)
@@ -93,8 +93,9 @@ def test_ball_train_speed_epicyclic(dof):
     """Balls start at rest on a ring turning at 1000 rpm (preload 8 um, no radial
     load, no gravity): traction drives them to free rolling; with no cage and no drag
     the steady ball train runs at omega_i (1 - D/d_m)/2 and spins at -omega_c d_m/D."""
-    model = paper_b(dof=dof, axial_load=0.0, radial_load=0.0, gravity=0.0, slot_azimuths_deg=(),
-                               speed_rpm=1000.0, diametral_clearance=-8e-6, traction_limit=0.3, ball_ball=False)
+    model = paper_b(model=dict(dof=dof, traction_limit=0.3, ball_ball=False), slots=dict(azimuths=()),
+                    operating=dict(axial_load=0.0, radial_load=0.0, gravity=0.0, speed=1000.0 * math.pi / 30.0),
+                    bearing=dict(diametral_clearance=-8e-6))
     y0 = model.initial_state()
     for j in range(model.n_balls):
         b = model.ball_offset(j)
@@ -103,10 +104,10 @@ def test_ball_train_speed_epicyclic(dof):
         else:
             y0[b + 7:b + 13] = 0.0
     res, diag, _ = _run(model, y0, 2e-3, 2e-6)
-    wc = 0.5 * model.omega_inner * (1 - model.ball_diameter / model.pitch_diameter)
+    wc = 0.5 * model.omega_inner * (1 - model.bearing.ball_diameter / model.bearing.pitch_diameter)
     assert diag[0, :, cg.D_PSIDOT].max() == 0.0  # started at rest
     np.testing.assert_allclose(diag[-5:, :, cg.D_PSIDOT], wc, rtol=2e-3)
-    np.testing.assert_allclose(diag[-1, :, cg.D_SPIN], -wc * model.pitch_diameter / model.ball_diameter, rtol=2e-3)
+    np.testing.assert_allclose(diag[-1, :, cg.D_SPIN], -wc * model.bearing.pitch_diameter / model.bearing.ball_diameter, rtol=2e-3)
 
 
 @pytest.mark.parametrize("dof", ["planar", "6dof"])
@@ -115,9 +116,10 @@ def test_frictionless_undamped_run_conserves_energy_and_angular_momentum(dof):
     neighbours collide elastically, Hertz without film, plasticity, damping or
     friction).  The mechanical energy and the angular momentum about the axis
     are invariants (the outer ring is fixed, its forces pass through the axis)."""
-    model = paper_b(dof=dof, axial_load=0.0, radial_load=0.0, gravity=0.0, slot_azimuths_deg=(),
-                               scenario="free", diametral_clearance=-8e-6, traction_limit=0.0, race_damping=0.0,
-                               film="none", yield_stress=None, ball_ball_mu_boundary=0.0, ball_ball_mu_film=0.0)
+    model = paper_b(model=dict(dof=dof, traction_limit=0.0, race_damping=0.0, yield_stress=None),
+                    operating=dict(axial_load=0.0, radial_load=0.0, gravity=0.0, scenario="free"),
+                    slots=dict(azimuths=()), bearing=dict(diametral_clearance=-8e-6),
+                    films=dict(ball_ball="none", friction_boundary=0.0, friction_film=0.0))
     y0 = model.initial_state()
     rng = np.random.default_rng(3)
     y0[4:6] = 0.05, -0.03
@@ -147,16 +149,16 @@ def test_frictionless_undamped_run_conserves_energy_and_angular_momentum(dof):
 def test_rotor_drop_friction_law():
     """Rotor drop: while the rotor slips on the inner ring (tanh ~ 1) it decelerates
     at mu F_r r_c/J_rotor exactly, whatever the balls do."""
-    model = paper_b(scenario="drop", speed_rpm=10000.0)
+    model = paper_b(operating=dict(scenario="drop", speed=10000.0 * math.pi / 30.0))
     y0 = model.initial_state()
     assert y0[7] == 0.0 and y0[8] == pytest.approx(10000 * math.pi / 30)
     # dt = 1 us: at 2 us RK4 is beyond its real-axis limit for the race traction of the balls at rest
     # (rate ~1.5e6 1/s, h lambda ~ 3 > 2.785; integrators module docstring), the ball slips chatter for
     # the first steps and the growth guard stops the run (issue 20); at 1 us its estimate stays <= 2.54
     res, diag, ring = _run(model, y0, 1e-3, 1e-6, n_out=11)
-    decel = model.rotor_friction * model.radial_load * model.rotor_contact_radius / model.rotor_inertia
+    decel = model.operating.rotor_friction * model.operating.radial_load * model.operating.rotor_contact_radius / model.bearing.rotor_inertia
     np.testing.assert_allclose(res.y[:, 8], y0[8] - decel * res.t, rtol=1e-9)
-    np.testing.assert_allclose(ring[1:, 4], model.rotor_friction * model.radial_load * model.rotor_contact_radius,
+    np.testing.assert_allclose(ring[1:, 4], model.operating.rotor_friction * model.operating.radial_load * model.operating.rotor_contact_radius,
                                rtol=1e-9)
     assert 0.0 < res.y[-1, 7] < res.y[-1, 8]  # the inner ring is being spun up
 
@@ -164,8 +166,8 @@ def test_rotor_drop_friction_law():
 def test_slot_takes_groove_support_away():
     """The bottom ball over the outer-ring slot loses its groove contact and rests on
     the slot edges, the radial load moves to its neighbours."""
-    plain = paper_b(dof="planar", axial_load=0.0, slot_azimuths_deg=(), scenario="drop")
-    slot = plain.replace(slot_azimuths_deg=(270.0,))
+    plain = paper_b(model=dict(dof="planar"), operating=dict(axial_load=0.0, scenario="drop"), slots=dict(azimuths=()))
+    slot = plain.replace(slots=dict(azimuths=(math.radians(270.0),)))
     d0 = cg.forces(0.0, plain.initial_state(), plain.args())[0]
     d1 = cg.forces(0.0, slot.initial_state(), slot.args())[0]
     assert d1[0, cg.D_QO] < 1e-6 * d0[0, cg.D_QO] and d1[0, cg.D_QE] > 0.0
@@ -175,7 +177,7 @@ def test_slot_takes_groove_support_away():
 @pytest.mark.parametrize("dof", ["planar", "6dof"])
 def test_kernel_compiled_matches_python(dof):
     kw = dict(axial_load=0.0) if dof == "planar" else {}
-    model = paper_b(dof=dof, scenario="drop", **kw)
+    model = paper_b(model=dict(dof=dof), operating=dict(scenario="drop", **kw))
     y = model.initial_state()
     b = model.ball_offset(1)
     y[b + 3 if dof == "planar" else b + 8] += 5.0  # a ball moving towards its neighbour
@@ -215,7 +217,7 @@ def test_slot_weight_skip_keeps_every_slot_point(compiled, race):
     """The rhs skips points far from a slot with a dot product before its atan2 (a 2.6x faster rhs
     came partly from that); no point the arc-length test keeps may be lost: points at
     |s| = far (1 -+ 1e-6), inside the slot and all round the race, against a numpy reference."""
-    model = paper_b(slot_azimuths_deg=(270.0, 30.0), slot_race=race)
+    model = paper_b(slots=dict(azimuths=(math.radians(270.0), math.radians(30.0)), race=race))
     a = model.args()
     P, slots = a[1], a[3]
     theta = 0.7 if race == "inner" else 0.0  # an inner-ring slot turns with the ring
@@ -241,15 +243,22 @@ def test_slot_weight_skip_keeps_every_slot_point(compiled, race):
 
 
 def test_bad_input():
-    with pytest.raises(DynamicsInputError, match="do not fit the pitch circle"):
-        paper_b(n_balls=16)
-    with pytest.raises(DynamicsInputError, match="axial_load"):
-        paper_b(dof="planar")
-    with pytest.raises(DynamicsInputError, match="did you mean '6dof'"):
-        paper_b(dof="6dfo")
-    with pytest.raises(DynamicsInputError, match="film_map"):
-        paper_b(film="map")
-    with pytest.raises(DynamicsInputError, match="unknown bearing parameter 'radial_lod'"):
-        paper_b().replace(radial_lod=1.0)
-    with pytest.raises(DynamicsInputError, match="axial_load = 1e[+]06 N"):
-        paper_b(axial_load=1e6, slot_azimuths_deg=()).initial_state()
+    """Each error names the case key it is about, in its message and as ``key``."""
+    cases = [
+        (dict(bearing=dict(n_balls=16)), "bearing.n_balls", "do not fit the pitch circle"),
+        (dict(model=dict(dof="planar")), "operating.axial_load", "needs model.dof = '6dof'"),
+        (dict(model=dict(dof="6dfo")), "model.dof", "did you mean '6dof'"),
+        (dict(films=dict(ball_ball="map")), "films.map", "is needed with films.ball_ball = 'map'"),
+        (dict(operating=dict(radial_lod=1.0)), "operating.radial_lod", "is not a key of \\[operating\\]; did you "
+                                                                       "mean 'radial_load'"),
+        (dict(operating=dict(radial_load=-1.0)), "operating.radial_load", "must be a finite number >= 0"),
+        (dict(slots=dict(width=0.02)), "slots.width", "must be < the groove diameter"),
+        (dict(speeds=dict(x=1)), "speeds", "not a group of the bearing model"),
+    ]
+    for changes, key, words in cases:
+        with pytest.raises(DynamicsInputError, match=words) as err:
+            paper_b(**changes)
+        assert err.value.key == key and str(err.value).startswith(key)
+    with pytest.raises(DynamicsInputError, match="operating.axial_load = 1e[+]06 N") as err:
+        paper_b(operating=dict(axial_load=1e6), slots=dict(azimuths=())).initial_state()
+    assert err.value.key == "operating.axial_load"

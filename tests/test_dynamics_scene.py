@@ -8,7 +8,8 @@ import json
 import pytest
 
 from coupling import cli
-from coupling.config import CASES_DIR
+from coupling.config import CASES_DIR, load_case
+from lubrication.errors import InputError
 
 SHORT = CASES_DIR / "cageless_6206_10krpm_short.toml"
 
@@ -93,23 +94,26 @@ def test_rosenstein_shortfall_agrees_with_the_estimator():
     assert str(info.value) == f"x has {reason}"
 
 
-def test_one_table_joins_the_case_schema_and_the_bearing_model():
-    """coupling.dynamics_scene.FIELDS maps case keys onto model fields in both directions: every field
-    of CagelessBearing without a default comes from a case key, every key names a field of the case
-    schema and of the model, so that a model error names the case file's key."""
+def test_case_tables_are_the_model_groups_one_to_one():
+    """Every table of a dynamics case is one frozen group of the model with the same field names (the
+    group may hold more: numerical settings the case leaves at their defaults), every required field of a
+    group is a key of its table, and a model error from a case names the case key without translation."""
     import dataclasses
 
     from coupling import dynamics_scene as ds
     from dynamics.cageless import CagelessBearing
 
-    model_fields = {f.name: f for f in dataclasses.fields(CagelessBearing)}
-    required = {n for n, f in model_fields.items()
-                if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING}
-    assert required <= set(ds.CASE_KEYS)
-    for field, key in ds.CASE_KEYS.items():
-        table, name = key.split(".")
-        assert field in model_fields, field
-        assert name in ds.DynamicsCase.model_fields[table].annotation.model_fields, key
-    message = "slot_width = 0.01 m must be < the groove diameter; ball_mass = 1 must be > 0"
-    assert ds._case_words(message) == ("slots.width = 0.01 m must be < the groove diameter; "
-                                       "bearing.ball_mass = 1 must be > 0")
+    for table, attr in ds.GROUP_OF_TABLE.items():
+        group = {f.name: f for f in dataclasses.fields(CagelessBearing)}[attr].type
+        cls = getattr(__import__("dynamics.cageless.groups", fromlist=[group]), group)
+        assert cls.TABLE == table
+        keys = set(ds.DynamicsCase.model_fields[table].annotation.model_fields)
+        names = {f.name: f for f in dataclasses.fields(cls)}
+        assert keys <= set(names), (table, keys - set(names))
+        required = {n for n, f in names.items() if f.default is dataclasses.MISSING}
+        assert required <= keys, (table, required - keys)
+    case = load_case(CASES_DIR / "cageless_6206_steady.toml")
+    groups = ds.model_groups(case)
+    assert groups["slots"].width == case.slots.width and groups["fidelity"].dof == case.model.dof
+    with pytest.raises(InputError, match=r"^slots.width = 0.01 m must be < the groove diameter"):
+        ds.build(case.model_copy(update={"slots": case.slots.model_copy(update={"width": 0.01})}))

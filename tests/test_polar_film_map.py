@@ -26,9 +26,9 @@ def polar():
     fmap = FilmMap.load(CASES_DIR / "maps" / "ball_ball.npz")
     assert fmap.is_polar()
     params = fmap.provenance.get("params") or fp.ball_ball_default_params()
-    model = paper_b(n_balls=6, dof="planar", axial_load=0.0, film="map",
-                            film_map=fmap.dynamics_film_map(), viscosity=float(params["eta0"]),
-                            pressure_viscosity=float(params["alpha"]))
+    model = paper_b(bearing=dict(n_balls=6), model=dict(dof="planar"), operating=dict(axial_load=0.0),
+                    films=dict(ball_ball="map", map=fmap.dynamics_film_map(), viscosity=float(params["eta0"]),
+                               pressure_viscosity=float(params["alpha"])))
     args = model.args()
     return fmap, params, args[2], args[4:10]
 

@@ -85,25 +85,19 @@ SCENES = {
 
 
 def cageless_bearing(**overrides):
-    """Paper B's bearing as a :class:`dynamics.cageless.CagelessBearing` (SI values of :data:`VALUES`),
-    with ``overrides`` (any field of the model) applied: the Python-side twin of a dynamics case that
-    says ``parameters = "Zhang2024"``."""
+    """Paper B's bearing as a :class:`dynamics.cageless.CagelessBearing`: the SI values of :data:`VALUES`
+    placed in the model's groups by the case keys of :data:`SCENES` (``"bearing.n_balls"`` -> the
+    ``bearing`` group), the Python-side twin of a dynamics case that says ``parameters = "Zhang2024"``.
+    ``overrides`` as :meth:`~dynamics.cageless.CagelessBearing.replace` takes them: by group
+    (``operating={"speed": 1e3}``) or by case key (``**{"model.dof": "planar"}``)."""
+    from coupling.units import parse_quantity
     from dynamics.cageless import CagelessBearing
 
-    from . import printed
-
-    v = {name: p.si() for name, p in VALUES.items()}
-    kwargs = dict(
-        n_balls=v["n_balls"], ball_diameter=v["ball_diameter"], pitch_diameter=v["pitch_diameter"],
-        inner_groove_radius=v["inner_groove_radius"], outer_groove_radius=v["outer_groove_radius"],
-        diametral_clearance=v["diametral_clearance"], ball_modulus=v["ball_modulus"],
-        ball_poisson=v["ball_poisson"], ring_modulus=v["ring_modulus"], ring_poisson=v["ring_poisson"],
-        ball_density=v["ball_density"], ring_mass=v["ring_mass"], ring_inertia=v["ring_inertia"],
-        rotor_inertia=v["rotor_inertia"], radial_load=v["radial_load"], axial_load=v["axial_load"],
-        speed_rpm=printed(NAME, "speed", "rpm"), viscosity=v["viscosity"],
-        pressure_viscosity=v["pressure_viscosity"], slot_race=v["slot_race"],
-        slot_azimuths_deg=tuple(float(a.split()[0]) for a in v["slot_azimuths"]), slot_width=v["slot_width"],
-        slot_length=v["slot_length"], slot_depth=v["slot_depth"],
-    )
-    kwargs.update(overrides)
-    return CagelessBearing(**kwargs)
+    groups = {"bearing": {}, "operating": {}, "films": {}, "slots": {}}
+    for key, name in SCENES["dynamics"].items():
+        table, field = key.split(".")
+        p = VALUES[name]
+        groups[table][field] = (tuple(parse_quantity(a, "angle") for a in p.value) if p.dimension == "angles"
+                                else p.si())
+    model = CagelessBearing(**groups)
+    return model.replace(**overrides) if overrides else model

@@ -23,32 +23,32 @@ def bearing_energy(model: CagelessBearing, y: np.ndarray) -> float:
     Z = model.n_balls
     y = np.asarray(y, dtype=float)
     m, J = model.mass, model.ball_inertia
-    E = 0.5 * model.ring_mass * float(np.sum(y[4:7] ** 2)) + 0.5 * model.ring_inertia * y[7] ** 2
-    E += model.ring_mass * model.gravity * y[1] - (P[P_FX] * y[0] + P[P_FY] * y[1] + P[P_FZ] * y[2])
+    E = 0.5 * model.bearing.ring_mass * float(np.sum(y[4:7] ** 2)) + 0.5 * model.bearing.ring_inertia * y[7] ** 2
+    E += model.bearing.ring_mass * model.operating.gravity * y[1] - (P[P_FX] * y[0] + P[P_FY] * y[1] + P[P_FZ] * y[2])
     pos = np.zeros((Z, 3))
     for j in range(Z):
         b = model.ball_offset(j)
-        if model.dof == "6dof":
+        if model.fidelity.dof == "6dof":
             pos[j] = y[b:b + 3]
             E += 0.5 * m * float(np.sum(y[b + 7:b + 10] ** 2)) + 0.5 * J * float(np.sum(y[b + 10:b + 13] ** 2))
         else:
             phi, r, phid, rd, om = y[b], y[b + 1], y[b + 3], y[b + 4], y[b + 5]
             pos[j] = r * math.cos(phi), r * math.sin(phi), 0.0
             E += 0.5 * m * (rd * rd + (r * phid) ** 2) + 0.5 * J * om * om
-        E += m * model.gravity * pos[j, 1]
+        E += m * model.operating.gravity * pos[j, 1]
         for race in (0, 1):
             ctr = np.zeros(3) if race == 0 else y[0:3]
             Rgc, rg, K = (P[P_ROC], P[P_RO], P[P_KO]) if race == 0 else (P[P_RIC], P[P_RI], P[P_KI])
             d = pos[j] - ctr
             rho = math.hypot(d[0], d[1])
-            delta = math.hypot(rho - Rgc, d[2]) - (rg - 0.5 * model.ball_diameter)
+            delta = math.hypot(rho - Rgc, d[2]) - (rg - 0.5 * model.bearing.ball_diameter)
             if delta > 0.0:
                 E += 0.4 * K * delta**2.5
-    if model.ball_ball:
+    if model.fidelity.ball_ball:
         Kbb = args[2][BB_K]
         for j in range(Z):
             k = (j + 1) % Z
-            gap = float(np.linalg.norm(pos[k] - pos[j])) - model.ball_diameter
+            gap = float(np.linalg.norm(pos[k] - pos[j])) - model.bearing.ball_diameter
             if gap < 0.0:
                 E += 0.4 * Kbb * (-gap) ** 2.5
     return E
@@ -58,10 +58,10 @@ def angular_momentum_z(model: CagelessBearing, y: np.ndarray) -> float:
     """Angular momentum [kg m^2/s] about the bearing axis of balls and inner ring."""
     Z = model.n_balls
     m, J = model.mass, model.ball_inertia
-    L = model.ring_mass * (y[0] * y[5] - y[1] * y[4]) + model.ring_inertia * y[7]
+    L = model.bearing.ring_mass * (y[0] * y[5] - y[1] * y[4]) + model.bearing.ring_inertia * y[7]
     for j in range(Z):
         b = model.ball_offset(j)
-        if model.dof == "6dof":
+        if model.fidelity.dof == "6dof":
             from ..rotations import quat_rotate as _qr
 
             w = np.empty(3)

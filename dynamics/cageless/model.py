@@ -19,6 +19,8 @@ from lubrication.laws.film import hamrock_dowson_central
 from .. import contacts as C
 from ..contacts import FILM_KINDS
 from ..errors import DynamicsInputError
+from ..groups import fail
+from .groups import Bearing, Films, Fidelity, Operating, Slots
 from ..interp import HERMITE
 from .kernels import forces, rhs
 from .layout import (ARG_COUNTER, DOFS, D_AI, D_AO, D_QI, D_QO, I_BALLBALL, I_DOF, I_DRIVE, I_FILM, I_NSLOT, I_SIZE,
@@ -30,12 +32,6 @@ from .layout import (ARG_COUNTER, DOFS, D_AI, D_AO, D_QI, D_QO, I_BALLBALL, I_DO
 logger = logging.getLogger(__name__)
 
 # ----------------------------------------------------------------------------- model builder
-def _check_choice(key, value, allowed):
-    if value not in allowed:
-        hint = did_you_mean(value, allowed, n=2)
-        raise DynamicsInputError(f"{key} = {value!r} is not allowed; choose one of {', '.join(map(repr, allowed))}{hint}")
-
-
 def _map_arrays(film_map, axis1_kind):
     """(ax0, ax1, ax2, vals (k, n0, n1, n2), opts) for the map kernel from a force map's kernel arrays
     ``(axes, logs, values, logv, method)`` (:class:`coupling.maps.KernelArrays`); a two-axis map (gap,
@@ -48,20 +44,20 @@ def _map_arrays(film_map, axis1_kind):
     try:
         axes, logs, values, logv, method = film_map
     except (TypeError, ValueError):
-        raise DynamicsInputError("film_map must be (axes, logs, values, logv, method) of a force map "
+        raise DynamicsInputError("films.map must be (axes, logs, values, logv, method) of a force map "
                                  "(coupling.maps.FilmMap.kernel_arrays('Force [N]'))") from None
     axes = [np.ascontiguousarray(a, dtype=np.float64) for a in axes]
     logs = [int(v) for v in logs]
     vals = np.asarray(values, dtype=np.float64)
     nd = len(axes)
     if nd not in (2, 3) or len(logs) != nd:
-        raise DynamicsInputError(f"film_map has {nd} axes; the ball-ball force map needs 2 (gap, speed) or 3 "
+        raise DynamicsInputError(f"films.map has {nd} axes; the ball-ball force map needs 2 (gap, speed) or 3 "
                                  "(gap, speed, entrainment speed)")
     shape = tuple(a.size for a in axes)
     hermite = int(method) == HERMITE
     expect = ((2**nd,) if hermite else ()) + shape
     if vals.shape != expect:
-        raise DynamicsInputError(f"film_map values have shape {vals.shape}; the axes need {expect}")
+        raise DynamicsInputError(f"films.map values have shape {vals.shape}; the axes need {expect}")
     if nd == 2:
         axes.append(np.array([0.0, 1.0]))
         logs.append(0)
@@ -91,7 +87,7 @@ def _traction_arrays(maps):
     try:
         (ai, li, vi, lvi, mi), (ao, lo, vo, lvo, mo) = maps
     except (TypeError, ValueError):
-        raise DynamicsInputError("traction_maps must be (inner, outer) kernel arrays of EHL maps "
+        raise DynamicsInputError("model.traction_maps must be (inner, outer) kernel arrays of EHL maps "
                                  "(coupling.maps.FilmMap.kernel_arrays('Traction coefficient [-]'))") from None
     if len(ai) != 3 or len(ao) != 3:
         raise DynamicsInputError("traction maps need 3 axes (load, entrainment speed, slide-to-roll ratio)")
@@ -113,180 +109,82 @@ def _traction_arrays(maps):
 
 @dataclass(frozen=True, kw_only=True)
 class CagelessBearing:
-    """Cage-less deep-groove ball bearing (SI units).
+    """Cage-less deep-groove ball bearing (SI units), held as five frozen groups, one per table of a
+    dynamics case (:mod:`dynamics.cageless.groups`): ``bearing`` (geometry, materials, masses),
+    ``operating`` (loads, speed, scenario), ``fidelity`` (the case's ``[model]``: degrees of freedom,
+    Hertz constants, damping, traction), ``films`` (the oil, the ball-ball and race films) and
+    ``slots``.
 
-    The bearing's data (geometry, materials, masses, loads, speed, oil, slots) have no defaults:
-    paper B's come from its parameter set, ``coupling.parameters.zhang2024.cageless_bearing()``
-    (Tables 1, 2, 4 and the values it had to assume); the defaults left are model options and
-    numerical settings.
-
-    Geometry: ``n_balls`` Z, ``ball_diameter`` D, ``pitch_diameter`` d_m,
-    groove radii r_i, r_o (groove bottoms at d_m/2 -+ D/2 - P_d/4, P_d the
-    ``diametral_clearance``).  Materials: E, nu of the balls and the rings.
-    ``ball_mass`` None: from ``ball_density``.  ``ring_mass``: inner ring plus
-    the rotor share it carries; ``ring_inertia`` the inner ring alone about its
-    axis; ``rotor_inertia`` (inf: driven rotor).  Slots: ``slot_azimuths_deg``
-    (empty: none) on ``slot_race``, each ``slot_width`` x ``slot_length`` x
-    ``slot_depth``.
-    Options: ``dof`` ("6dof", "planar"), ``film`` ("none", "closed_form",
-    "map" with ``film_map``), ``scenario`` ("steady", "drop", "free"),
-    ``traction`` ("closed_form"; "map" is a reserved slot), ``hertz_method``
-    ("exact", "hamrock_brewe"), ``ball_ball`` (contacts between neighbours).
-    ``shoulder_contact_angle_deg``: the largest contact angle before the contact
-    ellipse runs over the groove shoulder (the paper gives no shoulder
-    diameters; 40 deg assumed): a load that needs more is refused.
+    The groups carry no paper data as defaults: paper B's come from its parameter set,
+    ``coupling.parameters.zhang2024.cageless_bearing()`` (Tables 1, 2, 4 and the values it had to
+    assume).  Each group checks its own values; :meth:`__post_init__` checks what needs two groups.
+    Every error names the case key (``"slots.width = ..."``).
     """
 
-    n_balls: int
-    ball_diameter: float
-    pitch_diameter: float
-    inner_groove_radius: float
-    outer_groove_radius: float
-    diametral_clearance: float = 0.0
-    ball_modulus: float
-    ball_poisson: float
-    ring_modulus: float
-    ring_poisson: float
-    ball_density: float = 7850.0
-    ball_mass: float | None = None
-    ring_mass: float
-    ring_inertia: float
-    rotor_inertia: float
-    radial_load: float
-    axial_load: float
-    gravity: float = 9.81
-    speed_rpm: float
-    scenario: str = "steady"
-    drop_speed: float = 0.0
-    rotor_friction: float = 0.1
-    rotor_contact_radius: float = 15e-3
-    rotor_slip_regularisation: float = 1.0
-    dof: str = "6dof"
-    hertz_method: str = "exact"
-    race_damping: float = 0.2
-    race_film: str = "none"
-    traction: str = "closed_form"
-    traction_maps: tuple | None = None
-    traction_limit: float = 0.07
-    traction_srr: float = 0.02
-    traction_slip_regularisation: float = 0.05
-    ball_ball: bool = True
-    film: str = "closed_form"
-    film_map: tuple | None = None
-    film_map_speed_axis: str = "squeeze_number"
-    pressure_viscosity: float
-    viscosity: float
-    film_rupture_thickness: float = 1e-7
-    film_cutoff_gap: float | None = None
-    yield_stress: float | None = 1.7e9
-    ball_ball_damping: float = 0.0
-    ball_ball_mu_film: float = 0.03
-    ball_ball_mu_boundary: float = 0.1
-    ball_ball_slip_regularisation: float = 0.01
-    plastic_memory_time: float = 1e-4
-    slot_azimuths_deg: tuple
-    slot_race: str
-    slot_width: float
-    slot_length: float
-    slot_depth: float
-    slot_edge_radius: float = 2e-4
-    slot_blend: float = 2e-4
-    quaternion_stabilisation: float = 10.0
-    shoulder_contact_angle_deg: float = 40.0
-    first_ball_azimuth_deg: float = 270.0
+    bearing: Bearing
+    operating: Operating
+    fidelity: Fidelity = Fidelity()
+    films: Films
+    slots: Slots
 
     def __post_init__(self):
-        _check_choice("dof", self.dof, DOFS)
-        _check_choice("race_film", self.race_film, RACE_FILMS)
-        _check_choice("scenario", self.scenario, SCENARIOS)
-        _check_choice("film", self.film, FILM_KINDS)
-        _check_choice("traction", self.traction, TRACTIONS)
-        _check_choice("hertz_method", self.hertz_method, laws_contact.METHODS)
-        _check_choice("slot_race", self.slot_race, RACES)
-        Z = self.n_balls
-        if int(Z) != Z or Z < 3:
-            raise DynamicsInputError(f"n_balls = {Z!r} must be an integer >= 3")
-        for key in ("ball_diameter", "pitch_diameter", "ball_modulus", "ring_modulus", "ball_density", "ring_mass",
-                    "ring_inertia", "rotor_inertia", "slot_width", "slot_length", "slot_depth", "slot_edge_radius",
-                    "slot_blend", "rotor_contact_radius", "rotor_slip_regularisation",
-                    "traction_srr", "traction_slip_regularisation", "film_rupture_thickness",
-                    "ball_ball_slip_regularisation", "plastic_memory_time"):
-            v = getattr(self, key)
-            if not (isinstance(v, (int, float)) and v > 0.0):
-                raise DynamicsInputError(f"{key} = {v!r} must be > 0")
-        for key in ("radial_load", "axial_load", "gravity", "race_damping", "traction_limit", "viscosity",
-                    "rotor_friction", "ball_ball_damping", "quaternion_stabilisation"):
-            v = getattr(self, key)
-            if not (isinstance(v, (int, float)) and v >= 0.0 and math.isfinite(v)):
-                raise DynamicsInputError(f"{key} = {v!r} must be a finite number >= 0")
-        D, dm = self.ball_diameter, self.pitch_diameter
-        if Z * D >= math.pi * dm:
-            raise DynamicsInputError(
-                f"n_balls = {Z} balls of D = {D:g} m do not fit the pitch circle: Z D = {Z * D:g} m >= "
-                f"pi d_m = {math.pi * dm:g} m")
-        BD = self.inner_groove_radius + self.outer_groove_radius - D
-        if not (math.isfinite(self.diametral_clearance) and -0.05 * BD < self.diametral_clearance < 4.0 * BD):
-            raise DynamicsInputError(
-                f"diametral_clearance = {self.diametral_clearance!r} m must lie in ({-0.05 * BD:g}, {4 * BD:g}) m "
-                "(negative: interference, i.e. preload)")
-        if not D < dm:
-            raise DynamicsInputError(f"ball_diameter = {D:g} m must be < pitch_diameter = {dm:g} m")
-        for key in ("inner_groove_radius", "outer_groove_radius"):
-            if not getattr(self, key) > 0.5 * D:
-                raise DynamicsInputError(f"{key} = {getattr(self, key)!r} m must be > D/2 = {0.5 * D:g} m")
-        if self.dof == "planar" and self.axial_load != 0.0:
-            raise DynamicsInputError(
-                f"axial_load = {self.axial_load:g} N needs dof = '6dof' (planar balls stay in the mid-plane "
-                "and carry no axial load); set axial_load = 0 or dof = '6dof'")
-        _check_choice("film_map_speed_axis", self.film_map_speed_axis, MAP_SPEED_AXES)
-        if self.film == "map" and self.film_map is None:
-            raise DynamicsInputError("film = 'map' needs film_map = (axes, logs, values, logv, method) of a "
-                                     "ball_ball force map (coupling.maps.FilmMap.kernel_arrays('Force [N]'))")
-        if self.traction == "map" and self.traction_maps is None:
-            raise DynamicsInputError("traction = 'map' needs traction_maps = (inner, outer) kernel arrays of the "
-                                     "EHL race maps (coupling.maps.FilmMap.kernel_arrays('Traction coefficient [-]'))")
-        if self.yield_stress is not None and not self.yield_stress > 0.0:
-            raise DynamicsInputError(f"yield_stress = {self.yield_stress!r} must be > 0 [Pa] (or None: elastic)")
-        if self.slot_width >= 2.0 * min(self.inner_groove_radius, self.outer_groove_radius):
-            raise DynamicsInputError(f"slot_width = {self.slot_width:g} m must be < the groove diameter")
-        dip = 0.5 * D - math.sqrt(0.25 * D * D - 0.25 * self.slot_width**2) if self.slot_width < D else 0.5 * D
-        if self.slot_azimuths_deg and dip >= self.slot_depth:
-            raise DynamicsInputError(f"slot_depth = {self.slot_depth:g} m: a ball dips {dip:g} m into a slot of width "
-                                     f"{self.slot_width:g} m and would reach the slot floor (not modelled)")
+        for name, cls in (("bearing", Bearing), ("operating", Operating), ("fidelity", Fidelity), ("films", Films),
+                          ("slots", Slots)):
+            group = getattr(self, name)
+            if isinstance(group, dict):
+                object.__setattr__(self, name, cls.build(group))
+            elif not isinstance(group, cls):
+                raise DynamicsInputError(f"{name} must be a {cls.__name__} (or a dict of its fields), not "
+                                         f"{type(group).__name__}", key=cls.TABLE)
+        b, sl = self.bearing, self.slots
+        if self.fidelity.dof == "planar" and self.operating.axial_load != 0.0:
+            raise fail("operating.axial_load", self.operating.axial_load,
+                       "N needs model.dof = '6dof' (planar balls stay in the mid-plane and carry no axial load); "
+                       "set operating.axial_load = 0 or model.dof = '6dof'")
+        if sl.width >= 2.0 * min(b.inner_groove_radius, b.outer_groove_radius):
+            raise fail("slots.width", sl.width, "m must be < the groove diameter (2 x the smaller groove radius)")
+        D = b.ball_diameter
+        dip = 0.5 * D - math.sqrt(0.25 * D * D - 0.25 * sl.width**2) if sl.width < D else 0.5 * D
+        if sl.azimuths and dip >= sl.depth:
+            raise fail("slots.depth", sl.depth, f"m: a ball dips {dip:g} m into a slot of width {sl.width:g} m and "
+                       "would reach the slot floor (not modelled)")
 
     # derived quantities ------------------------------------------------------
     @property
+    def n_balls(self) -> int:
+        """Z, the number of balls (it sets the state's size)."""
+        return int(self.bearing.n_balls)
+
+    @property
     def mass(self) -> float:
         """Ball mass [kg]."""
-        if self.ball_mass is not None:
-            return float(self.ball_mass)
-        return self.ball_density * math.pi / 6.0 * self.ball_diameter**3
+        return self.bearing.mass
 
     @property
     def ball_inertia(self) -> float:
         """2/5 m R^2 [kg m^2]."""
-        return 0.4 * self.mass * (0.5 * self.ball_diameter) ** 2
+        return 0.4 * self.mass * (0.5 * self.bearing.ball_diameter) ** 2
 
     @property
     def e_star_race(self) -> float:
-        return laws_contact.reduced_modulus(self.ball_modulus, self.ball_poisson, self.ring_modulus, self.ring_poisson)
+        return laws_contact.reduced_modulus(self.bearing.ball_modulus, self.bearing.ball_poisson, self.bearing.ring_modulus, self.bearing.ring_poisson)
 
     @property
     def e_star_ball(self) -> float:
-        return laws_contact.reduced_modulus(self.ball_modulus, self.ball_poisson, self.ball_modulus, self.ball_poisson)
+        return laws_contact.reduced_modulus(self.bearing.ball_modulus, self.bearing.ball_poisson, self.bearing.ball_modulus, self.bearing.ball_poisson)
 
     def hertz_constants(self) -> tuple[float, float]:
         """(K_i, K_o) [N/m^1.5] of the ball-race contacts (zero contact angle)."""
-        D, dm = self.ball_diameter, self.pitch_diameter
+        D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
         es = self.e_star_race
-        Ki = laws_contact.hertz_constant(*laws_bearing.race_radii(D, dm, self.inner_groove_radius, "inner"), es, self.hertz_method)
-        Ko = laws_contact.hertz_constant(*laws_bearing.race_radii(D, dm, self.outer_groove_radius, "outer"), es, self.hertz_method)
+        Ki = laws_contact.hertz_constant(*laws_bearing.race_radii(D, dm, self.bearing.inner_groove_radius, "inner"), es, self.fidelity.hertz)
+        Ko = laws_contact.hertz_constant(*laws_bearing.race_radii(D, dm, self.bearing.outer_groove_radius, "outer"), es, self.fidelity.hertz)
         return Ki, Ko
 
     def race_film_reference_load(self) -> float:
         """Reference load [N] of the race films: Stribeck's most loaded ball c F_r / Z, c = 4.37
         (:data:`lubrication.laws.bearing.STRIBECK`), or the axial share F_a / Z when larger; at least 1 N."""
-        return max(laws_bearing.STRIBECK["point"] * self.radial_load / self.n_balls, self.axial_load / self.n_balls,
+        return max(laws_bearing.STRIBECK["point"] * self.operating.radial_load / self.bearing.n_balls, self.operating.axial_load / self.bearing.n_balls,
                    1.0)
 
     def race_film_coefficients(self) -> tuple[float, float]:
@@ -300,15 +198,15 @@ class CagelessBearing:
         :meth:`race_film_reference_load` (the film depends on the load only as
         Q^-0.067: a tenfold load changes it by 14 %).  Isothermal, fully
         flooded, smooth surfaces; the film adds h_c to the solids' approach."""
-        D, dm = self.ball_diameter, self.pitch_diameter
+        D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
         e_prime = 2.0 * self.e_star_race
         q = self.race_film_reference_load()
         out = []
-        for race, groove in (("inner", self.inner_groove_radius), ("outer", self.outer_groove_radius)):
+        for race, groove in (("inner", self.bearing.inner_groove_radius), ("outer", self.bearing.outer_groove_radius)):
             rx, ry = laws_bearing.race_radii(D, dm, groove, race)
             k = 1.0 / math.sqrt(1.0 - laws_contact.ellipticity_parameter(ry / rx))
-            U1 = self.viscosity / (e_prime * rx)  # U per (m/s)
-            G = self.pressure_viscosity * e_prime
+            U1 = self.films.viscosity / (e_prime * rx)  # U per (m/s)
+            G = self.films.pressure_viscosity * e_prime
             W = q / (e_prime * rx * rx)
             out.append(hamrock_dowson_central(U1, G, W, k) * rx)
         return out[0], out[1]
@@ -321,28 +219,28 @@ class CagelessBearing:
     @property
     def contact_angle_free(self) -> float:
         """Free contact angle [rad] from the clearance: cos b0 = 1 - P_d/(2 B D) (0 for P_d <= 0)."""
-        return laws_bearing.free_contact_angle(self.ball_diameter, self.inner_groove_radius, self.outer_groove_radius,
-                                               self.diametral_clearance)
+        return laws_bearing.free_contact_angle(self.bearing.ball_diameter, self.bearing.inner_groove_radius, self.bearing.outer_groove_radius,
+                                               self.bearing.diametral_clearance)
 
     @property
     def omega_inner(self) -> float:
-        return self.speed_rpm * math.pi / 30.0
+        return self.operating.speed
 
     @property
     def n_per_ball(self) -> int:
-        return NB_6DOF if self.dof == "6dof" else NB_PLANAR
+        return NB_6DOF if self.fidelity.dof == "6dof" else NB_PLANAR
 
     @property
     def n_states(self) -> int:
-        return N_RING + self.n_balls + self.n_balls * self.n_per_ball
+        return N_RING + self.bearing.n_balls + self.bearing.n_balls * self.n_per_ball
 
     def ball_offset(self, j: int) -> int:
         """Index of ball j's first state entry."""
-        return N_RING + self.n_balls + j * self.n_per_ball
+        return N_RING + self.bearing.n_balls + j * self.n_per_ball
 
     def cage_speed(self, contact_angle: float = 0.0) -> float:
         """Epicyclic ball-train speed omega_i (1 - D cos a/d_m)/2 [rad/s]."""
-        return laws_bearing.cage_speed(self.ball_diameter, self.pitch_diameter, contact_angle, self.omega_inner)
+        return laws_bearing.cage_speed(self.bearing.ball_diameter, self.bearing.pitch_diameter, contact_angle, self.omega_inner)
 
     # numba arguments ----------------------------------------------------------
     def args(self) -> tuple:
@@ -365,69 +263,69 @@ class CagelessBearing:
         return self.args()[ARG_COUNTER]
 
     def _build_args(self) -> tuple:
-        D, dm = self.ball_diameter, self.pitch_diameter
+        D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
         Rb = 0.5 * D
         iopt = np.zeros(I_SIZE, dtype=np.int64)
-        iopt[I_Z] = self.n_balls
-        iopt[I_DOF] = DOFS[self.dof]
-        iopt[I_FILM] = FILM_KINDS[self.film]
-        iopt[I_DRIVE] = SCENARIOS[self.scenario]
-        iopt[I_TRACTION] = TRACTIONS[self.traction]
-        iopt[I_BALLBALL] = int(bool(self.ball_ball))
-        iopt[I_NSLOT] = len(self.slot_azimuths_deg)
+        iopt[I_Z] = self.bearing.n_balls
+        iopt[I_DOF] = DOFS[self.fidelity.dof]
+        iopt[I_FILM] = FILM_KINDS[self.films.ball_ball]
+        iopt[I_DRIVE] = SCENARIOS[self.operating.scenario]
+        iopt[I_TRACTION] = TRACTIONS[self.fidelity.traction]
+        iopt[I_BALLBALL] = int(bool(self.fidelity.ball_ball))
+        iopt[I_NSLOT] = len(self.slots.azimuths)
         P = np.zeros(P_SIZE)
         Ki, Ko = self.hertz_constants()
-        Pd4 = 0.25 * self.diametral_clearance
+        Pd4 = 0.25 * self.bearing.diametral_clearance
         P[P_D], P[P_RB] = D, Rb
-        P[P_RO], P[P_RI] = self.outer_groove_radius, self.inner_groove_radius
-        P[P_ROC] = 0.5 * dm + Rb + Pd4 - self.outer_groove_radius
-        P[P_RIC] = 0.5 * dm - Rb - Pd4 + self.inner_groove_radius
+        P[P_RO], P[P_RI] = self.bearing.outer_groove_radius, self.bearing.inner_groove_radius
+        P[P_ROC] = 0.5 * dm + Rb + Pd4 - self.bearing.outer_groove_radius
+        P[P_RIC] = 0.5 * dm - Rb - Pd4 + self.bearing.inner_groove_radius
         P[P_MB], P[P_JB] = self.mass, self.ball_inertia
-        P[P_MR], P[P_JR] = self.ring_mass, self.ring_inertia
-        P[P_JROT] = self.rotor_inertia if math.isfinite(self.rotor_inertia) else 0.0
+        P[P_MR], P[P_JR] = self.bearing.ring_mass, self.bearing.ring_inertia
+        P[P_JROT] = self.bearing.rotor_inertia if math.isfinite(self.bearing.rotor_inertia) else 0.0
         P[P_KI], P[P_KO] = Ki, Ko
-        if self.race_film == "closed_form":
+        if self.films.race == "closed_form":
             P[P_HCI], P[P_HCO] = self.race_film_coefficients()
-        P[P_ALPHA] = self.race_damping
-        P[P_MU], P[P_SRR], P[P_VREG] = self.traction_limit, self.traction_srr, self.traction_slip_regularisation
-        P[P_G] = self.gravity
+        P[P_ALPHA] = self.fidelity.race_damping
+        P[P_MU], P[P_SRR], P[P_VREG] = self.fidelity.traction_limit, self.fidelity.traction_srr, self.fidelity.traction_slip_regularisation
+        P[P_G] = self.operating.gravity
         P[P_FX] = 0.0
-        P[P_FY] = -(self.radial_load - self.ring_mass * self.gravity)
-        P[P_FZ] = self.axial_load
+        P[P_FY] = -(self.operating.radial_load - self.bearing.ring_mass * self.operating.gravity)
+        P[P_FZ] = self.operating.axial_load
         P[P_OMEGA_FIX] = self.omega_inner
-        P[P_MUROT], P[P_RC], P[P_WREG] = self.rotor_friction, self.rotor_contact_radius, self.rotor_slip_regularisation
-        P[P_NROT] = self.radial_load
-        P[P_SW], P[P_SL], P[P_SBLEND] = self.slot_width, self.slot_length, self.slot_blend
+        P[P_MUROT], P[P_RC], P[P_WREG] = self.operating.rotor_friction, self.operating.rotor_contact_radius, self.operating.rotor_slip_regularisation
+        P[P_NROT] = self.operating.radial_load
+        P[P_SW], P[P_SL], P[P_SBLEND] = self.slots.width, self.slots.length, self.slots.blend
         # slot edges: sphere against an edge rounded with r_e along a circle of radius R_e
-        hw = 0.5 * self.slot_width
-        P[P_REO] = P[P_ROC] + math.sqrt(self.outer_groove_radius**2 - hw * hw)
-        P[P_REI] = P[P_RIC] - math.sqrt(self.inner_groove_radius**2 - hw * hw)
+        hw = 0.5 * self.slots.width
+        P[P_REO] = P[P_ROC] + math.sqrt(self.bearing.outer_groove_radius**2 - hw * hw)
+        P[P_REI] = P[P_RIC] - math.sqrt(self.bearing.inner_groove_radius**2 - hw * hw)
         es = self.e_star_race
-        re = self.slot_edge_radius
+        re = self.slots.edge_radius
         rxo, ryo = laws_contact.relative_radii([2.0 / D, -1.0 / P[P_REO]], [2.0 / D, 1.0 / re])
         rxi, ryi = laws_contact.relative_radii([2.0 / D, 1.0 / P[P_REI]], [2.0 / D, 1.0 / re])
-        P[P_KEO] = laws_contact.hertz_constant(max(rxo, ryo), min(rxo, ryo), es, self.hertz_method)
-        P[P_KEI] = laws_contact.hertz_constant(max(rxi, ryi), min(rxi, ryi), es, self.hertz_method)
-        P[P_QSTAB] = self.quaternion_stabilisation
+        P[P_KEO] = laws_contact.hertz_constant(max(rxo, ryo), min(rxo, ryo), es, self.fidelity.hertz)
+        P[P_KEI] = laws_contact.hertz_constant(max(rxi, ryi), min(rxi, ryi), es, self.fidelity.hertz)
+        P[P_QSTAB] = self.fidelity.quaternion_stabilisation
         bbp = ball_ball_parameters(
-            ball_radius=Rb, e_star=self.e_star_ball, yield_stress=self.yield_stress,
-            damping_alpha=self.ball_ball_damping, viscosity=self.viscosity if self.film != "none" else 0.0,
-            rupture_thickness=self.film_rupture_thickness, cutoff_gap=self.film_cutoff_gap,
-            mu_film=self.ball_ball_mu_film, mu_boundary=self.ball_ball_mu_boundary,
-            slip_regularisation=self.ball_ball_slip_regularisation, memory_time=self.plastic_memory_time,
-            pressure_viscosity=self.pressure_viscosity)
-        slots = np.zeros((len(self.slot_azimuths_deg), 2))
-        for k, az in enumerate(self.slot_azimuths_deg):
-            slots[k, 0] = math.radians(az)
-            slots[k, 1] = RACES[self.slot_race]
+            ball_radius=Rb, e_star=self.e_star_ball, yield_stress=self.fidelity.yield_stress,
+            damping_alpha=self.fidelity.ball_ball_damping, viscosity=self.films.viscosity if self.films.ball_ball != "none" else 0.0,
+            rupture_thickness=self.films.rupture_thickness, cutoff_gap=self.films.cutoff_gap,
+            mu_film=self.films.friction_film, mu_boundary=self.films.friction_boundary,
+            slip_regularisation=self.films.slip_regularisation, memory_time=self.fidelity.plastic_memory_time,
+            pressure_viscosity=self.films.pressure_viscosity)
+        slots = np.zeros((len(self.slots.azimuths), 2))
+        for k, az in enumerate(self.slots.azimuths):
+            slots[k, 0] = az
+            slots[k, 1] = RACES[self.slots.race]
         # a model without a film map or traction maps passes None in their places: numba then prunes the
         # map readers by type and never compiles them (the args' types select the compiled variant)
         map_ax0 = map_ax1 = map_ax2 = map_vals = map_opts = None
-        if self.film == "map":
-            map_ax0, map_ax1, map_ax2, map_vals, map_opts = _map_arrays(self.film_map, MAP_SPEED_AXES[
-                self.film_map_speed_axis])
+        if self.films.ball_ball == "map":
+            map_ax0, map_ax1, map_ax2, map_vals, map_opts = _map_arrays(self.films.map, MAP_SPEED_AXES[
+                self.films.map_speed_axis])
         counter = np.zeros(1, dtype=np.int64)
-        tmap = _traction_arrays(self.traction_maps) if self.traction == "map" else None
+        tmap = _traction_arrays(self.fidelity.traction_maps) if self.fidelity.traction == "map" else None
         return (iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap)
 
     # state layout ---------------------------------------------------------------
@@ -436,9 +334,9 @@ class CagelessBearing:
         out = [("Inner ring x", "m"), ("Inner ring y", "m"), ("Inner ring z", "m"), ("Inner ring angle", "rad"),
                ("Inner ring vx", "m/s"), ("Inner ring vy", "m/s"), ("Inner ring vz", "m/s"),
                ("Inner ring speed", "rad/s"), ("Rotor speed", "rad/s")]
-        out += [(f"Pair {j}-{(j + 1) % self.n_balls} plastic memory", "m") for j in range(self.n_balls)]
-        for j in range(self.n_balls):
-            if self.dof == "6dof":
+        out += [(f"Pair {j}-{(j + 1) % self.bearing.n_balls} plastic memory", "m") for j in range(self.bearing.n_balls)]
+        for j in range(self.bearing.n_balls):
+            if self.fidelity.dof == "6dof":
                 names = [("x", "m"), ("y", "m"), ("z", "m"), ("q0", "-"), ("q1", "-"), ("q2", "-"), ("q3", "-"),
                          ("vx", "m/s"), ("vy", "m/s"), ("vz", "m/s"), ("body wx", "rad/s"), ("body wy", "rad/s"),
                          ("body wz", "rad/s")]
@@ -453,7 +351,7 @@ class CagelessBearing:
         dynamics): 1 um for lengths, the speed a 1 um oscillation at the
         contact frequency has for velocities, 1e-4 for quaternion entries and
         angles, 1 rad/s for angular speeds."""
-        k = 1.5 * max(self.hertz_constants()) ** (2.0 / 3.0) * max(self.radial_load, 100.0) ** (1.0 / 3.0)
+        k = 1.5 * max(self.hertz_constants()) ** (2.0 / 3.0) * max(self.operating.radial_load, 100.0) ** (1.0 / 3.0)
         omega = math.sqrt(k / self.mass)
         unit = {"m": 1e-6, "m/s": 1e-6 * omega, "rad": 1e-4, "-": 1e-4, "rad/s": 1.0}
         return np.array([unit[u] for _, u in self.state_layout()])
@@ -467,9 +365,9 @@ class CagelessBearing:
         """State vector from ring entries and per-ball orbital data."""
         y = np.zeros(self.n_states)
         y[:N_RING] = ring
-        for j in range(self.n_balls):
+        for j in range(self.bearing.n_balls):
             b = self.ball_offset(j)
-            if self.dof == "6dof":
+            if self.fidelity.dof == "6dof":
                 c, s = math.cos(psi[j]), math.sin(psi[j])
                 y[b:b + 3] = r[j] * c, r[j] * s, z[j]
                 y[b + 3] = 1.0
@@ -494,18 +392,18 @@ class CagelessBearing:
 
         Raises DynamicsInputError when no equilibrium exists (a load the
         grooves cannot carry)."""
-        Z = self.n_balls
-        D, dm = self.ball_diameter, self.pitch_diameter
+        Z = self.bearing.n_balls
+        D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
         if ball_azimuths is None:
-            psi = math.radians(self.first_ball_azimuth_deg) + 2.0 * np.pi * np.arange(Z) / Z
+            psi = self.operating.first_ball_azimuth + 2.0 * np.pi * np.arange(Z) / Z
             spacing = 2.0 * 0.5 * dm * math.sin(math.pi / Z)
             if spacing <= D:
-                raise DynamicsInputError(f"n_balls = {Z}: evenly spaced balls overlap (chord {spacing:g} m <= D)")
+                raise DynamicsInputError(f"bearing.n_balls = {Z}: evenly spaced balls overlap (chord {spacing:g} m <= D)")
         else:
             psi = np.asarray(ball_azimuths, dtype=float)
             if psi.shape != (Z,):
                 raise DynamicsInputError(f"ball_azimuths has shape {psi.shape}; it must be ({Z},)")
-        steady = self.scenario == "steady"
+        steady = self.operating.scenario == "steady"
         wc = self.cage_speed(self.contact_angle_free) if steady else 0.0
         spin = np.full(Z, -wc * dm / D)
         psidot = np.full(Z, wc)
@@ -522,29 +420,30 @@ class CagelessBearing:
         logger.debug("quasi-static solve: residual %.3g of the mean ball load", err)
         if not (err <= 1e-3):
             raise DynamicsInputError(
-                f"radial_load = {self.radial_load:g} N, axial_load = {self.axial_load:g} N: no quasi-static "
-                f"equilibrium found (force residual {err:.3g} of the mean ball load); the grooves cannot carry "
-                "this load")
-        if self.scenario == "drop":
-            y[5] = -self.drop_speed
+                f"operating.radial_load = {self.operating.radial_load:g} N, operating.axial_load = "
+                f"{self.operating.axial_load:g} N: no quasi-static equilibrium found (force residual {err:.3g} of the mean ball load); the grooves cannot carry "
+                "this load", key="operating.radial_load")
+        if self.operating.scenario == "drop":
+            y[5] = -self.operating.drop_speed
         diag, _, _ = forces(0.0, y, args)
         amax = float(np.max(np.abs(diag[:, [D_AI, D_AO]])))
-        if amax > math.radians(self.shoulder_contact_angle_deg):
+        if amax > math.radians(self.fidelity.shoulder_contact_angle_deg):
             raise DynamicsInputError(
-                f"axial_load = {self.axial_load:g} N (radial_load = {self.radial_load:g} N) drives the contact angle "
-                f"to {math.degrees(amax):.1f} deg, beyond the groove shoulders (shoulder_contact_angle_deg = "
-                f"{self.shoulder_contact_angle_deg:g}): the bearing cannot carry it")
+                f"operating.axial_load = {self.operating.axial_load:g} N (operating.radial_load = "
+                f"{self.operating.radial_load:g} N) drives the contact angle to {math.degrees(amax):.1f} deg, beyond the "
+                f"groove shoulders (model.shoulder_contact_angle_deg = {self.fidelity.shoulder_contact_angle_deg:g}): "
+                "the bearing cannot carry it", key="operating.axial_load")
         return y
 
     def _ball_seat(self, args, y, j, psi_j, wc):
         """Radial (and axial) equilibrium of ball j for the ring in ``y``; writes y."""
         from scipy.optimize import brentq, root
 
-        D, dm = self.ball_diameter, self.pitch_diameter
+        D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
         P = args[1]
         m = self.mass
         b = self.ball_offset(j)
-        six = self.dof == "6dof"
+        six = self.fidelity.dof == "6dof"
         c, s = math.cos(psi_j), math.sin(psi_j)
         dydt = np.empty_like(y)
 
@@ -570,7 +469,7 @@ class CagelessBearing:
         u = go - gi
         L = float(np.hypot(*u))
         dtot = L - si - so_
-        body = np.array([m * wc * wc * 0.5 * dm - m * self.gravity * s, 0.0])
+        body = np.array([m * wc * wc * 0.5 * dm - m * self.operating.gravity * s, 0.0])
         if dtot > 0.0:
             di = dtot / (1.0 + (Ki / Ko) ** (2.0 / 3.0))
             guess = gi + (si + di) * u / L
@@ -608,14 +507,14 @@ class CagelessBearing:
         """Ring force balance (hybr) around per-ball equilibria; returns (y, residual)."""
         from scipy.optimize import root
 
-        Z = self.n_balls
-        six = self.dof == "6dof"
+        Z = self.bearing.n_balls
+        six = self.fidelity.dof == "6dof"
         nr = 3 if six else 2
-        y = self._pack(ring, psi, np.full(Z, 0.5 * self.pitch_diameter), np.zeros(Z), psidot, spin)
+        y = self._pack(ring, psi, np.full(Z, 0.5 * self.bearing.pitch_diameter), np.zeros(Z), psidot, spin)
         Ki, Ko = self.hertz_constants()
         Kn = laws_contact.series_constant(Ki, Ko)
-        fscale = max(self.radial_load, self.axial_load, 1.0) / Z
-        scale = (max(self.radial_load, self.axial_load, 1.0) / (Z * Kn)) ** (2.0 / 3.0)
+        fscale = max(self.operating.radial_load, self.operating.axial_load, 1.0) / Z
+        scale = (max(self.operating.radial_load, self.operating.axial_load, 1.0) / (Z * Kn)) ** (2.0 / 3.0)
         dydt = np.empty_like(y)
         worst = [0.0]
 
@@ -625,13 +524,13 @@ class CagelessBearing:
             for j in range(Z):
                 worst[0] = max(worst[0], self._ball_seat(args, y, j, psi[j], wc))
             rhs(0.0, y, args, dydt)
-            return dydt[4:4 + nr] * self.ring_mass / fscale
+            return dydt[4:4 + nr] * self.bearing.ring_mass / fscale
 
         x0 = np.zeros(nr)
-        x0[1] = -(5.0 * self.radial_load / Z / Kn) ** (2.0 / 3.0) / scale
-        if six and self.axial_load > 0.0:
-            BD = self.inner_groove_radius + self.outer_groove_radius - self.ball_diameter
-            x0[2] = math.sqrt(2.0 * BD * (self.axial_load / (Z * Kn)) ** (2.0 / 3.0)) * 1.2 / scale
+        x0[1] = -(5.0 * self.operating.radial_load / Z / Kn) ** (2.0 / 3.0) / scale
+        if six and self.operating.axial_load > 0.0:
+            BD = self.bearing.inner_groove_radius + self.bearing.outer_groove_radius - self.bearing.ball_diameter
+            x0[2] = math.sqrt(2.0 * BD * (self.operating.axial_load / (Z * Kn)) ** (2.0 / 3.0)) * 1.2 / scale
         sol = root(residual, x0, method="hybr", options=dict(xtol=1e-12))
         r = residual(sol.x)
         err = max(float(np.max(np.abs(r))), worst[0] / fscale)
@@ -650,16 +549,30 @@ class CagelessBearing:
         k = 1.5 * max(Ki, Ko) ** (2.0 / 3.0) * Q ** (1.0 / 3.0)
         # Hunt-Crossley damping c = alpha Q on both contacts: a real eigenvalue -c/m (RK4 limit 2.79 on
         # the real axis, close to 2.83 on the imaginary one)
-        rate = self.race_damping * 2.0 * Q / self.mass
+        rate = self.fidelity.race_damping * 2.0 * Q / self.mass
         return max(math.sqrt(2.0 * k / self.mass), rate)
 
+    #: group attribute of each case table (``[model]`` is the ``fidelity`` group)
+    GROUPS = {"bearing": "bearing", "operating": "operating", "model": "fidelity", "films": "films", "slots": "slots"}
+
     def replace(self, **changes) -> "CagelessBearing":
-        """A copy with some fields changed (validated again)."""
+        """A copy with some values changed, checked again.  ``changes`` by group (``operating={"speed": 1e3}``,
+        or a whole group) or by case key (``**{"model.dof": "planar"}``); ``model`` and ``fidelity`` name the
+        same group."""
+        groups = {}
+        for name, value in changes.items():
+            table, _, field_name = name.partition(".")
+            attr = self.GROUPS.get(table, table if table == "fidelity" else None)
+            if attr is None:
+                raise DynamicsInputError(f"{name} is not a group of the bearing model; choose one of "
+                                         f"{', '.join(self.GROUPS)}{did_you_mean(table, self.GROUPS, n=2)}", key=name)
+            if field_name:
+                groups.setdefault(attr, {})[field_name] = value
+            elif isinstance(value, dict):
+                groups.setdefault(attr, {}).update(value)
+            else:
+                groups[attr] = value
         kw = {f.name: getattr(self, f.name) for f in fields(self)}
-        unknown = set(changes) - set(kw)
-        if unknown:
-            key = sorted(unknown)[0]
-            hint = did_you_mean(key, kw, n=2)
-            raise DynamicsInputError(f"unknown bearing parameter {key!r}{hint}")
-        kw.update(changes)
+        for attr, value in groups.items():
+            kw[attr] = kw[attr].updated(value)
         return CagelessBearing(**kw)

@@ -1,0 +1,231 @@
+"""The cage-less bearing's data as frozen groups, one per table of a dynamics case (SI units).
+
+Part of :mod:`dynamics.cageless`.  :class:`~dynamics.cageless.CagelessBearing` holds one of each:
+
+=============  ==========  ===============================================================
+group          case table  what
+=============  ==========  ===============================================================
+``bearing``    [bearing]   geometry, materials, masses and inertias
+``operating``  [operating] loads, speed, scenario (drop / steady / free), rotor contact
+``fidelity``   [model]     degrees of freedom, Hertz constants, damping, traction, yield
+``films``      [films]     the oil: viscosity, pressure-viscosity; ball-ball and race films
+``slots``      [slots]     the local functional slots
+=============  ==========  ===============================================================
+
+Paper data are not defaults here: paper B's values come from its parameter set
+(:mod:`coupling.parameters.zhang2024`); the defaults are model options and numerical settings.
+Each group checks its own values; checks that need two groups live in the model.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+from lubrication.laws import contact as laws_contact
+
+from ..contacts import FILM_KINDS
+from ..groups import Group
+from .layout import DOFS, MAP_SPEED_AXES, RACES, RACE_FILMS, SCENARIOS, TRACTIONS
+
+
+@dataclass(frozen=True, kw_only=True)
+class Bearing(Group):
+    """Geometry: ``n_balls`` Z, ``ball_diameter`` D, ``pitch_diameter`` d_m, groove radii r_i, r_o
+    (groove bottoms at d_m/2 -+ D/2 - P_d/4, P_d the ``diametral_clearance``; negative: preload).
+    Materials: E, nu of the balls and the rings.  ``ball_mass`` None: from ``ball_density``.
+    ``ring_mass``: the inner ring plus the rotor share it carries; ``ring_inertia``: the inner ring
+    alone about its axis; ``rotor_inertia`` (inf: a driven rotor).  ``outer_diameter`` and ``bore``
+    (optional): the rings' outer diameter and bore, which bound a slot's depth (the case checks it)."""
+
+    TABLE: ClassVar[str] = "bearing"
+
+    n_balls: int
+    ball_diameter: float
+    pitch_diameter: float
+    inner_groove_radius: float
+    outer_groove_radius: float
+    diametral_clearance: float = 0.0
+    ball_modulus: float
+    ball_poisson: float
+    ring_modulus: float
+    ring_poisson: float
+    ball_density: float = 7850.0
+    ball_mass: float | None = None
+    ring_mass: float
+    ring_inertia: float
+    rotor_inertia: float
+    outer_diameter: float | None = None
+    bore: float | None = None
+
+    def __post_init__(self):
+        Z = self.n_balls
+        if isinstance(Z, bool) or int(Z) != Z or Z < 3:
+            raise self.fail("n_balls", "must be an integer >= 3")
+        self.positive("ball_diameter", "pitch_diameter", "ball_modulus", "ring_modulus", "ball_density", "ring_mass",
+                      "ring_inertia", "rotor_inertia")
+        if self.ball_mass is not None:
+            self.positive("ball_mass")
+        D, dm = self.ball_diameter, self.pitch_diameter
+        if not D < dm:
+            raise self.fail("ball_diameter", f"must be < bearing.pitch_diameter = {dm:g} m")
+        if Z * D >= math.pi * dm:
+            raise self.fail("n_balls", f"balls of D = {D:g} m do not fit the pitch circle: Z D = {Z * D:g} m >= "
+                                       f"pi d_m = {math.pi * dm:g} m")
+        for name in ("inner_groove_radius", "outer_groove_radius"):
+            if not getattr(self, name) > 0.5 * D:
+                raise self.fail(name, f"must be > bearing.ball_diameter/2 = {0.5 * D:g} m (the groove must be wider "
+                                      "than the ball: conformity r/D > 0.5)")
+        bd = self.total_clearance
+        if not (math.isfinite(self.diametral_clearance) and -0.05 * bd < self.diametral_clearance < 4.0 * bd):
+            raise self.fail("diametral_clearance", f"must be in ({-0.05 * bd:g}, {4 * bd:g}) m, i.e. (-0.05 B D, "
+                            f"4 B D) with B D = inner_groove_radius + outer_groove_radius - ball_diameter = {bd:g} m "
+                            "(negative: interference, i.e. preload)")
+        for name in ("ball_poisson", "ring_poisson"):
+            if not -1.0 < getattr(self, name) < 0.5:
+                raise self.fail(name, "must be in (-1, 0.5)")
+
+    @property
+    def total_clearance(self) -> float:
+        """B D = r_i + r_o - D [m]."""
+        return self.inner_groove_radius + self.outer_groove_radius - self.ball_diameter
+
+    @property
+    def mass(self) -> float:
+        """Ball mass [kg]."""
+        if self.ball_mass is not None:
+            return float(self.ball_mass)
+        return self.ball_density * math.pi / 6.0 * self.ball_diameter**3
+
+
+@dataclass(frozen=True, kw_only=True)
+class Operating(Group):
+    """``scenario``: "drop" (the rotor spinning at ``speed`` [rad/s] lands on the inner ring and drags it
+    up to speed by friction at ``rotor_contact_radius`` with ``rotor_friction``, regularised over
+    ``rotor_slip_regularisation`` rad/s), "steady" (inner ring driven at ``speed``) or "free" (no
+    rotor).  Loads on the inner ring [N], ``gravity`` [m/s^2] along -y, ``drop_speed`` [m/s] the
+    ring's downward speed at the start of a drop.  ``first_ball_azimuth`` [rad]: where ball 0 starts
+    (the others evenly spaced)."""
+
+    TABLE: ClassVar[str] = "operating"
+
+    scenario: str = "steady"
+    speed: float
+    radial_load: float
+    axial_load: float
+    gravity: float = 9.81
+    drop_speed: float = 0.0
+    rotor_friction: float = 0.1
+    rotor_contact_radius: float = 15e-3
+    rotor_slip_regularisation: float = 1.0
+    first_ball_azimuth: float = math.radians(270.0)
+
+    def __post_init__(self):
+        self.choice("scenario", SCENARIOS)
+        self.positive("rotor_contact_radius", "rotor_slip_regularisation")
+        self.non_negative("speed", "radial_load", "axial_load", "gravity", "drop_speed", "rotor_friction")
+        if not math.isfinite(self.first_ball_azimuth):
+            raise self.fail("first_ball_azimuth", "must be a finite angle [rad]")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Fidelity(Group):
+    """Model options (case table ``[model]``): ``dof`` ("6dof", "planar"), ``hertz`` ("exact",
+    "hamrock_brewe" constants), ``ball_ball`` (contacts between neighbours), ``race_damping`` (the
+    Hunt-Crossley alpha [s/m] of the race contacts), ``ball_ball_damping`` (the same for ball-ball),
+    ``yield_stress`` [Pa] of the ball-ball contact (None: elastic) with ``plastic_memory_time`` [s],
+    ``traction`` ("closed_form"; "map" with ``traction_maps`` = (inner, outer) kernel arrays of the
+    EHL race maps), the closed-form curve's ``traction_limit``, ``traction_srr`` and
+    ``traction_slip_regularisation`` [m/s], ``quaternion_stabilisation`` [1/s].
+    ``shoulder_contact_angle_deg``: the largest contact angle before the contact ellipse runs over the
+    groove shoulder (paper B gives no shoulder diameters; 40 deg assumed): a load that needs more is
+    refused."""
+
+    TABLE: ClassVar[str] = "model"
+
+    dof: str = "6dof"
+    hertz: str = "exact"
+    ball_ball: bool = True
+    race_damping: float = 0.2
+    ball_ball_damping: float = 0.0
+    yield_stress: float | None = 1.7e9
+    plastic_memory_time: float = 1e-4
+    traction: str = "closed_form"
+    traction_maps: tuple | None = None
+    traction_limit: float = 0.07
+    traction_srr: float = 0.02
+    traction_slip_regularisation: float = 0.05
+    quaternion_stabilisation: float = 10.0
+    shoulder_contact_angle_deg: float = 40.0
+
+    def __post_init__(self):
+        self.choice("dof", DOFS)
+        self.choice("hertz", laws_contact.METHODS)
+        self.choice("traction", TRACTIONS)
+        self.positive("plastic_memory_time", "traction_srr", "traction_slip_regularisation",
+                      "shoulder_contact_angle_deg")
+        self.non_negative("race_damping", "ball_ball_damping", "traction_limit", "quaternion_stabilisation")
+        if self.yield_stress is not None and not self.yield_stress > 0.0:
+            raise self.fail("yield_stress", "must be > 0 [Pa] (or None: elastic)")
+        if self.traction == "map" and self.traction_maps is None:
+            raise self.fail("traction_maps", "are needed with model.traction = 'map': (inner, outer) kernel "
+                            "arrays of the EHL race maps (coupling.maps.FilmMap.kernel_arrays('Traction "
+                            "coefficient [-]'))")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Films(Group):
+    """The oil and its films: ``viscosity`` eta0 [Pa s], ``pressure_viscosity`` alpha [1/Pa];
+    ``ball_ball`` ("none", "closed_form": the rigid isoviscous squeeze film in series with Hertz,
+    "map": ``map`` = the kernel arrays of a ball_ball force map whose speed axis is
+    ``map_speed_axis``); the film ruptures below ``rupture_thickness`` [m] (``cutoff_gap`` [m]: where
+    the squeeze film is cut off; None: the law's default), friction ``friction_film`` while the film
+    carries the load and ``friction_boundary`` once it ruptures, regularised over
+    ``slip_regularisation`` [m/s]; ``race`` ("none", "closed_form": Hamrock-Dowson films on the race
+    contacts)."""
+
+    TABLE: ClassVar[str] = "films"
+
+    ball_ball: str = "closed_form"
+    map: tuple | None = None
+    map_speed_axis: str = "squeeze_number"
+    race: str = "none"
+    viscosity: float
+    pressure_viscosity: float
+    rupture_thickness: float = 1e-7
+    cutoff_gap: float | None = None
+    friction_film: float = 0.03
+    friction_boundary: float = 0.1
+    slip_regularisation: float = 0.01
+
+    def __post_init__(self):
+        self.choice("ball_ball", FILM_KINDS)
+        self.choice("race", RACE_FILMS)
+        self.choice("map_speed_axis", MAP_SPEED_AXES)
+        self.positive("rupture_thickness", "slip_regularisation")
+        self.non_negative("viscosity", "pressure_viscosity", "friction_film", "friction_boundary")
+        if self.ball_ball == "map" and self.map is None:
+            raise self.fail("map", "is needed with films.ball_ball = 'map': (axes, logs, values, logv, method) of a "
+                            "ball_ball force map (coupling.maps.FilmMap.kernel_arrays('Force [N]'))")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Slots(Group):
+    """Local functional slots on one race: ``azimuths`` [rad] (empty: no slot), each ``width`` across
+    the groove x ``length`` along it x ``depth`` [m], edges rounded with ``edge_radius`` [m];
+    ``blend`` [m]: the width of the smooth step where the groove surface ends."""
+
+    TABLE: ClassVar[str] = "slots"
+
+    race: str = "outer"
+    azimuths: tuple = ()
+    width: float
+    length: float
+    depth: float
+    edge_radius: float = 2e-4
+    blend: float = 2e-4
+
+    def __post_init__(self):
+        self.choice("race", RACES)
+        object.__setattr__(self, "azimuths", tuple(float(a) for a in self.azimuths))
+        self.positive("width", "length", "depth", "edge_radius", "blend")

@@ -1,0 +1,94 @@
+"""Frozen groups of a bearing model's data, one per case-file table.
+
+A bearing model (:class:`dynamics.cageless.CagelessBearing`, and the next bearings) holds its data
+as a few frozen dataclasses, each the SI twin of one table of a dynamics case file
+(``[bearing]``, ``[operating]``, ``[model]``, ``[films]``, ``[slots]``): the case's tables become
+groups one to one (:meth:`Group.from_table`), and each group checks its own values.  A group's
+error names the case key (``"operating.radial_load = -1 ..."``) and carries it as
+:attr:`~dynamics.errors.DynamicsInputError.key`, so a message reads the same from Python and from a
+case file and nothing has to translate it.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from typing import Any, ClassVar, Mapping
+
+from lubrication.errors import did_you_mean
+
+from .errors import DynamicsInputError
+
+
+def fail(key: str, value: Any, rule: str) -> DynamicsInputError:
+    """The one-line error ``"<key> = <value> <rule>"`` carrying ``key``."""
+    return DynamicsInputError(f"{key} = {value!r} {rule}", key=key)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Group:
+    """Base of the frozen groups: :attr:`TABLE` is the case table the group mirrors."""
+
+    TABLE: ClassVar[str] = ""
+
+    def key(self, name: str) -> str:
+        """The case key of field ``name`` (``"films.viscosity"``)."""
+        return f"{self.TABLE}.{name}"
+
+    def fail(self, name: str, rule: str, value: Any = None) -> DynamicsInputError:
+        return fail(self.key(name), getattr(self, name) if value is None else value, rule)
+
+    # checks used by the groups' __post_init__ ------------------------------------------------------
+    def positive(self, *names: str) -> None:
+        for name in names:
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0.0):
+                raise self.fail(name, "must be > 0")
+
+    def non_negative(self, *names: str) -> None:
+        for name in names:
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and not isinstance(v, bool) and v >= 0.0 and math.isfinite(v)):
+                raise self.fail(name, "must be a finite number >= 0")
+
+    def choice(self, name: str, allowed) -> None:
+        v = getattr(self, name)
+        if v not in allowed:
+            raise self.fail(name, f"is not allowed; choose one of {', '.join(map(repr, allowed))}"
+                                  f"{did_you_mean(v, allowed, n=2)}")
+
+    # construction -------------------------------------------------------------------------------
+    @classmethod
+    def names(cls) -> tuple[str, ...]:
+        return tuple(f.name for f in fields(cls))
+
+    @classmethod
+    def from_table(cls, table: Mapping[str, Any] | Any, **built):
+        """The group of a case table (a mapping or a pydantic model) with ``built`` values (loaded maps)
+        put in place of the table's entries of the same name."""
+        values = dict(table) if isinstance(table, Mapping) else dict(table)
+        values.update(built)
+        return cls.build(values)
+
+    @classmethod
+    def build(cls, values: Mapping[str, Any]):
+        """The group from a mapping of its fields; an unknown name is a one-line error."""
+        allowed = cls.names()
+        for name in values:
+            if name not in allowed:
+                raise DynamicsInputError(f"{cls.TABLE}.{name} is not a key of [{cls.TABLE}]"
+                                         f"{did_you_mean(name, allowed, n=2)}", key=f"{cls.TABLE}.{name}")
+        return cls(**values)
+
+    def updated(self, changes: Mapping[str, Any] | "Group"):
+        """A copy with ``changes`` (a mapping of fields, or a whole group of this type), checked again."""
+        if isinstance(changes, Group):
+            if type(changes) is not type(self):
+                raise DynamicsInputError(f"{self.TABLE}: a {type(self).__name__} is needed, not "
+                                         f"{type(changes).__name__}", key=self.TABLE)
+            return changes
+        allowed = self.names()
+        for name in changes:
+            if name not in allowed:
+                raise DynamicsInputError(f"{self.TABLE}.{name} is not a key of [{self.TABLE}]"
+                                         f"{did_you_mean(name, allowed, n=2)}", key=f"{self.TABLE}.{name}")
+        return replace(self, **changes)
