@@ -129,6 +129,19 @@ class SlotsTable(_Model):
     edge_radius: PositiveLength = 2e-4
 
 
+class InitialTable(_Model):
+    """Where a run starts, for ensembles (:class:`dynamics.cageless.groups.Initial`): ``azimuths`` (one angle
+    per ball; empty: evenly spaced from ``first_ball_azimuth``), a seeded random ``jitter`` of each ball's
+    azimuth (uniform in +-jitter) and a ``kick`` of the inner ring's velocity in a random x-y direction.
+    The same ``seed`` gives the same run bit for bit."""
+
+    first_ball_azimuth: Q("angle") = math.radians(270.0)
+    azimuths: list[Q("angle")] = Field(default_factory=list)
+    jitter: Q("angle", ge=0) = 0.0
+    kick: Q("velocity", ge=0) = 0.0
+    seed: Annotated[int, Field(strict=True, ge=0)] = 0
+
+
 class OperatingTable(_Model):
     """``scenario``: "drop" (the rotor spinning at ``speed`` lands on the inner
     ring and drags it up to speed by friction), "steady" (inner ring driven at
@@ -223,6 +236,7 @@ class DynamicsCase(_Model):
     description: str = ""
     bearing: BearingTable
     slots: SlotsTable
+    initial: InitialTable = Field(default_factory=InitialTable)
     operating: OperatingTable
     model: ModelTable = Field(default_factory=ModelTable)
     films: FilmsTable
@@ -312,7 +326,7 @@ def _film_map(case: DynamicsCase, source: str | None):
 
 #: the model's group of each case table (:mod:`dynamics.cageless.groups`): one to one, same field names
 GROUP_OF_TABLE = {"bearing": "bearing", "operating": "operating", "model": "fidelity", "films": "films",
-                  "slots": "slots"}
+                  "slots": "slots", "initial": "initial"}
 
 
 def model_groups(case: DynamicsCase, **built) -> dict:
@@ -322,7 +336,7 @@ def model_groups(case: DynamicsCase, **built) -> dict:
     from dynamics.cageless import groups
 
     classes = {"bearing": groups.Bearing, "operating": groups.Operating, "fidelity": groups.Fidelity,
-               "films": groups.Films, "slots": groups.Slots}
+               "films": groups.Films, "slots": groups.Slots, "initial": groups.Initial}
     out = {}
     for table, attr in GROUP_OF_TABLE.items():
         values = dict(getattr(case, table))
@@ -331,7 +345,7 @@ def model_groups(case: DynamicsCase, **built) -> dict:
             values["map"] = None
         if table == "model" and "model.traction_maps" not in built:
             values["traction_maps"] = None
-        if table == "slots":
+        if table in ("slots", "initial"):
             values["azimuths"] = tuple(values["azimuths"])
         out[attr] = classes[attr].build(values)
     return out

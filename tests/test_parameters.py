@@ -99,12 +99,11 @@ def test_a_case_takes_the_set_and_overrides_it():
 
 def test_the_python_twin_of_a_case_is_the_same_bearing():
     """coupling.parameters.zhang2024.cageless_bearing() and a case naming Zhang2024 build the same model."""
-    from coupling.dynamics_scene import model_groups
+    from coupling.dynamics_scene import build
     from coupling.parameters.zhang2024 import cageless_bearing
-    from dynamics.cageless import CagelessBearing
 
     case = load_case(CASES / "cageless_6206_steady.toml")
-    from_case = CagelessBearing(**model_groups(case))
+    from_case = build(case).model
     twin = cageless_bearing(operating=dict(scenario="steady", speed=from_case.operating.speed))
     # the case's [bearing], [slots] and [films] oil are the set's values; the rest are the case's choices
     assert twin.bearing == from_case.bearing

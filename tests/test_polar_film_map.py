@@ -57,3 +57,72 @@ def test_polar_reader_matches_the_map_and_its_gap_derivative(polar, kernel):
             assert dFdh == pytest.approx((Fp - Fm) / (2 * dh), rel=1e-5)
             checked += 1
     assert checked >= 8
+
+
+# ----------------------------------------------------------------------------- beyond the map's axes
+def test_above_the_last_gap_node_the_reader_matches_a_reynolds_solve(polar):
+    """Above the map's last gap node (50 um) the reader scales the film self-similarly (F = h Phi(rho,
+    theta)); checked against a scikit-fem Reynolds solve of the film itself at 120 and 300 um (below the
+    starvation cut-off h_cut = R/10 = 476 um), with no clamped query."""
+    fmap, params, bbp, (ax0, ax1, ax2, vals, opts, _) = polar
+    counter = np.zeros(1, dtype=np.int64)
+    for h, v, ue in ((120e-6, 2.0, 3.0), (300e-6, 5.0, 0.5)):
+        F, dFdh = C._film_map(h, v, ue, bbp, ax0, ax1, ax2, vals, opts, counter)
+        ref = fp.evaluate_ball_ball(dict(params, resolution="default"),
+                                    {"Central gap [m]": h, "Approach speed [m/s]": v, "Entrainment speed [m/s]": ue})
+        assert F == pytest.approx(ref["Force [N]"], rel=0.03)
+        # dF/dh by the chain rule against the film's own stiffness K = -dF/dh0
+        assert -dFdh == pytest.approx(ref["Stiffness [N/m]"], rel=0.05)
+    assert counter[0] == 0
+
+
+@pytest.mark.parametrize("v, ue", [(1.0, 0.0), (0.0, 2.0), (0.3, 1.0), (-0.01, 4.0), (-2.0, 0.1)])
+def test_locked_gap_is_where_the_pressure_number_reaches_the_lock(polar, v, ue):
+    """h_L solves rho(h) = rho_lock: against the closed forms of the pure cases (pure squeeze h =
+    sqrt(sqf |v|/rho), pure entrainment h = (2 (sqf u_e)^2/(R rho^2))^(1/3)) and, for mixed ones, against
+    coupling.film_points.polar_numbers (the map builder's own definition of rho); the entrainment
+    regularisation u_reg shifts h_L as u_e -> sqrt(u_e^2 + u_reg^2)."""
+    fmap, params, bbp, _ = polar
+    sqf, R = bbp[C.BB_SQF], bbp[C.BB_R]
+    h = C.locked_gap(v, ue, sqf, R, 0.9, 0.0)
+    if ue == 0.0:
+        assert h == pytest.approx(math.sqrt(sqf * abs(v) / 0.9), rel=1e-12)
+    elif v == 0.0:
+        assert h == pytest.approx((2.0 * (sqf * ue) ** 2 / (R * 0.81)) ** (1.0 / 3.0), rel=1e-12)
+    rho, theta = fp.polar_numbers(h, v, ue, params)
+    assert rho == pytest.approx(0.9, rel=1e-10)
+    u_reg = 0.01
+    h_reg = C.locked_gap(v, ue, sqf, R, 0.9, u_reg)
+    assert fp.polar_numbers(h_reg, v, math.hypot(ue, u_reg), params)[0] == pytest.approx(0.9, rel=1e-10)
+    assert C.locked_gap(0.0, 0.0, sqf, R, 0.9, 0.0) == 0.0
+
+
+def test_a_locked_film_hands_the_load_to_the_solids(polar):
+    """Below h_L the rigid piezoviscous film has left the map (towards Barus' pole): the pair carries the
+    Hertz force of the approach h_L - g through a film of thickness h_L (Hertz written here from E* and
+    R_eff, elastic approaches only), continuous with the film branch at the lock, and never a clamped
+    query."""
+    from lubrication.laws.collision import PHASE_FILM
+    from lubrication.laws.contact import reduced_modulus
+
+    fmap, params, bbp, (ax0, ax1, ax2, vals, opts, _) = polar
+    K = 4.0 / 3.0 * reduced_modulus(207e9, 0.29, 207e9, 0.29) * math.sqrt(bbp[C.BB_R])  # paper B's balls
+    counter = np.zeros(1, dtype=np.int64)
+    v, ue = 1.0, 1.0
+    hL = C.locked_gap(v, ue, bbp[C.BB_SQF], bbp[C.BB_R], 0.9 * (1 - 1e-9), bbp[C.BB_VREG])
+    f_lock, _ = C._film_map(hL, v, ue, bbp, ax0, ax1, ax2, vals, opts, counter)
+    g_star = hL - (f_lock / K) ** (2.0 / 3.0)  # below it the film is locked
+    for g in (g_star - 0.05e-6, g_star - 0.2e-6, g_star - 0.4e-6):
+        F, h, x, phase, share = C.ball_ball_normal(g, v, ue, 0.0, bbp, C.FILM_MAP, ax0, ax1, ax2, vals, opts,
+                                                   counter)
+        assert phase == PHASE_FILM and share == 1.0
+        assert h == pytest.approx(hL, rel=1e-12) and x == pytest.approx(hL - g, rel=1e-9)
+        assert F == pytest.approx(K * (hL - g) ** 1.5, rel=1e-9)
+    # continuity at the lock: where the solids carry exactly the film's force at h_L, both branches meet
+    above = C.ball_ball_normal(g_star * (1 + 1e-7), v, ue, 0.0, bbp, C.FILM_MAP, ax0, ax1, ax2, vals, opts,
+                               counter)
+    below = C.ball_ball_normal(g_star * (1 - 1e-7), v, ue, 0.0, bbp, C.FILM_MAP, ax0, ax1, ax2, vals, opts,
+                               counter)
+    assert above[1] > hL and below[1] == pytest.approx(hL, rel=1e-12)
+    assert above[0] == pytest.approx(f_lock, rel=1e-4) and below[0] == pytest.approx(f_lock, rel=1e-4)
+    assert counter[0] == 0

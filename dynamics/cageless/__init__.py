@@ -141,7 +141,7 @@ from .layout import (  # noqa: F401  (the package's API)
     P_RO, P_ROC, P_SBLEND, P_SIZE, P_SL, P_SRR, P_SW, P_VREG, P_WREG, RACES, RACE_FILMS, RING_DIAG_NAMES,
     SCENARIOS, TRACTIONS, TRACTION_MAP_BELOW_AXIS,
 )
-from .groups import Bearing, Fidelity, Films, Operating, Slots  # noqa: F401  (the package's API)
+from .groups import Bearing, Fidelity, Films, Initial, Operating, Slots  # noqa: F401  (the package's API)
 from .model import (  # noqa: F401  (the package's API)
     CagelessBearing, _map_arrays, _traction_arrays,
 )

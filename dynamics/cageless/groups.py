@@ -10,6 +10,7 @@ group          case table  what
 ``fidelity``   [model]     degrees of freedom, Hertz constants, damping, traction, yield
 ``films``      [films]     the oil: viscosity, pressure-viscosity; ball-ball and race films
 ``slots``      [slots]     the local functional slots
+``initial``    [initial]   the starting arrangement and its seeded perturbation (ensembles)
 =============  ==========  ===============================================================
 
 Paper data are not defaults here: paper B's values come from its parameter set
@@ -104,8 +105,7 @@ class Operating(Group):
     up to speed by friction at ``rotor_contact_radius`` with ``rotor_friction``, regularised over
     ``rotor_slip_regularisation`` rad/s), "steady" (inner ring driven at ``speed``) or "free" (no
     rotor).  Loads on the inner ring [N], ``gravity`` [m/s^2] along -y, ``drop_speed`` [m/s] the
-    ring's downward speed at the start of a drop.  ``first_ball_azimuth`` [rad]: where ball 0 starts
-    (the others evenly spaced)."""
+    ring's downward speed at the start of a drop."""
 
     TABLE: ClassVar[str] = "operating"
 
@@ -118,14 +118,59 @@ class Operating(Group):
     rotor_friction: float = 0.1
     rotor_contact_radius: float = 15e-3
     rotor_slip_regularisation: float = 1.0
-    first_ball_azimuth: float = math.radians(270.0)
 
     def __post_init__(self):
         self.choice("scenario", SCENARIOS)
         self.positive("rotor_contact_radius", "rotor_slip_regularisation")
         self.non_negative("speed", "radial_load", "axial_load", "gravity", "drop_speed", "rotor_friction")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Initial(Group):
+    """Where the run starts (case table ``[initial]``), for ensembles of runs: the balls at ``azimuths``
+    [rad] (one per ball; empty: evenly spaced from ``first_ball_azimuth``), each moved by a random angle
+    uniform in (-``jitter``, ``jitter``) [rad]; after the quasi-static start the inner ring gets a
+    velocity of ``kick`` [m/s] in a random direction of the x-y plane.  The random numbers come from
+    numpy's PCG64 generator seeded with ``seed`` (the same on every machine): one seed, one run,
+    bit for bit; with ``jitter = kick = 0`` the seed changes nothing."""
+
+    TABLE: ClassVar[str] = "initial"
+
+    first_ball_azimuth: float = math.radians(270.0)
+    azimuths: tuple = ()
+    jitter: float = 0.0
+    kick: float = 0.0
+    seed: int = 0
+
+    def __post_init__(self):
+        object.__setattr__(self, "azimuths", tuple(float(a) for a in self.azimuths))
         if not math.isfinite(self.first_ball_azimuth):
             raise self.fail("first_ball_azimuth", "must be a finite angle [rad]")
+        if not all(math.isfinite(a) for a in self.azimuths):
+            raise self.fail("azimuths", "must be finite angles [rad]")
+        self.non_negative("jitter", "kick")
+        if isinstance(self.seed, bool) or int(self.seed) != self.seed or self.seed < 0:
+            raise self.fail("seed", "must be an integer >= 0")
+
+    def ball_azimuths(self, n_balls: int):
+        """The balls' starting azimuths [rad] (array of n_balls) and the ring's kick velocity (vx, vy)."""
+        import numpy as np
+
+        if self.azimuths:
+            if len(self.azimuths) != n_balls:
+                raise self.fail("azimuths", f"gives {len(self.azimuths)} angles; bearing.n_balls = {n_balls} "
+                                "balls need one each", value=f"[{len(self.azimuths)} angles]")
+            psi = np.array(self.azimuths, dtype=float)
+        else:
+            psi = self.first_ball_azimuth + 2.0 * np.pi * np.arange(n_balls) / n_balls
+        rng = np.random.default_rng(int(self.seed))
+        if self.jitter > 0.0:
+            psi = psi + rng.uniform(-self.jitter, self.jitter, n_balls)
+        kick = (0.0, 0.0)
+        if self.kick > 0.0:
+            angle = rng.uniform(0.0, 2.0 * np.pi)
+            kick = (self.kick * math.cos(angle), self.kick * math.sin(angle))
+        return psi, kick
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -20,7 +20,7 @@ from .. import contacts as C
 from ..contacts import FILM_KINDS
 from ..errors import DynamicsInputError
 from ..groups import fail
-from .groups import Bearing, Films, Fidelity, Operating, Slots
+from .groups import Bearing, Films, Fidelity, Initial, Operating, Slots
 from ..interp import HERMITE
 from .kernels import forces, rhs
 from .layout import (ARG_COUNTER, DOFS, D_AI, D_AO, D_QI, D_QO, I_BALLBALL, I_DOF, I_DRIVE, I_FILM, I_NSLOT, I_SIZE,
@@ -109,11 +109,11 @@ def _traction_arrays(maps):
 
 @dataclass(frozen=True, kw_only=True)
 class CagelessBearing:
-    """Cage-less deep-groove ball bearing (SI units), held as five frozen groups, one per table of a
+    """Cage-less deep-groove ball bearing (SI units), held as six frozen groups, one per table of a
     dynamics case (:mod:`dynamics.cageless.groups`): ``bearing`` (geometry, materials, masses),
     ``operating`` (loads, speed, scenario), ``fidelity`` (the case's ``[model]``: degrees of freedom,
-    Hertz constants, damping, traction), ``films`` (the oil, the ball-ball and race films) and
-    ``slots``.
+    Hertz constants, damping, traction), ``films`` (the oil, the ball-ball and race films), ``slots``
+    and ``initial`` (the starting arrangement and its seeded perturbation).
 
     The groups carry no paper data as defaults: paper B's come from its parameter set,
     ``coupling.parameters.zhang2024.cageless_bearing()`` (Tables 1, 2, 4 and the values it had to
@@ -126,10 +126,11 @@ class CagelessBearing:
     fidelity: Fidelity = Fidelity()
     films: Films
     slots: Slots
+    initial: Initial = Initial()
 
     def __post_init__(self):
         for name, cls in (("bearing", Bearing), ("operating", Operating), ("fidelity", Fidelity), ("films", Films),
-                          ("slots", Slots)):
+                          ("slots", Slots), ("initial", Initial)):
             group = getattr(self, name)
             if isinstance(group, dict):
                 object.__setattr__(self, name, cls.build(group))
@@ -380,29 +381,32 @@ class CagelessBearing:
     def initial_state(self, ball_azimuths=None, settle=True) -> np.ndarray:
         """Quasi-static initial state.
 
-        Balls at ``ball_azimuths`` [rad] (default: evenly spaced from
-        ``first_ball_azimuth_deg``), each in radial (and axial) equilibrium
+        Balls at ``ball_azimuths`` [rad] (default: the ``initial`` group's arrangement, evenly spaced
+        from ``initial.first_ball_azimuth`` unless it says otherwise), each in radial (and axial) equilibrium
         between the races, the inner ring in force equilibrium under F_r,
         F_a and gravity (scipy ``root`` on the same force kernel, centrifugal
         forces included for the ``"steady"`` scenario, where the balls orbit at
         the epicyclic speed and roll without slip about the axis-parallel
         direction).  ``"drop"``/``"free"``: everything at rest, the rotor at
-        ``speed_rpm``; the ring gets the downward ``drop_speed``.
+        ``operating.speed``; the ring gets the downward ``drop_speed``, and the ``initial`` group's
+        random kick (if any) in the x-y plane.
         ``settle=False`` returns the unloaded geometric guess.
 
         Raises DynamicsInputError when no equilibrium exists (a load the
         grooves cannot carry)."""
         Z = self.bearing.n_balls
         D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
+        kick = (0.0, 0.0)
         if ball_azimuths is None:
-            psi = self.operating.first_ball_azimuth + 2.0 * np.pi * np.arange(Z) / Z
-            spacing = 2.0 * 0.5 * dm * math.sin(math.pi / Z)
-            if spacing <= D:
-                raise DynamicsInputError(f"bearing.n_balls = {Z}: evenly spaced balls overlap (chord {spacing:g} m <= D)")
+            psi, kick = self.initial.ball_azimuths(Z)
+            key = ("initial.azimuths" if self.initial.azimuths else
+                   "initial.jitter" if self.initial.jitter > 0.0 else "bearing.n_balls")
         else:
             psi = np.asarray(ball_azimuths, dtype=float)
+            key = "ball_azimuths"
             if psi.shape != (Z,):
-                raise DynamicsInputError(f"ball_azimuths has shape {psi.shape}; it must be ({Z},)")
+                raise DynamicsInputError(f"ball_azimuths has shape {psi.shape}; it must be ({Z},)", key=key)
+        self._check_arrangement(psi, key)
         steady = self.operating.scenario == "steady"
         wc = self.cage_speed(self.contact_angle_free) if steady else 0.0
         spin = np.full(Z, -wc * dm / D)
@@ -425,6 +429,8 @@ class CagelessBearing:
                 "this load", key="operating.radial_load")
         if self.operating.scenario == "drop":
             y[5] = -self.operating.drop_speed
+        y[4] += kick[0]
+        y[5] += kick[1]
         diag, _, _ = forces(0.0, y, args)
         amax = float(np.max(np.abs(diag[:, [D_AI, D_AO]])))
         if amax > math.radians(self.fidelity.shoulder_contact_angle_deg):
@@ -434,6 +440,22 @@ class CagelessBearing:
                 f"groove shoulders (model.shoulder_contact_angle_deg = {self.fidelity.shoulder_contact_angle_deg:g}): "
                 "the bearing cannot carry it", key="operating.axial_load")
         return y
+
+    def _check_arrangement(self, psi, key):
+        """Balls in ring order (ball j+1 follows ball j counter-clockwise, less than a turn) and apart: the
+        chord between neighbours' centres on the pitch circle must exceed D."""
+        Z = self.n_balls
+        rel = np.mod(psi - psi[0], 2.0 * np.pi)
+        gaps = np.diff(np.append(rel, 2.0 * np.pi))
+        if np.any(gaps <= 0.0):
+            raise DynamicsInputError(f"{key}: the balls must be in ring order (ball j + 1 counter-clockwise of "
+                                     "ball j, within one turn)", key=key)
+        chord = self.bearing.pitch_diameter * np.sin(0.5 * gaps)
+        j = int(np.argmin(chord))
+        if chord[j] <= self.bearing.ball_diameter:
+            raise DynamicsInputError(
+                f"{key}: balls {j} and {(j + 1) % Z} overlap (centres {chord[j]:.6g} m apart on the pitch circle, "
+                f"<= D = {self.bearing.ball_diameter:g} m)", key=key)
 
     def _ball_seat(self, args, y, j, psi_j, wc):
         """Radial (and axial) equilibrium of ball j for the ring in ``y``; writes y."""
@@ -553,7 +575,8 @@ class CagelessBearing:
         return max(math.sqrt(2.0 * k / self.mass), rate)
 
     #: group attribute of each case table (``[model]`` is the ``fidelity`` group)
-    GROUPS = {"bearing": "bearing", "operating": "operating", "model": "fidelity", "films": "films", "slots": "slots"}
+    GROUPS = {"bearing": "bearing", "operating": "operating", "model": "fidelity", "films": "films", "slots": "slots",
+              "initial": "initial"}
 
     def replace(self, **changes) -> "CagelessBearing":
         """A copy with some values changed, checked again.  ``changes`` by group (``operating={"speed": 1e3}``,
