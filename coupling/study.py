@@ -55,6 +55,7 @@ import logging
 import math
 import os
 import re
+import statistics
 import time
 import tomllib
 from dataclasses import dataclass, field
@@ -478,13 +479,13 @@ def run_one(spec: dict) -> tuple[str, Any, float]:
         return "failed", _message(exc), time.perf_counter() - t0
 
 
-def _execute(specs: list, todo: list, workers: int, scheduler, accept) -> str:
+def _execute(specs: list, todo: list, workers: int, scheduler, accept, scheduler_key="study.scheduler") -> str:
     """Run ``specs[i]`` for i in ``todo``: in this process (one worker), local processes or Dask;
     ``accept(i, status, payload, seconds)`` as each ends.  Returns the backend's description."""
     if not todo:
         return "none needed"
     if scheduler:
-        return _execute_dask(specs, todo, scheduler, accept)
+        return _execute_dask(specs, todo, scheduler, accept, scheduler_key)
     workers = min(workers or default_workers(), len(todo))
     if workers <= 1:
         for i in todo:
@@ -507,19 +508,20 @@ def _execute(specs: list, todo: list, workers: int, scheduler, accept) -> str:
     return f"local processes ({workers})"
 
 
-def _execute_dask(specs: list, todo: list, scheduler, accept) -> str:
-    """Run on a Dask cluster: ``scheduler`` is an address, a Client or a cluster."""
+def _execute_dask(specs: list, todo: list, scheduler, accept, key: str) -> str:
+    """Run on a Dask cluster: ``scheduler`` is an address, a Client or a cluster (``key``: where it was
+    given, for messages)."""
     try:
         from distributed import Client, as_completed
     except ImportError:
-        raise StudyError("study.scheduler needs dask.distributed (pip install lubedyn[dask])") from None
+        raise StudyError(f"{key} needs dask.distributed (pip install lubedyn[dask])") from None
     own = not isinstance(scheduler, Client)
     if own:
         address = getattr(scheduler, "scheduler_address", scheduler)
         try:
             client = Client(address, timeout="10s")
         except (OSError, TimeoutError, ValueError) as exc:
-            raise StudyError(f"study.scheduler = {address!r}: cannot connect ({_one_line(exc)})") from None
+            raise StudyError(f"{key} = {address!r}: cannot connect ({_one_line(exc)})") from None
     else:
         client = scheduler
     try:
@@ -573,6 +575,7 @@ def run_study(study: StudyFile, study_path, out, *, smoke: bool | None = None, w
     t0, started = time.perf_counter(), time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
     smoke = bool(smoke) or study.study.smoke
     workers = study.study.workers if workers is None else workers
+    scheduler_key = "--scheduler" if scheduler else "study.scheduler"
     scheduler = scheduler or study.study.scheduler or None
     out = Path(out).absolute()
     plan = plan_study(study, study_path, smoke=smoke)
@@ -605,7 +608,7 @@ def run_study(study: StudyFile, study_path, out, *, smoke: bool | None = None, w
         else:
             log.warning("run %d/%d failed (%s): %s", done, len(todo), run.label, payload)
 
-    backend = _execute(specs, todo, workers, scheduler, accept)
+    backend = _execute(specs, todo, workers, scheduler, accept, scheduler_key)
     failed = [(plan.runs[i].folder, payload) for i, (status, payload) in enumerate(results) if status != "ok"]
     info = {"backend": backend, "workers": workers, "scheduler": scheduler if isinstance(scheduler, str) else None,
             "smoke": smoke, "total": len(plan.runs), "reused": len(reused), "ran": len(todo),
@@ -652,9 +655,8 @@ def _number(value) -> float | None:
 
 def aggregates(study: StudyFile, plan: Plan, results: list) -> list[dict]:
     """Per point: its axis values, run folders, and per output the members' values with their median,
-    min, max, spread (max - min) and standard deviation (None when no member gave a number)."""
-    import numpy as np
-
+    min, max, spread (max - min) and population standard deviation (None when no member gave a
+    finite number)."""
     out = []
     for p, values in enumerate(plan.points):
         runs = [r for r in plan.runs if r.point == p]
@@ -666,10 +668,9 @@ def aggregates(study: StudyFile, plan: Plan, results: list) -> list[dict]:
             numbers = [x for x in (_number(s.get(name)) for s in ok) if x is not None and math.isfinite(x)]
             stats = {"values": [s.get(name) for s in ok], "median": None, "min": None, "max": None,
                      "spread": None, "std": None}
-            if numbers:
-                a = np.asarray(numbers)
-                stats.update(median=float(np.median(a)), min=float(a.min()), max=float(a.max()),
-                             spread=float(a.max() - a.min()), std=float(a.std()))
+            if numbers:  # statistics: exact sums (equal members have a std of exactly 0)
+                stats.update(median=statistics.median(numbers), min=min(numbers), max=max(numbers),
+                             spread=max(numbers) - min(numbers), std=statistics.pstdev(numbers))
             entry["outputs"][name] = stats
         out.append(entry)
     return out
