@@ -633,15 +633,17 @@ def _cell(value) -> str:
 
 
 def table(study: StudyFile, plan: Plan, results: list) -> str:
-    """``study.csv``: one row per run."""
+    """``study.csv``: one row per run: each axis's value as given and in SI, the member, the outputs,
+    the run folder (relative to the study folder), the status ("ok" or "failed") and the error."""
     keys, names = list(study.axes), study.study.outputs
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(keys + [f"{k} [SI]" for k in keys] + ["member"] + names + ["run folder", "status", "error"])
+    writer.writerow([c for k in keys for c in (k, f"{k} [SI]")] + ["member"] + names
+                    + ["run folder", "status", "error"])
     for run, (status, payload) in zip(plan.runs, results):
         values, si = plan.points[run.point], plan.si[run.point]
         summary = payload if status == "ok" else {}
-        writer.writerow([given(values[k]) for k in keys] + [_cell(si[k]) for k in keys] + [run.member]
+        writer.writerow([c for k in keys for c in (given(values[k]), _cell(si[k]))] + [run.member]
                         + [_cell(summary.get(n)) for n in names] + [run.folder, status,
                                                                     "" if status == "ok" else payload])
     return buffer.getvalue()
@@ -702,22 +704,13 @@ def _first_axis_x(study: StudyFile, plan: Plan):
     return xs, (list(range(len(labels))), labels), False
 
 
-def figure(study: StudyFile, plan: Plan, stats: list):
-    """``study.png``: per output, median and min-max band over members against the first axis, one line
-    per combination of the other axes (grid) or one line (zip), ``[paper]`` values as markers."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    keys, names = list(study.axes), study.study.outputs
-    xs, ticks, numeric = _first_axis_x(study, plan)
-    groups: dict = {}
-    for p, values in enumerate(plan.points):
-        other = point_label({k: values[k] for k in keys[1:]}) if study.study.combine == "grid" else ""
-        groups.setdefault(other, []).append(p)
-    fig, axes = plt.subplots(len(names), 1, figsize=(7.0, 3.0 * len(names) + 0.6), squeeze=False)
-    for ax, name in zip(axes[:, 0], names):
+def _panel(ax, study: StudyFile, plan: Plan, stats: list, name: str, groups: dict, first_axis) -> None:
+    """One output of study.png: a line (median) and band (min-max) per group of points, paper markers."""
+    xs, ticks, numeric = first_axis
+    medians = [stats[p]["outputs"][name]["median"] for p in range(len(plan.points))]
+    if all(m is None for m in medians):
+        ax.text(0.5, 0.5, "no numeric values (see study.csv)", transform=ax.transAxes, ha="center", va="center")
+    else:
         for label, members in groups.items():
             members = sorted(members, key=lambda p: xs[p])
             x = [xs[p] for p in members]
@@ -728,20 +721,41 @@ def figure(study: StudyFile, plan: Plan, stats: list):
                 lo = [math.nan if s["min"] is None else s["min"] for s in pick]
                 hi = [math.nan if s["max"] is None else s["max"] for s in pick]
                 ax.fill_between(x, lo, hi, color=line.get_color(), alpha=0.2, lw=0)
-        if name in study.paper:
-            series = study.paper[name]
-            px = plan.paper_x[name] if numeric else [ticks[1].index(given(a)) if given(a) in ticks[1] else math.nan
-                                                     for a in series.at]
-            ax.plot(px, series.values, "k*", ms=10, ls="none", label="paper")
-        if len(ticks[0]) <= TICKS_MAX:
-            ax.set_xticks(ticks[0], ticks[1])
-        ax.set_title(name, fontsize="medium")
-        ax.grid(alpha=0.3)
-        if any(h.get_label() and not h.get_label().startswith("_") for h in ax.get_lines()):
-            ax.legend(fontsize="small")
+        with contextlib.suppress(AttributeError):  # plain values on the y axis, not "1e-9 + 750.3"
+            ax.ticklabel_format(axis="y", useOffset=False)
+    if name in study.paper:
+        series = study.paper[name]
+        px = plan.paper_x[name] if numeric else [ticks[1].index(given(a)) if given(a) in ticks[1] else math.nan
+                                                 for a in series.at]
+        ax.plot(px, series.values, "k*", ms=10, ls="none", label="paper")
+    if len(ticks[0]) <= TICKS_MAX:
+        ax.set_xticks(ticks[0], ticks[1])
+    ax.set_title(name, fontsize="medium")
+    ax.grid(alpha=0.3)
+    if any(h.get_label() and not h.get_label().startswith("_") for h in ax.get_lines()):
+        ax.legend(fontsize="small")
+
+
+def figure(study: StudyFile, plan: Plan, stats: list):
+    """``study.png``: per output, median and min-max band over members against the first axis, one line
+    per combination of the other axes (grid) or one line (zip), ``[paper]`` values as markers."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    keys, names = list(study.axes), study.study.outputs
+    groups: dict = {}
+    for p, values in enumerate(plan.points):
+        other = point_label({k: values[k] for k in keys[1:]}) if study.study.combine == "grid" else ""
+        groups.setdefault(other, []).append(p)
+    first_axis = _first_axis_x(study, plan)
+    fig, axes = plt.subplots(len(names), 1, figsize=(7.0, 3.0 * len(names) + 0.6), squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        _panel(ax, study, plan, stats, name, groups, first_axis)
     axes[-1, 0].set_xlabel(keys[0] + ("" if study.study.combine == "grid" or len(keys) == 1
                                       else " (zipped with " + ", ".join(keys[1:]) + ")"))
-    title = study.description or "study"
+    title = study.description or f"study of {plan.base.stem}"
     fig.suptitle(title + (f" ({study.study.members} members per point: median, min-max band)"
                           if study.study.members > 1 else ""), fontsize="medium")
     fig.tight_layout()

@@ -81,6 +81,12 @@ def test_grid_and_zip_point_counts_and_folder_names(tmp_path):
     (SPEEDS, 'set = ["mesh.nx"]', ("study.set[0] = 'mesh.nx' must be KEY=VALUE",)),
     (SPEEDS, 'combine = "zipp"', ("study.combine = 'zipp' is not allowed; choose one of 'grid', 'zip'",)),
     (SPEEDS, "members = 2\nmember_key = 'motion.velocity_lower'", ("study.member_key", "is also an axis")),
+    (SPEEDS, '[paper]\n"Load per unit widht [N/m]" = { axis = "motion.velocity_lower", at = ["2 m/s"], values = [1] }',
+     ("paper.'Load per unit widht [N/m]' is not one of study.outputs", "did you mean 'Load per unit width [N/m]'")),
+    (SPEEDS, '[paper]\n"Load per unit width [N/m]" = { axis = "mesh.nx", at = [6], values = [1] }',
+     ("paper.'Load per unit width [N/m]'.axis = 'mesh.nx' must be the first axis 'motion.velocity_lower'",)),
+    (SPEEDS, '[paper]\n"Load per unit width [N/m]" = { axis = "motion.velocity_lower", at = ["2 m/s"], values = [1, 2] }',
+     ("paper.Load per unit width [N/m].values = [1.0, 2.0] has 2 entries and at has 1",)),
 ])
 def test_a_bad_study_file_is_one_line_exit_2(tmp_path, capsys, axes, study, fragments):
     code, out, err = run(capsys, "study", study_file(tmp_path, axes, study), "--out", tmp_path / "o")
@@ -100,6 +106,8 @@ def test_a_bad_study_file_is_one_line_exit_2(tmp_path, capsys, axes, study, frag
     (SPEEDS, "members = 2", ("study.member_key = 'initial.seed' (member 0): initial: unknown key at the top level",)),
     # a bad base case
     (SPEEDS, "", ("base = 'inclined_slidr'", "did you mean 'inclined_slider'?")),
+    (SPEEDS, '[paper]\n"Load per unit width [N/m]" = { axis = "motion.velocity_lower", at = ["2 m"], values = [1] }',
+     ("paper.'Load per unit width [N/m]'.at[0] = '2 m'", "has units of length, expected velocity")),
 ])
 def test_every_run_is_validated_before_anything_runs(tmp_path, capsys, axes, study, fragments):
     path = study_file(tmp_path, axes, study)
