@@ -28,7 +28,8 @@ one is built.  A run folder is reused when its ``summary.json`` and ``case.resol
 one finished run (the hidden ``.study-run.json`` holds their digests, written after the run) and the
 resolved case equals the one the study would run now; a killed study therefore reruns only what is
 missing, and a half-written folder is redone.  A run that fails is recorded with its message and the
-study goes on; failed runs are tried again by the next study.
+study goes on; failed runs are tried again by the next study.  Reuse looks at the resolved case
+only: after changing lubedyn itself, remove ``DIR/runs`` to recompute.
 
 Runs go to local worker processes (those of :mod:`coupling.maps.sweep`: they ignore SIGINT, die with
 the parent, one BLAS thread each) or, with ``scheduler``, to a Dask cluster, whose workers must see
@@ -408,7 +409,7 @@ def plan_study(study: StudyFile, study_path, *, smoke: bool = False) -> Plan:
         name = slug(values)
         if name in folders:
             raise StudyError(f"axes: the points ({point_label(folders[name])}) and ({point_label(values)}) "
-                             f"share the folder name {name!r}; write their values apart")
+                             f"share the folder name {name!r}; give values that differ in more than spaces and punctuation")
         folders[name] = values
         for m in range(study.study.members):
             labelled = _labelled(study, values, m)
@@ -771,6 +772,8 @@ def write_tables(study: StudyFile, study_path, plan: Plan, results: list, out: P
            "base case": str(plan.base), "study": study.model_dump(), "runs": info,
            "points": stats, "failed runs": [{"run folder": r.folder, "error": results[r.index][1]}
                                             for r in plan.runs if results[r.index][0] != "ok"],
+           "run list": [{"run folder": r.folder, "point": r.point, "member": r.member, "overrides": r.overrides,
+                         "status": results[r.index][0]} for r in plan.runs],
            "machine": _machine(), "finished [UTC]": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
     fig = figure(study, plan, stats)
     try:
