@@ -30,7 +30,11 @@ module             responsibility
 ``outputs``        atomic writers (temporary file + rename) for run outputs;
                    a run's folder: staging, ``manifest.json``, stale
                    staging folders of killed runs removed
-``cli``            ``lubedyn run | validate | cases | info``; exit codes
+``study``          studies: a base case over axes of ``--set`` values and
+                   ensemble members, each run a run folder (resumable,
+                   local processes or Dask) -> ``study.csv``, ``.json``,
+                   ``.png``
+``cli``            ``lubedyn run | validate | study | cases | info``; exit codes
                    0 ok, 1 failed solve, 2 input error, 3 output not
                    writable, 130 interrupted, 141 stdout closed
 =================  ==========================================================

@@ -1,18 +1,24 @@
-"""``lubedyn``: run, validate and list case files; report versions.
+"""``lubedyn``: run, validate and list case files; run studies over many cases; report versions.
 
 ::
 
     lubedyn run CASE.toml [--out DIR] [--set KEY=VALUE ...] [--dry-run] [--smoke]
     lubedyn validate CASE.toml [--set KEY=VALUE ...] [--smoke]
+    lubedyn study STUDY.toml [--out DIR] [--smoke] [--workers N] [--scheduler ADDR]
     lubedyn cases
     lubedyn info
 
 ``CASE`` may also be the name of a bundled case (``lubedyn run journal_finite``).
 ``--smoke`` merges the case's ``[smoke]`` table (coarse mesh) before ``--set``.
 ``--dry-run`` validates and builds the mesh and film, prints the plan and the
-resolved case, and writes nothing.
+resolved case, and writes nothing.  ``study`` runs a base case over axes of ``--set`` values
+and ensemble members, each run a normal run folder under ``DIR/runs/``, and writes
+``study.csv``, ``study.json`` and ``study.png`` (:mod:`coupling.study`; ``--out`` defaults
+to ``runs/<study stem>``); a run that fails is recorded and the others go on, and the exit
+code is then 1.
 
-Exit codes: 0 success; 1 a solve that did not converge; 2 input error (bad
+Exit codes: 0 success; 1 a solve that did not converge (a study: a run that
+failed); 2 input error (bad
 TOML, unknown key, wrong unit, value out of range, missing file, impossible
 geometry, an empty ``--out``); 3 an output that cannot be written (read-only
 folder, a file where a folder is needed, disk full); 130 interrupted (Ctrl-C);
@@ -127,24 +133,30 @@ def _check_smoke(raw: dict, overrides, exc) -> Exception:
     return _in_smoke(exc, raw)
 
 
-def _load(args):
+def load_case_file(case: str, *, smoke: bool = False, overrides=()):
+    """(path, raw TOML mapping, validated case) of ``case`` (a path or a bundled case's name) with the
+    ``[smoke]`` table (``smoke``) and the ``--set`` ``overrides`` merged, as ``lubedyn run`` loads it;
+    an error that only the ``[smoke]`` variant has is worded to say so.  Raises InputError."""
     from lubrication.errors import InputError
 
-    from .config import read_toml, validate_raw
+    from .config import CaseError, read_toml, validate_raw
 
-    from .config import CaseError
-
-    path = _case_path(args.case)
+    overrides = list(overrides or ())
+    path = _case_path(case)
     try:
         raw = read_toml(path)
     except OSError as exc:  # e.g. no read permission: an input error, not a failed run
         raise CaseError(f"case file {str(path)!r} cannot be read: {exc.strerror or exc}") from None
     try:
-        return path, raw, validate_raw(raw, smoke=args.smoke, overrides=args.set or ())
+        return path, raw, validate_raw(raw, smoke=smoke, overrides=overrides)
     except InputError as exc:
-        if args.smoke:
-            raise _check_smoke(raw, args.set or (), exc) from None
+        if smoke:
+            raise _check_smoke(raw, overrides, exc) from None
         raise
+
+
+def _load(args):
+    return load_case_file(args.case, smoke=args.smoke, overrides=args.set or ())
 
 
 def _out_dir(args, path: Path) -> Path:
@@ -184,6 +196,25 @@ def _scene(case):
     return module, module.build
 
 
+def run_loaded(path: Path, raw: dict, case, out, *, smoke: bool = False, overrides=()):
+    """Run a case loaded by :func:`load_case_file` into the folder ``out`` with its scene's ``run``
+    (the call of ``lubedyn run``); returns the scene's result.  An InputError that only the
+    ``[smoke]`` variant's build has is worded to say so."""
+    from lubrication.errors import InputError
+
+    scene, build = _scene(case)
+    try:
+        return scene.run(case, out, name=path.stem, source=str(path), smoke=smoke)
+    except InputError as exc:
+        if not smoke:
+            raise
+        try:  # an error of the smoke variant's build: say that it lives in [smoke]
+            build(case)
+        except InputError:
+            raise _check_smoke(raw, list(overrides or ()), exc) from None
+        raise
+
+
 def cmd_run(args) -> int:
     from lubrication.errors import InputError
 
@@ -202,16 +233,7 @@ def cmd_run(args) -> int:
              + "".join(f", {f}" for f, k in scene.FIELD_FILES if k in case.output.write) + ", manifest.json")
         _say(resolved_toml(case, f"dry run of {path}"))
         return EXIT_OK
-    try:
-        result = scene.run(case, out, name=path.stem, source=str(path), smoke=args.smoke)
-    except InputError as exc:
-        if not args.smoke:
-            raise
-        try:  # an error of the smoke variant's build: say that it lives in [smoke]
-            build(case)
-        except InputError:
-            raise _check_smoke(raw, args.set or (), exc) from None
-        raise
+    result = run_loaded(path, raw, case, out, smoke=args.smoke, overrides=args.set or ())
     s = result.summary
     if hasattr(scene, "headline"):  # the scene chooses what to show
         for line in scene.headline(s):
@@ -230,6 +252,39 @@ def cmd_run(args) -> int:
     else:
         _say(f"{'Run time [s]':<36} {s['Run time [s]']:.3g}")
     _say(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
+    return EXIT_OK
+
+
+def cmd_study(args) -> int:
+    """``lubedyn study``: run a study (:mod:`coupling.study`) and write its tables; exit 1 when a run failed."""
+    from lubrication.errors import InputError
+
+    from .study import read_study, run_study
+
+    if args.workers is not None and args.workers < 0:
+        raise InputError(f"--workers = {args.workers} must be >= 0 (0: every usable core)")
+    if args.scheduler is not None and not args.scheduler.strip():
+        raise InputError(f"--scheduler = {args.scheduler!r}: an empty address; give the Dask scheduler's, "
+                         "e.g. tcp://host:8786")
+    path = Path(args.study)
+    study = read_study(path)
+    out = _out_dir(args, path)
+    progress = logging.getLogger("coupling.study")  # "run 3/16 done (...)" on stderr without -v
+    saved = progress.level
+    if progress.getEffectiveLevel() > logging.INFO:
+        progress.setLevel(logging.INFO)
+    try:
+        result = run_study(study, path, out, smoke=args.smoke, workers=args.workers, scheduler=args.scheduler)
+    finally:
+        progress.setLevel(saved)
+    _say(f"study: {result.total} runs ({result.reused} reused, {result.ran} run, {len(result.failed)} failed), "
+         f"{result.backend}")
+    _say(f"wrote {out}/: " + ", ".join(p.name for p in result.files) + f"; run folders in {out}/runs/")
+    if result.failed:
+        folder, message = result.failed[0]
+        _error_line(f"lubedyn: error: {len(result.failed)} of {result.total} runs failed (listed in "
+                    f"{out}/study.csv), e.g. {folder}: {message}")
+        return EXIT_FAILED
     return EXIT_OK
 
 
@@ -323,6 +378,14 @@ def _parser() -> argparse.ArgumentParser:
     v = sub.add_parser("validate", parents=[verbose], help="check a case file (exit 0 OK, 2 with the error)")
     with_case(v)
     v.set_defaults(func=cmd_validate)
+    st = sub.add_parser("study", parents=[verbose], help="run a case over axes of --set values and tabulate")
+    st.add_argument("study", help="study file (TOML): base case, [axes], [study], [paper]")
+    st.add_argument("--out", metavar="DIR", help="output folder (default runs/<study stem>)")
+    st.add_argument("--smoke", action="store_true", help="every run with its case's [smoke] table")
+    st.add_argument("--workers", type=int, metavar="N", help="local worker processes (0: every usable core; "
+                    "default: the study file's)")
+    st.add_argument("--scheduler", metavar="ADDR", help="run on this Dask scheduler instead")
+    st.set_defaults(func=cmd_study)
     sub.add_parser("cases", parents=[verbose], help="list the bundled cases").set_defaults(func=cmd_cases)
     sub.add_parser("info", parents=[verbose], help="versions and machine").set_defaults(func=cmd_info)
     return p

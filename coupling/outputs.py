@@ -217,12 +217,13 @@ def _manifest(stage: Path, files) -> dict:
             "files": sorted(files)}
 
 
-def _commit(stage: Path, out: Path) -> None:
+def _commit(stage: Path, out: Path, keep=()) -> None:
     """Move the staged files into ``out`` and make the folder hold this run only.
 
     Order (a kill at any point leaves every file lubedyn wrote listed in a manifest): record the
     union of the previous and the new files, move the new files in, remove the previous run's
-    files that this run did not write, record the new files alone."""
+    files that this run did not write, record the new files alone.  ``keep``: names of entries of
+    ``out`` that belong there without being part of the commit (no warning about them)."""
     new = _files_below(stage)
     previous = read_manifest(out)
     old = {f for f in previous["files"] if _inside(out, f) is not None} if previous else set()
@@ -251,7 +252,7 @@ def _commit(stage: Path, out: Path) -> None:
     if previous is None:
         written = {f.split("/")[0] for f in new}
         foreign = sorted(p.name for p in out.iterdir() if not p.name.startswith(".") and p.name != MANIFEST
-                         and p.name not in written)
+                         and p.name not in written and p.name not in keep)
         if foreign:
             log.warning("%s had no %s: kept %d file(s) that this run did not write (%s); "
                         "remove them if they are from an older run", out, MANIFEST, len(foreign),
@@ -260,12 +261,13 @@ def _commit(stage: Path, out: Path) -> None:
 
 
 @contextlib.contextmanager
-def staged(out_dir):
+def staged(out_dir, keep=()):
     """Yield a staging folder inside ``out_dir``; on success move its files into
     ``out_dir`` (one rename each), record them in ``manifest.json`` and remove
     the previous run's files that this run did not write; on failure discard
     it.  Either way the staging folder is removed.  Stale staging folders of
-    killed runs are removed first.  An ``OSError`` becomes :class:`OutputError`."""
+    killed runs are removed first.  An ``OSError`` becomes :class:`OutputError`.  ``keep``: names of
+    entries of ``out_dir`` written by other means (a study's ``runs/``), never warned about."""
     out = Path(out_dir)
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -281,7 +283,7 @@ def staged(out_dir):
     _active.add(stage)
     try:
         yield stage
-        _commit(stage, out)
+        _commit(stage, out, keep)
     except OSError as exc:
         error = output_error(exc, out)
         with contextlib.suppress(ValueError):  # name the file as the user knows it, not its staging copy

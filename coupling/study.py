@@ -1,0 +1,786 @@
+"""Studies: one base case run over axes of ``--set`` overrides and ensemble members, then tabulated.
+
+A study file (TOML; ``lubedyn study STUDY.toml --out DIR``)::
+
+    description = "load of the inclined slider against the runner speed"
+    base = "inclined_slider"        # a case file relative to the study file, or a bundled case's name
+    [axes]                          # any key `lubedyn run --set` accepts -> its values (units allowed)
+    "motion.velocity_lower" = ["2 m/s", "5 m/s", "8 m/s"]
+    [study]
+    combine = "grid"                # every combination of the axes; "zip": the i-th values together
+    members = 1                     # ensemble members per point
+    member_key = "initial.seed"     # the --set key given the member index 0 .. members-1 (members > 1)
+    set = ["mesh.nx=20"]            # --set overrides of every run
+    skip_outputs = false            # true: every run writes only case.resolved.toml and summary.json
+    smoke = false                   # every run with --smoke (the CLI's --smoke sets it too)
+    workers = 0                     # local processes; 0: every usable core
+    scheduler = ""                  # a Dask scheduler address: the runs go there instead
+    outputs = ["Load per unit width [N/m]"]   # summary.json keys to tabulate and plot
+    [paper]                         # published values drawn as markers on study.png
+    "Load per unit width [N/m]" = { axis = "motion.velocity_lower", at = ["5 m/s"], values = [63550] }
+
+Every run of the study is a normal run folder, ``DIR/runs/<point>/m<member>/``, written by the scene's
+``run`` exactly as ``lubedyn run BASE --set ... --out FOLDER`` writes it (:func:`coupling.cli.load_case_file`
+and :func:`coupling.cli.run_loaded`); the overrides of a run are, in order: ``output.write=[]``
+(``skip_outputs``), ``set``, the point's axis values, the member index.  Before anything runs, every
+run's case is validated (an error names the axis, set entry or member key and its value) and the first
+one is built.  A run folder is reused when its ``summary.json`` and ``case.resolved.toml`` are those of
+one finished run (the hidden ``.study-run.json`` holds their digests, written after the run) and the
+resolved case equals the one the study would run now; a killed study therefore reruns only what is
+missing, and a half-written folder is redone.  A run that fails is recorded with its message and the
+study goes on; failed runs are tried again by the next study.  Reuse looks at the resolved case
+only: after changing lubedyn itself, remove ``DIR/runs`` to recompute.
+
+Runs go to local worker processes (those of :mod:`coupling.maps.sweep`: they ignore SIGINT, die with
+the parent, one BLAS thread each) or, with ``scheduler``, to a Dask cluster, whose workers must see
+``DIR`` at the same path.  Each run is one process's work with one BLAS thread, so the table is
+bit-identical whatever the backend and worker count.
+
+``DIR`` gets ``study.csv`` (one row per run: the axis values as given and in SI, the member, the
+outputs, the run folder, the status and error), ``study.json`` (the study resolved, per point the
+median, min, max, spread = max - min and standard deviation over its members of each numeric output,
+the failures, the machine and timing) and ``study.png`` (per output a panel against the first axis:
+the median over members, the min-max band, one line per combination of the other axes; ``[paper]``
+values as markers), written together through a staging folder (:func:`coupling.outputs.staged`).
+"""
+from __future__ import annotations
+
+import concurrent.futures as cf
+import contextlib
+import csv
+import hashlib
+import io
+import itertools
+import json
+import logging
+import math
+import os
+import re
+import statistics
+import time
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import Field, ValidationError, model_validator
+
+from lubrication.errors import InputError, LubedynError, close_matches, did_you_mean
+
+from . import outputs
+from .cli import _case_path, _check_smoke, _scene, load_case_file, run_loaded
+from .config import CASES_DIR, PositiveInt, _Model, format_validation_error, parse_override, resolved_toml, rule
+from .maps.sweep import _init_worker, _sigint_blocked, _stop_pool, default_workers
+
+log = logging.getLogger(__name__)
+
+MARKER = ".study-run.json"  # in a run folder: digests of the finished run's case and summary
+MARKER_FORMAT = "lubedyn study run"
+SLUG_MAX = 120  # longest folder name of a point before it is shortened with a digest
+TICKS_MAX = 12  # first-axis values labelled on study.png by their given text
+
+
+class StudyError(InputError):
+    """A study file mistake: one line naming the key, the value and what is allowed."""
+
+
+# ---------------------------------------------------------------------------
+# the study file
+
+
+class PaperSeries(_Model):
+    """Published values of one output: ``values[i]`` at the value ``at[i]`` of the first axis."""
+
+    axis: str
+    at: Annotated[list[Any], Field(min_length=1)]
+    values: Annotated[list[float], Field(min_length=1)]
+
+    @model_validator(mode="after")
+    def _same_length(self):
+        if len(self.at) != len(self.values):
+            raise rule("values", self.values, f"has {len(self.values)} entries and at has {len(self.at)}; "
+                       "give one value per entry of at")
+        return self
+
+
+class StudyTable(_Model):
+    """The ``[study]`` table: how the points combine and run, and what is tabulated."""
+
+    combine: Literal["grid", "zip"] = "grid"
+    members: PositiveInt = 1
+    member_key: str = "initial.seed"
+    set: list[str] = []
+    skip_outputs: bool = False
+    smoke: bool = False
+    workers: Annotated[int, Field(strict=True, ge=0)] = 0
+    scheduler: str = ""
+    outputs: Annotated[list[str], Field(min_length=1)]
+
+
+class StudyFile(_Model):
+    """A study file: the base case, the axes, the ``[study]`` table and optional ``[paper]`` values."""
+
+    description: str = ""
+    base: str
+    axes: dict[str, list[Any]]
+    study: StudyTable
+    paper: dict[str, PaperSeries] = {}
+
+    @model_validator(mode="after")
+    def _check(self):
+        if not self.base.strip():
+            raise rule("base", self.base, "is empty; give a case file (relative to the study file) or a bundled case")
+        if not self.axes:
+            raise rule("axes", None, "needs at least one axis: a --set key and its values, "
+                       "e.g. \"operating.speed\" = [\"10000 rpm\", \"15000 rpm\"]")
+        for key, values in self.axes.items():
+            _check_axis(key, values)
+        if self.study.combine == "zip":
+            lengths = {key: len(values) for key, values in self.axes.items()}
+            if len(set(lengths.values())) > 1:
+                raise rule("study.combine", "zip", "needs axes of one length; they have "
+                           + ", ".join(f"{k!r}: {n}" for k, n in lengths.items()) + " (or use combine = 'grid')")
+        for i, text in enumerate(self.study.set):
+            try:
+                parse_override(text)
+            except InputError:
+                raise rule(f"study.set[{i}]", text, "must be KEY=VALUE, e.g. \"mesh.nx=40\"") from None
+        if self.study.members > 1:
+            _check_dotted("study.member_key", self.study.member_key)
+            if self.study.member_key in self.axes:
+                raise rule("study.member_key", self.study.member_key, "is also an axis; the member index "
+                           "needs a key of its own")
+        self._check_paper()
+        return self
+
+    def _check_paper(self):
+        first = next(iter(self.axes))
+        for key, series in self.paper.items():
+            if key not in self.study.outputs:
+                raise rule(f"paper.{key!r}", None, "is not one of study.outputs ("
+                           + ", ".join(map(repr, self.study.outputs)) + ")" + did_you_mean(key, self.study.outputs))
+            if series.axis != first:
+                raise rule(f"paper.{key!r}.axis", series.axis, f"must be the first axis {first!r} "
+                           "(study.png draws every output against it)")
+
+
+def _check_dotted(label: str, key: str):
+    if not key or "=" in key or not all(key.split(".")):
+        raise rule(label, key, "must be a dotted case key as --set takes it, e.g. \"operating.speed\"")
+
+
+def _check_axis(key: str, values: list):
+    _check_dotted(f"axes.{key!r}", key)
+    if not values:
+        raise rule(f"axes.{key!r}", values, "has no values; give a list of one or more")
+    seen = {}
+    for value in values:
+        if isinstance(value, dict):
+            raise rule(f"axes.{key!r}", values, "must list values (numbers, strings with units, "
+                       "booleans, lists), not tables")
+        text = toml_value(value)
+        if text in seen:
+            raise rule(f"axes.{key!r}", values, f"lists {given(value)!r} twice")
+        seen[text] = value
+
+
+def read_study(path) -> StudyFile:
+    """Read and validate a study file; raise :class:`StudyError` (one line) on any mistake."""
+    path = Path(path)
+    if path.is_dir():
+        raise StudyError(f"study file {str(path)!r} is a directory; expected a .toml study file")
+    if not path.is_file():
+        hint = ""
+        if path.parent.is_dir():
+            siblings = {p.name: p for p in path.parent.glob("*.toml")}
+            close = close_matches(path.name, siblings)
+            hint = f"; did you mean {' or '.join(repr(str(siblings[c])) for c in close)}?" if close else ""
+        raise StudyError(f"study file {str(path)!r} not found{hint}")
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise StudyError(f"{path}: invalid TOML: {' '.join(str(exc).split())}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise StudyError(f"study file {str(path)!r} cannot be read: {getattr(exc, 'strerror', None) or exc}") from None
+    try:
+        return StudyFile.model_validate(raw)
+    except ValidationError as exc:
+        raise StudyError(format_validation_error(exc, StudyFile)) from None
+
+
+# ---------------------------------------------------------------------------
+# values, points, folders
+
+
+def toml_value(value) -> str:
+    """``value`` (a TOML value of an axis) as one line of TOML, the value text of a ``--set``."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)  # a TOML basic string (JSON's escapes are TOML's)
+    if isinstance(value, list):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    return str(value)  # dates and times: TOML's own text
+
+
+def given(value) -> str:
+    """``value`` as the user wrote it: a string as is, anything else as TOML."""
+    return value if isinstance(value, str) else toml_value(value)
+
+
+def points(study: StudyFile) -> list[dict]:
+    """The study's points, {axis key: value} in file order: every combination (grid, last axis
+    fastest) or the i-th values of every axis together (zip)."""
+    keys = list(study.axes)
+    lists = [study.axes[k] for k in keys]
+    combos = itertools.product(*lists) if study.study.combine == "grid" else zip(*lists)
+    return [dict(zip(keys, combo)) for combo in combos]
+
+
+def point_label(values: dict) -> str:
+    """``"operating.speed=15000 rpm, films.race=none"``."""
+    return ", ".join(f"{k}={given(v)}" for k, v in values.items())
+
+
+def slug(values: dict) -> str:
+    """A point's folder name, filesystem-safe and stable: ``operating.speed=15000rpm`` (axes joined by
+    ``,``; white space dropped, other characters outside ``A-Za-z0-9._+=-`` as ``_``; a name longer
+    than :data:`SLUG_MAX` keeps its head and gains a digest of the whole)."""
+    parts = []
+    for key, value in values.items():
+        text = re.sub(r"\s+", "", given(value))
+        parts.append(re.sub(r"[^A-Za-z0-9._+=-]", "_", f"{key}={text}"))
+    name = ",".join(parts)
+    if len(name) > SLUG_MAX:
+        name = name[:SLUG_MAX - 13] + "-" + hashlib.sha1(name.encode()).hexdigest()[:12]
+    return name
+
+
+def _si(case, key: str):
+    """The value of dotted ``key`` in the validated ``case`` (SI), JSON-able; a one-item list as its item."""
+    node = case
+    for part in key.split("."):
+        node = node.get(part) if isinstance(node, dict) else getattr(node, part, None)
+    if hasattr(node, "model_dump"):
+        node = node.model_dump()
+    if isinstance(node, (list, tuple)):
+        node = list(node)
+        return node[0] if len(node) == 1 else node
+    return node
+
+
+def _body(resolved: str) -> str:
+    """A ``case.resolved.toml`` without its comment lines (which name the source and version)."""
+    return "\n".join(line for line in resolved.splitlines() if not line.startswith("#")).strip()
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())
+
+
+def _message(exc: BaseException) -> str:
+    """A failed run's message: lubedyn's own errors as they are, others with their type."""
+    text = _one_line(exc)
+    return text if isinstance(exc, LubedynError) else f"{type(exc).__name__}: {text}"
+
+
+# ---------------------------------------------------------------------------
+# the plan: every run validated before anything runs
+
+
+@dataclass
+class Run:
+    """One run of the study: a point, a member, its folder (relative to DIR) and overrides."""
+
+    index: int
+    point: int
+    member: int
+    label: str
+    folder: str
+    overrides: list
+    body: str  # the resolved case it runs, without comments
+
+
+@dataclass
+class Plan:
+    base: Path
+    points: list  # [{axis key: value}]
+    si: list  # [{axis key: SI value}]
+    runs: list  # [Run]
+    paper_x: dict = field(default_factory=dict)  # output -> [first-axis SI value of each paper entry]
+
+
+def _base_path(study: StudyFile, study_dir: Path) -> Path:
+    """The base case: a path relative to the study file, else a bundled case's name."""
+    text = study.base
+    local = study_dir / text
+    try:
+        if local.exists() or Path(text).suffix or len(Path(text).parts) > 1:
+            return _case_path(str(local)).resolve()
+        if (CASES_DIR / f"{text}.toml").is_file():
+            return CASES_DIR / f"{text}.toml"
+        return _case_path(text).resolve()
+    except InputError as exc:
+        raise StudyError(f"base = {text!r}: {_one_line(exc)}") from None
+
+
+def _common(study: StudyFile) -> list[str]:
+    """The overrides of every run: ``output.write=[]`` (skip_outputs), then ``set``."""
+    return (["output.write=[]"] if study.study.skip_outputs else []) + list(study.study.set)
+
+
+def _check_common(study: StudyFile, base: Path, smoke: bool):
+    """The base case with the overrides of every run validates; else say which part does not."""
+    common = _common(study)
+    try:
+        load_case_file(str(base), smoke=smoke, overrides=common)
+        return
+    except InputError as exc:
+        error = exc
+    try:
+        load_case_file(str(base), smoke=smoke)
+    except InputError as exc:
+        raise StudyError(f"base = {study.base!r}: {_one_line(exc)}") from None
+    skip = common[:1] if study.study.skip_outputs else []
+    if skip:
+        try:
+            load_case_file(str(base), smoke=smoke, overrides=skip)
+        except InputError as exc:
+            raise StudyError(f"study.skip_outputs = true: {_one_line(exc)}") from None
+    for i, text in enumerate(study.study.set):
+        try:
+            load_case_file(str(base), smoke=smoke, overrides=skip + [text])
+        except InputError as exc:
+            raise StudyError(f"study.set[{i}] = {text!r}: {_one_line(exc)}") from None
+    raise StudyError(f"study.set = {study.study.set!r}: {_one_line(error)}") from None
+
+
+def _load_labelled(base: Path, smoke: bool, common: list, labelled: list):
+    """(path, raw, case) of the base with ``common`` and the (label, override) pairs; an error names
+    the override that alone causes it (else all of them)."""
+    try:
+        return load_case_file(str(base), smoke=smoke, overrides=common + [text for _, text in labelled])
+    except InputError as exc:
+        error = exc
+    for label, text in labelled:
+        try:
+            load_case_file(str(base), smoke=smoke, overrides=common + [text])
+        except InputError as exc:
+            raise StudyError(f"{label}: {_one_line(exc)}") from None
+    raise StudyError(f"{'; '.join(label for label, _ in labelled)}: {_one_line(error)}") from None
+
+
+def _labelled(study: StudyFile, values: dict, member: int) -> list:
+    pairs = [(f"axes.{k!r} = {given(v)!r}", f"{k}={toml_value(v)}") for k, v in values.items()]
+    if study.study.members > 1:
+        key = study.study.member_key
+        pairs.append((f"study.member_key = {key!r} (member {member})", f"{key}={member}"))
+    return pairs
+
+
+def _build_first(loaded, overrides, smoke: bool, label: str):
+    """Build (not run) the first run's case as ``lubedyn validate`` does: geometry and sizes checked."""
+    import inspect
+
+    path, raw, case = loaded
+    build = _scene(case)[1]
+    try:
+        if "source" in inspect.signature(build).parameters:
+            build(case, source=str(path))
+        else:
+            build(case)
+    except InputError as exc:
+        if smoke:
+            exc = _check_smoke(raw, overrides, exc)
+        raise StudyError(f"{label}: {_one_line(exc)}") from None
+
+
+def plan_study(study: StudyFile, study_path, *, smoke: bool = False) -> Plan:
+    """Validate every run of the study (and build the first) before anything runs; the runs in order
+    (points in order, members within a point)."""
+    base = _base_path(study, Path(study_path).resolve().parent)
+    _check_common(study, base, smoke)
+    common, pts = _common(study), points(study)
+    folders: dict = {}
+    plan = Plan(base=base, points=pts, si=[], runs=[])
+    for p, values in enumerate(pts):
+        name = slug(values)
+        if name in folders:
+            raise StudyError(f"axes: the points ({point_label(folders[name])}) and ({point_label(values)}) "
+                             f"share the folder name {name!r}; give values that differ in more than spaces and punctuation")
+        folders[name] = values
+        for m in range(study.study.members):
+            labelled = _labelled(study, values, m)
+            loaded = _load_labelled(base, smoke, common, labelled)
+            overrides = common + [text for _, text in labelled]
+            if not plan.runs:
+                _build_first(loaded, overrides, smoke, "; ".join(label for label, _ in labelled))
+            label = point_label(values) + (f", member {m}" if study.study.members > 1 else "")
+            plan.runs.append(Run(len(plan.runs), p, m, label, f"runs/{name}/m{m}", overrides,
+                                 _body(resolved_toml(loaded[2]))))
+        plan.si.append({k: _si(loaded[2], k) for k in values})
+    first = next(iter(study.axes))
+    for key, series in study.paper.items():
+        xs = []
+        for i, at in enumerate(series.at):
+            case = _load_labelled(base, smoke, common, [(f"paper.{key!r}.at[{i}] = {given(at)!r}",
+                                                         f"{first}={toml_value(at)}")])[2]
+            xs.append(_si(case, first))
+        plan.paper_x[key] = xs
+    return plan
+
+
+# ---------------------------------------------------------------------------
+# running
+
+
+def _mark_complete(folder: Path) -> dict:
+    """After a run: record the digests of its case and summary (:data:`MARKER`); its summary."""
+    resolved, summary = (folder / "case.resolved.toml").read_bytes(), (folder / "summary.json").read_bytes()
+    outputs.write_json(folder / MARKER, {"format": MARKER_FORMAT,
+                                         "case.resolved.toml": hashlib.sha256(resolved).hexdigest(),
+                                         "summary.json": hashlib.sha256(summary).hexdigest()})
+    return json.loads(summary)
+
+
+def reusable(folder: Path, body: str) -> dict | None:
+    """The summary of a finished run in ``folder`` whose resolved case is ``body``, else None."""
+    try:
+        marker = json.loads((folder / MARKER).read_text(encoding="utf-8"))
+        resolved, summary = (folder / "case.resolved.toml").read_bytes(), (folder / "summary.json").read_bytes()
+        if not (isinstance(marker, dict) and marker.get("format") == MARKER_FORMAT
+                and marker.get("case.resolved.toml") == hashlib.sha256(resolved).hexdigest()
+                and marker.get("summary.json") == hashlib.sha256(summary).hexdigest()
+                and _body(resolved.decode("utf-8")) == body):
+            return None
+        data = json.loads(summary)
+    except (OSError, ValueError):
+        return None
+    return data if isinstance(data, dict) else None
+
+
+def run_one(spec: dict) -> tuple[str, Any, float]:
+    """Worker: run one study run into its folder as ``lubedyn run`` does, with one BLAS thread;
+    ("ok", summary, seconds) or ("failed", message, seconds).  Never raises an Exception (one failed
+    run must not stop the others)."""
+    from threadpoolctl import threadpool_limits
+
+    t0 = time.perf_counter()
+    folder = Path(spec["folder"])
+    try:
+        with contextlib.suppress(FileNotFoundError):
+            (folder / MARKER).unlink()  # the folder is not a finished run until this run says so
+        with threadpool_limits(1):
+            path, raw, case = load_case_file(spec["case"], smoke=spec["smoke"], overrides=spec["overrides"])
+            run_loaded(path, raw, case, folder, smoke=spec["smoke"], overrides=spec["overrides"])
+        return "ok", _mark_complete(folder), time.perf_counter() - t0
+    except Exception as exc:  # noqa: BLE001 - recorded in the table, reported by the caller
+        return "failed", _message(exc), time.perf_counter() - t0
+
+
+def _execute(specs: list, todo: list, workers: int, scheduler, accept, scheduler_key="study.scheduler") -> str:
+    """Run ``specs[i]`` for i in ``todo``: in this process (one worker), local processes or Dask;
+    ``accept(i, status, payload, seconds)`` as each ends.  Returns the backend's description."""
+    if not todo:
+        return "none needed"
+    if scheduler:
+        return _execute_dask(specs, todo, scheduler, accept, scheduler_key)
+    workers = min(workers or default_workers(), len(todo))
+    if workers <= 1:
+        for i in todo:
+            accept(i, *run_one(specs[i]))
+        return "serial (this process)"
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("fork") if hasattr(os, "fork") else None
+    pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
+                                  initargs=(os.getpid(),))
+    try:
+        with _sigint_blocked():
+            futures = {pool.submit(run_one, specs[i]): i for i in todo}
+        for fut in cf.as_completed(futures):
+            accept(futures[fut], *fut.result())
+    except BaseException:  # Ctrl-C or an error: cancel the pending runs, end the workers now
+        _stop_pool(pool)
+        raise
+    pool.shutdown(wait=True)
+    return f"local processes ({workers})"
+
+
+def _execute_dask(specs: list, todo: list, scheduler, accept, key: str) -> str:
+    """Run on a Dask cluster: ``scheduler`` is an address, a Client or a cluster (``key``: where it was
+    given, for messages)."""
+    try:
+        from distributed import Client, as_completed
+    except ImportError:
+        raise StudyError(f"{key} needs dask.distributed (pip install lubedyn[dask])") from None
+    own = not isinstance(scheduler, Client)
+    if own:
+        address = getattr(scheduler, "scheduler_address", scheduler)
+        try:
+            client = Client(address, timeout="10s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise StudyError(f"{key} = {address!r}: cannot connect ({_one_line(exc)})") from None
+    else:
+        client = scheduler
+    try:
+        futures = [client.submit(run_one, specs[i], pure=False) for i in todo]
+        index = {f.key: i for f, i in zip(futures, todo)}
+        try:
+            for fut in as_completed(futures):
+                accept(index[fut.key], *fut.result())
+        except BaseException:  # Ctrl-C or an error: cancel what the cluster has not done yet
+            with contextlib.suppress(Exception):
+                client.cancel(futures)
+            raise
+        return f"dask ({client.scheduler.address})"
+    finally:
+        if own:
+            client.close()
+
+
+def check_outputs(study: StudyFile, summary: dict, folder: str):
+    """Every ``study.outputs`` key is a key of ``summary`` (a run's); else a one-line StudyError."""
+    for key in study.study.outputs:
+        if key not in summary:
+            raise StudyError(f"study.outputs: {key!r} is not a key of the runs' summary.json"
+                             + (did_you_mean(key, summary) or f" (its keys: {folder}/summary.json)"))
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds:.2g} s" if seconds < 10 else f"{seconds:.0f} s"
+
+
+@dataclass
+class StudyResult:
+    """What :func:`run_study` did: runs in total, reused, run now, failed (folder, message), files."""
+
+    out: Path
+    total: int
+    reused: int
+    ran: int
+    failed: list
+    backend: str
+    files: list
+
+
+def run_study(study: StudyFile, study_path, out, *, smoke: bool | None = None, workers: int | None = None,
+              scheduler=None) -> StudyResult:
+    """Plan, run (reusing finished runs) and tabulate a study into the folder ``out``.
+
+    ``smoke``, ``workers``, ``scheduler``: the command line's, over the study file's (``smoke``: either
+    one).  Raises :class:`StudyError` for a mistake in the study (before anything runs, or after the
+    first run for an unknown output); a run that fails is recorded and the study goes on."""
+    t0, started = time.perf_counter(), time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    smoke = bool(smoke) or study.study.smoke
+    workers = study.study.workers if workers is None else workers
+    scheduler_key = "--scheduler" if scheduler else "study.scheduler"
+    scheduler = scheduler or study.study.scheduler or None
+    out = Path(out).absolute()
+    plan = plan_study(study, study_path, smoke=smoke)
+    results: list = [None] * len(plan.runs)
+    for run in plan.runs:
+        summary = reusable(out / run.folder, run.body)
+        if summary is not None:
+            results[run.index] = ("ok", summary)
+    reused = [r for r in plan.runs if results[r.index] is not None]
+    todo = [r.index for r in plan.runs if results[r.index] is None]
+    checked = False
+    if reused:
+        check_outputs(study, results[reused[0].index][1], reused[0].folder)
+        checked = True
+    log.info("%d runs: %d reused (finished in %s/runs), %d to run", len(plan.runs), len(reused), out, len(todo))
+    specs = [{"case": str(plan.base), "smoke": smoke, "overrides": r.overrides, "folder": str(out / r.folder)}
+             for r in plan.runs]
+    done = 0
+
+    def accept(i, status, payload, seconds):
+        nonlocal done, checked
+        done += 1
+        run = plan.runs[i]
+        results[i] = (status, payload)
+        if status == "ok":
+            if not checked:
+                check_outputs(study, payload, out / run.folder)
+                checked = True
+            log.info("run %d/%d done (%s), %s", done, len(todo), run.label, _duration(seconds))
+        else:
+            log.warning("run %d/%d failed (%s): %s", done, len(todo), run.label, payload)
+
+    backend = _execute(specs, todo, workers, scheduler, accept, scheduler_key)
+    failed = [(plan.runs[i].folder, payload) for i, (status, payload) in enumerate(results) if status != "ok"]
+    info = {"backend": backend, "workers": workers, "scheduler": scheduler if isinstance(scheduler, str) else None,
+            "smoke": smoke, "total": len(plan.runs), "reused": len(reused), "ran": len(todo),
+            "failed": len(failed), "started [UTC]": started, "wall time [s]": time.perf_counter() - t0}
+    files = write_tables(study, study_path, plan, results, out, info)
+    return StudyResult(out, len(plan.runs), len(reused), len(todo), failed, backend, files)
+
+
+# ---------------------------------------------------------------------------
+# tables and figure
+
+
+def _cell(value) -> str:
+    """A csv cell: floats by ``repr`` (they read back bit for bit), None empty, lists as JSON."""
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float, str)):
+        return repr(value) if isinstance(value, float) else str(value)
+    return json.dumps(value)
+
+
+def table(study: StudyFile, plan: Plan, results: list) -> str:
+    """``study.csv``: one row per run: each axis's value as given and in SI, the member, the outputs,
+    the run folder (relative to the study folder), the status ("ok" or "failed") and the error."""
+    keys, names = list(study.axes), study.study.outputs
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow([c for k in keys for c in (k, f"{k} [SI]")] + ["member"] + names
+                    + ["run folder", "status", "error"])
+    for run, (status, payload) in zip(plan.runs, results):
+        values, si = plan.points[run.point], plan.si[run.point]
+        summary = payload if status == "ok" else {}
+        writer.writerow([c for k in keys for c in (given(values[k]), _cell(si[k]))] + [run.member]
+                        + [_cell(summary.get(n)) for n in names] + [run.folder, status,
+                                                                    "" if status == "ok" else payload])
+    return buffer.getvalue()
+
+
+def _number(value) -> float | None:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return None
+    return float(value)
+
+
+def aggregates(study: StudyFile, plan: Plan, results: list) -> list[dict]:
+    """Per point: its axis values, run folders, and per output the members' values with their median,
+    min, max, spread (max - min) and population standard deviation (None when no member gave a
+    finite number)."""
+    out = []
+    for p, values in enumerate(plan.points):
+        runs = [r for r in plan.runs if r.point == p]
+        ok = [results[r.index][1] for r in runs if results[r.index][0] == "ok"]
+        entry = {"axes": {k: given(v) for k, v in values.items()}, "axes [SI]": plan.si[p],
+                 "run folders": [r.folder for r in runs], "members": len(runs), "failed": len(runs) - len(ok),
+                 "outputs": {}}
+        for name in study.study.outputs:
+            numbers = [x for x in (_number(s.get(name)) for s in ok) if x is not None and math.isfinite(x)]
+            stats = {"values": [s.get(name) for s in ok], "median": None, "min": None, "max": None,
+                     "spread": None, "std": None}
+            if numbers:  # statistics: exact sums (equal members have a std of exactly 0)
+                stats.update(median=statistics.median(numbers), min=min(numbers), max=max(numbers),
+                             spread=max(numbers) - min(numbers), std=statistics.pstdev(numbers))
+            entry["outputs"][name] = stats
+        out.append(entry)
+    return out
+
+
+def _machine() -> dict:
+    import platform
+
+    from . import __version__
+
+    usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return {"host": platform.node(), "platform": platform.platform(), "python": platform.python_version(),
+            "cores": f"{usable} usable of {os.cpu_count()}", "lubedyn version": __version__}
+
+
+def _first_axis_x(study: StudyFile, plan: Plan):
+    """x of each point on study.png: the first axis's SI value when every one is a number, else the
+    index of its given value; and the ticks (positions, labels) of the first axis's values."""
+    first = next(iter(study.axes))
+    si = [s[first] for s in plan.si]
+    numeric = all(_number(x) is not None for x in si)
+    labels = [given(v) for v in study.axes[first]]
+    if numeric:
+        xs = [float(x) for x in si]
+        by_text = {given(plan.points[p][first]): xs[p] for p in range(len(xs))}
+        ticks = [by_text[t] for t in labels if t in by_text]
+        return xs, (ticks, [t for t in labels if t in by_text]), True
+    xs = [labels.index(given(v[first])) for v in plan.points]
+    return xs, (list(range(len(labels))), labels), False
+
+
+def _panel(ax, study: StudyFile, plan: Plan, stats: list, name: str, groups: dict, first_axis) -> None:
+    """One output of study.png: a line (median) and band (min-max) per group of points, paper markers."""
+    xs, ticks, numeric = first_axis
+    medians = [stats[p]["outputs"][name]["median"] for p in range(len(plan.points))]
+    if all(m is None for m in medians):
+        ax.text(0.5, 0.5, "no numeric values (see study.csv)", transform=ax.transAxes, ha="center", va="center")
+    else:
+        for label, members in groups.items():
+            members = sorted(members, key=lambda p: xs[p])
+            x = [xs[p] for p in members]
+            pick = [stats[p]["outputs"][name] for p in members]
+            med = [math.nan if s["median"] is None else s["median"] for s in pick]
+            line, = ax.plot(x, med, "o-", label=label or ("lubedyn" if name in study.paper else None))
+            if study.study.members > 1:
+                lo = [math.nan if s["min"] is None else s["min"] for s in pick]
+                hi = [math.nan if s["max"] is None else s["max"] for s in pick]
+                ax.fill_between(x, lo, hi, color=line.get_color(), alpha=0.2, lw=0)
+        with contextlib.suppress(AttributeError):  # plain values on the y axis, not "1e-9 + 750.3"
+            ax.ticklabel_format(axis="y", useOffset=False)
+    if name in study.paper:
+        series = study.paper[name]
+        px = plan.paper_x[name] if numeric else [ticks[1].index(given(a)) if given(a) in ticks[1] else math.nan
+                                                 for a in series.at]
+        ax.plot(px, series.values, "k*", ms=10, ls="none", label="paper")
+    if len(ticks[0]) <= TICKS_MAX:
+        ax.set_xticks(ticks[0], ticks[1])
+    ax.set_title(name, fontsize="medium")
+    ax.grid(alpha=0.3)
+    if any(h.get_label() and not h.get_label().startswith("_") for h in ax.get_lines()):
+        ax.legend(fontsize="small")
+
+
+def figure(study: StudyFile, plan: Plan, stats: list):
+    """``study.png``: per output, median and min-max band over members against the first axis, one line
+    per combination of the other axes (grid) or one line (zip), ``[paper]`` values as markers."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    keys, names = list(study.axes), study.study.outputs
+    groups: dict = {}
+    for p, values in enumerate(plan.points):
+        other = point_label({k: values[k] for k in keys[1:]}) if study.study.combine == "grid" else ""
+        groups.setdefault(other, []).append(p)
+    first_axis = _first_axis_x(study, plan)
+    fig, axes = plt.subplots(len(names), 1, figsize=(7.0, 3.0 * len(names) + 0.6), squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        _panel(ax, study, plan, stats, name, groups, first_axis)
+    axes[-1, 0].set_xlabel(keys[0] + ("" if study.study.combine == "grid" or len(keys) == 1
+                                      else " (zipped with " + ", ".join(keys[1:]) + ")"))
+    title = study.description or f"study of {plan.base.stem}"
+    fig.suptitle(title + (f" ({study.study.members} members per point: median, min-max band)"
+                          if study.study.members > 1 else ""), fontsize="medium")
+    fig.tight_layout()
+    return fig
+
+
+def write_tables(study: StudyFile, study_path, plan: Plan, results: list, out: Path, info: dict) -> list[Path]:
+    """Write study.csv, study.json and study.png into ``out`` together (staged; ``runs/`` kept)."""
+    import matplotlib.pyplot as plt
+
+    stats = aggregates(study, plan, results)
+    doc = {"format": "lubedyn study", "version": 1, "study file": str(Path(study_path).resolve()),
+           "base case": str(plan.base), "study": study.model_dump(), "runs": info,
+           "points": stats, "failed runs": [{"run folder": r.folder, "error": results[r.index][1]}
+                                            for r in plan.runs if results[r.index][0] != "ok"],
+           "run list": [{"run folder": r.folder, "point": r.point, "member": r.member, "overrides": r.overrides,
+                         "status": results[r.index][0]} for r in plan.runs],
+           "machine": _machine(), "finished [UTC]": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+    fig = figure(study, plan, stats)
+    try:
+        with outputs.staged(out, keep=("runs",)) as stage:
+            outputs.write_text(stage / "study.csv", table(study, plan, results))
+            outputs.write_json(stage / "study.json", doc)
+            outputs.save_figure(stage / "study.png", fig)
+    finally:
+        plt.close(fig)
+    return [out / name for name in ("study.csv", "study.json", "study.png")]
