@@ -326,14 +326,42 @@ def _base_path(study: StudyFile, study_dir: Path) -> Path:
         raise StudyError(f"base = {text!r}: {_one_line(exc)}") from None
 
 
-def _common(study: StudyFile) -> list[str]:
-    """The overrides of every run: ``output.write=[]`` (skip_outputs), then ``set``."""
-    return (["output.write=[]"] if study.study.skip_outputs else []) + list(study.study.set)
+def _smoke_keys(base: Path) -> set:
+    """The dotted keys the base case's ``[smoke]`` table sets (``"integrator.duration"``)."""
+    from .config import read_toml
+
+    def walk(node, prefix):
+        for k, v in node.items():
+            key = f"{prefix}{k}"
+            if isinstance(v, dict):
+                yield from walk(v, key + ".")
+            else:
+                yield key
+
+    smoke = read_toml(base).get("smoke")
+    return set(walk(smoke, "")) if isinstance(smoke, dict) else set()
+
+
+def _common(study: StudyFile, base: Path | None = None, smoke: bool = False) -> list[str]:
+    """The overrides of every run: ``output.write=[]`` (skip_outputs), then ``set``.  With ``smoke``, an
+    entry of ``set`` that the base case's ``[smoke]`` table also sets is left out (logged): a smoke
+    study checks the study at the case's smoke size, whatever length the full study asks for."""
+    from .config import parse_override
+
+    kept = list(study.study.set)
+    if smoke and base is not None:
+        keys = _smoke_keys(base)
+        dropped = [o for o in kept if ".".join(parse_override(o)[0]) in keys]
+        if dropped:
+            log.info("--smoke: the case's [smoke] table sets %s; study.set entries left out: %s",
+                     ", ".join(sorted(keys)), ", ".join(dropped))
+        kept = [o for o in kept if o not in dropped]
+    return (["output.write=[]"] if study.study.skip_outputs else []) + kept
 
 
 def _check_common(study: StudyFile, base: Path, smoke: bool):
     """The base case with the overrides of every run validates; else say which part does not."""
-    common = _common(study)
+    common = _common(study, base, smoke)
     try:
         load_case_file(str(base), smoke=smoke, overrides=common)
         return
@@ -402,7 +430,7 @@ def plan_study(study: StudyFile, study_path, *, smoke: bool = False) -> Plan:
     (points in order, members within a point)."""
     base = _base_path(study, Path(study_path).resolve().parent)
     _check_common(study, base, smoke)
-    common, pts = _common(study), points(study)
+    common, pts = _common(study, base, smoke), points(study)
     folders: dict = {}
     plan = Plan(base=base, points=pts, si=[], runs=[])
     for p, values in enumerate(pts):
