@@ -33,10 +33,11 @@ signal x(t) with final value x_f (its mean over the final window) has
 settled once |x - x_f| stays within the band
 ``max(BAND_FRACTION * max_t |x - x_f|, NOISE_FACTOR * std(x in the final window))``
 (5 % of its largest excursion, as the 5 % settling time of control theory,
-but never narrower than 3 standard deviations of the final window); the
-settling time is the last exit from the band, interpolated linearly between
-samples.  A signal whose last exit lies inside the final window has not
-settled: ``None`` with a note.
+but never narrower than 3 standard deviations of the final window about its
+straight-line trend); the settling time is the last exit from the band,
+interpolated linearly between samples.  A signal whose last exit lies inside
+the final window, or whose trend moves it by more than the band's half-width
+across the final window, has not settled: ``None`` with a note.
 
 A ball's x(t) and y(t) oscillate with its orbit and z(t) changes with the
 azimuth (load zone, slot) even once it is steady, so the rule is applied to
@@ -160,7 +161,14 @@ def settling_time(t, x, i_final: int, fraction: float = BAND_FRACTION, noise: fl
     t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
     final = x[i_final:]
     dev = np.abs(x - final.mean())
-    half = max(fraction * float(dev.max()), noise * float(final.std()))
+    # the final window's spread about its straight-line trend (a drift is not noise)
+    slope, icpt = np.polyfit(t[i_final:] - t[i_final], final, 1) if final.size > 2 else (0.0, final.mean())
+    spread = final - (icpt + slope * (t[i_final:] - t[i_final]))
+    half = max(fraction * float(dev.max()), noise * float(spread.std()))
+    drift = abs(float(slope)) * float(t[-1] - t[i_final])
+    if drift > half:
+        return None, half, (f"not settled: drifts by {drift:.3g} over the final window (from {t[i_final]:.4g} s), "
+                            f"more than its band +-{half:.3g}; run longer")
     outside = np.flatnonzero(dev > half)
     if half == 0.0 or outside.size == 0:
         return float(t[0]), half, ""
