@@ -31,22 +31,28 @@ Settling rule (Fig. 3)
 The *final window* is the last ``FINAL_FRACTION`` (25 %) of the record.  A
 signal x(t) with final value x_f (its mean over the final window) has
 settled once |x - x_f| stays within the band
-``max(BAND_FRACTION * max_t |x - x_f|, NOISE_FACTOR * std(x in the final window))``
+``max(BAND_FRACTION * max_t |x - x_f|, FINAL_MARGIN * max |x - x_f| in the final window)``
 (5 % of its largest excursion, as the 5 % settling time of control theory,
-but never narrower than 3 standard deviations of the final window about its
-straight-line trend); the settling time is the last exit from the band,
-interpolated linearly between samples.  A signal whose last exit lies inside
-the final window, or whose trend moves it by more than the band's half-width
-across the final window, has not settled: ``None`` with a note.
+but never narrower than the final window's own largest deviation: the ball
+keeps being kicked by collisions and the slot in its stable stage, and the
+stable stage is what its final window does, so the settling time is when it
+stops moving more than that for good); the settling time is the last exit
+from the band, interpolated linearly between samples.  A signal whose
+straight-line trend over the final window moves it by more than the band's
+half-width has not reached a stable stage: ``None`` with a note.
 
 A ball's x(t) and y(t) oscillate with its orbit and z(t) changes with the
 azimuth (load zone, slot) even once it is steady, so the rule is applied to
-*residuals*: each of the ball's position and velocity components minus the
-steady pattern at its current azimuth, the median over every ball in the
-final window in ``AZIMUTH_BINS`` azimuth bins (every ball of the train follows
-the same pattern once steady; 14 balls cover the ring within a few
-milliseconds).  Direction d settles when both its position and its velocity
-residual have settled (the later of the two).
+*residuals*: the ball's co-rotating radial position r, axial position z and
+velocities (radial, tangential, axial) minus the steady pattern at its
+current azimuth, the median over every ball in the final window in
+``AZIMUTH_BINS`` azimuth bins (every ball of the train follows the same
+pattern once steady; 14 balls cover the ring within a few milliseconds).
+The radial and tangential residuals are turned into x and y at the ball's
+azimuth (e_x = e_r cos psi, e_vx = e_vr cos psi - e_vt sin psi, ...).
+Direction d settles when both its position and its velocity residual have
+settled (the later of the two).  The orbital speed's residual gets its own
+settling time.
 
 Zones (Fig. 4)
 --------------
@@ -76,7 +82,7 @@ log = logging.getLogger(__name__)
 
 FINAL_FRACTION = 0.25
 BAND_FRACTION = 0.05
-NOISE_FACTOR = 3.0
+FINAL_MARGIN = 1.0
 AZIMUTH_BINS = 72
 SPINUP_TOLERANCE = 0.01
 SURGE_THRESHOLD = 0.03
@@ -125,6 +131,12 @@ class BallMotion:
         return np.hypot(self.position[:, 0], self.position[:, 1])
 
     @property
+    def tangential_velocity(self) -> np.ndarray:
+        """Velocity along the orbit (counter-clockwise) [m/s]."""
+        p, v = self.position, self.velocity
+        return (p[:, 0] * v[:, 1] - p[:, 1] * v[:, 0]) / self.radius
+
+    @property
     def radial_velocity(self) -> np.ndarray:
         """d(radius)/dt [m/s]."""
         p, v = self.position, self.velocity
@@ -155,16 +167,17 @@ def final_start(t, fraction: float = FINAL_FRACTION) -> int:
     return int(np.searchsorted(t, t[-1] - fraction * (t[-1] - t[0])))
 
 
-def settling_time(t, x, i_final: int, fraction: float = BAND_FRACTION, noise: float = NOISE_FACTOR):
+def settling_time(t, x, i_final: int, fraction: float = BAND_FRACTION, margin: float = FINAL_MARGIN,
+                  floor: float = 0.0):
     """(settling time [s] or None, band half-width, note) of a signal by the rule of the module
-    docstring: the last exit from the band around the final-window mean, interpolated."""
+    docstring: the last exit from the band around the final-window mean, interpolated.  ``floor``: the
+    smallest half-width (round-off of a residual that is zero in exact arithmetic)."""
     t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
     final = x[i_final:]
     dev = np.abs(x - final.mean())
-    # the final window's spread about its straight-line trend (a drift is not noise)
-    slope, icpt = np.polyfit(t[i_final:] - t[i_final], final, 1) if final.size > 2 else (0.0, final.mean())
-    spread = final - (icpt + slope * (t[i_final:] - t[i_final]))
-    half = max(fraction * float(dev.max()), noise * float(spread.std()))
+    # the final window's straight-line trend: a drift across it is not a stable stage
+    slope = np.polyfit(t[i_final:] - t[i_final], final, 1)[0] if final.size > 2 else 0.0
+    half = max(fraction * float(dev.max()), margin * float(dev[i_final:].max()), floor)
     drift = abs(float(slope)) * float(t[-1] - t[i_final])
     if drift > half:
         return None, half, (f"not settled: drifts by {drift:.3g} over the final window (from {t[i_final]:.4g} s), "
@@ -226,23 +239,33 @@ def settling_times(t, series, ball: int, scenario: str = "drop") -> dict:
     azimuth = np.stack([m.azimuth for m in motions], axis=1)
     out = {}
 
-    def settle(key, values):
-        time_, _, note = settling_time(t, steady_residuals(azimuth, values, i_final)[:, ball], i_final)
-        return time_, note
+    def residual(values):
+        return steady_residuals(azimuth, np.stack(values, axis=1), i_final)[:, ball]
 
-    for i, axis in enumerate("xyz"):
+    # residuals in the co-rotating frame (radial, tangential, axial), which change slowly with the azimuth,
+    # then turned into x and y at the ball's azimuth (binning x itself would leave R 2 pi/bins of spread)
+    e = {"r": residual([m.radius for m in motions]), "z": residual([m.position[:, 2] for m in motions]),
+         "vr": residual([m.radial_velocity for m in motions]), "vz": residual([m.velocity[:, 2] for m in motions]),
+         "vt": residual([m.tangential_velocity for m in motions])}
+    c, s_ = np.cos(motions[ball].azimuth), np.sin(motions[ball].azimuth)
+    # round-off floors: 1e-12 of the orbit's radius and speed
+    length = 1e-12 * float(np.max(motions[ball].radius))
+    speed = 1e-12 * float(np.max(np.abs(motions[ball].tangential_velocity)))
+    pairs = {"x": (e["r"] * c, e["vr"] * c - e["vt"] * s_), "y": (e["r"] * s_, e["vr"] * s_ + e["vt"] * c),
+             "z": (e["z"], e["vz"])}
+    for axis, signals in pairs.items():
         key = f"Settling time, ball {ball} {axis} [s]"
-        pos = np.stack([m.position[:, i] for m in motions], axis=1)
-        if np.ptp(pos) == 0.0:
+        if np.ptp(np.stack([m.position[:, "xyz".index(axis)] for m in motions])) == 0.0:
             out[key], out[key[:-4] + ", note"] = None, "not computed: the coordinate does not move (planar model)"
             continue
-        results = [settle(key, pos), settle(key, np.stack([m.velocity[:, i] for m in motions], axis=1))]
-        notes = [n for _, n in results if n]
-        out[key] = None if notes else max(r for r, _ in results)
+        results = [settling_time(t, x, i_final, floor=f) for x, f in zip(signals, (length, speed))]
+        notes = [n for _, _, n in results if n]
+        out[key] = None if notes else max(r for r, _, _ in results)
         if notes:
             out[key[:-4] + ", note"] = notes[0]
     key = f"Settling time, ball {ball} orbital speed [s]"
-    out[key], note = settle(key, np.stack([m.orbital_speed for m in motions], axis=1))
+    out[key], _, note = settling_time(t, residual([m.orbital_speed for m in motions]), i_final,
+                                      floor=1e-12 * float(np.max(np.abs(motions[ball].orbital_speed))))
     if note:
         out[key[:-4] + ", note"] = note
     key = "Inner ring spin-up time [s]"
