@@ -905,8 +905,11 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
         from dynamics.spectra import amplitude_spectrum
 
         f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
-        # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz)
-        f_max = min(f[-1], paper_b_figures.spectrum_limit(freqs) or f[-1])
+        # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
+        # and the vibration band of the summary (shaded)
+        band = case.analysis.vibration_band
+        f_max = min(f[-1], max(paper_b_figures.spectrum_limit(freqs) or f[-1], band[1]))
+        ax.axvspan(band[0] / 1e3, min(band[1], f_max) / 1e3, color="0.9", lw=0, label="analysis.vibration_band")
         shown = f <= f_max
         ax.semilogy(f[shown] / 1e3, np.maximum(amp[shown], 1e-12), lw=0.7)
         for k, (name, value) in enumerate(freqs.items()):

@@ -90,6 +90,7 @@ SURGE_MIN_DURATION = 1e-4
 #: the bearing lines that set the spectrum's axis (their first harmonics 2 f included)
 SPECTRUM_LINES = ("Shaft [Hz]", "Ball train (cage) [Hz]", "Ball spin [Hz]", "Ball defect (2 x spin) [Hz]",
                   "BPFO [Hz]", "BPFI [Hz]")
+MAX_HARMONIC = 5
 PNG_FILES = ("angular_displacement.png", "collision_map.png", "poincare.png")
 
 
@@ -453,12 +454,13 @@ def dominant_frequency(t, signal, band):
 
 
 def nearest_line(frequency: float, freqs: dict) -> str:
-    """The bearing line harmonic n x f nearest to ``frequency``, e.g. "3 x BPFO (+1.2 %)"."""
+    """The bearing line harmonic n x f (n <= ``MAX_HARMONIC``: a high harmonic of the cage frequency
+    lies near anything) nearest to ``frequency``, e.g. "3 x BPFO (+1.2 %)"."""
     best = None
     for name in SPECTRUM_LINES:
         f0 = freqs.get(name, 0.0)
         if f0 > 0:
-            n = max(1, round(frequency / f0))
+            n = min(MAX_HARMONIC, max(1, round(frequency / f0)))
             dev = frequency / (n * f0) - 1.0
             if best is None or abs(dev) < abs(best[2]):
                 best = (n, name, dev)
