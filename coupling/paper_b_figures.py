@@ -727,11 +727,12 @@ def compare_runs(run_dirs, out_png) -> Path:
         ref_p, ref_v = ideal_orbit(run)
         for i, axis in enumerate("xyz"):
             ax = fig.add_subplot(grid[i, c])
-            ax.plot(m.position[:, i] * 1e3, m.velocity[:, i], lw=0.4, color="C0", label="model")
-            ax.plot(ref_p[:, i] * 1e3, ref_v[:, i], "--", lw=1.0, color="C3", label="ideal state")
+            scale, unit = (1e6, "um") if axis == "z" else (1e3, "mm")
+            ax.plot(m.position[:, i] * scale, m.velocity[:, i], lw=0.4, color="C0", label="model")
+            ax.plot(ref_p[:, i] * scale, ref_v[:, i], "--", lw=1.0, color="C3", label="ideal state")
             if axis == "z":
                 ax.plot([0], [0], "o", color="C3", ms=4)
-            ax.set_xlabel(f"{axis} [mm]")
+            ax.set_xlabel(f"{axis} [{unit}]")
             ax.set_ylabel(f"d{axis}/dt [m/s]")
             if i == 0:
                 ax.set_title(f"{run.label}, ball {run.ball}", fontsize=10)
