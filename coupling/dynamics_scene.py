@@ -54,7 +54,8 @@ log = logging.getLogger(__name__)
 
 FIELD_FILES = (("timeseries.npz", "timeseries"), ("collisions.csv", "timeseries"), ("bearing.pvd", "pvd"),
                ("trajectories.png", "png"), ("collision_needles.png", "png"), ("phase_portraits.png", "png"),
-               ("spectrum.png", "png"))
+               ("spectrum.png", "png"), ("angular_displacement.png", "png"), ("collision_map.png", "png"),
+               ("poincare.png", "png"))
 
 Force = Q("force", ge=0)
 PositiveTime = Q("time", gt=0)
@@ -223,6 +224,15 @@ class AnalysisTable(_Model):
     transient: Q("time", ge=0) = 0.0
     frames: PositiveInt = 100
     collision_frames: Annotated[int, Field(strict=True, ge=0)] = 50  # extra frames at the strongest collisions
+    # band of the dominant inner-ring acceleration frequency in the summary (paper B, Fig. 11: 950-1,000 Hz)
+    vibration_band: Annotated[list[Q("frequency", ge=0)], Field(min_length=2, max_length=2)] = Field(
+        default_factory=lambda: [500.0, 1500.0])
+
+    @model_validator(mode="after")
+    def _band(self):
+        if not self.vibration_band[0] < self.vibration_band[1]:
+            raise rule("analysis.vibration_band", self.vibration_band, "must be [low, high] with low < high")
+        return self
 
 
 class OutputTable(_Model):
@@ -699,6 +709,11 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
     freqs = bearing_frequencies(ring_hz, model, {"Collision rate [Hz]": n_in_window / window if window else 0.0})
     summary["Mean inner ring speed in the analysed window [rpm]"] = ring_hz * 60.0
     summary.update(freqs)
+    # paper B's figures 3-5 and 11: settling and spin-up times, zones, collisions by quadrant, vibration band
+    from . import paper_b_figures
+
+    summary.update(paper_b_figures.summary_entries(case, t, paper_b_figures.run_columns(model, Y, diag, ring),
+                                                   events, freqs))
 
     summary = outputs.run_summary(case, name, smoke, summary, t0, t_build)
     files = []
@@ -844,6 +859,8 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
 
     from dynamics.cageless import D_PSIDOT
 
+    from . import paper_b_figures
+
     figs = {}
     j = case.analysis.ball
     ms = t * 1e3
@@ -888,19 +905,24 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
         from dynamics.spectra import amplitude_spectrum
 
         f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
-        ax.semilogy(f / 1e3, np.maximum(amp, 1e-12), lw=0.7)
+        # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
+        # and the vibration band of the summary (shaded)
+        band = case.analysis.vibration_band
+        f_max = min(f[-1], max(paper_b_figures.spectrum_limit(freqs) or f[-1], band[1]))
+        ax.axvspan(band[0] / 1e3, min(band[1], f_max) / 1e3, color="0.9", lw=0, label="analysis.vibration_band")
+        shown = f <= f_max
+        ax.semilogy(f[shown] / 1e3, np.maximum(amp[shown], 1e-12), lw=0.7)
         for k, (name, value) in enumerate(freqs.items()):
-            if 0 < value < f[-1]:
+            if 0 < value < f_max:
                 ax.axvline(value / 1e3, color=f"C{k + 1}", lw=0.8, ls="--", label=f"{name.replace(' [Hz]', '')} {value:.0f} Hz")
-        marked = [v for v in freqs.values() if v > 0]
-        if marked:
-            ax.set_xlim(0.0, min(f[-1], 4.0 * max(marked)) / 1e3)
+        ax.set_xlim(0.0, f_max / 1e3)
         ax.legend(fontsize=7)
     ax.set_xlabel("frequency [kHz]")
     ax.set_ylabel("inner ring y acceleration [m/s^2]")
     ax.set_title("inner-ring acceleration spectrum")
     fig.tight_layout()
     figs["spectrum.png"] = fig
+    figs.update(paper_b_figures.figures(case, t, paper_b_figures.run_columns(setup.model, Y, diag, ring), events))
     return figs
 
 

@@ -432,7 +432,7 @@ def check_cageless_6206_steady(s, c):
 
 check_cageless_6206_10krpm = check_cageless_6206_15krpm = _check_cageless_drop
 check_cageless_6206_20krpm = check_cageless_6206_25krpm = _check_cageless_drop
-check_cageless_6206_10krpm_short = _check_cageless_drop
+check_cageless_6206_10krpm_short = check_cageless_6206_3krpm = _check_cageless_drop
 
 
 CHECKS = {name[len("check_"):]: f for name, f in globals().items() if name.startswith("check_")}
