@@ -21,12 +21,23 @@ a terminal) and writes
 - PNG plots: ball trajectories (x, y, z), collision-force needles by
   direction (paper B, figure 5), phase portraits, inner-ring acceleration
   spectrum with the bearing frequencies marked;
-- ``summary.json``: Lyapunov exponents (largest, per direction, from each
-  coordinate's time series by Rosenstein's method, in 1/s and per shaft
-  revolution; the whole system's by Benettin's), each with its uncertainty
-  and a verdict (positive beyond two uncertainties or not), collision counts
-  and largest forces by direction, ball and
-  inner-ring slip, integrator statistics, timings.
+- ``summary.json``: Lyapunov exponents: per direction of ball
+  ``analysis.ball`` (inertial x, y, z and co-rotating radial, tangential,
+  axial) from each coordinate's time series by Wolf et al.'s
+  fixed-evolution-time algorithm in bits/s and 1/s, and for x, y, z by
+  Rosenstein's in 1/s and per shaft revolution; the whole system's by
+  Benettin's (Gram-Schmidt) in 1/s; each with its uncertainty and a verdict
+  ("positive" beyond two uncertainties, "not positive", or for Wolf's "not
+  resolved"), after the detected end of the start-up transient; collision
+  counts and largest forces by direction, ball and inner-ring slip,
+  integrator statistics, timings.
+
+Paper B's Table 3 ("maximum Lyapunov exponent" in X, Y, Z, no units) was
+computed by "the orthogonalization method" citing Wolf et al. with a log2
+formula; the paper does not say which coordinates or how a tangent-space
+method gives one exponent per coordinate, so the summary gives the
+time-series reading (Wolf's algorithm, bits/s, see
+:func:`_lyapunov_per_direction`) beside the whole-system spectrum.
 
 Everything is computed before anything is written; the files are staged and
 moved into place together (:func:`coupling.outputs.staged`).
@@ -216,7 +227,7 @@ class IntegratorTable(_Model):
 
 
 class AnalysisTable(_Model):
-    lyapunov: bool = True  # largest exponent per direction from ball `ball`'s x, y, z series (Rosenstein)
+    lyapunov: bool = True  # largest exponent per direction of ball `ball` (Wolf et al. in bits/s; Rosenstein)
     lyapunov_exponents: Annotated[int, Field(strict=True, ge=0, le=20)] = 3  # whole system, Benettin; 0: off
     ball: Annotated[int, Field(strict=True, ge=0)] = 0
     spectrum: bool = True
@@ -486,47 +497,219 @@ def ball_centres(setup: DynamicsSetup, Y: np.ndarray) -> np.ndarray:
     return out
 
 
-LYAPUNOV_SAMPLES = 8000
+LYAPUNOV_SAMPLES = 8000  # Rosenstein's neighbour search and divergence average: decimate to at most this
+WOLF_SAMPLES = 50_000  # Wolf's algorithm: one ball query per evolution step, so more samples are cheap
+#: embedding dimension of the per-direction exponents (both methods)
+LYAPUNOV_DIM = 6
+#: spin-up ends when the inner ring speed is within this fraction of the rotor speed (and stays there)
+SPIN_UP_TOLERANCE = 0.01
+#: width [s] of the bins of the collision rate in :func:`transient_end`
+COLLISION_BIN = 2e-3
 
 
-def _lyapunov_per_direction(case, t, centres, shaft_speed) -> dict:
-    """Largest exponent of ball ``analysis.ball``'s x, y, z time series (Rosenstein).
+def transient_end(t, ring_speed, rotor_speed=None, collision_times=(), *, tolerance=SPIN_UP_TOLERANCE,
+                  bin_width=COLLISION_BIN) -> tuple[float, str]:
+    """Detected end [s] of the start-up transient of a run, and the reason, as ``(t_end, reason)``.
 
-    A direction whose record after the transient is too short for the method
-    (the delay, the first zero of the autocorrelation, and the mean period of
-    the x and y motion follow the ball-train orbit, about 16 ms at 10,000 rpm,
-    so a record needs several of those) or that does not move gets ``None``
-    and a ``"..., note"`` entry saying why; that is an expected outcome of a
-    short run, logged at INFO, not a warning.  A computed exponent comes with
-    ``"... uncertainty [1/s]"`` and ``"... verdict"`` ("positive" beyond two
-    uncertainties, or "not positive"; :class:`dynamics.lyapunov.RosensteinResult`)."""
+    (1) Spin-up (a drop, ``rotor_speed`` given): the first time after which the inner ring speed
+    stays within ``tolerance`` (1 %) of the rotor speed to the end of the record; with no rotor
+    (steady or free scenario) the record's start.  A ring never within the tolerance at the end
+    gives the record's end (no steady part).  (2) Collisions: ``collision_times`` [s] counted in
+    bins of ``bin_width`` (2 ms) from the spin-up end; the transient ends at the start of the first
+    bin whose count is at most the median count of that bin and all later ones (the rate has dropped
+    to its later median).  ``t_end`` is the later of (1) and (2)."""
+    t = np.asarray(t, dtype=float)
+    if rotor_speed is None:
+        t_spin, why = float(t[0]), "no rotor to catch up with (inner ring driven or free)"
+    else:
+        off = np.abs(np.asarray(ring_speed) - np.asarray(rotor_speed)) > tolerance * np.abs(rotor_speed)
+        if off[-1]:
+            return float(t[-1]), (f"the inner ring is not within {tolerance:.0%} of the rotor speed at the end "
+                                  f"of the record ({t[-1]:.4g} s): still spinning up")
+        last_off = np.flatnonzero(off)
+        t_spin = float(t[last_off[-1] + 1]) if last_off.size else float(t[0])
+        why = f"inner ring within {tolerance:.0%} of the rotor speed from {t_spin:.4g} s"
+    times = np.asarray(collision_times, dtype=float)
+    edges = np.arange(t_spin, t[-1] + 1e-12, bin_width)
+    if edges.size < 3:
+        return t_spin, f"{why}; record too short after it for {bin_width:g} s bins of the collision rate"
+    counts = np.histogram(times, bins=edges)[0]
+    later_median = np.array([np.median(counts[k:]) for k in range(counts.size)])
+    k = int(np.argmax(counts <= later_median))
+    t_coll = float(edges[k])
+    return max(t_spin, t_coll), (f"{why}; collision rate down to the median of the later record "
+                                 f"({later_median[k] / bin_width:.4g} 1/s, {bin_width:g} s bins) from {t_coll:.4g} s")
+
+
+def co_rotating(t, xyz) -> tuple[np.ndarray, np.ndarray, str]:
+    """A ball centre's track ``xyz`` (m, 3) [m] in co-rotating coordinates: ``(t_kept, coords, reason)``
+    with coords (k, 3) = (radial r - mean r, tangential r_mean (psi - psi_mean), axial z) [m].
+
+    r = sqrt(x^2 + y^2) and psi = unwrapped atan2(y, x) are the ball's distance from the bearing axis
+    and its orbital angle; the mean train angle psi_mean is psi's centred moving average over one
+    revolution of the ball about the axis (2 pi over its mean orbital speed over the record), so a
+    ball orbiting at constant speed on a circle has zero co-rotating radial and tangential motion, and
+    motion at the orbital frequency itself (an eccentric orbit) averages out of psi_mean.  Half a
+    revolution at each end has no centred average and is dropped.  ``reason`` is "" or why no
+    coordinates (a record shorter than two revolutions, or no orbital motion)."""
+    t = np.asarray(t, dtype=float)
+    x, y, z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+    r = np.hypot(x, y)
+    psi = np.unwrap(np.arctan2(y, x))
+    span = float(t[-1] - t[0])
+    rate = (psi[-1] - psi[0]) / span if span > 0 else 0.0
+    if rate == 0.0:
+        return t[:0], np.zeros((0, 3)), "the ball does not orbit"
+    dt = float(t[1] - t[0])
+    half = int(round(math.pi / abs(rate) / dt))
+    if t.size < 2 * (2 * half + 1):
+        return t[:0], np.zeros((0, 3)), (f"the record ({span:.4g} s) is shorter than two revolutions of the ball "
+                                         f"about the axis ({2 * math.pi / abs(rate):.4g} s each)")
+    w = 2 * half + 1
+    c = np.concatenate([[0.0], np.cumsum(psi - psi[0])])
+    psi_mean = (c[w:] - c[:-w]) / w + psi[0]
+    keep = slice(half, t.size - half)
+    r_mean = float(np.mean(r[keep]))
+    coords = np.stack([r[keep] - r_mean, r_mean * (psi[keep] - psi_mean), z[keep]], axis=1)
+    return t[keep], coords, ""
+
+
+#: the co-rotating directions of :func:`co_rotating`
+CO_ROTATING = ("radial", "tangential", "axial")
+
+
+def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, rotor_speed=None,
+                            collision_times=(), scale_min=0.0) -> dict:
+    """Largest Lyapunov exponent per direction of ball ``analysis.ball``, from each coordinate's time
+    series: inertial x, y, z and co-rotating radial, tangential, axial (:func:`co_rotating`).
+
+    Paper B's Table 3 gives a "maximum Lyapunov exponent" for X, Y and Z, computed by "the
+    orthogonalization method" after Wolf et al., with log2 (so bits per unit time) and no units;
+    it does not say which coordinates or how an exponent per coordinate came out of a tangent-space
+    method.  Here each coordinate's series gets:
+
+    - Wolf et al.'s fixed-evolution-time exponent, "the paper's way" (log2, bits/s; also 1/s):
+      ``"Wolf exponent, ball j <dir> [bits/s]"`` with ``[1/s]``, ``uncertainty [bits/s]`` (batch
+      means over 10 blocks of evolution steps), ``convergence [-]`` (relative change of the running
+      estimate over the last half), ``replacements [-]``, ``poor-angle fraction [-]`` and
+      ``verdict``: "not resolved" when the uncertainty exceeds half the exponent or the running
+      estimate changed by more than 20 % over the last half (:attr:`dynamics.lyapunov.WolfResult.resolved`),
+      else "positive" (beyond two uncertainties) or "not positive".  Settings: embedding dimension
+      ``LYAPUNOV_DIM``, delay at the first zero of the autocorrelation, evolution time = the delay,
+      scale_max 0.1 of the coordinate's range, scale_min the larger of 1e-4 of the range and
+      ``scale_min`` (the integration's resolution of a position), at most ``WOLF_SAMPLES`` samples.
+    - Rosenstein's exponent (1/s, the inertial directions only, as before):
+      ``"Largest Lyapunov exponent, ball j <dir> [1/s]"`` etc.
+
+    The record starts at the later of ``analysis.transient`` and the detected end of the transient
+    (:func:`transient_end`, from ``ring_speed``, ``rotor_speed`` and ``collision_times`` when given);
+    both are in the summary.  A direction whose record is too short or that does not move (its range at
+    most 1e-10 of the ball's distance from the axis, or ``scale_min``) gets ``None`` and a
+    ``"..., note"`` saying why (an expected outcome of a short run, logged at INFO)."""
+    j = case.analysis.ball
+    given = float(case.analysis.transient)
+    out = {"Lyapunov window start, given (analysis.transient) [s]": given}
+    if ring_speed is not None:
+        detected, reason = transient_end(t, ring_speed, rotor_speed, collision_times)
+        out["Lyapunov window start, detected [s]"] = detected
+        out["Lyapunov window start, detected, reason"] = reason
+        given = max(given, detected)
+    out["Lyapunov window start [s]"] = given
+    keep = np.flatnonzero(t >= given)
+    if keep.size < 3:
+        note = (f"not computed: no record after the window start {given:.4g} s"
+                + (f" ({out['Lyapunov window start, detected, reason']})" if ring_speed is not None else ""))
+        for name in ("x", "y", "z") + CO_ROTATING:
+            out[f"Wolf exponent, ball {j} {name} [bits/s]"] = None
+            out[f"Wolf exponent, ball {j} {name}, note"] = note
+        for axis in "xyz":
+            out[f"Largest Lyapunov exponent, ball {j} {axis} [1/s]"] = None
+            out[f"Largest Lyapunov exponent, ball {j} {axis}, note"] = note
+        log.info("Lyapunov exponents of ball %d: %s", j, note)
+        return out
+    out.update(_rosenstein_directions(j, t, keep, centres, shaft_speed))
+    xyz = centres[keep, j, :]
+    series = {axis: (t[keep], xyz[:, i]) for i, axis in enumerate("xyz")}
+    t_co, co, why = co_rotating(t[keep], xyz) if keep.size > 2 else (t[:0], np.zeros((0, 3)), "no samples")
+    for i, name in enumerate(CO_ROTATING):
+        series[name] = (t_co, co[:, i]) if not why else why
+    size = float(np.max(np.abs(xyz))) if xyz.size else 1.0
+    for name, s in series.items():
+        out.update(_wolf_direction(f"Wolf exponent, ball {j} {name}", s, size, scale_min, given))
+    return out
+
+
+def _wolf_direction(key, series, size, scale_min, start) -> dict:
+    """Summary entries of Wolf's exponent of one coordinate (see :func:`_lyapunov_per_direction`)."""
+    from dynamics.errors import DynamicsInputError
+    from dynamics.lyapunov import WOLF_SCALE_MIN, largest_lyapunov_wolf, wolf_shortfall
+
+    out = {f"{key} [bits/s]": None}
+    if isinstance(series, str):
+        out[f"{key}, note"] = f"not computed: {series}"
+        return out
+    tt, x = series
+    if x.size < 3 or np.ptp(x) <= max(1e-10 * size, scale_min):  # round-off of r, psi; below resolution
+        out[f"{key}, note"] = "not computed: the coordinate does not move"
+        return out
+    step = max(1, int(math.ceil(x.size / WOLF_SAMPLES)))
+    x = x[::step]
+    dt = float(tt[1] - tt[0]) * step
+    delay = _delay(x)
+    reason = wolf_shortfall(x, dt, dim=LYAPUNOV_DIM, delay=delay, evolve=delay)
+    if reason:
+        out[f"{key}, note"] = (f"not computed: the record after {start:.4g} s ({(x.size - 1) * dt:.4g} s) has "
+                               f"{reason}; run longer")
+        log.info("%s: %s", key, out[f"{key}, note"])
+        return out
+    try:
+        res = largest_lyapunov_wolf(x, dt, dim=LYAPUNOV_DIM, delay=delay, evolve=delay,
+                                    scale_min=max(WOLF_SCALE_MIN * float(np.ptp(x)), scale_min))
+    except DynamicsInputError as exc:
+        out[f"{key}, note"] = f"not computed: {exc}"
+        log.info("%s not computed: %s", key, exc)
+        return out
+    out[f"{key} [bits/s]"] = res.exponent_bits
+    out[f"{key} [1/s]"] = res.exponent
+    out[f"{key} uncertainty [bits/s]"] = res.uncertainty_bits
+    out[f"{key} convergence [-]"] = res.convergence if np.isfinite(res.convergence) else None
+    out[f"{key} replacements [-]"] = res.replacements
+    out[f"{key} poor-angle fraction [-]"] = (res.poor_angle_fraction if np.isfinite(res.poor_angle_fraction)
+                                             else None)
+    out[f"{key} settings"] = (f"dim {LYAPUNOV_DIM}, delay = evolve = {delay} samples of {dt:.4g} s, "
+                              f"{res.steps} steps, scales {res.settings['scale_min']:.3g}-"
+                              f"{res.settings['scale_max']:.3g} m")
+    out[f"{key} verdict"] = res.verdict if res.resolved else "not resolved"
+    return out
+
+
+def _rosenstein_directions(j, t, keep, centres, shaft_speed) -> dict:
+    """Rosenstein's largest exponent of ball ``j``'s inertial x, y, z after the window start."""
     from dynamics.errors import DynamicsInputError
     from dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution, rosenstein_shortfall
 
     out = {}
-    keep = np.flatnonzero(t >= case.analysis.transient)
     # Rosenstein's neighbour search is O(n^2): decimate to at most LYAPUNOV_SAMPLES samples
     step = max(1, int(math.ceil(keep.size / LYAPUNOV_SAMPLES)))
     keep = keep[::step]
     dt = float(t[1] - t[0]) * step
     out["Lyapunov sample interval [s]"] = dt
-    j = case.analysis.ball
     for i, axis in enumerate("xyz"):
         x = centres[keep, j, i]
         key = f"Largest Lyapunov exponent, ball {j} {axis}"
         out[f"{key} [1/s]"] = None
-        if np.ptp(x) <= 1e-15 * max(1.0, float(np.max(np.abs(x)))):
+        if x.size < 3 or np.ptp(x) <= 1e-15 * max(1.0, float(np.max(np.abs(x)))):
             out[f"{key}, note"] = "not computed: the coordinate does not move"  # planar z
             continue
         delay = _delay(x)
-        reason = rosenstein_shortfall(x, dt, dim=6, delay=delay)
+        reason = rosenstein_shortfall(x, dt, dim=LYAPUNOV_DIM, delay=delay)
         if reason:
-            out[f"{key}, note"] = (f"not computed: the record after analysis.transient "
+            out[f"{key}, note"] = (f"not computed: the record after the window start "
                                    f"({(x.size - 1) * dt:.4g} s) has {reason}; run longer")
             log.info("Lyapunov exponent of ball %d %s: %s", j, axis, out[f"{key}, note"])
             continue
         try:
-            res = largest_lyapunov_rosenstein(x, dt, dim=6, delay=delay)
+            res = largest_lyapunov_rosenstein(x, dt, dim=LYAPUNOV_DIM, delay=delay)
         except DynamicsInputError as exc:  # no divergence rise to fit: say so in the summary, do not fail
             out[f"{key}, note"] = f"not computed: {exc}"
             log.warning("Lyapunov exponent of ball %d %s not computed: %s", j, axis, exc)
@@ -697,7 +880,12 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
             log.warning("the film maps were queried outside their axes %d times and clamped there; "
                         "widen the maps' axes for this scene", int(counter[0]))
     if case.analysis.lyapunov:
-        summary.update(_lyapunov_per_direction(case, t, centres, shaft))
+        drop = case.operating.scenario == "drop"
+        summary.update(_lyapunov_per_direction(
+            case, t, centres, shaft, ring_speed=omega_i, rotor_speed=Y[:, 8] if drop else None,
+            collision_times=[e.t_peak for e in events],
+            # a position is resolved to about rtol times its size (the error control of the integrator)
+            scale_min=ig.rtol * float(np.max(np.abs(centres[:, case.analysis.ball, :])))))
     if case.analysis.lyapunov_exponents:
         summary.update(_benettin(case, model, t, Y, shaft))
     # characteristic frequencies at the inner ring's mean speed over the analysed window
@@ -730,7 +918,9 @@ HEADLINE = ("Simulated time [s]", "Inner ring speed at end [rpm]", "Rotor speed 
 def headline(summary: dict) -> list[str]:
     """What ``lubedyn run`` prints for a dynamics run."""
     lines = []
-    for key in HEADLINE + tuple(k for k in summary if "Lyapunov exponent" in k and k.endswith("[1/s]")):
+    exponents = tuple(k for k in summary if ("Lyapunov exponent" in k and k.endswith("[1/s]"))
+                      or (k.startswith("Wolf exponent") and (k.endswith("[bits/s]") or k.endswith(" verdict"))))
+    for key in HEADLINE + exponents:
         value = summary.get(key)
         if value is not None:
             lines.append(f"{key:<52} {value:.6g}" if isinstance(value, float) else f"{key:<52} {value}")

@@ -14,7 +14,7 @@ module          responsibility
 ``interp``      map interpolation kernels (multilinear, monotone cubic, log
                 axes; clamp-and-count or NaN outside the axes)
 ``lyapunov``    Lyapunov spectrum (Benettin), largest exponent of a time
-                series (Rosenstein)
+                series (Wolf et al. in bits/s, Rosenstein)
 ``spectra``     amplitude spectra, bearing characteristic frequencies
 ``analysis``    collision events and slip from sampled contact forces
 ``errors``      ``DynamicsInputError``, ``IntegrationError``

@@ -63,19 +63,111 @@ def test_the_main_job_runs_the_film_map_and_stays_inside_its_axes(capsys, tmp_pa
 
 
 def test_main_job_smoke_states_why_a_lyapunov_exponent_is_missing_without_a_warning(capsys, tmp_path, caplog):
-    """The main job's [smoke] run (1 ms, 501 samples) is far too short for Rosenstein's method on
-    ball 0 (delay ~170 samples x 5 = ~850 > 501): the summary says so per direction, and nothing is
-    logged at WARNING (it used to warn on every run of the main job, smoke or not)."""
+    """The main job's [smoke] run (1 ms, 501 samples) ends while the inner ring is still spinning up
+    (detected transient end = the record's end), so no direction has a record: every Wolf and
+    Rosenstein entry is None with a note saying so and why, and nothing is logged at WARNING."""
     caplog.set_level("INFO")
     code, _, err = run(capsys, "run", SHORT, "--smoke", "--set", "output.write=[]", "--out", tmp_path)
     assert code == 0, err
     assert "WARNING" not in err and not [r for r in caplog.records if r.levelname == "WARNING"]
     s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["Lyapunov window start, given (analysis.transient) [s]"] == 0.0
+    assert s["Lyapunov window start, detected [s]"] == pytest.approx(0.001)
+    assert "not within 1% of the rotor speed at the end" in s["Lyapunov window start, detected, reason"]
+    for name in ("x", "y", "z", "radial", "tangential", "axial"):
+        assert s[f"Wolf exponent, ball 0 {name} [bits/s]"] is None
+        note = s[f"Wolf exponent, ball 0 {name}, note"]
+        assert note.startswith("not computed: no record after the window start 0.001 s (the inner ring"), note
     for axis in "xyz":
         assert s[f"Largest Lyapunov exponent, ball 0 {axis} [1/s]"] is None
-        note = s[f"Largest Lyapunov exponent, ball 0 {axis}, note"]
-        assert note.startswith("not computed: the record after analysis.transient (0.001 s) has 501 samples: too short")
+        assert s[f"Largest Lyapunov exponent, ball 0 {axis}, note"].startswith("not computed: no record after")
     assert s["Lyapunov exponent 1, whole system (Benettin) [1/s]"] > 0.0  # the whole-system exponents still come
+
+
+def test_co_rotating_coordinates_of_a_circular_orbit_are_zero():
+    """A ball on a circle at constant orbital speed has no co-rotating radial or tangential motion (to
+    round-off); a radial oscillation and an along-orbit oscillation show up as themselves; z passes
+    through; half a revolution is dropped at each end; a record under two revolutions is refused."""
+    import numpy as np
+
+    from coupling.dynamics_scene import co_rotating
+
+    t = np.arange(20001) * 5e-6  # 0.1 s, 411 rad/s: about 6.5 revolutions
+    rate, R = 411.0, 0.023
+    psi = 0.3 + rate * t
+    xyz = np.stack([R * np.cos(psi), R * np.sin(psi), 1e-6 * np.sin(2 * np.pi * 900 * t)], axis=1)
+    tk, co, why = co_rotating(t, xyz)
+    half = int(round(np.pi / rate / 5e-6))
+    assert why == "" and tk.size == t.size - 2 * half and tk[0] == t[half]
+    assert np.max(np.abs(co[:, :2])) < 1e-12
+    assert np.array_equal(co[:, 2], xyz[half:t.size - half, 2])
+    # 2 um radial and 5 urad tangential oscillations at 1.3 kHz (not a multiple of the orbital frequency)
+    dr = 2e-6 * np.sin(2 * np.pi * 1300 * t)
+    dpsi = 5e-6 * np.cos(2 * np.pi * 1300 * t)
+    wobbly = np.stack([(R + dr) * np.cos(psi + dpsi), (R + dr) * np.sin(psi + dpsi), xyz[:, 2]], axis=1)
+    _, co, _ = co_rotating(t, wobbly)
+    assert co[:, 0] == pytest.approx(dr[half:-half] - np.mean(dr[half:-half]), abs=2e-8)
+    assert co[:, 1] == pytest.approx(R * dpsi[half:-half], abs=0.05 * R * 5e-6)
+    _, _, why = co_rotating(t[:3000], xyz[:3000])
+    assert why.startswith("the record (0.015 s) is shorter than two revolutions")
+
+
+def test_transient_end_is_spin_up_then_collision_rate():
+    """The ring reaches the rotor speed (within 1 %) at 10 ms and stays; collisions come every 0.1 ms
+    until 16 ms, then every 0.5 ms: the transient ends at the first 2 ms bin from 10 ms whose count is
+    at most the later median, 16 ms.  Without a rotor only the collisions count; a ring still
+    spinning up at the end gives the record's end."""
+    import numpy as np
+
+    from coupling.dynamics_scene import transient_end
+
+    t = np.linspace(0.0, 0.1, 20001)
+    rotor = np.full(t.size, 1000.0)
+    ring = 1000.0 * np.minimum(1.0, t / 0.0101)
+    hits = np.concatenate([np.arange(0.0, 0.016, 1e-4), np.arange(0.016, 0.1, 5e-4)])
+    end, reason = transient_end(t, ring, rotor, hits)
+    assert end == pytest.approx(0.016) and "from 0.01 s" in reason and "from 0.016 s" in reason
+    end, reason = transient_end(t, ring, None, hits)
+    assert end == pytest.approx(0.016) and reason.startswith("no rotor")
+    end, reason = transient_end(t, 0.5 * ring, rotor, hits)
+    assert end == t[-1] and "still spinning up" in reason
+
+
+def test_per_direction_summary_on_a_synthetic_ball():
+    """Ball 0 orbits at constant speed on a circle with Lorenz x (scaled to 5 um) as its axial motion:
+    inertial and co-rotating axial exponents are computed (Wolf: bits/s, 1/s, uncertainty,
+    convergence, replacements, verdict), the co-rotating radial and tangential directions do not
+    move, and Rosenstein's inertial entries stay."""
+    import numpy as np
+
+    from types import SimpleNamespace
+
+    from coupling.dynamics_scene import _lyapunov_per_direction
+    from dynamics import integrators as I
+    from test_lyapunov import LORENZ, lorenz  # tests/ is on sys.path (rootdir conftest, prepend import mode)
+
+    n, dt = 24000, 5e-5  # 1.2 s, 411 rad/s: 78 revolutions
+    t = np.arange(n) * dt
+    y0 = I.integrate(lorenz, [1.0, 1.0, 20.0], [0.0, 20.0], LORENZ, rtol=1e-10, atol=1e-10).y[-1]
+    # Lorenz time scaled by 100 (its 0.01 s sample -> 1e-4 s): lambda = 0.906 x 100 1/s
+    z = I.integrate(lorenz, y0, t * 100.0, LORENZ, rtol=1e-10, atol=1e-10).y[:, 0] * 5e-7
+    psi = 411.0 * t
+    centres = np.zeros((n, 2, 3))
+    centres[:, 0, :] = np.stack([0.023 * np.cos(psi), 0.023 * np.sin(psi), z], axis=1)
+    case = SimpleNamespace(analysis=SimpleNamespace(transient=0.0, ball=0))
+    out = _lyapunov_per_direction(case, t, centres, 1047.0, ring_speed=np.full(n, 1000.0),
+                                  rotor_speed=np.full(n, 1000.0), collision_times=[])
+    assert out["Lyapunov window start [s]"] == 0.0
+    for name in ("z", "axial"):
+        key = f"Wolf exponent, ball 0 {name}"
+        assert out[f"{key} [bits/s]"] > 0.0
+        assert out[f"{key} [1/s]"] == pytest.approx(out[f"{key} [bits/s]"] * np.log(2.0))
+        assert out[f"{key} uncertainty [bits/s]"] > 0.0 and out[f"{key} replacements [-]"] >= 0
+        assert out[f"{key} verdict"] in ("positive", "not positive", "not resolved")
+    for name in ("radial", "tangential"):
+        assert out[f"Wolf exponent, ball 0 {name} [bits/s]"] is None
+        assert out[f"Wolf exponent, ball 0 {name}, note"] == "not computed: the coordinate does not move"
+    assert "Largest Lyapunov exponent, ball 0 z [1/s]" in out
 
 
 def test_rosenstein_shortfall_agrees_with_the_estimator():

@@ -290,3 +290,101 @@ def test_scene_summary_writes_uncertainty_and_verdict_next_to_each_exponent(lore
     assert lam > 2.0 * LORENZ_L1 and abs(lam - LORENZ_L1) < 1.5 * u
     assert abs(out[f"{key} y [1/s]"]) < 1.5 * out[f"{key} y uncertainty [1/s]"]
     assert out[f"{key} z [1/s]"] is None and f"{key} z uncertainty [1/s]" not in out
+
+
+# Wolf et al.'s fixed-evolution-time algorithm ------------------------------------------------------
+# References: Wolf, Swift, Swinney & Vastano, Physica D 16 (1985) 285, Table 1 (bits/s; Henon bits per
+# iteration), confirmed by this module's Benettin spectrum in test_wolf_table_1_values_are_the_flows_own
+WOLF_HENON = 0.603
+WOLF_LORENZ = (16.0, 45.92, 4.0)
+WOLF_LORENZ_L1 = 2.16
+WOLF_ROSSLER = (0.15, 0.20, 10.0)
+WOLF_ROSSLER_L1 = 0.13
+
+
+@njit(cache=True)
+def rossler(t, y, args, dydt):
+    a, b, c = args
+    dydt[0] = -y[1] - y[2]
+    dydt[1] = y[0] + a * y[1]
+    dydt[2] = b + y[2] * (y[0] - c)
+
+
+def _flow_series(rhs, args, y0, dt, n, t_transient):
+    y1 = I.integrate(rhs, y0, [0.0, t_transient], args, rtol=1e-10, atol=1e-10).y[-1]
+    return I.integrate(rhs, y1, np.arange(n) * dt, args, rtol=1e-10, atol=1e-10).y
+
+
+def test_wolf_table_1_values_are_the_flows_own():
+    """The reference values are what the equations give (Benettin, bits = nats / ln 2): Lorenz at
+    Wolf's parameters 2.173 bits/s at T = 300 s, 2.165 at T = 60 s (here, with the kernel
+    test_lorenz_spectrum compiles; 5 %); Henon 0.4192 / ln 2.  Rossler is not rerun here (its kernel
+    would compile for ~5 s): measured 0.1294 bits/s at T = 5000 s and 0.1271 at T = 1500 s."""
+    lor = L.lyapunov_spectrum(lorenz, [1.0, 1.0, 20.0], WOLF_LORENZ, dt=0.005, t_total=60.0, t_orth=0.05,
+                              t_transient=5.0, jvp=lorenz_jvp, n_exponents=1)
+    assert lor.exponents[0] / math.log(2.0) == pytest.approx(WOLF_LORENZ_L1, rel=0.05)
+    assert HENON_L1 / math.log(2.0) == pytest.approx(WOLF_HENON, rel=0.005)
+
+
+def test_wolf_henon():
+    """Henon x, 5,000 iterations, m = 2, evolve 1: measured 0.590-0.607 over 3 initial conditions
+    (0.590-0.622 for 2,000-20,000 samples); Wolf et al. 0.603 bits/iteration; 6 %."""
+    r = L.largest_lyapunov_wolf(_henon_series(5000), 1.0, dim=2, delay=1, evolve=1)
+    assert r.exponent_bits == pytest.approx(WOLF_HENON, rel=0.06)
+    assert r.exponent == pytest.approx(r.exponent_bits * math.log(2.0))
+    assert r.verdict == "positive" and r.resolved
+    assert r.steps == 4998 and r.times[-1] == r.steps and r.running[-1] == r.exponent_bits
+    assert 0 < r.replacements < r.steps and 0.0 <= r.poor_angle_fraction < 0.05
+    assert r.convergence < L.WOLF_CONVERGED and 0.0 < r.uncertainty_bits < 0.02
+
+
+def test_wolf_lorenz():
+    """Lorenz x at Wolf's parameters, 10,000 samples at 0.01 s, m = 3, tau = 0.1 s, evolve 0.15 s,
+    default scales: measured 2.00 +- 0.13 bits/s over 6 initial conditions (1.86-2.21; the settings
+    move it by +-25 %, see the module docstring); Wolf et al. 2.16 bits/s; 20 %."""
+    Y = _flow_series(lorenz, WOLF_LORENZ, [1.0, 1.0, 20.0], 0.01, 10000, 20.0)
+    r = L.largest_lyapunov_wolf(Y[:, 0], 0.01, dim=3, delay=10, evolve=15)
+    assert r.exponent_bits == pytest.approx(WOLF_LORENZ_L1, rel=0.20)
+    assert r.verdict == "positive" and r.resolved
+    assert r.uncertainty == pytest.approx(r.uncertainty_bits * math.log(2.0))
+
+
+def test_wolf_rossler():
+    """Rossler x, 10,000 samples at 0.1 s (about 160 orbits), m = 3, tau = 1.5 s, evolve 2 s: measured
+    0.116-0.148 bits/s over settings and 3 initial conditions; Wolf et al. 0.13 bits/s; 20 %."""
+    Y = _flow_series(rossler, WOLF_ROSSLER, [1.0, 1.0, 0.0], 0.1, 10000, 200.0)
+    r = L.largest_lyapunov_wolf(Y[:, 0], 0.1, dim=3, delay=15, evolve=20)
+    assert r.exponent_bits == pytest.approx(WOLF_ROSSLER_L1, rel=0.20)
+    assert r.verdict == "positive"
+
+
+@pytest.mark.parametrize("n, period", [(2000, 17.3), (2000, 50.0), (5000, 31.7), (10000, 50.0)])
+def test_wolf_sine_is_not_positive(n, period):
+    """A pure sine: the evolved neighbour stays within scale_max, so the log growths telescope to the
+    ratio of the last to the first separation; measured |lambda| <= 2e-4 bits/sample with uncertainty
+    1e-4-5e-4: "not positive", and "not resolved" (uncertainty or running change beyond the rule)."""
+    x = np.sin(2 * np.pi * np.arange(n) / period)
+    delay = int(round(period / 4))
+    r = L.largest_lyapunov_wolf(x, 1.0, dim=3, delay=delay, evolve=delay)
+    assert abs(r.exponent_bits) < 1e-3
+    assert r.verdict == "not positive" and not r.resolved
+
+
+def test_wolf_shortfall_and_bad_input():
+    """Too short a record is one line saying how many samples are needed, the same text as
+    :func:`wolf_shortfall`; bad settings name the key."""
+    x = np.sin(np.arange(300) * 0.37)
+    reason = L.wolf_shortfall(x, 1.0, dim=4, delay=10, evolve=20)
+    need = int(reason.split("needs at least ")[1].split()[0])
+    assert reason.startswith("300 samples: too short for Wolf's method") and need > 300
+    with pytest.raises(DynamicsInputError) as info:
+        L.largest_lyapunov_wolf(x, 1.0, dim=4, delay=10, evolve=20)
+    assert str(info.value) == f"x has {reason}" and "\n" not in str(info.value)
+    longer = np.sin(np.arange(need) * 0.37)
+    assert L.wolf_shortfall(longer, 1.0, dim=4, delay=10, evolve=20) == ""
+    with pytest.raises(DynamicsInputError, match="angle_max"):
+        L.largest_lyapunov_wolf(longer, 1.0, dim=4, delay=10, evolve=20, angle_max=4.0)
+    with pytest.raises(DynamicsInputError, match="scale_min"):
+        L.largest_lyapunov_wolf(longer, 1.0, dim=4, delay=10, evolve=20, scale_min=1.0, scale_max=0.5)
+    with pytest.raises(DynamicsInputError, match="evolve = 0"):
+        L.largest_lyapunov_wolf(longer, 1.0, dim=4, delay=10, evolve=0)
