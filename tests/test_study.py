@@ -180,10 +180,15 @@ def test_resume_reruns_only_what_is_missing_or_half_written(tmp_path, capsys):
     code, stdout, err = run(capsys, "study", path, "--smoke", "--workers", 1, "--out", out)
     assert "3 runs (3 reused, 0 run, 0 failed)" in stdout
     # a changed case (the resolved case differs) reruns everything
-    path.write_text(path.read_text().replace("skip_outputs = true", 'skip_outputs = true\nset = ["mesh.nx=12"]'))
+    path.write_text(path.read_text().replace("skip_outputs = true", 'skip_outputs = true\nset = ["mesh.element=\'P1\'"]'))
     code, stdout, err = run(capsys, "study", path, "--smoke", "--workers", 1, "--out", out)
     assert "3 runs (0 reused, 3 run, 0 failed)" in stdout
     assert (out / "study.csv").read_text() != first
+    # with --smoke, a study.set entry the case's [smoke] table also sets gives way to the smoke value
+    path.write_text(path.read_text().replace("set = [\"mesh.element='P1'\"]", 'set = ["mesh.nx=400"]'))
+    code, stdout, err = run(capsys, "study", path, "--smoke", "--workers", 1, "--out", out)
+    assert "3 runs (0 reused, 3 run, 0 failed)" in stdout and "study.set entries left out: mesh.nx=400" in err
+    assert (out / "study.csv").read_text() == first
 
 
 def test_members_are_rows_with_the_member_index_on_the_member_key(tmp_path, capsys):
