@@ -621,6 +621,7 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, r
                 + (f" ({out['Lyapunov window start, detected, reason']})" if ring_speed is not None else ""))
         for name in ("x", "y", "z") + CO_ROTATING:
             out[f"Wolf exponent, ball {j} {name} [bits/s]"] = None
+            out[f"Wolf exponent, ball {j} {name} verdict"] = "not computed"
             out[f"Wolf exponent, ball {j} {name}, note"] = note
         for axis in "xyz":
             out[f"Largest Lyapunov exponent, ball {j} {axis} [1/s]"] = None
@@ -644,7 +645,7 @@ def _wolf_direction(key, series, size, scale_min, start) -> dict:
     from dynamics.errors import DynamicsInputError
     from dynamics.lyapunov import WOLF_SCALE_MIN, largest_lyapunov_wolf, wolf_shortfall
 
-    out = {f"{key} [bits/s]": None}
+    out = {f"{key} [bits/s]": None, f"{key} verdict": "not computed"}  # the verdict key is always there
     if isinstance(series, str):
         out[f"{key}, note"] = f"not computed: {series}"
         return out
