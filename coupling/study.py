@@ -779,15 +779,22 @@ def figure(study: StudyFile, plan: Plan, stats: list):
         other = point_label({k: values[k] for k in keys[1:]}) if study.study.combine == "grid" else ""
         groups.setdefault(other, []).append(p)
     first_axis = _first_axis_x(study, plan)
-    fig, axes = plt.subplots(len(names), 1, figsize=(7.0, 3.0 * len(names) + 0.6), squeeze=False)
-    for ax, name in zip(axes[:, 0], names):
-        _panel(ax, study, plan, stats, name, groups, first_axis)
-    axes[-1, 0].set_xlabel(keys[0] + ("" if study.study.combine == "grid" or len(keys) == 1
-                                      else " (zipped with " + ", ".join(keys[1:]) + ")"))
+    ncols = min(3, len(names))  # a grid of panels, filled row by row
+    nrows = -(-len(names) // ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(5.2 * ncols, 3.0 * nrows + 0.8), squeeze=False)
+    for k, name in enumerate(names):
+        _panel(axes[k // ncols, k % ncols], study, plan, stats, name, groups, first_axis)
+    for k in range(len(names), nrows * ncols):
+        axes[k // ncols, k % ncols].set_visible(False)
+    label = keys[0] + ("" if study.study.combine == "grid" or len(keys) == 1
+                       else " (zipped with " + ", ".join(keys[1:]) + ")")
+    for k in range(len(names)):
+        if k + ncols >= len(names):  # the lowest panel of each column
+            axes[k // ncols, k % ncols].set_xlabel(label)
     title = study.description or f"study of {plan.base.stem}"
     fig.suptitle(title + (f" ({study.study.members} members per point: median, min-max band)"
                           if study.study.members > 1 else ""), fontsize="medium")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - 0.5 / (3.0 * nrows + 0.8)))  # room for the title
     return fig
 
 

@@ -1,0 +1,172 @@
+"""Paper B's claims against the project's ensemble studies: a markdown table of verdicts.
+
+Reads the run folders of three studies (``lubedyn study`` output folders) and prints, for every claim
+of paper B (Zhang et al., Symmetry 16 (2024) 741) that the studies can test, the paper's statement, the
+project's numbers (median and min-max over the seeded members of each point) and a verdict:
+
+* **reproduced** / **not reproduced**: the members' ranges of the two compared points do not overlap
+  (the difference is resolved) and its sign agrees / disagrees with the paper;
+* **not resolvable**: the ranges overlap, so the ensemble cannot tell the sign;
+* for magnitudes, the ratio to the paper's number.
+
+::
+
+    python benchmarks/paper_b_report.py --drop runs/cageless_drop_speeds --slot runs/cageless_slot_effect \\
+        --fidelity runs/cageless_film_fidelity [--vibration runs/cageless_6206_3krpm] > report.md
+
+Every number is read from the studies' ``summary.json`` files; nothing is typed in except the paper's
+own values (Table 3 and the statements quoted).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+from pathlib import Path
+
+SPEEDS = (10000, 15000, 20000, 25000)
+#: paper B, Table 3 ("maximum Lyapunov exponent", orthogonalisation method with log2, no unit printed)
+TABLE3 = {"x": (4.5933, 4.2011, 3.9126, 3.9158), "y": (4.6431, 4.2613, 3.9350, 3.9094),
+          "z": (7.6814, 7.9442, 7.9971, 8.6271)}
+
+
+def members(study: Path, speed: int, extra: str = "") -> list[dict]:
+    """The summaries of the members of one point (folder ``operating.speed=<speed>rpm<extra>``)."""
+    folder = study / "runs" / f"operating.speed={speed}rpm{extra}"
+    return [json.loads((m / "summary.json").read_text()) for m in sorted(folder.glob("m*"))
+            if (m / "summary.json").is_file()]
+
+
+def values(runs: list[dict], key: str) -> list[float]:
+    return [float(r[key]) for r in runs if isinstance(r.get(key), (int, float))]
+
+
+def stat(v: list[float], fmt: str = ".3g") -> str:
+    if not v:
+        return "n/a"
+    return f"{statistics.median(v):{fmt}} [{min(v):{fmt}}, {max(v):{fmt}}]"
+
+
+def compare(a: list[float], b: list[float], expect: str) -> str:
+    """Verdict for the claim 'b is <expect> than a' (expect 'higher' or 'lower')."""
+    if not a or not b:
+        return "not computed"
+    if max(a) < min(b):
+        sign = "higher"
+    elif max(b) < min(a):
+        sign = "lower"
+    else:
+        return "not resolvable (ranges overlap)"
+    return "reproduced" if sign == expect else f"not reproduced ({sign})"
+
+
+def rows_drop(study: Path) -> list[tuple]:
+    runs = {s: members(study, s) for s in SPEEDS}
+    out = []
+    w = {d: {s: values(runs[s], f"Wolf exponent, ball 0 {d} [bits/s]") for s in SPEEDS} for d in "xyz"}
+    for s in SPEEDS:
+        verdicts = [compare(w["x"][s] + w["y"][s], w["z"][s], "higher")]
+        out.append((f"Table 3 at {s} rpm: z largest", f"z {TABLE3['z'][SPEEDS.index(s)]} > x, y "
+                    f"{TABLE3['x'][SPEEDS.index(s)]}, {TABLE3['y'][SPEEDS.index(s)]}",
+                    f"Wolf z {stat(w['z'][s])}; x {stat(w['x'][s])}; y {stat(w['y'][s])} bits/s", verdicts[0]))
+    for s in SPEEDS:
+        out.append((f"Table 3 at {s} rpm: y slightly above x", "y > x by 0.1-1.4 %",
+                    f"y {stat(w['y'][s])}; x {stat(w['x'][s])}", compare(w["x"][s], w["y"][s], "higher")))
+    for d in "xy":
+        out.append((f"Table 3: {d} falls from 10,000 to 25,000 rpm", f"{TABLE3[d][0]} -> {TABLE3[d][3]}",
+                    f"{stat(w[d][10000])} -> {stat(w[d][25000])}", compare(w[d][10000], w[d][25000], "lower")))
+    out.append(("Table 3: x at 25,000 above x at 20,000 rpm", "3.9158 > 3.9126 (+0.08 %)",
+                f"{stat(w['x'][25000])} vs {stat(w['x'][20000])}", compare(w["x"][20000], w["x"][25000], "higher")))
+    out.append(("Table 3: z rises with speed", "7.68 -> 8.63",
+                f"{stat(w['z'][10000])} -> {stat(w['z'][25000])}", compare(w["z"][10000], w["z"][25000], "higher")))
+    ratios = [statistics.median(w[d][s]) / TABLE3[d][i] for d in "xyz" for i, s in enumerate(SPEEDS) if w[d][s]]
+    resolved = sum(r.get(f"Wolf exponent, ball 0 {d} verdict") in ("positive", "not positive")
+                   for s in SPEEDS for r in runs[s] for d in "xyz")
+    total = sum(len(runs[s]) for s in SPEEDS) * 3
+    out.append(("Table 3 magnitudes", "x, y 3.9-4.6; z 7.7-8.6 (log2, unit not printed)",
+                f"median / paper {min(ratios):.2g}-{max(ratios):.2g} (bits/s); resolved exponents "
+                f"{resolved} of {total} (uncertainty below half the value and converged)",
+                "not comparable (unit and coordinates not stated; most estimates not resolved)"))
+    spin = {s: values(runs[s], "Inner ring spin-up time [s]") for s in SPEEDS}
+    out.append(("Fig. 3: faster settling at higher speed (inner ring)", "time to the stable stage falls with speed",
+                " -> ".join(f"{stat([x * 1e3 for x in spin[s]])} ms" for s in SPEEDS),
+                compare(spin[10000], spin[25000], "lower")))
+    for d in "xy":
+        st = {s: values(runs[s], f"Settling time, ball 0 {d} [s]") for s in SPEEDS}
+        out.append((f"Fig. 3: faster settling of the ball in {d}", "falls with speed",
+                    f"{stat(st[10000])} s -> {stat(st[25000])} s", compare(st[10000], st[25000], "lower")))
+    col = {s: values(runs[s], "Ball-ball collisions [-]") for s in SPEEDS}
+    out.append(("Conclusions: fewer collisions at higher speed", "fewer at higher speed",
+                " -> ".join(stat(col[s], ".4g") for s in SPEEDS), compare(col[10000], col[25000], "lower")))
+    for s in SPEEDS:
+        spin_t = values(runs[s], "Inner ring spin-up time [s]")
+        dur = values(runs[s], "Simulated time [s]")
+        during = values(runs[s], "Collisions during ring spin-up [-]")
+        after = values(runs[s], "Collisions after ring spin-up [-]")
+        r1 = [c / t for c, t in zip(during, spin_t)]
+        r2 = [c / (T - t) for c, t, T in zip(after, spin_t, dur)]
+        out.append((f"Fig. 5 at {s} rpm: a burst of collisions at spin-up, then far fewer",
+                    "many during spin-up, much fewer later",
+                    f"rate during spin-up {stat(r1)} Hz, after {stat(r2)} Hz", compare(r1, r2, "lower")))
+    fz = {s: values(runs[s], "Largest collision force z [N]") for s in SPEEDS}
+    out.append(("Fig. 5: largest axial collision force rises from 10,000 to 20,000 rpm", "rises",
+                f"{stat(fz[10000])} -> {stat(fz[20000])} N", compare(fz[10000], fz[20000], "higher")))
+    out.append(("Fig. 5: at 25,000 rpm not stronger than at 20,000 rpm", "not stronger",
+                f"{stat(fz[25000])} vs {stat(fz[20000])} N", compare(fz[20000], fz[25000], "lower")))
+    q = {k: {s: values(runs[s], f"Collisions in quadrant {k} [-]") for s in SPEEDS}
+         for k in ("I (x > 0, y > 0)", "II (x < 0, y > 0)", "III (x < 0, y < 0)", "IV (x > 0, y < 0)")}
+    out.append(("Fig. 5: collisions by quadrant (load zone at the bottom, y < 0)", "(no numbers)",
+                "; ".join(f"{s}: " + ", ".join(f"{k.split()[0]} {statistics.median(q[k][s]):.0f}" for k in q)
+                          for s in SPEEDS), "see numbers"))
+    oob = [x for s in SPEEDS for x in values(runs[s], "Film map queries outside axes [-]")]
+    out.append(("(pipeline) film-map queries outside the axes", "-", f"{int(max(oob)) if oob else 'n/a'} in "
+                f"{len(oob)} runs", "none" if oob and max(oob) == 0 else "some"))
+    return out
+
+
+def rows_slot(drop: Path, slot: Path) -> list[tuple]:
+    out = []
+    for s in SPEEDS:
+        a = values(members(slot, s), "Ball-ball collisions [-]")
+        b = values(members(drop, s), "Ball-ball collisions [-]")
+        out.append((f"Sec. 3.2 at {s} rpm: the slot controls the balls (fewer collisions with it)",
+                    "fewer collisions, no cumulative effect", f"with slot {stat(b, '.4g')}, without {stat(a, '.4g')}",
+                    compare(a, b, "lower")))
+    return out
+
+
+def rows_fidelity(fid: Path) -> list[tuple]:
+    out = []
+    for s in (10000, 25000):
+        m = members(fid, s, ",films.ball_ball=map")
+        c = members(fid, s, ",films.ball_ball=closed_form")
+        for key, what in (("Ball-ball collisions [-]", "collisions"), ("Largest collision normal force [N]",
+                                                                      "largest collision force [N]"),
+                          ("Integration wall time [s]", "integration wall time [s]")):
+            a, b = values(m, key), values(c, key)
+            out.append((f"film map vs closed form at {s} rpm: {what}", "-", f"map {stat(a, '.4g')}, closed form "
+                        f"{stat(b, '.4g')}", compare(b, a, "higher").replace("reproduced", "map higher")
+                        .replace("not map higher (lower)", "map lower")))
+    return out
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--drop", type=Path, required=True, help="output folder of studies/cageless_drop_speeds.toml")
+    p.add_argument("--slot", type=Path, help="output folder of studies/cageless_slot_effect.toml")
+    p.add_argument("--fidelity", type=Path, help="output folder of studies/cageless_film_fidelity.toml")
+    args = p.parse_args(argv)
+    rows = rows_drop(args.drop)
+    if args.slot:
+        rows += rows_slot(args.drop, args.slot)
+    if args.fidelity:
+        rows += rows_fidelity(args.fidelity)
+    print("| claim | paper | lubedyn: median [min, max] over 8 members | verdict |")
+    print("|---|---|---|---|")
+    for r in rows:
+        print("| " + " | ".join(str(x) for x in r) + " |")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
