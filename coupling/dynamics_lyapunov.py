@@ -1,0 +1,308 @@
+"""Lyapunov analysis of a dynamics run: the end of the transient, co-rotating coordinates, Wolf's and
+Rosenstein's largest exponents per direction of one ball, Benettin's spectrum of the whole bearing.
+
+Part of the dynamics scene (:mod:`coupling.dynamics_scene`, which calls :func:`_lyapunov_per_direction`
+and :func:`_benettin` after a run and writes what they return into ``summary.json``)."""
+from __future__ import annotations
+
+import logging
+import math
+import time
+
+import numpy as np
+
+log = logging.getLogger("coupling.dynamics_scene")
+
+
+LYAPUNOV_SAMPLES = 8000  # Rosenstein's neighbour search and divergence average: decimate to at most this
+WOLF_SAMPLES = 50_000  # Wolf's algorithm: one ball query per evolution step, so more samples are cheap
+#: embedding dimension of the per-direction exponents (both methods)
+LYAPUNOV_DIM = 6
+#: spin-up ends when the inner ring speed is within this fraction of the rotor speed (and stays there)
+SPIN_UP_TOLERANCE = 0.01
+#: width [s] of the bins of the collision rate in :func:`transient_end`
+COLLISION_BIN = 2e-3
+
+
+def transient_end(t, ring_speed, rotor_speed=None, collision_times=(), *, tolerance=SPIN_UP_TOLERANCE,
+                  bin_width=COLLISION_BIN) -> tuple[float, str]:
+    """Detected end [s] of the start-up transient of a run, and the reason, as ``(t_end, reason)``.
+
+    (1) Spin-up (a drop, ``rotor_speed`` given): the first time after which the inner ring speed
+    stays within ``tolerance`` (1 %) of the rotor speed to the end of the record; with no rotor
+    (steady or free scenario) the record's start.  A ring never within the tolerance at the end
+    gives the record's end (no steady part).  (2) Collisions: ``collision_times`` [s] counted in
+    bins of ``bin_width`` (2 ms) from the spin-up end; the transient ends at the start of the first
+    bin whose count is at most the median count of that bin and all later ones (the rate has dropped
+    to its later median).  ``t_end`` is the later of (1) and (2)."""
+    t = np.asarray(t, dtype=float)
+    if rotor_speed is None:
+        t_spin, why = float(t[0]), "no rotor to catch up with (inner ring driven or free)"
+    else:
+        off = np.abs(np.asarray(ring_speed) - np.asarray(rotor_speed)) > tolerance * np.abs(rotor_speed)
+        if off[-1]:
+            return float(t[-1]), (f"the inner ring is not within {tolerance:.0%} of the rotor speed at the end "
+                                  f"of the record ({t[-1]:.4g} s): still spinning up")
+        last_off = np.flatnonzero(off)
+        t_spin = float(t[last_off[-1] + 1]) if last_off.size else float(t[0])
+        why = f"inner ring within {tolerance:.0%} of the rotor speed from {t_spin:.4g} s"
+    times = np.asarray(collision_times, dtype=float)
+    edges = np.arange(t_spin, t[-1] + 1e-12, bin_width)
+    if edges.size < 3:
+        return t_spin, f"{why}; record too short after it for {bin_width:g} s bins of the collision rate"
+    counts = np.histogram(times, bins=edges)[0]
+    later_median = np.array([np.median(counts[k:]) for k in range(counts.size)])
+    k = int(np.argmax(counts <= later_median))
+    t_coll = float(edges[k])
+    return max(t_spin, t_coll), (f"{why}; collision rate down to the median of the later record "
+                                 f"({later_median[k] / bin_width:.4g} 1/s, {bin_width:g} s bins) from {t_coll:.4g} s")
+
+
+def co_rotating(t, xyz) -> tuple[np.ndarray, np.ndarray, str]:
+    """A ball centre's track ``xyz`` (m, 3) [m] in co-rotating coordinates: ``(t_kept, coords, reason)``
+    with coords (k, 3) = (radial r - mean r, tangential r_mean (psi - psi_mean), axial z) [m].
+
+    r = sqrt(x^2 + y^2) and psi = unwrapped atan2(y, x) are the ball's distance from the bearing axis
+    and its orbital angle; the mean train angle psi_mean is psi's centred moving average over one
+    revolution of the ball about the axis (2 pi over its mean orbital speed over the record), so a
+    ball orbiting at constant speed on a circle has zero co-rotating radial and tangential motion, and
+    motion at the orbital frequency itself (an eccentric orbit) averages out of psi_mean.  Half a
+    revolution at each end has no centred average and is dropped.  ``reason`` is "" or why no
+    coordinates (a record shorter than two revolutions, or no orbital motion)."""
+    t = np.asarray(t, dtype=float)
+    x, y, z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+    r = np.hypot(x, y)
+    psi = np.unwrap(np.arctan2(y, x))
+    span = float(t[-1] - t[0])
+    rate = (psi[-1] - psi[0]) / span if span > 0 else 0.0
+    if rate == 0.0:
+        return t[:0], np.zeros((0, 3)), "the ball does not orbit"
+    dt = float(t[1] - t[0])
+    half = int(round(math.pi / abs(rate) / dt))
+    if t.size < 2 * (2 * half + 1):
+        return t[:0], np.zeros((0, 3)), (f"the record ({span:.4g} s) is shorter than two revolutions of the ball "
+                                         f"about the axis ({2 * math.pi / abs(rate):.4g} s each)")
+    w = 2 * half + 1
+    c = np.concatenate([[0.0], np.cumsum(psi - psi[0])])
+    psi_mean = (c[w:] - c[:-w]) / w + psi[0]
+    keep = slice(half, t.size - half)
+    r_mean = float(np.mean(r[keep]))
+    coords = np.stack([r[keep] - r_mean, r_mean * (psi[keep] - psi_mean), z[keep]], axis=1)
+    return t[keep], coords, ""
+
+
+#: the co-rotating directions of :func:`co_rotating`
+CO_ROTATING = ("radial", "tangential", "axial")
+
+
+def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, rotor_speed=None,
+                            collision_times=(), scale_min=0.0) -> dict:
+    """Largest Lyapunov exponent per direction of ball ``analysis.ball``, from each coordinate's time
+    series: inertial x, y, z and co-rotating radial, tangential, axial (:func:`co_rotating`).
+
+    Paper B's Table 3 gives a "maximum Lyapunov exponent" for X, Y and Z, computed by "the
+    orthogonalization method" after Wolf et al., with log2 (so bits per unit time) and no units;
+    it does not say which coordinates or how an exponent per coordinate came out of a tangent-space
+    method.  Here each coordinate's series gets:
+
+    - Wolf et al.'s fixed-evolution-time exponent, "the paper's way" (log2, bits/s; also 1/s):
+      ``"Wolf exponent, ball j <dir> [bits/s]"`` with ``[1/s]``, ``uncertainty [bits/s]`` (batch
+      means over 10 blocks of evolution steps), ``convergence [-]`` (relative change of the running
+      estimate over the last half), ``replacements [-]``, ``poor-angle fraction [-]`` and
+      ``verdict``: "not resolved" when the uncertainty exceeds half the exponent or the running
+      estimate changed by more than 20 % over the last half (:attr:`dynamics.lyapunov.WolfResult.resolved`),
+      else "positive" (beyond two uncertainties) or "not positive".  Settings: embedding dimension
+      ``LYAPUNOV_DIM``, delay at the first zero of the autocorrelation, evolution time = the delay,
+      scale_max 0.1 of the coordinate's range, scale_min the larger of 1e-4 of the range and
+      ``scale_min`` (the integration's resolution of a position), at most ``WOLF_SAMPLES`` samples.
+    - Rosenstein's exponent (1/s, the inertial directions only, as before):
+      ``"Largest Lyapunov exponent, ball j <dir> [1/s]"`` etc.
+
+    The record starts at the later of ``analysis.transient`` and the detected end of the transient
+    (:func:`transient_end`, from ``ring_speed``, ``rotor_speed`` and ``collision_times`` when given);
+    both are in the summary.  A direction whose record is too short or that does not move (its range at
+    most 1e-10 of the ball's distance from the axis, or ``scale_min``) gets ``None`` and a
+    ``"..., note"`` saying why (an expected outcome of a short run, logged at INFO)."""
+    j = case.analysis.ball
+    given = float(case.analysis.transient)
+    out = {"Lyapunov window start, given (analysis.transient) [s]": given}
+    if ring_speed is not None:
+        detected, reason = transient_end(t, ring_speed, rotor_speed, collision_times)
+        out["Lyapunov window start, detected [s]"] = detected
+        out["Lyapunov window start, detected, reason"] = reason
+        given = max(given, detected)
+    out["Lyapunov window start [s]"] = given
+    keep = np.flatnonzero(t >= given)
+    if keep.size < 3:
+        note = (f"not computed: no record after the window start {given:.4g} s"
+                + (f" ({out['Lyapunov window start, detected, reason']})" if ring_speed is not None else ""))
+        for name in ("x", "y", "z") + CO_ROTATING:
+            out[f"Wolf exponent, ball {j} {name} [bits/s]"] = None
+            out[f"Wolf exponent, ball {j} {name} verdict"] = "not computed"
+            out[f"Wolf exponent, ball {j} {name}, note"] = note
+        for axis in "xyz":
+            out[f"Largest Lyapunov exponent, ball {j} {axis} [1/s]"] = None
+            out[f"Largest Lyapunov exponent, ball {j} {axis}, note"] = note
+        log.info("Lyapunov exponents of ball %d: %s", j, note)
+        return out
+    out.update(_rosenstein_directions(j, t, keep, centres, shaft_speed))
+    xyz = centres[keep, j, :]
+    series = {axis: (t[keep], xyz[:, i]) for i, axis in enumerate("xyz")}
+    t_co, co, why = co_rotating(t[keep], xyz) if keep.size > 2 else (t[:0], np.zeros((0, 3)), "no samples")
+    for i, name in enumerate(CO_ROTATING):
+        series[name] = (t_co, co[:, i]) if not why else why
+    size = float(np.max(np.abs(xyz))) if xyz.size else 1.0
+    for name, s in series.items():
+        out.update(_wolf_direction(f"Wolf exponent, ball {j} {name}", s, size, scale_min, given))
+    return out
+
+
+def _wolf_direction(key, series, size, scale_min, start) -> dict:
+    """Summary entries of Wolf's exponent of one coordinate (see :func:`_lyapunov_per_direction`)."""
+    from dynamics.errors import DynamicsInputError
+    from dynamics.lyapunov import WOLF_SCALE_MIN, largest_lyapunov_wolf, wolf_shortfall
+
+    out = {f"{key} [bits/s]": None, f"{key} verdict": "not computed"}  # the verdict key is always there
+    if isinstance(series, str):
+        out[f"{key}, note"] = f"not computed: {series}"
+        return out
+    tt, x = series
+    if x.size < 3 or np.ptp(x) <= max(1e-10 * size, scale_min):  # round-off of r, psi; below resolution
+        out[f"{key}, note"] = "not computed: the coordinate does not move"
+        return out
+    step = max(1, int(math.ceil(x.size / WOLF_SAMPLES)))
+    x = x[::step]
+    dt = float(tt[1] - tt[0]) * step
+    delay = _delay(x)
+    reason = wolf_shortfall(x, dt, dim=LYAPUNOV_DIM, delay=delay, evolve=delay)
+    if reason:
+        out[f"{key}, note"] = (f"not computed: the record after {start:.4g} s ({(x.size - 1) * dt:.4g} s) has "
+                               f"{reason}; run longer")
+        log.info("%s: %s", key, out[f"{key}, note"])
+        return out
+    try:
+        res = largest_lyapunov_wolf(x, dt, dim=LYAPUNOV_DIM, delay=delay, evolve=delay,
+                                    scale_min=max(WOLF_SCALE_MIN * float(np.ptp(x)), scale_min))
+    except DynamicsInputError as exc:
+        out[f"{key}, note"] = f"not computed: {exc}"
+        log.info("%s not computed: %s", key, exc)
+        return out
+    out[f"{key} [bits/s]"] = res.exponent_bits
+    out[f"{key} [1/s]"] = res.exponent
+    out[f"{key} uncertainty [bits/s]"] = res.uncertainty_bits
+    out[f"{key} convergence [-]"] = res.convergence if np.isfinite(res.convergence) else None
+    out[f"{key} replacements [-]"] = res.replacements
+    out[f"{key} poor-angle fraction [-]"] = (res.poor_angle_fraction if np.isfinite(res.poor_angle_fraction)
+                                             else None)
+    out[f"{key} settings"] = (f"dim {LYAPUNOV_DIM}, delay = evolve = {delay} samples of {dt:.4g} s, "
+                              f"{res.steps} steps, scales {res.settings['scale_min']:.3g}-"
+                              f"{res.settings['scale_max']:.3g} m")
+    out[f"{key} verdict"] = res.verdict if res.resolved else "not resolved"
+    return out
+
+
+def _rosenstein_directions(j, t, keep, centres, shaft_speed) -> dict:
+    """Rosenstein's largest exponent of ball ``j``'s inertial x, y, z after the window start."""
+    from dynamics.errors import DynamicsInputError
+    from dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution, rosenstein_shortfall
+
+    out = {}
+    # Rosenstein's neighbour search is O(n^2): decimate to at most LYAPUNOV_SAMPLES samples
+    step = max(1, int(math.ceil(keep.size / LYAPUNOV_SAMPLES)))
+    keep = keep[::step]
+    dt = float(t[1] - t[0]) * step
+    out["Lyapunov sample interval [s]"] = dt
+    for i, axis in enumerate("xyz"):
+        x = centres[keep, j, i]
+        key = f"Largest Lyapunov exponent, ball {j} {axis}"
+        out[f"{key} [1/s]"] = None
+        if x.size < 3 or np.ptp(x) <= 1e-15 * max(1.0, float(np.max(np.abs(x)))):
+            out[f"{key}, note"] = "not computed: the coordinate does not move"  # planar z
+            continue
+        delay = _delay(x)
+        reason = rosenstein_shortfall(x, dt, dim=LYAPUNOV_DIM, delay=delay)
+        if reason:
+            out[f"{key}, note"] = (f"not computed: the record after the window start "
+                                   f"({(x.size - 1) * dt:.4g} s) has {reason}; run longer")
+            log.info("Lyapunov exponent of ball %d %s: %s", j, axis, out[f"{key}, note"])
+            continue
+        try:
+            res = largest_lyapunov_rosenstein(x, dt, dim=LYAPUNOV_DIM, delay=delay)
+        except DynamicsInputError as exc:  # no divergence rise to fit: say so in the summary, do not fail
+            out[f"{key}, note"] = f"not computed: {exc}"
+            log.warning("Lyapunov exponent of ball %d %s not computed: %s", j, axis, exc)
+            continue
+        out[f"{key} [1/s]"] = float(res.exponent)
+        out[f"{key} [1/rev]"] = float(per_shaft_revolution(res.exponent, shaft_speed))
+        # spread over neighbouring fit windows / level resolution (dynamics.lyapunov), and whether the
+        # exponent is positive beyond it
+        out[f"{key} uncertainty [1/s]"] = float(res.uncertainty)
+        out[f"{key} verdict"] = res.verdict
+    return out
+
+
+def memory_states(model) -> np.ndarray:
+    """Indices of the ball pairs' plastic-memory states in the state vector."""
+    return np.array([i for i, (name, _) in enumerate(model.state_layout()) if name.endswith("plastic memory")],
+                    dtype=np.int64)
+
+
+def _benettin(case, model, t, Y, shaft_speed) -> dict:
+    """The k largest Lyapunov exponents of the whole bearing (Benettin, RK4 on
+    state and tangent vectors with QR re-orthonormalisation every 50 steps,
+    forward-difference tangent dynamics on the scaled state of
+    :func:`dynamics.cageless.rhs_scaled`), from the state at the end of the
+    transient over the rest of the run.
+
+    The ball pairs' plastic-memory states are left out of the tangent space
+    (``frozen``): their rate switches from the approach rate to 0 when the
+    pair leaves plastic loading, so a forward difference across that switch is
+    of order 1/eps and stretches the tangent vectors by e^10-e^30 in single
+    orthonormalisation intervals, depending on the step (measured on the
+    10 krpm drop over 6 ms: 14,700 1/s at dt = 0.3/omega_max, 44,400 1/s at
+    0.15/omega_max; with the memory frozen the step dependence goes, see
+    tests/test_bearing_lyapunov.py).  The exponents are those of the mechanical
+    states with the memory shared by the reference and perturbed
+    trajectories.  Collisions stay non-smooth (contact onset, film rupture),
+    so the finite-time exponents converge slowly; the summary gives the
+    relative change of the largest one over the second half of the window as
+    a convergence measure."""
+    from dynamics.cageless import rhs_scaled
+    from dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
+
+    k = case.analysis.lyapunov_exponents
+    i0 = int(np.searchsorted(t, case.analysis.transient))
+    window = float(t[-1] - t[i0])
+    scale = model.state_scales()
+    omega = model.omega_max(Y[i0])
+    dt = 0.3 / omega
+    t_c = time.perf_counter()
+    # the first tenth of the window aligns the random initial tangent vectors (its stretching is discarded)
+    res = lyapunov_spectrum(rhs_scaled, Y[i0] / scale, (model.args(), scale), dt=dt, t_total=0.9 * window,
+                            t_transient=0.1 * window, t_orth=50 * dt, n_exponents=k, omega_max=omega, t0=float(t[i0]),
+                            frozen=memory_states(model))
+    out = {"Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,
+           "Benettin time [s]": time.perf_counter() - t_c}
+    for i, (lam, u, verdict) in enumerate(zip(res.exponents, res.uncertainty, res.verdicts)):
+        out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/s]"] = float(lam)
+        out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/rev]"] = float(per_shaft_revolution(lam,
+                                                                                                       shaft_speed))
+        # batch means over 10 blocks of the averaging time (dynamics.lyapunov.batch_means_uncertainty)
+        out[f"Lyapunov exponent {i + 1}, whole system (Benettin) uncertainty [1/s]"] = (
+            float(u) if np.isfinite(u) else None)
+        out[f"Lyapunov exponent {i + 1}, whole system (Benettin) verdict"] = verdict
+    running = res.running[:, 0]
+    half = running[len(running) // 2]
+    out["Benettin largest exponent, change over the second half [-]"] = (
+        float(abs(running[-1] - half) / abs(running[-1])) if running[-1] else None)
+    return out
+
+
+def _delay(x) -> int:
+    """Embedding delay: first zero crossing of the autocorrelation (at least 1)."""
+    x = np.asarray(x) - np.mean(x)
+    n = x.size
+    f = np.fft.rfft(x, 2 * n)
+    ac = np.fft.irfft(f * np.conj(f))[:n]
+    crossing = np.flatnonzero(ac <= 0.0)
+    return max(1, int(crossing[0]) if crossing.size else n // 10)
