@@ -350,14 +350,21 @@ def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax
     lo = x_lo
     # upper bracket: solid approach that carries f_at (the film force can only drop as h grows)
     hi = x_lo + 1e-9
+    fs_hi = 0.0
     for _ in range(200):
-        fs, _, _ = _solid(hi, v, delta_max, p)
-        if fs >= f_at:
+        fs_hi, _, _ = _solid(hi, v, delta_max, p)
+        if fs_hi >= f_at:
             break
         hi = x_lo + 2.0 * (hi - x_lo)
-    x = 0.5 * (lo + hi)
+    # start where a Hertz solid (F ~ x^1.5) would carry the film's force at the lower bracket: the root
+    # when the film changes little over the solids' approach (a pair far apart against that approach),
+    # so Newton needs one or two film reads there instead of about five from the bracket's middle
+    x = hi * (f_at / fs_hi) ** (2.0 / 3.0) if fs_hi > 0.0 else 0.5 * (lo + hi)
+    if not (lo < x < hi):
+        x = 0.5 * (lo + hi)
     phase = PHASE_FILM
     F = 0.0
+    dff = dfdh
     for _ in range(60):
         fs, ks, ph = _solid(x, v, delta_max, p)
         ff, dff = _film(g + x, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
@@ -378,7 +385,7 @@ def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax
             break
         x = xn
     fs, ks, ph = _solid(x, v, delta_max, p)
-    _, dff = _film(g + x, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter)
+    # the film's slope from the last iterate (within the tolerance of x): one film read saved
     share = -dff / (ks - dff) if ks - dff > 0.0 else 1.0
     F = fs
     h = g + x
