@@ -247,12 +247,14 @@ def memory_states(model) -> np.ndarray:
                     dtype=np.int64)
 
 
-def _benettin(case, model, t, Y, shaft_speed) -> dict:
+def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
     """The k largest Lyapunov exponents of the whole bearing (Benettin, RK4 on
     state and tangent vectors with QR re-orthonormalisation every 50 steps,
     forward-difference tangent dynamics on the scaled state of
-    :func:`dynamics.cageless.rhs_scaled`), from the state at the end of the
-    transient over the rest of the run.
+    :func:`dynamics.cageless.rhs_scaled`), over the rest of the run from ``start`` (the
+    per-direction analysis' window start: the later of ``analysis.transient`` and the detected end of
+    the transient), or from ``analysis.transient`` when ``start`` is None or would leave less than half
+    the record after it; the summary gives the start used.
 
     The ball pairs' plastic-memory states are left out of the tangent space
     (``frozen``): their rate switches from the approach rate to 0 when the
@@ -271,7 +273,11 @@ def _benettin(case, model, t, Y, shaft_speed) -> dict:
     from dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
 
     k = case.analysis.lyapunov_exponents
-    i0 = int(np.searchsorted(t, case.analysis.transient))
+    # after the transient the per-direction analysis detected, unless that leaves less than half the
+    # record after analysis.transient (a run that ends during the spin-up): then from analysis.transient
+    given = float(case.analysis.transient)
+    start = given if start is None or not (start - given <= 0.5 * (float(t[-1]) - given)) else max(start, given)
+    i0 = int(np.searchsorted(t, start))
     window = float(t[-1] - t[i0])
     scale = model.state_scales()
     omega = model.omega_max(Y[i0])
@@ -281,7 +287,7 @@ def _benettin(case, model, t, Y, shaft_speed) -> dict:
     res = lyapunov_spectrum(rhs_scaled, Y[i0] / scale, (model.args(), scale), dt=dt, t_total=0.9 * window,
                             t_transient=0.1 * window, t_orth=50 * dt, n_exponents=k, omega_max=omega, t0=float(t[i0]),
                             frozen=memory_states(model))
-    out = {"Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,
+    out = {"Benettin window start [s]": float(t[i0]), "Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,
            "Benettin time [s]": time.perf_counter() - t_c}
     for i, (lam, u, verdict) in enumerate(zip(res.exponents, res.uncertainty, res.verdicts)):
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/s]"] = float(lam)

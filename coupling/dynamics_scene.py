@@ -602,7 +602,7 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
             # a position is resolved to about rtol times its size (the error control of the integrator)
             scale_min=ig.rtol * float(np.max(np.abs(centres[:, case.analysis.ball, :])))))
     if case.analysis.lyapunov_exponents:
-        summary.update(_benettin(case, model, t, Y, shaft))
+        summary.update(_benettin(case, model, t, Y, shaft, start=summary.get("Lyapunov window start [s]")))
     # characteristic frequencies at the inner ring's mean speed over the analysed window
     # (after a drop the ring is still spinning up: the lines move during the run)
     keep = t >= case.analysis.transient
