@@ -247,6 +247,15 @@ def memory_states(model) -> np.ndarray:
                     dtype=np.int64)
 
 
+def benettin_start(given: float, detected: float | None, t_end: float) -> float:
+    """Where Benettin's window starts: the per-direction analysis' window start ``detected`` (the later
+    of ``analysis.transient`` and the detected end of the transient), unless it is None or would leave
+    less than half the record after ``given`` (a run that ends during the spin-up): then ``given``."""
+    if detected is None or not (detected - given <= 0.5 * (t_end - given)):
+        return given
+    return max(detected, given)
+
+
 def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
     """The k largest Lyapunov exponents of the whole bearing (Benettin, RK4 on
     state and tangent vectors with QR re-orthonormalisation every 50 steps,
@@ -273,11 +282,7 @@ def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
     from dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
 
     k = case.analysis.lyapunov_exponents
-    # after the transient the per-direction analysis detected, unless that leaves less than half the
-    # record after analysis.transient (a run that ends during the spin-up): then from analysis.transient
-    given = float(case.analysis.transient)
-    start = given if start is None or not (start - given <= 0.5 * (float(t[-1]) - given)) else max(start, given)
-    i0 = int(np.searchsorted(t, start))
+    i0 = int(np.searchsorted(t, benettin_start(float(case.analysis.transient), start, float(t[-1]))))
     window = float(t[-1] - t[i0])
     scale = model.state_scales()
     omega = model.omega_max(Y[i0])

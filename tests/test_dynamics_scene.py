@@ -213,3 +213,16 @@ def test_case_tables_are_the_model_groups_one_to_one():
     assert model.films.ball_ball == case.films.ball_ball == "map" and model.films.map is not None
     with pytest.raises(InputError, match=r"^slots.width = 0.01 m must be < the groove diameter"):
         ds.build(case.model_copy(update={"slots": case.slots.model_copy(update={"width": 0.01})}))
+
+
+def test_benettin_window_starts_after_the_detected_transient_when_the_record_allows():
+    """The whole-system exponents average over the same window as the per-direction ones, unless the
+    detected transient takes more than half the record (the 20 ms main job: spin-up and collisions end
+    near 15 ms), or nothing was detected."""
+    from coupling.dynamics_lyapunov import benettin_start
+
+    assert benettin_start(0.02, 0.03, 0.4) == 0.03          # a 0.4 s drop: after the detected 30 ms
+    assert benettin_start(0.005, 0.01496, 0.02) == 0.005    # the main job: 10 ms of 15 left -> given
+    assert benettin_start(0.02, None, 0.4) == 0.02          # nothing detected (steady runs)
+    assert benettin_start(0.05, 0.03, 0.4) == 0.05          # the given start is later
+    assert benettin_start(0.0, 0.2, 0.4) == 0.2             # exactly half: still allowed
