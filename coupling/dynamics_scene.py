@@ -59,6 +59,7 @@ from lubrication.errors import ConvergenceError, InputError
 from lubrication.laws import bearing as bearings
 
 from . import outputs
+from .dynamics_lyapunov import _benettin, _lyapunov_per_direction
 from .config import CASES_DIR, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
 
 log = logging.getLogger(__name__)
@@ -345,21 +346,14 @@ def _film_map(case: DynamicsCase, source: str | None):
     return path, fmap
 
 
-#: the model's group of each case table (:mod:`dynamics.cageless.groups`): one to one, same field names
-GROUP_OF_TABLE = {"bearing": "bearing", "operating": "operating", "model": "fidelity", "films": "films",
-                  "slots": "slots", "initial": "initial"}
-
-
 def model_groups(case: DynamicsCase, **built) -> dict:
     """The case's tables as the model's frozen groups (keyword arguments of
     :class:`dynamics.cageless.CagelessBearing`).  ``built``: values loaded from files, by case key
     (``{"films.map": arrays}``), in place of the file names the case gives."""
-    from dynamics.cageless import groups
+    from dynamics.cageless import CagelessBearing
 
-    classes = {"bearing": groups.Bearing, "operating": groups.Operating, "fidelity": groups.Fidelity,
-               "films": groups.Films, "slots": groups.Slots, "initial": groups.Initial}
     out = {}
-    for table, attr in GROUP_OF_TABLE.items():
+    for table, attr in CagelessBearing.GROUPS.items():  # one to one, same field names
         values = dict(getattr(case, table))
         values.update({k.partition(".")[2]: v for k, v in built.items() if k.partition(".")[0] == table})
         if table == "films" and "films.map" not in built:
@@ -368,7 +362,7 @@ def model_groups(case: DynamicsCase, **built) -> dict:
             values["traction_maps"] = None
         if table in ("slots", "initial"):
             values["azimuths"] = tuple(values["azimuths"])
-        out[attr] = classes[attr].build(values)
+        out[attr] = CagelessBearing.GROUP_CLASSES[attr].build(values)
     return out
 
 
@@ -495,13 +489,6 @@ def ball_centres(setup: DynamicsSetup, Y: np.ndarray) -> np.ndarray:
             out[:, j, 0] = Y[:, b + 1] * np.cos(Y[:, b])
             out[:, j, 1] = Y[:, b + 1] * np.sin(Y[:, b])
     return out
-
-
-from .dynamics_lyapunov import (  # noqa: F401, E402  (the scene's analysis; names kept here for callers)
-    CO_ROTATING, LYAPUNOV_DIM, LYAPUNOV_SAMPLES, WOLF_SAMPLES, _benettin, _delay, _lyapunov_per_direction,
-    _rosenstein_directions, _wolf_direction, co_rotating, memory_states, transient_end,
-)
-
 
 
 
@@ -761,8 +748,6 @@ class _Scene3D:
 
 def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     import matplotlib.pyplot as plt
-
-    from dynamics.cageless import D_PSIDOT
 
     from . import paper_b_figures
 

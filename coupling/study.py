@@ -538,35 +538,12 @@ def _execute(specs: list, todo: list, workers: int, scheduler, accept, scheduler
 
 
 def _execute_dask(specs: list, todo: list, scheduler, accept, key: str) -> str:
-    """Run on a Dask cluster: ``scheduler`` is an address, a Client or a cluster (``key``: where it was
-    given, for messages)."""
-    try:
-        from distributed import Client, as_completed
-    except ImportError:
-        raise StudyError(f"{key} needs dask.distributed (pip install lubedyn[dask])") from None
-    own = not isinstance(scheduler, Client)
-    if own:
-        address = getattr(scheduler, "scheduler_address", scheduler)
-        try:
-            client = Client(address, timeout="10s")
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise StudyError(f"{key} = {address!r}: cannot connect ({_one_line(exc)})") from None
-    else:
-        client = scheduler
-    try:
-        futures = [client.submit(run_one, specs[i], pure=False) for i in todo]
-        index = {f.key: i for f, i in zip(futures, todo)}
-        try:
-            for fut in as_completed(futures):
-                accept(index[fut.key], *fut.result())
-        except BaseException:  # Ctrl-C or an error: cancel what the cluster has not done yet
-            with contextlib.suppress(Exception):
-                client.cancel(futures)
-            raise
-        return f"dask ({client.scheduler.address})"
-    finally:
-        if own:
-            client.close()
+    """Run on a Dask cluster (:func:`coupling.maps.sweep.run_on_dask`): ``scheduler`` is an address, a
+    Client or a cluster (``key``: where it was given, for messages)."""
+    from .maps.sweep import run_on_dask
+
+    return run_on_dask(scheduler, key, [(run_one, specs[i]) for i in todo],
+                       lambda k, result: accept(todo[k], *result), error=StudyError)
 
 
 def check_outputs(study: StudyFile, summary: dict, folder: str):

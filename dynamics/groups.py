@@ -3,7 +3,7 @@
 A bearing model (:class:`dynamics.cageless.CagelessBearing`, and the next bearings) holds its data
 as a few frozen dataclasses, each the SI twin of one table of a dynamics case file
 (``[bearing]``, ``[operating]``, ``[model]``, ``[films]``, ``[slots]``): the case's tables become
-groups one to one (:meth:`Group.from_table`), and each group checks its own values.  A group's
+groups one to one (:meth:`Group.build`), and each group checks its own values.  A group's
 error names the case key (``"operating.radial_load = -1 ..."``) and carries it as
 :attr:`~dynamics.errors.DynamicsInputError.key`, so a message reads the same from Python and from a
 case file and nothing has to translate it.
@@ -62,21 +62,18 @@ class Group:
         return tuple(f.name for f in fields(cls))
 
     @classmethod
-    def from_table(cls, table: Mapping[str, Any] | Any, **built):
-        """The group of a case table (a mapping or a pydantic model) with ``built`` values (loaded maps)
-        put in place of the table's entries of the same name."""
-        values = dict(table) if isinstance(table, Mapping) else dict(table)
-        values.update(built)
-        return cls.build(values)
-
-    @classmethod
-    def build(cls, values: Mapping[str, Any]):
-        """The group from a mapping of its fields; an unknown name is a one-line error."""
+    def _known(cls, names) -> None:
+        """An unknown field name is a one-line error naming the case key, with "did you mean"."""
         allowed = cls.names()
-        for name in values:
+        for name in names:
             if name not in allowed:
                 raise DynamicsInputError(f"{cls.TABLE}.{name} is not a key of [{cls.TABLE}]"
                                          f"{did_you_mean(name, allowed, n=2)}", key=f"{cls.TABLE}.{name}")
+
+    @classmethod
+    def build(cls, values: Mapping[str, Any]):
+        """The group from a mapping of its fields (a case table's, by name)."""
+        cls._known(values)
         return cls(**values)
 
     def updated(self, changes: Mapping[str, Any] | "Group"):
@@ -86,9 +83,5 @@ class Group:
                 raise DynamicsInputError(f"{self.TABLE}: a {type(self).__name__} is needed, not "
                                          f"{type(changes).__name__}", key=self.TABLE)
             return changes
-        allowed = self.names()
-        for name in changes:
-            if name not in allowed:
-                raise DynamicsInputError(f"{self.TABLE}.{name} is not a key of [{self.TABLE}]"
-                                         f"{did_you_mean(name, allowed, n=2)}", key=f"{self.TABLE}.{name}")
+        self._known(changes)
         return replace(self, **changes)

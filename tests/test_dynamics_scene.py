@@ -90,7 +90,7 @@ def test_co_rotating_coordinates_of_a_circular_orbit_are_zero():
     through; half a revolution is dropped at each end; a record under two revolutions is refused."""
     import numpy as np
 
-    from coupling.dynamics_scene import co_rotating
+    from coupling.dynamics_lyapunov import co_rotating
 
     t = np.arange(20001) * 5e-6  # 0.1 s, 411 rad/s: about 6.5 revolutions
     rate, R = 411.0, 0.023
@@ -119,7 +119,7 @@ def test_transient_end_is_spin_up_then_collision_rate():
     spinning up at the end gives the record's end."""
     import numpy as np
 
-    from coupling.dynamics_scene import transient_end
+    from coupling.dynamics_lyapunov import transient_end
 
     t = np.linspace(0.0, 0.1, 20001)
     rotor = np.full(t.size, 1000.0)
@@ -142,7 +142,7 @@ def test_per_direction_summary_on_a_synthetic_ball():
 
     from types import SimpleNamespace
 
-    from coupling.dynamics_scene import _lyapunov_per_direction
+    from coupling.dynamics_lyapunov import _lyapunov_per_direction
     from dynamics import integrators as I
     from test_lyapunov import LORENZ, lorenz  # tests/ is on sys.path (rootdir conftest, prepend import mode)
 
@@ -198,10 +198,10 @@ def test_case_tables_are_the_model_groups_one_to_one():
     from coupling import dynamics_scene as ds
     from dynamics.cageless import CagelessBearing
 
-    for table, attr in ds.GROUP_OF_TABLE.items():
-        group = {f.name: f for f in dataclasses.fields(CagelessBearing)}[attr].type
-        cls = getattr(__import__("dynamics.cageless.groups", fromlist=[group]), group)
+    for table, attr in CagelessBearing.GROUPS.items():
+        cls = CagelessBearing.GROUP_CLASSES[attr]
         assert cls.TABLE == table
+        assert {f.name: f for f in dataclasses.fields(CagelessBearing)}[attr].type == cls.__name__
         keys = set(ds.DynamicsCase.model_fields[table].annotation.model_fields)
         names = {f.name: f for f in dataclasses.fields(cls)}
         assert keys <= set(names), (table, keys - set(names))

@@ -240,31 +240,33 @@ def solve_points(kind, params: dict, points: list, *, workers=None, scheduler=No
     return results, info
 
 
-def _solve_dask(kind, params, points, todo, scheduler, accept) -> str:
-    """Solve on a Dask distributed cluster: ``scheduler`` is an address, a Client or a cluster."""
+def run_on_dask(scheduler, key: str, calls: list, accept, error=InputError) -> str:
+    """Submit ``calls`` (tuples ``(function, *args)``) to a Dask distributed cluster and hand each result
+    to ``accept(k, result)`` as it finishes (k: the call's index); returns the backend's description.
+
+    ``scheduler``: an address, a Client or a cluster (``key``: the setting that named it, for messages;
+    ``error``: the one-line error class).  A client this function opens is closed at the end; an
+    interrupt or an error cancels the calls the cluster has not done yet.  Used by map sweeps and by
+    studies (:mod:`coupling.study`)."""
     try:
         from distributed import Client, as_completed
     except ImportError:
-        raise InputError("build.scheduler needs dask.distributed (pip install lubedyn[dask])") from None
-    own = False
-    if isinstance(scheduler, Client):
-        client = scheduler
-    else:
+        raise error(f"{key} needs dask.distributed (pip install lubedyn[dask])") from None
+    own = not isinstance(scheduler, Client)
+    if own:
         address = getattr(scheduler, "scheduler_address", scheduler)
         try:
             client = Client(address, timeout="10s")
-        except (OSError, TimeoutError) as exc:
-            raise InputError(f"build.scheduler = {address!r}: cannot connect ({' '.join(str(exc).split())})") from None
-        own = True
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise error(f"{key} = {address!r}: cannot connect ({' '.join(str(exc).split())})") from None
+    else:
+        client = scheduler
     try:
-        chunks = _chunks(points, todo)
-        futures = client.map(_solve_chunk, [kind.evaluate] * len(chunks), [params] * len(chunks),
-                             [[points[i] for i in chunk] for chunk in chunks], pure=False)
-        index = {f.key: chunk for f, chunk in zip(futures, chunks)}
+        futures = [client.submit(fn, *args, pure=False) for fn, *args in calls]
+        index = {f.key: k for k, f in enumerate(futures)}
         try:
             for fut in as_completed(futures):
-                for i, r in zip(index[fut.key], fut.result()):
-                    accept(i, *r)
+                accept(index[fut.key], fut.result())
         except BaseException:  # Ctrl-C or an error: cancel what the cluster has not done yet
             with contextlib.suppress(Exception):
                 client.cancel(futures)
@@ -273,3 +275,15 @@ def _solve_dask(kind, params, points, todo, scheduler, accept) -> str:
     finally:
         if own:
             client.close()
+
+
+def _solve_dask(kind, params, points, todo, scheduler, accept) -> str:
+    """Solve on a Dask distributed cluster, one line of the last axis per task (:func:`_chunks`)."""
+    chunks = _chunks(points, todo)
+
+    def take(k, results):
+        for i, r in zip(chunks[k], results):
+            accept(i, *r)
+
+    return run_on_dask(scheduler, "build.scheduler",
+                       [(_solve_chunk, kind.evaluate, params, [points[i] for i in chunk]) for chunk in chunks], take)

@@ -48,6 +48,13 @@ def _traction_from_map(tmap, race, Q, ue, vs, counter):
 
 
 @njit(**INLINE)
+def _tangential(x0, x1, x2, n0, n1, n2):
+    """The part of (x0, x1, x2) in the plane normal to the unit vector n: x - (x . n) n."""
+    xn = x0 * n0 + x1 * n1 + x2 * n2
+    return x0 - xn * n0, x1 - xn * n1, x2 - xn * n2
+
+
+@njit(**INLINE)
 def _race_contact(c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K, ctr0, ctr1, vc0, vc1, vc2, wr, inner, Rb,
                   alpha, mu_lim, srr_ref, v_reg, hc_coef, tmap, race, counter, want):
     """One ball-race (or slot-edge) contact of a ball (centre c, velocity v,
@@ -92,18 +99,8 @@ def _race_contact(c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K, ctr0, ct
     rho2 = d0 * d0 + d1 * d1
     psid = (d0 * vy - d1 * vx) / rho2 if rho2 > 0.0 else 0.0
     vp0, vp1, vp2 = vc0 - psid * p1, vc1 + psid * p0, vc2
-    s0, s1, s2 = vb0 - vr0, vb1 - vr1, vb2 - vr2
-    sn = s0 * n0 + s1 * n1 + s2 * n2
-    s0 -= sn * n0
-    s1 -= sn * n1
-    s2 -= sn * n2
-    e0 = 0.5 * (vb0 + vr0) - vp0
-    e1 = 0.5 * (vb1 + vr1) - vp1
-    e2 = 0.5 * (vb2 + vr2) - vp2
-    en = e0 * n0 + e1 * n1 + e2 * n2
-    e0 -= en * n0
-    e1 -= en * n1
-    e2 -= en * n2
+    s0, s1, s2 = _tangential(vb0 - vr0, vb1 - vr1, vb2 - vr2, n0, n1, n2)
+    e0, e1, e2 = _tangential(0.5 * (vb0 + vr0) - vp0, 0.5 * (vb1 + vr1) - vp1, 0.5 * (vb2 + vr2) - vp2, n0, n1, n2)
     ue = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
     if hc_coef > 0.0:
         delta += hc_coef * ue**0.67
@@ -404,13 +401,9 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
             ft = 0.0
             if Fn > 0.0:
                 # sliding velocity of k's surface relative to j's at the contact point
-                s0 = r0 + (wk1 * -a2 - wk2 * -a1) - (wj1 * a2 - wj2 * a1)
-                s1 = r1 + (wk2 * -a0 - wk0 * -a2) - (wj2 * a0 - wj0 * a2)
-                s2 = r2 + (wk0 * -a1 - wk1 * -a0) - (wj0 * a1 - wj1 * a0)
-                sn = s0 * n0 + s1 * n1 + s2 * n2
-                s0 -= sn * n0
-                s1 -= sn * n1
-                s2 -= sn * n2
+                s0, s1, s2 = _tangential(r0 + (wk1 * -a2 - wk2 * -a1) - (wj1 * a2 - wj2 * a1),
+                                         r1 + (wk2 * -a0 - wk0 * -a2) - (wj2 * a0 - wj0 * a2),
+                                         r2 + (wk0 * -a1 - wk1 * -a0) - (wj0 * a1 - wj1 * a0), n0, n1, n2)
                 vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                 if vs > 0.0:
                     mu = ball_ball_friction_coefficient(h, bbp)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import logging
 
 from dataclasses import dataclass, fields
+from typing import ClassVar
 import math
 
 import numpy as np
@@ -27,7 +28,7 @@ from .layout import (ARG_COUNTER, DOFS, D_AI, D_AO, D_QI, D_QO, I_BALLBALL, I_DO
     I_TRACTION, I_Z, MAP_SPEED_AXES, NB_6DOF, NB_PLANAR, N_RING, P_ALPHA, P_D, P_FX, P_FY, P_FZ, P_G,
     P_HCI, P_HCO, P_JB, P_JR, P_JROT, P_KEI, P_KEO, P_KI, P_KO, P_MB, P_MR, P_MU, P_MUROT, P_NROT,
     P_OMEGA_FIX, P_QSTAB, P_RB, P_RC, P_REI, P_REO, P_RI, P_RIC, P_RO, P_ROC, P_SBLEND, P_SIZE, P_SL,
-    P_SRR, P_SW, P_VREG, P_WREG, RACES, RACE_FILMS, SCENARIOS, TRACTIONS)
+    P_SRR, P_SW, P_VREG, P_WREG, RACES, SCENARIOS, TRACTIONS)
 
 logger = logging.getLogger(__name__)
 
@@ -36,8 +37,6 @@ def _map_arrays(film_map, axis1_kind):
     """(ax0, ax1, ax2, vals (k, n0, n1, n2), opts) for the map kernel from a force map's kernel arrays
     ``(axes, logs, values, logv, method)`` (:class:`coupling.maps.KernelArrays`); a two-axis map (gap,
     speed) gets a constant third axis."""
-    from ..interp import HERMITE
-
     if len(film_map) == 6:  # (axes, logs, values, logv, method, axis kind name): coupling.maps.FilmMap.dynamics_film_map
         axis1_kind = MAP_SPEED_AXES[film_map[5]]
         film_map = tuple(film_map[:5])
@@ -82,8 +81,6 @@ def _traction_arrays(maps):
     (:class:`coupling.maps.KernelArrays` of "Traction coefficient [-]") of the inner and the outer race
     EHL maps, both over (load [N], entrainment speed [m/s], slide-to-roll ratio [-]) with the same
     node counts and method."""
-    from ..interp import HERMITE
-
     try:
         (ai, li, vi, lvi, mi), (ao, lo, vo, lvo, mo) = maps
     except (TypeError, ValueError):
@@ -128,9 +125,14 @@ class CagelessBearing:
     slots: Slots
     initial: Initial = Initial()
 
+    #: the group attribute of each case table (``[model]`` is the ``fidelity`` group), and its class
+    GROUPS: ClassVar[dict] = {"bearing": "bearing", "operating": "operating", "model": "fidelity",
+                              "films": "films", "slots": "slots", "initial": "initial"}
+    GROUP_CLASSES: ClassVar[dict] = {"bearing": Bearing, "operating": Operating, "fidelity": Fidelity,
+                                     "films": Films, "slots": Slots, "initial": Initial}
+
     def __post_init__(self):
-        for name, cls in (("bearing", Bearing), ("operating", Operating), ("fidelity", Fidelity), ("films", Films),
-                          ("slots", Slots), ("initial", Initial)):
+        for name, cls in self.GROUP_CLASSES.items():
             group = getattr(self, name)
             if isinstance(group, dict):
                 object.__setattr__(self, name, cls.build(group))
@@ -574,9 +576,6 @@ class CagelessBearing:
         rate = self.fidelity.race_damping * 2.0 * Q / self.mass
         return max(math.sqrt(2.0 * k / self.mass), rate)
 
-    #: group attribute of each case table (``[model]`` is the ``fidelity`` group)
-    GROUPS = {"bearing": "bearing", "operating": "operating", "model": "fidelity", "films": "films", "slots": "slots",
-              "initial": "initial"}
 
     def replace(self, **changes) -> "CagelessBearing":
         """A copy with some values changed, checked again.  ``changes`` by group (``operating={"speed": 1e3}``,
@@ -585,7 +584,7 @@ class CagelessBearing:
         groups = {}
         for name, value in changes.items():
             table, _, field_name = name.partition(".")
-            attr = self.GROUPS.get(table, table if table == "fidelity" else None)
+            attr = self.GROUPS.get(table, table if table in self.GROUP_CLASSES else None)
             if attr is None:
                 raise DynamicsInputError(f"{name} is not a group of the bearing model; choose one of "
                                          f"{', '.join(self.GROUPS)}{did_you_mean(table, self.GROUPS, n=2)}", key=name)
