@@ -201,6 +201,9 @@ class FilmsTable(_Model):
     rupture_thickness: PositiveLength = 1e-7
     friction_film: Q("dimensionless", ge=0) = 0.03
     friction_boundary: Q("dimensionless", ge=0) = 0.1
+    # "paper": paper B eqs. 17-21 (Barus shear limited by friction_film, asperity share of eq. 19)
+    friction_law: Literal["exponential_share", "paper"] = "exponential_share"
+    asperity_slope: Q("dimensionless", gt=0) = 0.02  # sigma_theta of eq. 19 (assumed: not in paper B)
 
     @model_validator(mode="after")
     def _map_given(self):

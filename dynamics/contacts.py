@@ -91,13 +91,17 @@ physical equivalents used here are:
   the closed-form film).  Above the map's last gap node the polar film is
   self-similar (F = h Phi(rho, theta)) and is scaled, not clamped.  Together
   they leave no state of a collision outside the map's axes.
-* Friction (the physical content of eqs. 16-21, the film-rupture friction):
-  the tangential force on the sliding surfaces is mu F_n tanh(|v_s|/v_reg)
-  against the sliding velocity, with mu = mu_b f_a + mu_f (1 - f_a), f_a =
+* Friction (eqs. 16-23, the film-rupture friction): the tangential force on
+  the sliding surfaces is mu F_n tanh(|v_s|/v_reg) against the sliding
+  velocity (:func:`lubrication.laws.collision.ball_ball_friction_coefficient`).
+  Law ``exponential_share`` (default): mu = mu_b f_a + mu_f (1 - f_a), f_a =
   exp(-h/h_r) the asperity share of the load: mu_f (a limiting EHL shear
   coefficient) when the film is intact, the boundary coefficient mu_b when
-  it has ruptured (h -> 0), as the paper's mixing of the oil-film rheological
-  friction and mu_b by the critical load Q_a.
+  it has ruptured (h -> 0).  Law ``paper``: eqs. 17-21 rebuilt, the Barus
+  Newtonian shear of eq. 17 limited by mu_f, mixed with mu_b by the
+  asperities' share Q_a/F_n of eq. 19 (the film ratio h/h_r and the Hertz
+  area of the load) as eq. 20
+  (:func:`lubrication.laws.collision.film_rupture_friction_coefficient`).
 """
 from __future__ import annotations
 
@@ -105,10 +109,9 @@ import math
 
 from numba import njit
 
-from lubrication.laws.collision import (BB_ALPHA, BB_HCUT, BB_HR, BB_MUB, BB_MUF, BB_R, BB_SQF, BB_TAU, BB_VREG,
-                                        PHASE_FILM,
-                                        PHASE_PLASTIC, PHASE_RECOVERY, PHASE_SEPARATED, squeeze_film_closed_form,
-                                        thornton_force)
+from lubrication.laws.collision import (BB_ALPHA, BB_HCUT, BB_R, BB_SQF, BB_TAU, BB_VREG, PHASE_FILM,
+                                        PHASE_PLASTIC, PHASE_RECOVERY, PHASE_SEPARATED,
+                                        ball_ball_friction_coefficient, squeeze_film_closed_form, thornton_force)
 from lubrication.laws.jit import INLINE, JIT
 
 from .interp import HERMITE, hermite3_grad, interp3_grad
@@ -394,13 +397,6 @@ def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax
     if ph == PHASE_PLASTIC or ph == PHASE_RECOVERY:
         phase = ph
     return F, h, x, phase, share
-
-
-@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
-def ball_ball_friction_coefficient(h, p):
-    """mu = mu_b f_a + mu_f (1 - f_a), f_a = exp(-h/h_r) (asperity load share)."""
-    fa = math.exp(-h / p[BB_HR])
-    return p[BB_MUB] * fa + p[BB_MUF] * (1.0 - fa)
 
 
 @njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)

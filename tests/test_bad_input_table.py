@@ -51,6 +51,8 @@ ROWS = [
     (D, ["bearing.inner_groove_radius=4 mm"], 2, ["bearing.inner_groove_radius = 0.004", "ball_diameter/2"]),
     (D, ["slots.depth=20 mm"], 2, ["slots.depth = 0.02", "wall under the groove"]),
     (D, ["bearing.n_balls=1"], 2, ["bearing.n_balls = 1", ">= 3"]),
+    (D, ["films.friction_law=coulomb"], 2, ["films.friction_law = 'coulomb'", "'paper'"]),
+    (D, ["films.asperity_slope=0"], 2, ["films.asperity_slope = 0", "> 0"]),
     (D, ["integrator.method=rk5"], 2, ["integrator.method = 'rk5'", "did you mean 'rk4'"]),
     (D, ["integrator.rtol=0"], 2, ["integrator.rtol = 0", "(0, 1)"]),
     (D, ["model.dof=7dof"], 2, ["model.dof = '7dof'", "did you mean '6dof'"]),

@@ -9,6 +9,7 @@ import pytest
 from scipy.optimize import brentq
 
 from dynamics import contacts as C
+from lubrication.errors import InputError
 from lubrication.laws import collision as LC
 from lubrication.laws.traction import traction_coefficient
 from dynamics import interp
@@ -221,8 +222,69 @@ def test_traction_curve_limits(compiled):
 
 
 def test_film_rupture_friction_blend():
+    """Law "exponential_share": mu_b at h = 0, e^-1 mix at h = h_r, mu_f for h >> h_r."""
     p = LC.ball_ball_parameters(ball_radius=0.5 * D, e_star=ES_BALL, mu_film=0.03, mu_boundary=0.12,
                                rupture_thickness=1e-7)
-    assert C.ball_ball_friction_coefficient(0.0, p) == pytest.approx(0.12, rel=1e-15)
-    assert C.ball_ball_friction_coefficient(1e-7, p) == pytest.approx(0.12 / math.e + 0.03 * (1 - 1 / math.e))
-    assert C.ball_ball_friction_coefficient(5e-6, p) == pytest.approx(0.03, rel=1e-12)
+    f = LC.ball_ball_friction_coefficient
+    assert f(0.0, 10.0, 1.0, p) == pytest.approx(0.12, rel=1e-15)
+    assert f(1e-7, 10.0, 1.0, p) == pytest.approx(0.12 / math.e + 0.03 * (1 - 1 / math.e))
+    assert f(5e-6, 10.0, 1.0, p) == pytest.approx(0.03, rel=1e-12)
+
+
+def _paper_law(**kw):
+    args = dict(ball_radius=0.5 * D, e_star=ES_BALL, mu_film=0.03, mu_boundary=0.12, rupture_thickness=1e-7,
+                viscosity=0.05, pressure_viscosity=2e-8, friction_law="paper", asperity_slope=0.02)
+    args.update(kw)
+    return LC.ball_ball_parameters(**args)
+
+
+def _hertz_circle(load, reff):
+    """a and p0 of a circular Hertz contact (Johnson 1985, eqs. 4.22-4.23)."""
+    a = (3 * load * reff / (4 * ES_BALL)) ** (1 / 3)
+    return a, 3 * load / (2 * math.pi * a * a)
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_paper_b_friction_law_limits(compiled):
+    """Law "paper" (eqs. 17-21 rebuilt) in each of its limits, against values computed here from
+    Johnson's Hertz circle and the isoviscous shear of eq. 17 (1.5 eta U/(h p0))."""
+    f = _k(LC.ball_ball_friction_coefficient, compiled)
+    reff, load = 0.25 * D, 50.0
+    a, p0 = _hertz_circle(load, reff)
+    # thick film (lambda = 50: no asperity load), isoviscous, slow sliding: Newtonian eq. 17 (tanh ~ its argument)
+    p = _paper_law(pressure_viscosity=0.0)
+    h, U = 5e-6, 1e-4
+    newton = 1.5 * 0.05 * U / (h * p0)
+    assert f(h, load, U, p) == pytest.approx(0.03 * math.tanh(newton / 0.03), rel=1e-12)
+    assert f(h, load, U, p) == pytest.approx(newton, rel=1e-6)
+    # piezoviscous (alpha p0 ~ 50): limiting shear mu_f
+    p = _paper_law()
+    assert 2e-8 * p0 > 40
+    assert f(h, load, 1.0, p) == pytest.approx(0.03, rel=1e-14)
+    # no sliding, no load: no friction
+    assert f(h, load, 0.0, p) == 0.0 and f(h, 0.0, 1.0, p) == 0.0
+    # no film, a light load: the asperities carry it all (Q_a > F_n) -> boundary friction mu_b
+    light = 0.5
+    a_l, _ = _hertz_circle(light, reff)
+    f0 = 17.0 + 1.44e-4 * 4.0**7.8
+    assert ES_BALL * a_l**2 * 0.02 * f0 / (2 * math.pi * light) > 1.0
+    assert f(0.0, light, 1.0, p) == pytest.approx(0.12, rel=1e-14)
+    # lambda = 1 under the 50 N load: the mix of eq. 20 with Q_a/F_n = E' pi a^2 sigma_theta f(1)/(4 pi^2 F_n)
+    s = 2 * ES_BALL * math.pi * a * a * 0.02 * (17 * math.exp(-2.84) + 1.44e-4 * 3.0**7.8) / (4 * math.pi**2 * load)
+    assert 0.01 < s < 0.5
+    assert f(1e-7, load, 1.0, p) == pytest.approx(0.03 * (1 - s) + 0.12 * s, rel=1e-12)
+
+
+def test_paper_b_asperity_share_scaling():
+    """Eq. 19 as read: the share falls as F_n^(-1/3) at a fixed film ratio (Hertz area ~ F_n^(2/3)),
+    falls with the film ratio, and is continuous where its power-law term ends (lambda = 4)."""
+    share = LC.asperity_load_share
+    reff = 0.25 * D
+    assert share(80.0, 1.0, reff, ES_BALL, 0.02) / share(10.0, 1.0, reff, ES_BALL, 0.02) == pytest.approx(0.5, rel=1e-12)
+    lams = np.linspace(0.0, 6.0, 601)
+    f = np.array([LC.asperity_load_function(x) for x in lams])
+    assert np.all(np.diff(f) < 0)
+    assert LC.asperity_load_function(4.0 - 1e-9) == pytest.approx(17 * math.exp(-2.84 * 4.0), rel=1e-6)
+    assert LC.asperity_load_function(0.0) == pytest.approx(17.0 + 1.44e-4 * 4.0**7.8, rel=1e-14)
+    with pytest.raises(InputError, match="friction_law = 'coulomb' is not allowed"):
+        _paper_law(friction_law="coulomb")

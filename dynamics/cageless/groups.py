@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from lubrication.laws import contact as laws_contact
+from lubrication.laws.collision import FRICTION_LAWS
 
 from ..contacts import FILM_KINDS
 from ..groups import Group
@@ -226,7 +227,9 @@ class Films(Group):
     ``map_speed_axis``); the film ruptures below ``rupture_thickness`` [m] (``cutoff_gap`` [m]: where
     the squeeze film is cut off; None: the law's default), friction ``friction_film`` while the film
     carries the load and ``friction_boundary`` once it ruptures, regularised over
-    ``slip_regularisation`` [m/s]; ``race`` ("none", "closed_form": Hamrock-Dowson films on the race
+    ``slip_regularisation`` [m/s], mixed by ``friction_law`` ("exponential_share": the asperities'
+    share exp(-h/rupture_thickness); "paper": paper B eqs. 17-21, Barus shear limited by
+    ``friction_film``, asperity share of eq. 19 with ``asperity_slope`` [-]); ``race`` ("none", "closed_form": Hamrock-Dowson films on the race
     contacts)."""
 
     TABLE: ClassVar[str] = "films"
@@ -242,9 +245,13 @@ class Films(Group):
     friction_film: float = 0.03
     friction_boundary: float = 0.1
     slip_regularisation: float = 0.01
+    friction_law: str = "exponential_share"
+    asperity_slope: float = 0.02
 
     def __post_init__(self):
         self.choice("ball_ball", FILM_KINDS)
+        self.choice("friction_law", FRICTION_LAWS)
+        self.positive("asperity_slope")
         self.choice("race", RACE_FILMS)
         self.choice("map_speed_axis", MAP_SPEED_AXES)
         self.positive("rupture_thickness", "slip_regularisation")

@@ -406,7 +406,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
                                          r2 + (wk0 * -a1 - wk1 * -a0) - (wj0 * a1 - wj1 * a0), n0, n1, n2)
                 vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                 if vs > 0.0:
-                    mu = ball_ball_friction_coefficient(h, bbp)
+                    mu = ball_ball_friction_coefficient(h, Fn, vs, bbp)
                     ft = mu * Fn * math.tanh(vs / bbp[BB_VREG])
                     t0, t1, t2 = -ft * s0 / vs, -ft * s1 / vs, -ft * s2 / vs  # on k
                     f0 += t0

@@ -48,8 +48,11 @@ PHASE_NAMES = ("separated", "film", "elastic", "elastic-plastic", "recovery")
 
 # indices of the ball-ball parameter vector (see ball_ball_parameters)
 (BB_K, BB_R, BB_ESTAR, BB_PY, BB_DY, BB_FY, BB_ALPHA, BB_C0, BB_HR, BB_HCUT, BB_MUF, BB_MUB, BB_VREG, BB_TAU,
- BB_SQF) = range(15)
-BB_SIZE = 15
+ BB_SQF, BB_FLAW, BB_ETA, BB_PVA, BB_SLOPE) = range(19)
+BB_SIZE = 19
+
+# ball-ball friction laws (BB_FLAW; :func:`ball_ball_friction_coefficient`)
+FRICTION_LAWS = {"exponential_share": 0, "paper": 1}
 
 
 # ------------------------------------------------------------------ set-up (Python)
@@ -68,13 +71,16 @@ def yield_onset(radius_eff: float, e_star: float, yield_stress: float) -> tuple[
 
 def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alpha=0.0, viscosity=0.0,
                          rupture_thickness=1e-7, cutoff_gap=None, mu_film=0.03, mu_boundary=0.1,
-                         slip_regularisation=0.01, memory_time=1e-4, pressure_viscosity=0.0) -> np.ndarray:
+                         slip_regularisation=0.01, memory_time=1e-4, pressure_viscosity=0.0,
+                         friction_law="exponential_share", asperity_slope=0.02) -> np.ndarray:
     """Parameter vector (indices ``BB_*``) of the ball-ball collision law.
 
     ``yield_stress`` [Pa] None: elastic only (p_y = inf).  ``viscosity`` [Pa s]
     of the squeeze film (closed form); ``rupture_thickness`` h_r [m],
     ``cutoff_gap`` h_cut [m] (default R/10), ``memory_time`` tau_mem [s],
-    ``pressure_viscosity`` alpha [m^2/N] (only for a map over the squeeze number).
+    ``pressure_viscosity`` alpha [m^2/N] (a map over the squeeze number; the paper's friction law);
+    ``friction_law`` one of :data:`FRICTION_LAWS` (see :func:`ball_ball_friction_coefficient`),
+    ``asperity_slope`` sigma_theta [-] of the paper's law (eq. 19).
     """
     R = _positive("ball radius [m]", ball_radius)
     Reff = 0.5 * R
@@ -102,6 +108,11 @@ def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alph
     p[BB_VREG] = _positive("slip regularisation speed [m/s]", slip_regularisation)
     p[BB_TAU] = _positive("plastic memory time [s]", memory_time)
     p[BB_SQF] = 3.0 * pressure_viscosity * viscosity * Reff
+    if friction_law not in FRICTION_LAWS:
+        raise InputError(f"friction_law = {friction_law!r} is not allowed; choose one of {', '.join(FRICTION_LAWS)}")
+    p[BB_FLAW] = FRICTION_LAWS[friction_law]
+    p[BB_ETA], p[BB_PVA] = viscosity, pressure_viscosity
+    p[BB_SLOPE] = _positive("asperity slope [-]", asperity_slope)
     return p
 
 
@@ -131,7 +142,8 @@ def series_film_hertz(k_film: float, c_film: float, delta: float, radius_eff: fl
     return series_stiffness(k_film, k_h), c_film
 
 
-def barus_hertz_friction_coefficient(eta0: float, alpha: float, sliding_speed: float, film: float, p0: float) -> float:
+@njit(**INLINE)  # leaf of the bearing rhs (paper B's friction law) and a Python law
+def barus_hertz_friction_coefficient(eta0, alpha, sliding_speed, film, p0):
     """Film friction coefficient of paper B eq. (17) rebuilt [-].
 
     Newtonian shear eta0 exp(alpha p) U/h over a Hertzian pressure
@@ -140,18 +152,22 @@ def barus_hertz_friction_coefficient(eta0: float, alpha: float, sliding_speed: f
         mu = 3 eta0 U [e^(alpha p0) (alpha p0 - 1) + 1] / (h alpha^2 p0^3)
 
     which tends to 1.5 eta0 U/(h p0) as alpha -> 0 (isoviscous: friction
-    eta0 U pi a^2/h over load (2/3) pi a^2 p0).
+    eta0 U pi a^2/h over load (2/3) pi a^2 p0).  Unbounded in alpha p0 (inf beyond
+    alpha p0 = 700): :func:`film_rupture_friction_coefficient` limits it.
     """
     x = alpha * p0
     if x < 1e-4:  # series: e^x (x - 1) + 1 = x^2/2 + x^3/3 + ...
         bracket_over_x2 = 0.5 + x / 3.0
+    elif x > 700.0:
+        return math.inf
     else:
         bracket_over_x2 = (math.exp(x) * (x - 1.0) + 1.0) / (x * x)
     return 3.0 * eta0 * sliding_speed * bracket_over_x2 / (film * p0)
 
 
-def mixed_friction_coefficient(mu_fluid: float, mu_boundary: float, asperity_share: float) -> float:
-    """Film-rupture (mixed) friction coefficient, paper B eqs. (19)-(21) rebuilt [-].
+@njit(**INLINE)  # leaf of the bearing rhs (paper B's friction law) and a Python law
+def mixed_friction_coefficient(mu_fluid, mu_boundary, asperity_share):
+    """Film-rupture (mixed) friction coefficient, paper B eq. (20) rebuilt [-].
 
     mu = mu_fluid (1 - s) + mu_boundary s with s = Q_asperity/Q in [0, 1]
     (clipped): fluid friction on the film's share of the load, boundary
@@ -159,6 +175,71 @@ def mixed_friction_coefficient(mu_fluid: float, mu_boundary: float, asperity_sha
     """
     s = min(max(asperity_share, 0.0), 1.0)
     return mu_fluid * (1.0 - s) + mu_boundary * s
+
+
+@njit(**INLINE)  # leaf of the bearing rhs (paper B's friction law) and a Python law
+def asperity_load_function(film_ratio):
+    """The film-parameter function of paper B eq. (19) as read here [-]:
+    ``f(lambda) = 17 exp(-2.84 lambda) + 1.44e-4 (4 - lambda)_+^7.8``.
+
+    The extracted text prints ``17 e^(2.84 lambda) + 1.44 x 10^4 (lambda 2)^1.1 4 lambda 7.8``: read as
+    a decaying exponential (the asperities' share must fall as the film grows) plus a term of the
+    Greenwood-Tripp form (4 - lambda)^p (their F_5/2 fit is 4.4086e-5 (4 - lambda)^6.804), which
+    vanishes at lambda = 4 (full film); the printed factor "(lambda 2)^1.1" was left out: as
+    (lambda - 2)^1.1 it is complex below lambda = 2, as (lambda^2)^1.1 it would make f grow with
+    lambda.  f(0) = 24.2, f(1) = 1.75, f(2) = 0.090, f(4) = 6.9e-5."""
+    lam = max(film_ratio, 0.0)
+    f = 17.0 * math.exp(-2.84 * lam)
+    if lam < 4.0:
+        f += 1.44e-4 * (4.0 - lam) ** 7.8
+    return f
+
+
+@njit(**INLINE)  # leaf of the bearing rhs (paper B's friction law) and a Python law
+def asperity_load_share(load, film_ratio, radius_eff, e_star, slope):
+    """Q_a/F_n: the share of a ball pair's load the asperities carry, paper B eq. (19) rebuilt [-].
+
+    ``Q_a = E' A sigma_theta f(lambda)/(4 pi^2)`` (eq. 19) with E' = 2 E*, A = pi a^2 the Hertz
+    area of the load F_n (a^3 = 3 F_n R_eff/(4 E*)), sigma_theta the asperity slope and f
+    :func:`asperity_load_function`; so Q_a/F_n = E* a^2 sigma_theta f(lambda)/(2 pi F_n), which
+    falls as F_n^(-1/3) at a fixed film ratio (the asperities' share of a light load is larger).
+    Not clipped (the caller clips to [0, 1])."""
+    if load <= 0.0:
+        return 1.0
+    a2 = (3.0 * load * radius_eff / (4.0 * e_star)) ** (2.0 / 3.0)
+    return e_star * a2 * slope * asperity_load_function(film_ratio) / (2.0 * math.pi * load)
+
+
+@njit(**INLINE)  # leaf of the bearing rhs (paper B's friction law) and a Python law
+def film_rupture_friction_coefficient(load, film, sliding_speed, eta0, alpha, radius_eff, e_star, roughness,
+                                      slope, mu_limit, mu_boundary):
+    """Paper B's friction coefficient of two balls sliding through their film, eqs. (17)-(21) rebuilt [-].
+
+    With p0 = (6 F_n E*^2/(pi^3 R_eff^2))^(1/3) the Hertz pressure of the load (the film's pressure
+    scale), lambda = h/sigma (sigma the composite roughness) and s = Q_a/F_n clipped to [0, 1]
+    (:func:`asperity_load_share`)::
+
+        mu_fluid = mu_lim tanh(mu_17/mu_lim)            (eq. 17, limited)
+        mu       = mu_fluid (1 - s) + mu_b s            (eq. 20)
+
+    and the film-rupture friction force f_i = mu F_n (eq. 21).  Eq. 17 is Newtonian shear
+    eta0 e^(alpha p) U/h: at the pressures of a collision (alpha p0 = 20-60) it exceeds any
+    lubricant's limiting shear stress by orders of magnitude, so it is limited smoothly by
+    mu_lim (``friction_film``): Newtonian below, limiting-shear traction above (the shape of EHL
+    traction curves).  Eq. 18's tangential *stiffness* (a spring in the tangential direction) is
+    not modelled: neighbouring balls roll in the same sense, so their surfaces slide past each
+    other at about twice the surface speed (m/s), never sticking; the tangential damping of eq. 18
+    is the viscous shear mu_17 F_n/U of eq. 17.  Eq. 22 (the angular deviation atan(F_t/F_n)) and
+    eq. 23 (the resultant) follow from adding the normal and tangential forces as vectors, which
+    the bearing's right-hand side does."""
+    if load <= 0.0 or sliding_speed <= 0.0:
+        return 0.0
+    p0 = (6.0 * load * e_star * e_star / (math.pi ** 3 * radius_eff * radius_eff)) ** (1.0 / 3.0)
+    h = max(film, 1e-3 * roughness)  # the Newtonian term ~ 1/h: a film of zero thickness shears at the limit
+    x = barus_hertz_friction_coefficient(eta0, alpha, sliding_speed, h, p0) / mu_limit if mu_limit > 0.0 else 0.0
+    mu_fluid = mu_limit * math.tanh(min(x, 50.0))
+    share = asperity_load_share(load, film / roughness, radius_eff, e_star, slope)
+    return mixed_friction_coefficient(mu_fluid, mu_boundary, share)
 
 
 def barus_squeeze_film(h0: float, v: float, eta0: float, alpha: float, radius_eff: float) -> tuple:
@@ -266,3 +347,17 @@ def squeeze_film_closed_form(h, v, p):
     hr = p[BB_HR]
     inv = 1.0 / (h + hr)
     return p[BB_C0] * v * (inv - 1.0 / (p[BB_HCUT] + hr)), -p[BB_C0] * v * inv * inv
+
+
+@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
+def ball_ball_friction_coefficient(h, load, sliding_speed, p):
+    """Friction coefficient of a ball pair [-] by the law ``p[BB_FLAW]`` (:data:`FRICTION_LAWS`).
+
+    ``exponential_share``: mu = mu_b f_a + mu_f (1 - f_a), f_a = exp(-h/h_r) (the asperities' share of
+    the load falls exponentially with the film over the composite roughness h_r);
+    ``paper``: :func:`film_rupture_friction_coefficient` (paper B eqs. 17-21, h_r as the roughness)."""
+    if p[BB_FLAW] == 1.0:
+        return film_rupture_friction_coefficient(load, h, sliding_speed, p[BB_ETA], p[BB_PVA], p[BB_R], p[BB_ESTAR],
+                                                 p[BB_HR], p[BB_SLOPE], p[BB_MUF], p[BB_MUB])
+    fa = math.exp(-h / p[BB_HR])
+    return p[BB_MUB] * fa + p[BB_MUF] * (1.0 - fa)
