@@ -134,12 +134,22 @@ class StudyFile(_Model):
             raise rule("axes", None, "needs at least one axis: a --set key and its values, "
                        "e.g. \"operating.speed\" = [\"10000 rpm\", \"15000 rpm\"]")
         for key, values in self.axes.items():
-            _check_axis(key, values)
+            # a grid repeats each value of an axis with every value of the others: each must be distinct;
+            # zipped axes may repeat values as long as the points (the i-th values together) differ
+            _check_axis(key, values, distinct=self.study.combine == "grid")
         if self.study.combine == "zip":
             lengths = {key: len(values) for key, values in self.axes.items()}
             if len(set(lengths.values())) > 1:
                 raise rule("study.combine", "zip", "needs axes of one length; they have "
                            + ", ".join(f"{k!r}: {n}" for k, n in lengths.items()) + " (or use combine = 'grid')")
+            seen = {}
+            for i, point in enumerate(zip(*self.axes.values())):
+                text = tuple(toml_value(v) for v in point)
+                if text in seen:
+                    raise rule("axes", None, f"point {i + 1} repeats point {seen[text] + 1} ("
+                               + ", ".join(f"{k} = {given(v)!r}" for k, v in zip(self.axes, point))
+                               + "); zipped points must differ in at least one axis")
+                seen[text] = i
         for i, text in enumerate(self.study.set):
             try:
                 parse_override(text)
@@ -169,7 +179,7 @@ def _check_dotted(label: str, key: str):
         raise rule(label, key, "must be a dotted case key as --set takes it, e.g. \"operating.speed\"")
 
 
-def _check_axis(key: str, values: list):
+def _check_axis(key: str, values: list, distinct: bool = True):
     _check_dotted(f"axes.{key!r}", key)
     if not values:
         raise rule(f"axes.{key!r}", values, "has no values; give a list of one or more")
@@ -179,7 +189,7 @@ def _check_axis(key: str, values: list):
             raise rule(f"axes.{key!r}", values, "must list values (numbers, strings with units, "
                        "booleans, lists), not tables")
         text = toml_value(value)
-        if text in seen:
+        if distinct and text in seen:
             raise rule(f"axes.{key!r}", values, f"lists {given(value)!r} twice")
         seen[text] = value
 

@@ -59,6 +59,10 @@ def test_grid_and_zip_point_counts_and_folder_names(tmp_path):
                                 {"motion.velocity_lower": "2 m/s", "mesh.nx": 8}]  # last axis fastest
     zipped = read_study(study_file(tmp_path, SPEEDS + '\n"mesh.nx" = [6, 8, 12]', 'combine = "zip"'))
     assert [tuple(p.values()) for p in points(zipped)] == [("2 m/s", 6), ("5 m/s", 8), ("8 m/s", 12)]
+    # zipped axes may repeat a value (one assumption changed per pair of points), not a whole point
+    zipped = read_study(study_file(tmp_path, '"motion.velocity_lower" = ["2 m/s", "2 m/s"]\n"mesh.nx" = [6, 8]',
+                                   'combine = "zip"'))
+    assert [tuple(p.values()) for p in points(zipped)] == [("2 m/s", 6), ("2 m/s", 8)]
     plan = plan_study(read_study(study_file(tmp_path, axes, "members = 2\nmember_key = 'mesh.refinements'")),
                       tmp_path / "study.toml", smoke=True)
     assert len(plan.runs) == 12
@@ -76,6 +80,8 @@ def test_grid_and_zip_point_counts_and_folder_names(tmp_path):
     (SPEEDS, "memebrs = 2", ("study.memebrs: unknown key in [study]; did you mean 'members'",)),
     ('"mesh.nx" = []', "", ("axes.'mesh.nx' = [] has no values",)),
     ('"mesh.nx" = [6, 6]', "", ("axes.'mesh.nx'", "lists '6' twice")),
+    ('"mesh.nx" = [6, 8, 6]\n"mesh.ny" = [4, 4, 4]', 'combine = "zip"',
+     ("axes point 3 repeats point 1 (mesh.nx = '6', mesh.ny = '4')", "must differ in at least one axis")),
     ('"mesh.nx" = 6', "", ("axes.mesh.nx = 6 must be a list",)),
     ("", "", ("axes needs at least one axis",)),
     (SPEEDS, 'set = ["mesh.nx"]', ("study.set[0] = 'mesh.nx' must be KEY=VALUE",)),
