@@ -12,7 +12,7 @@ project's numbers (median and min-max over the seeded members of each point) and
 ::
 
     python benchmarks/paper_b_report.py --drop runs/cageless_drop_speeds --slot runs/cageless_slot_effect \\
-        --fidelity runs/cageless_film_fidelity [--vibration runs/cageless_6206_3krpm] > report.md
+        --fidelity runs/cageless_film_fidelity --sensitivity runs/cageless_slot_sensitivity > report.md
 
 Every number is read from the studies' ``summary.json`` files; nothing is typed in except the paper's
 own values (Table 3 and the statements quoted).
@@ -150,17 +150,55 @@ def rows_fidelity(fid: Path) -> list[tuple]:
     return out
 
 
+#: the assumptions of studies/cageless_slot_sensitivity.toml: (axis, value other than the baseline's) -> label
+SENSITIVITY = {("bearing.ball_density", "22104 kg/m^3"): "ball mass 0.01 kg (paper's print)",
+               ("films.friction_law", "paper"): "friction law of eqs. 17-21",
+               ("operating.rotor_friction", "0.3"): "rotor-ring friction 0.3",
+               ("bearing.rotor_inertia", "2e-4 kg m^2"): "rotor inertia 2e-4 kg m^2"}
+
+
+def rows_sensitivity(study: Path) -> list[tuple]:
+    """The slot claim under each changed assumption: the points of the zipped study grouped by their
+    values on every axis but ``slots.azimuths`` (read from its study.csv)."""
+    import csv
+
+    with open(study / "study.csv", newline="") as f:
+        rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+    key = "Ball-ball collisions [-]"
+    axes = [c for c in rows[0] if c.endswith(" [SI]") is False and c + " [SI]" in rows[0]]
+    others = [a for a in axes if a != "slots.azimuths"]
+    groups: dict[tuple, dict[str, list[float]]] = {}
+    for r in rows:
+        groups.setdefault(tuple(r[a] for a in others), {}).setdefault(r["slots.azimuths"], []).append(float(r[key]))
+    out = []
+    for variant, by_slot in groups.items():
+        changed = [SENSITIVITY.get((a, v), f"{a} = {v}") for a, v in zip(others, variant)
+                   if (a, v) in SENSITIVITY]
+        label = ", ".join(changed) or "baseline"
+        without = by_slot.get("[]", [])
+        for slot, counts in by_slot.items():
+            if slot == "[]":
+                continue
+            out.append((f"Sensitivity at 10000 rpm, {label}: slot at {json.loads(slot)[0]} against none",
+                        "fewer collisions with the slot", f"with slot {stat(counts, '.4g')}, without "
+                        f"{stat(without, '.4g')}", compare(without, counts, "lower")))
+    return out
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--drop", type=Path, required=True, help="output folder of studies/cageless_drop_speeds.toml")
     p.add_argument("--slot", type=Path, help="output folder of studies/cageless_slot_effect.toml")
     p.add_argument("--fidelity", type=Path, help="output folder of studies/cageless_film_fidelity.toml")
+    p.add_argument("--sensitivity", type=Path, help="output folder of studies/cageless_slot_sensitivity.toml")
     args = p.parse_args(argv)
     rows = rows_drop(args.drop)
     if args.slot:
         rows += rows_slot(args.drop, args.slot)
     if args.fidelity:
         rows += rows_fidelity(args.fidelity)
+    if args.sensitivity:
+        rows += rows_sensitivity(args.sensitivity)
     print("| claim | paper | lubedyn: median [min, max] over 8 members | verdict |")
     print("|---|---|---|---|")
     for r in rows:
