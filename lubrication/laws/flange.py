@@ -52,10 +52,10 @@ alpha = 4.662e-8 1/Pa, E' = 225.3 GPa, r_f = 85.6 mm; corners of flange loads 20
     phi0 = 8.44 as Pa s ("paper")      164 - 337                 17.9 - 43.5
     apparent, polyurea (D = u_f/h_c)   13.5 - 26.5               13.2 - 31.9
     apparent, calcium                  6.9 - 12.9                12.4 - 30.0
-    apparent, lithium                  0.14 - 0.25               9.7 - 23.4
+    apparent, lithium                  0.144 - 0.249              9.7 - 23.4
 
-So lambda >= 42 (asperity share exp(-B lambda^C) < 1e-60) for every combination except the apparent
-reading of lithium with Hamrock-Dowson (lambda 0.7-1.2, share 0.1-0.2): only there does eq. 23's
+So lambda >= 34 (asperity share exp(-B lambda^C) < 1e-50) for every combination except the apparent
+reading of lithium with Hamrock-Dowson (lambda 0.72-1.25, share 0.10-0.30): only there does eq. 23's
 asperity friction act, as the paper's explanation of Fig. 14 needs.  Under ``"paper_eq24"`` the film
 barely moves with phi (2.44 -> 38.44 Pa s^n: x1.26), under Hamrock-Dowson it grows 6.3-fold.
 """
