@@ -63,6 +63,39 @@ VALUES = {
     "base_oil_viscosity": P("0.1 Pa s", "dynamic viscosity", "assumed",
                             "not in the paper; a 0.1 Pa s base oil gives a 5.4 um raceway film at 2.4 krpm"),
     "base_oil_density": P("870 kg/m^3", "density", "assumed", "mineral base oil: not in the paper"),
+    # --- grease, traction, flange (issue 22) ---
+    "grease_pressure_viscosity_all": P("4.662e-8 m^2/N", "inverse pressure", "assumed",
+                                       "Table 1 gives alpha for polyurea at 30 C only; used for every grease "
+                                       "and temperature of Table 2"),
+    "grease_viscosity_reading": P("base_oil", "text", "assumed",
+                                  "phi (Pa s^n) is used as a Newtonian viscosity in eqs. 12, 25 (notes 2.3); films "
+                                  "use the base oil (lubrication/laws/grease.py says why)"),
+    "grease_limiting_shear_stress": P("1 MPa", "pressure", "assumed",
+                                      "not in the paper (eq. 26 unbounded, notes 2.5): ambient part tau_L0 of "
+                                      "tau_L = tau_L0 + gamma_L p, of the order Bair & Winer (1979) report"),
+    "grease_limiting_shear_slope": P(0.07, "dimensionless", "assumed",
+                                     "gamma_L = d tau_L/dp: 0.04-0.1 for mineral oils (Bair & Winer 1979); "
+                                     "bounds the traction coefficient"),
+    "grease_yield_regularisation_rate": P("1 Hz", "frequency", "assumed",
+                                          "Papanastasiou rate D_r: removes the yield-stress jump at zero slip; "
+                                          "far below the contacts' 1e3-1e7 1/s"),
+    "raceway_traction_law": P("paper", "text", "assumed",
+                              "eq. 12 as printed (linear, unlimited); 'limited' is the extension"),
+    "rib_contact_radius": P("85.6 mm", "length", "assumed",
+                            "not in the paper: roller axis at the large end 89 + 21.03 sin 10 deg = 92.65 mm "
+                            "from the bearing axis, normal 3 deg off it: 136.2 sin 3 deg = 7.13 mm lower"),
+    "flange_asperity_friction": P(0.2, "dimensionless", "Eq. 23", "s0/p0 ~ 0.2 for most metals"),
+    "flange_asperity_b": P(1.8, "dimensionless", "assumed",
+                           "B of eq. 23, not given: share 0.17 at lambda = 1, 1e-3 at lambda = 3 (a usual "
+                           "full-film limit); values recalled from roller-end/rib models, not verified"),
+    "flange_asperity_c": P(1.2, "dimensionless", "assumed", "C of eq. 23, not given (see flange_asperity_b)"),
+    "flange_roughness": P("0.2 um", "length", "assumed",
+                          "composite rms sigma of ground roller end and rib face (about 0.14 um each): not given"),
+    "flange_friction_mixing": P("paper", "text", "assumed",
+                                "eq. 22 adds asperity and grease friction as printed; 'load_share' weights the "
+                                "grease part by 1 - exp(-B lambda^C)"),
+    "rib_film_model": P("hamrock_dowson", "text", "assumed",
+                        "eq. 24 has no length scale (notes 2.6); 'paper_eq24' reads it as h_c/r_s"),
     # operating point of Fig. 5
     "radial_load": P("20 kN", "force", "Fig. 5"),
     "inner_speed": P("2400 rpm", "angular velocity", "Fig. 5"),

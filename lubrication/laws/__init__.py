@@ -13,6 +13,15 @@ module         laws
                (incompressible, Dowson-Higginson) with d/dp, Eyring flow factor
 ``film``       closed-form EHL film thickness (Hamrock-Dowson, Nijenbanning,
                Dowson-Toyoda, Pan-Hamrock, Moes)
+``grease``     Herschel-Bulkley grease (Barus phi, Papanastasiou option),
+               Table 2 of paper A in temperature, viscosity readings
+               (base_oil / apparent / paper), grease line film
+``traction``   traction curve mu(SRR); paper A's raceway traction eqs.
+               12-13 ("paper") and a limited Herschel-Bulkley law over the
+               Hertz strip or ellipse (Bair-Winer limit, extension)
+``flange``     roller-end sphere on a conical rib: relative radii, exact
+               Hertz, rib film (Hamrock-Dowson or eq. 24 rebuilt), mixed
+               friction eqs. 22-23
 =============  ===============================================================
 
 Everything here is a pure function of floats (or a frozen SI dataclass) with
