@@ -1,0 +1,298 @@
+"""Static scene: the quasi-static equilibrium of a tapered roller bearing (paper A's bearing).
+
+A case (``scene = "static"``; usually ``parameters = "Wu2018"``, which fills ``[bearing]`` from paper
+A's Table 1 and the parameter module's assumed values)::
+
+    scene = "static"
+    parameters = "Wu2018"
+    [bearing]                  # any field of lubrication.laws.tapered.TaperedRollerGeometry
+    reconciliation = "common_apex"   # or "literal" (Table 1 as printed: the roller ends slide ~14 %)
+    profile = "straight"       # or "logarithmic" (crowned; crown_load sets the design load)
+    [operating]
+    radial_load = "20 kN"      # along +y
+    axial_displacement = "0 um"  # or axial_load = "15 kN" (give one): 0 locks the axial DOF
+    speed = "2400 rpm"         # cone speed: centrifugal and gyroscopic roller loads
+    [model]
+    slices = 20                # slices per roller and raceway
+    gyroscopic = true
+    [solver]
+    tol = 1e-10
+    max_iterations = 400
+
+``build(case)`` makes the geometry (:class:`lubrication.laws.tapered.TaperedRollerGeometry`) and
+``run`` solves :func:`dynamics.tapered.quasistatic.solve` and writes
+
+- ``summary.json``: per-roller loads on cup, cone and flange (most loaded, least, and every roller),
+  contact angles, approaches, the cone's displacement, ideal kinematics (cage speed, roller spin,
+  entrainment speed) from the model's own geometry, the derived geometry (roller axis angle, half
+  taper, pitch radius), the solver's stop reason, iterations and force-balance error, and
+  ``"Assumed values"``: every value of the case that paper A does not give (source ``assumed`` in
+  :mod:`coupling.parameters.wu2018`) with its reason;
+- ``case.resolved.toml``; ``loads.png`` (per-roller cup, cone and flange loads against azimuth, and
+  the slice loads of the most loaded roller) when ``output.write`` lists ``"png"``.
+
+Nothing is written when the solve fails (a :class:`~lubrication.errors.ConvergenceError` names why).
+"""
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from lubrication.errors import InputError
+
+from . import outputs
+from .config import LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
+
+log = logging.getLogger(__name__)
+
+FIELD_FILES = (("loads.png", "png"),)
+
+Angle = Q("angle", gt=0, lt=math.pi / 2)
+Length = Q("length", ge=0)
+Force = Q("force", ge=0)
+
+
+class BearingTable(_Model):
+    """The tapered roller bearing (paper A, Table 1, with ``parameters = "Wu2018"``)."""
+
+    type: Literal["tapered_roller"] = "tapered_roller"
+    n_rollers: PositiveInt
+    effective_length: PositiveLength
+    large_end_diameter: PositiveLength
+    small_end_diameter: PositiveLength
+    end_sphere_radius: PositiveLength
+    outer_contact_angle: Angle
+    inner_contact_angle: Q("angle", ge=0, lt=math.pi / 2)
+    flange_contact_angle: Angle
+    outer_raceway_radius: PositiveLength
+    inner_raceway_radius: PositiveLength
+    rib_height: PositiveLength
+    cage_outer_diameter: PositiveLength
+    cage_inner_diameter: PositiveLength
+    cage_thickness: PositiveLength
+    guide_land_clearance: PositiveLength
+    guide_land_width: PositiveLength
+    pocket_clearance: PositiveLength
+    land_axial_gap: Length
+    modulus: Q("pressure", gt=0)
+    poisson: Q("dimensionless", ge=0, lt=0.5)
+    density: Q("density", gt=0)
+    reconciliation: Literal["common_apex", "literal"] = "common_apex"
+    profile: Literal["straight", "logarithmic"] = "straight"
+    crown_load: Force = 0.0
+
+    @model_validator(mode="after")
+    def _ends(self):
+        if self.small_end_diameter >= self.large_end_diameter:
+            raise rule("small_end_diameter", self.small_end_diameter,
+                       f"must be < large_end_diameter = {self.large_end_diameter:g} m (the large end carries the "
+                       "flange)")
+        return self
+
+
+class OperatingTable(_Model):
+    """Loads on the cone (cup fixed) and its speed."""
+
+    radial_load: Force = 0.0
+    axial_load: Force | None = None
+    axial_displacement: Q("length") | None = None
+    speed: Q("angular velocity", ge=0) = 0.0
+
+    @model_validator(mode="after")
+    def _one_axial(self):
+        if (self.axial_load is None) == (self.axial_displacement is None):
+            raise rule("axial_load", self.axial_load, "give exactly one of axial_load (a force; > 0 closes the "
+                       "bearing) and axial_displacement (0 locks the axial DOF, > 0 is a preload)")
+        return self
+
+
+class ModelTable(_Model):
+    slices: PositiveInt = 20
+    gyroscopic: bool = True
+
+
+class SolverTable(_Model):
+    tol: Q("dimensionless", gt=0, lt=1e-2) = 1e-10
+    max_iterations: PositiveInt = 400
+
+
+class OutputTable(_Model):
+    write: list[Literal["png"]] = Field(default_factory=lambda: ["png"])
+
+
+class StaticCase(_Model):
+    """A static scene; after validation every value is SI and every default filled in."""
+
+    scene: Literal["static"]
+    description: str = ""
+    bearing: BearingTable
+    operating: OperatingTable = Field(default_factory=OperatingTable)
+    model: ModelTable = Field(default_factory=ModelTable)
+    solver: SolverTable = Field(default_factory=SolverTable)
+    output: OutputTable = Field(default_factory=OutputTable)
+    limits: LimitsModel = Field(default_factory=LimitsModel)
+    smoke: dict[str, Any] | None = None
+
+
+CaseModel = StaticCase
+
+
+def build(case: StaticCase):
+    """The geometry of the case's bearing; an impossible geometry is an InputError naming the key."""
+    from lubrication.laws.tapered import TaperedRollerGeometry
+
+    b = case.bearing
+    fields = {k: getattr(b, k) for k in BearingTable.model_fields if k != "type"}
+    try:
+        return TaperedRollerGeometry(**fields)
+    except InputError as exc:
+        text = str(exc)
+        raise InputError(text if text.startswith("bearing.") else f"bearing.{text}") from None
+
+
+def describe(case: StaticCase, geometry) -> str:
+    op = case.operating
+    axial = (f"F_a {op.axial_load:g} N" if op.axial_load is not None
+             else f"axial displacement {op.axial_displacement * 1e6:g} um")
+    return (f"tapered roller bearing ({case.bearing.reconciliation}, {case.bearing.profile}), "
+            f"{case.bearing.n_rollers} rollers x {case.model.slices} slices; F_r {op.radial_load:g} N, {axial}, "
+            f"{op.speed * 30 / math.pi:g} rpm")
+
+
+def assumed_values(case: StaticCase) -> dict:
+    """Every ``bearing`` value of the case that paper A does not give, where the case uses the parameter
+    module's assumed value: ``{case key: "value: reason"}``."""
+    from .parameters import wu2018
+
+    out = {}
+    for key, name in wu2018.SCENES.get("static", {}).items():
+        p = wu2018.VALUES[name]
+        if p.source != "assumed":
+            continue
+        table, field_name = key.split(".", 1)
+        value = getattr(getattr(case, table), field_name, None)
+        si = p.si()
+        same = value == si if isinstance(si, str) or isinstance(value, str) else (
+            value is not None and math.isclose(float(value), float(si), rel_tol=1e-12, abs_tol=0.0))
+        if same:
+            out[key] = f"{p.value}: {p.note}"
+    return out
+
+
+def summarise(case: StaticCase, geometry, res) -> dict:
+    """The summary's scene entries (module docstring)."""
+    j = int(np.argmax(res.cup_loads))
+    kin = res.kinematics
+    s = {
+        "Rollers [-]": case.bearing.n_rollers,
+        "Slices per roller [-]": case.model.slices,
+        "Geometry reconciliation": case.bearing.reconciliation,
+        "Roller profile": case.bearing.profile,
+        "Radial load [N]": res.radial_load,
+        "Axial load [N]": res.axial_load,
+        "Cone speed [rpm]": case.operating.speed * 30 / math.pi,
+        "Cone displacement x (axial) [m]": float(res.cone_displacement[0]),
+        "Cone displacement y (radial load) [m]": float(res.cone_displacement[1]),
+        "Cone displacement z [m]": float(res.cone_displacement[2]),
+        "Most loaded roller [-]": j,
+        "Most loaded roller azimuth [deg]": math.degrees(float(res.azimuths[j])),
+        "Largest cup load [N]": float(res.cup_loads[j]),
+        "Largest cone load [N]": float(np.max(res.cone_loads)),
+        "Largest flange load [N]": float(np.max(res.flange_loads)),
+        "Smallest cup load [N]": float(np.min(res.cup_loads)),
+        "Loaded rollers (cup load > 0) [-]": int(np.sum(res.cup_loads > 0.0)),
+        "Largest cup approach [m]": float(np.max(res.cup_approaches)),
+        "Largest cone approach [m]": float(np.max(res.cone_approaches)),
+        "Largest slice load, cup [N]": float(np.max(res.cup_slice_loads)),
+        "Cup loads [N]": [float(x) for x in res.cup_loads],
+        "Cone loads [N]": [float(x) for x in res.cone_loads],
+        "Flange loads [N]": [float(x) for x in res.flange_loads],
+        "Cup contact angles [deg]": [math.degrees(float(x)) for x in res.cup_angles],
+        "Roller tilts [rad]": [float(x) for x in res.roller_tilts],
+        "Centrifugal force per roller [N]": res.centrifugal_force,
+        "Gyroscopic moment per roller [N m]": res.gyroscopic_moment,
+        "Roller axis angle [deg]": math.degrees(geometry.roller_axis_angle),
+        "Roller half taper [deg]": math.degrees(geometry.half_taper),
+        "Pitch radius [m]": geometry.pitch_radius,
+        "Stop reason": res.stop_reason,
+        "Iterations [-]": res.iterations,
+        "Residual [-]": res.residual,
+        "Force balance error [-]": res.force_balance_error,
+    }
+    for k, v in kin.items():
+        if isinstance(v, (int, float)):
+            s[f"Ideal {k}"] = float(v)
+    s["Assumed values"] = assumed_values(case)
+    return s
+
+
+@dataclass
+class StaticRun:
+    case: StaticCase
+    geometry: object
+    result: object = None
+    summary: dict = field(default_factory=dict)
+    files: list = field(default_factory=list)
+
+
+def headline(s: dict) -> list[str]:
+    """What ``lubedyn run`` prints."""
+    lines = [f"{k:<40} {s[k]:.6g}" for k in ("Largest cup load [N]", "Largest cone load [N]", "Largest flange load [N]",
+                                             "Cone displacement x (axial) [m]", "Cone displacement y (radial load) [m]")]
+    lines.append(f"{'Stop reason':<40} {s['Stop reason']} ({s['Iterations [-]']} iterations)")
+    n = len(s.get("Assumed values", {}))
+    if n:
+        lines.append(f"{'Assumed values (summary.json)':<40} {n}")
+    return lines
+
+
+def run(case: StaticCase, out_dir=None, *, name: str = "static", source: str = "", smoke: bool = False) -> StaticRun:
+    """Build, solve and (if ``out_dir``) write; nothing is written when the build or the solve fails."""
+    from dynamics.tapered.quasistatic import solve
+
+    t0 = time.perf_counter()
+    geometry = build(case)
+    t_build = time.perf_counter() - t0
+    log.info("%s", describe(case, geometry))
+    op = case.operating
+    res = solve(geometry, radial_load=op.radial_load, axial_load=op.axial_load,
+                axial_displacement=op.axial_displacement, inner_speed=op.speed, n_slices=case.model.slices,
+                gyroscopic=case.model.gyroscopic, tol=case.solver.tol, max_iterations=case.solver.max_iterations)
+    summary = outputs.run_summary(case, name, smoke, summarise(case, geometry, res), t0, t_build)
+    result = StaticRun(case=case, geometry=geometry, result=res, summary=summary)
+    if out_dir is None:
+        return result
+    header = outputs.resolved_header(name, source, smoke)
+    result.files = outputs.write_run(out_dir, resolved_toml(case, header), summary, case.output.write,
+                                     figure=("loads.png", lambda: _figure(name, res)))
+    return result
+
+
+def _figure(name: str, res):
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(10, 4))
+    ax, ax2 = fig.subplots(1, 2)
+    deg = np.degrees(res.azimuths)
+    for loads, label in ((res.cup_loads, "cup"), (res.cone_loads, "cone"), (res.flange_loads, "flange")):
+        ax.plot(deg, loads, "o-", label=label)
+    ax.set_xlabel("Roller azimuth [deg] (0: the radial load's direction)")
+    ax.set_ylabel("Contact load [N]")
+    ax.set_title(f"{name}: roller loads")
+    ax.legend()
+    j = int(np.argmax(res.cup_loads))
+    n = res.cup_slice_loads.shape[1]
+    ax2.plot(np.arange(n), res.cup_slice_loads[j], "o-", label="cup")
+    ax2.plot(np.arange(n), res.cone_slice_loads[j], "s-", label="cone")
+    ax2.set_xlabel("Slice (0: small end)")
+    ax2.set_ylabel("Slice load [N]")
+    ax2.set_title(f"most loaded roller ({j})")
+    ax2.legend()
+    fig.tight_layout()
+    return fig
