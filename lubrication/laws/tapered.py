@@ -149,39 +149,8 @@ class TaperedRollerGeometry:
 
     def __post_init__(self):
         s = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731
-        if self.reconciliation not in RECONCILIATIONS:
-            raise unknown_choice("reconciliation", self.reconciliation, RECONCILIATIONS)
-        if self.profile not in PROFILES:
-            raise unknown_choice("profile", self.profile, PROFILES)
-        if int(self.n_rollers) != self.n_rollers or self.n_rollers < 3:
-            raise InputError(f"n_rollers = {self.n_rollers!r} must be an integer >= 3")
-        for key in ("effective_length", "large_end_diameter", "small_end_diameter", "end_sphere_radius",
-                    "outer_raceway_radius", "inner_raceway_radius", "rib_height", "cage_outer_diameter",
-                    "cage_inner_diameter", "cage_thickness", "guide_land_width", "modulus", "density"):
-            positive(key, getattr(self, key))
-        for key in ("guide_land_clearance", "pocket_clearance", "land_axial_gap", "crown_load"):
-            v = float(getattr(self, key))
-            if not (v >= 0.0 and math.isfinite(v)):
-                raise InputError(f"{key} = {v!r} must be a finite number >= 0")
-        if self.profile == "logarithmic":
-            positive("crown_load", self.crown_load)
-        if not self.large_end_diameter > self.small_end_diameter:
-            raise InputError(f"large_end_diameter = {self.large_end_diameter!r} must exceed "
-                             f"small_end_diameter = {self.small_end_diameter!r}")
+        self._validate()
         ai, ao, bf = self.inner_contact_angle, self.outer_contact_angle, self.flange_contact_angle
-        if not 0.0 <= ai < ao < 0.5 * math.pi:
-            raise InputError(f"inner_contact_angle = {ai!r} rad must lie in [0, outer_contact_angle = {ao!r})")
-        if not ao < bf < 0.5 * math.pi:
-            raise InputError(f"flange_contact_angle = {bf!r} rad must lie in (outer_contact_angle, pi/2)")
-        if not self.outer_raceway_radius > self.inner_raceway_radius:
-            raise InputError(f"outer_raceway_radius = {self.outer_raceway_radius!r} must exceed "
-                             f"inner_raceway_radius = {self.inner_raceway_radius!r}")
-        if self.rib_height >= self.large_end_diameter:
-            raise InputError(f"rib_height = {self.rib_height!r} m must be below the roller's large-end "
-                             f"diameter {self.large_end_diameter!r} m (a rib taller than the roller)")
-        if self.cage_inner_diameter >= self.cage_outer_diameter:
-            raise InputError(f"cage_inner_diameter = {self.cage_inner_diameter!r} must be below "
-                             f"cage_outer_diameter = {self.cage_outer_diameter!r}")
         l = self.effective_length
         rp = 0.5 * (self.outer_raceway_radius + self.inner_raceway_radius)
         rho_m = 0.25 * (self.large_end_diameter + self.small_end_diameter)
@@ -253,6 +222,42 @@ class TaperedRollerGeometry:
         s("land_x", x_end + self.land_axial_gap + 0.5 * self.guide_land_width)
         s("cage_x", self.land_x)
         s("land_radius", 0.5 * self.cage_inner_diameter - 0.5 * self.guide_land_clearance)
+
+    def _validate(self):
+        """One-line :class:`InputError` for bad inputs (before any derived value)."""
+        if self.reconciliation not in RECONCILIATIONS:
+            raise unknown_choice("reconciliation", self.reconciliation, RECONCILIATIONS)
+        if self.profile not in PROFILES:
+            raise unknown_choice("profile", self.profile, PROFILES)
+        if int(self.n_rollers) != self.n_rollers or self.n_rollers < 3:
+            raise InputError(f"n_rollers = {self.n_rollers!r} must be an integer >= 3")
+        for key in ("effective_length", "large_end_diameter", "small_end_diameter", "end_sphere_radius",
+                    "outer_raceway_radius", "inner_raceway_radius", "rib_height", "cage_outer_diameter",
+                    "cage_inner_diameter", "cage_thickness", "guide_land_width", "modulus", "density"):
+            positive(key, getattr(self, key))
+        for key in ("guide_land_clearance", "pocket_clearance", "land_axial_gap", "crown_load"):
+            v = float(getattr(self, key))
+            if not (v >= 0.0 and math.isfinite(v)):
+                raise InputError(f"{key} = {v!r} must be a finite number >= 0")
+        if self.profile == "logarithmic":
+            positive("crown_load", self.crown_load)
+        if not self.large_end_diameter > self.small_end_diameter:
+            raise InputError(f"large_end_diameter = {self.large_end_diameter!r} must exceed "
+                             f"small_end_diameter = {self.small_end_diameter!r}")
+        ai, ao, bf = self.inner_contact_angle, self.outer_contact_angle, self.flange_contact_angle
+        if not 0.0 <= ai < ao < 0.5 * math.pi:
+            raise InputError(f"inner_contact_angle = {ai!r} rad must lie in [0, outer_contact_angle = {ao!r})")
+        if not ao < bf < 0.5 * math.pi:
+            raise InputError(f"flange_contact_angle = {bf!r} rad must lie in (outer_contact_angle, pi/2)")
+        if not self.outer_raceway_radius > self.inner_raceway_radius:
+            raise InputError(f"outer_raceway_radius = {self.outer_raceway_radius!r} must exceed "
+                             f"inner_raceway_radius = {self.inner_raceway_radius!r}")
+        if self.rib_height >= self.large_end_diameter:
+            raise InputError(f"rib_height = {self.rib_height!r} m must be below the roller's large-end "
+                             f"diameter {self.large_end_diameter!r} m (a rib taller than the roller)")
+        if self.cage_inner_diameter >= self.cage_outer_diameter:
+            raise InputError(f"cage_inner_diameter = {self.cage_inner_diameter!r} must be below "
+                             f"cage_outer_diameter = {self.cage_outer_diameter!r}")
 
     # ---------------------------------------------------------------- geometry
     @staticmethod
