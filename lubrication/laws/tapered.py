@@ -196,7 +196,8 @@ class TaperedRollerGeometry:
         u_s = 0.5 * l - rs
         centre = c0 + u_s * e
         p_f = centre - rs * n_f
-        offset = float(np.cross(e, p_f - c0))   # signed distance of P_f from the axis (+ towards the cup)
+        rel = p_f - c0
+        offset = float(e[0] * rel[1] - e[1] * rel[0])   # signed distance of P_f from the axis (+ cup side)
         s("sphere_center_u", u_s)
         s("flange_normal", n_f)
         s("flange_point", p_f)
