@@ -73,7 +73,7 @@ VALUES = {
     "crown_design_load": P("5 kN", "force", "assumed",
                            "crown design load: the most loaded roller at Fr 20 kN (4.8-5.0 kN, notes 3.2)"),
     "n_slices": P(20, "count", "assumed",
-                  "not given; the bearing load changes by 0.3 % from 20 to 160 slices (order ~1.1 with "
+                  "not given; the preload reaction changes by 0.6 % from 20 to 160 slices (order ~1.1 with "
                   "the logarithmic crown, tests/test_trb_quasistatic.py)"),
     "slice_damping_alpha": P("0.16 s/m", "inverse velocity", "assumed",
                              "alpha_e of eq. 11: only a range 0.08-0.32 s/m is given; its geometric mid-point"),

@@ -13,6 +13,11 @@ module         laws
                (incompressible, Dowson-Higginson) with d/dp, Eyring flow factor
 ``film``       closed-form EHL film thickness (Hamrock-Dowson, Nijenbanning,
                Dowson-Toyoda, Pan-Hamrock, Moes)
+``slices``     roller slice law: Palmgren's line law, k_w = K_L/n_s, eq. 11's
+               damped slice force and slice interference (numba leaves)
+``tapered``    tapered roller bearing geometry (common-apex or literal
+               reading of paper A's Table 1), flange, crown, cage land,
+               ideal kinematics, end sliding, roller mass
 =============  ===============================================================
 
 Everything here is a pure function of floats (or a frozen SI dataclass) with
