@@ -17,7 +17,7 @@ common apex the pitch radius 89 mm would need a 90 mm roller.  Pitch radius, mea
 l_e, a common apex and both printed contact angles cannot all be kept; the two options:
 
 ``"common_apex"`` (default)
-    keeps the pitch radius R_p = (99.52 + 78.48)/4 x 2 = 89 mm, the mean roller diameter
+    keeps the pitch radius R_p = (99.52 + 78.48)/2 = 89 mm, the mean roller diameter
     D_m = 21.305 mm, l_e, and the roller axis angle alpha_r = (15 + 5)/2 = 10 deg (the mean of
     the printed contact angles); the cup, cone and roller axis meet at the apex A = (-R_p/tan
     alpha_r, 0) on the bearing axis, so the half-taper is phi = atan(rho_m/L), L = R_p/sin
@@ -64,9 +64,9 @@ are r_i, r_o; for a common apex this is pure rolling along the whole line)::
     roller spin relative to the cage  omega_R = omega_c r_o / rho_m
     entrainment speed                 u_e = omega_c r_o = (omega_i - omega_c) r_i
 
-(gamma here is the ratio of the model's contact radii, equivalent to D_m cos(alpha_r)/d_m within
-1e-4 for the common apex; the notes' conventions D_m cos(alpha)/d_m with alpha = 5, 10, 15 deg
-give 1,056.9 / 1,058.5 / 1,061.3 rpm at 2,400 rpm.)
+(the mid-slice contact points sit at R_p -+ rho_m cos(alpha_r) in both readings, so gamma =
+D_m cos(alpha_r)/d_m exactly: 1,058.55 rpm at 2,400 rpm; the notes' conventions D_m cos(alpha)/d_m
+with alpha = 5, 10, 15 deg give 1,056.9 / 1,058.5 / 1,061.3 rpm.)
 """
 from __future__ import annotations
 
