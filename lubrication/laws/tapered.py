@@ -88,6 +88,18 @@ def _unit(angle):
     return np.array([math.cos(angle), math.sin(angle)])
 
 
+def _touching_line(c0, e, rho_m, phi, length, n):
+    """A point of the raceway line of unit normal n that touches the straight roller (axis e through
+    c0, radius rho_m + u tan(phi)) without overlapping it anywhere: placed tangent to the mid slice
+    (n.(c0 - X) = rho_m sqrt(1 - (n.e)^2)), then moved off along n by the largest end overlap (the
+    interference is linear in u, so an end decides)."""
+    s = math.sqrt(1.0 - float(n @ e) ** 2)
+    p = c0 - n * rho_m * s
+    ends = np.array([-0.5 * length, 0.5 * length])
+    overlap = (rho_m + ends * math.tan(phi)) * s - n @ (c0[:, None] + e[:, None] * ends[None, :] - p[:, None])
+    return p - float(overlap.max()) * n
+
+
 @dataclass(frozen=True)
 class TaperedRollerGeometry:
     """Tapered roller bearing (SI, angles in rad); derived fields are computed on construction.
@@ -167,17 +179,8 @@ class TaperedRollerGeometry:
             phi = math.atan((self.large_end_diameter - self.small_end_diameter) / (2.0 * l))
             cup, cone = ao, ai
             n_o, n_i = np.array([math.sin(cup), -math.cos(cup)]), np.array([-math.sin(cone), math.cos(cone)])
-            # lines tangent to the mid slice: n.(C0 - X) = rho_m sqrt(1 - (n.e)^2)
-            e = _unit(alpha_r)
-            p_o = c0 - n_o * rho_m * math.sqrt(1.0 - float(n_o @ e) ** 2)
-            p_i = c0 - n_i * rho_m * math.sqrt(1.0 - float(n_i @ e) ** 2)
-            # then moved off until no point of the roller overlaps (first contact at the small end)
-            ends = np.array([-0.5 * l, 0.5 * l])
-            for_end = lambda p, n: float(np.max(  # noqa: E731
-                (rho_m + ends * math.tan(phi)) * math.sqrt(1.0 - float(n @ e) ** 2)
-                - n @ (c0[:, None] + e[:, None] * ends[None, :] - p[:, None])))
-            p_o = p_o - for_end(p_o, n_o) * n_o
-            p_i = p_i - for_end(p_i, n_i) * n_i
+            p_o = _touching_line(c0, _unit(alpha_r), rho_m, phi, l, n_o)
+            p_i = _touching_line(c0, _unit(alpha_r), rho_m, phi, l, n_i)
             # the two lines meet where n_o.(X - p_o) = n_i.(X - p_i) = 0
             A = np.array([n_o, n_i])
             apex = np.linalg.solve(A, np.array([n_o @ p_o, n_i @ p_i]))
