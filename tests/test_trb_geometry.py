@@ -257,3 +257,18 @@ def test_slice_interference_derivatives():
     assert grad[2] == pytest.approx((f(beta + h) - f(beta - h)) / (2 * h), rel=1e-8)
     curv = sl.slice_interference_curvature(math.cos(beta), math.sin(beta), rho, u, *n)
     assert curv == pytest.approx((f(beta + h) - 2 * f(beta) + f(beta - h)) / h**2, rel=1e-4)
+
+
+def test_slice_leaves_run_inside_a_compiled_kernel():
+    """The part-2 kernels call the slice law from numba: the leaves inline into an @njit caller and
+    give the Python values."""
+    from numba import njit
+
+    @njit
+    def kernel(delta_dot):
+        d = sl.slice_interference(0.0, 0.0, 1.0, 0.0, 0.01, 0.0, -0.00999, 0.0, 1.0)
+        return sl.slice_force(d, delta_dot, 1e9, 0.16)
+
+    d = sl.slice_interference.py_func(0.0, 0.0, 1.0, 0.0, 0.01, 0.0, -0.00999, 0.0, 1.0)
+    assert d == pytest.approx(1e-5, rel=1e-9)
+    assert kernel(0.1) == pytest.approx(1e9 * d ** (10 / 9) * (1 + 1.5 * 0.16 * 0.1), rel=1e-14)
