@@ -47,6 +47,9 @@ LAW_CONSTANTS = {
     1.96e8: "Roelands reference pressure p0 = 1.96e8 Pa",
     5.1e-9: "Roelands z = alpha / (5.1e-9 (ln eta0 + 9.67))",
     1.7e-9: "Dowson-Higginson density 1 + 0.6e-9 p / (1 + 1.7e-9 p)",
+    3.84e-5: "Palmgren line law delta = 3.84e-5 Q^0.9 / l^0.8 [mm, N] (Palmgren 1959)",
+    0.356: "paper A's slice stiffness k_w = 0.356 E' l^(8/9) / n_s (Wu et al. 2018, eq. 11)",
+    0.3033: "Johns-Gohar logarithmic crown, 1 - 0.3033 b/a (Johns & Gohar 1981)",
 }
 
 

@@ -36,6 +36,7 @@ DIMENSIONS: dict[str, tuple[int, ...]] = {
     "angle": (0, 0, 0, 1, 0),
     "temperature": (0, 0, 0, 0, 1),
     "velocity": (1, 0, -1, 0, 0),
+    "inverse velocity": (-1, 0, 1, 0, 0),
     "acceleration": (1, 0, -2, 0, 0),
     "angular velocity": (0, 0, -1, 1, 0),
     "frequency": (0, 0, -1, 0, 0),

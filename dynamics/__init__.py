@@ -11,6 +11,8 @@ module          responsibility
                 phases, film-rupture friction (set-up laws: lubrication.laws)
 ``cageless``    cage-less 6206 ball bearing of paper B: ``CagelessBearing``,
                 ``rhs``, ``forces``, ``forces_many``
+``tapered``     tapered roller bearing of paper A: quasi-static rigid-ring
+                equilibrium of the cone and sliced rollers (``solve``)
 ``interp``      map interpolation kernels (multilinear, monotone cubic, log
                 axes; clamp-and-count or NaN outside the axes)
 ``lyapunov``    Lyapunov spectrum (Benettin), largest exponent of a time

@@ -6,9 +6,17 @@ greases at 15-70 C) and the operating points of Figs. 5-16.  The paper's own inc
 the choices made here, are those of ``shared/reference/paper_A_notes.md`` (section 2): the two
 roller end diameters are printed swapped (the large end is 24.76 mm); the pitch diameter is the
 sum of the two raceway radii; what the paper does not give is ``source="assumed"`` with a reason.
-The tapered-roller model that uses all of it is still to come; today the roller EHL cases use the
-raceway, roller and grease values.
+The bearing's geometry (reconciliation of Table 1's non-common-apex values, rib, crown, cage and
+guide-land placement) is :class:`lubrication.laws.tapered.TaperedRollerGeometry`, built from these
+values; its quasi-static equilibrium is :mod:`dynamics.tapered.quasistatic`.  Default
+reconciliation ``"common_apex"``: pitch radius, mean roller diameter, l_e and the roller axis angle
+(the mean of the printed contact angles) are kept and the taper comes from a common apex, so the
+raceway angles become 11.19 / 8.81 deg; ``"literal"`` keeps 15 / 5 deg and the roller's own 4.70 deg
+taper (0.30 deg misfit per raceway, ends sliding +13.6 / -14.2 % on the cone).  The roller EHL
+cases use the raceway, roller and grease values.
 """
+from lubrication.laws.tapered import TaperedRollerGeometry
+
 from . import Parameter as P
 
 NAME = "Wu2018"
@@ -48,6 +56,29 @@ VALUES = {
     "cage_inner_diameter": P("196.10 mm", "length", "Table 1"),
     "cage_thickness": P("5 mm", "length", "Table 1"),
     "pocket_clearance": P("0.27 mm", "length", "Table 1"),
+    # --- geometry, slices, quasi-static (issue 22) ---
+    "geometry_reconciliation": P("common_apex", "text", "assumed",
+                                 "Table 1 is not a common-apex design (notes 2.1): keep R_p 89 mm, D_m, l_e and "
+                                 "the 10 deg roller axis, taper from a common apex (phi 1.19 deg, raceways "
+                                 "11.19/8.81 deg); 'literal' keeps 15/5 deg and is edge-loaded"),
+    "rib_height": P("8 mm", "length", "assumed",
+                    "not given; the 83 deg flange contact sits 3.96 mm (common apex) / 5.44 mm (literal) above "
+                    "the cone raceway, so 8 mm (0.32 D_large) keeps it on the rib"),
+    "guide_land_axial_gap": P("2 mm", "length", "assumed",
+                              "Table 1's cage (196.1-205.8 mm) fits no raceway (notes 2.2): cage ring and "
+                              "inner-ring guide land placed beyond the large end, 2 mm clear of it"),
+    "roller_profile": P("logarithmic", "text", "assumed",
+                        "not given; Lundberg/Johns-Gohar logarithmic crown (usual for TRB rollers), "
+                        "'straight' as the other choice"),
+    "crown_design_load": P("5 kN", "force", "assumed",
+                           "crown design load: the most loaded roller at Fr 20 kN (4.8-5.0 kN, notes 3.2)"),
+    "n_slices": P(20, "count", "assumed",
+                  "not given; the preload reaction changes by 0.6 % from 20 to 160 slices (order ~1.1 with "
+                  "the logarithmic crown, tests/test_trb_quasistatic.py)"),
+    "slice_damping_alpha": P("0.16 s/m", "inverse velocity", "assumed",
+                             "alpha_e of eq. 11: only a range 0.08-0.32 s/m is given; its geometric mid-point"),
+    "steel_density": P("7850 kg/m^3", "density", "assumed",
+                       "bearing steel; gives the roller 0.118 kg (common apex) / 0.119 kg (literal)"),
     # materials (Table 1)
     "steel_modulus": P("205 GPa", "pressure", "Table 1"),
     "steel_poisson": P(0.3, "dimensionless", "Table 1"),
@@ -112,3 +143,24 @@ SCENES = {
         "lubricant.density.rho0": "base_oil_density",
     },
 }
+
+
+def tapered_geometry(**overrides):
+    """:class:`lubrication.laws.tapered.TaperedRollerGeometry` of Table 1 with this module's assumed
+    rib, cage-land gap, density, profile and crown load; ``overrides`` replace any field."""
+    si = {k: p.si() for k, p in VALUES.items()}
+    fields = dict(
+        n_rollers=si["n_rollers"], effective_length=si["effective_length"],
+        large_end_diameter=si["roller_large_end_diameter"], small_end_diameter=si["roller_small_end_diameter"],
+        end_sphere_radius=si["roller_end_sphere_radius"], outer_contact_angle=si["outer_contact_angle"],
+        inner_contact_angle=si["inner_contact_angle"], flange_contact_angle=si["flange_contact_angle"],
+        outer_raceway_radius=si["outer_raceway_radius"], inner_raceway_radius=si["inner_raceway_radius"],
+        rib_height=si["rib_height"], cage_outer_diameter=si["cage_outer_diameter"],
+        cage_inner_diameter=si["cage_inner_diameter"], cage_thickness=si["cage_thickness"],
+        guide_land_clearance=si["guide_land_clearance"], guide_land_width=si["guide_land_width"],
+        pocket_clearance=si["pocket_clearance"], modulus=si["steel_modulus"], poisson=si["steel_poisson"],
+        density=si["steel_density"], land_axial_gap=si["guide_land_axial_gap"],
+        reconciliation=si["geometry_reconciliation"], profile=si["roller_profile"],
+        crown_load=si["crown_design_load"])
+    fields.update(overrides)
+    return TaperedRollerGeometry(**fields)
