@@ -218,6 +218,9 @@ def summarise(case: StaticCase, geometry, res) -> dict:
         "Centrifugal force per roller [N]": res.centrifugal_force,
         "Gyroscopic moment per roller [N m]": res.gyroscopic_moment,
         "Roller axis angle [deg]": math.degrees(geometry.roller_axis_angle),
+        "Cup raceway angle [deg]": math.degrees(geometry.cup_angle),
+        "Cone raceway angle [deg]": math.degrees(geometry.cone_angle),
+        "Flange contact angle [deg]": math.degrees(case.bearing.flange_contact_angle),
         "Roller half taper [deg]": math.degrees(geometry.half_taper),
         "Pitch radius [m]": geometry.pitch_radius,
         "Stop reason": res.stop_reason,
@@ -227,7 +230,9 @@ def summarise(case: StaticCase, geometry, res) -> dict:
     }
     for k, v in kin.items():
         if isinstance(v, (int, float)):
-            s[f"Ideal {k}"] = float(v)
+            s[f"Ideal {k}" if "[" in k else f"Ideal {k} [-]"] = float(v)
+    if "cage speed [rad/s]" in kin:
+        s["Ideal cage speed [rpm]"] = float(kin["cage speed [rad/s]"]) * 30 / math.pi
     s["Assumed values"] = assumed_values(case)
     return s
 

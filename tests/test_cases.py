@@ -435,6 +435,49 @@ check_cageless_6206_20krpm = check_cageless_6206_25krpm = _check_cageless_drop
 check_cageless_6206_10krpm_short = check_cageless_6206_3krpm = _check_cageless_drop
 
 
+def _trb_loads(s):
+    angles = [math.radians(s[k]) for k in ("Cup raceway angle [deg]", "Cone raceway angle [deg]",
+                                            "Flange contact angle [deg]")]
+    return angles, [np.array(s[k]) for k in ("Cup loads [N]", "Cone loads [N]", "Flange loads [N]")]
+
+
+def check_trb_static_axial(s, case):
+    """Fa 15 kN at rest: every roller carries the same loads, and cup, cone and flange forces close the
+    triangle of the raceway and flange angles the summary reports: Z Q_o sin(a_o) = Fa,
+    Q_o cos(a_o) = Q_i cos(a_i) - Q_f cos(a_f), Q_o sin(a_o) = Q_i sin(a_i) + Q_f sin(a_f)."""
+    (ao, ai, af), (qo, qi, qf) = _trb_loads(s)
+    assert s["Stop reason"].startswith("tolerance met")
+    assert np.ptp(qo) < 1e-9 * qo[0] and np.ptp(qf) < 1e-9 * qf[0]
+    assert s["Rollers [-]"] * qo[0] * math.sin(ao) == pytest.approx(case["operating"]["axial_load"], rel=1e-8)
+    assert qo[0] * math.cos(ao) == pytest.approx(qi[0] * math.cos(ai) - qf[0] * math.cos(af), rel=1e-8)
+    assert qo[0] * math.sin(ao) == pytest.approx(qi[0] * math.sin(ai) + qf[0] * math.sin(af), rel=1e-8)
+    assert 0.0 < qf[0] < 0.1 * qo[0]  # the rib takes the small difference of the raceway angles
+
+
+def check_trb_static_radial(s, case):
+    """Fr 20 kN, axial locked, 2,400 rpm: the cone's radial balance over the rollers' azimuths gives Fr,
+    the cup's axial reaction is the induced thrust the summary reports, about half of the rollers carry
+    load, and the most loaded roller is within 5 % of Stribeck's 4.08 Fr/(Z cos a) for line contacts at
+    zero clearance (Harris & Kotzalas ch. 7: an estimate for a rigid-ring half load zone)."""
+    (ao, ai, af), (qo, qi, qf) = _trb_loads(s)
+    Z, fr = s["Rollers [-]"], case["operating"]["radial_load"]
+    psi = 2 * np.pi * np.arange(Z) / Z
+    assert np.sum((qi * math.cos(ai) - qf * math.cos(af)) * np.cos(psi)) == pytest.approx(fr, rel=1e-8)
+    assert np.sum(qo * math.sin(ao)) == pytest.approx(s["Axial load [N]"], rel=1e-8)
+    assert s["Largest cup load [N]"] == pytest.approx(4.08 * fr / (Z * math.cos(ao)), rel=0.05)
+    assert 7 <= sum(qi > 1.0) <= 10
+    assert s["Ideal cage speed [rpm]"] == pytest.approx(2400 * (1 - s["Ideal gamma [-]"]) / 2, rel=1e-12)
+
+
+def check_trb_static_preload(s, case):
+    """A preload as a displacement loads every roller alike, and the axial force the summary reports is
+    the cone's axial balance over the rollers' cone and flange loads."""
+    (ao, ai, af), (qo, qi, qf) = _trb_loads(s)
+    assert np.ptp(qo) < 1e-9 * qo[0]
+    assert np.sum(qi * math.sin(ai) + qf * math.sin(af)) == pytest.approx(s["Axial load [N]"], rel=1e-8)
+    assert s["Centrifugal force per roller [N]"] > 0
+
+
 CHECKS = {name[len("check_"):]: f for name, f in globals().items() if name.startswith("check_")}
 
 

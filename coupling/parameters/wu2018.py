@@ -133,8 +133,21 @@ VALUES = {
     "simulated_time": P("0.18 s", "time", "Sec. 4", "from a quasi-static start; means over 0.1-0.18 s"),
 }
 
-#: where each case schema takes each value (the roller EHL contact of the ``ehl`` scene)
+#: where each case schema takes each value (the roller EHL contact of the ``ehl`` scene, the quasi-static
+#: bearing of the ``static`` scene)
 SCENES = {
+    "static": {
+        **{f"bearing.{k}": k for k in (
+            "n_rollers", "effective_length", "outer_contact_angle", "inner_contact_angle", "flange_contact_angle",
+            "outer_raceway_radius", "inner_raceway_radius", "rib_height", "cage_outer_diameter",
+            "cage_inner_diameter", "cage_thickness", "guide_land_clearance", "guide_land_width", "pocket_clearance")},
+        "bearing.large_end_diameter": "roller_large_end_diameter",
+        "bearing.small_end_diameter": "roller_small_end_diameter",
+        "bearing.end_sphere_radius": "roller_end_sphere_radius", "bearing.land_axial_gap": "guide_land_axial_gap",
+        "bearing.modulus": "steel_modulus", "bearing.poisson": "steel_poisson", "bearing.density": "steel_density",
+        "bearing.reconciliation": "geometry_reconciliation", "bearing.profile": "roller_profile",
+        "bearing.crown_load": "crown_design_load", "model.slices": "n_slices",
+    },
     "ehl": {
         "bearing.element_diameter": "roller_mean_diameter", "bearing.pitch_diameter": "pitch_diameter",
         "bearing.n_elements": "n_rollers", "bearing.effective_length": "effective_length",

@@ -1,0 +1,57 @@
+"""The static scene (``scene = "static"``, coupling/static_scene.py) through the command line: the preload's
+growth, the echo of every assumed value, and bad input as one line.  The bundled cases' physics checks
+(force triangles, the cone's balance, Stribeck) are in tests/test_cases.py."""
+from __future__ import annotations
+
+import json
+import pytest
+
+from coupling import cli
+from coupling.config import CASES_DIR
+
+
+def _run(capsys, tmp_path, case, *sets):
+    out = tmp_path / case
+    args = ["run", str(CASES_DIR / f"{case}.toml"), "--smoke", "--out", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    code = cli.main(args)
+    _, err = capsys.readouterr()
+    assert code == 0, err
+    return json.loads((out / "summary.json").read_text())
+
+
+def test_preload_grows_faster_than_the_displacement(capsys, tmp_path):
+    """40 um of preload needs more than twice the axial force of 20 um and at most 2^(10/9) times
+    (the slices' 10/9 law; the crown's growing contact length lies between), each physics check of a
+    bundled case being in tests/test_cases.py."""
+    s20 = _run(capsys, tmp_path, "trb_static_preload")
+    s40 = _run(capsys, tmp_path, "trb_static_preload", "operating.axial_displacement=40 um")
+    assert 2.0 < s40["Axial load [N]"] / s20["Axial load [N]"] < 2.0 ** (10 / 9) * 1.05
+
+
+def test_a_value_given_by_the_case_is_not_echoed_as_assumed(capsys, tmp_path):
+    s = _run(capsys, tmp_path, "trb_static_axial", "bearing.rib_height=7 mm", "bearing.profile=straight")
+    assert "bearing.rib_height" not in s["Assumed values"] and "bearing.profile" not in s["Assumed values"]
+    assert "bearing.density" in s["Assumed values"]
+
+
+@pytest.mark.parametrize("sets, fragments", [
+    (["operating.axial_load=5 kN"], ["axial_load", "exactly one of"]),
+    (["bearing.small_end_diameter=30 mm"], ["bearing.small_end_diameter", "large_end_diameter"]),
+    (["bearing.reconciliation=apex"], ["bearing.reconciliation = 'apex'", "common_apex"]),
+    (["bearing.pocket_clearance=-0.1 mm"], ["bearing.pocket_clearance", "> 0"]),
+    (["model.slices=0"], ["model.slices = 0", ">= 1"]),
+])
+def test_bad_static_input_is_one_line(capsys, tmp_path, sets, fragments):
+    out = tmp_path / "o"
+    args = ["run", str(CASES_DIR / "trb_static_preload.toml"), "--out", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    assert cli.main(args) == 2
+    _, err = capsys.readouterr()
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert len(lines) == 1 and "Traceback" not in err, err
+    for f in fragments:
+        assert f in lines[0], (f, lines[0])
+    assert not out.exists()
