@@ -331,13 +331,19 @@ def write_run(out_dir, resolved: str, summary: dict, write, fields=None, figure=
 
 
 def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float) -> dict:
-    """The summary every scene writes: identity, the scene's own results, timing."""
+    """The summary every scene writes: identity, the scene's own results, the values its paper does not
+    give (``"Assumed values"``: :func:`coupling.parameters.assumed_values`), timing."""
     import time
 
     from . import __version__
 
+    from .parameters import assumed_values
+
     summary = {"Case": name, "Scene": case.scene, "Description": case.description}
     summary.update(scene_summary)
+    assumed = assumed_values(case)
+    if assumed:  # what the case's paper does not give, with the reason for the value taken
+        summary["Assumed values"] = assumed
     summary["Smoke resolution"] = bool(smoke)
     summary["Build time [s]"] = t_build
     summary["Run time [s]"] = time.perf_counter() - t0

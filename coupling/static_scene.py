@@ -25,9 +25,9 @@ A's Table 1 and the parameter module's assumed values)::
 - ``summary.json``: per-roller loads on cup, cone and flange (most loaded, least, and every roller),
   contact angles, approaches, the cone's displacement, ideal kinematics (cage speed, roller spin,
   entrainment speed) from the model's own geometry, the derived geometry (roller axis angle, half
-  taper, pitch radius), the solver's stop reason, iterations and force-balance error, and
-  ``"Assumed values"``: every value of the case that paper A does not give (source ``assumed`` in
-  :mod:`coupling.parameters.wu2018`) with its reason;
+  taper, pitch radius), the solver's stop reason, iterations and force-balance error, and (as every
+  scene's summary) ``"Assumed values"``: every value of the case that paper A does not give (source
+  ``assumed`` in :mod:`coupling.parameters.wu2018`) with its reason;
 - ``case.resolved.toml``; ``loads.png`` (per-roller cup, cone and flange loads against azimuth, and
   the slice loads of the most loaded roller) when ``output.write`` lists ``"png"``.
 
@@ -165,26 +165,6 @@ def describe(case: StaticCase, geometry) -> str:
             f"{op.speed * 30 / math.pi:g} rpm")
 
 
-def assumed_values(case: StaticCase) -> dict:
-    """Every ``bearing`` value of the case that paper A does not give, where the case uses the parameter
-    module's assumed value: ``{case key: "value: reason"}``."""
-    from .parameters import wu2018
-
-    out = {}
-    for key, name in wu2018.SCENES.get("static", {}).items():
-        p = wu2018.VALUES[name]
-        if p.source != "assumed":
-            continue
-        table, field_name = key.split(".", 1)
-        value = getattr(getattr(case, table), field_name, None)
-        si = p.si()
-        same = value == si if isinstance(si, str) or isinstance(value, str) else (
-            value is not None and math.isclose(float(value), float(si), rel_tol=1e-12, abs_tol=0.0))
-        if same:
-            out[key] = f"{p.value}: {p.note}"
-    return out
-
-
 def summarise(case: StaticCase, geometry, res) -> dict:
     """The summary's scene entries (module docstring)."""
     j = int(np.argmax(res.cup_loads))
@@ -233,7 +213,6 @@ def summarise(case: StaticCase, geometry, res) -> dict:
             s[f"Ideal {k}" if "[" in k else f"Ideal {k} [-]"] = float(v)
     if "cage speed [rad/s]" in kin:
         s["Ideal cage speed [rpm]"] = float(kin["cage speed [rad/s]"]) * 30 / math.pi
-    s["Assumed values"] = assumed_values(case)
     return s
 
 

@@ -1,15 +1,19 @@
 """benchmarks/case_summaries.py, the before/after tool of refactors (issue 13): its comparison is
 bit-exact by default, names the key that changed and honours an explicit tolerance; a recording of
 one cheap case is identical across two runs (a few seconds; no time is asserted)."""
+import importlib.util
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-case_summaries = pytest.importorskip("case_summaries")
+# loaded from its file, not by putting benchmarks/ on sys.path: benchmarks/dynamics.py would shadow the
+# dynamics package for every test run later in the same worker
+_spec = importlib.util.spec_from_file_location(
+    "case_summaries", Path(__file__).resolve().parents[1] / "benchmarks" / "case_summaries.py")
+case_summaries = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(case_summaries)
 
 
 def _recording(load=20626.73843510263, series=None):

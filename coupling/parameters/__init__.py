@@ -127,3 +127,35 @@ def apply_parameter_set(raw: dict) -> dict:
                 raise InputError(f"{'.'.join(path[:-1])} must be a table to take parameters = {name!r}")
         node[path[-1]] = copy.deepcopy(module.VALUES[pname].value)
     return out
+
+
+def assumed_values(case) -> dict:
+    """The values of a validated ``case`` that its paper does not give: ``{case key: "value: reason"}`` for
+    every key of the case's scene that its parameter set (``case._parameter_set``) marks ``source =
+    "assumed"`` and whose value in the case is the set's (a value the case file or ``--set`` changed is
+    the user's, not an assumption of the set).  Empty without a set."""
+    import math
+
+    name = getattr(case, "_parameter_set", None)
+    if not name:
+        return {}
+    module = parameter_set(name)
+    out = {}
+    for key, pname in module.SCENES.get(case.scene, {}).items():
+        p = module.VALUES[pname]
+        if p.source != "assumed":
+            continue
+        value = case
+        for part in key.split("."):
+            value = getattr(value, part, None)
+            if value is None:
+                break
+        given = p.si()
+        if isinstance(value, (int, float)) and isinstance(given, (int, float)) and not isinstance(value, bool):
+            same = math.isclose(float(value), float(given), rel_tol=1e-12, abs_tol=0.0)
+        else:
+            same = value == given
+        if same:
+            out[key] = f"{p.value}: {p.note}"
+    return out
+
