@@ -123,3 +123,17 @@ def test_bad_parameter_sets_are_one_line(text, match):
     with pytest.raises(CaseError, match=match) as info:
         load_case_text(text)
     assert "\n" not in str(info.value)
+
+
+def test_assumed_values_are_those_the_case_keeps():
+    """A case naming a set lists, under "Assumed values", exactly the keys the set marks assumed and the
+    case does not change: paper A's base oil in the roller EHL case, gone when the case gives its own."""
+    from coupling.parameters import assumed_values
+
+    case = load_case(CASES / "ehl_roller_slice.toml")
+    wu = P.parameter_set("Wu2018")
+    expected = {k for k, n in wu.SCENES["ehl"].items() if wu.VALUES[n].source == "assumed"}
+    assert set(assumed_values(case)) == expected and "lubricant.viscosity.eta0" in expected
+    mine = load_case(CASES / "ehl_roller_slice.toml", overrides=["lubricant.viscosity.eta0=0.2 Pa s"])
+    assert set(assumed_values(mine)) == expected - {"lubricant.viscosity.eta0"}
+    assert assumed_values(load_case(CASES / "inclined_slider.toml")) == {}
