@@ -84,6 +84,31 @@ VALUES = {
     "steel_poisson": P(0.3, "dimensionless", "Table 1"),
     "cage_modulus": P("8.3 GPa", "pressure", "Table 1", "polyamide, inner-ring guided"),
     "cage_poisson": P(0.28, "dimensionless", "Table 1"),
+    # --- cage pocket and guide land (issue 22; lubrication/laws/cage.py) ---
+    "guide_land_radius": P("97.8 mm", "length", "assumed",
+                           "the cage's centering surface is its bore (196.10/2 = 98.05 mm); the land lies 0.25 mm "
+                           "inside it (Table 1's 0.5 mm read as diametral)"),
+    "pocket_critical_film": P("2 um", "length", "assumed",
+                              "Delta h0 of eq. 36, not given: about ten composite roughnesses of a moulded polyamide "
+                              "pocket against a ground roller"),
+    "guide_land_critical_film": P("2 um", "length", "assumed", "Delta h0' of eq. 45, not given: as the pocket's"),
+    "pocket_contact_stiffness": P("1e8 N/m", "stiffness", "assumed",
+                                  "k_h of eq. 37 per slice, not given: a steel slice (2 mm) on polyamide (E* 9 GPa) "
+                                  "flattened by about 1 um under 100 N, the linearised line contact"),
+    "pocket_contact_damping": P("100 N s/m", "damping", "assumed",
+                                "c_h of eq. 37, not given: a damping ratio of about 0.1 with a 0.12 kg roller "
+                                "on k_h"),
+    "boundary_friction": P(0.1, "dimensionless", "assumed",
+                           "mu_bd of eqs. 37 and 45, not given: steel on polyamide in boundary lubrication"),
+    "side_beam_axial_clearance": P("0.3 mm", "length", "assumed",
+                                   "Delta delta' of eq. 39 (roller end to side beam), not given: of the order of "
+                                   "the pocket clearance 0.27 mm"),
+    "pocket_switch": P("continuous", "text", "assumed",
+                       "the paper switches film/boundary state abruptly at Delta h0; the continuous switch has no "
+                       "jump in force or friction (lubrication/laws/cage.py)"),
+    "guide_land_film": P("short_bearing", "text", "assumed",
+                         "Ocvirk's short bearing, within 0.3 % of the FEM finite bearing at the land's "
+                         "b/2r = 0.025; 'paper': eq. 44's cylinder-over-plane law"),
     # grease and base oil (Tables 1 and 2)
     "grease_yield_stress": P("351.8 Pa", "pressure", "Table 1", "polyurea grease at 30 C"),
     "grease_plastic_viscosity": P(8.44, "dimensionless", "Table 1",

@@ -22,6 +22,9 @@
                friction eqs. 22-23
 ``slices``     roller slice law: Palmgren's line law, k_w = K_L/n_s, eq. 11's
                damped slice force and slice interference (numba leaves)
+``cage``       paper A's cage: pocket film (Martin, squeeze), boundary state
+               with a continuous switch, side-beam squeeze, guide land
+               (short bearing, Couette torque)
 ``tapered``    tapered roller bearing geometry (common-apex or literal
                reading of paper A's Table 1), flange, crown, cage land,
                ideal kinematics, end sliding, roller mass
