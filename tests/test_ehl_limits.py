@@ -218,3 +218,17 @@ def test_multigrid_light_load_high_L_stops_with_a_hint_from_the_state():
     with pytest.raises(ConvergenceError, match="M = 10 is not a heavy load.*try a coarser grid"):
         solve_ehl(c, EHLGrid(nx=257), EHLOptions(method="multigrid"))
     assert solve_ehl(c, EHLGrid(nx=129), EHLOptions(method="multigrid")).info["stop_reason"] == "tolerance met"
+
+
+def test_a_singular_ilu_preconditioner_is_a_convergence_error(monkeypatch):
+    """SuperLU's "Factor is exactly singular" (met on paper A's roller at 1 kN/m, 8 m/s with a 320 b
+    inlet) escaped as a RuntimeError past the Newton fallbacks; it is now a ConvergenceError with the
+    stop reason of the dense branch, so the fallback chain (and the CLI's exit 1) handle it."""
+    import lubrication.ehl.newton as newton
+
+    def singular(*args, **kwargs):
+        raise RuntimeError("Factor is exactly singular")
+
+    monkeypatch.setattr(newton.spla, "spilu", singular)
+    with pytest.raises(ConvergenceError, match="singular preconditioner"):
+        solve_ehl(_line(10, 10), EHLGrid(nx=129), EHLOptions(dense_max_line=0))

@@ -84,7 +84,11 @@ class _Linear:
         else:
             self.A, self.D = A, D
             Pm = (A + D @ P.K_local())[idx][:, idx].tocsc()
-            self.ilu = spla.spilu(Pm, drop_tol=1e-6, fill_factor=20)
+            try:
+                self.ilu = spla.spilu(Pm, drop_tol=1e-6, fill_factor=20)
+            except RuntimeError as exc:  # SuperLU: "Factor is exactly singular", as the dense branch above
+                raise _stopped("singular Jacobian", f"EHL Newton: singular preconditioner (ILU) at M = "
+                               f"{P.c.moes_M:.4g}, L = {P.c.moes_L:.4g} ({exc})") from None
             full = np.zeros(P.N)
 
             def mv(v):
