@@ -29,7 +29,12 @@ A's Table 1 and the parameter module's assumed values)::
   scene's summary) ``"Assumed values"``: every value of the case that paper A does not give (source
   ``assumed`` in :mod:`coupling.parameters.wu2018`) with its reason;
 - ``case.resolved.toml``; ``loads.png`` (per-roller cup, cone and flange loads against azimuth, and
-  the slice loads of the most loaded roller) when ``output.write`` lists ``"png"``.
+  the slice loads of the most loaded roller) when ``output.write`` lists ``"png"``;
+- ``bearing.vtu`` (``"vtu"``) for ParaView: the cup and cone raceway surfaces over the rollers' length
+  and the 17 rollers (crowned frustums) at their equilibrium positions and tilts, in metres, bearing
+  axis along x and the radial load along +y; cell data ``"Body [-]"`` (0 cup, 1 cone, 2 + j roller j),
+  point data ``"Cup load [N]"``, ``"Cone load [N]"``, ``"Flange load [N]"`` (each roller's, 0 on the
+  rings).  Colour by ``Cup load [N]`` to see the load zone; the displacements are to scale (um).
 
 Nothing is written when the solve fails (a :class:`~lubrication.errors.ConvergenceError` names why).
 """
@@ -51,7 +56,7 @@ from .config import LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolve
 
 log = logging.getLogger(__name__)
 
-FIELD_FILES = (("loads.png", "png"),)
+FIELD_FILES = (("bearing.vtu", "vtu"), ("loads.png", "png"))
 
 Angle = Q("angle", gt=0, lt=math.pi / 2)
 Length = Q("length", ge=0)
@@ -123,7 +128,7 @@ class SolverTable(_Model):
 
 
 class OutputTable(_Model):
-    write: list[Literal["png"]] = Field(default_factory=lambda: ["png"])
+    write: list[Literal["vtu", "png"]] = Field(default_factory=lambda: ["vtu", "png"])
 
 
 class StaticCase(_Model):
@@ -254,8 +259,63 @@ def run(case: StaticCase, out_dir=None, *, name: str = "static", source: str = "
         return result
     header = outputs.resolved_header(name, source, smoke)
     result.files = outputs.write_run(out_dir, resolved_toml(case, header), summary, case.output.write,
+                                     fields=("bearing.vtu", lambda path: bearing_mesh(geometry, res).save(path)),
                                      figure=("loads.png", lambda: _figure(name, res)))
     return result
+
+
+def _revolve(points_xr, psi, tangential):
+    """3-D points of meridional-plane points (x, r) with an out-of-plane offset ``tangential``, turned
+    to the azimuth ``psi`` about the bearing axis x (psi = 0: +y)."""
+    x, r = points_xr
+    c, s = np.cos(psi), np.sin(psi)
+    return np.stack([x, r * c - tangential * s, r * s + tangential * c], axis=-1)
+
+
+def bearing_mesh(geometry, res, n_around: int = 24, n_along: int = 9):
+    """The cup, cone and rollers at equilibrium as one pyvista UnstructuredGrid (module docstring)."""
+    import pyvista as pv
+
+    g = geometry
+    e0 = g.axis_direction
+    l = g.effective_length
+    u = np.linspace(-0.5 * l, 0.5 * l, n_along)
+    t = np.linspace(0.0, 2.0 * np.pi, n_around + 1)
+    blocks = []
+
+    def grid(pts, body, loads):
+        sg = pv.StructuredGrid(pts[..., 0], pts[..., 1], pts[..., 2])
+        m = sg.cast_to_unstructured_grid()
+        m.cell_data["Body [-]"] = np.full(m.n_cells, body, dtype=np.int32)
+        for key, value in zip(("Cup load [N]", "Cone load [N]", "Flange load [N]"), loads):
+            m.point_data[key] = np.full(m.n_points, value)
+        return m
+
+    # raceways: the lines over the rollers' length, revolved about the axis
+    for body, which in ((0, "cup"), (1, "cone")):
+        ends = np.array([g.contact_point(ui, which) for ui in (u[0], u[-1])])
+        xs = np.linspace(ends[0, 0], ends[1, 0], n_along)
+        rs = np.linspace(ends[0, 1], ends[1, 1], n_along)
+        psi = np.linspace(0.0, 2.0 * np.pi, 4 * n_around + 1)
+        X, P = np.meshgrid(xs, psi, indexing="ij")
+        R, _ = np.meshgrid(rs, psi, indexing="ij")
+        blocks.append(grid(_revolve((X, R), P, 0.0), body, (0.0, 0.0, 0.0)))
+    # rollers: frustums about their axes, displaced (a, r) and tilted in their meridional planes
+    for j, psi in enumerate(res.azimuths):
+        a, r = res.roller_displacements[j]
+        th = res.roller_tilts[j]
+        ct, st = math.cos(th), math.sin(th)
+        e = np.array([ct * e0[0] - st * e0[1], st * e0[0] + ct * e0[1]])
+        n_perp = np.array([-e[1], e[0]])
+        c0 = np.array([a, g.pitch_radius + r])
+        rho = np.asarray(g.roller_radius(u), dtype=float)
+        U, T = np.meshgrid(u, t, indexing="ij")
+        RHO, _ = np.meshgrid(rho, t, indexing="ij")
+        x = c0[0] + U * e[0] + RHO * np.cos(T) * n_perp[0]
+        rr = c0[1] + U * e[1] + RHO * np.cos(T) * n_perp[1]
+        pts = _revolve((x, rr), psi, RHO * np.sin(T))
+        blocks.append(grid(pts, 2 + j, (res.cup_loads[j], res.cone_loads[j], res.flange_loads[j])))
+    return pv.merge(blocks, merge_points=False)
 
 
 def _figure(name: str, res):

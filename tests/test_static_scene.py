@@ -55,3 +55,25 @@ def test_bad_static_input_is_one_line(capsys, tmp_path, sets, fragments):
     for f in fragments:
         assert f in lines[0], (f, lines[0])
     assert not out.exists()
+
+
+def test_bearing_vtu_for_paraview(capsys, tmp_path):
+    """bearing.vtu: cup, cone and 17 rollers as bodies; each roller carries its summary loads; the
+    rollers lie between the raceway surfaces (radii about the axis within the cone's and cup's range,
+    to 0.1 mm: the crowned frustum's rim, tilted by micro-radians); the load zone faces +y."""
+    import numpy as np
+    import pyvista as pv
+
+    s = _run(capsys, tmp_path, "trb_static_radial")
+    m = pv.read(tmp_path / "trb_static_radial" / "bearing.vtu")
+    body = m.cell_data["Body [-]"]
+    assert sorted(set(body.tolist())) == list(range(2 + s["Rollers [-]"]))
+    rollers = m.extract_cells(np.flatnonzero(body >= 2))
+    r = np.hypot(rollers.points[:, 1], rollers.points[:, 2])
+    rings = [np.hypot(*m.extract_cells(np.flatnonzero(body == k)).points[:, 1:].T) for k in (0, 1)]
+    assert rings[1].min() - 1e-4 < r.min() and r.max() < rings[0].max() + 1e-4
+    for j in (0, 8):
+        cells = m.extract_cells(np.flatnonzero(body == 2 + j))
+        assert np.allclose(cells.point_data["Cup load [N]"], s["Cup loads [N]"][j])
+    loaded = m.extract_cells(np.flatnonzero(body == 2))  # roller 0 at azimuth 0: on +y
+    assert loaded.points[:, 1].mean() > 0.08
