@@ -591,8 +591,12 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
             collision_times=[e.t_peak for e in events],
             # a position is resolved to about rtol times its size (the error control of the integrator)
             scale_min=ig.rtol * float(np.max(np.abs(centres[:, case.analysis.ball, :])))))
+    benettin = None
     if case.analysis.lyapunov_exponents:
-        summary.update(_benettin(case, model, t, Y, shaft, start=summary.get("Lyapunov window start [s]")))
+        # the whole-system spectrum runs in a thread (its compiled kernel releases the GIL) while the rest
+        # of the analysis, the frames and the figures are made; its entries join the summary before the
+        # time series and summary.json are written (_BackgroundResult)
+        benettin = _BackgroundResult(_benettin, case, model, t, Y, shaft, start=summary.get("Lyapunov window start [s]"))
     # characteristic frequencies at the inner ring's mean speed over the analysed window
     # (after a drop the ring is still spinning up: the lines move during the run)
     keep = t >= case.analysis.transient
@@ -609,10 +613,51 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
                                                    events, freqs))
 
     summary = outputs.run_summary(case, name, smoke, summary, t0, t_build)
+
+    def complete(summary):
+        """The summary with the Benettin entries (waiting for their thread) and the run time updated."""
+        if benettin is not None:
+            run_time = summary.pop("Run time [s]")
+            tail = {k: summary.pop(k) for k in ("Smoke resolution", "Build time [s]", "lubedyn version") if k in summary}
+            summary.update(benettin.result())
+            summary.update(tail)
+            summary["Run time [s]"] = max(run_time, time.perf_counter() - t0)
+        return summary
+
     files = []
     if out_dir is not None:
-        files = _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs)
+        files = _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs,
+                       complete)
+    else:
+        summary = complete(summary)
     return DynamicsRun(summary=summary, files=files, t=t, y=Y, events=events)
+
+
+class _BackgroundResult:
+    """``func(*args, **kwargs)`` in a daemon thread; :meth:`result` waits and returns it (or raises its
+    exception).  A daemon thread does not hold up the interpreter's exit after a Ctrl-C."""
+
+    def __init__(self, func, *args, **kwargs):
+        import threading
+
+        self._out = None
+        self._exc = None
+
+        def target():
+            try:
+                self._out = func(*args, **kwargs)
+            except BaseException as exc:  # handed to the caller of result()
+                self._exc = exc
+
+        self._thread = threading.Thread(target=target, name="lubedyn-benettin", daemon=True)
+        self._thread.start()
+
+    def result(self):
+        while self._thread.is_alive():
+            self._thread.join(0.1)  # short joins: a Ctrl-C in the main thread is taken at once
+        if self._exc is not None:
+            raise self._exc
+        return self._out
 
 
 HEADLINE = ("Simulated time [s]", "Inner ring speed at end [rpm]", "Rotor speed at end [rpm]",
@@ -819,26 +864,18 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     return figs
 
 
-def _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs) -> list:
+def _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs,
+           complete=None) -> list:
     from dynamics.cageless import D_BBN, D_H, DIAG_NAMES, RING_DIAG_NAMES
 
     write = case.output.write
     t_write = time.perf_counter()
-    full = dict(summary)
     out = Path(out_dir)
     with outputs.staged(out) as stage:
         outputs.write_text(stage / "case.resolved.toml",
                            resolved_toml(case, outputs.resolved_header(name, source, smoke)))
-        if "timeseries" in write:
-            columns = {n: Y[:, i] for i, n in enumerate(setup.model.state_names())}
-            for j in range(setup.model.n_balls):
-                for k, n in enumerate(DIAG_NAMES):
-                    columns[f"Ball {j} {n}"] = diag[:, j, k]
-            for k, n in enumerate(RING_DIAG_NAMES):
-                columns[n] = ring[:, k]
-            outputs.write_timeseries(stage / "timeseries.npz", t, columns,
-                                     {"Case": name, "Scene": "dynamics", "Summary": full})
-            outputs.write_text(stage / "collisions.csv", _collisions_csv(events))
+        # frames and figures first: they do not need the summary, so a background analysis
+        # (``complete``: the Benettin spectrum) runs on meanwhile
         if "pvd" in write:
             (stage / "frames").mkdir()
             n_frames = min(case.analysis.frames, len(t))
@@ -865,6 +902,19 @@ def _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring,
                     outputs.save_figure(stage / fname, fig)
                 finally:
                     plt.close(fig)
+        if complete is not None:
+            summary = complete(summary)
+        full = dict(summary)
+        if "timeseries" in write:
+            columns = {n: Y[:, i] for i, n in enumerate(setup.model.state_names())}
+            for j in range(setup.model.n_balls):
+                for k, n in enumerate(DIAG_NAMES):
+                    columns[f"Ball {j} {n}"] = diag[:, j, k]
+            for k, n in enumerate(RING_DIAG_NAMES):
+                columns[n] = ring[:, k]
+            outputs.write_timeseries(stage / "timeseries.npz", t, columns,
+                                     {"Case": name, "Scene": "dynamics", "Summary": full})
+            outputs.write_text(stage / "collisions.csv", _collisions_csv(events))
         full["Output write time [s]"] = time.perf_counter() - t_write
         outputs.write_json(stage / "summary.json", full)
         names = sorted(p.name for p in stage.iterdir())

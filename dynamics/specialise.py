@@ -116,7 +116,9 @@ def _generate_source(impl, callables) -> str:
         mod, name = _import_path(func)
         lines.append(f"from {mod} import {name} as {pname}")
     lines.append("")
-    lines.append("@njit(cache=True)")
+    # nogil: the caller may run a kernel in a thread while Python writes outputs (the dynamics scene runs
+    # the Benettin spectrum beside its figures and frames); the kernel touches no Python object
+    lines.append("@njit(cache=True, nogil=True)")
     lines.append(ast.unparse(fn))
     return "\n".join(lines) + "\n"
 
