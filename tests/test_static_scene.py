@@ -77,3 +77,18 @@ def test_bearing_vtu_for_paraview(capsys, tmp_path):
         assert np.allclose(cells.point_data["Cup load [N]"], s["Cup loads [N]"][j])
     loaded = m.extract_cells(np.flatnonzero(body == 2))  # roller 0 at azimuth 0: on +y
     assert loaded.points[:, 1].mean() > 0.08
+
+
+def test_the_python_twin_is_the_cases_bearing():
+    """coupling.parameters.wu2018.tapered_geometry() and a static case naming Wu2018 build the same
+    geometry (one table, SCENES["static"], maps the parameters onto both)."""
+    from coupling.config import load_case
+    from coupling.parameters.wu2018 import tapered_geometry
+    from coupling.static_scene import build
+
+    import dataclasses
+
+    case = load_case(CASES_DIR / "trb_static_axial.toml")
+    a, b = build(case), tapered_geometry()
+    inputs = [f.name for f in dataclasses.fields(a) if f.init]
+    assert len(inputs) == 24 and all(getattr(a, k) == getattr(b, k) for k in inputs)

@@ -185,20 +185,10 @@ SCENES = {
 
 def tapered_geometry(**overrides):
     """:class:`lubrication.laws.tapered.TaperedRollerGeometry` of Table 1 with this module's assumed
-    rib, cage-land gap, density, profile and crown load; ``overrides`` replace any field."""
-    si = {k: p.si() for k, p in VALUES.items()}
-    fields = dict(
-        n_rollers=si["n_rollers"], effective_length=si["effective_length"],
-        large_end_diameter=si["roller_large_end_diameter"], small_end_diameter=si["roller_small_end_diameter"],
-        end_sphere_radius=si["roller_end_sphere_radius"], outer_contact_angle=si["outer_contact_angle"],
-        inner_contact_angle=si["inner_contact_angle"], flange_contact_angle=si["flange_contact_angle"],
-        outer_raceway_radius=si["outer_raceway_radius"], inner_raceway_radius=si["inner_raceway_radius"],
-        rib_height=si["rib_height"], cage_outer_diameter=si["cage_outer_diameter"],
-        cage_inner_diameter=si["cage_inner_diameter"], cage_thickness=si["cage_thickness"],
-        guide_land_clearance=si["guide_land_clearance"], guide_land_width=si["guide_land_width"],
-        pocket_clearance=si["pocket_clearance"], modulus=si["steel_modulus"], poisson=si["steel_poisson"],
-        density=si["steel_density"], land_axial_gap=si["guide_land_axial_gap"],
-        reconciliation=si["geometry_reconciliation"], profile=si["roller_profile"],
-        crown_load=si["crown_design_load"])
+    rib, cage-land gap, density, profile and crown load (the ``static`` scene's ``[bearing]`` table of
+    :data:`SCENES`, so a case and this Python twin build the same bearing); ``overrides`` replace any
+    field."""
+    fields = {key.split(".", 1)[1]: VALUES[name].si() for key, name in SCENES["static"].items()
+              if key.startswith("bearing.")}
     fields.update(overrides)
     return TaperedRollerGeometry(**fields)
