@@ -272,3 +272,52 @@ def test_slice_leaves_run_inside_a_compiled_kernel():
     d = sl.slice_interference.py_func(0.0, 0.0, 1.0, 0.0, 0.01, 0.0, -0.00999, 0.0, 1.0)
     assert d == pytest.approx(1e-5, rel=1e-9)
     assert kernel(0.1) == pytest.approx(1e9 * d ** (10 / 9) * (1 + 1.5 * 0.16 * 0.1), rel=1e-14)
+
+
+@pytest.mark.parametrize("which", ["cup", "cone"])
+def test_slice_contact_3d_against_the_exact_distance_over_the_rim(apex, which):
+    """A skewed and tilted slice of paper A's roller at any azimuth against the conical raceway: the
+    interference and the contact point against the exact signed distance of 20,000 rim points (each
+    point's meridional distance, sqrt(y^2 + z^2) exact), refined by a bounded scalar minimisation.
+    Measured (20 random poses per case): interference within 3e-17 m unskewed and 1.2e-12 m at a skew
+    of 2e-3 rad; contact point within 5e-10 m and 5.4e-8 m."""
+    from scipy.optimize import minimize_scalar
+
+    g = apex
+    x0, n2, _ = g.race(which)
+    rng = np.random.default_rng(5)
+    for psi_skew in (0.0, 2e-3):
+        for _ in range(20):
+            az = rng.uniform(0.0, 2 * np.pi)
+            u = rng.uniform(-0.02, 0.02)
+            tilt = rng.uniform(-1e-3, 1e-3)
+            beta = g.roller_axis_angle + tilt
+            c0 = np.array([0.0, g.pitch_radius]) + rng.normal(size=2) * 2e-6
+            # meridional roller axis, then skew about the radial direction, then turn to the azimuth
+            e_m = np.array([math.cos(beta), math.sin(beta), 0.0])
+            radial = np.array([0.0, 1.0, 0.0])
+            k = radial
+            e_s = (e_m * math.cos(psi_skew) + np.cross(k, e_m) * math.sin(psi_skew)
+                   + k * (k @ e_m) * (1 - math.cos(psi_skew)))
+            rot = np.array([[1, 0, 0], [0, math.cos(az), -math.sin(az)], [0, math.sin(az), math.cos(az)]])
+            e = rot @ e_s
+            S = rot @ np.array([c0[0], c0[1], 0.0]) + u * e
+            rho = float(g.roller_radius(u))
+            got = sl.slice_contact_3d(*S, *e, rho, x0[0], x0[1], n2[0], n2[1])
+            a = np.cross(e, [1.0, 0.0, 0.0])
+            a /= np.linalg.norm(a)
+            b = np.cross(e, a)
+
+            def dist(t):
+                P = S + rho * (math.cos(t) * a + math.sin(t) * b)
+                return n2[0] * (P[0] - x0[0]) + n2[1] * (math.hypot(P[1], P[2]) - x0[1])
+
+            ts = np.linspace(0, 2 * np.pi, 20000, endpoint=False)
+            d = np.array([dist(t) for t in ts[::50]])
+            t0 = ts[::50][np.argmin(d)]
+            res = minimize_scalar(dist, bounds=(t0 - 0.05, t0 + 0.05), method="bounded",
+                                  options=dict(xatol=1e-12))
+            exact = -res.fun
+            assert got[0] == pytest.approx(exact, abs=1e-15 if psi_skew == 0.0 else 1e-11)
+            P = S + rho * (math.cos(res.x) * a + math.sin(res.x) * b)
+            assert np.linalg.norm(np.array(got[1:4]) - P) < (1e-8 if psi_skew == 0.0 else 1e-6)

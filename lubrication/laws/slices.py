@@ -41,6 +41,19 @@ measured along n is
 which is eq. 7's (r_ba3 - xi) cos(alpha_p) for a roller with the race's contact angle, and keeps
 the roller's tilt (through e) and its taper (through rho_k).  Plain floats; :func:`slice_force` and
 :func:`slice_interference` are numba ``INLINE`` leaves for the compiled right-hand sides.
+
+In three dimensions (a skewed roller, :func:`slice_contact_3d`): a raceway is a cone about the bearing
+axis x, and the point of a surface of revolution nearest any point lies in that point's meridional
+plane, so the same formula holds with the 3-D normal n3 = n_x e_x + n_r e_r(S), e_r(S) the radial unit
+vector through the slice centre, and the meridional coordinates (S_x, |S_yz|) of S:
+
+    delta = rho sqrt(1 - (n3.e)^2) - [n_x (S_x - X_x) + n_r (|S_yz| - X_r)]
+
+at the rim point P = S - rho (n3 - (n3.e) e)/|n3 - (n3.e) e|.  The one approximation: the rim point
+is not in S's meridional plane when the roller is skewed, where the raceway's circumferential curvature
+enters; against the exact distance over the rim (tests/test_trb_geometry.py) the interference is within
+3e-17 m unskewed and 1.2e-12 m at a skew of 2e-3 rad for paper A's roller, the contact point within
+5.4e-8 m.
 """
 from __future__ import annotations
 
@@ -109,6 +122,24 @@ def slice_interference(sx, sr, ex, er, rho, px, pr, nx, nr):
     against a raceway line through X with unit normal n towards the roller (meridional plane)."""
     c = nx * ex + nr * er
     return rho * math.sqrt(max(1.0 - c * c, 0.0)) - (nx * (sx - px) + nr * (sr - pr))
+
+
+@njit(**INLINE)
+def slice_contact_3d(s0, s1, s2, e0, e1, e2, rho, px, pr, nx, nr):
+    """``(delta, P_x, P_y, P_z, n_x, n_y, n_z)``: the interference [m] of a slice disc (centre S, unit axis
+    e, radius rho; inertial frame, bearing axis x) with a conical raceway given in the meridional plane
+    by a point (px, pr) and the unit normal (nx, nr) towards the roller, the rim point P nearest the
+    raceway, and the raceway's unit normal n3 at P (towards the roller: the raceway pushes the slice
+    along +n3).  Module docstring, "In three dimensions"."""
+    r = math.sqrt(s1 * s1 + s2 * s2)
+    ey, ez = s1 / r, s2 / r
+    n0, n1, n2 = nx, nr * ey, nr * ez
+    c = n0 * e0 + n1 * e1 + n2 * e2
+    m0, m1, m2 = n0 - c * e0, n1 - c * e1, n2 - c * e2
+    sq = math.sqrt(max(1.0 - c * c, 1e-300))
+    delta = rho * sq - (nx * (s0 - px) + nr * (r - pr))
+    k = rho / sq
+    return delta, s0 - k * m0, s1 - k * m1, s2 - k * m2, n0, n1, n2
 
 
 @njit(**INLINE)
