@@ -213,6 +213,16 @@ def summarise(case: StaticCase, geometry, res) -> dict:
         "Residual [-]": res.residual,
         "Force balance error [-]": res.force_balance_error,
     }
+    warnings = []
+    if not np.any(res.cone_loads > 0.0) and (res.axial_load > 0.0 or res.radial_load > 0.0):
+        warnings.append(
+            f"no roller touches the cone raceway: the {res.axial_load:.4g} N axial load is carried by the flange "
+            f"alone (with bearing.reconciliation = {case.bearing.reconciliation!r} the rollers tilt into their "
+            "large-end gap, paper_A_notes 2.1): a near-mechanism of the rigid-ring model, not a bearing in service")
+    for text in warnings:
+        log.warning("%s", text)
+    if warnings:
+        s["Warnings"] = warnings
     for k, v in kin.items():
         if isinstance(v, (int, float)):
             s[f"Ideal {k}" if "[" in k else f"Ideal {k} [-]"] = float(v)

@@ -92,3 +92,13 @@ def test_the_python_twin_is_the_cases_bearing():
     a, b = build(case), tapered_geometry()
     inputs = [f.name for f in dataclasses.fields(a) if f.init]
     assert len(inputs) == 24 and all(getattr(a, k) == getattr(b, k) for k in inputs)
+
+
+def test_literal_preload_is_flagged_as_a_near_mechanism(capsys, tmp_path):
+    """Table 1 read literally under a 20 um preload at 2,500 rpm: no roller touches the cone raceway (the
+    rollers tilt into the 0.11 mm large-end gap) and the flange carries the axial force alone; the
+    summary says so instead of passing it as a bearing in service (common apex: no warning)."""
+    s = _run(capsys, tmp_path, "trb_static_preload", "bearing.reconciliation=literal")
+    assert max(s["Cone loads [N]"]) == 0.0 and s["Axial load [N]"] > 0.0
+    assert "no roller touches the cone raceway" in s["Warnings"][0]
+    assert "Warnings" not in _run(capsys, tmp_path / "apex", "trb_static_preload")
