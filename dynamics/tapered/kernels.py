@@ -1,0 +1,208 @@
+r"""Compiled right-hand side of the tapered roller bearing (issue 23, first step: rollers and cone).
+
+State (:mod:`dynamics.tapered.model` names every entry)::
+
+    [cone x, y, z, vx, vy, vz]                                  (6; the cone's spin is prescribed)
+    [roller j: c (3), q (4), v (3), omega_body (3)] x Z          (13 per roller)
+
+c is the roller's mass centre, q the unit quaternion (scalar first, :mod:`dynamics.rotations`) that maps
+the roller's body frame (x along its axis, towards the large end) to the inertial frame (x the bearing
+axis, the cup fixed), omega_body the angular velocity in the body frame.  The cone translates (its axial
+DOF locked, held at a displacement, or free under an axial force) and turns at the prescribed speed
+Omega about x; its raceway and rib are surfaces of revolution, so its spin enters only through the
+surface velocity Omega e_x x (P - d) at a contact point P (d the cone's displacement).
+
+Contacts of roller j (laws written once in :mod:`lubrication.laws`):
+
+* cup and cone raceways, per slice k (u_k along the axis from the roller's mid-point, radius rho_k with
+  the crown): :func:`lubrication.laws.slices.slice_contact_3d` gives the interference delta, the rim
+  point P and the raceway normal n (towards the roller); the approach rate is d(delta)/dt =
+  -(v_roller(P) - v_race(P)).n; the slice force (:func:`lubrication.laws.slices.slice_force`, Palmgren
+  k_w with eq. 11's damping alpha_e) acts on the roller along +n at P and on the cone along -n;
+* flange (rib on the cone): the roller's large-end sphere (radius r_s, centre at u_s) against the rib
+  line of the meridional plane (:func:`slice_contact_3d` with rho = 0 gives the centre's distance),
+  delta_f = r_s - n.(S - X), Hunt-Crossley Hertz force K_f delta_f^1.5 (1 + alpha_e d(delta_f)/dt)
+  (:func:`lubrication.laws.collision.hertz_force`) at P = S - r_s n.
+
+Not yet in this step (the fidelity levels part 2 adds): raceway and flange traction, the cage (pocket
+and guide land, :mod:`lubrication.laws.cage`), gravity.  Equations of motion: Newton for the mass
+centres, Euler's equations with I_x != I_y = I_z (:func:`dynamics.rotations.euler_rate`, gyroscopic
+terms included) and the quaternion kinematics (:func:`dynamics.rotations.quat_derivative`).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from lubrication.laws.collision import hertz_force
+from lubrication.laws.jit import JIT
+from lubrication.laws.slices import slice_contact_3d, slice_force
+
+from ..rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
+
+# float parameters
+(P_Z, P_NS, P_M, P_IX, P_IY, P_MC, P_OMEGA, P_FA, P_FR, P_AXIAL, P_KW, P_KF, P_ALPHA, P_RS, P_US, P_UC,
+ P_CUPX, P_CUPR, P_CUPNX, P_CUPNR, P_CONX, P_CONR, P_CONNX, P_CONNR, P_FLX, P_FLR, P_FLNX, P_FLNR,
+ P_CONTACTS, P_QSTAB) = range(30)
+P_SIZE = 30
+AXIAL_LOCKED, AXIAL_FORCE = 0.0, 1.0
+N_CONE, NB = 6, 13
+
+
+@njit(**JIT)
+def _cross(a0, a1, a2, b0, b1, b2):
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+@njit(**JIT)
+def contact_forces(y, P, U, RHO, F, T, Fc, loads):
+    """Contact forces and torques: F[j] force on roller j [N], T[j] torque about its mass centre
+    (inertial frame) [N m], Fc the force of all rollers on the cone [N], loads[j] = (cup, cone, flange)
+    sums of the contact forces' magnitudes [N]."""
+    Z = int(P[P_Z])
+    ns = int(P[P_NS])
+    F[:, :] = 0.0
+    T[:, :] = 0.0
+    Fc[:] = 0.0
+    loads[:, :] = 0.0
+    if P[P_CONTACTS] == 0.0:
+        return
+    dx, dy, dz = y[0], y[1], y[2]
+    vcx, vcy, vcz = y[3], y[4], y[5]
+    om = P[P_OMEGA]
+    ex_b = np.array([1.0, 0.0, 0.0])
+    e = np.empty(3)
+    wi = np.empty(3)
+    for j in range(Z):
+        b = N_CONE + j * NB
+        c0, c1, c2 = y[b], y[b + 1], y[b + 2]
+        q = y[b + 3:b + 7] / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
+        v0, v1, v2 = y[b + 7], y[b + 8], y[b + 9]
+        quat_rotate(q, ex_b, e)
+        quat_rotate(q, y[b + 10:b + 13], wi)          # angular velocity, inertial frame
+        e0, e1, e2 = e[0], e[1], e[2]
+        # the roller's mid-point (slice coordinates u are measured from it)
+        m0, m1, m2 = c0 - P[P_UC] * e0, c1 - P[P_UC] * e1, c2 - P[P_UC] * e2
+        for race in range(2):
+            if race == 0:
+                px, pr, nx, nr = P[P_CUPX], P[P_CUPR], P[P_CUPNX], P[P_CUPNR]
+                ox, oy, oz = 0.0, 0.0, 0.0
+            else:
+                px, pr, nx, nr = P[P_CONX], P[P_CONR], P[P_CONNX], P[P_CONNR]
+                ox, oy, oz = dx, dy, dz
+            for k in range(ns):
+                u = U[k]
+                s0, s1, s2 = m0 + u * e0 - ox, m1 + u * e1 - oy, m2 + u * e2 - oz
+                delta, q0, q1, q2, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, RHO[k], px, pr, nx, nr)
+                if delta <= 0.0:
+                    continue
+                P0, P1, P2 = q0 + ox, q1 + oy, q2 + oz     # contact point, inertial
+                r0, r1, r2 = P0 - c0, P1 - c1, P2 - c2
+                w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
+                u0, u1, u2 = v0 + w0, v1 + w1, v2 + w2     # roller surface velocity at P
+                if race == 1:                               # cone surface: v_d + Omega e_x x (P - d)
+                    a0, a1, a2 = _cross(om, 0.0, 0.0, q0, q1, q2)
+                    u0 -= vcx + a0
+                    u1 -= vcy + a1
+                    u2 -= vcz + a2
+                ddot = -(u0 * n0 + u1 * n1 + u2 * n2)
+                f = slice_force(delta, ddot, P[P_KW], P[P_ALPHA])
+                if f <= 0.0:
+                    continue
+                f0, f1, f2 = f * n0, f * n1, f * n2
+                F[j, 0] += f0
+                F[j, 1] += f1
+                F[j, 2] += f2
+                t0, t1, t2 = _cross(r0, r1, r2, f0, f1, f2)
+                T[j, 0] += t0
+                T[j, 1] += t1
+                T[j, 2] += t2
+                loads[j, race] += f
+                if race == 1:
+                    Fc[0] -= f0
+                    Fc[1] -= f1
+                    Fc[2] -= f2
+        # flange: the large-end sphere against the rib (on the cone)
+        us = P[P_US]
+        s0, s1, s2 = m0 + us * e0 - dx, m1 + us * e1 - dy, m2 + us * e2 - dz
+        d0, _, _, _, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, 0.0, P[P_FLX], P[P_FLR],
+                                                   P[P_FLNX], P[P_FLNR])
+        delta = P[P_RS] + d0
+        if delta > 0.0:
+            q0, q1, q2 = s0 - P[P_RS] * n0, s1 - P[P_RS] * n1, s2 - P[P_RS] * n2
+            P0, P1, P2 = q0 + dx, q1 + dy, q2 + dz
+            r0, r1, r2 = P0 - c0, P1 - c1, P2 - c2
+            w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
+            a0, a1, a2 = _cross(om, 0.0, 0.0, q0, q1, q2)
+            u0, u1, u2 = v0 + w0 - vcx - a0, v1 + w1 - vcy - a1, v2 + w2 - vcz - a2
+            ddot = -(u0 * n0 + u1 * n1 + u2 * n2)
+            f = hertz_force(delta, ddot, P[P_KF], P[P_ALPHA])
+            if f > 0.0:
+                f0, f1, f2 = f * n0, f * n1, f * n2
+                F[j, 0] += f0
+                F[j, 1] += f1
+                F[j, 2] += f2
+                t0, t1, t2 = _cross(r0, r1, r2, f0, f1, f2)
+                T[j, 0] += t0
+                T[j, 1] += t1
+                T[j, 2] += t2
+                loads[j, 2] += f
+                Fc[0] -= f0
+                Fc[1] -= f1
+                Fc[2] -= f2
+
+
+@njit(**JIT)
+def rhs(t, y, args, dydt):
+    """dy/dt of the tapered roller bearing (module docstring); ``args = (P, U, RHO)``."""
+    P, U, RHO = args
+    Z = int(P[P_Z])
+    F = np.empty((Z, 3))
+    T = np.empty((Z, 3))
+    Fc = np.empty(3)
+    loads = np.empty((Z, 3))
+    contact_forces(y, P, U, RHO, F, T, Fc, loads)
+    # cone: translation under the rollers' forces, F_r along +y, F_a along -x (closing the bearing)
+    mc = P[P_MC]
+    dydt[0] = y[3]
+    dydt[1] = y[4]
+    dydt[2] = y[5]
+    if P[P_AXIAL] == AXIAL_FORCE:
+        dydt[3] = (Fc[0] - P[P_FA]) / mc
+    else:
+        dydt[0] = 0.0
+        dydt[3] = 0.0
+    dydt[4] = (Fc[1] + P[P_FR]) / mc
+    dydt[5] = Fc[2] / mc
+    inertia = np.array([P[P_IX], P[P_IY], P[P_IY]])
+    tb = np.empty(3)
+    m = P[P_M]
+    for j in range(Z):
+        b = N_CONE + j * NB
+        q = y[b + 3:b + 7]
+        dydt[b] = y[b + 7]
+        dydt[b + 1] = y[b + 8]
+        dydt[b + 2] = y[b + 9]
+        quat_derivative(q, y[b + 10:b + 13], dydt[b + 3:b + 7], P[P_QSTAB])
+        dydt[b + 7] = F[j, 0] / m
+        dydt[b + 8] = F[j, 1] / m
+        dydt[b + 9] = F[j, 2] / m
+        qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
+        quat_rotate_inverse(qn, T[j], tb)
+        euler_rate(inertia, y[b + 10:b + 13], tb, dydt[b + 10:b + 13])
+
+
+@njit(**JIT)
+def loads_many(Y, args):
+    """(n, Z, 3) cup, cone and flange loads [N] of each roller at each sampled state."""
+    P, U, RHO = args
+    Z = int(P[P_Z])
+    out = np.empty((Y.shape[0], Z, 3))
+    F = np.empty((Z, 3))
+    T = np.empty((Z, 3))
+    Fc = np.empty(3)
+    for i in range(Y.shape[0]):
+        contact_forces(Y[i], P, U, RHO, F, T, Fc, out[i])
+    return out
