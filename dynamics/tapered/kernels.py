@@ -24,8 +24,13 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   delta_f = r_s - n.(S - X), Hunt-Crossley Hertz force K_f delta_f^1.5 (1 + alpha_e d(delta_f)/dt)
   (:func:`lubrication.laws.collision.hertz_force`) at P = S - r_s n.
 
-Not yet in this step (the fidelity levels part 2 adds): raceway and flange traction, the cage (pocket
-and guide land, :mod:`lubrication.laws.cage`), gravity.  Equations of motion: Newton for the mass
+* raceway traction (option ``traction = "paper"``): eq. 12 of paper A (linear in the sliding speed,
+  :func:`lubrication.laws.traction.paper_raceway_traction`) against the tangential part of the sliding
+  velocity at each loaded slice, with the Hertz half-width of the slice's line load and the
+  Dowson-Toyoda film at the ideal entrainment speed (:func:`_traction_per_speed`).
+
+Not yet in this step (the fidelity levels part 2 adds): flange friction, the cage (pocket and guide land,
+:mod:`lubrication.laws.cage`), gravity.  Equations of motion: Newton for the mass
 centres, Euler's equations with I_x != I_y = I_z (:func:`dynamics.rotations.euler_rate`, gyroscopic
 terms included) and the quaternion kinematics (:func:`dynamics.rotations.quat_derivative`).
 """
@@ -37,16 +42,20 @@ import numpy as np
 from numba import njit
 
 from lubrication.laws.collision import hertz_force
-from lubrication.laws.jit import JIT
+from lubrication.laws.film import dowson_toyoda_central
+from lubrication.laws.jit import INLINE, JIT
 from lubrication.laws.slices import slice_contact_3d, slice_force
+from lubrication.laws.traction import paper_raceway_traction
 
 from ..rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
 
 # float parameters
 (P_Z, P_NS, P_M, P_IX, P_IY, P_MC, P_OMEGA, P_FA, P_FR, P_AXIAL, P_KW, P_KF, P_ALPHA, P_RS, P_US, P_UC,
  P_CUPX, P_CUPR, P_CUPNX, P_CUPNR, P_CONX, P_CONR, P_CONNX, P_CONNR, P_FLX, P_FLR, P_FLNX, P_FLNR,
- P_CONTACTS, P_QSTAB) = range(30)
-P_SIZE = 30
+ P_CONTACTS, P_QSTAB, P_TRACTION, P_ETA, P_PVC, P_EP, P_RXO, P_RXI, P_UE, P_WIDTH) = range(38)
+P_SIZE = 38
+TRACTION_NONE, TRACTION_PAPER = 0.0, 1.0
+_dowson_toyoda = njit(**INLINE)(dowson_toyoda_central)   # the law of lubrication.laws.film, compiled here
 AXIAL_LOCKED, AXIAL_FORCE = 0.0, 1.0
 N_CONE, NB = 6, 13
 
@@ -54,6 +63,19 @@ N_CONE, NB = 6, 13
 @njit(**JIT)
 def _cross(a0, a1, a2, b0, b1, b2):
     return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+@njit(**INLINE)
+def _traction_per_speed(load, radius, P):
+    """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N] on a raceway of
+    reduced radius ``radius``: pi eps eta sqrt(R'/(2 h0)) times the slice width, with the Hertz half-width
+    b = sqrt(8 w R'/(pi E')) of the slice's line load w and the Dowson-Toyoda central film h0 at the ideal
+    entrainment speed (:func:`lubrication.laws.traction.paper_raceway_traction`)."""
+    w = load / P[P_WIDTH]
+    ep = P[P_EP]
+    b = math.sqrt(8.0 * w * radius / (math.pi * ep))
+    h0 = radius * _dowson_toyoda(P[P_ETA] * P[P_UE] / (ep * radius), P[P_PVC] * ep, w / (ep * radius))
+    return paper_raceway_traction(1.0, P[P_ETA], radius, h0, b) * P[P_WIDTH]
 
 
 @njit(**JIT)
@@ -112,6 +134,14 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads):
                 if f <= 0.0:
                     continue
                 f0, f1, f2 = f * n0, f * n1, f * n2
+                if P[P_TRACTION] == TRACTION_PAPER:
+                    # eq. 12 against the sliding velocity's tangential part, per unit length times the width
+                    un = u0 * n0 + u1 * n1 + u2 * n2
+                    s0, s1, s2 = u0 - un * n0, u1 - un * n1, u2 - un * n2
+                    c = _traction_per_speed(f, P[P_RXO] if race == 0 else P[P_RXI], P)
+                    f0 -= c * s0
+                    f1 -= c * s1
+                    f2 -= c * s2
                 F[j, 0] += f0
                 F[j, 1] += f1
                 F[j, 2] += f2

@@ -23,6 +23,7 @@ from . import kernels as K
 from .quasistatic import QuasiStaticResult, solve
 
 AXIAL_MODES = ("locked", "force")
+TRACTIONS = ("none", "paper")
 
 
 @dataclass(frozen=True)
@@ -31,7 +32,9 @@ class TaperedBearing:
     [N] (along +y), ``axial`` = "locked" (held at the start's axial displacement) or "force" (free under
     ``axial_load`` [N], closing); ``cone_mass`` [kg] (assumed: paper A gives none); ``damping_alpha``
     alpha_e [s/m] of eq. 11 (slices and flange); ``contacts`` False: free rollers (a test of the
-    equations of motion); ``quaternion_stabilisation`` [1/s]."""
+    equations of motion); ``quaternion_stabilisation`` [1/s]; ``traction`` "none" or "paper" (eq. 12)
+    with the film's ``viscosity`` [Pa s] and ``pressure_viscosity`` [1/Pa] (defaults: paper A's assumed
+    base oil and the grease's alpha, :mod:`coupling.parameters.wu2018`)."""
 
     geometry: TaperedRollerGeometry
     n_slices: int = 20
@@ -44,8 +47,13 @@ class TaperedBearing:
     damping_alpha: float = 0.16
     contacts: bool = True
     quaternion_stabilisation: float = 10.0
+    traction: str = "none"
+    viscosity: float = 0.1
+    pressure_viscosity: float = 4.662e-8
 
     def __post_init__(self):
+        if self.traction not in TRACTIONS:
+            raise InputError(f"traction = {self.traction!r} is not allowed; choose one of {', '.join(TRACTIONS)}")
         if self.axial not in AXIAL_MODES:
             raise InputError(f"axial = {self.axial!r} is not allowed; choose one of {', '.join(AXIAL_MODES)}")
         for key in ("cone_mass",):
@@ -82,6 +90,11 @@ class TaperedBearing:
         (P[K.P_FLX], P[K.P_FLR]), (P[K.P_FLNX], P[K.P_FLNR]) = g.flange_point, g.flange_normal
         P[K.P_CONTACTS] = 1.0 if self.contacts else 0.0
         P[K.P_QSTAB] = self.quaternion_stabilisation
+        P[K.P_TRACTION] = K.TRACTION_PAPER if self.traction == "paper" else K.TRACTION_NONE
+        P[K.P_ETA], P[K.P_PVC], P[K.P_EP] = self.viscosity, self.pressure_viscosity, g.e_prime
+        P[K.P_RXO], P[K.P_RXI] = g.reduced_radius("cup"), g.reduced_radius("cone")
+        P[K.P_UE] = max(float(g.kinematics(self.speed)["entrainment speed [m/s]"]), 1e-3)
+        P[K.P_WIDTH] = g.effective_length / self.n_slices
         return P, np.ascontiguousarray(u), np.ascontiguousarray(rho)
 
     def quasi_static(self) -> QuasiStaticResult:
