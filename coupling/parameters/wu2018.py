@@ -88,6 +88,9 @@ VALUES = {
     "guide_land_radius": P("97.8 mm", "length", "assumed",
                            "the cage's centering surface is its bore (196.10/2 = 98.05 mm); the land lies 0.25 mm "
                            "inside it (Table 1's 0.5 mm read as diametral)"),
+    "cage_mass": P("0.35 kg", "mass", "assumed",
+                   "not given: a polyamide (1,140 kg/m^3) ring of 196.1-205.8 mm, 5 mm thick and about 25 mm wide "
+                   "(0.2 kg) plus 17 bars"),
     "pocket_critical_film": P("2 um", "length", "assumed",
                               "Delta h0 of eq. 36, not given: about ten composite roughnesses of a moulded polyamide "
                               "pocket against a ground roller"),

@@ -16,6 +16,7 @@ import numpy as np
 
 from lubrication.errors import InputError
 from lubrication.laws import slices as sl
+from lubrication.laws.cage import POCKET_SWITCHES
 from lubrication.laws.tapered import TaperedRollerGeometry
 
 from ..rotations import quat_rotate_inverse
@@ -34,7 +35,11 @@ class TaperedBearing:
     alpha_e [s/m] of eq. 11 (slices and flange); ``contacts`` False: free rollers (a test of the
     equations of motion); ``quaternion_stabilisation`` [1/s]; ``traction`` "none" or "paper" (eq. 12)
     with the film's ``viscosity`` [Pa s] and ``pressure_viscosity`` [1/Pa] (defaults: paper A's assumed
-    base oil and the grease's alpha, :mod:`coupling.parameters.wu2018`)."""
+    base oil and the grease's alpha, :mod:`coupling.parameters.wu2018`); ``cage`` True: the cage with
+    its pockets and guide land (:mod:`lubrication.laws.cage`), which needs ``cage_mass`` [kg] and the
+    pocket's ``pocket_critical_film`` [m], ``pocket_stiffness`` [N/m], ``pocket_damping`` [N s/m],
+    ``boundary_friction`` [-], ``pocket_switch`` ("continuous" or "paper"), ``land_critical_film`` [m]
+    (paper A gives none of them: :mod:`coupling.parameters.wu2018` holds the assumed values)."""
 
     geometry: TaperedRollerGeometry
     n_slices: int = 20
@@ -50,6 +55,14 @@ class TaperedBearing:
     traction: str = "none"
     viscosity: float = 0.1
     pressure_viscosity: float = 4.662e-8
+    cage: bool = False
+    cage_mass: float | None = None
+    pocket_critical_film: float | None = None
+    pocket_stiffness: float | None = None
+    pocket_damping: float | None = None
+    boundary_friction: float | None = None
+    pocket_switch: str = "continuous"
+    land_critical_film: float | None = None
 
     def __post_init__(self):
         if self.traction not in TRACTIONS:
@@ -62,6 +75,15 @@ class TaperedBearing:
         for key in ("damping_alpha", "radial_load", "axial_load", "speed"):
             if not getattr(self, key) >= 0.0:
                 raise InputError(f"{key} = {getattr(self, key)!r} must be >= 0")
+        if self.cage:
+            for key in ("cage_mass", "pocket_critical_film", "pocket_stiffness", "pocket_damping",
+                        "boundary_friction", "land_critical_film"):
+                value = getattr(self, key)
+                if value is None or not value >= 0.0:
+                    raise InputError(f"{key} = {value!r} must be given (>= 0) with cage = True")
+            if self.pocket_switch not in POCKET_SWITCHES:
+                raise InputError(f"pocket_switch = {self.pocket_switch!r} is not allowed; choose one of "
+                                 f"{', '.join(POCKET_SWITCHES)}")
         if int(self.n_slices) != self.n_slices or self.n_slices < 1:
             raise InputError(f"n_slices = {self.n_slices!r} must be an integer >= 1")
 
@@ -95,6 +117,17 @@ class TaperedBearing:
         P[K.P_RXO], P[K.P_RXI] = g.reduced_radius("cup"), g.reduced_radius("cone")
         P[K.P_UE] = max(float(g.kinematics(self.speed)["entrainment speed [m/s]"]), 1e-3)
         P[K.P_WIDTH] = g.effective_length / self.n_slices
+        if self.cage:
+            ro, ri, h = 0.5 * g.cage_outer_diameter, 0.5 * g.cage_inner_diameter, g.cage_thickness
+            P[K.P_CAGE], P[K.P_MCG] = 1.0, self.cage_mass
+            # the cage ring as an annulus (its bars' share of the inertia is not known: assumed)
+            P[K.P_ICX] = 0.5 * self.cage_mass * (ro * ro + ri * ri)
+            P[K.P_ICT] = self.cage_mass * (3.0 * (ro * ro + ri * ri) + h * h) / 12.0
+            P[K.P_POCKET], P[K.P_LEN], P[K.P_RHOM] = g.pocket_clearance, g.effective_length, g.mean_roller_radius
+            P[K.P_HCRIT], P[K.P_KH], P[K.P_CH] = self.pocket_critical_film, self.pocket_stiffness, self.pocket_damping
+            P[K.P_MUBD], P[K.P_SWITCH] = self.boundary_friction, POCKET_SWITCHES[self.pocket_switch]
+            P[K.P_RLAND], P[K.P_CLAND] = g.land_radius, 0.5 * g.guide_land_clearance
+            P[K.P_BLAND], P[K.P_HLAND] = g.guide_land_width, self.land_critical_film
         return P, np.ascontiguousarray(u), np.ascontiguousarray(rho)
 
     def quasi_static(self) -> QuasiStaticResult:
@@ -113,7 +146,7 @@ class TaperedBearing:
         kin = g.kinematics(self.speed)
         w_cage = float(kin["cage speed [rad/s]"])
         w_spin = -float(kin["roller spin relative to cage [rad/s]"]) if self.speed else 0.0
-        y = np.zeros(K.N_CONE + K.NB * self.n_rollers)
+        y = np.zeros(K.N_CONE + K.NB * (self.n_rollers + (1 if self.cage else 0)))
         y[0:3] = qs.cone_displacement
         for j, psi in enumerate(qs.azimuths):
             a, r = qs.roller_displacements[j]
@@ -129,6 +162,11 @@ class TaperedBearing:
             # body angular velocity: the orbit (about x) seen in the body frame plus the spin about e
             w_inertial = np.array([w_cage, 0.0, 0.0]) + w_spin * e
             quat_rotate_inverse(y[b + 3:b + 7].copy(), w_inertial, y[b + 10:b + 13])
+        if self.cage:   # concentric with the cone, pockets on the rollers, turning at the ideal cage speed
+            b = K.N_CONE + K.NB * self.n_rollers
+            y[b:b + 3] = (g.cage_x, qs.cone_displacement[1], qs.cone_displacement[2])
+            y[b + 3] = 1.0
+            y[b + 10] = w_cage
         return y
 
     def state_names(self) -> list[str]:
@@ -136,6 +174,9 @@ class TaperedBearing:
         for j in range(self.n_rollers):
             names += [f"Roller {j} {k} [m]" for k in "xyz"] + [f"Roller {j} q{k} [-]" for k in range(4)]
             names += [f"Roller {j} v{k} [m/s]" for k in "xyz"] + [f"Roller {j} body w{k} [rad/s]" for k in "xyz"]
+        if self.cage:
+            names += [f"Cage {k} [m]" for k in "xyz"] + [f"Cage q{k} [-]" for k in range(4)]
+            names += [f"Cage v{k} [m/s]" for k in "xyz"] + [f"Cage body w{k} [rad/s]" for k in "xyz"]
         return names
 
 
