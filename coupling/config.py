@@ -67,12 +67,12 @@ from .parameters import SETS as PARAMETER_SETS
 from .parameters import apply_parameter_set, parameter_set
 from .units import UnitError, parse_quantity, si_unit
 
-SCENES = ("film", "ehl", "map", "dynamics", "static")
+SCENES = ("film", "ehl", "map", "dynamics", "static", "tapered")
 PLANNED_SCENES: tuple[str, ...] = ()
 # scenes whose case model lives in their own module
 # (attribute ``CaseModel``), imported only when a case of that scene is read
 SCENE_MODULES = {"ehl": "coupling.ehl_case", "map": "coupling.map_scene", "dynamics": "coupling.dynamics_scene",
-                 "static": "coupling.static_scene"}
+                 "static": "coupling.static_scene", "tapered": "coupling.tapered_scene"}
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 
 

@@ -478,6 +478,19 @@ def check_trb_static_preload(s, case):
     assert s["Centrifugal force per roller [N]"] > 0
 
 
+def check_trb_fig5_2400rpm(s, case):
+    """Paper A's Fig. 5 point in time (smoke: 1 ms, 5 slices): the most loaded roller's cup load within 5 %
+    of Stribeck's 4.08 Fr/(Z cos a) (as the static case), every roller's orbital speed and the cage's
+    within 1 % of the geometry's ideal cage speed (eq. 52's slip), and the run stays the Fig. 5 point."""
+    fr = case["operating"]["radial_load"]
+    assert fr == pytest.approx(20e3)
+    alpha_o = math.radians(11.19)  # the common-apex cup angle (tests/test_trb_geometry.py)
+    assert s["Largest cup load [N]"] == pytest.approx(4.08 * fr / (17 * math.cos(alpha_o)), rel=0.05)
+    assert abs(s["Roller slip, largest magnitude [-]"]) < 0.01
+    assert abs(s["Cage slip, mean [-]"]) < 0.01
+    assert s["Cone speed [rpm]"] == pytest.approx(2400.0)
+
+
 CHECKS = {name[len("check_"):]: f for name, f in globals().items() if name.startswith("check_")}
 
 

@@ -116,7 +116,7 @@ def test_the_python_twin_of_a_case_is_the_same_bearing():
 @pytest.mark.parametrize("text, match", [
     ('scene = "dynamics"\nparameters = "Zhang2025"\n', r"parameters = 'Zhang2025' is not allowed; choose one of 'Zhang2024', 'Wu2018'; did you mean 'Zhang2024'\?"),
     ('scene = "dynamics"\nparameters = 3\n', "parameters = 3 must be the name of a parameter set"),
-    ('scene = "dynamics"\nparameters = "Wu2018"\n', r"parameters = 'Wu2018' does not describe scene = 'dynamics'; it gives values for scene = 'static', 'ehl'"),
+    ('scene = "dynamics"\nparameters = "Wu2018"\n', r"parameters = 'Wu2018' does not describe scene = 'dynamics'; it gives values for scene = 'static', 'tapered', 'ehl'"),
     ('scene = "dynamics"\n[operating]\nspeed = "1000 rpm"\n', r"bearing is required.*; or name a paper's values: parameters = 'Zhang2024'"),
 ])
 def test_bad_parameter_sets_are_one_line(text, match):

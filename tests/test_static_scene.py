@@ -102,3 +102,23 @@ def test_literal_preload_is_flagged_as_a_near_mechanism(capsys, tmp_path):
     assert max(s["Cone loads [N]"]) == 0.0 and s["Axial load [N]"] > 0.0
     assert "no roller touches the cone raceway" in s["Warnings"][0]
     assert "Warnings" not in _run(capsys, tmp_path / "apex", "trb_static_preload")
+
+
+@pytest.mark.parametrize("sets, fragments", [
+    (["operating.axial=force", "operating.axial_load=0 N"], ["operating.axial_load = 0", "no equilibrium"]),
+    (["model.traction=coulomb"], ["model.traction = 'coulomb'", "'paper'"]),
+    (["integrator.sample_interval=1 s"], ["integrator.sample_interval", "at least 2 samples"]),
+    (["cage.mass=-1 kg"], ["cage.mass", "> 0"]),
+])
+def test_bad_tapered_dynamics_input_is_one_line(capsys, tmp_path, sets, fragments):
+    out = tmp_path / "o"
+    args = ["run", str(CASES_DIR / "trb_fig5_2400rpm.toml"), "--out", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    assert cli.main(args) == 2
+    _, err = capsys.readouterr()
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert len(lines) == 1 and "Traceback" not in err, err
+    for f in fragments:
+        assert f in lines[0], (f, lines[0])
+    assert not out.exists()

@@ -176,6 +176,7 @@ SCENES = {
         "bearing.reconciliation": "geometry_reconciliation", "bearing.profile": "roller_profile",
         "bearing.crown_load": "crown_design_load", "model.slices": "n_slices",
     },
+    "tapered": {},  # filled below: the static scene's bearing plus the dynamics' values
     "ehl": {
         "bearing.element_diameter": "roller_mean_diameter", "bearing.pitch_diameter": "pitch_diameter",
         "bearing.n_elements": "n_rollers", "bearing.effective_length": "effective_length",
@@ -183,6 +184,17 @@ SCENES = {
         "lubricant.viscosity.eta0": "base_oil_viscosity", "lubricant.viscosity.alpha": "pressure_viscosity",
         "lubricant.density.rho0": "base_oil_density",
     },
+}
+
+
+SCENES["tapered"] = {
+    **SCENES["static"],
+    "model.damping_alpha": "slice_damping_alpha", "model.pocket_switch": "pocket_switch",
+    "lubricant.viscosity": "base_oil_viscosity", "lubricant.pressure_viscosity": "pressure_viscosity",
+    "cage.mass": "cage_mass", "cage.pocket_critical_film": "pocket_critical_film",
+    "cage.pocket_stiffness": "pocket_contact_stiffness", "cage.pocket_damping": "pocket_contact_damping",
+    "cage.boundary_friction": "boundary_friction", "cage.land_critical_film": "guide_land_critical_film",
+    "operating.speed": "inner_speed", "operating.radial_load": "radial_load",
 }
 
 
