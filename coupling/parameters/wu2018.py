@@ -84,7 +84,7 @@ VALUES = {
     "steel_poisson": P(0.3, "dimensionless", "Table 1"),
     "cage_modulus": P("8.3 GPa", "pressure", "Table 1", "polyamide, inner-ring guided"),
     "cage_poisson": P(0.28, "dimensionless", "Table 1"),
-    # --- cage pocket and guide land (issue 22; lubrication/laws/cage.py) ---
+    # --- cage pocket and guide land (issue 22) ---
     "guide_land_radius": P("97.8 mm", "length", "assumed",
                            "the cage's centering surface is its bore (196.10/2 = 98.05 mm); the land lies 0.25 mm "
                            "inside it (Table 1's 0.5 mm read as diametral)"),
@@ -110,8 +110,12 @@ VALUES = {
                        "the paper switches film/boundary state abruptly at Delta h0; the continuous switch has no "
                        "jump in force or friction (lubrication/laws/cage.py)"),
     "guide_land_film": P("short_bearing", "text", "assumed",
-                         "Ocvirk's short bearing, within 0.3 % of the FEM finite bearing at the land's "
-                         "b/2r = 0.025; 'paper': eq. 44's cylinder-over-plane law"),
+                         "Ocvirk's short bearing, within 1 % of the FEM finite bearing at the land's "
+                         "b/2r = 0.025 (Reynolds-cavitated FEM: 2.6e-4 to 9.5e-3 at eps 0.1-0.95); 'map': FEM table "
+                         "(coupling/guide_land.py); 'paper': eq. 44's cylinder-over-plane law, 200-1.3e4 x the FEM"),
+    "guide_land_reaction": P("kept", "text", "assumed",
+                             "eq. 46 neglects the cage's load on the guiding ring; kept so that linear and angular "
+                             "momentum are conserved ('neglected' reproduces the paper)"),
     # grease and base oil (Tables 1 and 2)
     "grease_yield_stress": P("351.8 Pa", "pressure", "Table 1", "polyurea grease at 30 C"),
     "grease_plastic_viscosity": P(8.44, "dimensionless", "Table 1",

@@ -22,9 +22,11 @@
                friction eqs. 22-23
 ``slices``     roller slice law: Palmgren's line law, k_w = K_L/n_s, eq. 11's
                damped slice force and slice interference (numba leaves)
-``cage``       paper A's cage: pocket film (Martin, squeeze), boundary state
-               with a continuous switch, side-beam squeeze, guide land
-               (short bearing, Couette torque)
+``cage``       paper A's cage (eqs. 30-46): pocket gap and film (Martin,
+               squeeze; the paper's Herschel-Bulkley law), boundary state
+               with the paper's or a continuous switch, side-beam squeeze,
+               guide land (short bearing, eq. 44, FEM-map reader; Couette
+               torque; boundary state; the guiding ring's reaction)
 ``tapered``    tapered roller bearing geometry (common-apex or literal
                reading of paper A's Table 1), flange, crown, cage land,
                ideal kinematics, end sliding, roller mass

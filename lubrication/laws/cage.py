@@ -27,16 +27,39 @@ squeeze force is 0.  The traction is eq. 34's as printed (eps = 1): 3/2 of the C
 eta u pi sqrt(2R/h) of the whole uncavitated film, measured 9.3 % above the project's FEM shear on
 the sliding roller over a Reynolds-cavitated film (tests/test_laws_cage.py).
 
+The "paper" film law (``film_law`` 1, eqs. 34-35 rebuilt).  Eq. 35's f(h0) is garbled in the
+extracted text; its readable structure is f = xi_1 phi u^n/h0^n [(2/n)^n + xi_2 lambda^n tau_y
+h0^n/(xi_1 phi u^n)], i.e. a power-law load plus a yield-stress load that does not depend on h0.
+Rebuilt from physics: Martin's load with the Herschel-Bulkley apparent viscosity eta_a = tau_y/D +
+phi D^(n-1) at the film's nominal shear rate D = |u|/h0 (u the roller surface's speed past the beam,
+u_m = u/2)::
+
+    f(h0) = (c_M/2) R l [phi (|u|/h0)^n + tau_y],      k_e = df/dh0 = -n (c_M/2) R l phi |u|^n/h0^(n+1)
+    q_paper = |k_e| h0 - c_e d(delta)/dt (both signs, as printed), clipped at 0
+
+Eq. 34 writes the load as k_e delta with delta = h0; taken as the magnitude |k_e| h0 (k_e < 0 would
+pull the roller onto the beam).  In the Newtonian limit (tau_y = 0, n = 1, phi = eta) q_paper is
+Martin's load exactly; the yield stress drops out of k_e (it is constant in h0), which is the
+paper's Fig. 15 ("little effect").  Squeeze and traction use ``eta`` (the caller's viscosity
+reading; :mod:`lubrication.laws.grease`), as eq. 34 uses phi0 as a viscosity (notes 2.3).
+
+Martin's coefficient: 4.8950 eta u_m R/h (Reynolds exit condition; Martin 1916; Hamrock, Schmid &
+Jacobson 2004, eq. 17.28), the same as 2.4475 eta (u_1 + u_2) R/h.  The half-Sommerfeld (Guembel)
+film gives 4.0 eta u_m R/h (:data:`HALF_SOMMERFELD_COEFFICIENT`), the full Sommerfeld film no load.
+
+Gap (eq. 33): delta = Delta delta - (roller centre's displacement towards the beam), Delta delta =
+(l_c - d_w)/2 = 0.27 mm (Table 1) (:func:`pocket_gap`).
+
 Boundary state (delta < dh0, eqs. 36-37): the solids are deformed by delta_h = dh0 - delta and
 
     paper:      q = k_h delta_h + c_h d(delta_h)/dt + q_film(dh0),  f = mu_bd q + f_film(dh0)
-    continuous: q = k_h delta_h + c_h min(delta_h/dh0, 1) d(delta_h)/dt (>= 0) + q_film(dh0),
-                f = mu_bd (q - q_film(dh0)) + f_film(dh0)
+    continuous: q = k_h delta_h + c_h min(delta_h/dh0, 1) d(delta_h)/dt (>= 0) + q_film(dh0, d delta/dt),
+                f = mu_bd (q - q_film) + f_film(dh0)
 
 The paper's switch jumps at delta = dh0 (its damping force c_h d(delta_h)/dt and the boundary
-friction mu_bd q_film appear at once); the continuous switch (default) ramps the damping in with the
-deformation and applies mu_bd to the solids' share only, so force and friction are continuous in
-delta: an adaptive integrator does not have to resolve a jump at every pocket contact.
+friction mu_bd q_film appear at once, the film's squeeze stops); the continuous switch (default) keeps
+the film's squeeze at dh0 with the gap's rate, ramps the damping in with the deformation and applies
+mu_bd to the solids' share only, so force and friction are continuous in delta: an adaptive integrator does not have to resolve a jump at every pocket contact.
 
 Roller end / side beam (eqs. 39-40)
 -----------------------------------
@@ -60,15 +83,27 @@ width b.  Options:
   rule integrates a smooth function).  At the land's b/(2 r) = 0.025 the short-bearing theory is
   within (b/2r)^2 of the finite bearing (tests/test_film_coefficients.py measured the (L/D)^2
   convergence; against the project's FEM at the land itself the load differs by 4e-4, 8e-4 and 3e-3
-  at eps = 0.3, 0.5, 0.8, tests/test_laws_cage.py), so the
-  FEM map the issue names as a third option is not needed: the cheapest option meets the tolerance.
+  at eps = 0.3, 0.5, 0.8 with half-Sommerfeld cavitation; with Reynolds cavitation 2.6e-4 to 9.5e-3
+  at eps 0.1 to 0.95, attitude within 0.011 deg, tests/test_laws_cage.py), so it stays the default:
+  the FEM map (below) is the independent check, and is coarser with 0.1-spaced eps nodes.
   Friction torque on the cage: the Couette shear 2 pi eta r^3 b (omega_land - omega_cage) /
   (c sqrt(1 - eps^2)) (the integral of eta r dOmega/h over the full circle).
+* ``map`` (:func:`guide_land_map_force`): a table built by the project's Reynolds FEM journal with
+  Reynolds (Swift-Stieber) cavitation (:func:`coupling.guide_land.build_guide_land_map`).  The
+  Reynolds right-hand side in the frame of the line of centres is g = A sin(theta) - e' cos(theta)
+  with A = e (u_m/r - psi') (whirl psi') and e' the radial speed; the cavitated problem is positively
+  homogeneous in (A, e'), so F = eta G r b^3/c^3 Phi(eps, beta)/(1 - eps^2)^2 with G = |(A, e')| and
+  beta = atan2(e', A); the mirror theta -> -theta maps A -> -A (tangential force flips), so the
+  table covers beta in [-pi/2, pi/2].  Bilinear in (eps, beta); NaN outside the eps axis (the
+  integrators report a non-finite state).
 * ``paper``: eq. 44 as the paper writes it, the roller/crossbeam laws of eq. 34 with the equivalent
   radius r_ic = r_d r_y / (r_y - r_d) of the two conformal circles and h = delta' (eq. 43).
 
-Boundary state below dh0' (eq. 45) as for the pocket.  The reaction on the guiding ring (eq. 46
-neglects it) is the negative of the force on the cage; the dynamics applies it or not (option).
+Boundary state below dh0' (eq. 45) as for the pocket (:func:`guide_land_force`: the film is held
+at h_min = dh0', the solids add k_h' (dh0' - h_min) + damping, continuous or paper switch, friction
+torque mu_bd q r_d).  The reaction on the guiding ring (eq. 46 neglects it, ``keep_reaction`` 0)
+is kept by default: the ring gets -F_cage and the torque -T_cage - (e_c x F_cage)_z (e_c the cage
+centre relative to the land's), so that the pair conserves linear and angular momentum.
 
 All kernels are ``@njit`` leaves (plain floats); forces are magnitudes along the gap's normal
 (positive: pushing the surfaces apart).
@@ -86,8 +121,13 @@ from .jit import INLINE, JIT
 #: (lubrication.closed_form.martin_rigid_cylinder computes it: 4.894968...)
 MARTIN_COEFFICIENT = 4.894968493913375
 
+#: half-Sommerfeld (Guembel) rigid cylinder over a plane, infinite inlet: W h0/(eta u_m R)
+#: = 2 int_{-inf}^0 4|xi|/(1 + xi^2)^2 dxi = 4
+HALF_SOMMERFELD_COEFFICIENT = 4.0
+
 POCKET_SWITCHES = {"continuous": 0, "paper": 1}
-LAND_FILMS = {"short_bearing": 0, "paper": 1}
+POCKET_FILM_LAWS = {"martin": 0, "paper": 1}
+LAND_FILMS = {"short_bearing": 0, "paper": 1, "map": 2}
 
 # 32-point Gauss-Legendre rule on [-1, 1] (numpy.polynomial.legendre.leggauss)
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(32)
@@ -112,14 +152,48 @@ def cylinder_plane_traction(h, sliding_speed, radius, length, eta):
 
 
 @njit(**INLINE)
-def pocket_force(gap, gap_rate, sliding_speed, radius, length, eta, critical_film, k_h, c_h, mu_bd, switch):
+def pocket_gap(clearance, displacement):
+    """Eq. 33: delta = Delta delta - displacement [m], ``clearance`` Delta delta = (l_c - d_w)/2 (Table 1:
+    0.27 mm), ``displacement`` the roller centre's (or the slice point's) move towards the beam [m]."""
+    return clearance - displacement
+
+
+@njit(**INLINE)
+def herschel_bulkley_cylinder_load(h, sliding_speed, radius, length, tau_y, phi, n):
+    """Eq. 35 rebuilt (module docstring): f(h0) = (c_M/2) R l [phi (|u|/h0)^n + tau_y] [N], Martin's load
+    with the Herschel-Bulkley apparent viscosity at the shear rate |u|/h0."""
+    return 0.5 * MARTIN_COEFFICIENT * radius * length * (phi * (abs(sliding_speed) / h) ** n + tau_y)
+
+
+@njit(**INLINE)
+def herschel_bulkley_cylinder_stiffness(h, sliding_speed, radius, length, phi, n):
+    """Eq. 34's k_e = df/dh0 [N/m] of :func:`herschel_bulkley_cylinder_load` (negative; tau_y drops out)."""
+    return -n * 0.5 * MARTIN_COEFFICIENT * radius * length * phi * (abs(sliding_speed) / h) ** n / h
+
+
+@njit(**INLINE)
+def pocket_film_paper(h, gap_rate, sliding_speed, radius, length, eta, tau_y, phi, n):
+    """The paper's film load (eq. 34 with eq. 35 rebuilt) [N]: |k_e| h0 - c_e d(delta)/dt, c_e = 3 sqrt(2)
+    pi eta l R^1.5/h^1.5 (eq. 34's c_e with eps = 1, varsigma = R, l = l_e/n_s), clipped at 0."""
+    q = (-herschel_bulkley_cylinder_stiffness(h, sliding_speed, radius, length, phi, n) * h
+         - 3.0 * math.sqrt(2.0) * math.pi * eta * length * radius ** 1.5 / h ** 1.5 * gap_rate)
+    return q if q > 0.0 else 0.0
+
+
+@njit(**INLINE)
+def pocket_force(gap, gap_rate, sliding_speed, radius, length, eta, critical_film, k_h, c_h, mu_bd, switch,
+                 film_law=0, tau_y=0.0, phi=0.0, n=1.0):
     """``(q, f)``: normal force [N] (>= 0, pushing roller and crossbeam apart) and traction [N] (odd in
     ``sliding_speed``, the roller surface's speed past the beam) of one slice in its pocket
     (module docstring); ``gap`` delta [m], ``gap_rate`` d delta/dt [m/s]; ``switch`` 0 continuous,
-    1 the paper's."""
+    1 the paper's; ``film_law`` 0 Martin + squeeze while approaching, 1 the paper's eq. 34-35
+    (Herschel-Bulkley ``tau_y`` [Pa], ``phi`` [Pa s^n], ``n``)."""
     h = gap if gap > critical_film else critical_film
-    approach = -gap_rate if gap > critical_film else 0.0
-    q_film = cylinder_plane_film(h, 0.5 * sliding_speed, approach, radius, length, eta)
+    rate = gap_rate if (gap > critical_film or switch == 0) else 0.0
+    if film_law == 1:
+        q_film = pocket_film_paper(h, rate, sliding_speed, radius, length, eta, tau_y, phi, n)
+    else:
+        q_film = cylinder_plane_film(h, 0.5 * sliding_speed, -rate, radius, length, eta)
     f_film = cylinder_plane_traction(h, sliding_speed, radius, length, eta)
     if gap >= critical_film:
         return q_film, f_film
@@ -189,6 +263,138 @@ def guide_land_torque(eccentricity_ratio, radius, clearance, width, eta, omega_l
     land's rotation): 2 pi eta r^3 b (omega_land - omega_cage)/(c sqrt(1 - eps^2))."""
     return (2.0 * math.pi * eta * radius ** 3 * width * (omega_land - omega_cage)
             / (clearance * math.sqrt(1.0 - eccentricity_ratio * eccentricity_ratio)))
+
+
+@njit(**INLINE)
+def guide_land_paper(e_x, e_y, v_x, v_y, equivalent, clearance, width, eta, surface_speed):
+    """``(F_x, F_y)`` [N] on the journal (the land), eq. 44 as printed: the cylinder-over-plane film
+    (:func:`cylinder_plane_film`, Martin + squeeze while approaching) with the equivalent radius r_ic
+    (:func:`equivalent_radius`), h = c - |e| (eq. 43), u_m = ``surface_speed``/2, along the line of
+    centres only (eq. 46: no attitude angle).  Same frame as :func:`guide_land_short_bearing`."""
+    e = math.hypot(e_x, e_y)
+    if e == 0.0:
+        return 0.0, 0.0
+    ux = e_x / e
+    uy = e_y / e
+    q = cylinder_plane_film(clearance - e, 0.5 * surface_speed, v_x * ux + v_y * uy, equivalent, width, eta)
+    return -q * ux, -q * uy
+
+
+@njit(**INLINE)
+def _bilinear(x, y, xs, ys, table):
+    i = np.searchsorted(xs, x) - 1
+    if i < 0:
+        i = 0
+    if i > xs.size - 2:
+        i = xs.size - 2
+    j = np.searchsorted(ys, y) - 1
+    if j < 0:
+        j = 0
+    if j > ys.size - 2:
+        j = ys.size - 2
+    tx = (x - xs[i]) / (xs[i + 1] - xs[i])
+    ty = (y - ys[j]) / (ys[j + 1] - ys[j])
+    return ((1.0 - tx) * ((1.0 - ty) * table[i, j] + ty * table[i, j + 1])
+            + tx * ((1.0 - ty) * table[i + 1, j] + ty * table[i + 1, j + 1]))
+
+
+@njit(**INLINE)
+def guide_land_map_force(e_x, e_y, v_x, v_y, radius, clearance, width, eta, surface_speed, eps_axis, beta_axis,
+                         radial, tangential):
+    """``(F_x, F_y)`` [N] on the journal from the FEM map (module docstring): ``eps_axis`` (increasing),
+    ``beta_axis`` (increasing, within [-pi/2, pi/2]), tables ``radial``/``tangential`` [n_eps, n_beta] of
+    Phi = F c^3 (1 - eps^2)^2/(eta G r b^3) along e/|e| and its +90 deg rotation.  NaN when eps lies
+    outside the eps axis.  Same frame as :func:`guide_land_short_bearing`."""
+    e = math.hypot(e_x, e_y)
+    if e > 0.0:
+        ux = e_x / e
+        uy = e_y / e
+    else:
+        s = math.hypot(v_x, v_y)
+        if s == 0.0:
+            return 0.0, 0.0
+        ux = v_x / s
+        uy = v_y / s
+    eps = e / clearance
+    if eps < eps_axis[0] or eps > eps_axis[-1]:
+        return math.nan, math.nan
+    e_dot = v_x * ux + v_y * uy
+    A = e * 0.5 * surface_speed / radius - (-v_x * uy + v_y * ux)
+    G = math.hypot(A, e_dot)
+    if G == 0.0:
+        return 0.0, 0.0
+    mirror = -1.0 if A < 0.0 else 1.0
+    beta = math.atan2(e_dot, abs(A))
+    scale = eta * G * radius * width ** 3 / clearance ** 3 / (1.0 - eps * eps) ** 2
+    fr = scale * _bilinear(eps, beta, eps_axis, beta_axis, radial)
+    ft = mirror * scale * _bilinear(eps, beta, eps_axis, beta_axis, tangential)
+    return fr * ux - ft * uy, fr * uy + ft * ux
+
+
+@njit(**JIT)
+def guide_land_force(c_x, c_y, w_x, w_y, omega_land, omega_cage, radius, clearance, width, eta, equivalent,
+                     critical_film, k_h, c_h, mu_bd, film, switch, keep_reaction, eps_axis, beta_axis, radial,
+                     tangential):
+    """The cage on its guide land, eqs. 43-46: ``(Fc_x, Fc_y, Tc, Fr_x, Fr_y, Tr)``, force [N] and torque
+    [N m] on the cage and on the guiding ring.  ``(c_x, c_y)`` [m], ``(w_x, w_y)`` [m/s]: the cage centre
+    relative to the land's and its velocity; ``film`` one of :data:`LAND_FILMS`; ``switch`` as
+    :func:`pocket_force`; ``keep_reaction`` 0 reproduces eq. 46 (the ring gets nothing), 1 (default of
+    the model) the momentum-conserving reaction (module docstring).  The map arrays are ignored unless
+    ``film`` is 2."""
+    e = math.hypot(c_x, c_y)
+    limit = clearance - critical_film
+    ex, ey, vx, vy = -c_x, -c_y, -w_x, -w_y  # the journal (land) relative to the bearing (cage)
+    d = 0.0
+    if e > limit:  # boundary state: the film is held at h_min = dh0'
+        d = e - limit
+        ex *= limit / e
+        ey *= limit / e
+        if switch == 1:  # the paper's: the film at dh0' has no squeeze
+            vr = (vx * ex + vy * ey) / limit
+            vx -= vr * ex / limit
+            vy -= vr * ey / limit
+    U = radius * (omega_land + omega_cage)
+    if film == 1:
+        fx, fy = guide_land_paper(ex, ey, vx, vy, equivalent, clearance, width, eta, U)
+    elif film == 2:
+        fx, fy = guide_land_map_force(ex, ey, vx, vy, radius, clearance, width, eta, U, eps_axis, beta_axis,
+                                      radial, tangential)
+    else:
+        fx, fy = guide_land_short_bearing(ex, ey, vx, vy, radius, clearance, width, eta, U)
+    eps_f = math.hypot(ex, ey) / clearance
+    if film == 1:
+        h = clearance * (1.0 - eps_f)
+        torque = radius * cylinder_plane_traction(h, radius * (omega_land - omega_cage), equivalent, width, eta)
+    else:
+        torque = guide_land_torque(eps_f, radius, clearance, width, eta, omega_land, omega_cage)
+    Fcx = -fx
+    Fcy = -fy
+    if d > 0.0:
+        ux = c_x / e
+        uy = c_y / e
+        d_rate = w_x * ux + w_y * uy
+        if switch == 1:
+            qs = k_h * d + c_h * d_rate
+        else:
+            ramp = d / critical_film
+            if ramp > 1.0:
+                ramp = 1.0
+            qs = k_h * d + c_h * ramp * d_rate
+        if qs < 0.0:
+            qs = 0.0
+        q_film = -(Fcx * ux + Fcy * uy)
+        if switch == 1:
+            qs_total = qs + (q_film if q_film > 0.0 else 0.0)
+            if qs_total < 0.0:
+                qs_total = 0.0
+            torque += mu_bd * qs_total * radius * _sign(omega_land - omega_cage)
+        else:
+            torque += mu_bd * qs * radius * _sign(omega_land - omega_cage)
+        Fcx -= qs * ux
+        Fcy -= qs * uy
+    if keep_reaction == 0:
+        return Fcx, Fcy, torque, 0.0, 0.0, 0.0
+    return Fcx, Fcy, torque, -Fcx, -Fcy, -torque - (c_x * Fcy - c_y * Fcx)
 
 
 def equivalent_radius(land_radius: float, cage_radius: float) -> float:
