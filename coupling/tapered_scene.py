@@ -166,6 +166,9 @@ def describe(case: TaperedCase, model) -> str:
 
 def attitude(model, Y):
     """(tilt [rad], skew [rad], orbital speed [rad/s], radius [m]) per sample and roller (module docstring)."""
+    from scipy.spatial.transform import Rotation
+
+    from dynamics.rotations import to_scipy
     from dynamics.tapered import kernels as K
 
     n, Z = Y.shape[0], model.n_rollers
@@ -173,9 +176,7 @@ def attitude(model, Y):
     for j in range(Z):
         b = K.N_CONE + j * K.NB
         c, q, v = Y[:, b:b + 3], Y[:, b + 3:b + 7], Y[:, b + 7:b + 10]
-        q = q / np.linalg.norm(q, axis=1)[:, None]
-        w, x, yq, z = q.T
-        e = np.stack([1 - 2 * (yq * yq + z * z), 2 * (x * yq + w * z), 2 * (x * z - w * yq)], axis=1)  # R(q) e_x
+        e = Rotation.from_quat(to_scipy(q)).apply([1.0, 0.0, 0.0])   # the roller axis R(q) e_x (normalises q)
         rr = np.hypot(c[:, 1], c[:, 2])
         er_ = (e[:, 1] * c[:, 1] + e[:, 2] * c[:, 2]) / rr
         et = (-e[:, 1] * c[:, 2] + e[:, 2] * c[:, 1]) / rr

@@ -20,6 +20,7 @@ from coupling.config import CASES_DIR
 J, S, P = "journal_finite", "inclined_slider", "fowell_pocket"
 D, M = "cageless_6206_10krpm_short", "map_ball_ball"
 EB, ER = "ehl_ball_inner_race", "ehl_roller_slice"
+TS, TD = "trb_static_preload", "trb_fig5_2400rpm"
 
 # (case, --set overrides, exit code, fragments that the one line must contain)
 ROWS = [
@@ -53,6 +54,16 @@ ROWS = [
     (D, ["bearing.n_balls=1"], 2, ["bearing.n_balls = 1", ">= 3"]),
     (D, ["films.friction_law=coulomb"], 2, ["films.friction_law = 'coulomb'", "'paper'"]),
     (D, ["films.asperity_slope=0"], 2, ["films.asperity_slope = 0", "> 0"]),
+    # paper A's tapered roller bearing: static and dynamics scenes
+    (TS, ["operating.axial_load=5 kN"], 2, ["axial_load", "exactly one of"]),
+    (TS, ["bearing.small_end_diameter=30 mm"], 2, ["bearing.small_end_diameter", "large_end_diameter"]),
+    (TS, ["bearing.reconciliation=apex"], 2, ["bearing.reconciliation = 'apex'", "common_apex"]),
+    (TS, ["bearing.pocket_clearance=-0.1 mm"], 2, ["bearing.pocket_clearance", "> 0"]),
+    (TS, ["model.slices=0"], 2, ["model.slices = 0", ">= 1"]),
+    (TD, ["operating.axial=force", "operating.axial_load=0 N"], 2, ["operating.axial_load = 0", "no equilibrium"]),
+    (TD, ["model.traction=coulomb"], 2, ["model.traction = 'coulomb'", "'paper'"]),
+    (TD, ["integrator.sample_interval=1 s"], 2, ["integrator.sample_interval", "at least 2 samples"]),
+    (TD, ["cage.mass=-1 kg"], 2, ["cage.mass", "> 0"]),
     (D, ["integrator.method=rk5"], 2, ["integrator.method = 'rk5'", "did you mean 'rk4'"]),
     (D, ["integrator.rtol=0"], 2, ["integrator.rtol = 0", "(0, 1)"]),
     (D, ["model.dof=7dof"], 2, ["model.dof = '7dof'", "did you mean '6dof'"]),

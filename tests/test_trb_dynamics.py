@@ -157,3 +157,27 @@ def test_the_cage_runs_with_its_rollers():
     assert np.all(np.hypot(res.y[:, b + 1] - res.y[:, 1], res.y[:, b + 2] - res.y[:, 2]) < 0.5 * g.guide_land_clearance)
     L = K.loads_many(res.y, tb.args())
     assert np.all(L[:, :, 3] < 1e3)  # pocket loads stay film loads (N), no crossbeam crushed
+
+
+def test_the_guide_land_contact_pushes_the_cage_back_to_centre():
+    """At rest (no film force), the cage displaced along -y until its bore is 1 um from the land (below
+    the 2 um critical film): the boundary contact pushes the cage back along +y by k_h (h_crit - h)
+    = 1e8 x 1e-6 = 100 N and the cone (the land) along -y by the same (a sign error once pushed them
+    further together)."""
+    tb = _with_cage(0.0)
+    g = tb.geometry
+    y = tb.start_state()
+    b = K.N_CONE + K.NB * g.n_rollers
+    c = 0.5 * g.guide_land_clearance
+    y[b + 1] = y[1] - (c - 1e-6)
+    P, U, RHO = tb.args()
+    Z = g.n_rollers
+    F, T, Fc, Fg, Tg = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty(3)
+    loads = np.empty((Z, 4))
+    K.contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg)
+    y_free = y.copy()
+    y_free[b + 1] = y[1]  # the same state with the cage centred: no land contact
+    F0, Fc0, Fg0 = np.empty((Z, 3)), np.empty(3), np.empty(3)
+    K.contact_forces(y_free, P, U, RHO, F0, T, Fc0, loads, Fg0, Tg)
+    assert Fg[1] - Fg0[1] - (F0[:, 1].sum() - F[:, 1].sum()) == pytest.approx(100.0, rel=1e-6)
+    assert Fc[1] - Fc0[1] == pytest.approx(-100.0, rel=1e-6)

@@ -81,6 +81,18 @@ def _cross(a0, a1, a2, b0, b1, b2):
 
 
 @njit(**INLINE)
+def _load_roller(F, T, j, r0, r1, r2, f0, f1, f2):
+    """Add the force (f0, f1, f2) acting at r (from roller j's mass centre) to its force and torque."""
+    F[j, 0] += f0
+    F[j, 1] += f1
+    F[j, 2] += f2
+    t0, t1, t2 = _cross(r0, r1, r2, f0, f1, f2)
+    T[j, 0] += t0
+    T[j, 1] += t1
+    T[j, 2] += t2
+
+
+@njit(**INLINE)
 def _traction_per_speed(load, radius, P):
     """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N] on a raceway of
     reduced radius ``radius``: pi eps eta sqrt(R'/(2 h0)) times the slice width, with the Hertz half-width
@@ -160,13 +172,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg):
                     f0 -= c * s0
                     f1 -= c * s1
                     f2 -= c * s2
-                F[j, 0] += f0
-                F[j, 1] += f1
-                F[j, 2] += f2
-                t0, t1, t2 = _cross(r0, r1, r2, f0, f1, f2)
-                T[j, 0] += t0
-                T[j, 1] += t1
-                T[j, 2] += t2
+                _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
                 loads[j, race] += f
                 if race == 1:
                     Fc[0] -= f0
@@ -189,13 +195,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg):
             f = hertz_force(delta, ddot, P[P_KF], P[P_ALPHA])
             if f > 0.0:
                 f0, f1, f2 = f * n0, f * n1, f * n2
-                F[j, 0] += f0
-                F[j, 1] += f1
-                F[j, 2] += f2
-                t0, t1, t2 = _cross(r0, r1, r2, f0, f1, f2)
-                T[j, 0] += t0
-                T[j, 1] += t1
-                T[j, 2] += t2
+                _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
                 loads[j, 2] += f
                 Fc[0] -= f0
                 Fc[1] -= f1
@@ -244,13 +244,7 @@ def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, l
             f0 -= f * s0 / vs
             f1 -= f * s1 / vs
             f2 -= f * s2 / vs
-        F[j, 0] += f0
-        F[j, 1] += f1
-        F[j, 2] += f2
-        x0, x1, x2 = _cross(r0, r1, r2, f0, f1, f2)
-        T[j, 0] += x0
-        T[j, 1] += x1
-        T[j, 2] += x2
+        _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
         loads[j, 3] += q
         Fg[0] -= f0
         Fg[1] -= f1
@@ -283,9 +277,9 @@ def _guide_land(y, P, Fc, Fg, Tg):
         nx, ny = ex / ecc, ey / ecc                 # from the cage's centre towards the land's
         vr = vx * nx + vy * ny                       # rate at which the land closes on the bore
         qs = P[P_KH] * (P[P_HLAND] - gap) + P[P_CH] * vr
-        if qs > 0.0:
-            fx += qs * nx
-            fy += qs * ny
+        if qs > 0.0:                                 # on the land, back towards the cage's centre
+            fx -= qs * nx
+            fy -= qs * ny
             slide = r * (P[P_OMEGA] - wc[0])
             torque += P[P_MUBD] * qs * r * (1.0 if slide > 0.0 else (-1.0 if slide < 0.0 else 0.0))
     # (fx, fy) acts on the land (journal): the cage gets the opposite, the cone the reaction
