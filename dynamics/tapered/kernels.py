@@ -1,17 +1,27 @@
-r"""Compiled right-hand side of the tapered roller bearing (issue 23, first step: rollers and cone).
+r"""Compiled right-hand side of the tapered roller bearing (issue 23): cone, 17 rollers and the cage.
 
-State (:mod:`dynamics.tapered.model` names every entry)::
+State (:mod:`dynamics.tapered.layout`; :class:`dynamics.tapered.model.TaperedBearing` names every entry)::
 
     [cone x, y, z, vx, vy, vz]                                  (6; the cone's spin is prescribed)
     [roller j: c (3), q (4), v (3), omega_body (3)] x Z          (13 per roller)
-    [cage: c (3), q (4), v (3), omega_body (3)]                  (13; present with the option ``cage``)
+    [cage: c (3), q (4), v (3), omega_body (3)]                  (13; present unless pocket = "none")
 
 c is the roller's mass centre, q the unit quaternion (scalar first, :mod:`dynamics.rotations`) that maps
 the roller's body frame (x along its axis, towards the large end) to the inertial frame (x the bearing
 axis, the cup fixed), omega_body the angular velocity in the body frame.  The cone translates (its axial
-DOF locked, held at a displacement, or free under an axial force) and turns at the prescribed speed
+DOF held at a displacement, or free under an axial force) and turns at the prescribed speed
 Omega about x; its raceway and rib are surfaces of revolution, so its spin enters only through the
 surface velocity Omega e_x x (P - d) at a contact point P (d the cone's displacement).
+
+Equations of motion, inertial frame (so the centrifugal and gyroscopic loads are not added by hand:
+they are what the contacts must supply to keep the bodies on their orbits)::
+
+    m c'' = sum F - m g e_y                                       (Newton, gravity optional)
+    I omega_body' + omega_body x (I omega_body) = R(q)^T sum T     (Euler, I = diag(I_x, I_y, I_y))
+    q' = q * (0, omega_body)/2  (+ a drift term pulling |q| to 1)
+
+paper A's eqs. 47-51 in their body frame; eq. 50's third row is read with omega_x omega_y (notes 2.8),
+which is what Euler's equations give.
 
 Contacts of roller j (laws written once in :mod:`lubrication.laws`):
 
@@ -25,10 +35,19 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   delta_f = r_s - n.(S - X), Hunt-Crossley Hertz force K_f delta_f^1.5 (1 + alpha_e d(delta_f)/dt)
   (:func:`lubrication.laws.collision.hertz_force`) at P = S - r_s n.
 
-* raceway traction (option ``traction = "paper"``): eq. 12 of paper A (linear in the sliding speed,
-  :func:`lubrication.laws.traction.paper_raceway_traction`) against the tangential part of the sliding
-  velocity at each loaded slice, with the Hertz half-width of the slice's line load and the
-  Dowson-Toyoda film at the ideal entrainment speed (:func:`_traction_per_speed`).
+* raceway traction (option ``traction``): against the tangential part of the sliding velocity at each
+  loaded slice (rolling direction and the axial sliding a skewed roller makes, one vector), with the
+  Hertz half-width b = sqrt(8 w R'/(pi E')) of the slice's line load w and the Dowson-Toyoda film at the
+  ideal entrainment speed: "paper" eq. 12 (linear in the sliding speed,
+  :func:`lubrication.laws.traction.paper_raceway_traction`), "limited" the Herschel-Bulkley strip law
+  with Barus consistency and a limiting shear stress (an extension,
+  :func:`lubrication.laws.traction.limited_strip_traction`), "none";
+* flange friction (option ``flange_friction``, eqs. 22-23, :func:`lubrication.laws.flange.flange_friction`):
+  mu_a q exp(-B lambda^C) + w f_grease against the roller end's sliding on the rib, f_grease eq. 27's
+  limited Herschel-Bulkley traction over the Hertz ellipse (semi-axes and p0 scale as q^(1/3) from the
+  exact point law at 1 N), w = 1 ("paper") or the fluid share ("load_share"); the rib film h and
+  lambda = h/sigma are evaluated once at the start's flange load and the ideal rib entrainment speed
+  (a fixed film: the film's change with load in the run is the next fidelity level);
 
 * the cage (option ``cage``): a rigid body (axial position held; radial x2, three rotations) with one
   pocket per roller.  Roller j's mid-point M, seen in the cage frame, is off its pocket's mid-plane by
@@ -39,12 +58,20 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   at the roller's side, M -+ rho_m t_j.  The cage rides on the cone's guide land:
   :func:`lubrication.laws.cage.guide_land_short_bearing` (film force in the radial plane),
   :func:`lubrication.laws.cage.guide_land_torque` (Couette drag), and below the critical film a
-  contact k_h (h_crit - h) with boundary friction; the land's reaction acts on the cone.
+  contact k_h (h_crit - h) with boundary friction pushing the land back towards the cage's centre; the
+  land's reaction acts on the cone.  These are the "film" levels of the options ``pocket`` and
+  ``guide_land``.  The "contact" levels (issue 23's "contact only" fidelity, the cheapest that holds the
+  cage; a pocket or land film law replaces them through the same option code): a roller touches a
+  crossbeam when its mid-point is off the pocket's mid-plane by more than the pocket clearance Delta
+  (0.27 mm), a line contact of the whole roller (Palmgren's law with E' of steel on the cage's polyamide,
+  :func:`lubrication.laws.slices.line_constant`, eq. 11's damping) with friction mu_bd tanh(v_s/v_reg)
+  against the sliding; the land touches the cage's bore when their centres are more than the radial
+  clearance (0.25 mm) apart, a line contact of the land's width, with friction torque mu_bd q r.
 
-Not yet in this step (the fidelity levels part 2 adds): flange friction, the side-beam squeeze (axial
-cage contacts), gravity.  Equations of motion: Newton for the mass
-centres, Euler's equations with I_x != I_y = I_z (:func:`dynamics.rotations.euler_rate`, gyroscopic
-terms included) and the quaternion kinematics (:func:`dynamics.rotations.quat_derivative`).
+Not yet: the side-beam contacts (eqs. 39-42; until then the cage's axial position is held: its other
+five DOF are free), the cone's tilt, a rib film that follows the load.  :func:`forces_many` returns slice
+loads, contact loads, friction and cage diagnostics at sampled states; the model's ``diagnostics`` reads
+tilt, skew and slip from them.
 """
 from __future__ import annotations
 
