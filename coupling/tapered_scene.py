@@ -137,30 +137,37 @@ CaseModel = TaperedCase
 
 
 def build(case: TaperedCase):
-    """The :class:`dynamics.tapered.model.TaperedBearing` of a case; InputError names the key."""
+    """The :class:`dynamics.tapered.model.TaperedBearing` of a case; a bad value is a one-line error
+    naming the key."""
+    from dynamics.errors import DynamicsInputError
+    from dynamics.tapered import groups as G
     from dynamics.tapered.model import TaperedBearing
 
     from .static_scene import build as build_geometry
 
     g = build_geometry(case)
     op, m, c = case.operating, case.model, case.cage
+    level = "film" if m.cage else "none"
     try:
         return TaperedBearing(
-            g, n_slices=m.slices, speed=op.speed, radial_load=op.radial_load, axial=op.axial,
-            axial_load=op.axial_load, axial_displacement=op.axial_displacement, cone_mass=m.cone_mass,
-            damping_alpha=m.damping_alpha, traction=m.traction, viscosity=case.lubricant.viscosity,
-            pressure_viscosity=case.lubricant.pressure_viscosity, cage=m.cage, cage_mass=c.mass,
-            pocket_critical_film=c.pocket_critical_film, pocket_stiffness=c.pocket_stiffness,
-            pocket_damping=c.pocket_damping, boundary_friction=c.boundary_friction, pocket_switch=m.pocket_switch,
-            land_critical_film=c.land_critical_film)
-    except InputError as exc:
-        raise InputError(f"model.{exc}") from None
+            geometry=g,
+            operating=G.Operating(speed=op.speed, radial_load=op.radial_load, axial=op.axial,
+                                  axial_load=op.axial_load, axial_displacement=op.axial_displacement),
+            fidelity=G.Fidelity(slices=m.slices, traction=m.traction, pocket=level, guide_land=level,
+                                damping_alpha=m.damping_alpha, cone_mass=m.cone_mass, pocket_switch=m.pocket_switch),
+            lubricant=G.Lubricant(base_oil_viscosity=case.lubricant.viscosity,
+                                  pressure_viscosity=case.lubricant.pressure_viscosity),
+            cage=G.Cage(mass=c.mass, boundary_friction=c.boundary_friction,
+                        pocket_critical_film=c.pocket_critical_film, pocket_stiffness=c.pocket_stiffness,
+                        pocket_damping=c.pocket_damping, land_critical_film=c.land_critical_film))
+    except DynamicsInputError as exc:
+        raise InputError(str(exc)) from None
 
 
 def describe(case: TaperedCase, model) -> str:
     op = case.operating
     return (f"tapered roller bearing, {model.n_rollers} rollers x {model.n_slices} slices, cage "
-            f"{'on' if model.cage else 'off'}, traction {model.traction}; {op.speed * 30 / math.pi:g} rpm, "
+            f"{'on' if model.has_cage else 'off'}, traction {model.traction}; {op.speed * 30 / math.pi:g} rpm, "
             f"F_r {op.radial_load:g} N, axial {op.axial}; {case.integrator.duration * 1e3:g} ms")
 
 
@@ -195,7 +202,7 @@ def summarise(case, model, t, Y, loads) -> dict:
     tilt, skew, orbital = attitude(model, Y)
     half = t >= 0.5 * t[-1]
     s = {"Rollers [-]": model.n_rollers, "Slices per roller [-]": model.n_slices, "Traction": model.traction,
-         "Cage": bool(model.cage), "Cone speed [rpm]": model.speed * 30 / math.pi,
+         "Cage": bool(model.has_cage), "Cone speed [rpm]": model.speed * 30 / math.pi,
          "Simulated time [s]": float(t[-1]), "Samples [-]": int(t.size),
          "Ideal cage speed [rad/s]": ideal, "Analysis window [s]": [float(t[half][0]), float(t[-1])]}
     for name, arr, unit in (("tilt", tilt, "rad"), ("skew", skew, "rad")):
@@ -207,7 +214,7 @@ def summarise(case, model, t, Y, loads) -> dict:
         slip = (ideal - orbital[half]) / ideal
         s["Roller slip, mean [-]"] = float(np.mean(slip))
         s["Roller slip, largest magnitude [-]"] = float(np.max(np.abs(slip)))
-    if model.cage:
+    if model.has_cage:
         b = K.N_CONE + K.NB * model.n_rollers
         wc = Y[:, b + 10]
         s["Cage speed at end [rad/s]"] = float(wc[-1])
@@ -324,7 +331,7 @@ def _figures(model, t, Y, tilt, skew, orbital) -> dict:
     ax = fig.subplots()
     if ideal > 0.0:
         ax.plot(ms, 100 * (ideal - orbital[:, 0]) / ideal, label="roller 0")
-        if model.cage:
+        if model.has_cage:
             bcg = K.N_CONE + K.NB * model.n_rollers
             ax.plot(ms, 100 * (ideal - Y[:, bcg + 10]) / ideal, label="cage")
     ax.set_xlabel("time [ms]")
@@ -334,7 +341,7 @@ def _figures(model, t, Y, tilt, skew, orbital) -> dict:
     figs["slip.png"] = fig
     fig = Figure(figsize=(5, 5))
     ax = fig.subplots()
-    if model.cage:
+    if model.has_cage:
         bcg = K.N_CONE + K.NB * model.n_rollers
         ax.plot((Y[:, bcg + 1] - Y[:, 1]) * 1e6, (Y[:, bcg + 2] - Y[:, 2]) * 1e6, label="cage centre")
     ax.plot((Y[:, 1] - Y[0, 1]) * 1e6, (Y[:, 2] - Y[0, 2]) * 1e6, label="cone centre (from its start)")

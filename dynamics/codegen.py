@@ -22,14 +22,18 @@ log = logging.getLogger(__name__)
 
 def shipped() -> list[tuple]:
     """``(impl, callables)`` of every kernel the shipped scenes specialise: DOPRI5 and RK4 on the
-    cage-less bearing's right-hand side, and the Benettin spectrum on it and on its scaled form."""
+    cage-less bearing's right-hand side, and the Benettin spectrum on it and on its scaled form;
+    DOPRI5 and RK4 on the tapered roller bearing's right-hand side."""
     from . import cageless, lyapunov
+    from .tapered import kernels as tapered
 
     return [
         (integrators._dopri5_impl, {"rhs": cageless.rhs}),
         (integrators._rk4_impl, {"rhs": cageless.rhs}),
         (lyapunov._benettin_impl, {"rhs": cageless.rhs, "jvp": lyapunov.no_jvp}),
         (lyapunov._benettin_impl, {"rhs": cageless.rhs_scaled, "jvp": lyapunov.no_jvp}),
+        (integrators._dopri5_impl, {"rhs": tapered.rhs}),
+        (integrators._rk4_impl, {"rhs": tapered.rhs}),
     ]
 
 

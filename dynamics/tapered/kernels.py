@@ -1,17 +1,27 @@
-r"""Compiled right-hand side of the tapered roller bearing (issue 23, first step: rollers and cone).
+r"""Compiled right-hand side of the tapered roller bearing (issue 23): cone, 17 rollers and the cage.
 
-State (:mod:`dynamics.tapered.model` names every entry)::
+State (:mod:`dynamics.tapered.layout`; :class:`dynamics.tapered.model.TaperedBearing` names every entry)::
 
     [cone x, y, z, vx, vy, vz]                                  (6; the cone's spin is prescribed)
     [roller j: c (3), q (4), v (3), omega_body (3)] x Z          (13 per roller)
-    [cage: c (3), q (4), v (3), omega_body (3)]                  (13; present with the option ``cage``)
+    [cage: c (3), q (4), v (3), omega_body (3)]                  (13; present unless pocket = "none")
 
 c is the roller's mass centre, q the unit quaternion (scalar first, :mod:`dynamics.rotations`) that maps
 the roller's body frame (x along its axis, towards the large end) to the inertial frame (x the bearing
 axis, the cup fixed), omega_body the angular velocity in the body frame.  The cone translates (its axial
-DOF locked, held at a displacement, or free under an axial force) and turns at the prescribed speed
+DOF held at a displacement, or free under an axial force) and turns at the prescribed speed
 Omega about x; its raceway and rib are surfaces of revolution, so its spin enters only through the
 surface velocity Omega e_x x (P - d) at a contact point P (d the cone's displacement).
+
+Equations of motion, inertial frame (so the centrifugal and gyroscopic loads are not added by hand:
+they are what the contacts must supply to keep the bodies on their orbits)::
+
+    m c'' = sum F - m g e_y                                       (Newton, gravity optional)
+    I omega_body' + omega_body x (I omega_body) = R(q)^T sum T     (Euler, I = diag(I_x, I_y, I_y))
+    q' = q * (0, omega_body)/2  (+ a drift term pulling |q| to 1)
+
+paper A's eqs. 47-51 in their body frame; eq. 50's third row is read with omega_x omega_y (notes 2.8),
+which is what Euler's equations give.
 
 Contacts of roller j (laws written once in :mod:`lubrication.laws`):
 
@@ -25,10 +35,19 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   delta_f = r_s - n.(S - X), Hunt-Crossley Hertz force K_f delta_f^1.5 (1 + alpha_e d(delta_f)/dt)
   (:func:`lubrication.laws.collision.hertz_force`) at P = S - r_s n.
 
-* raceway traction (option ``traction = "paper"``): eq. 12 of paper A (linear in the sliding speed,
-  :func:`lubrication.laws.traction.paper_raceway_traction`) against the tangential part of the sliding
-  velocity at each loaded slice, with the Hertz half-width of the slice's line load and the
-  Dowson-Toyoda film at the ideal entrainment speed (:func:`_traction_per_speed`).
+* raceway traction (option ``traction``): against the tangential part of the sliding velocity at each
+  loaded slice (rolling direction and the axial sliding a skewed roller makes, one vector), with the
+  Hertz half-width b = sqrt(8 w R'/(pi E')) of the slice's line load w and the Dowson-Toyoda film at the
+  ideal entrainment speed: "paper" eq. 12 (linear in the sliding speed,
+  :func:`lubrication.laws.traction.paper_raceway_traction`), "limited" the Herschel-Bulkley strip law
+  with Barus consistency and a limiting shear stress (an extension,
+  :func:`lubrication.laws.traction.limited_strip_traction`), "none";
+* flange friction (option ``flange_friction``, eqs. 22-23, :func:`lubrication.laws.flange.flange_friction`):
+  mu_a q exp(-B lambda^C) + w f_grease against the roller end's sliding on the rib, f_grease eq. 27's
+  limited Herschel-Bulkley traction over the Hertz ellipse (semi-axes and p0 scale as q^(1/3) from the
+  exact point law at 1 N), w = 1 ("paper") or the fluid share ("load_share"); the rib film h and
+  lambda = h/sigma are evaluated once at the start's flange load and the ideal rib entrainment speed
+  (a fixed film: the film's change with load in the run is the next fidelity level);
 
 * the cage (option ``cage``): a rigid body (axial position held; radial x2, three rotations) with one
   pocket per roller.  Roller j's mid-point M, seen in the cage frame, is off its pocket's mid-plane by
@@ -39,12 +58,20 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   at the roller's side, M -+ rho_m t_j.  The cage rides on the cone's guide land:
   :func:`lubrication.laws.cage.guide_land_short_bearing` (film force in the radial plane),
   :func:`lubrication.laws.cage.guide_land_torque` (Couette drag), and below the critical film a
-  contact k_h (h_crit - h) with boundary friction; the land's reaction acts on the cone.
+  contact k_h (h_crit - h) with boundary friction pushing the land back towards the cage's centre; the
+  land's reaction acts on the cone.  These are the "film" levels of the options ``pocket`` and
+  ``guide_land``.  The "contact" levels (issue 23's "contact only" fidelity, the cheapest that holds the
+  cage; a pocket or land film law replaces them through the same option code): a roller touches a
+  crossbeam when its mid-point is off the pocket's mid-plane by more than the pocket clearance Delta
+  (0.27 mm), a line contact of the whole roller (Palmgren's law with E' of steel on the cage's polyamide,
+  :func:`lubrication.laws.slices.line_constant`, eq. 11's damping) with friction mu_bd tanh(v_s/v_reg)
+  against the sliding; the land touches the cage's bore when their centres are more than the radial
+  clearance (0.25 mm) apart, a line contact of the land's width, with friction torque mu_bd q r.
 
-Not yet in this step (the fidelity levels part 2 adds): flange friction, the side-beam squeeze (axial
-cage contacts), gravity.  Equations of motion: Newton for the mass
-centres, Euler's equations with I_x != I_y = I_z (:func:`dynamics.rotations.euler_rate`, gyroscopic
-terms included) and the quaternion kinematics (:func:`dynamics.rotations.quat_derivative`).
+Not yet: the side-beam contacts (eqs. 39-42; until then the cage's axial position is held: its other
+five DOF are free), the cone's tilt, a rib film that follows the load.  :func:`forces_many` returns slice
+loads, contact loads, friction and cage diagnostics at sampled states; the model's ``diagnostics`` reads
+tilt, skew and slip from them.
 """
 from __future__ import annotations
 
@@ -57,22 +84,23 @@ from lubrication.laws.cage import guide_land_short_bearing, guide_land_torque, p
 from lubrication.laws.collision import hertz_force
 from lubrication.laws.film import dowson_toyoda_central
 from lubrication.laws.jit import INLINE, JIT
+from lubrication.laws.flange import flange_friction
 from lubrication.laws.slices import slice_contact_3d, slice_force
-from lubrication.laws.traction import paper_raceway_traction
+from lubrication.laws.traction import limited_ellipse_traction, limited_strip_traction, paper_raceway_traction
 
 from ..rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
+from .layout import *  # noqa: F401,F403  (indices and option codes: dynamics.tapered.layout)
+from .layout import (AXIAL_FORCE, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
+                     N_CONE, N_FRICTION, NB, POCKET_CONTACT, POCKET_FILM, TRACTION_LIMITED, TRACTION_PAPER)
+from .layout import (P_ALPHA, P_ALPHAG, P_AXIAL, P_BLAND, P_CAGE, P_CH, P_CLAND, P_CONNR, P_CONNX, P_CONR,
+                     P_CONTACTS, P_CONX, P_CUPNR, P_CUPNX, P_CUPR, P_CUPX, P_DR, P_EP, P_ETA, P_FA, P_FA1, P_FB1,
+                     P_FBC, P_FCC, P_FFRIC, P_FLNR, P_FLNX, P_FLR, P_FLX, P_FP01, P_FR, P_GAMMAL, P_GRAV, P_HCRIT,
+                     P_HLAND, P_HRIB, P_ICT, P_ICX, P_IX, P_IY, P_KF, P_KH, P_KLAND, P_KPOCKET, P_KW, P_LAMBDA,
+                     P_LANDMODE, P_LEN, P_M, P_MC, P_MCG, P_MUA, P_MUBD, P_NEXP, P_NS, P_OMEGA, P_PHI0,
+                     P_POCKET, P_POCKETMODE, P_PVC, P_QSTAB, P_RHOM, P_RLAND, P_RS, P_RXI, P_RXO, P_SWITCH,
+                     P_TAUL0, P_TAUY, P_TRACTION, P_UC, P_UE, P_US, P_VREG, P_WIDTH, P_Z)
 
-# float parameters
-(P_Z, P_NS, P_M, P_IX, P_IY, P_MC, P_OMEGA, P_FA, P_FR, P_AXIAL, P_KW, P_KF, P_ALPHA, P_RS, P_US, P_UC,
- P_CUPX, P_CUPR, P_CUPNX, P_CUPNR, P_CONX, P_CONR, P_CONNX, P_CONNR, P_FLX, P_FLR, P_FLNX, P_FLNR,
- P_CONTACTS, P_QSTAB, P_TRACTION, P_ETA, P_PVC, P_EP, P_RXO, P_RXI, P_UE, P_WIDTH,
- P_CAGE, P_MCG, P_ICX, P_ICT, P_POCKET, P_LEN, P_RHOM, P_HCRIT, P_KH, P_CH, P_MUBD, P_SWITCH, P_RLAND, P_CLAND,
- P_BLAND, P_HLAND) = range(54)
-P_SIZE = 54
-TRACTION_NONE, TRACTION_PAPER = 0.0, 1.0
 _dowson_toyoda = njit(**INLINE)(dowson_toyoda_central)   # the law of lubrication.laws.film, compiled here
-AXIAL_LOCKED, AXIAL_FORCE = 0.0, 1.0
-N_CONE, NB = 6, 13
 
 
 @njit(**JIT)
@@ -93,24 +121,52 @@ def _load_roller(F, T, j, r0, r1, r2, f0, f1, f2):
 
 
 @njit(**INLINE)
-def _traction_per_speed(load, radius, P):
-    """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N] on a raceway of
-    reduced radius ``radius``: pi eps eta sqrt(R'/(2 h0)) times the slice width, with the Hertz half-width
-    b = sqrt(8 w R'/(pi E')) of the slice's line load w and the Dowson-Toyoda central film h0 at the ideal
-    entrainment speed (:func:`lubrication.laws.traction.paper_raceway_traction`)."""
+def _rheo(P):
+    """The grease rheology tuple (tau_y, phi0, n, alpha, tau_L0, gamma_L, D_r) of the limited laws."""
+    return (P[P_TAUY], P[P_PHI0], P[P_NEXP], P[P_ALPHAG], P[P_TAUL0], P[P_GAMMAL], P[P_DR])
+
+
+@njit(**INLINE)
+def _slice_film(load, radius, P):
+    """(line load w [N/m], Hertz half-width b [m], peak pressure p0 [Pa], Dowson-Toyoda central film h0
+    [m] at the ideal entrainment speed) of a slice carrying ``load`` [N] on a raceway of reduced radius
+    ``radius``: b = sqrt(8 w R'/(pi E')), p0 = 2 w/(pi b)."""
     w = load / P[P_WIDTH]
     ep = P[P_EP]
     b = math.sqrt(8.0 * w * radius / (math.pi * ep))
     h0 = radius * _dowson_toyoda(P[P_ETA] * P[P_UE] / (ep * radius), P[P_PVC] * ep, w / (ep * radius))
+    return w, b, 2.0 * w / (math.pi * b), h0
+
+
+@njit(**INLINE)
+def _traction_per_speed(load, radius, P):
+    """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N]: pi eps eta
+    sqrt(R'/(2 h0)) times the slice width (:func:`lubrication.laws.traction.paper_raceway_traction`)."""
+    w, b, p0, h0 = _slice_film(load, radius, P)
     return paper_raceway_traction(1.0, P[P_ETA], radius, h0, b) * P[P_WIDTH]
 
 
+@njit(**INLINE)
+def _slice_traction(load, radius, vs, P):
+    """Magnitude [N] of the raceway traction of a slice sliding at ``vs`` >= 0 [m/s] (the force opposes
+    the roller's sliding): eq. 12 ("paper") or the limited Herschel-Bulkley strip law ("limited",
+    :func:`lubrication.laws.traction.limited_strip_traction` over the slice's Hertz strip)."""
+    if P[P_TRACTION] == TRACTION_PAPER:
+        return _traction_per_speed(load, radius, P) * vs
+    if vs <= 0.0:
+        return 0.0
+    w, b, p0, h0 = _slice_film(load, radius, P)
+    return limited_strip_traction(vs, h0, b, p0, _rheo(P)) * P[P_WIDTH]
+
+
 @njit(**JIT)
-def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg):
+def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
     """Contact forces and torques: F[j] force on roller j [N], T[j] torque about its mass centre
     (inertial frame) [N m], Fc the force of all rollers (and the cage) on the cone [N], loads[j] =
-    (cup, cone, flange, pocket) sums of the contact forces' magnitudes [N]; Fg, Tg the force [N] and the
-    torque about its centre [N m] on the cage."""
+    (cup, cone, flange, pocket) sums of the normal forces' magnitudes [N]; Fg, Tg the force [N] and the
+    torque about its centre [N m] on the cage; SL[j, race, k] the slice loads [N] (race 0 cup, 1 cone);
+    FR[j] the friction diagnostics (:data:`dynamics.tapered.layout.FRICTION_NAMES`); CG the cage's
+    (:data:`dynamics.tapered.layout.CAGE_NAMES`)."""
     Z = int(P[P_Z])
     ns = int(P[P_NS])
     F[:, :] = 0.0
@@ -119,6 +175,9 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg):
     Fg[:] = 0.0
     Tg[:] = 0.0
     loads[:, :] = 0.0
+    SL[:, :, :] = 0.0
+    FR[:, :] = 0.0
+    CG[:] = 0.0
     if P[P_CONTACTS] == 0.0:
         return
     dx, dy, dz = y[0], y[1], y[2]
@@ -164,16 +223,23 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg):
                 if f <= 0.0:
                     continue
                 f0, f1, f2 = f * n0, f * n1, f * n2
-                if P[P_TRACTION] == TRACTION_PAPER:
-                    # eq. 12 against the sliding velocity's tangential part, per unit length times the width
+                if P[P_TRACTION] != 0.0:
+                    # against the sliding velocity's tangential part: rolling direction and the axial
+                    # sliding a skewed roller makes, one vector
                     un = u0 * n0 + u1 * n1 + u2 * n2
                     s0, s1, s2 = u0 - un * n0, u1 - un * n1, u2 - un * n2
-                    c = _traction_per_speed(f, P[P_RXO] if race == 0 else P[P_RXI], P)
-                    f0 -= c * s0
-                    f1 -= c * s1
-                    f2 -= c * s2
+                    vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
+                    if vs > 0.0:
+                        ft = _slice_traction(f, P[P_RXO] if race == 0 else P[P_RXI], vs, P)
+                        f0 -= ft * s0 / vs
+                        f1 -= ft * s1 / vs
+                        f2 -= ft * s2 / vs
+                        FR[j, race] += ft
+                        if vs > FR[j, 4 + race]:
+                            FR[j, 4 + race] = vs
                 _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
                 loads[j, race] += f
+                SL[j, race, k] = f
                 if race == 1:
                     Fc[0] -= f0
                     Fc[1] -= f1
@@ -191,23 +257,38 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg):
             w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
             a0, a1, a2 = _cross(om, 0.0, 0.0, q0, q1, q2)
             u0, u1, u2 = v0 + w0 - vcx - a0, v1 + w1 - vcy - a1, v2 + w2 - vcz - a2
-            ddot = -(u0 * n0 + u1 * n1 + u2 * n2)
-            f = hertz_force(delta, ddot, P[P_KF], P[P_ALPHA])
+            un = u0 * n0 + u1 * n1 + u2 * n2
+            f = hertz_force(delta, -un, P[P_KF], P[P_ALPHA])
             if f > 0.0:
                 f0, f1, f2 = f * n0, f * n1, f * n2
+                if P[P_FFRIC] != 0.0:
+                    s0, s1, s2 = u0 - un * n0, u1 - un * n1, u2 - un * n2
+                    vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
+                    FR[j, 6] = vs
+                    if vs > 0.0:
+                        c3 = f ** (1.0 / 3.0)          # Hertz: a, b, p0 scale with Q^(1/3)
+                        grease = limited_ellipse_traction(vs, P[P_HRIB], P[P_FA1] * c3, P[P_FB1] * c3,
+                                                          P[P_FP01] * c3, _rheo(P))
+                        ff = flange_friction(vs, f, P[P_LAMBDA], grease, P[P_MUA], P[P_FBC], P[P_FCC],
+                                             P[P_FFRIC] == 2.0)
+                        f0 -= ff * s0 / vs
+                        f1 -= ff * s1 / vs
+                        f2 -= ff * s2 / vs
+                        FR[j, 2] = ff
                 _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
                 loads[j, 2] += f
                 Fc[0] -= f0
                 Fc[1] -= f1
                 Fc[2] -= f2
         if P[P_CAGE] != 0.0:
-            _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg)
+            _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR)
     if P[P_CAGE] != 0.0:
-        _guide_land(y, P, Fc, Fg, Tg)
+        _guide_land(y, P, Fc, Fg, Tg, CG)
+        CG[0], CG[1], CG[2] = Fg[1], Fg[2], Tg[0]
 
 
 @njit(**INLINE)
-def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg):
+def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR):
     """Roller j against the crossbeams of its pocket (module docstring): forces on the roller and the cage."""
     Z = int(P[P_Z])
     b = N_CONE + Z * NB
@@ -223,6 +304,8 @@ def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, l
     for side in range(2):
         sg = 1.0 if side == 0 else -1.0           # leading beam (+t), trailing beam (-t)
         gap = P[P_POCKET] - sg * s
+        if P[P_POCKETMODE] == POCKET_CONTACT and gap >= 0.0:
+            continue
         # contact point on the roller's side facing the beam
         p0, p1, p2 = m0 + sg * P[P_RHOM] * t[0], m1 + sg * P[P_RHOM] * t[1], m2 + sg * P[P_RHOM] * t[2]
         r0, r1, r2 = p0 - c0, p1 - c1, p2 - c2
@@ -235,8 +318,12 @@ def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, l
         un = u0 * t[0] + u1 * t[1] + u2 * t[2]
         s0, s1, s2 = u0 - un * t[0], u1 - un * t[1], u2 - un * t[2]
         vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
-        q, f = pocket_force(gap, -sg * un, vs, P[P_RHOM], P[P_LEN], P[P_ETA], P[P_HCRIT], P[P_KH], P[P_CH],
-                            P[P_MUBD], int(P[P_SWITCH]))
+        if P[P_POCKETMODE] == POCKET_FILM:
+            q, f = pocket_force(gap, -sg * un, vs, P[P_RHOM], P[P_LEN], P[P_ETA], P[P_HCRIT], P[P_KH], P[P_CH],
+                                P[P_MUBD], int(P[P_SWITCH]))
+        else:   # "contact": line contact of the roller on the beam (Palmgren law, eq. 11 damping), mu_bd
+            q = slice_force(-gap, sg * un, P[P_KPOCKET], P[P_ALPHA])
+            f = P[P_MUBD] * q * math.tanh(vs / P[P_VREG])
         if q <= 0.0 and f == 0.0:
             continue
         f0, f1, f2 = -sg * q * t[0], -sg * q * t[1], -sg * q * t[2]
@@ -246,6 +333,7 @@ def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, l
             f2 -= f * s2 / vs
         _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
         loads[j, 3] += q
+        FR[j, 3] += f
         Fg[0] -= f0
         Fg[1] -= f1
         Fg[2] -= f2
@@ -256,7 +344,7 @@ def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, l
 
 
 @njit(**INLINE)
-def _guide_land(y, P, Fc, Fg, Tg):
+def _guide_land(y, P, Fc, Fg, Tg, CG):
     """The cage's centering surface on the cone's guide land (module docstring)."""
     Z = int(P[P_Z])
     b = N_CONE + Z * NB
@@ -268,21 +356,33 @@ def _guide_land(y, P, Fc, Fg, Tg):
     vx, vy = y[4] - y[b + 8], y[5] - y[b + 9]
     r, c, w = P[P_RLAND], P[P_CLAND], P[P_BLAND]
     ecc = math.sqrt(ex * ex + ey * ey)
-    if ecc >= c:
-        ecc = c * (1.0 - 1e-9)
-    fx, fy = guide_land_short_bearing(ex, ey, vx, vy, r, c, w, P[P_ETA], r * (P[P_OMEGA] + wc[0]))
-    gap = c - math.sqrt(ex * ex + ey * ey)
-    torque = guide_land_torque(ecc / c, r, c, w, P[P_ETA], P[P_OMEGA], wc[0])
-    if gap < P[P_HLAND] and ecc > 0.0:
-        nx, ny = ex / ecc, ey / ecc                 # from the cage's centre towards the land's
-        vr = vx * nx + vy * ny                       # rate at which the land closes on the bore
-        qs = P[P_KH] * (P[P_HLAND] - gap) + P[P_CH] * vr
-        if qs > 0.0:                                 # on the land, back towards the cage's centre
-            fx -= qs * nx
-            fy -= qs * ny
-            slide = r * (P[P_OMEGA] - wc[0])
-            torque += P[P_MUBD] * qs * r * (1.0 if slide > 0.0 else (-1.0 if slide < 0.0 else 0.0))
-    # (fx, fy) acts on the land (journal): the cage gets the opposite, the cone the reaction
+    fx, fy, torque = 0.0, 0.0, 0.0
+    slide = r * (P[P_OMEGA] - wc[0])
+    if P[P_LANDMODE] == LAND_FILM:
+        ecc_f = ecc if ecc < c else c * (1.0 - 1e-9)
+        fx, fy = guide_land_short_bearing(ex, ey, vx, vy, r, c, w, P[P_ETA], r * (P[P_OMEGA] + wc[0]))
+        torque = guide_land_torque(ecc_f / c, r, c, w, P[P_ETA], P[P_OMEGA], wc[0])
+        gap = c - ecc
+        if gap < P[P_HLAND] and ecc > 0.0:
+            nx, ny = ex / ecc, ey / ecc                 # from the cage's centre towards the land's
+            vr = vx * nx + vy * ny                       # rate at which the land closes on the bore
+            qs = P[P_KH] * (P[P_HLAND] - gap) + P[P_CH] * vr
+            if qs > 0.0:
+                # the bore pushes the land back towards the cage's centre (-n; the first step had +n)
+                fx -= qs * nx
+                fy -= qs * ny
+                torque += P[P_MUBD] * qs * r * (1.0 if slide > 0.0 else (-1.0 if slide < 0.0 else 0.0))
+                CG[3] = qs
+    elif P[P_LANDMODE] == LAND_CONTACT and ecc > c:
+        # contact only: the land touches the cage's bore (line contact of the land's width, Palmgren law with
+        # eq. 11 damping), friction mu_bd along the land's sliding (regularised Coulomb)
+        nx, ny = ex / ecc, ey / ecc
+        qs = slice_force(ecc - c, vx * nx + vy * ny, P[P_KLAND], P[P_ALPHA])
+        fx -= qs * nx
+        fy -= qs * ny
+        torque = P[P_MUBD] * qs * r * math.tanh(slide / P[P_VREG])
+        CG[3] = qs
+    # (fx, fy) acts on the land (journal): the cage gets the opposite, the cone the force itself
     Fg[1] -= fx
     Fg[2] -= fy
     Fc[1] += fx
@@ -295,13 +395,18 @@ def rhs(t, y, args, dydt):
     """dy/dt of the tapered roller bearing (module docstring); ``args = (P, U, RHO)``."""
     P, U, RHO = args
     Z = int(P[P_Z])
+    ns = int(P[P_NS])
     F = np.empty((Z, 3))
     T = np.empty((Z, 3))
     Fc = np.empty(3)
     loads = np.empty((Z, 4))
     Fg = np.empty(3)
     Tg = np.empty(3)
-    contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg)
+    SL = np.empty((Z, 2, ns))
+    FR = np.empty((Z, N_FRICTION))
+    CG = np.empty(N_CAGE_DIAG)
+    contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG)
+    g = P[P_GRAV]                                      # gravity along -y
     # cone: translation under the rollers' forces, F_r along +y, F_a along -x (closing the bearing)
     mc = P[P_MC]
     dydt[0] = y[3]
@@ -312,7 +417,7 @@ def rhs(t, y, args, dydt):
     else:
         dydt[0] = 0.0
         dydt[3] = 0.0
-    dydt[4] = (Fc[1] + P[P_FR]) / mc
+    dydt[4] = (Fc[1] + P[P_FR]) / mc - g
     dydt[5] = Fc[2] / mc
     inertia = np.array([P[P_IX], P[P_IY], P[P_IY]])
     tb = np.empty(3)
@@ -325,7 +430,7 @@ def rhs(t, y, args, dydt):
         dydt[b + 2] = y[b + 9]
         quat_derivative(q, y[b + 10:b + 13], dydt[b + 3:b + 7], P[P_QSTAB])
         dydt[b + 7] = F[j, 0] / m
-        dydt[b + 8] = F[j, 1] / m
+        dydt[b + 8] = F[j, 1] / m - g
         dydt[b + 9] = F[j, 2] / m
         qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
         quat_rotate_inverse(qn, T[j], tb)
@@ -333,12 +438,12 @@ def rhs(t, y, args, dydt):
     if P[P_CAGE] != 0.0:
         b = N_CONE + Z * NB
         q = y[b + 3:b + 7]
-        dydt[b] = 0.0                                  # axial position held (no side-beam contact yet)
+        dydt[b] = 0.0                                  # axial position held (the side-beam contacts come next)
         dydt[b + 1] = y[b + 8]
         dydt[b + 2] = y[b + 9]
         quat_derivative(q, y[b + 10:b + 13], dydt[b + 3:b + 7], P[P_QSTAB])
         dydt[b + 7] = 0.0
-        dydt[b + 8] = Fg[1] / P[P_MCG]
+        dydt[b + 8] = Fg[1] / P[P_MCG] - g
         dydt[b + 9] = Fg[2] / P[P_MCG]
         qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
         quat_rotate_inverse(qn, Tg, tb)
@@ -356,6 +461,32 @@ def loads_many(Y, args):
     Fc = np.empty(3)
     Fg = np.empty(3)
     Tg = np.empty(3)
+    SL = np.empty((Z, 2, int(P[P_NS])))
+    FR = np.empty((Z, N_FRICTION))
+    CG = np.empty(N_CAGE_DIAG)
     for i in range(Y.shape[0]):
-        contact_forces(Y[i], P, U, RHO, F, T, Fc, out[i], Fg, Tg)
+        contact_forces(Y[i], P, U, RHO, F, T, Fc, out[i], Fg, Tg, SL, FR, CG)
     return out
+
+
+@njit(**JIT)
+def forces_many(Y, args):
+    """At each sampled state: loads (n, Z, 4) as :func:`loads_many`, slice loads (n, Z, 2, n_s) [N] (cup,
+    cone), friction diagnostics (n, Z, N_FRICTION), cage diagnostics (n, N_CAGE_DIAG) and the force of
+    the rollers and the cage on the cone (n, 3) [N]."""
+    P, U, RHO = args
+    Z = int(P[P_Z])
+    ns = int(P[P_NS])
+    n = Y.shape[0]
+    loads = np.empty((n, Z, 4))
+    SL = np.empty((n, Z, 2, ns))
+    FR = np.empty((n, Z, N_FRICTION))
+    CG = np.empty((n, N_CAGE_DIAG))
+    FC = np.empty((n, 3))
+    F = np.empty((Z, 3))
+    T = np.empty((Z, 3))
+    Fg = np.empty(3)
+    Tg = np.empty(3)
+    for i in range(n):
+        contact_forces(Y[i], P, U, RHO, F, T, FC[i], loads[i], Fg, Tg, SL[i], FR[i], CG[i])
+    return loads, SL, FR, CG, FC

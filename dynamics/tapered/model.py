@@ -1,152 +1,227 @@
-"""The tapered roller bearing as a compiled right-hand side (issue 23, first step): parameters, the start
-state from the quasi-static equilibrium, and the state's names.
+"""The tapered roller bearing as a compiled right-hand side: parameters, the start state from the
+quasi-static equilibrium, the state's names and the diagnostics of a trajectory.
 
-:class:`TaperedBearing` packs a :class:`lubrication.laws.tapered.TaperedRollerGeometry` and the operating
-point into the arrays of :func:`dynamics.tapered.kernels.rhs` (``args()``), and places the cone and the
-rollers where :func:`dynamics.tapered.quasistatic.solve` finds them in equilibrium, the rollers orbiting
-at the ideal cage speed and spinning at their ideal speed (``start_state``), so a run does not begin with
-an impact.  What this step leaves out (traction, cage, gravity) is listed in the kernels' docstring.
+:class:`TaperedBearing` holds the geometry (:class:`lubrication.laws.tapered.TaperedRollerGeometry`) and
+the frozen groups of :mod:`dynamics.tapered.groups`; it packs them into the arrays of
+:func:`dynamics.tapered.kernels.rhs` (``args()``), places the cone and the rollers where
+:func:`dynamics.tapered.quasistatic.solve` finds them in equilibrium, the rollers orbiting at the ideal
+cage speed and spinning at their ideal speed, the cage concentric at the ideal cage speed
+(``start_state``), so a run does not begin with an impact, and reads a trajectory back
+(:meth:`TaperedBearing.diagnostics`: loads per slice and contact, tilt, skew, slip, speeds).
 """
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
-from lubrication.errors import InputError
+from lubrication.laws import flange as laws_flange
 from lubrication.laws import slices as sl
 from lubrication.laws.cage import POCKET_SWITCHES
 from lubrication.laws.tapered import TaperedRollerGeometry
 
+from ..errors import DynamicsInputError
+from ..groups import fail
 from ..rotations import quat_rotate_inverse
 from . import kernels as K
+from . import layout as L
+from .groups import Cage, Fidelity, Flange, Initial, Lubricant, Operating
 from .quasistatic import QuasiStaticResult, solve
 
-AXIAL_MODES = ("locked", "force")
-TRACTIONS = ("none", "paper")
+log = logging.getLogger(__name__)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class TaperedBearing:
-    """``geometry``; ``n_slices`` per roller and raceway; the cone's ``speed`` [rad/s], ``radial_load``
-    [N] (along +y), ``axial`` = "locked" (held at the start's axial displacement) or "force" (free under
-    ``axial_load`` [N], closing); ``cone_mass`` [kg] (assumed: paper A gives none); ``damping_alpha``
-    alpha_e [s/m] of eq. 11 (slices and flange); ``contacts`` False: free rollers (a test of the
-    equations of motion); ``quaternion_stabilisation`` [1/s]; ``traction`` "none" or "paper" (eq. 12)
-    with the film's ``viscosity`` [Pa s] and ``pressure_viscosity`` [1/Pa] (defaults: paper A's assumed
-    base oil and the grease's alpha, :mod:`coupling.parameters.wu2018`); ``cage`` True: the cage with
-    its pockets and guide land (:mod:`lubrication.laws.cage`), which needs ``cage_mass`` [kg] and the
-    pocket's ``pocket_critical_film`` [m], ``pocket_stiffness`` [N/m], ``pocket_damping`` [N s/m],
-    ``boundary_friction`` [-], ``pocket_switch`` ("continuous" or "paper"), ``land_critical_film`` [m]
-    (paper A gives none of them: :mod:`coupling.parameters.wu2018` holds the assumed values)."""
+    """Paper A's tapered roller bearing (SI units): the ``geometry`` law and six frozen groups
+    (:mod:`dynamics.tapered.groups`): ``operating``, ``fidelity`` (the case's ``[model]``),
+    ``lubricant``, ``cage`` (needed with ``fidelity.pocket`` != "none"), ``flange`` (needed with
+    ``fidelity.flange_friction`` != "none") and ``initial``.  Paper A's values come from
+    :mod:`coupling.parameters.wu2018` (``tapered_bearing()``); every error names the case key."""
 
     geometry: TaperedRollerGeometry
-    n_slices: int = 20
-    speed: float = 0.0
-    radial_load: float = 0.0
-    axial: str = "locked"
-    axial_load: float = 0.0
-    axial_displacement: float = 0.0
-    cone_mass: float = 5.0
-    damping_alpha: float = 0.16
-    contacts: bool = True
-    quaternion_stabilisation: float = 10.0
-    traction: str = "none"
-    viscosity: float = 0.1
-    pressure_viscosity: float = 4.662e-8
-    cage: bool = False
-    cage_mass: float | None = None
-    pocket_critical_film: float | None = None
-    pocket_stiffness: float | None = None
-    pocket_damping: float | None = None
-    boundary_friction: float | None = None
-    pocket_switch: str = "continuous"
-    land_critical_film: float | None = None
+    operating: Operating
+    fidelity: Fidelity = Fidelity()
+    lubricant: Lubricant
+    cage: Cage | None = None
+    flange: Flange | None = None
+    initial: Initial = Initial()
+
+    GROUP_CLASSES: ClassVar[dict] = {"operating": Operating, "fidelity": Fidelity, "lubricant": Lubricant,
+                                     "cage": Cage, "flange": Flange, "initial": Initial}
 
     def __post_init__(self):
-        if self.traction not in TRACTIONS:
-            raise InputError(f"traction = {self.traction!r} is not allowed; choose one of {', '.join(TRACTIONS)}")
-        if self.axial not in AXIAL_MODES:
-            raise InputError(f"axial = {self.axial!r} is not allowed; choose one of {', '.join(AXIAL_MODES)}")
-        for key in ("cone_mass",):
-            if not getattr(self, key) > 0.0:
-                raise InputError(f"{key} = {getattr(self, key)!r} must be > 0")
-        for key in ("damping_alpha", "radial_load", "axial_load", "speed"):
-            if not getattr(self, key) >= 0.0:
-                raise InputError(f"{key} = {getattr(self, key)!r} must be >= 0")
-        if self.cage:
-            for key in ("cage_mass", "pocket_critical_film", "pocket_stiffness", "pocket_damping",
-                        "boundary_friction", "land_critical_film"):
-                value = getattr(self, key)
-                if value is None or not value >= 0.0:
-                    raise InputError(f"{key} = {value!r} must be given (>= 0) with cage = True")
-            if self.pocket_switch not in POCKET_SWITCHES:
-                raise InputError(f"pocket_switch = {self.pocket_switch!r} is not allowed; choose one of "
-                                 f"{', '.join(POCKET_SWITCHES)}")
-        if int(self.n_slices) != self.n_slices or self.n_slices < 1:
-            raise InputError(f"n_slices = {self.n_slices!r} must be an integer >= 1")
+        for name, cls in self.GROUP_CLASSES.items():
+            group = getattr(self, name)
+            if isinstance(group, dict):
+                object.__setattr__(self, name, cls.build(group))
+            elif group is not None and not isinstance(group, cls):
+                raise DynamicsInputError(f"{name} must be a {cls.__name__} (or a dict of its fields), not "
+                                         f"{type(group).__name__}", key=cls.TABLE)
+        f = self.fidelity
+        if f.pocket != "none" and self.cage is None:
+            raise fail("cage", None, f"must be given with model.pocket = {f.pocket!r}")
+        if f.flange_friction != "none" and self.flange is None:
+            raise fail("flange", None, f"must be given with model.flange_friction = {f.flange_friction!r}")
+        if "contact" in (f.pocket, f.guide_land) and self.cage.modulus is None:
+            raise fail("cage.modulus", None, "must be given with a contact-only pocket or guide land")
+        if f.pocket == "film" or f.guide_land == "film":
+            for name in ("pocket_critical_film", "pocket_stiffness", "land_critical_film"):
+                if not getattr(self.cage, name) > 0.0:
+                    raise fail(f"cage.{name}", getattr(self.cage, name), "must be > 0 with the film pocket or land")
+        needs_grease = f.traction == "limited" or f.flange_friction != "none"
+        if needs_grease and self.lubricant.grease() is None:
+            raise fail("lubricant.consistency", None, "must be given (a grease) with model.traction = 'limited' or "
+                                                      "a flange friction")
 
+    # ---------------------------------------------------------------- convenience
     @property
     def n_rollers(self) -> int:
         return int(self.geometry.n_rollers)
 
-    def args(self):
-        """``(P, U, RHO)`` of :func:`dynamics.tapered.kernels.rhs`."""
+    @property
+    def n_slices(self) -> int:
+        return int(self.fidelity.slices)
+
+    @property
+    def speed(self) -> float:
+        return float(self.operating.speed)
+
+    @property
+    def traction(self) -> str:
+        return self.fidelity.traction
+
+    @property
+    def has_cage(self) -> bool:
+        return self.fidelity.pocket != "none"
+
+    @property
+    def n_state(self) -> int:
+        return L.N_CONE + L.NB * (self.n_rollers + (1 if self.has_cage else 0))
+
+    def ideal(self) -> dict:
+        """The geometry's ideal kinematics at the cone speed (:meth:`TaperedRollerGeometry.kinematics`)."""
+        return self.geometry.kinematics(self.speed)
+
+    def pocket_modulus(self) -> float:
+        """E' = 2/((1 - nu_s^2)/E_s + (1 - nu_c^2)/E_c) [Pa] of steel on the cage's polyamide."""
+        g, c = self.geometry, self.cage
+        return 2.0 / ((1.0 - g.poisson**2) / g.modulus + (1.0 - c.poisson**2) / c.modulus)
+
+    # ---------------------------------------------------------------- packing
+    def rib_film(self, qs: QuasiStaticResult | None = None) -> float:
+        """The rib's central film [m] (``flange.rib_film``), evaluated once at the start's largest flange
+        load and the rib's ideal entrainment speed (floored at 1 mm/s: at rest the film vanishes, the
+        asperity share is then 1)."""
         g = self.geometry
-        u, _ = g.slices(self.n_slices)
+        qs = self.quasi_static() if qs is None else qs
+        load = max(float(np.max(qs.flange_loads)), 1.0)
+        speed = max(self.rib_speeds()[1], 1e-3)
+        return laws_flange.rib_film(self.flange.rib_film, load, speed, self.lubricant.viscosity(),
+                                    self.lubricant.pressure_viscosity, g.e_prime, g.end_sphere_radius,
+                                    g.flange_point[1], g.flange_contact_angle)
+
+    def rib_speeds(self) -> tuple[float, float]:
+        """(sliding, entrainment) speeds [m/s] of the roller end on the rib at the ideal kinematics, the
+        roller in its meridional plane at azimuth 0: rib surface Omega e_x x P, roller end omega_c e_x x P
+        + w_s e x (P - c); entrainment the mean of the two, sliding their difference."""
+        g = self.geometry
+        kin = self.ideal()
+        wc, ws = kin["cage speed [rad/s]"], -kin["roller spin relative to cage [rad/s]"]
+        beta = g.roller_axis_angle
+        e = np.array([math.cos(beta), math.sin(beta), 0.0])
+        mid = np.array([0.0, g.pitch_radius, 0.0])
+        sphere = mid + g.sphere_center_u * e
+        n = np.array([g.flange_normal[0], g.flange_normal[1], 0.0])
+        p = sphere - g.end_sphere_radius * n
+        ex = np.array([1.0, 0.0, 0.0])
+        rib = np.cross(self.speed * ex, p)
+        roller = np.cross(wc * ex, p) + np.cross(ws * e, p - mid)
+        return float(np.linalg.norm(roller - rib)), float(np.linalg.norm(0.5 * (roller + rib)))
+
+    def args(self, qs: QuasiStaticResult | None = None):
+        """``(P, U, RHO)`` of :func:`dynamics.tapered.kernels.rhs` (indices: :mod:`dynamics.tapered.layout`)."""
+        g, op, fi, lu = self.geometry, self.operating, self.fidelity, self.lubricant
+        u, _ = g.slices(fi.slices)
         rho = np.asarray(g.roller_radius(u), dtype=float)
         m, ix, iy, uc = g.roller_mass_properties()
-        P = np.zeros(K.P_SIZE)
-        P[K.P_Z], P[K.P_NS] = self.n_rollers, self.n_slices
-        P[K.P_M], P[K.P_IX], P[K.P_IY], P[K.P_UC] = m, ix, iy, uc
-        P[K.P_MC], P[K.P_OMEGA] = self.cone_mass, self.speed
-        P[K.P_FA], P[K.P_FR] = self.axial_load, self.radial_load
-        P[K.P_AXIAL] = K.AXIAL_FORCE if self.axial == "force" else K.AXIAL_LOCKED
-        P[K.P_KW] = sl.slice_constant(sl.palmgren_line_constant(g.effective_length), self.n_slices)
-        P[K.P_KF] = g.flange_hertz_constant()
-        P[K.P_ALPHA] = self.damping_alpha
-        P[K.P_RS], P[K.P_US] = g.end_sphere_radius, g.sphere_center_u
-        (P[K.P_CUPX], P[K.P_CUPR]), (P[K.P_CUPNX], P[K.P_CUPNR]) = g.cup_point, g.cup_normal
-        (P[K.P_CONX], P[K.P_CONR]), (P[K.P_CONNX], P[K.P_CONNR]) = g.cone_point, g.cone_normal
-        (P[K.P_FLX], P[K.P_FLR]), (P[K.P_FLNX], P[K.P_FLNR]) = g.flange_point, g.flange_normal
-        P[K.P_CONTACTS] = 1.0 if self.contacts else 0.0
-        P[K.P_QSTAB] = self.quaternion_stabilisation
-        P[K.P_TRACTION] = K.TRACTION_PAPER if self.traction == "paper" else K.TRACTION_NONE
-        P[K.P_ETA], P[K.P_PVC], P[K.P_EP] = self.viscosity, self.pressure_viscosity, g.e_prime
-        P[K.P_RXO], P[K.P_RXI] = g.reduced_radius("cup"), g.reduced_radius("cone")
-        P[K.P_UE] = max(float(g.kinematics(self.speed)["entrainment speed [m/s]"]), 1e-3)
-        P[K.P_WIDTH] = g.effective_length / self.n_slices
-        if self.cage:
+        P = np.zeros(L.P_SIZE)
+        P[L.P_Z], P[L.P_NS] = self.n_rollers, fi.slices
+        P[L.P_M], P[L.P_IX], P[L.P_IY], P[L.P_UC] = m, ix, iy, uc
+        P[L.P_MC], P[L.P_OMEGA] = fi.cone_mass, op.speed
+        P[L.P_FA], P[L.P_FR] = op.axial_load, op.radial_load
+        P[L.P_AXIAL] = L.AXIAL_MODES[op.axial]
+        P[L.P_GRAV] = op.gravity
+        P[L.P_KW] = sl.slice_constant(sl.palmgren_line_constant(g.effective_length), fi.slices)
+        P[L.P_KF] = g.flange_hertz_constant()
+        P[L.P_ALPHA] = fi.damping_alpha
+        P[L.P_RS], P[L.P_US] = g.end_sphere_radius, g.sphere_center_u
+        (P[L.P_CUPX], P[L.P_CUPR]), (P[L.P_CUPNX], P[L.P_CUPNR]) = g.cup_point, g.cup_normal
+        (P[L.P_CONX], P[L.P_CONR]), (P[L.P_CONNX], P[L.P_CONNR]) = g.cone_point, g.cone_normal
+        (P[L.P_FLX], P[L.P_FLR]), (P[L.P_FLNX], P[L.P_FLNR]) = g.flange_point, g.flange_normal
+        P[L.P_CONTACTS] = 1.0 if fi.contacts else 0.0
+        P[L.P_QSTAB] = fi.quaternion_stabilisation
+        P[L.P_TRACTION] = L.TRACTIONS[fi.traction]
+        P[L.P_ETA], P[L.P_PVC], P[L.P_EP] = lu.viscosity(), lu.pressure_viscosity, g.e_prime
+        P[L.P_RXO], P[L.P_RXI] = g.reduced_radius("cup"), g.reduced_radius("cone")
+        P[L.P_UE] = max(float(self.ideal()["entrainment speed [m/s]"]), 1e-3)
+        P[L.P_WIDTH] = g.effective_length / fi.slices
+        P[L.P_VREG] = fi.friction_speed
+        grease = lu.grease()
+        if grease is not None:
+            P[L.P_TAUY], P[L.P_PHI0], P[L.P_NEXP] = grease.yield_stress, grease.consistency, grease.exponent
+            P[L.P_ALPHAG], P[L.P_TAUL0] = grease.pressure_viscosity, lu.limiting_stress
+            P[L.P_GAMMAL], P[L.P_DR] = lu.limiting_slope, lu.yield_rate
+        if fi.flange_friction != "none":
+            fl = self.flange
+            P[L.P_FFRIC] = L.FLANGE_FRICTIONS[fi.flange_friction]
+            P[L.P_MUA], P[L.P_FBC], P[L.P_FCC] = fl.asperity_friction, fl.asperity_b, fl.asperity_c
+            P[L.P_HRIB] = self.rib_film(qs)
+            P[L.P_LAMBDA] = P[L.P_HRIB] / fl.roughness
+            unit = laws_flange.rib_hertz(1.0, g.end_sphere_radius, g.flange_point[1], g.flange_contact_angle,
+                                         g.e_star)
+            P[L.P_FA1], P[L.P_FB1], P[L.P_FP01] = unit.a, unit.b, unit.p0
+        if self.has_cage:
+            c = self.cage
             ro, ri, h = 0.5 * g.cage_outer_diameter, 0.5 * g.cage_inner_diameter, g.cage_thickness
-            P[K.P_CAGE], P[K.P_MCG] = 1.0, self.cage_mass
+            P[L.P_CAGE], P[L.P_MCG] = 1.0, c.mass
             # the cage ring as an annulus (its bars' share of the inertia is not known: assumed)
-            P[K.P_ICX] = 0.5 * self.cage_mass * (ro * ro + ri * ri)
-            P[K.P_ICT] = self.cage_mass * (3.0 * (ro * ro + ri * ri) + h * h) / 12.0
-            P[K.P_POCKET], P[K.P_LEN], P[K.P_RHOM] = g.pocket_clearance, g.effective_length, g.mean_roller_radius
-            P[K.P_HCRIT], P[K.P_KH], P[K.P_CH] = self.pocket_critical_film, self.pocket_stiffness, self.pocket_damping
-            P[K.P_MUBD], P[K.P_SWITCH] = self.boundary_friction, POCKET_SWITCHES[self.pocket_switch]
-            P[K.P_RLAND], P[K.P_CLAND] = g.land_radius, 0.5 * g.guide_land_clearance
-            P[K.P_BLAND], P[K.P_HLAND] = g.guide_land_width, self.land_critical_film
+            P[L.P_ICX] = 0.5 * c.mass * (ro * ro + ri * ri)
+            P[L.P_ICT] = c.mass * (3.0 * (ro * ro + ri * ri) + h * h) / 12.0
+            P[L.P_POCKET], P[L.P_LEN], P[L.P_RHOM] = g.pocket_clearance, g.effective_length, g.mean_roller_radius
+            P[L.P_HCRIT], P[L.P_KH], P[L.P_CH] = c.pocket_critical_film, c.pocket_stiffness, c.pocket_damping
+            P[L.P_MUBD], P[L.P_SWITCH] = c.boundary_friction, POCKET_SWITCHES[fi.pocket_switch]
+            P[L.P_RLAND], P[L.P_CLAND] = g.land_radius, 0.5 * g.guide_land_clearance
+            P[L.P_BLAND], P[L.P_HLAND] = g.guide_land_width, c.land_critical_film
+            P[L.P_POCKETMODE], P[L.P_LANDMODE] = L.POCKETS[fi.pocket], L.LANDS[fi.guide_land]
+            if c.modulus is not None:
+                ep = self.pocket_modulus()
+                P[L.P_KPOCKET] = sl.line_constant(g.effective_length, ep)
+                P[L.P_KLAND] = sl.line_constant(g.guide_land_width, ep)
         return P, np.ascontiguousarray(u), np.ascontiguousarray(rho)
 
+    # ---------------------------------------------------------------- start
     def quasi_static(self) -> QuasiStaticResult:
         """The equilibrium the run starts from (same loads, slices and speed)."""
-        kw = dict(axial_load=self.axial_load) if self.axial == "force" else dict(
-            axial_displacement=self.axial_displacement)
-        return solve(self.geometry, radial_load=self.radial_load, inner_speed=self.speed, n_slices=self.n_slices,
-                     **kw)
+        op = self.operating
+        kw = dict(axial_load=op.axial_load) if op.axial == "force" else dict(axial_displacement=op.axial_displacement)
+        return solve(self.geometry, radial_load=op.radial_load, inner_speed=op.speed, n_slices=self.n_slices, **kw)
 
     def start_state(self, qs: QuasiStaticResult | None = None) -> np.ndarray:
         """The cone at the quasi-static displacement; each roller at its quasi-static position and tilt
-        in its meridional plane, orbiting at the ideal cage speed and spinning at the ideal roller speed."""
+        in its meridional plane, orbiting at the ideal cage speed and spinning at the ideal roller speed;
+        the cage concentric with the cone, its pockets centred on the rollers, at the ideal cage speed;
+        then :attr:`initial`'s offsets."""
         g = self.geometry
         qs = self.quasi_static() if qs is None else qs
         _, _, _, uc = g.roller_mass_properties()
-        kin = g.kinematics(self.speed)
+        kin = self.ideal()
         w_cage = float(kin["cage speed [rad/s]"])
         w_spin = -float(kin["roller spin relative to cage [rad/s]"]) if self.speed else 0.0
-        y = np.zeros(K.N_CONE + K.NB * (self.n_rollers + (1 if self.cage else 0)))
+        y = np.zeros(self.n_state)
         y[0:3] = qs.cone_displacement
         for j, psi in enumerate(qs.azimuths):
             a, r = qs.roller_displacements[j]
@@ -155,29 +230,132 @@ class TaperedBearing:
             e = np.array([math.cos(beta), 0.0, 0.0]) + math.sin(beta) * radial
             mid = np.array([a, 0.0, 0.0]) + (g.pitch_radius + r) * radial
             c = mid + uc * e
-            b = K.N_CONE + j * K.NB
+            b = L.N_CONE + j * L.NB
             y[b:b + 3] = c
             y[b + 3:b + 7] = _quat_from_x_to(e)
             y[b + 7:b + 10] = np.cross([w_cage, 0.0, 0.0], c)     # orbiting with the cage
             # body angular velocity: the orbit (about x) seen in the body frame plus the spin about e
             w_inertial = np.array([w_cage, 0.0, 0.0]) + w_spin * e
             quat_rotate_inverse(y[b + 3:b + 7].copy(), w_inertial, y[b + 10:b + 13])
-        if self.cage:   # concentric with the cone, pockets on the rollers, turning at the ideal cage speed
-            b = K.N_CONE + K.NB * self.n_rollers
+        y[1:3] += np.asarray(self.initial.cone_offset, dtype=float)
+        if self.has_cage:
+            b = L.N_CONE + L.NB * self.n_rollers
             y[b:b + 3] = (g.cage_x, qs.cone_displacement[1], qs.cone_displacement[2])
+            y[b + 1:b + 3] += np.asarray(self.initial.cage_offset, dtype=float)
             y[b + 3] = 1.0
             y[b + 10] = w_cage
         return y
 
     def state_names(self) -> list[str]:
         names = [f"Cone {k} [m]" for k in "xyz"] + [f"Cone v{k} [m/s]" for k in "xyz"]
-        for j in range(self.n_rollers):
-            names += [f"Roller {j} {k} [m]" for k in "xyz"] + [f"Roller {j} q{k} [-]" for k in range(4)]
-            names += [f"Roller {j} v{k} [m/s]" for k in "xyz"] + [f"Roller {j} body w{k} [rad/s]" for k in "xyz"]
-        if self.cage:
-            names += [f"Cage {k} [m]" for k in "xyz"] + [f"Cage q{k} [-]" for k in range(4)]
-            names += [f"Cage v{k} [m/s]" for k in "xyz"] + [f"Cage body w{k} [rad/s]" for k in "xyz"]
+        bodies = [f"Roller {j}" for j in range(self.n_rollers)] + (["Cage"] if self.has_cage else [])
+        for body in bodies:
+            names += [f"{body} {k} [m]" for k in "xyz"] + [f"{body} q{k} [-]" for k in range(4)]
+            names += [f"{body} v{k} [m/s]" for k in "xyz"] + [f"{body} body w{k} [rad/s]" for k in "xyz"]
         return names
+
+    def state_layout(self) -> dict:
+        """Slices of the state vector by name: "cone", "roller j", "cage"."""
+        out = {"cone": slice(0, L.N_CONE)}
+        for j in range(self.n_rollers):
+            out[f"roller {j}"] = slice(L.N_CONE + j * L.NB, L.N_CONE + (j + 1) * L.NB)
+        if self.has_cage:
+            b = L.N_CONE + self.n_rollers * L.NB
+            out["cage"] = slice(b, b + L.NB)
+        return out
+
+    def omega_max(self) -> float:
+        """An estimate of the fastest contact mode [rad/s] for the explicit step limit: sqrt(k/m) of a
+        roller between its two raceways at the start's largest slice load (the slice law's tangent
+        stiffness 10/9 q/delta times n_s slices, both races in parallel)."""
+        qs = self.quasi_static()
+        m, _, _, _ = self.geometry.roller_mass_properties()
+        kl = sl.palmgren_line_constant(self.geometry.effective_length)
+        q = max(float(np.max(qs.cup_loads)), 1.0)
+        k = 2.0 * (10.0 / 9.0) * q / sl.approach(q, kl)
+        return math.sqrt(k / m)
+
+    # ---------------------------------------------------------------- diagnostics
+    def diagnostics(self, Y, y0=None, args=None) -> dict:
+        """Read sampled states ``Y`` (n, n_state) back (arrays over samples and rollers):
+
+        - loads: "Slice loads [N]" (n, Z, 2, n_s) cup and cone; "Cup load [N]", "Cone load [N]", "Flange
+          load [N]", "Pocket load [N]" (n, Z); the friction columns of :data:`layout.FRICTION_NAMES`;
+        - attitude, paper A's definitions against the roller's own radial frame (x axial, r radial
+          through its centre, t tangential) with e the roller axis: "Tilt [rad]" = atan2(e_r, e_x) minus
+          its value at ``y0`` (rotation in the meridional plane), "Skew [rad]" = asin(e_t) minus its
+          value at ``y0`` (out of it); ``y0`` defaults to the first sample;
+        - speeds: "Orbital speed [rad/s]" of the centre about x, "Spin speed [rad/s]" (the angular
+          velocity relative to the orbiting frame, along e), "Roller slip [-]" eq. 52 (omega_ideal -
+          omega)/omega_ideal of the orbital speed and "Spin slip [-]" of the spin against the geometry's
+          ideal kinematics (notes 2.9; NaN at rest);
+        - the cage: "Cage speed [rad/s]" (about x, inertial), "Cage slip [-]", "Cage centre [m]" (n, 2)
+          relative to the cone's, "Guide land load [N]";
+        - "Cone force [N]" (n, 3) of the rollers and cage on the cone."""
+        Y = np.atleast_2d(np.asarray(Y, dtype=float))
+        args = self.args() if args is None else args
+        loads, slices, friction, cage, cone = K.forces_many(np.ascontiguousarray(Y), args)
+        out = {"Slice loads [N]": slices, "Cone force [N]": cone}
+        for k, name in enumerate(L.LOAD_NAMES):
+            out[name] = loads[:, :, k]
+        for k, name in enumerate(L.FRICTION_NAMES):
+            out[name] = friction[:, :, k]
+        y0 = Y[0] if y0 is None else np.asarray(y0, dtype=float)
+        tilt, skew, orbital, spin = attitude(np.vstack([y0[None, :], Y]), self.n_rollers)
+        out["Tilt [rad]"] = tilt[1:] - tilt[0]
+        out["Skew [rad]"] = skew[1:] - skew[0]
+        out["Orbital speed [rad/s]"], out["Spin speed [rad/s]"] = orbital[1:], spin[1:]
+        kin = self.ideal()
+        wc, ws = kin["cage speed [rad/s]"], -kin["roller spin relative to cage [rad/s]"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out["Roller slip [-]"] = (wc - orbital[1:]) / wc if wc else np.full_like(orbital[1:], np.nan)
+            out["Spin slip [-]"] = (ws - spin[1:]) / ws if ws else np.full_like(spin[1:], np.nan)
+        if self.has_cage:
+            b = L.N_CONE + L.NB * self.n_rollers
+            q = Y[:, b + 3:b + 7] / np.linalg.norm(Y[:, b + 3:b + 7], axis=1)[:, None]
+            w = Y[:, b + 10:b + 13]
+            # x component of R(q) w
+            qw, qx, qy, qz = q.T
+            r00, r01, r02 = 1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qw * qz), 2 * (qx * qz + qw * qy)
+            out["Cage speed [rad/s]"] = r00 * w[:, 0] + r01 * w[:, 1] + r02 * w[:, 2]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                out["Cage slip [-]"] = (wc - out["Cage speed [rad/s]"]) / wc if wc else np.full(len(Y), np.nan)
+            out["Cage centre [m]"] = Y[:, b + 1:b + 3] - Y[:, 1:3]
+            out["Guide land load [N]"] = cage[:, 3]
+        return out
+
+
+def attitude(Y, n_rollers):
+    """(tilt angle beta [rad], skew [rad], orbital speed [rad/s], spin relative to the orbit [rad/s]) per
+    sample and roller: e the roller axis R(q) e_x, split in the roller's radial frame (x, r, t):
+    beta = atan2(e_r, e_x), skew = asin(e_t); orbital speed (c x v)_x / |c_yz|^2; spin (w - w_orb e_x).e
+    with w the inertial angular velocity R(q) omega_body."""
+    n = Y.shape[0]
+    beta, skew, orbital, spin = (np.empty((n, n_rollers)) for _ in range(4))
+    for j in range(n_rollers):
+        b = L.N_CONE + j * L.NB
+        c, q, v, wb = Y[:, b:b + 3], Y[:, b + 3:b + 7], Y[:, b + 7:b + 10], Y[:, b + 10:b + 13]
+        q = q / np.linalg.norm(q, axis=1)[:, None]
+        R = _matrices(q)
+        e = R[:, :, 0]
+        w = np.einsum("nij,nj->ni", R, wb)
+        rr = np.hypot(c[:, 1], c[:, 2])
+        er = (e[:, 1] * c[:, 1] + e[:, 2] * c[:, 2]) / rr
+        et = (-e[:, 1] * c[:, 2] + e[:, 2] * c[:, 1]) / rr
+        beta[:, j] = np.arctan2(er, e[:, 0])
+        skew[:, j] = np.arcsin(np.clip(et, -1.0, 1.0))
+        orbital[:, j] = (c[:, 1] * v[:, 2] - c[:, 2] * v[:, 1]) / rr**2
+        spin[:, j] = np.einsum("ni,ni->n", w, e) - orbital[:, j] * e[:, 0]
+    return beta, skew, orbital, spin
+
+
+def _matrices(q):
+    """(n, 3, 3) rotation matrices of unit quaternions q (n, 4), scalar first."""
+    w, x, y, z = q.T
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=1),
+        np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], axis=1),
+        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], axis=1)], axis=1)
 
 
 def _quat_from_x_to(e) -> np.ndarray:

@@ -1,0 +1,232 @@
+"""The tapered roller bearing's data as frozen groups, one per table of a dynamics case (SI units).
+
+Part of :mod:`dynamics.tapered`.  :class:`~dynamics.tapered.model.TaperedBearing` holds the geometry
+(:class:`lubrication.laws.tapered.TaperedRollerGeometry`, a law) and one of each:
+
+=============  ============  ===============================================================
+group          case table    what
+=============  ============  ===============================================================
+``operating``  [operating]   cone speed, radial load, axial mode (locked / force / displacement), gravity
+``fidelity``   [model]       slices, contacts, traction, flange friction, pocket and land levels, damping
+``lubricant``  [lubricant]   the grease (Herschel-Bulkley, Table 2) and which viscosity the films read
+``cage``       [cage]        cage mass and material, pocket and land law constants
+``flange``     [flange]      eq. 23's asperity friction, B, C, roughness, the rib film formula
+``initial``    [initial]     a perturbation of the quasi-static start
+=============  ============  ===============================================================
+
+Paper data are not defaults here: paper A's values (and what it had to assume) come from
+:mod:`coupling.parameters.wu2018`; the defaults are model options and numerical settings.  Each group
+checks its own values and raises :class:`dynamics.errors.DynamicsInputError` naming the case key;
+checks that need two groups live in the model.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+from lubrication.laws.cage import POCKET_SWITCHES
+from lubrication.laws.flange import RIB_FILMS
+from lubrication.laws.grease import READINGS, Grease
+
+from ..groups import Group
+from .layout import AXIAL_MODES, FLANGE_FRICTIONS, LANDS, POCKETS, TRACTIONS
+
+
+@dataclass(frozen=True, kw_only=True)
+class Operating(Group):
+    """The cone's ``speed`` [rad/s] (the cup is fixed), ``radial_load`` [N] on the cone along +y;
+    ``axial``: "locked" (the cone's axial DOF held at ``axial_displacement`` [m], closing: 0 is zero
+    clearance as paper A's Figs. 5-9 hold it, notes 2.7; > 0 a preload) or "force" (free under
+    ``axial_load`` [N], closing the bearing);
+    ``gravity`` [m/s^2] along -y on every body (0: none)."""
+
+    TABLE: ClassVar[str] = "operating"
+
+    speed: float = 0.0
+    radial_load: float = 0.0
+    axial: str = "force"
+    axial_load: float = 0.0
+    axial_displacement: float = 0.0
+    gravity: float = 0.0
+
+    def __post_init__(self):
+        self.choice("axial", tuple(AXIAL_MODES))
+        self.non_negative("speed", "radial_load", "axial_load", "gravity")
+        if not math.isfinite(self.axial_displacement):
+            raise self.fail("axial_displacement", "must be finite")
+        if self.axial == "force" and self.axial_load == 0.0:
+            raise self.fail("axial_load", "N with operating.axial = 'force' leaves the cone without an axial "
+                                          "equilibrium (notes 2.7): give an axial load or operating.axial = 'locked'")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Fidelity(Group):
+    """Numerical and modelling choices: ``slices`` per roller and raceway; ``contacts`` False: free
+    bodies (a test of the equations of motion); ``traction`` "none", "paper" (eq. 12) or "limited" (the
+    limited Herschel-Bulkley strip law, an extension); ``flange_friction`` "none", "paper" (eqs. 22-23 as
+    printed) or "load_share" (the grease term weighted by the fluid share); ``pocket`` "none" (no cage),
+    "contact" (contact only: the roller touches a crossbeam beyond the pocket clearance, line contact,
+    friction mu_bd) or "film" (:func:`lubrication.laws.cage.pocket_force`); ``guide_land`` "none",
+    "contact" (contact only beyond the land clearance) or "film"; ``damping_alpha`` alpha_e [s/m] of
+    eq. 11 (slices, flange, contact-only pocket and land); ``cone_mass`` [kg] (paper A gives none);
+    ``quaternion_stabilisation`` [1/s]; ``friction_speed`` v_reg [m/s] of the regularised Coulomb
+    friction of the contact-only pocket and land (mu tanh(v/v_reg)); ``pocket_switch`` of the film pocket."""
+
+    TABLE: ClassVar[str] = "model"
+
+    slices: int = 20
+    contacts: bool = True
+    traction: str = "paper"
+    flange_friction: str = "none"
+    pocket: str = "none"
+    guide_land: str = "none"
+    damping_alpha: float = 0.16
+    cone_mass: float = 5.0
+    quaternion_stabilisation: float = 10.0
+    friction_speed: float = 1e-3
+    pocket_switch: str = "continuous"
+
+    def __post_init__(self):
+        if isinstance(self.slices, bool) or int(self.slices) != self.slices or self.slices < 1:
+            raise self.fail("slices", "must be an integer >= 1")
+        self.choice("traction", tuple(TRACTIONS))
+        self.choice("flange_friction", tuple(FLANGE_FRICTIONS))
+        self.choice("pocket", tuple(POCKETS))
+        self.choice("guide_land", tuple(LANDS))
+        self.choice("pocket_switch", tuple(POCKET_SWITCHES))
+        self.non_negative("damping_alpha", "quaternion_stabilisation")
+        self.positive("cone_mass", "friction_speed")
+        if (self.pocket == "none") != (self.guide_land == "none"):
+            raise self.fail("guide_land", "must be 'none' exactly when model.pocket = 'none' (the cage is one body: "
+                                          "with pockets it rides on the land)")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Lubricant(Group):
+    """The grease of paper A's Table 2 (``yield_stress`` tau_y [Pa], ``consistency`` phi0 [Pa s^n],
+    ``exponent`` n; None: no grease, only a Newtonian oil), its ``pressure_viscosity`` alpha [1/Pa], and
+    the ``reading`` of phi that films and eq. 12 take as their Newtonian viscosity (notes 2.3;
+    :meth:`lubrication.laws.grease.Grease.viscosity`): "base_oil" (``base_oil_viscosity`` [Pa s]),
+    "apparent" (tau_y/D + phi D^(n-1) at ``shear_rate`` [1/s]) or "paper" (phi0's number as Pa s).
+    The limited laws (raceway "limited", flange grease traction) use the grease with the limiting shear
+    stress ``limiting_stress`` tau_L0 [Pa] (inf: none), ``limiting_slope`` gamma_L and the yield
+    regularisation ``yield_rate`` D_r [1/s]."""
+
+    TABLE: ClassVar[str] = "lubricant"
+
+    reading: str = "base_oil"
+    base_oil_viscosity: float | None = None
+    yield_stress: float | None = None
+    consistency: float | None = None
+    exponent: float | None = None
+    pressure_viscosity: float = 0.0
+    shear_rate: float | None = None
+    limiting_stress: float = math.inf
+    limiting_slope: float = 0.0
+    yield_rate: float = 0.0
+
+    def __post_init__(self):
+        self.choice("reading", READINGS)
+        self.non_negative("pressure_viscosity", "limiting_slope", "yield_rate")
+        if not self.limiting_stress > 0.0:
+            raise self.fail("limiting_stress", "must be > 0 (inf: no limit)")
+        given = [getattr(self, k) is not None for k in ("yield_stress", "consistency", "exponent")]
+        if any(given) and not all(given):
+            raise self.fail("consistency", "yield_stress, consistency and exponent go together (a Herschel-Bulkley "
+                                           "grease) or are all left out")
+        if self.reading == "base_oil":
+            if self.base_oil_viscosity is None:
+                raise self.fail("base_oil_viscosity", "must be given with lubricant.reading = 'base_oil'")
+            self.positive("base_oil_viscosity")
+        elif self.grease() is None:
+            raise self.fail("reading", f"needs a grease (lubricant.yield_stress, consistency, exponent)")
+        if self.reading == "apparent":
+            if self.shear_rate is None:
+                raise self.fail("shear_rate", "must be given with lubricant.reading = 'apparent'")
+            self.positive("shear_rate")
+        if self.grease() is not None:
+            self.non_negative("yield_stress")
+            self.positive("consistency")
+            if not 0.0 < self.exponent <= 2.0:
+                raise self.fail("exponent", "must lie in (0, 2]")
+
+    def grease(self) -> Grease | None:
+        """The :class:`lubrication.laws.grease.Grease` (None without one)."""
+        if self.consistency is None:
+            return None
+        return Grease(self.yield_stress, self.consistency, self.exponent, self.pressure_viscosity)
+
+    def viscosity(self) -> float:
+        """The Newtonian viscosity [Pa s] of the films and eq. 12 under :attr:`reading`."""
+        g = self.grease()
+        if g is None:
+            return float(self.base_oil_viscosity)
+        return float(g.viscosity(self.reading, shear_rate=self.shear_rate, base_oil_viscosity=self.base_oil_viscosity))
+
+
+@dataclass(frozen=True, kw_only=True)
+class Cage(Group):
+    """The cage: ``mass`` [kg] (a ring: the bars' share of the inertia is not known), ``modulus`` [Pa]
+    and ``poisson`` of its polyamide (needed by the contact-only pocket and land); the film pocket's
+    ``pocket_critical_film`` [m], ``pocket_stiffness`` [N/m], ``pocket_damping`` [N s/m]; the land's
+    ``land_critical_film`` [m] (film land); ``boundary_friction`` mu_bd (all levels)."""
+
+    TABLE: ClassVar[str] = "cage"
+
+    mass: float
+    boundary_friction: float
+    modulus: float | None = None
+    poisson: float | None = None
+    pocket_critical_film: float = 0.0
+    pocket_stiffness: float = 0.0
+    pocket_damping: float = 0.0
+    land_critical_film: float = 0.0
+
+    def __post_init__(self):
+        self.positive("mass")
+        self.non_negative("boundary_friction", "pocket_critical_film", "pocket_stiffness", "pocket_damping",
+                          "land_critical_film")
+        if (self.modulus is None) != (self.poisson is None):
+            raise self.fail("modulus", "and cage.poisson go together")
+        if self.modulus is not None:
+            self.positive("modulus")
+            if not 0.0 <= self.poisson < 0.5:
+                raise self.fail("poisson", "must lie in [0, 0.5)")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Flange(Group):
+    """Eq. 23 at the rib: ``asperity_friction`` s0/p0, ``asperity_b`` B, ``asperity_c`` C, composite
+    ``roughness`` sigma [m]; ``rib_film`` the film formula (:data:`lubrication.laws.flange.RIB_FILMS`)
+    evaluated once at the start's flange load and the ideal rib entrainment speed."""
+
+    TABLE: ClassVar[str] = "flange"
+
+    asperity_friction: float = 0.2
+    asperity_b: float
+    asperity_c: float
+    roughness: float
+    rib_film: str = "hamrock_dowson"
+
+    def __post_init__(self):
+        self.non_negative("asperity_friction", "asperity_b", "asperity_c")
+        self.positive("roughness")
+        self.choice("rib_film", RIB_FILMS)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Initial(Group):
+    """A perturbation of the quasi-static start: the cone's centre moved by ``cone_offset`` (y, z) [m],
+    the cage's by ``cage_offset`` (y, z) [m]."""
+
+    TABLE: ClassVar[str] = "initial"
+
+    cone_offset: tuple = (0.0, 0.0)
+    cage_offset: tuple = (0.0, 0.0)
+
+    def __post_init__(self):
+        for name in ("cone_offset", "cage_offset"):
+            v = getattr(self, name)
+            if len(v) != 2 or not all(math.isfinite(float(x)) for x in v):
+                raise self.fail(name, "must be two finite numbers (y, z) [m]")
