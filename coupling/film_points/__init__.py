@@ -299,7 +299,9 @@ from .ehl import (  # noqa: F401  (the package's API: names used by maps, scenes
     EHL_BALL_AXES, EHL_OUTPUTS, EHL_REFERENCE_DOMAIN, EHL_RESOLUTIONS, EHL_ROLLER_AXES, EHL_SRR_AXIS,
     SRR_MIN, TRACTION, ehl_ball_inner_race_default_params, ehl_ball_outer_race_default_params,
     ehl_load_response, ehl_roller_race_default_params, evaluate_ehl, field_ehl, _ehl_setup,
-    _paper_b_contact_angle,
+    _paper_b_contact_angle, CONTINUATION_PATHS, EHL_LINE_OUTPUTS, EHL_ROLLER_LINE_AXES, ROLLER_RACES,
+    ROLLER_SRR_MIN, ehl_roller_cone_default_params, ehl_roller_cup_default_params, evaluate_ehl_line,
+    field_ehl_line, roller_race_radius,
 )
 
 
@@ -339,16 +341,28 @@ KINDS: dict = {
         field=field_ehl,
         signed=("Traction coefficient [-]",),
     ),
-    "ehl_roller_race": PointKind(
-        name="ehl_roller_race",
-        description=("EHL line contact of paper A's tapered roller (mean diameter 21.305 mm, 42.06 mm effective "
-                     "length) with the inner race, grease as its base oil (eta0 0.1 Pa s assumed, alpha 4.662e-8); "
-                     "load and stiffness for the whole roller length"),
-        axes=EHL_ROLLER_AXES,
-        outputs=EHL_OUTPUTS,
-        evaluate=evaluate_ehl,
-        default_params=ehl_roller_race_default_params,
-        field=field_ehl,
+    "ehl_roller_cone": PointKind(
+        name="ehl_roller_cone",
+        description=("EHL line contact of paper A's tapered roller with the cone (inner race), per metre of "
+                     "contact: R_x 9.395 mm from the model's geometry, base oil 0.1 Pa s (assumed) with the "
+                     "grease's alpha, Eyring flow tau0 5 MPa, film-scaled domain, limiting-shear traction"),
+        axes=EHL_ROLLER_LINE_AXES,
+        outputs=EHL_LINE_OUTPUTS,
+        evaluate=evaluate_ehl_line,
+        default_params=ehl_roller_cone_default_params,
+        field=field_ehl_line,
+        signed=("Traction coefficient [-]",),
+    ),
+    "ehl_roller_cup": PointKind(
+        name="ehl_roller_cup",
+        description=("EHL line contact of paper A's tapered roller with the cup (outer race), per metre of "
+                     "contact: R_x 11.906 mm from the model's geometry (concave race), otherwise as "
+                     "ehl_roller_cone"),
+        axes=EHL_ROLLER_LINE_AXES,
+        outputs=EHL_LINE_OUTPUTS,
+        evaluate=evaluate_ehl_line,
+        default_params=ehl_roller_cup_default_params,
+        field=field_ehl_line,
         signed=("Traction coefficient [-]",),
     ),
 }
