@@ -17,10 +17,18 @@ kind                       film
                            perturbation equations
 ``ehl_ball_inner_race``    6206 ball / inner race EHL point contact (paper B)
 ``ehl_ball_outer_race``    6206 ball / outer race EHL point contact (paper B)
-``ehl_roller_race``        tapered roller / inner race EHL line contact of
-                           paper A (Wu, Xu & Deng 2018), for the whole roller
-                           length (per slice: scale by the slice's share)
+``ehl_roller_cone``        tapered roller / cone (inner race) EHL line
+                           contact of paper A (Wu, Xu & Deng 2018) per metre
+                           of contact, on a line-load axis (per slice:
+                           stiffness and damping times the slice length)
+``ehl_roller_cup``         the same on the cup (outer race)
 =========================  ===================================================
+
+The roller kinds (issue 22, section 4) replace ``ehl_roller_race`` (the whole 42.06 mm roller at
+5-20 kN, 3-15 m/s; :func:`ehl_roller_race_default_params` stays as the point set the solver-limit
+tests pin).  Their domain grows with the film (``inlet_film_lengths``, :func:`_film_scaled_domain`)
+and a point the solver's own start cannot reach is continued along :data:`CONTINUATION_PATHS`
+(shorter inlet, lighter load, lower speed).
 
 Ball-ball film (kind ``ball_ball``)
 -----------------------------------
@@ -278,7 +286,7 @@ was rebuilt:
 The contact and film laws these kinds use are written once in :mod:`lubrication.laws` (Hertz,
 Thornton, the squeeze films, the friction laws); the papers' values come from
 :mod:`coupling.parameters`.  Modules: ``base`` (registry types, paper values, lubricant), ``ball_ball``
-(the ball-ball film kind), ``ehl`` (the three EHL race kinds); the registry :data:`KINDS` is here.
+(the ball-ball film kind), ``ehl`` (the four EHL race kinds); the registry :data:`KINDS` is here.
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Kinds ``ehl_ball_inner_race``, ``ehl_ball_outer_race``, ``ehl_roller_race``: isothermal EHL contacts of
+"""Kinds ``ehl_ball_inner_race``, ``ehl_ball_outer_race``, ``ehl_roller_cone``, ``ehl_roller_cup``: isothermal EHL contacts of
 a rolling element with its race (load response, film stiffness and damping, traction).
 
 Part of :mod:`coupling.film_points` (the package docstring gives the physics and sources)."""
