@@ -337,18 +337,30 @@ check_map_ehl_ball_inner_race = _check_map_ehl_ball
 check_map_ehl_ball_outer_race = _check_map_ehl_ball
 
 
-def check_map_ehl_roller_race(s, c):
-    """Thickest central film (5 kN over the length, 30 m/s) vs Moes (1992): +9.1 %, within 15 %; traction
-    positive on the log slide-to-roll axis and below 0.1."""
+def _check_map_ehl_roller(s, c):
+    """Paper A roller / race map per metre (smoke: 0.7 and 300 kN/m, 7 and 28 m/s, 129 nodes).
+    Thickest film (0.7 kN/m, 28 m/s, M = 0.006: rigid, nearly isoviscous) against the rigid Barus line
+    contact solved by quadrature (tests/test_roller_maps.py, Martin's film with the reduced pressure):
+    measured -2.8 % (cone) / -2.8 % (cup), the inlet at -8 sqrt(2 R h), within 4 %.  Thinnest film
+    (300 kN/m, 7 m/s, M = 5.5, L = 53) against Moes (1992): measured +8.5 % / +8.6 %, within 15 % (Moes'
+    fit is a few per cent; the excess is the inlet length, test_film_points).  Traction positive on the
+    log SRR axis (1e-5..0.1) and below 0.1."""
+    from test_roller_maps import _rigid_barus_film  # tests/ is on sys.path (rootdir conftest, prepend import mode)
+
     from lubrication.laws.film import moes_line_central
 
     p = c["params"]
-    q = 5000.0 / p["length"]
-    U, G, W = _hamrock_dowson_groups(p["eta0"], p["alpha"], p["e_star"], p["radius_x"], 30.0, q, line=True)
-    M, L = W * (2 * U) ** -0.5, G * (2 * U) ** 0.25
     assert rel(s["Largest value of Central film thickness [m]"],
+               _rigid_barus_film(700.0, 28.0, p["radius_x"], p["eta0"], p["alpha"])) < 0.04
+    U, G, W = _hamrock_dowson_groups(p["eta0"], p["alpha"], p["e_star"], p["radius_x"], 7.0, 3e5, line=True)
+    M, L = W * (2 * U) ** -0.5, G * (2 * U) ** 0.25
+    assert rel(s["Smallest value of Central film thickness [m]"],
                moes_line_central(M, L) * p["radius_x"] * math.sqrt(2 * U)) < 0.15
     assert 0 < s["Smallest value of Traction coefficient [-]"] < s["Largest value of Traction coefficient [-]"] < 0.1
+
+
+check_map_ehl_roller_cone = _check_map_ehl_roller
+check_map_ehl_roller_cup = _check_map_ehl_roller
 
 
 def _jones_largest_load(Fr, Fa, Z, D, dm, f_i, f_o, e_star, without_first=False):

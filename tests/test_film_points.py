@@ -46,7 +46,7 @@ def test_registry_kinds_pickle_and_evaluate_to_closed_form():
     """Every kind has default axes, outputs with units and a module-level evaluate; the
     ball_ball kind, pickled and evaluated with an isoviscous oil at its default axes' centre,
     gives the closed-form squeeze force (finite domain, smoke mesh: measured -3.3e-3)."""
-    assert set(fp.KINDS) == {"ball_ball", "ehl_ball_inner_race", "ehl_ball_outer_race", "ehl_roller_race"}
+    assert set(fp.KINDS) == {"ball_ball", "ehl_ball_inner_race", "ehl_ball_outer_race", "ehl_roller_cone", "ehl_roller_cup"}
     for name, kind in fp.KINDS.items():
         assert kind.name == name
         assert all("[" in a.name and a.name.endswith("]") for a in kind.axes)
@@ -321,22 +321,21 @@ def test_ball_inner_race_film_stiffness_and_traction():
 
 
 def test_roller_race_line_contact_against_moes():
-    """Paper A roller slice at Q = 10 kN over 42.06 mm, u_e = 3 m/s (M = 6.7, L = 43; smoke 129
-    nodes): central film within 10 % of Moes (measured +8.4 %; Moes' fit claims a few per cent,
-    the case file measures the same excess at its own point and traces it to the inlet length),
-    minimum below central, film stiffness and damping within 1 % of the second method (two
-    steady solves; measured 0.4 % and 0.5 %) and traction odd."""
-    kind = fp.KINDS["ehl_roller_race"]
+    """Paper A roller slice on the cone at 10 kN over 42.06 mm (237.8 kN/m), u_e = 3 m/s (M = 6.7, L = 43;
+    smoke 129 nodes, film-scaled domain [-23, 4] b): central film within 10 % of Moes (measured +8.9 %;
+    +8.4 % on the earlier fixed [-20, 3] b domain), minimum below central, film stiffness and damping
+    per length within 1 % of the second method (two steady solves) and traction odd."""
+    kind = fp.KINDS["ehl_roller_cone"]
     params = dict(kind.default_params(), resolution="smoke")
-    pt = {"Load [N]": 10000.0, "Entrainment speed [m/s]": 3.0, "Slide-to-roll ratio [-]": 0.02}
+    pt = {"Line load [N/m]": 10000.0 / 0.04206, "Entrainment speed [m/s]": 3.0, "Slide-to-roll ratio [-]": 0.02}
     out = kind.evaluate(params, pt)
     steps = kind.evaluate(dict(params, coefficients="load_steps"), pt)
-    assert out["Film stiffness [N/m]"] == pytest.approx(steps["Film stiffness [N/m]"], rel=0.01)
-    assert out["Film damping [N s/m]"] == pytest.approx(steps["Film damping [N s/m]"], rel=0.01)
-    c = fp.ehl_load_response(params, 10000.0, 3.0)["solution"].contact
+    for name in ("Film stiffness per length [N/m^2]", "Film damping per length [N s/m^2]"):
+        assert out[name] == pytest.approx(steps[name], rel=0.01)
+    c = fp.ehl_load_response(params, pt["Line load [N/m]"], 3.0)["solution"].contact
     moes = ff.moes_line_central(c.moes_M, c.moes_L) * c.radius_x * math.sqrt(2 * c.U)
     assert out["Central film thickness [m]"] == pytest.approx(moes, rel=0.1)
     assert out["Minimum film thickness [m]"] < out["Central film thickness [m]"]
-    assert out["Film stiffness [N/m]"] > 0
+    assert out["Film stiffness per length [N/m^2]"] > 0
     assert kind.evaluate(params, dict(pt, **{"Slide-to-roll ratio [-]": -0.02}))["Traction coefficient [-]"] == \
         -out["Traction coefficient [-]"]

@@ -17,10 +17,18 @@ kind                       film
                            perturbation equations
 ``ehl_ball_inner_race``    6206 ball / inner race EHL point contact (paper B)
 ``ehl_ball_outer_race``    6206 ball / outer race EHL point contact (paper B)
-``ehl_roller_race``        tapered roller / inner race EHL line contact of
-                           paper A (Wu, Xu & Deng 2018), for the whole roller
-                           length (per slice: scale by the slice's share)
+``ehl_roller_cone``        tapered roller / cone (inner race) EHL line
+                           contact of paper A (Wu, Xu & Deng 2018) per metre
+                           of contact, on a line-load axis (per slice:
+                           stiffness and damping times the slice length)
+``ehl_roller_cup``         the same on the cup (outer race)
 =========================  ===================================================
+
+The roller kinds (issue 22, section 4) replace ``ehl_roller_race`` (the whole 42.06 mm roller at
+5-20 kN, 3-15 m/s; :func:`ehl_roller_race_default_params` stays as the point set the solver-limit
+tests pin).  Their domain grows with the film (``inlet_film_lengths``, :func:`_film_scaled_domain`)
+and a point the solver's own start cannot reach is continued along :data:`CONTINUATION_PATHS`
+(shorter inlet, lighter load, lower speed).
 
 Ball-ball film (kind ``ball_ball``)
 -----------------------------------
@@ -278,7 +286,7 @@ was rebuilt:
 The contact and film laws these kinds use are written once in :mod:`lubrication.laws` (Hertz,
 Thornton, the squeeze films, the friction laws); the papers' values come from
 :mod:`coupling.parameters`.  Modules: ``base`` (registry types, paper values, lubricant), ``ball_ball``
-(the ball-ball film kind), ``ehl`` (the three EHL race kinds); the registry :data:`KINDS` is here.
+(the ball-ball film kind), ``ehl`` (the four EHL race kinds); the registry :data:`KINDS` is here.
 """
 from __future__ import annotations
 
@@ -299,7 +307,9 @@ from .ehl import (  # noqa: F401  (the package's API: names used by maps, scenes
     EHL_BALL_AXES, EHL_OUTPUTS, EHL_REFERENCE_DOMAIN, EHL_RESOLUTIONS, EHL_ROLLER_AXES, EHL_SRR_AXIS,
     SRR_MIN, TRACTION, ehl_ball_inner_race_default_params, ehl_ball_outer_race_default_params,
     ehl_load_response, ehl_roller_race_default_params, evaluate_ehl, field_ehl, _ehl_setup,
-    _paper_b_contact_angle,
+    _paper_b_contact_angle, CONTINUATION_PATHS, EHL_LINE_OUTPUTS, EHL_ROLLER_LINE_AXES, ROLLER_RACES,
+    ROLLER_SRR_MIN, ehl_roller_cone_default_params, ehl_roller_cup_default_params, evaluate_ehl_line,
+    field_ehl_line, roller_race_radius,
 )
 
 
@@ -339,16 +349,28 @@ KINDS: dict = {
         field=field_ehl,
         signed=("Traction coefficient [-]",),
     ),
-    "ehl_roller_race": PointKind(
-        name="ehl_roller_race",
-        description=("EHL line contact of paper A's tapered roller (mean diameter 21.305 mm, 42.06 mm effective "
-                     "length) with the inner race, grease as its base oil (eta0 0.1 Pa s assumed, alpha 4.662e-8); "
-                     "load and stiffness for the whole roller length"),
-        axes=EHL_ROLLER_AXES,
-        outputs=EHL_OUTPUTS,
-        evaluate=evaluate_ehl,
-        default_params=ehl_roller_race_default_params,
-        field=field_ehl,
+    "ehl_roller_cone": PointKind(
+        name="ehl_roller_cone",
+        description=("EHL line contact of paper A's tapered roller with the cone (inner race), per metre of "
+                     "contact: R_x 9.395 mm from the model's geometry, base oil 0.1 Pa s (assumed) with the "
+                     "grease's alpha, Eyring flow tau0 5 MPa, film-scaled domain, limiting-shear traction"),
+        axes=EHL_ROLLER_LINE_AXES,
+        outputs=EHL_LINE_OUTPUTS,
+        evaluate=evaluate_ehl_line,
+        default_params=ehl_roller_cone_default_params,
+        field=field_ehl_line,
+        signed=("Traction coefficient [-]",),
+    ),
+    "ehl_roller_cup": PointKind(
+        name="ehl_roller_cup",
+        description=("EHL line contact of paper A's tapered roller with the cup (outer race), per metre of "
+                     "contact: R_x 11.906 mm from the model's geometry (concave race), otherwise as "
+                     "ehl_roller_cone"),
+        axes=EHL_ROLLER_LINE_AXES,
+        outputs=EHL_LINE_OUTPUTS,
+        evaluate=evaluate_ehl_line,
+        default_params=ehl_roller_cup_default_params,
+        field=field_ehl_line,
         signed=("Traction coefficient [-]",),
     ),
 }

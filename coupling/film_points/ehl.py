@@ -1,4 +1,4 @@
-"""Kinds ``ehl_ball_inner_race``, ``ehl_ball_outer_race``, ``ehl_roller_race``: isothermal EHL contacts of
+"""Kinds ``ehl_ball_inner_race``, ``ehl_ball_outer_race``, ``ehl_roller_cone``, ``ehl_roller_cup``: isothermal EHL contacts of
 a rolling element with its race (load response, film stiffness and damping, traction).
 
 Part of :mod:`coupling.film_points` (the package docstring gives the physics and sources)."""
@@ -7,7 +7,7 @@ from __future__ import annotations
 import logging
 import numpy as np
 
-from lubrication.errors import ConvergenceError, unknown_choice
+from lubrication.errors import ConvergenceError, InputError, unknown_choice
 
 from .base import (AxisDef, BALL_DIAMETER, BALL_MODULUS, BALL_POISSON, GREASE_ALPHA, INNER_GROOVE_RADIUS, N_BALLS,
                    OIL_ALPHA, OIL_ETA0, OIL_RHO0, OUTER_GROOVE_RADIUS, PAPER_B_AXIAL_LOAD, PITCH_DIAMETER_6206,
@@ -147,6 +147,76 @@ def ehl_roller_race_default_params() -> dict:
     }
 
 
+# Roller kinds of paper A on a line-load axis (issue 22, section 4): film-scaled domain.  The Hertz
+# domain [-20, 3] b of the earlier map starves light loads (tests/test_ehl_limits.py: -13 % at 20 kN/m,
+# 25 m/s; 3-10 times too thin at 1 kN/m): there the film is hydrodynamic and its pressure spans
+# sqrt(2 R h), 10-160 b.  The kinds' domain is x in [-hypot(20, k_in r), hypot(3, k_out r)] b with
+# r = sqrt(2 R h_Moes)/b (Moes' central film of the point: smooth in load and speed, so the discrete
+# problem -- nx fixed -- varies smoothly along the axes, no jump in node layout), k_in = 8, k_out = 1.5:
+# measured at 10 kN/m, 8 m/s (r = 10.4): h_c +1.0 % when k_in = 16 (4.962 -> 5.012 um).
+ROLLER_INLET_FILM_LENGTHS = 8.0
+ROLLER_OUTLET_FILM_LENGTHS = 1.5
+ROLLER_RACES = ("cone", "cup")
+
+
+def roller_race_radius(race: str) -> float:
+    """Reduced radius R_x [m] of paper A's mid-slice roller/``race`` line contact from the model's own
+    geometry (:func:`coupling.parameters.wu2018.tapered_geometry`, ``reduced_radius``: roller rho_m/cos(phi)
+    against the race's cone r_c/cos(alpha), concave for the cup): cone 9.395 mm, cup 11.906 mm."""
+    from ..parameters.wu2018 import tapered_geometry
+
+    if race not in ROLLER_RACES:
+        raise unknown_choice("race", race, ROLLER_RACES)
+    return float(tapered_geometry().reduced_radius(race))
+
+
+def _roller_params(race: str) -> dict:
+    """Paper A roller / ``race`` line contact per unit length (kinds ``ehl_roller_cone``/``ehl_roller_cup``).
+
+    As :func:`ehl_roller_race_default_params` (base oil eta0 = 0.1 Pa s assumed, Barus with the grease's
+    alpha, incompressible, Reynolds-Eyring flow tau0 = 5 MPa, limiting-shear traction) except: the
+    reduced radius is the model's own (:func:`roller_race_radius`; the earlier map used the
+    cylindrical-roller approximation (D/2)(1 - gamma) = 9.382 mm for the cone, 0.13 % below), the
+    load is a line load (``length`` = 1 m: stiffness and damping per metre of contact), and the domain
+    is scaled with the film (``inlet_film_lengths``; 0 gives the fixed Hertz domain)."""
+    params = ehl_roller_race_default_params()
+    params.update({
+        "race": race,
+        "radius_x": roller_race_radius(race),
+        "length": 1.0,
+        "inlet_film_lengths": ROLLER_INLET_FILM_LENGTHS,
+        "outlet_film_lengths": ROLLER_OUTLET_FILM_LENGTHS,
+    })
+    return params
+
+
+def ehl_roller_cone_default_params() -> dict:
+    """Paper A roller on the cone (inner race), per unit length (:func:`_roller_params`)."""
+    return _roller_params("cone")
+
+
+def ehl_roller_cup_default_params() -> dict:
+    """Paper A roller on the cup (outer race), per unit length (:func:`_roller_params`)."""
+    return _roller_params("cup")
+
+
+def _film_scaled_domain(params, contact):
+    """(x_min, x_max) [Hertz half-widths b] of a line contact's domain scaled with its film: x_min =
+    -hypot(x_min0, k_in r), x_max = hypot(x_max0, k_out r), r = sqrt(2 R h_Moes)/b (see
+    ROLLER_INLET_FILM_LENGTHS)."""
+    import math
+
+    from lubrication.laws.contact import line_contact
+    from lubrication.laws.film import moes_line_central
+
+    R = contact.radius_x
+    h = moes_line_central(contact.moes_M, contact.moes_L) * R * math.sqrt(2 * contact.U)
+    b = line_contact(contact.load, R, contact.e_star).b
+    r = math.sqrt(2 * R * h) / b
+    k_in, k_out = float(params["inlet_film_lengths"]), float(_get(params, "outlet_film_lengths", 1.5))
+    return -math.hypot(float(params["x_min"]), k_in * r), math.hypot(float(params["x_max"]), k_out * r)
+
+
 def _ehl_setup(params, load, speed):
     from lubrication.ehl import EHLContact, EHLOptions, Traction
 
@@ -161,7 +231,14 @@ def _ehl_setup(params, load, speed):
     contact = EHLContact(
         float(params["radius_x"]), None if line else float(params["radius_y"]), float(params["e_star"]),
         _lubricant(params), float(speed), load=float(load), traction=traction)
-    grid = _ehl_grid(table[res], line, float(params["x_min"]), float(params["x_max"]), float(params["y_max"]))
+    if line and float(params.get("inlet_film_lengths", 0.0)) > 0:
+        from lubrication.ehl import EHLGrid
+
+        # fixed node count on a domain that grows smoothly with the film (_film_scaled_domain)
+        x_lo, x_hi = _film_scaled_domain(params, contact)
+        grid = EHLGrid(nx=table[res], x_min=x_lo, x_max=x_hi)
+    else:
+        grid = _ehl_grid(table[res], line, float(params["x_min"]), float(params["x_max"]), float(params["y_max"]))
     return contact, grid, EHLOptions()
 
 
@@ -291,6 +368,51 @@ def _short_inlet_start(contact, grid, options, x_min):
     return sol
 
 
+# Continuation path of a film-scaled line contact that does not converge from the solver's own start
+# (speed fraction, inlet fraction of the final domain) -- see _continuation_start
+# Continuation paths of a film-scaled line contact: steps (load fraction, speed fraction, inlet fraction
+# of the step's own domain), tried in order (_continuation_start).  Measured need (Eyring flow):
+# - the inlet alone grown from 0.15: light loads, where the solver's own start fails on the long domain
+#   (cup at 0.7 kN/m, 28 m/s, 129 nodes: converges on 0.1 and 0.2 of the inlet, fails on 0.35, 0.6, 1);
+# - from a lighter load: the transition M ~ 0.5-1 (cone at 39.8 kN/m, 14 m/s, 257 nodes: fails from its
+#   own start, from 0.7-1.15 times the speed and from 1.25 and 1.5 times the load; converges from 0.67
+#   and 0.8 times the load, to the same film to 1e-15 from both; at 59.6 kN/m, 28 m/s only from 0.67);
+# - speed and inlet together: heavy load at high speed (100 kN/m, 25 m/s).
+CONTINUATION_PATHS = (((1.0, 1.0, 0.15), (1.0, 1.0, 0.3), (1.0, 1.0, 0.5), (1.0, 1.0, 0.75)),
+                      ((0.67, 1.0, 1.0), (0.8, 1.0, 1.0), (0.9, 1.0, 1.0)),
+                      ((0.67, 1.0, 1.0),), ((0.5, 1.0, 1.0), (0.75, 1.0, 1.0)),
+                      ((1.0, 0.5, 0.35), (1.0, 0.7, 0.6), (1.0, 0.85, 0.8)))
+
+
+def _continuation_start(params, contact, grid, options):
+    """Start for a film-scaled line contact (``inlet_film_lengths`` > 0): converged solutions along
+    :data:`CONTINUATION_PATHS` -- a shorter inlet, a lighter load, or a lower speed, each
+    from the previous, ending on the final grid (the returned solution is the point itself)
+    (``solve_ehl`` interpolates a start from another grid onto its own).  Why (measured, 257 nodes,
+    Eyring flow): the solver's own start (Hertz pressure, nested grids) fails where the Hertz zone is
+    narrower than a cell of the coarse levels (1 kN/m: the domain spans 850 b) and at high speed with
+    heavy load (100 kN/m, 25 m/s, M = 0.97: iteration limit); from a lower-speed, shorter-inlet
+    solution both converge.  Raises ConvergenceError naming the step that failed."""
+    import dataclasses
+
+    from lubrication.ehl import EHLGrid, solve_ehl
+
+    errors = []
+    for path in CONTINUATION_PATHS:
+        sol = None
+        try:
+            for fw, fu, fd in path:
+                c = dataclasses.replace(contact, load=contact.load * fw, mean_speed=contact.mean_speed * fu)
+                lo, hi = _film_scaled_domain(params, c)
+                g = EHLGrid(nx=grid.nx, x_min=min(fd * lo, -1.5), x_max=max(fd * hi, 1.5))
+                sol = solve_ehl(c, g, options, initial=sol)
+            # the last step's solution is only a start for the final grid: converge it there
+            return solve_ehl(contact, grid, options, initial=sol)
+        except (ConvergenceError, np.linalg.LinAlgError) as exc:
+            errors.append(f"continuation step (load x {fw}, speed x {fu}, inlet x {fd}): {exc}")
+    raise ConvergenceError(" / ".join(errors))
+
+
 def ehl_load_response(params: dict, load: float, speed: float) -> dict:
     """EHL solve at element load ``load`` = Q [N] and entrainment speed ``speed`` [m/s] (SRR-independent).
 
@@ -326,7 +448,7 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
     if key in _EHL_CACHE:
         return _EHL_CACHE[key]
     line = params["contact"] == "line"
-    length = float(params["length"]) if line else 1.0
+    length = float(params["length"]) if line else 1.0  # 1 m for the per-length roller kinds
     w = float(load) / length
     method = _get(params, "coefficients", "linearised")
     if method not in ("linearised", "load_steps", "secant"):
@@ -367,8 +489,12 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
         # discretisation stays that of the neighbours; measured on the roller map, 257 nodes:
         # the larger-domain fallback below moved h_c by 2.7 % at 5 kN, 7.7 m/s)
         attempts.append((grid, slow, "newtonian"))
+    film_scaled = line and float(params.get("inlet_film_lengths", 0.0)) > 0
+    if film_scaled:
+        # continuation in speed and inlet length (_continuation_start): same final grid and problem
+        attempts.insert(1, (grid, options, "continuation"))
     attempts.append((grid, slow, 2.0))
-    if line:
+    if line and not film_scaled:
         attempts.append((dataclasses.replace(grid, x_max=grid.x_max + 1.0), slow))
     else:
         attempts.append((dataclasses.replace(grid, y_max=grid.y_max + 0.5), slow))
@@ -379,12 +505,19 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
             start = None
             if len(attempt) > 2 and attempt[2] == "short inlet":
                 start = _short_inlet_start(contact, grid, options, ref_x_min)
+            elif len(attempt) > 2 and attempt[2] == "continuation":
+                start = _continuation_start(params, contact, grid, options)
             elif len(attempt) > 2 and attempt[2] == "newtonian":
                 newtonian = dataclasses.replace(contact.lubricant, eyring_stress=None)
                 start = solve_ehl(dataclasses.replace(contact, lubricant=newtonian), grid, options)
             elif len(attempt) > 2:
                 start = solve_ehl(dataclasses.replace(contact, load=w * attempt[2]), grid, options)
-            sol = solve_ehl(contact, grid, options, initial=start)
+            if len(attempt) > 2 and attempt[2] == "continuation":
+                # already converged on this grid (a re-solve from it met an exactly singular Newton
+                # matrix at the converged state: 59.6 kN/m, 28 m/s, 257 nodes)
+                sol = start
+            else:
+                sol = solve_ehl(contact, grid, options, initial=start)
             if method == "secant":
                 K, C = _ehl_secant_coefficients(contact, grid, options, sol, float(_get(params, "secant_step", 0.05)))
             elif method == "linearised":
@@ -444,6 +577,37 @@ def evaluate_ehl(params: dict, point: dict) -> dict:
     return out
 
 
+LINE_RENAMES = {"Film stiffness [N/m]": "Film stiffness per length [N/m^2]",
+                "Film damping [N s/m]": "Film damping per length [N s/m^2]",
+                "Approach [m]": "Central deflection [m]"}
+# "Central deflection [m]" u(0) = h_c - h00 (> 0 at every point): the approach -h00 of the per-length
+# kinds changes sign at 50-100 kN/m (-180 um at 0.7 kN/m, 28 m/s; +12 um at 300 kN/m, 8 m/s), where a
+# relative interpolation error means nothing; a consumer takes approach = u(0) - h_c.  (u is the strip
+# kernel's deflection, lubrication.elastic, referenced as there: a line contact's approach is defined
+# only up to a constant.)
+EHL_LINE_OUTPUTS = tuple(LINE_RENAMES.get(name, name) for name in EHL_OUTPUTS)
+
+
+def evaluate_ehl_line(params: dict, point: dict) -> dict:
+    """One point of a per-length line-contact kind (``ehl_roller_cone``, ``ehl_roller_cup``): "Line load
+    [N/m]", "Entrainment speed [m/s]", "Slide-to-roll ratio [-]".  Outputs :data:`EHL_LINE_OUTPUTS`:
+    as :func:`evaluate_ehl` with the film stiffness and damping per metre of contact length (a slice
+    of length l: K l, C l)."""
+    if float(params.get("length", 1.0)) != 1.0:
+        raise InputError(f"params.length = {params['length']!r}: a line-load kind works per metre (length = 1.0)")
+    point = dict(point)
+    point["Load [N]"] = float(point.pop("Line load [N/m]"))
+    out = evaluate_ehl(params, point)
+    out["Approach [m]"] = out["Central film thickness [m]"] + out["Approach [m]"]  # u(0) = h_c - h00
+    return {LINE_RENAMES.get(k, k): v for k, v in out.items()}
+
+
+def field_ehl_line(params: dict, point: dict):
+    """The EHL pressure/film field of a per-length line-contact point as a pyvista grid."""
+    response = ehl_load_response(params, float(point["Line load [N/m]"]), float(point["Entrainment speed [m/s]"]))
+    return response["solution"].to_pyvista()
+
+
 def field_ehl(params: dict, point: dict):
     """The EHL pressure/film field at ``point`` as a pyvista grid."""
     response = ehl_load_response(params, float(point["Load [N]"]), float(point["Entrainment speed [m/s]"]))
@@ -466,4 +630,18 @@ EHL_ROLLER_AXES = (
     AxisDef("Load [N]", 5000.0, 20000.0, 9, "log"),
     AxisDef("Entrainment speed [m/s]", 3.0, 15.0, 11, "log"),
     EHL_SRR_AXIS,
+)
+
+# Paper A's roller kinds (issue 22, section 4; notes 3.2): line load 1-200 kN/m (centrifugal-only rollers
+# 2.1 kN/m at 2 krpm up to 135 kN/m at 40 um preload, plus slice peaks), entrainment 8-25 m/s, SRR 1e-5..0.1.
+# Axes with margin: 0.7-300 kN/m, 7-28 m/s.  Slide-to-roll: log from ROLLER_SRR_MIN = 1e-5 (the steady
+# slips of 0.005-0.02 % lie on the axis, not on an extrapolation); odd in the SRR; below 1e-5 the
+# consumer takes mu(s) = mu(1e-5) s/1e-5 (the "linear" convention of the ball maps,
+# dynamics/cageless/layout.py TRACTION_MAP_BELOW_AXIS, with a lower first node).  The SRR nodes cost no
+# EHL solve (the isothermal pressure does not depend on sliding).
+ROLLER_SRR_MIN = 1e-5
+EHL_ROLLER_LINE_AXES = (
+    AxisDef("Line load [N/m]", 700.0, 3.0e5, 16, "log"),
+    AxisDef("Entrainment speed [m/s]", 7.0, 28.0, 9, "log"),
+    AxisDef("Slide-to-roll ratio [-]", ROLLER_SRR_MIN, 0.1, 13, "log"),
 )
