@@ -265,3 +265,20 @@ def test_case_file_takes_herschel_bulkley(tmp_path):
     assert summary["Central film thickness [m]"] == pytest.approx(9.273e-6, rel=1e-3)
     assert summary["Herschel-Bulkley exponent [-]"] == 0.7196
     assert "Dowson-Toyoda central film thickness [m]" not in summary
+
+
+def test_calcium_contact_has_two_discrete_solutions():
+    """Where the method stops being a function of the data (as the Newtonian roller does,
+    tests/test_ehl_eyring.py): calcium at 135 kN/m, 10 m/s from the default start (Newtonian, apparent
+    viscosity 0.0441 Pa s) and from the 0.1 Pa s base-oil state converge to two states, both exact
+    discrete solutions in the reference assembly (measured h_c 4.0897 / 4.0708 um, h_min 3.843 /
+    3.625 um: 0.46 % and 5.7 % apart).  The Herschel-Bulkley flow does not remove them; Eyring flow did."""
+    c = _paper_contact("calcium", 135e3, 10.0)
+    a = solve_ehl(c, PAPER_GRID)
+    base = EHLContact(R_CONE, None, E_PRIME / 2, Lubricant(Barus(0.1, ALPHA), Incompressible(870.0)), 10.0,
+                      load=135e3)
+    b = solve_ehl(c, PAPER_GRID, initial=solve_ehl(base, PAPER_GRID))
+    assert abs(b.minimum_film_thickness / a.minimum_film_thickness - 1) > 0.03
+    for s in (a, b):
+        free_res, cav_min, pr, load = _complementarity(s)
+        assert free_res < 1e-7 and pr < 1e-7 and cav_min > -1e-7 and load < 1e-6
