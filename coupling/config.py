@@ -357,13 +357,34 @@ class DensityModel(_Model):
         return self
 
 
+class HerschelBulkleyModel(_Model):
+    """Herschel-Bulkley (grease) Poiseuille flow (EHL scenes only; :class:`lubrication.laws.lubricant.
+    HerschelBulkleyFlow`): yield_stress tau_y, exponent n in (0, 2], creep eps in [0, 1) (0: the exact law).
+    The [lubricant.viscosity] law is then the consistency phi(p): eta0 = phi0, its SI number in Pa s^n
+    written as Pa s (paper A Table 2), alpha of phi = phi0 exp(alpha p)."""
+
+    yield_stress: Q("pressure", ge=0)
+    exponent: Q("dimensionless", gt=0, le=2)
+    creep: Q("dimensionless", ge=0, lt=1) = 0.0
+
+
 class LubricantModel(_Model):
     """viscosity, density; eyring_stress tau0 (EHL scenes only): Reynolds-Eyring shear thinning of the
-    Poiseuille flow (:mod:`lubrication.laws.lubricant`), omitted = Newtonian."""
+    Poiseuille flow (:mod:`lubrication.laws.lubricant`), omitted = Newtonian; herschel_bulkley (EHL
+    scenes only): [lubricant.herschel_bulkley] yield_stress, exponent, creep, Herschel-Bulkley (grease)
+    Poiseuille flow with the viscosity law as the consistency phi(p); at most one of the two."""
 
     viscosity: Annotated[ViscosityModel, BeforeValidator(_viscosity_shorthand)]
     density: DensityModel = Field(default_factory=DensityModel)
     eyring_stress: Q("pressure", gt=0) | None = None
+    herschel_bulkley: HerschelBulkleyModel | None = None
+
+    @model_validator(mode="after")
+    def _one_flow(self):
+        if self.eyring_stress is not None and self.herschel_bulkley is not None:
+            raise rule("eyring_stress", self.eyring_stress, "and [lubricant.herschel_bulkley] are two non-Newtonian "
+                       "flows; give one of them")
+        return self
 
 
 class CavitationModel(_Model):
@@ -467,6 +488,9 @@ class FilmCase(_Model):
         if self.lubricant.eyring_stress is not None:
             raise _root_rule("lubricant.eyring_stress", self.lubricant.eyring_stress, "is for EHL scenes (scene = "
                              "'ehl'); the film solver is Newtonian, remove it")
+        if self.lubricant.herschel_bulkley is not None:
+            raise _root_rule("lubricant.herschel_bulkley", self.lubricant.herschel_bulkley.model_dump(),
+                             "is for EHL scenes (scene = 'ehl'); the film solver is Newtonian, remove it")
         self._resolve_domain()
         self._resolve_motion()
         self._check_boundaries()

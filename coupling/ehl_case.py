@@ -7,7 +7,9 @@ Layout (x the entrainment direction; the contact comes from exactly one of
     [contact]    radius_x, radius_y (reduced radii) | line = true, length |
                  body1_radius_x, body1_radius_y, body2_radius_x, body2_radius_y
     [materials]  modulus1, poisson1, modulus2, poisson2 (body 2 defaults to body 1)
-    [lubricant]  as for films: viscosity law, eta0, alpha; density law
+    [lubricant]  as for films: viscosity law, eta0, alpha; density law; eyring_stress, or
+                 [lubricant.herschel_bulkley] yield_stress, exponent, creep (grease flow; eta0 is then
+                 the consistency phi0 in Pa s^n, written as Pa s)
     [operating]  mean_speed + slide_to_roll | velocity1 + velocity2;
                  load [N] | load_per_length [N/m] (lines) | approach (h00)
     [bearing]    type = ball | roller, race = inner | outer, element_diameter,

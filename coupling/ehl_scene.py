@@ -233,7 +233,16 @@ def summarise(case: EHLCase, setup: EHLSetup, solution) -> dict:
         "Slide-to-roll ratio [-]": c.slide_to_roll,
         "Viscosity eta0 [Pa s]": c.lubricant.viscosity.eta0,
     })
-    out.update(film_formula_values(c, load, hz.get("Ellipticity k = a_y/b_x [-]")))
+    hb = c.lubricant.herschel_bulkley
+    if hb is None:
+        out.update(film_formula_values(c, load, hz.get("Ellipticity k = a_y/b_x [-]")))
+    else:  # the Newtonian film formulas would read phi0 as Pa s: left out; the start's apparent viscosity
+        start = solution.info.get("hb_start") or {}
+        out.update({"Herschel-Bulkley yield stress [Pa]": hb.yield_stress, "Herschel-Bulkley exponent [-]": hb.exponent,
+                    "Herschel-Bulkley creep [-]": hb.creep,
+                    "Apparent viscosity of the start [Pa s]": start.get("apparent_viscosity"),
+                    "Newtonian start viscosity [Pa s]": start.get("start_viscosity"),
+                    "Newtonian start central film [m]": start.get("central_film")})
     if setup.bearing is not None:
         out.update(bearing_data(setup.bearing))
     P = solution.problem

@@ -129,7 +129,9 @@ def build_lubricant(case: FilmCase) -> lub.Lubricant:
         density = lub.Incompressible(d.rho0)
     else:
         density = lub.DowsonHigginson(d.rho0, d.a, d.b)
-    return lub.Lubricant(viscosity, density, case.lubricant.eyring_stress)
+    hb = case.lubricant.herschel_bulkley
+    flow = None if hb is None else lub.HerschelBulkleyFlow(hb.yield_stress, hb.exponent, hb.creep)
+    return lub.Lubricant(viscosity, density, case.lubricant.eyring_stress, flow)
 
 
 def _check_gap_positive(gap, mesh, case: FilmCase):

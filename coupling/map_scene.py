@@ -207,6 +207,9 @@ def _lubricant_params(lub, kind_name, defaults, params) -> dict:
         if "eyring_stress" not in defaults:
             raise _rule("lubricant.eyring_stress", lub.eyring_stress, f"is not used by kind {kind_name!r}")
         out["eyring_stress"] = lub.eyring_stress
+    if lub.herschel_bulkley is not None:
+        raise _rule("lubricant.herschel_bulkley", lub.herschel_bulkley.model_dump(),
+                    f"is not used by kind {kind_name!r} (the map kinds are Newtonian or Eyring)")
     return out
 
 

@@ -38,7 +38,8 @@ from .errors import ConvergenceError, InputError, LubedynError
 _LAZY = {
     **dict.fromkeys(("CylinderPlane", "EllipsoidPlane", "FunctionGap", "Gap", "InclinedSlider", "JournalBearing",
                      "PocketedSlider", "SpherePlane", "SphereSphere", "StepSlider"), ".gaps"),
-    **dict.fromkeys(("Barus", "ConstantViscosity", "DowsonHigginson", "Incompressible", "Lubricant", "Roelands"),
+    **dict.fromkeys(("Barus", "ConstantViscosity", "DowsonHigginson", "HerschelBulkleyFlow", "Incompressible",
+                     "Lubricant", "Roelands"),
                     ".laws.lubricant"),
     **dict.fromkeys(("Cavitation", "Film", "SolverOptions", "film_coefficients", "solve", "solve_nested"), ".reynolds"),
     "FilmSolution": ".solution",
@@ -59,7 +60,7 @@ def __dir__():
 
 __all__ = [
     "Barus", "Cavitation", "ConstantViscosity", "ConvergenceError", "CylinderPlane",
-    "DowsonHigginson", "EllipsoidPlane", "Film", "FilmSolution", "FunctionGap", "Gap",
+    "DowsonHigginson", "EllipsoidPlane", "Film", "FilmSolution", "FunctionGap", "Gap", "HerschelBulkleyFlow",
     "InclinedSlider", "Incompressible", "InputError", "JournalBearing", "LubedynError",
     "Lubricant", "PocketedSlider", "Roelands", "SolverOptions", "SpherePlane",
     "SphereSphere", "StepSlider", "film_coefficients", "solve", "solve_nested",

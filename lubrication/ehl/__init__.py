@@ -36,6 +36,23 @@ dependence on grad p (Pe ~ 1/Phi).  The pressure still does not depend on
 sliding (pure-rolling flow factor), so a map's traction axis stays
 post-processing.
 
+Herschel-Bulkley (grease) flow (``Lubricant(herschel_bulkley=HerschelBulkleyFlow(tau_y, n, creep))``,
+the viscosity law then being the consistency phi(p) = phi0 exp(alpha p) [Pa s^n]): k becomes
+k Phi_HB(T_w, phi), T_w = h |grad p|/2, Phi_HB = 3 (T_w/phi)^(m-1) F(tau_y/T_w), m = 1/n,
+F(xi) = (1 - xi)^(m+1) [(1 - xi)/(m+2) + xi/(m+1)] (0 where T_w <= tau_y: a plug across the film),
+the slit flow of the Herschel-Bulkley law derived in :mod:`lubrication.laws.lubricant`
+(Buckingham-Reiner for n = 1), plus an optional creep eps (default 0).  The Jacobian has the same
+tensor and SUPG terms as Eyring flow and, since k ~ phi^(-1/n), dk/dp = ... (1/n) phi'/phi.  Same
+pure-rolling superposition as Eyring (Couette rho h u_m + the pressure flow).  Line contacts use
+Fischer-Burmeister (the active set kept cycling with plugs at the cavitation boundary), and with no
+``initial`` the solve starts from the Newtonian contact with the apparent viscosity tau_y/D +
+phi0 D^(n-1) at D = u_m/h_c (then 0.5, 0.25, 0.125 times it; :func:`lubrication.ehl.solve._solve_hb`);
+the Hertz start stalls.  Measured on paper A's cone (R 9.395 mm, E' 225 GPa, 30 C, 257 nodes on
+[-20, 3] b): calcium converges over 50-135 kN/m x 10-20 m/s, polyurea on 5 of 7 points (not
+135 kN/m, 20 m/s nor 50 kN/m, 20 m/s: there the Newtonian starts fail), lithium (n = 0.31) nowhere;
+calcium at 135 kN/m, 10 m/s has two discrete solutions (h_min 5.7 % apart) as the Newtonian roller
+does (tests/test_ehl_hbflow.py).  Reported M and L read phi0 as Pa s.
+
 Assembly is vectorised on the uniform grid (:mod:`lubrication.ehl.assembly`:
 one template product and one scatter per matrix; equal to scikit-fem's
 ``asm`` of the same forms to round-off, :meth:`_Problem.assemble_skfem`).

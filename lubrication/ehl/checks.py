@@ -34,7 +34,7 @@ def closed_form_central_film(contact: EHLContact):
     from ..laws.lubricant import Barus, Incompressible
 
     lub = contact.lubricant
-    if (contact.load is None or lub.eyring_stress is not None or not isinstance(lub.viscosity, Barus)
+    if (contact.load is None or not lub.is_newtonian or not isinstance(lub.viscosity, Barus)
             or not isinstance(lub.density, Incompressible) or contact.squeeze_velocity != 0.0):
         return None
     if not contact.is_line and contact.radius_y != contact.radius_x:

@@ -10,7 +10,7 @@ import numpy as np
 from ..errors import InputError, require_positive, unknown_choice
 from ..laws import contact as hertz
 from ..laws.contact import hamrock_brewe_radius_ratio
-from ..laws.lubricant import Lubricant, eyring_flow_factor
+from ..laws.lubricant import HB_PHI_CAP, Lubricant, eyring_flow_factor
 
 TRACTION_MODELS = ("newtonian", "limiting_shear", "eyring")
 
@@ -38,20 +38,47 @@ def _log_slope(eta, deta):
     return np.where(np.isfinite(r), r, 0.0)
 
 
-def _eyring_terms(lub, h, grad_p):
-    """Reynolds-Eyring factors at the quadrature points (None for a Newtonian lubricant).
+def _ratio(a, b):
+    """a/b, 0 where b = 0 (a flow factor that vanishes: plug flow, where the products it enters vanish)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        r = np.where(b > 0, a / np.where(b > 0, b, 1.0), 0.0)
+    return np.where(np.isfinite(r), r, 0.0)
 
-    ``phi`` = Phi(x), x = s |grad p|, s = h/(2 tau0) (:func:`lubrication.laws.lubricant.eyring_flow_factor`);
-    ``c2`` = (Phi'/x) s^2, so that d(Phi grad p)/d(grad p) = Phi I + c2 grad p grad p^T;
-    ``dphi_dh`` = dPhi/dh = (Phi'/x) x^2/h."""
+
+def _eyring_terms(lub, h, grad_p, eta=None):
+    """Non-Newtonian flow factors at the quadrature points (None for a Newtonian lubricant):
+    Reynolds-Eyring (``eyring_stress``) or Herschel-Bulkley (``herschel_bulkley``).
+
+    ``phi`` = Phi; ``c2`` = (dPhi/d|grad p|)/|grad p|, so that d(Phi grad p)/d(grad p) = Phi I + c2
+    grad p grad p^T; ``dphi_dh`` = dPhi/dh at fixed grad p; ``c2_rel`` = c2/Phi and ``dlnphi_dh`` =
+    dPhi/dh / Phi (0 where Phi = 0); ``dlnphi_dlneta`` = d ln Phi/d ln eta at fixed h, grad p.
+    Eyring: Phi(x), x = s |grad p|, s = h/(2 tau0) (:func:`lubrication.laws.lubricant.eyring_flow_factor`),
+    c2 = (Phi'/x) s^2, dPhi/dh = (Phi'/x) x^2/h, d ln Phi/d ln eta = 0.
+    Herschel-Bulkley: Phi_HB(T_w, eta), T_w = h |grad p|/2, eta the consistency phi(p)
+    (:func:`lubrication.laws.lubricant.herschel_bulkley_flow_factor`) plus the creep eps,
+    c2 = Phi_T h/(2 |grad p|), dPhi/dh = Phi_T T_w/h, d ln Phi/d ln eta = (1 - 1/n) Phi_HB/Phi."""
+    g2 = sum(np.asarray(grad_p[d]) ** 2 for d in range(len(grad_p)))
+    hb = lub.herschel_bulkley
+    if hb is not None:
+        g = np.sqrt(g2)
+        T = 0.5 * h * g
+        phi_hb, dphi_T = hb.flow_factor(T, eta)
+        phi = phi_hb + hb.creep
+        c2 = _ratio(dphi_T * 0.5 * h, g)
+        dphi_dh = dphi_T * T / h
+        rel = (1.0 - 1.0 / hb.exponent) * _ratio(phi_hb, phi)
+        return {"phi": phi, "c2": c2, "dphi_dh": dphi_dh, "c2_rel": _ratio(c2, phi),
+                "dlnphi_dh": _ratio(dphi_dh, phi),
+                "dlnphi_dlneta": np.where(phi_hb < HB_PHI_CAP, rel, 0.0)}
     tau0 = lub.eyring_stress
     if tau0 is None:
         return None
     s = h / (2.0 * tau0)
-    g2 = sum(np.asarray(grad_p[d]) ** 2 for d in range(len(grad_p)))
     x = s * np.sqrt(g2)
     phi, dphi_x = eyring_flow_factor(x)
-    return {"phi": phi, "c2": dphi_x * s**2, "dphi_dh": dphi_x * x**2 / h}
+    c2, dphi_dh = dphi_x * s**2, dphi_x * x**2 / h
+    return {"phi": phi, "c2": c2, "dphi_dh": dphi_dh, "c2_rel": c2 / phi, "dlnphi_dh": dphi_dh / phi,
+            "dlnphi_dlneta": 0.0}
 
 
 @dataclass(frozen=True)

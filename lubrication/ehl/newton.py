@@ -41,12 +41,37 @@ def _film_guess(c: EHLContact) -> float:
     from ..laws.film import dowson_toyoda_central, nijenbanning_central
 
     U, G, W = c.U, max(c.G, 1e-3), c.W
+    if c.lubricant.herschel_bulkley is not None:
+        return _hb_apparent_start(c)[1]
     if c.is_line:
         H = dowson_toyoda_central(U, G, W)
         return max(H, 8 * U / W) * c.radius_x
     k = (c.radius_y / c.radius_x) ** (2 / np.pi)
     shape = (1 - 0.61 * np.exp(-0.73 * k)) / (1 - 0.61 * np.exp(-0.73))
     return float(nijenbanning_central(c.moes_M, max(c.moes_L, 1e-6)) * np.sqrt(2 * U) * shape) * c.radius_x
+
+
+def _hb_apparent_start(c: EHLContact):
+    """``(eta_app, h_c)`` of a Herschel-Bulkley contact: the Newtonian (Barus, the grease's alpha) film
+    guess :func:`_film_guess` with the apparent viscosity eta_app = tau_y/D + phi0 D^(n-1) at its own
+    rolling shear rate D = u_m/h_c (the fixed point of lubrication.laws.grease.apparent_film, by
+    damped iteration in logs: h <- sqrt(h h_new))."""
+    import dataclasses
+
+    from ..laws.lubricant import Barus
+
+    hb = c.lubricant.herschel_bulkley
+    phi0, alpha = c.lubricant.viscosity.eta0, c.lubricant.viscosity.pressure_viscosity
+    h, eta = None, phi0
+    for _ in range(80):
+        h_new = _film_guess(dataclasses.replace(c, lubricant=dataclasses.replace(
+            c.lubricant, viscosity=Barus(eta, alpha), herschel_bulkley=None)))
+        if h is not None and abs(np.log(h_new / h)) < 1e-8:
+            break
+        h = h_new if h is None else float(np.sqrt(h * h_new))
+        D = c.mean_speed / h
+        eta = hb.yield_stress / D + phi0 * D ** (hb.exponent - 1.0)
+    return eta, h_new
 
 
 def _stopped(reason: str, message: str) -> ConvergenceError:

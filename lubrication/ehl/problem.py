@@ -184,15 +184,15 @@ class _Problem:
 
     def _coefficients(self, pq, hq, grad_p):
         """Pointwise coefficients at the quadrature points, shared by both assemblies: eta, eta',
-        rho, rho', kN = rho h^3/(12 eta), the Eyring factors ``ey`` (:func:`_eyring_terms`, None if
-        Newtonian), k = kN Phi, and the SUPG parameter (Pe = 6 u_m l eta/(h^2 Phi), rho cancels;
+        rho, rho', kN = rho h^3/(12 eta), the Eyring or Herschel-Bulkley factors ``ey`` (:func:`_eyring_terms`,
+        None if Newtonian), k = kN Phi, and the SUPG parameter (Pe = 6 u_m l eta/(h^2 Phi), rho cancels;
         tau, tau'(Pe))."""
         lub = self.c.lubricant
         with np.errstate(over="ignore", invalid="ignore"):
             eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
             rho, drho = lub.density(pq), lub.density.derivative(pq)
         kN = rho * hq**3 / (12 * eta)
-        ey = _eyring_terms(lub, hq, grad_p)
+        ey = _eyring_terms(lub, hq, grad_p, eta)
         k = kN if ey is None else kN * ey["phi"]
         Pe, tau, dtau_dPe = supg_parameter(self.c.mean_speed, self.dx, rho, hq, k)
         return SimpleNamespace(eta=eta, deta=deta, rho=rho, drho=drho, kN=kN, ey=ey, k=k, Pe=Pe, tau=tau,
@@ -203,7 +203,9 @@ class _Problem:
         assembled by the callers), and rho'' (None for a pressure-independent density).
 
         d tau/dp = tau'(Pe) Pe eta'/eta, d tau/dh = -tau'(Pe) Pe (2/h + Phi_h/Phi); with Eyring flow
-        k = kN Phi(x), x = h |grad p|/(2 tau0), so dk/dh gains kN Phi' x/h.  rho'' by a central
+        k = kN Phi(x), x = h |grad p|/(2 tau0), so dk/dh gains kN Phi' x/h; with Herschel-Bulkley flow
+        Phi also depends on eta (consistency): dk/dp gains kN Phi (1 - 1/n) eta'/eta and d tau/dp is
+        tau'(Pe) Pe (1/n) eta'/eta (Pe ~ eta/Phi ~ eta^(1/n)).  rho'' by a central
         difference on the smooth branch p > 0 (rho' jumps at p = 0, where rho = rho(max(p, 0)) has
         rho'' = 0 on the flat side)."""
         eta, rho, drho, kN, ey, Pe, dtau_dPe = cf.eta, cf.rho, cf.drho, cf.kN, cf.ey, cf.Pe, cf.dtau_dPe
@@ -213,9 +215,12 @@ class _Problem:
         dtau_dp = dtau_dPe * Pe * dlog_eta
         dtau_dh = -2.0 * dtau_dPe * Pe / hq
         if ey is not None:
-            dk_dp = dk_dp * ey["phi"]
+            # k = kN Phi; Herschel-Bulkley: Phi depends on eta too (d ln Phi/d ln eta = 1 - 1/n),
+            # so Pe ~ eta/Phi has d ln Pe/dp = (1 - d ln Phi/d ln eta) eta'/eta
+            dk_dp = dk_dp * ey["phi"] + kN * ey["phi"] * ey["dlnphi_dlneta"] * dlog_eta
             dk_dh = dk_dh * ey["phi"] + kN * ey["dphi_dh"]
-            dtau_dh = dtau_dh - dtau_dPe * Pe * ey["dphi_dh"] / ey["phi"]
+            dtau_dp = dtau_dp - dtau_dPe * Pe * ey["dlnphi_dlneta"] * dlog_eta
+            dtau_dh = dtau_dh - dtau_dPe * Pe * ey["dlnphi_dh"]
         d2rho = None
         if np.any(drho != 0.0):
             density = self.c.lubricant.density
@@ -273,7 +278,7 @@ class _Problem:
             c2 = kN * ey["c2"]
             Aterms += [(c2 * pg[d] * pg[e], F.gg[d][e]) for d in range(dim) for e in range(dim)]
             # tau(Pe(grad p)): d tau/d(d_e p) = -tau'(Pe) Pe c2/k d_e p, times strong u_m . grad v
-            Aterms += [(-dtau_dPe * Pe * ey["c2"] / ey["phi"] * pg[e] * strong * um, F.gg[0][e]) for e in range(dim)]
+            Aterms += [(-dtau_dPe * Pe * ey["c2_rel"] * pg[e] * strong * um, F.gg[0][e]) for e in range(dim)]
         Aterms.append((-drho * hq * um + (tau * d_strong_dp + dtau_dp * strong) * um, F.adv[0]))
         Aterms.append((tau * drho * hq * um * um, F.gg[0][0]))
         if hdot != 0.0:
@@ -349,7 +354,7 @@ class _Problem:
             c2 = kN * ey["c2"]
             # c2 (grad p . grad phi_j)(grad p . grad v) and d tau/d(grad p) strong (u . grad v)
             A = (A + asm(_supg_derivative, b, t=c2, u=gp, e=gp)
-                 + asm(_supg_derivative, b, t=-dtau_dPe * Pe * ey["c2"] / ey["phi"] * strong, u=u, e=gp))
+                 + asm(_supg_derivative, b, t=-dtau_dPe * Pe * ey["c2_rel"] * strong, u=u, e=gp))
         A = A.tocsr()
         D = (
             asm(_advection, b, b=dk_dh * pf.grad - rho * u)

@@ -161,6 +161,10 @@ class Film:
         if self.lubricant.eyring_stress is not None:
             raise InputError(f"lubricant.eyring_stress = {self.lubricant.eyring_stress!r}: the Reynolds film solver is "
                              "Newtonian; only the EHL solver (lubrication.ehl, finite elements) has Eyring flow")
+        if self.lubricant.herschel_bulkley is not None:
+            raise InputError(f"lubricant.herschel_bulkley = {self.lubricant.herschel_bulkley!r}: the Reynolds film "
+                             "solver is Newtonian; only the EHL solver (lubrication.ehl, finite elements) has "
+                             "Herschel-Bulkley flow")
         modes = self.gap.modes()
         for name in self.mode_velocities:
             if name not in modes:
