@@ -123,3 +123,31 @@ def test_eq26_as_printed_is_unbounded_as_notes_25_say():
     tau = T.limited_stress(5e5, 4.3e8, T.rheology(POLYUREA))
     assert tau == pytest.approx(351.8 + 8.44 * math.exp(ALPHA * 4.3e8) * 5e5**0.7196, rel=1e-14)
     assert 4e13 < tau < 6e13
+
+
+def test_elastic_slope_is_the_maxwell_strain_integral():
+    """The elastic limit's slope 2 G b^2/(u_e h): an element strained by v_s (x + b)/(u_e h) at x carries
+    tau = G times that; its integral over [-b, b] by quadrature (a paper-A cone slice: b 0.2 mm, h 5 um,
+    u_e 10 m/s, G 1 GPa) agrees to 1e-12; G = inf gives inf (no compliance)."""
+    g, b, ue, h, vs = 1e9, 2e-4, 10.0, 5e-6, 1e-3
+    direct, _ = quad(lambda x: g * vs * (x + b) / (ue * h), -b, b, epsabs=0.0, epsrel=1e-13)
+    assert T.elastic_strip_slope(g, b, ue, h) * vs == pytest.approx(direct, rel=1e-12)
+    assert T.elastic_strip_slope(math.inf, b, ue, h) == math.inf
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_elastic_limited_joins_the_elastic_and_viscous_limits(compiled):
+    """F = F_v tanh(k v/F_v): k v at small slip (the elastic film: 1e-6 relative when k v = 1e-3 F_v),
+    F_v at large slip (1e-9 when k v = 20 F_v), never above either, monotone in v for a fixed F_v; k = inf
+    returns F_v exactly and F_v = 0 gives 0."""
+    f = T.elastic_limited if compiled else T.elastic_limited.py_func
+    fv, k = 200.0, 3.4e4
+    v = 1e-3 * fv / k
+    assert f(fv, k, v) == pytest.approx(k * v, rel=1e-6)
+    v = 20 * fv / k
+    assert f(fv, k, v) == pytest.approx(fv, rel=1e-9)
+    vs = [10.0**e for e in range(-9, 1)]
+    out = [f(fv, k, x) for x in vs]
+    assert all(o <= min(fv, k * x) * (1 + 1e-15) for o, x in zip(out, vs))
+    assert all(b > a for a, b in zip(out, out[1:]) if b < fv * (1 - 1e-12))
+    assert f(fv, math.inf, 1e-12) == fv and f(0.0, k, 1.0) == 0.0

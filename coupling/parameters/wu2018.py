@@ -142,6 +142,10 @@ VALUES = {
     "grease_yield_regularisation_rate": P("1 Hz", "frequency", "assumed",
                                           "Papanastasiou rate D_r: removes the yield-stress jump at zero slip; "
                                           "far below the contacts' 1e3-1e7 1/s"),
+    "film_shear_modulus": P("1 GPa", "pressure", "assumed",
+                            "not in the paper: the EHL film's elastic shear modulus of the limited raceway traction "
+                            "(Johnson & Tevaarwerk 1977 report 0.3-3 GPa at 0.5-1 GPa for mineral oils); sets its "
+                            "initial slope 2 G b^2/(u_e h)"),
     "raceway_traction_law": P("paper", "text", "assumed",
                               "eq. 12 as printed (linear, unlimited); 'limited' is the extension"),
     "rib_contact_radius": P("85.6 mm", "length", "assumed",

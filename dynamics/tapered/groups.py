@@ -111,7 +111,8 @@ class Lubricant(Group):
     "apparent" (tau_y/D + phi D^(n-1) at ``shear_rate`` [1/s]) or "paper" (phi0's number as Pa s).
     The limited laws (raceway "limited", flange grease traction) use the grease with the limiting shear
     stress ``limiting_stress`` tau_L0 [Pa] (inf: none), ``limiting_slope`` gamma_L and the yield
-    regularisation ``yield_rate`` D_r [1/s]."""
+    regularisation ``yield_rate`` D_r [1/s]; the raceway's "limited" law adds the film's elastic shear
+    of modulus ``shear_modulus`` G [Pa] in series (inf: none, the near-Coulomb law)."""
 
     TABLE: ClassVar[str] = "lubricant"
 
@@ -125,10 +126,13 @@ class Lubricant(Group):
     limiting_stress: float = math.inf
     limiting_slope: float = 0.0
     yield_rate: float = 0.0
+    shear_modulus: float = math.inf
 
     def __post_init__(self):
         self.choice("reading", READINGS)
         self.non_negative("pressure_viscosity", "limiting_slope", "yield_rate")
+        if not self.shear_modulus > 0.0:
+            raise self.fail("shear_modulus", "must be > 0 (inf: no elastic compliance)")
         if not self.limiting_stress > 0.0:
             raise self.fail("limiting_stress", "must be > 0 (inf: no limit)")
         given = [getattr(self, k) is not None for k in ("yield_stress", "consistency", "exponent")]

@@ -41,7 +41,8 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   ideal entrainment speed: "paper" eq. 12 (linear in the sliding speed,
   :func:`lubrication.laws.traction.paper_raceway_traction`), "limited" the Herschel-Bulkley strip law
   with Barus consistency and a limiting shear stress (an extension,
-  :func:`lubrication.laws.traction.limited_strip_traction`), "none";
+  :func:`lubrication.laws.traction.limited_strip_traction`) in series with the film's elastic shear
+  (Johnson-Tevaarwerk's slope 2 G b^2/(u_e h), :func:`lubrication.laws.traction.elastic_limited`), "none";
 * flange friction (option ``flange_friction``, eqs. 22-23, :func:`lubrication.laws.flange.flange_friction`):
   mu_a q exp(-B lambda^C) + w f_grease against the roller end's sliding on the rib, f_grease eq. 27's
   limited Herschel-Bulkley traction over the Hertz ellipse (semi-axes and p0 scale as q^(1/3) from the
@@ -86,7 +87,8 @@ from lubrication.laws.film import dowson_toyoda_central
 from lubrication.laws.jit import INLINE, JIT
 from lubrication.laws.flange import flange_friction
 from lubrication.laws.slices import slice_contact_3d, slice_force
-from lubrication.laws.traction import limited_ellipse_traction, limited_strip_traction, paper_raceway_traction
+from lubrication.laws.traction import (elastic_limited, elastic_strip_slope, limited_ellipse_traction,
+                                      limited_strip_traction, paper_raceway_traction)
 
 from ..rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
 from .layout import *  # noqa: F401,F403  (indices and option codes: dynamics.tapered.layout)
@@ -150,13 +152,15 @@ def _traction_per_speed(load, radius, P):
 def _slice_traction(load, radius, vs, P):
     """Magnitude [N] of the raceway traction of a slice sliding at ``vs`` >= 0 [m/s] (the force opposes
     the roller's sliding): eq. 12 ("paper") or the limited Herschel-Bulkley strip law ("limited",
-    :func:`lubrication.laws.traction.limited_strip_traction` over the slice's Hertz strip)."""
+    :func:`lubrication.laws.traction.limited_strip_traction` over the slice's Hertz strip) in series with
+    the film's elastic shear (:func:`lubrication.laws.traction.elastic_limited`, shear modulus G)."""
     if P[P_TRACTION] == TRACTION_PAPER:
         return _traction_per_speed(load, radius, P) * vs
     if vs <= 0.0:
         return 0.0
     w, b, p0, h0 = _slice_film(load, radius, P)
-    return limited_strip_traction(vs, h0, b, p0, _rheo(P)) * P[P_WIDTH]
+    viscous = limited_strip_traction(vs, h0, b, p0, _rheo(P)) * P[P_WIDTH]
+    return elastic_limited(viscous, elastic_strip_slope(P[P_GSHEAR], b, P[P_UE], h0) * P[P_WIDTH], vs)
 
 
 @njit(**JIT)

@@ -37,8 +37,10 @@ LAND_NONE, LAND_CONTACT, LAND_FILM = 0.0, 1.0, 2.0
  P_POCKETMODE, P_LANDMODE, P_GRAV,
  P_TAUY, P_PHI0, P_NEXP, P_ALPHAG, P_TAUL0, P_GAMMAL, P_DR,
  P_FFRIC, P_MUA, P_FBC, P_FCC, P_LAMBDA, P_HRIB, P_FA1, P_FB1, P_FP01,
- P_KPOCKET, P_KLAND, P_VREG) = range(76)
-P_SIZE = 76
+ P_KPOCKET, P_KLAND, P_VREG,
+ # the film's shear modulus of the limited raceway traction (elastic_limited)
+ P_GSHEAR) = range(77)
+P_SIZE = 77
 
 # per-roller loads of loads_many / forces: columns
 LOAD_NAMES = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]")

@@ -175,6 +175,7 @@ class TaperedBearing:
             P[L.P_TAUY], P[L.P_PHI0], P[L.P_NEXP] = grease.yield_stress, grease.consistency, grease.exponent
             P[L.P_ALPHAG], P[L.P_TAUL0] = grease.pressure_viscosity, lu.limiting_stress
             P[L.P_GAMMAL], P[L.P_DR] = lu.limiting_slope, lu.yield_rate
+        P[L.P_GSHEAR] = lu.shear_modulus
         if fi.flange_friction != "none":
             fl = self.flange
             P[L.P_FFRIC] = L.FLANGE_FRICTIONS[fi.flange_friction]
