@@ -1,38 +1,48 @@
-"""Tapered-roller dynamics scene (``scene = "tapered"``): paper A's bearing in time (issue 23, first step).
+"""Tapered-roller dynamics scene (``scene = "tapered"``): paper A's bearing in time (issue 23).
 
-A case (usually ``parameters = "Wu2018"``: Table 1 and the parameter module's assumed values)::
+A case (usually ``parameters = "Wu2018"``: Table 1 and the parameter module's assumed values; each table
+maps one to one onto a group of :class:`dynamics.tapered.model.TaperedBearing`, field by field)::
 
     scene = "tapered"
     parameters = "Wu2018"
-    [operating]
+    [operating]                 # dynamics.tapered.groups.Operating
     speed = "2400 rpm"          # cone; cup fixed
     radial_load = "20 kN"       # along +y
-    axial = "locked"            # "locked" (at axial_displacement) or "force" (free under axial_load)
-    axial_displacement = "0 um"
-    [model]
-    slices = 20
-    traction = "paper"          # eq. 12 of paper A; "none"
-    cage = true                 # pockets and guide land (lubrication.laws.cage)
-    damping_alpha = "0.16 s/m"  # eq. 11's alpha_e
+    axial = "locked"            # "locked" (at axial_displacement: > 0 a preload) or "force" (free under axial_load)
+    [model]                     # Fidelity: the options of issue 22, each a key
+    slices = 10
+    traction = "limited"        # "paper" (eq. 12), "limited" (HB + limiting shear + elastic film), "none"
+    flange_friction = "none"    # "paper" (eqs. 22-23), "load_share", "none"
+    pocket = "film"             # "film" (eqs. 30-38), "contact" (contact only), "none" (no cage)
+    guide_land = "film"         # "film", "contact", "none" (with pocket = "none")
+    [lubricant]                 # Lubricant: grease = "polyurea" | "lithium" | "calcium" (Table 2 at temperature_c),
+    grease = "polyurea"         #   "custom" (yield_stress, consistency, exponent) or "none"
     [integrator]
-    duration = "20 ms"
-    sample_interval = "20 us"
+    method = "dopri5"           # or "rk4" with dt (refused above the contact modes' stability limit)
+    duration = "180 ms"
+    [analysis]
+    window = ["100 ms", "180 ms"]   # paper A's averaging window
 
 ``run`` starts from the quasi-static equilibrium (:func:`dynamics.tapered.quasistatic.solve`) with the
-cage and rollers at their ideal speeds, integrates :func:`dynamics.tapered.kernels.rhs` (DOPRI5) and
-writes ``summary.json`` (per roller and for the cage: means and ranges of tilt, skew and slip over the
-record's second half, paper A's definitions below; cage speed and slip; cone and cage centre excursions;
-largest loads; the assumed values), ``timeseries.npz`` (every state, and per roller tilt, skew, orbital
-speed, slip and the four loads) and ``roller_attitude.png``, ``slip.png``, ``cage_whirl.png``.
+cage and rollers at their ideal speeds, integrates :func:`dynamics.tapered.kernels.rhs` and writes
+``summary.json`` (for the paper's window and for the record's last cage revolution: per zone -- loaded,
+unloaded, all -- the mean, amplitude and largest magnitude of tilt, skew, slip and radial displacement;
+cage speed and slip, whirl radius, a periodicity measure; the quasi-static loads beside the largest
+dynamic ones; the assumed values), ``timeseries.npz`` (every state; per roller tilt, skew, speeds,
+slips, displacements, the loaded-zone marker, loads, friction and every slice load; the cage),
+``bearing.pvd`` with ``frames/*.vtu`` (cup, cone, rollers and cage for ParaView, loads and attitude
+as point data) and the PNGs ``roller_attitude.png`` (loaded zone shaded), ``roller_displacement.png``,
+``slip.png``, ``cage_whirl.png``, ``cone_orbit.png``, ``slice_loads.png``.
 
-Definitions (paper A, sec. 4; notes 2.9): at each sample the roller axis e is split in the roller's own
-radial frame (x axial, r radial through its centre, t tangential): tilt = atan2(e_r, e_x) - its initial
-value (rotation in the meridional plane), skew = asin(e_t) (rotation out of it); slip (eq. 52) =
-(omega_ideal - omega)/omega_ideal of the orbital speed of a roller's centre, and of the cage's spin,
-with omega_ideal the geometry's own ideal cage speed omega_i (1 - gamma)/2.
+Definitions (paper A, sec. 4; notes 2.9; :meth:`TaperedBearing.diagnostics`): at each sample the roller
+axis e is split in the roller's own radial frame (x axial, r radial through its centre, t tangential):
+tilt = atan2(e_r, e_x) and skew = asin(e_t), both minus their values at the start; slip (eq. 52) =
+(omega_ideal - omega)/omega_ideal of a roller centre's orbital speed and of the cage's spin, with
+omega_ideal the geometry's own ideal cage speed omega_i (1 - gamma)/2.  A roller is in the loaded zone
+while its cone load exceeds ``analysis.loaded_zone_fraction`` of the start's largest.  Periodicity:
+:func:`periodicity` (1 when every roller repeats its neighbour's signal one roller pass later).
 
-Not yet (issue 23): flange friction, side-beam contacts, the tilting cone, RK4, the ParaView series,
-the loaded-zone marker and the periodicity measure.
+Not yet (issue 23): side-beam contacts, the tilting cone, a rib film that follows the load.
 """
 from __future__ import annotations
 
@@ -41,7 +51,7 @@ import math
 import sys
 import time
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
 import numpy as np
 from pydantic import Field, model_validator
@@ -50,54 +60,131 @@ from lubrication.errors import ConvergenceError, InputError
 
 from . import outputs
 from .config import LimitsModel, PositiveInt, Q, _Model, resolved_toml, rule
+from .parameters.wu2018 import GREASE_TABLE as GREASES
 from .static_scene import BearingTable
 
 log = logging.getLogger(__name__)
 
-FIELD_FILES = (("timeseries.npz", "timeseries"), ("roller_attitude.png", "png"), ("slip.png", "png"),
-               ("cage_whirl.png", "png"))
+FIELD_FILES = (("timeseries.npz", "timeseries"), ("bearing.pvd", "pvd"), ("roller_attitude.png", "png"),
+               ("roller_displacement.png", "png"), ("slip.png", "png"), ("cage_whirl.png", "png"),
+               ("cone_orbit.png", "png"), ("slice_loads.png", "png"))
 
 
 class OperatingTable(_Model):
+    """:class:`dynamics.tapered.groups.Operating`."""
+
     speed: Q("angular velocity", ge=0) = 0.0
     radial_load: Q("force", ge=0) = 0.0
     axial: Literal["locked", "force"] = "locked"
     axial_load: Q("force", ge=0) = 0.0
     axial_displacement: Q("length") = 0.0
+    gravity: Q("acceleration", ge=0) = 0.0
 
     @model_validator(mode="after")
     def _axial(self):
-        if self.axial == "force" and self.axial_load == 0.0 and self.radial_load > 0.0:
-            raise rule("axial_load", 0.0, "must be > 0 with axial = 'force' and a radial load: a single tapered "
-                       "bearing under radial load alone has no equilibrium with a free axial DOF (paper_A_notes "
-                       "2.7); or set axial = 'locked'")
+        if self.axial == "force" and self.axial_load == 0.0:
+            raise rule("axial_load", 0.0, "must be > 0 with axial = 'force': a single tapered bearing has no "
+                       "axial equilibrium without an axial load (paper_A_notes 2.7); or set axial = 'locked'")
         return self
 
 
 class ModelTable(_Model):
+    """:class:`dynamics.tapered.groups.Fidelity` (the fidelity options of issue 22)."""
+
     slices: PositiveInt = 20
-    traction: Literal["none", "paper"] = "paper"
-    cage: bool = True
+    traction: Literal["none", "paper", "limited"] = "limited"
+    flange_friction: Literal["none", "paper", "load_share"] = "none"
+    pocket: Literal["none", "contact", "film"] = "film"
+    guide_land: Literal["none", "contact", "film"] = "film"
     damping_alpha: Q("inverse velocity", ge=0) = 0.16
     cone_mass: Q("mass", gt=0) = 5.0  # assumed (not in paper A)
+    quaternion_stabilisation: Q("frequency", ge=0) = 10.0
+    friction_speed: Q("velocity", gt=0) = 1e-3
     pocket_switch: Literal["continuous", "paper"] = "continuous"
 
 
 class LubricantTable(_Model):
-    viscosity: Q("dynamic viscosity", gt=0)
-    pressure_viscosity: Q("inverse pressure", ge=0)
+    """:class:`dynamics.tapered.groups.Lubricant`.  ``grease``: a grease of paper A's Table 2 at
+    ``temperature_c`` [C] (15-70; interpolated by :func:`lubrication.laws.grease.grease_at`), "custom"
+    (``yield_stress``, ``consistency``, ``exponent`` given) or "none" (a Newtonian oil only)."""
+
+    grease: Literal["none", "custom", "polyurea", "lithium", "calcium"] = "none"
+    temperature_c: float = 30.0
+    yield_stress: Q("pressure", ge=0) | None = None
+    consistency: Q("dimensionless", gt=0) | None = None   # phi [Pa s^n]: units depend on n
+    exponent: Q("dimensionless", gt=0, le=2) | None = None
+    reading: Literal["base_oil", "apparent", "paper"] = "base_oil"
+    base_oil_viscosity: Q("dynamic viscosity", gt=0) | None = None
+    pressure_viscosity: Q("inverse pressure", ge=0) = 0.0
+    shear_rate: Q("frequency", gt=0) | None = None
+    limiting_stress: Q("pressure", gt=0) = math.inf
+    limiting_slope: Q("dimensionless", ge=0) = 0.0
+    yield_rate: Q("frequency", ge=0) = 0.0
+    shear_modulus: Q("pressure", gt=0) = math.inf
+
+    @model_validator(mode="after")
+    def _grease(self):
+        given = [getattr(self, k) is not None for k in ("yield_stress", "consistency", "exponent")]
+        if self.grease == "custom" and not all(given):
+            missing = [k for k, g in zip(("yield_stress", "consistency", "exponent"), given) if not g]
+            raise rule(missing[0], None, "must be given with grease = 'custom'")
+        if self.grease != "custom" and any(given):
+            key = ("yield_stress", "consistency", "exponent")[given.index(True)]
+            raise rule(key, getattr(self, key), f"is only read with grease = 'custom' (grease = {self.grease!r})")
+        if self.grease in GREASES and not 15.0 <= self.temperature_c <= 70.0:
+            raise rule("temperature_c", self.temperature_c, "must lie in 15-70 C, the temperatures of paper A's "
+                       "Table 2 (not extrapolated)")
+        return self
+
+    def group_values(self) -> dict:
+        """The fields of :class:`dynamics.tapered.groups.Lubricant`."""
+        from lubrication.laws.grease import grease_at
+
+        out = {k: getattr(self, k) for k in ("reading", "base_oil_viscosity", "pressure_viscosity", "shear_rate",
+                                             "limiting_stress", "limiting_slope", "yield_rate", "shear_modulus")}
+        if self.grease in GREASES:
+            g = grease_at(GREASES[self.grease], self.temperature_c, self.pressure_viscosity, self.grease)
+            out.update(yield_stress=g.yield_stress, consistency=g.consistency, exponent=g.exponent)
+        elif self.grease == "custom":
+            out.update(yield_stress=self.yield_stress, consistency=self.consistency, exponent=self.exponent)
+        return out
 
 
 class CageTable(_Model):
-    mass: Q("mass", gt=0)
-    pocket_critical_film: Q("length", gt=0)
-    pocket_stiffness: Q("stiffness", gt=0)
-    pocket_damping: Q("damping", ge=0)
-    boundary_friction: Q("dimensionless", ge=0)
-    land_critical_film: Q("length", gt=0)
+    """:class:`dynamics.tapered.groups.Cage` (read when ``model.pocket`` != "none")."""
+
+    mass: Q("mass", gt=0) | None = None
+    boundary_friction: Q("dimensionless", ge=0) = 0.1
+    modulus: Q("pressure", gt=0) | None = None
+    poisson: Q("dimensionless", ge=0, lt=0.5) | None = None
+    pocket_critical_film: Q("length", ge=0) = 0.0
+    pocket_stiffness: Q("stiffness", ge=0) = 0.0
+    pocket_damping: Q("damping", ge=0) = 0.0
+    land_critical_film: Q("length", ge=0) = 0.0
+
+
+class FlangeTable(_Model):
+    """:class:`dynamics.tapered.groups.Flange` (read when ``model.flange_friction`` != "none")."""
+
+    asperity_friction: Q("dimensionless", ge=0) = 0.2
+    asperity_b: Q("dimensionless", ge=0) | None = None
+    asperity_c: Q("dimensionless", ge=0) | None = None
+    roughness: Q("length", gt=0) | None = None
+    rib_film: Literal["hamrock_dowson", "paper_eq24"] = "hamrock_dowson"
+
+
+class InitialTable(_Model):
+    """:class:`dynamics.tapered.groups.Initial`: offsets (y, z) of the cone's and the cage's centres."""
+
+    cone_offset: Annotated[list[Q("length")], Field(min_length=2, max_length=2)] = Field(
+        default_factory=lambda: [0.0, 0.0])
+    cage_offset: Annotated[list[Q("length")], Field(min_length=2, max_length=2)] = Field(
+        default_factory=lambda: [0.0, 0.0])
 
 
 class IntegratorTable(_Model):
+    method: Literal["dopri5", "rk4"] = "dopri5"
+    dt: Q("time", gt=0) | None = None
     rtol: Q("dimensionless", gt=0, lt=1) = 1e-7
     atol: Q("dimensionless", gt=0) = 1e-12
     duration: Q("time", gt=0)
@@ -106,6 +193,9 @@ class IntegratorTable(_Model):
 
     @model_validator(mode="after")
     def _samples(self):
+        if self.method == "rk4" and self.dt is None:
+            raise rule("dt", None, "is required with method = 'rk4' (a fixed step below the contact modes' limit, "
+                       "about 19 us for paper A's bearing: e.g. '10 us')")
         n = self.duration / self.sample_interval
         if n < 2:
             raise rule("sample_interval", self.sample_interval, f"must be below integrator.duration = "
@@ -115,8 +205,26 @@ class IntegratorTable(_Model):
         return self
 
 
+class AnalysisTable(_Model):
+    """``window`` [s]: the averaging window of the summary (paper A's 0.1-0.18 s), clipped to the record;
+    beside it the summary always reports the record's last cage revolution.  A roller is in the loaded
+    zone when its cone load exceeds ``loaded_zone_fraction`` of the quasi-static start's largest.
+    ``frames``: ParaView frames of the ``.pvd`` series."""
+
+    window: Annotated[list[Q("time", ge=0)], Field(min_length=2, max_length=2)] = Field(
+        default_factory=lambda: [0.1, 0.18])
+    loaded_zone_fraction: Q("dimensionless", gt=0, lt=1) = 0.01
+    frames: PositiveInt = 50
+
+    @model_validator(mode="after")
+    def _window(self):
+        if not self.window[1] > self.window[0]:
+            raise rule("window", self.window, "must be [start, end] with end > start")
+        return self
+
+
 class OutputTable(_Model):
-    write: list[Literal["timeseries", "png"]] = Field(default_factory=lambda: ["timeseries", "png"])
+    write: list[Literal["timeseries", "png", "pvd"]] = Field(default_factory=lambda: ["timeseries", "png", "pvd"])
 
 
 class TaperedCase(_Model):
@@ -126,8 +234,11 @@ class TaperedCase(_Model):
     operating: OperatingTable = Field(default_factory=OperatingTable)
     model: ModelTable = Field(default_factory=ModelTable)
     lubricant: LubricantTable
-    cage: CageTable
+    cage: CageTable = Field(default_factory=CageTable)
+    flange: FlangeTable = Field(default_factory=FlangeTable)
+    initial: InitialTable = Field(default_factory=InitialTable)
     integrator: IntegratorTable
+    analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)
     limits: LimitsModel = Field(default_factory=LimitsModel)
     smoke: dict[str, Any] | None = None
@@ -137,8 +248,8 @@ CaseModel = TaperedCase
 
 
 def build(case: TaperedCase):
-    """The :class:`dynamics.tapered.model.TaperedBearing` of a case; a bad value is a one-line error
-    naming the key."""
+    """The :class:`dynamics.tapered.model.TaperedBearing` of a case: each table one group, field by field
+    (the lubricant's grease resolved from Table 2); a bad value is a one-line error naming the key."""
     from dynamics.errors import DynamicsInputError
     from dynamics.tapered import groups as G
     from dynamics.tapered.model import TaperedBearing
@@ -146,87 +257,148 @@ def build(case: TaperedCase):
     from .static_scene import build as build_geometry
 
     g = build_geometry(case)
-    op, m, c = case.operating, case.model, case.cage
-    level = "film" if m.cage else "none"
+    m = case.model
     try:
-        return TaperedBearing(
-            geometry=g,
-            operating=G.Operating(speed=op.speed, radial_load=op.radial_load, axial=op.axial,
-                                  axial_load=op.axial_load, axial_displacement=op.axial_displacement),
-            fidelity=G.Fidelity(slices=m.slices, traction=m.traction, pocket=level, guide_land=level,
-                                damping_alpha=m.damping_alpha, cone_mass=m.cone_mass, pocket_switch=m.pocket_switch),
-            lubricant=G.Lubricant(base_oil_viscosity=case.lubricant.viscosity,
-                                  pressure_viscosity=case.lubricant.pressure_viscosity),
-            cage=G.Cage(mass=c.mass, boundary_friction=c.boundary_friction,
-                        pocket_critical_film=c.pocket_critical_film, pocket_stiffness=c.pocket_stiffness,
-                        pocket_damping=c.pocket_damping, land_critical_film=c.land_critical_film))
+        groups = {"operating": G.Operating(**dict(case.operating)),
+                  "fidelity": G.Fidelity(**dict(m)),
+                  "lubricant": G.Lubricant(**case.lubricant.group_values()),
+                  "initial": G.Initial(cone_offset=tuple(case.initial.cone_offset),
+                                       cage_offset=tuple(case.initial.cage_offset))}
+        if m.pocket != "none":
+            c = dict(case.cage)
+            if c["mass"] is None:
+                raise DynamicsInputError(f"cage.mass = None: must be given with model.pocket = {m.pocket!r}",
+                                         key="cage.mass")
+            groups["cage"] = G.Cage(**c)
+        if m.flange_friction != "none":
+            f = dict(case.flange)
+            for key in ("asperity_b", "asperity_c", "roughness"):
+                if f[key] is None:
+                    raise DynamicsInputError(f"flange.{key} = None: must be given with model.flange_friction = "
+                                             f"{m.flange_friction!r}", key=f"flange.{key}")
+            groups["flange"] = G.Flange(**f)
+        return TaperedBearing(geometry=g, **groups)
     except DynamicsInputError as exc:
         raise InputError(str(exc)) from None
 
 
+
 def describe(case: TaperedCase, model) -> str:
-    op = case.operating
-    return (f"tapered roller bearing, {model.n_rollers} rollers x {model.n_slices} slices, cage "
-            f"{'on' if model.has_cage else 'off'}, traction {model.traction}; {op.speed * 30 / math.pi:g} rpm, "
-            f"F_r {op.radial_load:g} N, axial {op.axial}; {case.integrator.duration * 1e3:g} ms")
+    op, m, ig = case.operating, case.model, case.integrator
+    step = f"RK4 at {ig.dt * 1e6:g} us" if ig.method == "rk4" else f"DOPRI5 rtol {ig.rtol:g}"
+    return (f"tapered roller bearing, {model.n_rollers} rollers x {model.n_slices} slices, traction {m.traction}, "
+            f"pocket {m.pocket}, land {m.guide_land}, flange friction {m.flange_friction}; "
+            f"{op.speed * 30 / math.pi:g} rpm, F_r {op.radial_load:g} N, axial {op.axial}; "
+            f"{ig.duration * 1e3:g} ms, {step}")
 
 
-def attitude(model, Y):
-    """(tilt [rad], skew [rad], orbital speed [rad/s], radius [m]) per sample and roller (module docstring)."""
-    from scipy.spatial.transform import Rotation
+def record(model, Y, y0, qs, fraction):
+    """Everything the outputs read from the sampled states: :meth:`TaperedBearing.diagnostics` plus the
+    rollers' "Radial displacement [m]" and "Axial displacement [m]" of their centres from the start (paper
+    A's Fig. 5b) and "Loaded zone [-]" (True where a roller's cone load exceeds ``fraction`` of the
+    quasi-static start's largest cone load)."""
+    from dynamics.tapered import layout as L
 
-    from dynamics.rotations import to_scipy
-    from dynamics.tapered import kernels as K
-
-    n, Z = Y.shape[0], model.n_rollers
-    tilt, skew, orbital = np.empty((n, Z)), np.empty((n, Z)), np.empty((n, Z))
-    for j in range(Z):
-        b = K.N_CONE + j * K.NB
-        c, q, v = Y[:, b:b + 3], Y[:, b + 3:b + 7], Y[:, b + 7:b + 10]
-        e = Rotation.from_quat(to_scipy(q)).apply([1.0, 0.0, 0.0])   # the roller axis R(q) e_x (normalises q)
-        rr = np.hypot(c[:, 1], c[:, 2])
-        er_ = (e[:, 1] * c[:, 1] + e[:, 2] * c[:, 2]) / rr
-        et = (-e[:, 1] * c[:, 2] + e[:, 2] * c[:, 1]) / rr
-        beta = np.arctan2(er_, e[:, 0])
-        tilt[:, j] = beta - beta[0]
-        skew[:, j] = np.arcsin(np.clip(et, -1.0, 1.0))
-        orbital[:, j] = (c[:, 1] * v[:, 2] - c[:, 2] * v[:, 1]) / rr**2
-    return tilt, skew, orbital
+    D = model.diagnostics(Y, y0)
+    Z = model.n_rollers
+    idx = L.N_CONE + L.NB * np.arange(Z)
+    c = np.stack([Y[:, idx + k] for k in range(3)], axis=-1)          # (n, Z, 3)
+    c0 = np.stack([y0[idx + k] for k in range(3)], axis=-1)
+    D["Radial displacement [m]"] = np.hypot(c[..., 1], c[..., 2]) - np.hypot(c0[:, 1], c0[:, 2])
+    D["Axial displacement [m]"] = c[..., 0] - c0[:, 0]
+    D["Loaded zone [-]"] = D["Cone load [N]"] > fraction * float(np.max(qs.cone_loads))
+    return D
 
 
-def summarise(case, model, t, Y, loads) -> dict:
-    from dynamics.tapered import kernels as K
+def _stats(x) -> dict:
+    x = np.asarray(x, dtype=float)
+    x = x[np.isfinite(x)]
+    if x.size == 0:
+        return {"mean": None, "amplitude": None, "largest magnitude": None}
+    return {"mean": float(np.mean(x)), "amplitude": float(0.5 * (np.max(x) - np.min(x))),
+            "largest magnitude": float(np.max(np.abs(x)))}
 
-    g = model.geometry
-    ideal = float(g.kinematics(model.speed)["cage speed [rad/s]"])
-    tilt, skew, orbital = attitude(model, Y)
-    half = t >= 0.5 * t[-1]
-    s = {"Rollers [-]": model.n_rollers, "Slices per roller [-]": model.n_slices, "Traction": model.traction,
-         "Cage": bool(model.has_cage), "Cone speed [rpm]": model.speed * 30 / math.pi,
+
+def periodicity(t, x, lag):
+    """Pearson correlation of roller j's signal ``x[:, j]`` at t + ``lag`` with roller j+1's at t, over
+    all rollers and the samples of ``t`` where t + lag is recorded.  In a motion that is steady in the
+    loaded zone's frame, roller j reaches roller j+1's azimuth one roller pass (``lag`` = 2 pi/(Z
+    omega_c)) later and repeats its signal: 1 for a periodic motion, near 0 for an irregular one.  None
+    when the window is shorter than the lag or the signal constant."""
+    keep = t + lag <= t[-1]
+    if keep.sum() < 3:
+        return None
+    later = np.stack([np.interp(t[keep] + lag, t, x[:, j]) for j in range(x.shape[1])], axis=1)
+    nxt = np.roll(x[keep], -1, axis=1)
+    a, b = later.ravel() - later.mean(), nxt.ravel() - nxt.mean()
+    den = math.sqrt(float(a @ a) * float(b @ b))
+    return float(a @ b / den) if den > 0 else None
+
+
+def window_summary(model, t, D, lo, hi) -> dict:
+    """Means, amplitudes (half the range) and largest magnitudes of tilt, skew, roller slip and radial
+    displacement per zone (loaded, unloaded, all) over lo <= t <= hi; the cage's speed and slip; the
+    periodicity of skew and tilt (:func:`periodicity` at the measured roller-pass period)."""
+    w = (t >= lo) & (t <= hi)
+    out = {"Window [s]": [float(t[w][0]), float(t[w][-1])], "Samples [-]": int(w.sum())}
+    zone = D["Loaded zone [-]"][w]
+    for name, key in (("Tilt [rad]", "Tilt [rad]"), ("Skew [rad]", "Skew [rad]"), ("Roller slip [-]", "Roller slip [-]"),
+                      ("Spin slip [-]", "Spin slip [-]"), ("Radial displacement [m]", "Radial displacement [m]")):
+        x = D[key][w]
+        out[name] = {"loaded zone": _stats(x[zone]), "unloaded zone": _stats(x[~zone]), "all": _stats(x)}
+    for name in ("Tilt [rad]", "Skew [rad]"):
+        m = out[name]["all"]["mean"]
+        out[name.replace("[rad]", "mean [deg]")] = None if m is None else math.degrees(m)
+    out["Rollers in the loaded zone, mean [-]"] = float(np.mean(zone.sum(axis=1)))
+    orbital = float(np.mean(D["Orbital speed [rad/s]"][w]))
+    if orbital > 0.0:
+        lag = 2.0 * math.pi / (model.n_rollers * orbital)
+        out["Roller pass period [s]"] = lag
+        out["Skew periodicity [-]"] = periodicity(t[w], D["Skew [rad]"][w], lag)
+        out["Tilt periodicity [-]"] = periodicity(t[w], D["Tilt [rad]"][w], lag)
+    if "Cage speed [rad/s]" in D:
+        out["Cage speed, mean [rpm]"] = float(np.mean(D["Cage speed [rad/s]"][w])) * 30 / math.pi
+        out["Cage slip [-]"] = _stats(D["Cage slip [-]"][w])
+        r = np.hypot(*D["Cage centre [m]"][w].T)
+        out["Cage centre from the cone's, mean [m]"] = float(np.mean(r))
+        out["Cage centre from the cone's, largest [m]"] = float(np.max(r))
+    return out
+
+
+def summarise(case, model, t, Y, D, qs) -> dict:
+    """The scene's summary (module docstring): the paper's window and the last cage revolution."""
+    kin = model.ideal()
+    ideal = float(kin["cage speed [rad/s]"])
+    s = {"Rollers [-]": model.n_rollers, "Slices per roller [-]": model.n_slices,
+         "Fidelity": {k: getattr(case.model, k) for k in ("traction", "flange_friction", "pocket", "guide_land",
+                                                         "pocket_switch")},
+         "Integrator": case.integrator.method, "Cone speed [rpm]": model.speed * 30 / math.pi,
          "Simulated time [s]": float(t[-1]), "Samples [-]": int(t.size),
-         "Ideal cage speed [rad/s]": ideal, "Analysis window [s]": [float(t[half][0]), float(t[-1])]}
-    for name, arr, unit in (("tilt", tilt, "rad"), ("skew", skew, "rad")):
-        a = arr[half]
-        s[f"Roller {name}, mean [{unit}]"] = float(np.mean(a))
-        s[f"Roller {name}, mean [deg]"] = math.degrees(float(np.mean(a)))
-        s[f"Roller {name}, largest magnitude [{unit}]"] = float(np.max(np.abs(a)))
-    if ideal > 0.0:
-        slip = (ideal - orbital[half]) / ideal
-        s["Roller slip, mean [-]"] = float(np.mean(slip))
-        s["Roller slip, largest magnitude [-]"] = float(np.max(np.abs(slip)))
-    if model.has_cage:
-        b = K.N_CONE + K.NB * model.n_rollers
-        wc = Y[:, b + 10]
-        s["Cage speed at end [rad/s]"] = float(wc[-1])
-        if ideal > 0.0:
-            s["Cage slip, mean [-]"] = float(np.mean((ideal - wc[half]) / ideal))
-        whirl = np.hypot(Y[:, b + 1] - Y[:, 1], Y[:, b + 2] - Y[:, 2])
-        s["Cage centre excursion from the cone, largest [m]"] = float(np.max(whirl))
-        s["Largest pocket load [N]"] = float(np.max(loads[:, :, 3]))
+         "Ideal cage speed [rad/s]": ideal, "Ideal cage speed [rpm]": ideal * 30 / math.pi,
+         "Ideal roller spin relative to the cage [rad/s]": float(kin["roller spin relative to cage [rad/s]"]),
+         "Ideal kinematics": "the model's own geometry: cage omega_i (1 - gamma)/2 (TaperedRollerGeometry.kinematics)",
+         "Quasi-static largest cup load [N]": float(np.max(qs.cup_loads)),
+         "Quasi-static largest cone load [N]": float(np.max(qs.cone_loads)),
+         "Quasi-static largest flange load [N]": float(np.max(qs.flange_loads))}
+    lo, hi = case.analysis.window
+    if t[-1] >= lo + (t[1] - t[0]):
+        s["Paper window (analysis.window)"] = window_summary(model, t, D, lo, min(hi, t[-1]))
+    else:
+        s["Paper window (analysis.window)"] = (f"not reached: the record ends at {t[-1]:g} s, the window starts "
+                                               f"at {lo:g} s")
+    period = 2.0 * math.pi / ideal if ideal > 0.0 else math.inf
+    if t[-1] >= period:
+        s["Last cage revolution"] = window_summary(model, t, D, t[-1] - period, t[-1])
+    else:
+        s["Record's second half (shorter than a cage revolution)"] = window_summary(model, t, D, 0.5 * t[-1], t[-1])
+    end = {"Largest cup load [N]": "Cup load [N]", "Largest cone load [N]": "Cone load [N]",
+           "Largest flange load [N]": "Flange load [N]", "Largest pocket load [N]": "Pocket load [N]"}
+    for k, key in end.items():
+        s[k] = float(np.max(D[key]))
+    s["Largest cup load at the end [N]"] = float(np.max(D["Cup load [N]"][-1]))
     s["Cone centre excursion, largest [m]"] = float(np.max(np.hypot(Y[:, 1] - Y[0, 1], Y[:, 2] - Y[0, 2])))
-    s["Largest cup load [N]"] = float(np.max(loads[:, :, 0]))
-    s["Largest cone load [N]"] = float(np.max(loads[:, :, 1]))
-    s["Largest flange load [N]"] = float(np.max(loads[:, :, 2]))
+    if "Guide land load [N]" in D:
+        s["Largest guide land load [N]"] = float(np.max(D["Guide land load [N]"]))
     return s
 
 
@@ -236,43 +408,68 @@ class TaperedRun:
     files: list = field(default_factory=list)
     t: Any = None
     y: Any = None
+    diagnostics: dict = field(default_factory=dict)
 
 
 def headline(s: dict) -> list[str]:
-    keys = ("Simulated time [s]", "Roller tilt, mean [rad]", "Roller skew, mean [rad]", "Roller slip, mean [-]",
-            "Cage slip, mean [-]", "Largest cup load [N]", "Accepted steps [-]", "Integration wall time [s]")
-    return [f"{k:<44} {s[k]:.6g}" if isinstance(s[k], float) else f"{k:<44} {s[k]}" for k in keys if k in s]
+    lines = []
+    for k in ("Simulated time [s]", "Ideal cage speed [rpm]", "Largest cup load [N]", "Accepted steps [-]",
+              "Integration wall time [s]"):
+        if k in s:
+            lines.append(f"{k:<44} {s[k]:.6g}" if isinstance(s[k], float) else f"{k:<44} {s[k]}")
+    for name, key in (("paper window", "Paper window (analysis.window)"), ("last cage revolution", "Last cage revolution"),
+                      ("second half", "Record's second half (shorter than a cage revolution)")):
+        w = s.get(key)
+        if isinstance(w, dict):
+            break
+    lines.append(f"Averaged over the {name}: {w['Window [s]'][0]:.4g}-{w['Window [s]'][1]:.4g} s")
+    for k, unit in (("Tilt [rad]", "rad"), ("Skew [rad]", "rad"), ("Roller slip [-]", "-")):
+        v = w[k]["loaded zone"]["mean"]
+        if v is not None:
+            label = f"  {k.rpartition(' [')[0]}, loaded zone, mean [{unit}]"
+            lines.append(f"{label:<44} {v:.6g}")
+    if "Cage speed, mean [rpm]" in w:
+        lines.append(f"{'  Cage speed, mean [rpm]':<44} {w['Cage speed, mean [rpm]']:.6g}")
+    return lines
 
 
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:
-    from dynamics.errors import IntegrationError
+    from dynamics.errors import DynamicsInputError, IntegrationError
     from dynamics.integrators import integrate
     from dynamics.tapered import kernels as K
 
     t0 = time.perf_counter()
     model = build(case)
     args = model.args()
-    y0 = model.start_state()
+    qs = model.quasi_static()
+    y0 = model.start_state(qs)
     t_build = time.perf_counter() - t0
     log.info("integrating %s", describe(case, model))
     ig = case.integrator
     t_out = np.arange(0.0, ig.duration * (1 + 1e-12), ig.sample_interval)
+    kw = dict(method="dopri5", rtol=ig.rtol, atol=ig.atol)
+    if ig.method == "rk4":
+        kw = dict(method="rk4", dt=ig.dt, omega_max=model.omega_max())
     try:
-        res = integrate(K.rhs, y0, t_out, args, method="dopri5", rtol=ig.rtol, atol=ig.atol, max_steps=ig.max_steps,
-                        progress=sys.stderr.isatty(), n_chunks=100)
+        res = integrate(K.rhs, y0, t_out, args, max_steps=ig.max_steps, progress=sys.stderr.isatty(), n_chunks=100,
+                        **kw)
+    except DynamicsInputError as exc:
+        raise InputError(f"integrator.dt = {ig.dt:g} s: {exc}") from None
     except IntegrationError as exc:
-        raise ConvergenceError(f"{exc} (integrator.rtol = {ig.rtol:g})") from None
+        what = f"integrator.dt = {ig.dt:g} s" if ig.method == "rk4" else f"integrator.rtol = {ig.rtol:g}"
+        raise ConvergenceError(f"{exc} ({what})") from None
     t_int = time.perf_counter() - t0 - t_build
-    loads = K.loads_many(res.y, args)
-    scene = summarise(case, model, res.t, res.y, loads)
+    D = record(model, res.y, y0, qs, case.analysis.loaded_zone_fraction)
+    scene = summarise(case, model, res.t, res.y, D, qs)
     scene.update(res.stats)
     scene["Integration wall time [s]"] = t_int
+    if ig.method == "rk4":
+        scene["RK4 stable step estimate [s]"] = 2.0 * math.sqrt(2.0) / model.omega_max()
     summary = outputs.run_summary(case, name, smoke, scene, t0, t_build)
-    result = TaperedRun(summary=summary, t=res.t, y=res.y)
+    result = TaperedRun(summary=summary, t=res.t, y=res.y, diagnostics=D)
     if out_dir is None:
         return result
     write = case.output.write
-    tilt, skew, orbital = attitude(model, res.y)
     from pathlib import Path
 
     out = Path(out_dir)
@@ -280,21 +477,24 @@ def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str =
         outputs.write_text(stage / "case.resolved.toml",
                            resolved_toml(case, outputs.resolved_header(name, source, smoke)))
         if "timeseries" in write:
-            cols = {n: res.y[:, i] for i, n in enumerate(model.state_names())}
-            for j in range(model.n_rollers):
-                cols[f"Roller {j} tilt [rad]"] = tilt[:, j]
-                cols[f"Roller {j} skew [rad]"] = skew[:, j]
-                cols[f"Roller {j} orbital speed [rad/s]"] = orbital[:, j]
-                for k, what in enumerate(("cup", "cone", "flange", "pocket")):
-                    cols[f"Roller {j} {what} load [N]"] = loads[:, j, k]
-            outputs.write_timeseries(stage / "timeseries.npz", res.t, cols, {"Case": name, "Scene": "tapered"})
+            outputs.write_timeseries(stage / "timeseries.npz", res.t, _columns(model, res.y, D),
+                                     {"Case": name, "Scene": "tapered"})
+        if "pvd" in write:
+            (stage / "frames").mkdir()
+            picks = np.unique(np.linspace(0, len(res.t) - 1, min(case.analysis.frames, len(res.t))).round().astype(int))
+            entries = []
+            for k, i in enumerate(picks):
+                fname = f"frames/frame_{k:05d}.vtu"
+                frame_mesh(model, res.y[i], {key: D[key][i] for key in FRAME_FIELDS}).save(stage / fname)
+                entries.append((float(res.t[i]), fname))
+            outputs.write_pvd(stage / "bearing.pvd", entries)
         if "png" in write:
             import matplotlib
 
             matplotlib.use("Agg")
             import matplotlib.pyplot as plt
 
-            for fname, fig in _figures(model, res.t, res.y, tilt, skew, orbital).items():
+            for fname, fig in _figures(model, res.t, res.y, D, qs).items():
                 try:
                     outputs.save_figure(stage / fname, fig)
                 finally:
@@ -305,50 +505,164 @@ def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str =
     return result
 
 
-def _figures(model, t, Y, tilt, skew, orbital) -> dict:
-    from matplotlib.figure import Figure
+PER_ROLLER = ("Tilt [rad]", "Skew [rad]", "Orbital speed [rad/s]", "Spin speed [rad/s]", "Roller slip [-]",
+              "Spin slip [-]", "Radial displacement [m]", "Axial displacement [m]", "Loaded zone [-]",
+              "Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]", "Cup traction [N]",
+              "Cone traction [N]", "Flange friction [N]", "Pocket friction [N]")
+FRAME_FIELDS = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]", "Tilt [rad]", "Skew [rad]",
+                "Roller slip [-]", "Loaded zone [-]")
 
-    from dynamics.tapered import kernels as K
+
+def _columns(model, Y, D) -> dict:
+    """The time series' columns: every state, then per roller the :data:`PER_ROLLER` diagnostics and its
+    slice loads, then the cage's."""
+    cols = {n: Y[:, i] for i, n in enumerate(model.state_names())}
+    for j in range(model.n_rollers):
+        for key in PER_ROLLER:
+            name, _, unit = key.rpartition(" [")
+            cols[f"Roller {j} {name[0].lower()}{name[1:]} [{unit}"] = D[key][:, j].astype(float)
+        for r, race in enumerate(("cup", "cone")):
+            for k in range(model.n_slices):
+                cols[f"Roller {j} {race} slice {k} load [N]"] = D["Slice loads [N]"][:, j, r, k]
+    if "Cage speed [rad/s]" in D:
+        cols["Cage speed [rad/s]"] = D["Cage speed [rad/s]"]
+        cols["Cage slip [-]"] = D["Cage slip [-]"]
+        cols["Cage centre from the cone's, y [m]"] = D["Cage centre [m]"][:, 0]
+        cols["Cage centre from the cone's, z [m]"] = D["Cage centre [m]"][:, 1]
+        cols["Guide land load [N]"] = D["Guide land load [N]"]
+    for k, ax in enumerate("xyz"):
+        cols[f"Force of rollers and cage on the cone, {ax} [N]"] = D["Cone force [N]"][:, k]
+    return cols
+
+
+def frame_mesh(model, y, fields: dict, n_around: int = 16, n_along: int = 7):
+    """One ParaView frame (pyvista UnstructuredGrid): the cup's and the cone's raceway surfaces (the cone
+    moved by its displacement; both surfaces of revolution, so the cone's spin does not show), each roller
+    as its crowned frustum placed by its centre and quaternion, and the cage as a ring at its centre.  Cell
+    data "Body [-]" (0 cup, 1 cone, 2.. rollers, last the cage); point data per roller from ``fields``
+    (arrays over rollers: loads, tilt, skew, slip, loaded zone; 0 on rings and cage)."""
+    import pyvista as pv
+    from scipy.spatial.transform import Rotation
+
+    from dynamics.rotations import to_scipy
+    from dynamics.tapered import layout as L
+
+    g = model.geometry
+    l = g.effective_length
+    u = np.linspace(-0.5 * l, 0.5 * l, n_along)
+    t = np.linspace(0.0, 2.0 * np.pi, n_around + 1)
+    _, _, _, uc = g.roller_mass_properties()
+    blocks = []
+
+    def grid(pts, body, values):
+        m = pv.StructuredGrid(pts[..., 0], pts[..., 1], pts[..., 2]).cast_to_unstructured_grid()
+        m.cell_data["Body [-]"] = np.full(m.n_cells, body, dtype=np.int32)
+        for key, v in values.items():
+            m.point_data[key] = np.full(m.n_points, float(v))
+        return m
+
+    zero = {k: 0.0 for k in fields}
+    psi = np.linspace(0.0, 2.0 * np.pi, 4 * n_around + 1)
+    for body, which, shift in ((0, "cup", (0.0, 0.0, 0.0)), (1, "cone", y[0:3])):
+        ends = np.array([g.contact_point(ui, which) for ui in (u[0], u[-1])])
+        X, P = np.meshgrid(np.linspace(ends[0, 0], ends[1, 0], n_along), psi, indexing="ij")
+        R, _ = np.meshgrid(np.linspace(ends[0, 1], ends[1, 1], n_along), psi, indexing="ij")
+        pts = np.stack([X + shift[0], R * np.cos(P) + shift[1], R * np.sin(P) + shift[2]], axis=-1)
+        blocks.append(grid(pts, body, zero))
+    rho = np.asarray(g.roller_radius(u), dtype=float)
+    U, T = np.meshgrid(u - uc, t, indexing="ij")
+    RHO, _ = np.meshgrid(rho, t, indexing="ij")
+    body_pts = np.stack([U, RHO * np.cos(T), RHO * np.sin(T)], axis=-1).reshape(-1, 3)
+    for j in range(model.n_rollers):
+        b = L.N_CONE + j * L.NB
+        pts = Rotation.from_quat(to_scipy(y[b + 3:b + 7])).apply(body_pts) + y[b:b + 3]
+        blocks.append(grid(pts.reshape(U.shape + (3,)), 2 + j, {k: v[j] for k, v in fields.items()}))
+    if model.has_cage:
+        b = L.N_CONE + L.NB * model.n_rollers
+        ro, ri, h = 0.5 * g.cage_outer_diameter, 0.5 * g.cage_inner_diameter, g.cage_thickness
+        Rr, P = np.meshgrid([ri, ro], psi, indexing="ij")
+        pts = np.stack([np.full_like(Rr, 0.0), Rr * np.cos(P), Rr * np.sin(P)], axis=-1).reshape(-1, 3)
+        pts = Rotation.from_quat(to_scipy(y[b + 3:b + 7])).apply(pts) + y[b:b + 3]
+        blocks.append(grid(pts.reshape(Rr.shape + (3,)), 2 + model.n_rollers, zero))
+    return pv.merge(blocks, merge_points=False)
+
+
+def _figures(model, t, Y, D, qs) -> dict:
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Circle
 
     ms = t * 1e3
-    ideal = float(model.geometry.kinematics(model.speed)["cage speed [rad/s]"])
     figs = {}
+
+    def shade(ax, j=0):
+        z = D["Loaded zone [-]"][:, j]
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], z.astype(int), [0]])))
+        for a, b in zip(edges[::2], edges[1::2]):
+            ax.axvspan(ms[a], ms[min(b, len(ms) - 1)], color="0.9", lw=0)
+
     fig = Figure(figsize=(10, 4))
-    a, b = fig.subplots(1, 2)
-    a.plot(ms, tilt[:, 0], label="roller 0")
-    a.plot(ms, np.mean(tilt, axis=1), "k", lw=0.8, label="mean of all")
-    a.set_xlabel("time [ms]")
-    a.set_ylabel("tilt [rad]")
-    a.legend()
-    b.plot(ms, skew[:, 0], label="roller 0")
-    b.plot(ms, np.mean(skew, axis=1), "k", lw=0.8, label="mean of all")
-    b.set_xlabel("time [ms]")
-    b.set_ylabel("skew [rad]")
-    b.legend()
+    axes = fig.subplots(1, 2)
+    for ax, key in zip(axes, ("Tilt [rad]", "Skew [rad]")):
+        shade(ax)
+        ax.plot(ms, D[key][:, 0], label="roller 0 (grey: in the loaded zone)")
+        ax.plot(ms, np.mean(D[key], axis=1), "k", lw=0.8, label="mean of all rollers")
+        ax.set_xlabel("time [ms]")
+        ax.set_ylabel(key.lower().replace("[", "from the start ["))
+        ax.legend(fontsize=8)
     fig.tight_layout()
     figs["roller_attitude.png"] = fig
+    fig = Figure(figsize=(10, 4))
+    axes = fig.subplots(1, 2)
+    for ax, key in zip(axes, ("Radial displacement [m]", "Axial displacement [m]")):
+        shade(ax)
+        ax.plot(ms, D[key][:, 0] * 1e6, label="roller 0")
+        ax.set_xlabel("time [ms]")
+        ax.set_ylabel(key.replace("[m]", "[um]").lower())
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    figs["roller_displacement.png"] = fig
     fig = Figure(figsize=(6.4, 4.2))
     ax = fig.subplots()
-    if ideal > 0.0:
-        ax.plot(ms, 100 * (ideal - orbital[:, 0]) / ideal, label="roller 0")
-        if model.has_cage:
-            bcg = K.N_CONE + K.NB * model.n_rollers
-            ax.plot(ms, 100 * (ideal - Y[:, bcg + 10]) / ideal, label="cage")
+    shade(ax)
+    ax.plot(ms, 100 * D["Roller slip [-]"][:, 0], label="roller 0")
+    ax.plot(ms, 100 * np.mean(D["Roller slip [-]"], axis=1), "k", lw=0.8, label="mean of all rollers")
+    if "Cage slip [-]" in D:
+        ax.plot(ms, 100 * D["Cage slip [-]"], label="cage")
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("slip [%] (eq. 52, against the ideal cage speed)")
-    ax.legend()
+    ax.legend(fontsize=8)
     fig.tight_layout()
     figs["slip.png"] = fig
     fig = Figure(figsize=(5, 5))
     ax = fig.subplots()
-    if model.has_cage:
-        bcg = K.N_CONE + K.NB * model.n_rollers
-        ax.plot((Y[:, bcg + 1] - Y[:, 1]) * 1e6, (Y[:, bcg + 2] - Y[:, 2]) * 1e6, label="cage centre")
-    ax.plot((Y[:, 1] - Y[0, 1]) * 1e6, (Y[:, 2] - Y[0, 2]) * 1e6, label="cone centre (from its start)")
-    ax.set_xlabel("y [um]")
+    if "Cage centre [m]" in D:
+        ax.plot(D["Cage centre [m]"][:, 0] * 1e6, D["Cage centre [m]"][:, 1] * 1e6, lw=0.8)
+        c = 0.5 * model.geometry.guide_land_clearance * 1e6
+        ax.add_patch(Circle((0, 0), c, fill=False, ls="--", label="land clearance"))
+        ax.legend(fontsize=8)
+    ax.set_xlabel("cage centre from the cone's, y [um]")
     ax.set_ylabel("z [um]")
     ax.set_aspect("equal", "datalim")
-    ax.legend()
     fig.tight_layout()
     figs["cage_whirl.png"] = fig
+    fig = Figure(figsize=(5, 5))
+    ax = fig.subplots()
+    ax.plot((Y[:, 1] - Y[0, 1]) * 1e6, (Y[:, 2] - Y[0, 2]) * 1e6, lw=0.8)
+    ax.set_xlabel("cone centre from its start, y [um]")
+    ax.set_ylabel("z [um]")
+    ax.set_aspect("equal", "datalim")
+    fig.tight_layout()
+    figs["cone_orbit.png"] = fig
+    fig = Figure(figsize=(10, 4))
+    axes = fig.subplots(1, 2)
+    j = int(np.argmax(qs.cup_loads))
+    u = np.asarray(model.geometry.slices(model.n_slices)[0]) * 1e3
+    for r, (ax, race) in enumerate(zip(axes, ("cup", "cone"))):
+        ax.plot(u, D["Slice loads [N]"][-1, j, r], "o-", label=f"roller {j}, end of run")
+        ax.plot(u, np.max(D["Slice loads [N]"][:, j, r], axis=0), ":", label="largest over the run")
+        ax.set_xlabel("slice position along the roller [mm]")
+        ax.set_ylabel(f"{race} slice load [N]")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    figs["slice_loads.png"] = fig
     return figs

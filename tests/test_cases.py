@@ -490,17 +490,74 @@ def check_trb_static_preload(s, case):
     assert s["Centrifugal force per roller [N]"] > 0
 
 
+def _trb_window(s):
+    for key in ("Paper window (analysis.window)", "Last cage revolution",
+                "Record's second half (shorter than a cage revolution)"):
+        if isinstance(s.get(key), dict):
+            return s[key]
+    raise AssertionError("no averaging window in the summary")
+
+
+def _check_trb_dynamic(s, case, loaded):
+    """Every tapered dynamics case at smoke size (1 ms from the quasi-static start): the loads stay on the
+    quasi-static equilibrium (a separate 2-D solver, issue 23 sec. 3), the rollers' orbital speed and
+    the cage's within 1 % of the geometry's ideal cage speed (eq. 52), whose ratio to the cone speed is the
+    notes' 1,057/2,400 (0.2 %: the notes' rounding), ``loaded`` rollers in the loaded zone."""
+    w = _trb_window(s)
+    # 2 %: the cases run with flange friction (eqs. 22-23), which the frictionless quasi-static solver
+    # leaves out; it moves the cup loads by 1.0 % (measured on trb_grease_fa15kN; without it 2.5e-5, the
+    # 1e-3 test in tests/test_trb_dynamics.py).  The largest over the run: at the start a roller sits on
+    # the load line, later ones between.
+    assert s["Largest cup load [N]"] == pytest.approx(s["Quasi-static largest cup load [N]"], rel=0.02)
+    assert s["Largest flange load [N]"] == pytest.approx(s["Quasi-static largest flange load [N]"], rel=0.03)
+    assert s["Ideal cage speed [rpm]"] / s["Cone speed [rpm]"] == pytest.approx(1057 / 2400, rel=2e-3)
+    assert w["Roller slip [-]"]["all"]["largest magnitude"] < 0.01
+    assert w["Cage speed, mean [rpm]"] == pytest.approx(s["Ideal cage speed [rpm]"], rel=0.01)
+    assert min(loaded) <= w["Rollers in the loaded zone, mean [-]"] <= max(loaded)
+    assert s["Assumed values"]
+
+
 def check_trb_fig5_2400rpm(s, case):
-    """Paper A's Fig. 5 point in time (smoke: 1 ms, 5 slices): the most loaded roller's cup load within 5 %
-    of Stribeck's 4.08 Fr/(Z cos a) (as the static case), every roller's orbital speed and the cage's
-    within 1 % of the geometry's ideal cage speed (eq. 52's slip), and the run stays the Fig. 5 point."""
+    """Paper A's Fig. 5 point in time: the most loaded roller's cup load within 5 % of Stribeck's
+    4.08 Fr/(Z cos a) (as the static case), the common checks with 7-10 rollers loaded (a half load zone),
+    the ideal cage speed the notes' 1,057 rpm (issue 23: 1.058 krpm)."""
     fr = case["operating"]["radial_load"]
     assert fr == pytest.approx(20e3)
     alpha_o = math.radians(11.19)  # the common-apex cup angle (tests/test_trb_geometry.py)
     assert s["Largest cup load [N]"] == pytest.approx(4.08 * fr / (17 * math.cos(alpha_o)), rel=0.05)
-    assert abs(s["Roller slip, largest magnitude [-]"]) < 0.01
-    assert abs(s["Cage slip, mean [-]"]) < 0.01
     assert s["Cone speed [rpm]"] == pytest.approx(2400.0)
+    assert s["Ideal cage speed [rpm]"] == pytest.approx(1057.0, rel=2e-3)
+    _check_trb_dynamic(s, case, (7, 10))
+
+
+def _check_trb_speed(s, case):
+    """The speed series: Fr 20 kN as Fig. 5, the common checks (Stribeck's static estimate is not used:
+    at 5 krpm the rollers' centrifugal load, about 500 N, adds 10 % to the cup's)."""
+    assert case["operating"]["radial_load"] == pytest.approx(20e3)
+    _check_trb_dynamic(s, case, (7, 10))
+
+
+check_trb_speed_2krpm = check_trb_speed_3krpm = check_trb_speed_4krpm = check_trb_speed_5krpm = _check_trb_speed
+
+
+def _check_trb_preload(s, case):
+    """The preload series: every roller in the loaded zone; the largest cone load rises with the preload
+    (the static scene's laminae model is checked against the notes' rigid-ring values in its own case)."""
+    _check_trb_dynamic(s, case, (17, 17))
+    u = case["operating"]["axial_displacement"]
+    assert s["Quasi-static largest cone load [N]"] > 0.0 and u > 0.0
+
+
+check_trb_preload_10um = check_trb_preload_20um = check_trb_preload_30um = check_trb_preload_40um = _check_trb_preload
+
+
+def check_trb_grease_fa15kN(s, case):
+    """Fa 15 kN as a force at 2,800 rpm: every roller alike, the cup loads balance the axial force,
+    Z Q_o sin(a_o) = Fa with the common-apex cup angle 11.19 deg (4,545 N; the centrifugal load adds
+    about 1 %: 2 % allowed)."""
+    fa = case["operating"]["axial_load"]
+    assert s["Largest cup load [N]"] == pytest.approx(fa / (17 * math.sin(math.radians(11.19))), rel=0.02)
+    _check_trb_dynamic(s, case, (17, 17))
 
 
 CHECKS = {name[len("check_"):]: f for name, f in globals().items() if name.startswith("check_")}
