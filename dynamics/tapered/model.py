@@ -276,6 +276,43 @@ class TaperedBearing:
         k = 2.0 * (10.0 / 9.0) * q / sl.approach(q, kl)
         return math.sqrt(k / m)
 
+    def traction_rate(self, qs: QuasiStaticResult | None = None) -> float:
+        """Decay rate [1/s] of a roller's sliding under the "limited" raceway traction's elastic slope (0
+        for the other laws, whose slopes are orders smaller): the slice slopes 2 G b_k^2 w_k/(u_e h) summed
+        over a race give 2 G (8 R' Q/(pi E'))/(u_e h) for a roller load Q (b^2 = 8 w R'/(pi E') is linear
+        in the slice load), at the start's largest cup load on both races (cup and cone R'), the film h of
+        the kernel's Dowson-Toyoda at that load; the sliding at a contact a distance rho_m off the roller's
+        axis relaxes at lambda = (k_cup + k_cone)(1/m + rho_m^2/I_x) (translation and spin)."""
+        lu = self.lubricant
+        if self.fidelity.traction != "limited" or not math.isfinite(lu.shear_modulus):
+            return 0.0
+        from lubrication.laws.film import dowson_toyoda_central
+
+        g = self.geometry
+        qs = self.quasi_static() if qs is None else qs
+        load = max(float(np.max(qs.cup_loads)), 1.0)
+        w = load / g.effective_length
+        ue = max(float(self.ideal()["entrainment speed [m/s]"]), 1e-3)
+        ep = g.e_prime
+        k = 0.0
+        for race in ("cup", "cone"):
+            r = g.reduced_radius(race)
+            h = r * dowson_toyoda_central(lu.viscosity() * ue / (ep * r), lu.pressure_viscosity * ep, w / (ep * r))
+            k += 2.0 * lu.shear_modulus * (8.0 * r * load / (math.pi * ep)) / (ue * h)
+        m, ix, _, _ = g.roller_mass_properties()
+        return k * (1.0 / m + g.mean_roller_radius**2 / ix)
+
+    def stable_step(self, qs: QuasiStaticResult | None = None) -> float:
+        """An estimate of RK4's largest stable step [s]: the smaller of 2 sqrt(2)/omega_max (the contact
+        modes, imaginary axis) and 2.785/lambda (the traction's decay, real axis: :meth:`traction_rate`)."""
+        from ..integrators import stability_limit
+
+        step = stability_limit("rk4", "imaginary") / self.omega_max()
+        rate = self.traction_rate(qs)
+        if rate > 0.0:
+            step = min(step, stability_limit("rk4", "real") / rate)
+        return step
+
     # ---------------------------------------------------------------- diagnostics
     def diagnostics(self, Y, y0=None, args=None) -> dict:
         """Read sampled states ``Y`` (n, n_state) back (arrays over samples and rollers):

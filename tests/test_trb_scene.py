@@ -1,0 +1,102 @@
+"""The tapered scene's analysis and outputs (coupling.tapered_scene, issue 23 sec. 2) against
+independent values: the periodicity measure on signals built to be periodic or not, the loaded-zone
+marker against the quasi-static solution, the dynamic loads settling on the quasi-static ones, the
+ParaView frame's rollers where their states put them, and the written files."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from coupling import tapered_scene as S
+from coupling.config import load_case
+from coupling.outputs import read_timeseries
+
+CASE = "cases/trb_fig5_2400rpm.toml"
+
+
+def _case(*overrides):
+    return load_case(CASE, smoke=True, overrides=list(overrides))
+
+
+def test_periodicity_is_one_for_a_motion_steady_in_the_load_frame_and_small_for_noise():
+    """17 rollers orbiting at omega, each signal a fixed function of its azimuth f(omega t + 2 pi j/Z):
+    one roller pass later roller j repeats roller j+1 (measure 1 - 1e-6); independent noise gives |r| <
+    0.1 (2,000 samples x 17); a window shorter than the lag gives None."""
+    Z, w = 17, 110.0
+    t = np.linspace(0.0, 0.05, 2001)
+    az = w * t[:, None] + 2 * np.pi * np.arange(Z)[None, :] / Z
+    x = np.sin(az) + 0.3 * np.cos(3 * az)
+    lag = 2 * np.pi / (Z * w)
+    assert S.periodicity(t, x, lag) == pytest.approx(1.0, abs=1e-6)
+    rng = np.random.default_rng(0)
+    assert abs(S.periodicity(t, rng.standard_normal(x.shape), lag)) < 0.1
+    assert S.periodicity(t[:5], x[:5], lag) is None
+
+
+@pytest.fixture(scope="module")
+def smoke_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("fig5")
+    return S.run(_case(), out, name="trb_fig5_2400rpm", smoke=True), out
+
+
+def test_loaded_zone_and_loads_against_the_quasi_static_start(smoke_run):
+    """At the start the loaded-zone marker is the quasi-static solution's: the rollers whose cone load
+    exceeds 1 % of the largest (independently solved, dynamics.tapered.quasistatic); the slice loads sum
+    to the roller's cup load; and every written file is there with the PNGs and frames."""
+    run, out = smoke_run
+    case = _case()
+    model = S.build(case)
+    qs = model.quasi_static()
+    D = run.diagnostics
+    assert np.array_equal(D["Loaded zone [-]"][0], qs.cone_loads > 0.01 * np.max(qs.cone_loads))
+    assert np.allclose(D["Slice loads [N]"][:, :, 0].sum(axis=-1), D["Cup load [N]"], rtol=1e-12)
+    names = {p.name for p in out.iterdir()}
+    for f, _ in S.FIELD_FILES:
+        assert f in names
+    cols, _ = read_timeseries(out / "timeseries.npz")
+    assert np.array_equal(cols["Roller 3 loaded zone [-]"], D["Loaded zone [-]"][:, 3].astype(float))
+    assert len(list((out / "frames").iterdir())) == case.analysis.frames
+
+
+def test_frame_rollers_sit_where_their_states_put_them(smoke_run):
+    """In a ParaView frame, roller j's points lie at the profile radius rho(u) from its axis (the line
+    through its centre c along R(q) e_x, both from the state) to 1e-12 m, and its point data carry its
+    loads."""
+    from scipy.spatial.transform import Rotation
+
+    from dynamics.rotations import to_scipy
+    from dynamics.tapered import layout as L
+
+    run, _ = smoke_run
+    model = S.build(_case())
+    y = run.y[-1]
+    fields = {k: run.diagnostics[k][-1] for k in S.FRAME_FIELDS}
+    mesh = S.frame_mesh(model, y, fields)
+    body = mesh.cell_data["Body [-]"]
+    assert set(np.unique(body)) == set(range(2 + model.n_rollers + 1))
+    j = 5
+    roller = mesh.extract_cells(np.flatnonzero(body == 2 + j))
+    b = L.N_CONE + j * L.NB
+    c, e = y[b:b + 3], Rotation.from_quat(to_scipy(y[b + 3:b + 7])).apply([1.0, 0.0, 0.0])
+    p = np.asarray(roller.points) - c
+    along = p @ e
+    radial = np.linalg.norm(p - np.outer(along, e), axis=1)
+    _, _, _, uc = model.geometry.roller_mass_properties()
+    assert np.allclose(radial, model.geometry.roller_radius(along + uc), atol=1e-12)
+    assert np.allclose(roller.point_data["Cup load [N]"], fields["Cup load [N]"][j])
+
+
+def test_without_flange_friction_the_loads_stay_on_the_quasi_static_ones():
+    """Issue 23 sec. 3: with damping and a start without transients the dynamic loads sit on the
+    quasi-static equilibrium (a separate solver).  Fa 15 kN at 2,800 rpm (every roller alike), 1 ms:
+    the cup loads within 1e-3 (measured 2.5e-5); flange friction, which the quasi-static solver leaves
+    out, moves them by 1.0 % (measured), the reason the case checks allow 2 %."""
+    case = load_case("cases/trb_grease_fa15kN.toml", smoke=True, overrides=["model.flange_friction=none"])
+    run = S.run(case)
+    s = run.summary
+    assert s["Largest cup load at the end [N]"] == pytest.approx(s["Quasi-static largest cup load [N]"], rel=1e-3)
+    with_friction = S.run(load_case("cases/trb_grease_fa15kN.toml", smoke=True)).summary
+    shift = with_friction["Largest cup load at the end [N]"] / with_friction["Quasi-static largest cup load [N]"] - 1
+    assert 0.003 < shift < 0.02
