@@ -69,7 +69,6 @@ import math
 import numpy as np
 from numba import njit
 
-from .grease import hb_stress
 from .jit import INLINE
 
 RACEWAY_LAWS = ("paper", "limited")
@@ -121,25 +120,47 @@ def rheology(grease, limiting_stress=math.inf, limiting_slope=0.0, yield_rate=0.
 
 
 @njit(**INLINE)
-def limited_stress(shear_rate, pressure, rheo):
-    """tau [Pa] of the limited law at shear rate D and gauge pressure p (sign of D)."""
+def _rate_terms(shear_rate, rheo):
+    """(tau_y r(D), |D|^n): the parts of the Herschel-Bulkley stress that do not depend on pressure, so a
+    quadrature over a contact at one shear rate computes them once (:func:`lubrication.laws.grease.hb_stress`'s
+    terms)."""
     tau_y, phi0, n, alpha, tau_l0, gamma_l, d_r = rheo
-    tau = abs(hb_stress(shear_rate, tau_y, phi0 * math.exp(alpha * max(pressure, 0.0)), n, d_r))
-    tau_l = tau_l0 + gamma_l * max(pressure, 0.0)
+    d = abs(shear_rate)
+    if d == 0.0:
+        return 0.0, 0.0
+    ty = tau_y if d_r <= 0.0 else tau_y * -math.expm1(-d / d_r)
+    return ty, d**n
+
+
+@njit(**INLINE)
+def _limited_magnitude(ty, dn, pressure, rheo):
+    """|tau| [Pa] of the limited law from :func:`_rate_terms` at gauge pressure p."""
+    tau_y, phi0, n, alpha, tau_l0, gamma_l, d_r = rheo
+    p = max(pressure, 0.0)
+    tau = ty + phi0 * math.exp(alpha * p) * dn
+    tau_l = tau_l0 + gamma_l * p
     if tau_l < math.inf and tau > 0.0:
         tau = tau_l * -math.expm1(-tau / tau_l)
+    return tau
+
+
+@njit(**INLINE)
+def limited_stress(shear_rate, pressure, rheo):
+    """tau [Pa] of the limited law at shear rate D and gauge pressure p (sign of D)."""
+    ty, dn = _rate_terms(shear_rate, rheo)
+    tau = _limited_magnitude(ty, dn, pressure, rheo)
     return tau if shear_rate >= 0.0 else -tau
 
 
 @njit(**INLINE)
 def limited_strip_traction(slip_speed, film, half_width, peak_pressure, rheo):
     """Traction per unit length [N/m] of a Hertz line strip (half-width b, peak p0) sheared at
-    D = slip/h: 2 b int_0^(pi/2) tau(p0 sin t) sin t dt (Gauss-Legendre)."""
-    d = slip_speed / film
+    D = slip/h: 2 b int_0^(pi/2) tau(p0 sin t) sin t dt (Gauss-Legendre; the shear-rate terms once)."""
+    ty, dn = _rate_terms(slip_speed / film, rheo)
     total = 0.0
     for i in range(_T_NODES.size):
-        total += _T_WEIGHTS[i] * _SIN_T[i] * limited_stress(d, peak_pressure * _SIN_T[i], rheo)
-    return 2.0 * half_width * total
+        total += _T_WEIGHTS[i] * _SIN_T[i] * _limited_magnitude(ty, dn, peak_pressure * _SIN_T[i], rheo)
+    return 2.0 * half_width * (total if slip_speed >= 0.0 else -total)
 
 
 @njit(**INLINE)
@@ -173,8 +194,8 @@ def elastic_limited(force, slope, slip_speed):
 def limited_ellipse_traction(slip_speed, film, semi_a, semi_b, peak_pressure, rheo):
     """Traction [N] of a Hertz ellipse (semi-axes a, b, peak p0) sheared at D = slip/h:
     2 pi a b int_0^1 tau(p0 s) s ds (Gauss-Legendre; eq. 27 with f = int tau dA)."""
-    d = slip_speed / film
+    ty, dn = _rate_terms(slip_speed / film, rheo)
     total = 0.0
     for i in range(_S_NODES.size):
-        total += _S_WEIGHTS[i] * _S_NODES[i] * limited_stress(d, peak_pressure * _S_NODES[i], rheo)
-    return 2.0 * math.pi * semi_a * semi_b * total
+        total += _S_WEIGHTS[i] * _S_NODES[i] * _limited_magnitude(ty, dn, peak_pressure * _S_NODES[i], rheo)
+    return 2.0 * math.pi * semi_a * semi_b * (total if slip_speed >= 0.0 else -total)
