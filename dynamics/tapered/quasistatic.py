@@ -12,8 +12,9 @@ Contacts (laws in :mod:`lubrication.laws.slices` and :mod:`lubrication.laws.tape
   q_k = k_w delta_k^(10/9), k_w = K_L/n_s with Palmgren's K_L (paper A eq. 11 without damping);
 - flange (rib on the cone): delta_f = r_s - n_f.(S_f - P_f), Q_f = K_f delta_f^1.5 (Hertz, point).
 
-Loads on roller j: centrifugal m omega_c^2 R_cm along r (omega_c the ideal cage speed at the given
-cone speed) and, optionally, the gyroscopic moment about the tangential axis
+Loads on roller j: centrifugal m omega_c^2 R_cm along r at the mass centre, R_cm its radius as the
+roller is displaced (u_c along the axis from the mid-point, so with a moment about the mid-point;
+omega_c the ideal cage speed at the given cone speed) and, optionally, the gyroscopic moment about the tangential axis
 M = omega_c sin(beta) [I_x (omega_s + omega_c cos beta) - I_y omega_c cos beta], omega_s = -omega_c
 r_o/rho_m the spin relative to the cage (a moment the contacts must supply).  Load on the cone: F_r
 along +y and F_a along -x (pushing the cone into the cup: "closing"), or a prescribed axial
@@ -87,7 +88,7 @@ class QuasiStaticResult:
 class _Model:
     """Assembles the energy, residual and Gauss-Newton Hessian of the bearing (plain numpy)."""
 
-    def __init__(self, g: TaperedRollerGeometry, n_slices, centrifugal, gyro_moment):
+    def __init__(self, g: TaperedRollerGeometry, n_slices, centrifugal, gyro_moment, gyro=None):
         self.g = g
         self.Z = int(g.n_rollers)
         self.psi = 2.0 * math.pi * np.arange(self.Z) / self.Z
@@ -97,6 +98,10 @@ class _Model:
         self.K_f = g.flange_hertz_constant()
         self.scale = 0.5 * g.effective_length       # theta -> length
         self.fc, self.mg = centrifugal, gyro_moment
+        self.gyro = gyro     # (omega_c, omega_s, I_x, I_y): the gyroscopic moment at the actual axis angle
+        self.uc = g.roller_mass_properties()[3]
+        # m omega_c^2 from the centrifugal force at the nominal mass-centre radius
+        self.mw2 = centrifugal / (g.pitch_radius + self.uc * math.sin(g.roller_axis_angle))
 
     def unpack(self, q):
         return q[:3], q[3:].reshape(self.Z, 3)
@@ -164,9 +169,29 @@ class _Model:
             # map of the cone's in-plane (dx, dr) onto (d_x, d_y, d_z)
             P = np.array([[1.0, 0.0, 0.0], [0.0, c, s]])
             idx = np.r_[0:3, 3 + 3 * j: 6 + 3 * j]
-            energy -= self.fc * rl[j, 1] + self.mg * rl[j, 2] / self.scale
-            grad[3 + 3 * j + 1] -= self.fc
-            grad[3 + 3 * j + 2] -= self.mg / self.scale
+            if self.gyro is not None:
+                # the moment the contacts supply, -M(beta) with beta the roller's actual axis angle:
+                # M = omega_c [I_x omega_s sin(beta) + (I_x - I_y) omega_c sin(beta) cos(beta)], whose
+                # integral over beta is G = omega_c [-I_x omega_s cos(beta) + (I_x - I_y) omega_c sin^2(beta)/2]
+                wc, ws, ix, iy = self.gyro
+                b = self.g.roller_axis_angle + rl[j, 2] / self.scale
+                m_b = wc * (ix * ws * math.sin(b) + (ix - iy) * wc * math.sin(b) * math.cos(b))
+                energy += wc * (-ix * ws * math.cos(b) + 0.5 * (ix - iy) * wc * math.sin(b) ** 2)
+                grad[3 + 3 * j + 2] += m_b / self.scale
+            # centrifugal: the potential -m omega_c^2 rho^2/2 of the mass centre at radius rho = R_p + r +
+            # u_c sin(beta) (u_c along the axis from the mid-point the unknowns place), so the force follows
+            # the roller's displacement and has the moment m omega_c^2 rho u_c cos(beta) about the mid-point
+            beta = self.g.roller_axis_angle + rl[j, 2] / self.scale
+            cb, sb, ir, it = math.cos(beta), math.sin(beta), 3 + 3 * j + 1, 3 + 3 * j + 2
+            rho = self.g.pitch_radius + rl[j, 1] + self.uc * sb
+            drho = self.uc * cb / self.scale
+            energy -= 0.5 * self.mw2 * rho * rho
+            grad[ir] -= self.mw2 * rho
+            grad[it] -= self.mw2 * rho * drho
+            # (the Hessian keeps the contacts' terms only: these loads' own derivatives, -m omega_c^2 and the
+            # gyroscopic moment's change with beta, are negative and 1e-5 of the contacts' stiffness; left out,
+            # the Gauss-Newton matrix stays positive and the converged state, set by the gradient, is exact)
+
             for kind, (dl, gr, gc, cv) in enumerate(rows):
                 e, f, kp = self._laws(dl, kind)
                 energy += float(e.sum())
@@ -207,7 +232,7 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
         beta = g.roller_axis_angle
         ws = -kin["roller spin relative to cage [rad/s]"]
         mg = wc * math.sin(beta) * (ix * (ws + wc * math.cos(beta)) - iy * wc * math.cos(beta))
-    model = _Model(g, n_slices, fc, -mg)
+    model = _Model(g, n_slices, fc, -mg, (wc, ws, ix, iy) if gyroscopic else None)
     n = 3 + 3 * model.Z
     free = np.ones(n, bool)
     q = np.zeros(n)
