@@ -309,7 +309,8 @@ from .ehl import (  # noqa: F401  (the package's API: names used by maps, scenes
     ehl_load_response, ehl_roller_race_default_params, evaluate_ehl, field_ehl, _ehl_setup,
     _paper_b_contact_angle, CONTINUATION_PATHS, EHL_LINE_OUTPUTS, EHL_ROLLER_LINE_AXES, ROLLER_RACES,
     ROLLER_SRR_MIN, ehl_roller_cone_default_params, ehl_roller_cup_default_params, evaluate_ehl_line,
-    field_ehl_line, roller_race_radius,
+    field_ehl_line, roller_race_radius, ROLLER_TRACTION_SHEAR, ROLLER_TRANSITION, ROLLER_TRACTION_NORMALISED,
+    transition_slide_to_roll, saturated_transition, normalised_slip,
 )
 
 
@@ -360,6 +361,7 @@ KINDS: dict = {
         default_params=ehl_roller_cone_default_params,
         field=field_ehl_line,
         signed=("Traction coefficient [-]",),
+        sheared={"Traction coefficient [-]": ROLLER_TRACTION_SHEAR},
     ),
     "ehl_roller_cup": PointKind(
         name="ehl_roller_cup",
@@ -372,5 +374,6 @@ KINDS: dict = {
         default_params=ehl_roller_cup_default_params,
         field=field_ehl_line,
         signed=("Traction coefficient [-]",),
+        sheared={"Traction coefficient [-]": ROLLER_TRACTION_SHEAR},
     ),
 }
