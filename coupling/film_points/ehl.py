@@ -660,7 +660,25 @@ def evaluate_ehl_line(params: dict, point: dict) -> dict:
     """One point of a per-length line-contact kind (``ehl_roller_cone``, ``ehl_roller_cup``): "Line load
     [N/m]", "Entrainment speed [m/s]", "Slide-to-roll ratio [-]".  Outputs :data:`EHL_LINE_OUTPUTS`:
     as :func:`evaluate_ehl` with the film stiffness and damping per metre of contact length (a slice
-    of length l: K l, C l)."""
+    of length l: K l, C l), the central film interpolated at x = 0 (:func:`_film_at_centre`), and two
+    outputs that carry the traction through a map:
+
+    - "Transition slide-to-roll ratio [-]" c = S(s_t): s_t the slip at which the traction is half its
+      Newtonian value (:func:`transition_slide_to_roll`, the Newtonian-to-limited front of this (load,
+      speed)), S a smooth saturation into 1e-7..10 (:func:`saturated_transition`; S(s_t) = s_t on
+      1e-6..1);
+    - "Traction coefficient at normalised slip [-]" G = mu(T(s) c), T the fixed map of the slide-to-roll
+      axis coordinate s onto the normalised slip sigma (:func:`normalised_slip`: 1e-5..0.1 onto 1e-6..1e6,
+      denser at sigma = 1), odd in s.
+
+    Traction (issue 22, section 4): limiting shear makes mu(s) Newtonian (mu = a s) up to s_t and nearly
+    flat above, and s_t falls by ~35 e-folds per e-fold of load in the hydrodynamic-to-EHL transition (cone,
+    17.7 m/s: 4.6e-2 at 30 kN/m, 1.7e-6 at 40 kN/m) -- on the (load, speed, slide-to-roll) grid a front
+    that crosses 1e-4..1e-3 between load nodes (the map missed by 665-877 %).  In sigma = s/c the front
+    stays at sigma ~ 1 at every node.  A map of these kinds (``PointKind.sheared``, coupling.maps.FilmMap
+    "sheared") therefore returns "Traction coefficient [-]" at (w, u, s) as G interpolated at
+    (w, u, T^-1(s / c(w, u))), c interpolated; its own table of "Traction coefficient [-]" is kept for
+    plots only.  A caller with a kernel of its own takes the kernel arrays of G and c and does the same."""
     import math
 
     if float(params.get("length", 1.0)) != 1.0:
