@@ -465,23 +465,26 @@ SHIPPED_MAPS = Path(__file__).resolve().parents[1] / "cases" / "maps"
 
 
 # (map, output) pairs that miss the target, with the measured cause (strict xfail): the roller maps on
-# paper A's axes (issue 22, section 4; cases/maps/README.md).  The earlier roller map uses Eyring flow (22 Nov 2026): its Newtonian h_min, damping and approach missed (max 6.1 /
+# paper A's axes (issue 22, section 4; cases/maps/README.md).  Fixed 25 Nov 2026: their K and C (the knee
+# at 18-46 kN/m: 34 load nodes dense over 14-56 kN/m, secants above M = 0.25) and the cone's central film
+# (interpolated at x = 0 instead of the nearest node's).  The earlier roller map uses Eyring flow (22 Nov 2026): its Newtonian h_min, damping and approach missed (max 6.1 /
 # 3.4 / 3.4 %) because the Newtonian line contact had several exact solutions per (load, speed)
 # (coupling/film_points.py, ehl_roller_race_default_params; tests/test_ehl.py pins it).
-_ROLLER_KNEE = ("K and C per length rise 3-fold between 18 and 27 kN/m (hydrodynamic-to-EHL knee, measured on the "
-                "cone at 14.7 m/s: K 6.1e9 -> 1.7e10 N/m^2, smooth but steep); 16 load nodes over 0.7-300 kN/m do not "
-                "resolve it (worst point 23 kN/m, 14.7 m/s); a denser 24 x 13 build met a non-converging point "
-                "(80.3 kN/m, 19.8 m/s), cases/maps/README.md")
-_ROLLER_FRONT = ("limiting-shear traction: the Newtonian-to-limited front crosses SRR 1e-4..1e-3 between load nodes "
-                 "near 28 kN/m (worst 27.7 kN/m, 17.7 m/s, SRR 4.1e-4: 665 % cone, 877 % cup); median 0.4 / 1.1 %")
+_ROLLER_FRONT = ("limiting-shear traction on the normalised slip (coupling.film_points.evaluate_ehl_line): the "
+                 "Newtonian-to-limited front no longer moves between nodes (was 665 % cone / 877 % cup), but in the "
+                 "hydrodynamic-to-EHL transition (28-46 kN/m) the transition slip of the 257-node solutions is not "
+                 "smooth in load and speed (the outlet spike forms one node wide: s_t plateaus, then drops 50-fold "
+                 "within one 7 % load step; on 513 nodes it falls smoothly), so the Newtonian part there, mu = a s "
+                 "with a ~ 1/s_t, follows it: max 14 % cone (43.5 kN/m, 27.6 m/s, SRR 9e-5; 5 of 40 points above "
+                 "3 %) / 8.1 % cup (1 of 40); median 0.25 / 0.09 %; cases/maps/README.md")
+_ROLLER_TRANSITION = ("the transition slip s_t itself (a part of the traction's normalised coordinate): exact where it "
+                      "saturates (median 0), up to 112 % cone / 39 % cup in the transition band, where the 257-node "
+                      "solutions' s_t is not smooth (see the traction)")
 KNOWN_MISSES: dict = {
-    ("ehl_roller_cone", "Central film thickness [m]"): "max 3.23 % at 254 kN/m, 17.8 m/s (median 0.11 %)",
-    ("ehl_roller_cone", "Film stiffness per length [N/m^2]"): _ROLLER_KNEE,
-    ("ehl_roller_cone", "Film damping per length [N s/m^2]"): _ROLLER_KNEE,
     ("ehl_roller_cone", "Traction coefficient [-]"): _ROLLER_FRONT,
-    ("ehl_roller_cup", "Film stiffness per length [N/m^2]"): _ROLLER_KNEE,
-    ("ehl_roller_cup", "Film damping per length [N s/m^2]"): _ROLLER_KNEE,
     ("ehl_roller_cup", "Traction coefficient [-]"): _ROLLER_FRONT,
+    ("ehl_roller_cone", "Transition slide-to-roll ratio [-]"): _ROLLER_TRANSITION,
+    ("ehl_roller_cup", "Transition slide-to-roll ratio [-]"): _ROLLER_TRANSITION,
 }
 
 
@@ -489,7 +492,11 @@ def _accuracy_cases():
     out = []
     for path in sorted(SHIPPED_MAPS.glob("*.npz")):
         fmap = FilmMap.load(path)
+        # the tabulated function of a sheared output is judged through that output (FilmMap.accuracy_against)
+        internal = {spec["values"] for spec in fmap.sheared.values()}
         for name in fmap.outputs:
+            if name in internal:
+                continue
             why = KNOWN_MISSES.get((path.stem, name))
             marks = [pytest.mark.xfail(strict=True, reason=why)] if why else []
             out.append(pytest.param(path, name, id=f"{path.stem}-{name.split('[')[0].strip()}", marks=marks))
