@@ -324,14 +324,19 @@ def test_roller_race_line_contact_against_moes():
     """Paper A roller slice on the cone at 10 kN over 42.06 mm (237.8 kN/m), u_e = 3 m/s (M = 6.7, L = 43;
     smoke 129 nodes, film-scaled domain [-23, 4] b): central film within 10 % of Moes (measured +8.9 %;
     +8.4 % on the earlier fixed [-20, 3] b domain), minimum below central, film stiffness and damping
-    per length within 1 % of the second method (two steady solves) and traction odd."""
+    per length of the linearised tangent within 1 % of the second method (two steady solves), and traction
+    odd.  The kind's default (central secants over +-10 % load and squeeze velocity above Moes' M = 0.25)
+    against the tangent: measured K 1.000, C 1.066 on these 129 nodes (K 1.000, C 1.009 on the default
+    257 nodes), within 7 %."""
     kind = fp.KINDS["ehl_roller_cone"]
     params = dict(kind.default_params(), resolution="smoke")
     pt = {"Line load [N/m]": 10000.0 / 0.04206, "Entrainment speed [m/s]": 3.0, "Slide-to-roll ratio [-]": 0.02}
     out = kind.evaluate(params, pt)
+    tangent = kind.evaluate(dict(params, coefficients="linearised"), pt)
     steps = kind.evaluate(dict(params, coefficients="load_steps"), pt)
     for name in ("Film stiffness per length [N/m^2]", "Film damping per length [N s/m^2]"):
-        assert out[name] == pytest.approx(steps[name], rel=0.01)
+        assert tangent[name] == pytest.approx(steps[name], rel=0.01)
+        assert out[name] == pytest.approx(steps[name], rel=0.07)
     c = fp.ehl_load_response(params, pt["Line load [N/m]"], 3.0)["solution"].contact
     moes = ff.moes_line_central(c.moes_M, c.moes_L) * c.radius_x * math.sqrt(2 * c.U)
     assert out["Central film thickness [m]"] == pytest.approx(moes, rel=0.1)

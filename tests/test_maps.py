@@ -214,6 +214,52 @@ def test_save_load_round_trip_and_format_check(tmp_path):
         FilmMap.load(tmp_path / "future.npz")
 
 
+def _front_map(sheared: bool):
+    """A map of mu(w, s) = s/(1 + (s/s_t)^6)^(1/6) (Newtonian below s_t, limited above) with s_t = 0.1 w^-35, the
+    steepness of the roller traction's Newtonian-to-limited front (coupling.film_points,
+    ROLLER_TRACTION_SHEAR: the front crosses the slip axis), on 5 load nodes (ratio 1.07) x 37 slip nodes
+    1e-5..0.1; with ``sheared``
+    also the transition slip (saturated as the kinds do) and the traction at the normalised slip."""
+    from coupling.film_points import ROLLER_TRACTION_SHEAR as spec, normalised_slip, saturated_transition
+
+    w = np.geomspace(1.0, 1.3, 5)
+    s = np.geomspace(1e-5, 0.1, 37)
+    W, S = np.meshgrid(w, s, indexing="ij")
+    s_t = 0.1 * W**-35.0
+    mu = lambda s_, st: s_ / (1.0 + (s_ / st) ** 6) ** (1 / 6)
+    values = {"Traction coefficient [-]": mu(S, s_t)}
+    extra = {}
+    if sheared:
+        c = np.vectorize(saturated_transition)(s_t)
+        values[spec["shift"]] = c
+        values[spec["values"]] = mu(normalised_slip(S) * c, s_t)
+        extra = {"sheared": {"Traction coefficient [-]": dict(spec, axis=1)}}
+    axes = [MapAxis("Load [-]", w, "log"), MapAxis("Slide-to-roll ratio [-]", s, "log")]
+    return FilmMap(axes, values, **extra), mu
+
+
+def test_sheared_output_follows_a_moving_front(tmp_path):
+    """A front that moves by 2.4 e-folds of slip per load cell (the roller traction's): on the plain
+    (load, slip) table the interpolation misses by > 10 %; the map with the output tabulated on the
+    normalised slip (FilmMap "sheared") returns it within 3 % (measured 1.2 %; median 2e-5) at 200 random
+    points, survives save/load,
+    and refuses the plain kernel arrays of the sheared output (they are not what it returns)."""
+    plain, mu = _front_map(False)
+    sheared, _ = _front_map(True)
+    q = maps.random_points(plain.axes, 200, seed=3)
+    exact = mu(q[:, 1], 0.1 * q[:, 0] ** -35.0)
+    err_plain = np.abs(plain("Traction coefficient [-]", *q.T) / exact - 1)
+    err_sheared = np.abs(sheared("Traction coefficient [-]", *q.T) / exact - 1)
+    assert err_plain.max() > 0.1
+    assert err_sheared.max() < 0.03 and np.median(err_sheared) < 0.001
+    again = FilmMap.load(sheared.save(tmp_path / "front.npz"))
+    assert np.array_equal(again("Traction coefficient [-]", *q.T), sheared("Traction coefficient [-]", *q.T))
+    with pytest.raises(InputError, match="sheared"):
+        sheared.kernel_arrays("Traction coefficient [-]")
+    with pytest.raises(InputError, match="outside the axes"):
+        sheared("Traction coefficient [-]", 0.9, 0.2)
+
+
 # ---------------------------------------------------------------------------
 # builds
 
@@ -358,7 +404,9 @@ def test_shipped_map_agrees_with_a_fresh_solve(path):
     point also at the centre (in interpolation space) of a cell whose corner values of the first output
     are all significant and positive, where the interpolation must be within 3 % (the issue's target)
     for every output positive at all the cell's corners whose accuracy report meets the median target
-    (< 1 %; an output that misses it is listed in the map's report and summary instead)."""
+    (< 1 %; an output that misses it is listed in the map's report and summary instead) and that is not
+    a recorded miss (KNOWN_MISSES, strict xfails of the accuracy test below: the roller maps' transition
+    slip, median 0 where it saturates, is 3.5 % off at the cone's middle cell, 25.2 kN/m, 14.8 m/s)."""
     fmap = FilmMap.load(path)
     kind = maps.get_kind(fmap.provenance["kind"])
     params = fmap.provenance["params"]
@@ -389,7 +437,8 @@ def test_shipped_map_agrees_with_a_fresh_solve(path):
     checked = 0
     for name in fmap.outputs:
         corners = [fmap.values[name][tuple(ci + o for ci, o in zip(cell, off))] for off in np.ndindex(*(2,) * fmap.ndim)]
-        if min(corners) > 0 and fmap.accuracy.get(name, {}).get("median", 1.0) < 0.01:
+        if (min(corners) > 0 and fmap.accuracy.get(name, {}).get("median", 1.0) < 0.01
+                and (path.stem, name) not in KNOWN_MISSES):
             assert fmap(name, *centre) == pytest.approx(fresh[name], rel=0.03), name
             checked += 1
     assert checked >= 1
@@ -419,23 +468,26 @@ SHIPPED_MAPS = Path(__file__).resolve().parents[1] / "cases" / "maps"
 
 
 # (map, output) pairs that miss the target, with the measured cause (strict xfail): the roller maps on
-# paper A's axes (issue 22, section 4; cases/maps/README.md).  The earlier roller map uses Eyring flow (22 Nov 2026): its Newtonian h_min, damping and approach missed (max 6.1 /
+# paper A's axes (issue 22, section 4; cases/maps/README.md).  Fixed 25 Nov 2026: their K and C (the knee
+# at 18-46 kN/m: 34 load nodes dense over 14-56 kN/m, secants above M = 0.25) and the cone's central film
+# (interpolated at x = 0 instead of the nearest node's).  The earlier roller map uses Eyring flow (22 Nov 2026): its Newtonian h_min, damping and approach missed (max 6.1 /
 # 3.4 / 3.4 %) because the Newtonian line contact had several exact solutions per (load, speed)
 # (coupling/film_points.py, ehl_roller_race_default_params; tests/test_ehl.py pins it).
-_ROLLER_KNEE = ("K and C per length rise 3-fold between 18 and 27 kN/m (hydrodynamic-to-EHL knee, measured on the "
-                "cone at 14.7 m/s: K 6.1e9 -> 1.7e10 N/m^2, smooth but steep); 16 load nodes over 0.7-300 kN/m do not "
-                "resolve it (worst point 23 kN/m, 14.7 m/s); a denser 24 x 13 build met a non-converging point "
-                "(80.3 kN/m, 19.8 m/s), cases/maps/README.md")
-_ROLLER_FRONT = ("limiting-shear traction: the Newtonian-to-limited front crosses SRR 1e-4..1e-3 between load nodes "
-                 "near 28 kN/m (worst 27.7 kN/m, 17.7 m/s, SRR 4.1e-4: 665 % cone, 877 % cup); median 0.4 / 1.1 %")
+_ROLLER_FRONT = ("limiting-shear traction on the normalised slip (coupling.film_points.evaluate_ehl_line): the "
+                 "Newtonian-to-limited front no longer moves between nodes (was 665 % cone / 877 % cup), but in the "
+                 "hydrodynamic-to-EHL transition (28-46 kN/m) the transition slip of the 257-node solutions is not "
+                 "smooth in load and speed (the outlet spike forms one node wide: s_t plateaus, then drops 50-fold "
+                 "within one 7 % load step; on 513 nodes it falls smoothly), so the Newtonian part there, mu = a s "
+                 "with a ~ 1/s_t, follows it: max 14 % cone (43.5 kN/m, 27.6 m/s, SRR 9e-5; 5 of 40 points above "
+                 "3 %) / 8.1 % cup (1 of 40); median 0.25 / 0.09 %; cases/maps/README.md")
+_ROLLER_TRANSITION = ("the transition slip s_t itself (a part of the traction's normalised coordinate): exact where it "
+                      "saturates (median 0), up to 112 % cone / 39 % cup in the transition band, where the 257-node "
+                      "solutions' s_t is not smooth (see the traction)")
 KNOWN_MISSES: dict = {
-    ("ehl_roller_cone", "Central film thickness [m]"): "max 3.23 % at 254 kN/m, 17.8 m/s (median 0.11 %)",
-    ("ehl_roller_cone", "Film stiffness per length [N/m^2]"): _ROLLER_KNEE,
-    ("ehl_roller_cone", "Film damping per length [N s/m^2]"): _ROLLER_KNEE,
     ("ehl_roller_cone", "Traction coefficient [-]"): _ROLLER_FRONT,
-    ("ehl_roller_cup", "Film stiffness per length [N/m^2]"): _ROLLER_KNEE,
-    ("ehl_roller_cup", "Film damping per length [N s/m^2]"): _ROLLER_KNEE,
     ("ehl_roller_cup", "Traction coefficient [-]"): _ROLLER_FRONT,
+    ("ehl_roller_cone", "Transition slide-to-roll ratio [-]"): _ROLLER_TRANSITION,
+    ("ehl_roller_cup", "Transition slide-to-roll ratio [-]"): _ROLLER_TRANSITION,
 }
 
 
@@ -443,7 +495,11 @@ def _accuracy_cases():
     out = []
     for path in sorted(SHIPPED_MAPS.glob("*.npz")):
         fmap = FilmMap.load(path)
+        # the tabulated function of a sheared output is judged through that output (FilmMap.accuracy_against)
+        internal = {spec["values"] for spec in fmap.sheared.values()}
         for name in fmap.outputs:
+            if name in internal:
+                continue
             why = KNOWN_MISSES.get((path.stem, name))
             marks = [pytest.mark.xfail(strict=True, reason=why)] if why else []
             out.append(pytest.param(path, name, id=f"{path.stem}-{name.split('[')[0].strip()}", marks=marks))

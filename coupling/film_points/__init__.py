@@ -28,7 +28,11 @@ The roller kinds (issue 22, section 4) replace ``ehl_roller_race`` (the whole 42
 5-20 kN, 3-15 m/s; :func:`ehl_roller_race_default_params` stays as the point set the solver-limit
 tests pin).  Their domain grows with the film (``inlet_film_lengths``, :func:`_film_scaled_domain`)
 and a point the solver's own start cannot reach is continued along :data:`CONTINUATION_PATHS`
-(shorter inlet, lighter load, lower speed).
+(shorter inlet, lighter load, lower speed) or from a converged state at 0.9 of its load (recursively,
+damped Newton step; :data:`LIGHTER_LOAD_STEP`).  Their traction goes through a map on a normalised slip
+(the front of the limiting-shear traction moves by decades of slip between load nodes; see
+:func:`evaluate_ehl_line`), their central film is interpolated at x = 0, and their stiffness and damping
+are central secants above Moes' M = 0.25 (``secant_min_moes_M``; the linearised tangent below).
 
 Ball-ball film (kind ``ball_ball``)
 -----------------------------------
@@ -309,7 +313,8 @@ from .ehl import (  # noqa: F401  (the package's API: names used by maps, scenes
     ehl_load_response, ehl_roller_race_default_params, evaluate_ehl, field_ehl, _ehl_setup,
     _paper_b_contact_angle, CONTINUATION_PATHS, EHL_LINE_OUTPUTS, EHL_ROLLER_LINE_AXES, ROLLER_RACES,
     ROLLER_SRR_MIN, ehl_roller_cone_default_params, ehl_roller_cup_default_params, evaluate_ehl_line,
-    field_ehl_line, roller_race_radius,
+    field_ehl_line, roller_race_radius, ROLLER_TRACTION_SHEAR, ROLLER_TRANSITION, ROLLER_TRACTION_NORMALISED,
+    transition_slide_to_roll, saturated_transition, normalised_slip, LIGHTER_LOAD_STEP, ROLLER_LINE_LOADS,
 )
 
 
@@ -360,6 +365,7 @@ KINDS: dict = {
         default_params=ehl_roller_cone_default_params,
         field=field_ehl_line,
         signed=("Traction coefficient [-]",),
+        sheared={"Traction coefficient [-]": ROLLER_TRACTION_SHEAR},
     ),
     "ehl_roller_cup": PointKind(
         name="ehl_roller_cup",
@@ -372,5 +378,6 @@ KINDS: dict = {
         default_params=ehl_roller_cup_default_params,
         field=field_ehl_line,
         signed=("Traction coefficient [-]",),
+        sheared={"Traction coefficient [-]": ROLLER_TRACTION_SHEAR},
     ),
 }

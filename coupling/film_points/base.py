@@ -4,7 +4,7 @@ Part of :mod:`coupling.film_points` (the package docstring gives the physics and
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field as _field
 from typing import Callable
 
 import numpy as np
@@ -69,6 +69,9 @@ class PointKind:
     # (the traction coefficient, odd in the slide-to-roll ratio: the dynamics extend it by sign and
     # linearly below the axis and read it with logv = 0)
     signed: tuple = ()
+    # outputs tabulated on a sheared coordinate ({output: spec}, see coupling.maps.FilmMap, "sheared"):
+    # the map returns them from a tabulated shift and a tabulated function of the normalised coordinate
+    sheared: dict = _field(default_factory=dict, hash=False, compare=False)
 
 
 # ---------------------------------------------------------------- paper data

@@ -5,6 +5,8 @@ Part of :mod:`coupling.film_points` (the package docstring gives the physics and
 from __future__ import annotations
 
 import logging
+import math
+
 import numpy as np
 
 from lubrication.errors import ConvergenceError, InputError, unknown_choice
@@ -181,6 +183,17 @@ def _roller_params(race: str) -> dict:
     is scaled with the film (``inlet_film_lengths``; 0 gives the fixed Hertz domain)."""
     params = ehl_roller_race_default_params()
     params.update({
+        # central secants over +-10 % load and squeeze velocity (as the ball races): the linearised
+        # tangent jitters by +-3 % (K) / +-4 % (C) between neighbouring loads above the knee (cone, 7 m/s,
+        # 38-67 kN/m, 257 nodes: K 1.927, 1.843, 1.901, 1.819, 1.759, 1.876e10 N/m^2), the secants by +-1 %
+        # (1.868, 1.845, 1.839, 1.829, 1.827, 1.791e10)
+        "coefficients": "secant", "secant_step": 0.1,
+        # ... from Moes' M = 0.25 up: below it the load-step solves of the secant fail from the steady
+        # state with every Newton variant (cone, 7 m/s: every load with M = 0.055-0.14; 28 m/s: most with
+        # M = 0.028-0.09; 12-25 s per point before the tangent fallback) and the tangent is smooth there
+        # (hydrodynamic film, no outlet jitter); secant / tangent at M = 0.18-0.29: K 1.004-1.016,
+        # C 0.995-1.001 (7 m/s), K 1.013-1.027, C 0.994-1.011 (28 m/s)
+        "secant_min_moes_M": 0.25,
         "race": race,
         "radius_x": roller_race_radius(race),
         "length": 1.0,
@@ -413,7 +426,23 @@ def _continuation_start(params, contact, grid, options):
     raise ConvergenceError(" / ".join(errors))
 
 
-def ehl_load_response(params: dict, load: float, speed: float) -> dict:
+# Load continuation of a film-scaled line contact (ehl_load_response, attempt "lighter"): converge the
+# point at LIGHTER_LOAD_STEP times the load -- with every fallback of ehl_load_response, recursively, at
+# most LIGHTER_LOAD_DEPTH levels (0.9**8 = 0.43) -- and start from it.  Measured need (cone, 257 nodes,
+# Eyring flow): 72.7 kN/m, 17.7 m/s (M = 0.84) and 80.3 kN/m, 19.8 m/s (M = 0.88) fail from the solver's
+# own start and along every CONTINUATION_PATHS path, because each path's first step (0.5 or 0.67 of the
+# load, speed 0.5) is itself solved from the solver's own start, which fails at M ~ 0.4-0.9 (singular
+# Jacobian, or the film collapsing to the floor from the Hertz start); from the converged 66 kN/m state
+# (0.91 of the load) the same solve converges in 14 Newton iterations with every Newton variant, to the
+# same film to 1e-15.  At 80.3 kN/m, 19.8 m/s (M = 0.88) the default Newton step (max_step 2 p_Hertz) cycles
+# from every converged neighbour (0.9, 0.95, 0.98, 1.02, 1.05, 1.1 times the load: steps of 2 p_Hertz, the
+# cavitated set flipping), and max_step 0.5 converges from each of them in 16 iterations to the same film
+# (7.0943 um, to 1e-15): the continuation's final solve takes the damped step.
+LIGHTER_LOAD_STEP = 0.9
+LIGHTER_LOAD_DEPTH = 8
+
+
+def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 0) -> dict:
     """EHL solve at element load ``load`` = Q [N] and entrainment speed ``speed`` [m/s] (SRR-independent).
 
     A line contact carries Q/``length`` per unit length; its stiffness and
@@ -493,6 +522,10 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
     if film_scaled:
         # continuation in speed and inlet length (_continuation_start): same final grid and problem
         attempts.insert(1, (grid, options, "continuation"))
+        if _depth < LIGHTER_LOAD_DEPTH:
+            # load continuation from a lighter converged state, itself solved with these fallbacks, with a
+            # damped Newton step (LIGHTER_LOAD_STEP)
+            attempts.insert(2, (grid, slow, "lighter"))
     attempts.append((grid, slow, 2.0))
     if line and not film_scaled:
         attempts.append((dataclasses.replace(grid, x_max=grid.x_max + 1.0), slow))
@@ -507,6 +540,8 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
                 start = _short_inlet_start(contact, grid, options, ref_x_min)
             elif len(attempt) > 2 and attempt[2] == "continuation":
                 start = _continuation_start(params, contact, grid, options)
+            elif len(attempt) > 2 and attempt[2] == "lighter":
+                start = ehl_load_response(params, float(load) * LIGHTER_LOAD_STEP, speed, _depth=_depth + 1)["solution"]
             elif len(attempt) > 2 and attempt[2] == "newtonian":
                 newtonian = dataclasses.replace(contact.lubricant, eyring_stress=None)
                 start = solve_ehl(dataclasses.replace(contact, lubricant=newtonian), grid, options)
@@ -518,7 +553,12 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
                 sol = start
             else:
                 sol = solve_ehl(contact, grid, options, initial=start)
-            if method == "secant":
+            if method == "secant" and contact.moes_M < float(_get(params, "secant_min_moes_M", 0.0)):
+                # light, hydrodynamic loads: the tangent (see _roller_params, "secant_min_moes_M")
+                from lubrication.ehl import ehl_normal_coefficients
+
+                K, C, _ = ehl_normal_coefficients(contact, grid, options, steady=sol)
+            elif method == "secant":
                 K, C = _ehl_secant_coefficients(contact, grid, options, sol, float(_get(params, "secant_step", 0.05)))
             elif method == "linearised":
                 from lubrication.ehl import ehl_normal_coefficients
@@ -541,7 +581,7 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
         log.info("EHL point (%s) converged at attempt %d (%s)", text, number + 1, options)
     out = {
         "solution": sol,
-        "Central film thickness [m]": sol.central_film_thickness,
+        "Central film thickness [m]": _film_at_centre(sol) if film_scaled else sol.central_film_thickness,
         "Minimum film thickness [m]": sol.minimum_film_thickness,
         "Maximum pressure [Pa]": sol.maximum_pressure,
         "Film stiffness [N/m]": float(K) * length,
@@ -552,6 +592,18 @@ def ehl_load_response(params: dict, load: float, speed: float) -> dict:
         _EHL_CACHE.pop(next(iter(_EHL_CACHE)))
     _EHL_CACHE[key] = out
     return out
+
+
+def _film_at_centre(sol) -> float:
+    """Film thickness [m] at x = 0 of a line contact: the P1 film interpolated linearly between the two
+    nodes around x = 0 (the film-scaled kinds' central film).  Why not the nearest node
+    (``EHLSolution.central_film_thickness``): on a film-scaled domain the nodes move relative to the
+    contact from one load to the next, the nearest node jumps from one side of x = 0 to the other, and the
+    film's slope across the Hertz zone turns that into a sawtooth -- measured on the cone at 17.75 m/s,
+    150-300 kN/m (257 nodes): h_c 6.742, 6.799, 6.880, 6.703, 6.777, 6.871 um at 150, 160, 170, 181, 193,
+    206 kN/m (-2.6 % between 170 and 181 kN/m), which the map missed by 3.2 % at 254 kN/m."""
+    x, h = sol._centre_line(sol.film_thickness)
+    return float(np.interp(0.0, x, h))
 
 
 def evaluate_ehl(params: dict, point: dict) -> dict:
@@ -587,19 +639,132 @@ LINE_RENAMES = {"Film stiffness [N/m]": "Film stiffness per length [N/m^2]",
 # only up to a constant.)
 EHL_LINE_OUTPUTS = tuple(LINE_RENAMES.get(name, name) for name in EHL_OUTPUTS)
 
+# Traction of the per-length kinds on a sheared slide-to-roll coordinate (see evaluate_ehl_line, "Traction").
+ROLLER_TRANSITION = "Transition slide-to-roll ratio [-]"
+ROLLER_TRACTION_NORMALISED = "Traction coefficient at normalised slip [-]"
+ROLLER_TRACTION_SHEAR = {
+    "values": ROLLER_TRACTION_NORMALISED,  # tabulated: mu(Q, u, sigma s_t), sigma = T(axis coordinate)
+    "shift": ROLLER_TRANSITION,            # tabulated: s_t(Q, u), constant along the slide-to-roll axis
+    "axis": 2,                             # the slide-to-roll axis
+    # T: ln sigma = a sinh(b ln(s/centre)), 1e-5..0.1 onto 1e-6..1e6, 1.5 times the axis' node density at
+    # sigma = 1 (the front: 6 nodes per decade of sigma on 37 axis nodes), 6.7 times thinner at the ends
+    # (1.3 per decade, where the traction is a power law of the slip)
+    "centre": 1e-3, "b": 0.352,
+    "a": math.log(1e6) / math.sinh(0.352 * math.log(100.0)),
+    "transition": (1e-7, 10.0),            # s_t saturates smoothly (tanh in log) into this range
+}
+EHL_LINE_OUTPUTS = EHL_LINE_OUTPUTS + (ROLLER_TRANSITION, ROLLER_TRACTION_NORMALISED)
+
 
 def evaluate_ehl_line(params: dict, point: dict) -> dict:
     """One point of a per-length line-contact kind (``ehl_roller_cone``, ``ehl_roller_cup``): "Line load
     [N/m]", "Entrainment speed [m/s]", "Slide-to-roll ratio [-]".  Outputs :data:`EHL_LINE_OUTPUTS`:
     as :func:`evaluate_ehl` with the film stiffness and damping per metre of contact length (a slice
-    of length l: K l, C l)."""
+    of length l: K l, C l), the central film interpolated at x = 0 (:func:`_film_at_centre`), and two
+    outputs that carry the traction through a map:
+
+    - "Transition slide-to-roll ratio [-]" c = S(s_t): s_t the slip at which the traction is half its
+      Newtonian value (:func:`transition_slide_to_roll`, the Newtonian-to-limited front of this (load,
+      speed)), S a smooth saturation into 1e-7..10 (:func:`saturated_transition`; S(s_t) = s_t on
+      1e-6..1);
+    - "Traction coefficient at normalised slip [-]" G = mu(T(s) c), T the fixed map of the slide-to-roll
+      axis coordinate s onto the normalised slip sigma (:func:`normalised_slip`: 1e-5..0.1 onto 1e-6..1e6,
+      denser at sigma = 1), odd in s.
+
+    Traction (issue 22, section 4): limiting shear makes mu(s) Newtonian (mu = a s) up to s_t and nearly
+    flat above, and s_t falls by ~35 e-folds per e-fold of load in the hydrodynamic-to-EHL transition (cone,
+    17.7 m/s: 4.6e-2 at 30 kN/m, 1.7e-6 at 40 kN/m) -- on the (load, speed, slide-to-roll) grid a front
+    that crosses 1e-4..1e-3 between load nodes (the map missed by 665-877 %).  In sigma = s/c the front
+    stays at sigma ~ 1 at every node.  A map of these kinds (``PointKind.sheared``, coupling.maps.FilmMap
+    "sheared") therefore returns "Traction coefficient [-]" at (w, u, s) as G interpolated at
+    (w, u, T^-1(s / c(w, u))), c interpolated; its own table of "Traction coefficient [-]" is kept for
+    plots only.  A caller with a kernel of its own takes the kernel arrays of G and c and does the same."""
+    import math
+
     if float(params.get("length", 1.0)) != 1.0:
         raise InputError(f"params.length = {params['length']!r}: a line-load kind works per metre (length = 1.0)")
     point = dict(point)
     point["Load [N]"] = float(point.pop("Line load [N/m]"))
     out = evaluate_ehl(params, point)
     out["Approach [m]"] = out["Central film thickness [m]"] + out["Approach [m]"]  # u(0) = h_c - h00
-    return {LINE_RENAMES.get(k, k): v for k, v in out.items()}
+    out = {LINE_RENAMES.get(k, k): v for k, v in out.items()}
+    base = ehl_load_response(params, point["Load [N]"], float(point["Entrainment speed [m/s]"]))
+    if "transition" not in base:
+        base["transition"] = transition_slide_to_roll(base["solution"])
+    s_t = saturated_transition(base["transition"])
+    srr = float(point.get("Slide-to-roll ratio [-]", 0.0))
+    out[ROLLER_TRANSITION] = s_t
+    # odd in the slide-to-roll ratio, as the traction (the axis itself is > 0)
+    out[ROLLER_TRACTION_NORMALISED] = (math.copysign(_traction_at(base["solution"], normalised_slip(abs(srr)) * s_t), srr)
+                                       if srr != 0.0 else 0.0)
+    return out
+
+
+def _traction_at(sol, srr: float) -> float:
+    """Traction coefficient of the converged ``sol`` at slide-to-roll ratio ``srr`` (post-processing)."""
+    import dataclasses
+
+    c = dataclasses.replace(sol.contact, slide_to_roll=float(srr))
+    return float(dataclasses.replace(sol, contact=c).traction_coefficient())
+
+
+def transition_slide_to_roll(sol) -> float:
+    """Slide-to-roll ratio s_t [-] at which the traction of ``sol`` is half its Newtonian value:
+    mu(s_t) = s_t a / 2, a = int eta u_e/h dx / w the Newtonian traction per unit slide-to-roll ratio
+    (EHLSolution._shear_integrals, same quadrature).  mu(s)/(a s) = int min(A, B/s) dx / int A dx falls
+    monotonically from 1 (every point Newtonian) to 0 (every point at its limiting stress B = tau_L0 +
+    gamma p); its half point is the Newtonian-to-limited front of the contact.  Bisection in log s over
+    [1e-16, 1e6]; inf if the traction is above half its Newtonian value at 1e6, 0 if below at 1e-16."""
+    P, c = sol.problem, sol.contact
+    b = P.basis
+    pq = np.maximum(np.asarray(b.interpolate(sol.pressure)), 0.0)
+    hq = np.asarray(b.interpolate(np.maximum(sol.film_thickness, P.o.h_floor * P.hscale)))
+    eta = c.lubricant.viscosity(pq)
+    dx = np.asarray(b.dx)
+    newtonian = float(np.sum(eta * c.mean_speed / hq * dx))
+
+    def ratio(ln_s):
+        sliding = np.exp(ln_s) * c.mean_speed
+        return float(np.sum(c.traction.stress(eta, sliding, hq, pq) * dx)) / (np.exp(ln_s) * newtonian)
+
+    lo, hi = np.log(1e-16), np.log(1e6)
+    if ratio(hi) > 0.5:
+        return float("inf")
+    if ratio(lo) < 0.5:
+        return 0.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ratio(mid) > 0.5 else (lo, mid)
+    return float(np.exp(0.5 * (lo + hi)))
+
+
+def saturated_transition(s_t: float) -> float:
+    """The tabulated transition slide-to-roll ratio: ``s_t`` itself within 1e-6..1 (the slide-to-roll
+    axis 1e-5..0.1 and a decade either side), saturating beyond it into ROLLER_TRACTION_SHEAR["transition"]
+    = (1e-7, 10): ln c = ln s_t inside, ln c = ln 1 + r tanh((ln s_t - ln 1)/r) above (r = ln 10; below
+    likewise), twice continuously differentiable (tanh'(0) = 1, tanh''(0) = 0).  A hard clip would put a
+    kink into the tabulated s_t; a tanh over the whole range moved the front off sigma = 1 by up to 0.16
+    in ln sigma inside the axis (measured on tests/test_maps.py's front: 1.6 % against 0.x %)."""
+    lo, hi = (math.log(v) for v in ROLLER_TRACTION_SHEAR["transition"])
+    r = math.log(10.0)
+    lo_in, hi_in = lo + r, hi - r
+    if s_t <= 0.0:
+        return math.exp(lo)
+    if math.isinf(s_t):
+        return math.exp(hi)
+    x = math.log(s_t)
+    if x > hi_in:
+        x = hi_in + r * math.tanh((x - hi_in) / r)
+    elif x < lo_in:
+        x = lo_in - r * math.tanh((lo_in - x) / r)
+    return math.exp(x)
+
+
+def normalised_slip(srr):
+    """Normalised slip sigma = T(srr) of the slide-to-roll axis coordinate ``srr`` (> 0):
+    ln sigma = a sinh(b ln(srr/centre)) (ROLLER_TRACTION_SHEAR; 1e-5..0.1 onto 1e-6..1e6)."""
+    spec = ROLLER_TRACTION_SHEAR
+    return np.exp(spec["a"] * np.sinh(spec["b"] * np.log(np.asarray(srr, dtype=float) / spec["centre"])))
 
 
 def field_ehl_line(params: dict, point: dict):
@@ -640,8 +805,29 @@ EHL_ROLLER_AXES = (
 # dynamics/cageless/layout.py TRACTION_MAP_BELOW_AXIS, with a lower first node).  The SRR nodes cost no
 # EHL solve (the isothermal pressure does not depend on sliding).
 ROLLER_SRR_MIN = 1e-5
+
+
+def _roller_line_loads() -> tuple:
+    """Line-load nodes [N/m] of the roller kinds: log-uniform in three bands, 0.7-14 kN/m (8 cells, ratio
+    1.45), 14-56 kN/m (20 cells, ratio 1.072) and 56-300 kN/m (5 cells, ratio 1.40): 34 nodes.  The middle
+    band holds the hydrodynamic-to-EHL knee (measured on 257 nodes, linearised K: d ln K/d ln w falls
+    from 2.3-3.0 to ~0 within one 11 % load step at 20-22 kN/m (cone, 7 m/s), 34-38 (cone, 28 m/s),
+    25-27 (cup, 7 m/s), 38-42 kN/m (cup, 28 m/s)) and the traction's Newtonian-to-limited front, whose
+    transition slip s_t falls by 35 e-folds per e-fold of load there (cone, 17.7 m/s: s_t = 4.6e-2 at
+    30 kN/m, 1.7e-6 at 40 kN/m).  On 16 log nodes (ratio 1.50) the knee fell inside one cell (K and C
+    missed by 7-8 %)."""
+    bands = (np.geomspace(700.0, 1.4e4, 9), np.geomspace(1.4e4, 5.6e4, 21), np.geomspace(5.6e4, 3.0e5, 6))
+    nodes = np.concatenate([bands[0], bands[1][1:], bands[2][1:]])
+    return tuple(float(x) for x in nodes)
+
+
+ROLLER_LINE_LOADS = _roller_line_loads()
 EHL_ROLLER_LINE_AXES = (
-    AxisDef("Line load [N/m]", 700.0, 3.0e5, 16, "log"),
-    AxisDef("Entrainment speed [m/s]", 7.0, 28.0, 9, "log"),
-    AxisDef("Slide-to-roll ratio [-]", ROLLER_SRR_MIN, 0.1, 13, "log"),
+    AxisDef("Line load [N/m]", 700.0, 3.0e5, len(ROLLER_LINE_LOADS), "log", explicit=ROLLER_LINE_LOADS),
+    # 13 nodes (ratio 1.12): the transition slip moves by ~17 e-folds per e-fold of speed in the
+    # Newtonian-to-limited transition (it depends on load and speed mostly through Moes' M ~ w/sqrt(u))
+    AxisDef("Entrainment speed [m/s]", 7.0, 28.0, 13, "log"),
+    # 37 nodes (9 per decade): the traction is tabulated on the normalised slip, whose axis spans 12
+    # decades on these nodes (3 per decade; ROLLER_TRACTION_SHEAR); the nodes cost no EHL solve
+    AxisDef("Slide-to-roll ratio [-]", ROLLER_SRR_MIN, 0.1, 37, "log"),
 )

@@ -140,8 +140,9 @@ def build_map(kind, params: dict | None = None, axes=None, *, method: str = "her
         "filled points": [{"point": p, "error": msg} for _, p, msg in failed],
     }
     signed = set(getattr(kind, "signed", ()) or ())
+    sheared = {name: spec for name, spec in (getattr(kind, "sheared", None) or {}).items() if name in names}
     fmap = FilmMap(axes, values, method=method, provenance=provenance,
-                   log_values={name: False for name in names if name in signed})
+                   log_values={name: False for name in names if name in signed}, sheared=sheared)
     if fit:
         for name in names:
             fmap.fit_power_law(name)

@@ -49,10 +49,20 @@ class FilmMap:
         (sequential monotone cubic, as scipy's RegularGridInterpolator(method="pchip")) or "linear"
     log_values : {output: bool}; default: log where every value is > 0
     provenance, fits, accuracy : dicts (see :func:`build_map`)
+    sheared : {output: spec}: outputs the map returns on a sheared coordinate (the point kind's
+        ``sheared``).  ``spec``: ``"values"`` (a tabulated output G), ``"shift"`` (a tabulated output c > 0,
+        independent of axis ``"axis"``), ``"axis"`` k (a log axis), ``"centre"``, ``"a"``, ``"b"``.  At
+        coordinates (..., x_k, ...) the map returns ``G(..., T^-1(x_k / c(...)), ...)``, T the map
+        ln T(x) = a sinh(b ln(x/centre)) (denser near x = centre, where T = 1): the
+        kind tabulates G at a node (..., x_k, ...) as the output at x_k' = T(x_k) c(node), so that along
+        axis k it is a function of the normalised coordinate x_k'/c, in which a front at x_k' ~ c stays put
+        from node to node (the roller kinds' traction, :mod:`coupling.film_points`).  The output's own
+        table (at x_k) is kept for plots but not interpolated (:meth:`kernel_arrays` refuses it).
     """
 
     def __init__(self, axes, values: dict, *, method: str = "hermite", log_values: dict | None = None,
-                 provenance: dict | None = None, fits: dict | None = None, accuracy: dict | None = None):
+                 provenance: dict | None = None, fits: dict | None = None, accuracy: dict | None = None,
+                 sheared: dict | None = None):
         self.axes = tuple(axes)
         if not 1 <= len(self.axes) <= 3:
             raise InputError(f"a map has 1 to 3 axes, got {len(self.axes)}")
@@ -71,6 +81,15 @@ class FilmMap:
         self.provenance = dict(provenance or {})
         self.fits = dict(fits or {})
         self.accuracy = dict(accuracy or {})
+        self.sheared = {}
+        for name, spec in dict(sheared or {}).items():
+            spec = dict(spec)
+            missing = [o for o in (name, spec.get("values"), spec.get("shift")) if o not in self.values]
+            k = int(spec.get("axis", -1))
+            if missing or not 0 <= k < len(self.axes) or not self.axes[k].log:
+                raise InputError(f"sheared output {name!r}: needs tabulated outputs {name!r}, {spec.get('values')!r}, "
+                                 f"{spec.get('shift')!r} (missing {missing}) and a log axis {k}")
+            self.sheared[name] = spec
         self._kernel: dict = {}
 
     # -- description
@@ -110,6 +129,10 @@ class FilmMap:
         """Plain arrays of ``output`` for :mod:`dynamics.interp` (``interp2(*ka.axes, *ka.logs, ka.values,
         ka.logv, ka.method, x0, x1, mode, counter)``)."""
         output = self._output(output)
+        if output in self.sheared:
+            raise InputError(f"map {self.kind}: {output!r} is returned on a sheared coordinate (FilmMap.sheared): "
+                             f"its own table is not what the map interpolates; call the map, or take the kernel "
+                             f"arrays of {self.sheared[output]['values']!r} and {self.sheared[output]['shift']!r}")
         if output not in self._kernel:
             logv = self.log_values[output]
             axes = tuple(interp.prepare_axis(a.nodes, a.log) for a in self.axes)
@@ -133,6 +156,10 @@ class FilmMap:
                              f"got {len(coords)}")
         if mode not in ("raise", "clamp", "nan"):
             raise unknown_choice("mode", mode, ("raise", "clamp", "nan"))
+        if output in self.sheared:
+            if grad:
+                raise InputError(f"map {self.kind}: no gradient of the sheared output {output!r}")
+            return self._sheared(output, coords, mode, counter)
         ka = self.kernel_arrays(output)
         arrays = np.broadcast_arrays(*[np.asarray(c, dtype=float) for c in coords])
         shape = arrays[0].shape
@@ -158,6 +185,21 @@ class FilmMap:
                                  f"the axes, first {', '.join(where)}; extend the axes or query with mode='clamp'")
         v = v.reshape(shape)
         return (v, g.reshape(shape + (self.ndim,))) if grad else v
+
+    def _sheared(self, output, coords, mode, counter):
+        """A sheared output at ``coords`` (see the class docstring, ``sheared``)."""
+        spec = self.sheared[output]
+        k = int(spec["axis"])
+        shift = self(spec["shift"], *coords, mode=mode, counter=counter)  # checks the coordinates
+        a, b, centre = float(spec["a"]), float(spec["b"]), float(spec["centre"])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            sigma = np.asarray(coords[k], dtype=float) / shift
+            x = centre * np.exp(np.arcsinh(np.log(sigma) / a) / b)
+        moved = list(coords)
+        moved[k] = x
+        # x leaves the axis only where the interpolated shift overshoots its tabulated range: clamp
+        return self(spec["values"], *moved, mode="nan" if mode == "nan" else "clamp",
+                    counter=np.zeros(1, dtype=np.int64))
 
     # -- dynamics
     def is_polar(self) -> bool:
@@ -199,8 +241,12 @@ class FilmMap:
         """Interpolation error at ``points`` (m, ndim) against ``direct`` {output: (m,) values}:
         per output ``{"median": .., "max": .., "points": m, "above 3 %": .., "worst point": [...]}``."""
         report = {}
+        # the tabulated function of a sheared output (its "values") is judged through that output: its
+        # table spans (axes, normalised coordinate) combinations the output never reads (the roller kinds:
+        # a node whose transition slip saturates at 1e-7 reads sigma >= 100 only)
+        internal = {spec["values"] for spec in self.sheared.values()}
         for name, exact in direct.items():
-            if name not in self.values:
+            if name not in self.values or name in internal:
                 continue
             exact = np.asarray(exact, float)
             approx = self(name, *points.T, mode="nan")
@@ -224,6 +270,7 @@ class FilmMap:
             "provenance": self.provenance,
             "fits": {k: (dataclasses.asdict(f) if f is not None else None) for k, f in self.fits.items()},
             "accuracy": self.accuracy,
+            "sheared": self.sheared,
         }
 
     def save(self, path) -> Path:
@@ -260,7 +307,8 @@ class FilmMap:
                     if f is not None else None) for k, f in header.get("fits", {}).items()}
         return cls(axes, values, method=header["method"],
                    log_values={o["name"]: o["log_values"] for o in header["outputs"]},
-                   provenance=header.get("provenance", {}), fits=fits, accuracy=header.get("accuracy", {}))
+                   provenance=header.get("provenance", {}), fits=fits, accuracy=header.get("accuracy", {}),
+                   sheared=header.get("sheared", {}))
 
     # -- plots
     def plot(self, outputs_=None, *, lines: int = 5):
