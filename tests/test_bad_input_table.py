@@ -65,7 +65,7 @@ ROWS = [
     (TD, ["lubricant.grease=soap"], 2, ["lubricant.grease = 'soap'", "'polyurea'"]),
     (TD, ["lubricant.consistency=5"], 2, ["lubricant.consistency = 5", "grease = 'custom'"]),
     (TD, ["model.pocket=film", "model.guide_land=none"], 2, ["model.guide_land", "exactly when"]),
-    (TD, ["integrator.method=rk4"], 2, ["integrator.dt", "is required with method = 'rk4'"]),
+    (TD, ["integrator.method=rk4", "integrator.dt=fast"], 2, ["integrator.dt", "auto"]),
     (TD, ["integrator.method=rk4", "integrator.dt=100 us"], 2, ["integrator.dt", "stab"]),
     (TD, ["analysis.window=[0.2, 0.1]"], 2, ["analysis.window", "end > start"]),
     (TD, ["model.traction=coulomb"], 2, ["model.traction = 'coulomb'", "'paper'"]),
