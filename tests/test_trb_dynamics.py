@@ -389,10 +389,13 @@ def test_at_speed_the_start_is_a_steady_orbit_with_the_gyroscopic_moment():
     force and the gyroscopic moment M = omega_c sin(beta) [I_x (omega_s + omega_c cos beta) - I_y omega_c
     cos beta] about the tangential axis) is a steady orbit of every roller: the kernel's Newton and
     Euler equations give the orbit's own accelerations, omega_c e_x x v for the centre and
-    R^T (omega_c e_x x omega) in the body frame, to 1e-6 of their size (measured 2.9e-10 and 1e-9 once
-    the quasi-static solver applied the centrifugal force at the mass centre's displaced radius and the
-    moment at the actual axis angle: before, the force's moment about the mid-point was missing, 45 % of
-    the gyroscopic moment, and the body rates were off by 18 %).  Paper A's I_x omega_R omega_c sin(beta)
+    R^T (omega_c e_x x omega) in the body frame: the centre's to 1e-6 of its size (measured 3.2e-10 once the
+    quasi-static solver applied the centrifugal force at the mass centre's displaced radius; before, the
+    force's moment about the mid-point, 45 % of the gyroscopic moment, was missing and the body rates were
+    18 % off), the body rates' to 2e-5 (measured 6.2e-6: the solver applies the gyroscopic moment at the
+    nominal axis angle, 1.6e-5 of it off at the roller's 3e-6 rad tilt; at the actual angle it was 1e-9,
+    but that moment's change with the tilt stalls the solver where the literal geometry is near a
+    mechanism).  Paper A's I_x omega_R omega_c sin(beta)
     (omega_R the spin relative to the cage) is this moment's leading term only: with I_y = 3.1 I_x and
     omega_c/omega_R = 0.107 the other two raise it by 22.0 % (a closed-form fact, pinned)."""
     from scipy.spatial.transform import Rotation
@@ -417,7 +420,7 @@ def test_at_speed_the_start_is_a_steady_orbit_with_the_gyroscopic_moment():
         wdot_exp = R.inv().apply(np.cross([wc, 0.0, 0.0], R.apply(wb)))
         worst_v = max(worst_v, np.linalg.norm(d[b + 7:b + 10] - a_exp) / np.linalg.norm(a_exp))
         worst_w = max(worst_w, np.linalg.norm(d[b + 10:b + 13] - wdot_exp) / np.linalg.norm(wdot_exp))
-    assert worst_v < 1e-6 and worst_w < 1e-6, (worst_v, worst_w)
+    assert worst_v < 1e-6 and worst_w < 2e-5, (worst_v, worst_w)
     beta, ws = g.roller_axis_angle, -kin["roller spin relative to cage [rad/s]"]
     exact = wc * math.sin(beta) * (ix * (ws + wc * math.cos(beta)) - iy * wc * math.cos(beta))
     paper = ix * ws * wc * math.sin(beta)

@@ -88,7 +88,7 @@ class QuasiStaticResult:
 class _Model:
     """Assembles the energy, residual and Gauss-Newton Hessian of the bearing (plain numpy)."""
 
-    def __init__(self, g: TaperedRollerGeometry, n_slices, centrifugal, gyro_moment, gyro=None):
+    def __init__(self, g: TaperedRollerGeometry, n_slices, centrifugal, gyro_moment):
         self.g = g
         self.Z = int(g.n_rollers)
         self.psi = 2.0 * math.pi * np.arange(self.Z) / self.Z
@@ -98,7 +98,7 @@ class _Model:
         self.K_f = g.flange_hertz_constant()
         self.scale = 0.5 * g.effective_length       # theta -> length
         self.fc, self.mg = centrifugal, gyro_moment
-        self.gyro = gyro     # (omega_c, omega_s, I_x, I_y): the gyroscopic moment at the actual axis angle
+        self.near = False
         self.uc = g.roller_mass_properties()[3]
         # m omega_c^2 from the centrifugal force at the nominal mass-centre radius
         self.mw2 = centrifugal / (g.pitch_radius + self.uc * math.sin(g.roller_axis_angle))
@@ -169,15 +169,11 @@ class _Model:
             # map of the cone's in-plane (dx, dr) onto (d_x, d_y, d_z)
             P = np.array([[1.0, 0.0, 0.0], [0.0, c, s]])
             idx = np.r_[0:3, 3 + 3 * j: 6 + 3 * j]
-            if self.gyro is not None:
-                # the moment the contacts supply, -M(beta) with beta the roller's actual axis angle:
-                # M = omega_c [I_x omega_s sin(beta) + (I_x - I_y) omega_c sin(beta) cos(beta)], whose
-                # integral over beta is G = omega_c [-I_x omega_s cos(beta) + (I_x - I_y) omega_c sin^2(beta)/2]
-                wc, ws, ix, iy = self.gyro
-                b = self.g.roller_axis_angle + rl[j, 2] / self.scale
-                m_b = wc * (ix * ws * math.sin(b) + (ix - iy) * wc * math.sin(b) * math.cos(b))
-                energy += wc * (-ix * ws * math.cos(b) + 0.5 * (ix - iy) * wc * math.sin(b) ** 2)
-                grad[3 + 3 * j + 2] += m_b / self.scale
+            # the gyroscopic moment the contacts supply, at the nominal axis angle (constant): its change
+            # with the roller's tilt (1.6e-5 of it at 3e-6 rad) is a negative tilt stiffness that stalls the
+            # solver where the literal geometry is near a mechanism
+            energy -= self.mg * rl[j, 2] / self.scale
+            grad[3 + 3 * j + 2] -= self.mg / self.scale
             # centrifugal: the potential -m omega_c^2 rho^2/2 of the mass centre at radius rho = R_p + r +
             # u_c sin(beta) (u_c along the axis from the mid-point the unknowns place), so the force follows
             # the roller's displacement and has the moment m omega_c^2 rho u_c cos(beta) about the mid-point
@@ -185,12 +181,14 @@ class _Model:
             cb, sb, ir, it = math.cos(beta), math.sin(beta), 3 + 3 * j + 1, 3 + 3 * j + 2
             rho = self.g.pitch_radius + rl[j, 1] + self.uc * sb
             drho = self.uc * cb / self.scale
-            energy -= 0.5 * self.mw2 * rho * rho
+            # -m omega_c^2 (rho^2 - rho_0^2)/2 with rho - rho_0 formed without cancellation
+            b0 = self.g.roller_axis_angle
+            d_rho = rl[j, 1] + self.uc * 2.0 * math.cos(0.5 * (beta + b0)) * math.sin(0.5 * (beta - b0))
+            energy -= self.mw2 * d_rho * (rho - 0.5 * d_rho)
             grad[ir] -= self.mw2 * rho
             grad[it] -= self.mw2 * rho * drho
-            # (the Hessian keeps the contacts' terms only: these loads' own derivatives, -m omega_c^2 and the
-            # gyroscopic moment's change with beta, are negative and 1e-5 of the contacts' stiffness; left out,
-            # the Gauss-Newton matrix stays positive and the converged state, set by the gradient, is exact)
+            # its derivatives over (r, tilt), added below where the contacts keep the block positive
+            h_c = -self.mw2 * np.array([[1.0, drho], [drho, drho * drho - rho * self.uc * sb / self.scale**2]])
 
             for kind, (dl, gr, gc, cv) in enumerate(rows):
                 e, f, kp = self._laws(dl, kind)
@@ -199,6 +197,12 @@ class _Model:
                 grad[idx] += f @ J
                 H[np.ix_(idx, idx)] += J.T @ (kp[:, None] * J)
                 H[idx[-1], idx[-1]] += float(f @ cv)
+            # the centrifugal load's own (r, tilt) derivatives, once near the solution (``near``: the
+            # contacts are established; from the start they stall the steps) and where the roller's contacts
+            # keep the block positive.  They matter where the literal geometry is near a mechanism.
+            blk = np.ix_([ir, it], [ir, it])
+            if self.near and np.all(np.linalg.eigvalsh(H[blk] + h_c) > 0.0):
+                H[blk] += h_c
         return energy, grad, H, cs
 
 
@@ -232,7 +236,7 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
         beta = g.roller_axis_angle
         ws = -kin["roller spin relative to cage [rad/s]"]
         mg = wc * math.sin(beta) * (ix * (ws + wc * math.cos(beta)) - iy * wc * math.cos(beta))
-    model = _Model(g, n_slices, fc, -mg, (wc, ws, ix, iy) if gyroscopic else None)
+    model = _Model(g, n_slices, fc, -mg)
     n = 3 + 3 * model.Z
     free = np.ones(n, bool)
     q = np.zeros(n)
@@ -256,6 +260,9 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
         if res < tol:
             stop = "tolerance met"
             break
+        if res < 1e-4 and not model.near:
+            model.near = True
+            energy, grad, H, cs = model.evaluate(q, f_cone)
         Hf = H[np.ix_(free, free)]
         D = np.maximum(np.diag(Hf), 1e-6 * k_ref)
         accepted = False
