@@ -42,7 +42,7 @@ omega_ideal the geometry's own ideal cage speed omega_i (1 - gamma)/2.  A roller
 while its cone load exceeds ``analysis.loaded_zone_fraction`` of the start's largest.  Periodicity:
 :func:`periodicity` (1 when every roller repeats its neighbour's signal one roller pass later).
 
-Not yet (issue 23): side-beam contacts, the tilting cone, a rib film that follows the load.
+Not yet (issue 23): the tilting cone, a rib film that follows the load.
 """
 from __future__ import annotations
 
@@ -101,6 +101,7 @@ class ModelTable(_Model):
     quaternion_stabilisation: Q("frequency", ge=0) = 10.0
     friction_speed: Q("velocity", gt=0) = 1e-3
     pocket_switch: Literal["continuous", "paper"] = "continuous"
+    side_beams: bool = True
 
 
 class LubricantTable(_Model):
@@ -161,6 +162,8 @@ class CageTable(_Model):
     pocket_stiffness: Q("stiffness", ge=0) = 0.0
     pocket_damping: Q("damping", ge=0) = 0.0
     land_critical_film: Q("length", ge=0) = 0.0
+    side_beam_clearance: Q("length", ge=0) = 0.0
+    side_beam_thickness: Q("length", ge=0) = 0.0
 
 
 class FlangeTable(_Model):
@@ -392,6 +395,8 @@ def window_summary(model, t, D, lo, hi) -> dict:
 
 def summarise(case, model, t, Y, D, qs) -> dict:
     """The scene's summary (module docstring): the paper's window and the last cage revolution."""
+    from dynamics.tapered import layout as L
+
     kin = model.ideal()
     ideal = float(kin["cage speed [rad/s]"])
     s = {"Rollers [-]": model.n_rollers, "Slices per roller [-]": model.n_slices,
@@ -442,6 +447,9 @@ def summarise(case, model, t, Y, D, qs) -> dict:
     s["Cone centre excursion, largest [m]"] = float(np.max(np.hypot(Y[:, 1] - Y[0, 1], Y[:, 2] - Y[0, 2])))
     if "Guide land load [N]" in D:
         s["Largest guide land load [N]"] = float(np.max(D["Guide land load [N]"]))
+        s["Largest side beam load [N]"] = float(np.max(D["Side beam load [N]"]))
+        s["Cage axial excursion, largest [m]"] = float(np.max(np.abs(Y[:, L.N_CONE + L.NB * model.n_rollers]
+                                                                     - Y[0, L.N_CONE + L.NB * model.n_rollers])))
     return s
 
 

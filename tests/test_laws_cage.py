@@ -292,3 +292,20 @@ def test_guide_land_boundary_state(switch):
     q_boundary = kh * 1e-6 + (abs(film[1]) if switch == 1 else 0.0)  # the paper's mu_bd also acts on the film load
     assert deep[2] == pytest.approx(torque + mu * q_boundary * R_LAND, rel=1e-9)
     assert deep[5] + deep[2] == pytest.approx(-(0.0 * deep[1] - (e_lim + 1e-6) * deep[0]), rel=1e-9)
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_side_beam_force_joins_squeeze_and_boundary(compiled):
+    """side_beam_force: above the critical film the parallel-strip squeeze eta d h_s^3 v/h^3 (Hamrock et
+    al. 2004, sec. 15.2; computed here) approaching and 0 separating; below it the squeeze frozen at h_crit
+    plus k_h d - c_h (d/h_crit) dh/dt, d = h_crit - h (the damping ramped in); continuous at h_crit (1e-9)."""
+    f = L.side_beam_force if compiled else L.side_beam_force.py_func
+    eta, d, hs, hc, kh, ch = 0.1, 24.76e-3, 5e-3, 2e-6, 1e8, 100.0
+    h, v = 0.3e-3, 1e-3
+    assert f(h, -v, d, hs, eta, hc, kh, ch) == pytest.approx(eta * d * hs**3 * v / h**3, rel=1e-14)
+    assert f(h, +v, d, hs, eta, hc, kh, ch) == 0.0
+    squeeze_c = eta * d * hs**3 * v / hc**3
+    assert f(1e-6, -v, d, hs, eta, hc, kh, ch) == pytest.approx(squeeze_c + kh * 1e-6 + 0.5 * ch * v, rel=1e-12)
+    above, below = f(hc * (1 + 1e-12), -v, d, hs, eta, hc, kh, ch), f(hc * (1 - 1e-12), -v, d, hs, eta, hc, kh, ch)
+    assert below == pytest.approx(above, rel=1e-9)
+    assert f(1e-6, 0.0, d, hs, eta, hc, kh, ch) == pytest.approx(kh * 1e-6, rel=1e-12)

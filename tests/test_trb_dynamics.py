@@ -36,7 +36,8 @@ def bearing(speed=0.0, slices=5, pocket="none", traction="none", contacts=True, 
     cage = G.Cage(mass=_v("cage_mass"), modulus=_v("cage_modulus"), poisson=_v("cage_poisson"),
                   boundary_friction=_v("boundary_friction"), pocket_critical_film=_v("pocket_critical_film"),
                   pocket_stiffness=_v("pocket_contact_stiffness"), pocket_damping=_v("pocket_contact_damping"),
-                  land_critical_film=_v("guide_land_critical_film"))
+                  land_critical_film=_v("guide_land_critical_film"),
+                  side_beam_clearance=_v("side_beam_axial_clearance"), side_beam_thickness=_v("side_beam_thickness"))
     flange = G.Flange(asperity_friction=_v("flange_asperity_friction"), asperity_b=_v("flange_asperity_b"),
                       asperity_c=_v("flange_asperity_c"), roughness=_v("flange_roughness"))
     return TaperedBearing(
@@ -425,3 +426,41 @@ def test_at_speed_the_start_is_a_steady_orbit_with_the_gyroscopic_moment():
     exact = wc * math.sin(beta) * (ix * (ws + wc * math.cos(beta)) - iy * wc * math.cos(beta))
     paper = ix * ws * wc * math.sin(beta)
     assert exact / paper - 1 == pytest.approx(0.220, abs=1e-3)
+
+
+def test_the_side_beams_push_an_axially_displaced_cage_back():
+    """At rest, the cage moved along +x until each pocket's small-end beam is 1 um from its roller's end
+    (gap Delta' - delta cos(beta), Delta' = 0.3 mm): every small end carries the boundary force k_h (h_crit
+    - 1 um) = 1e8 x 1e-6 = 100 N along the roller's axis, so the cage gets Z 100 cos(beta) N back along -x
+    and the rollers the same along +x (against the centred cage: 1e-9 relative)."""
+    from dataclasses import replace
+
+    tb = _with_cage(0.0)
+    tb = replace(tb, cage=replace(tb.cage, side_beam_clearance=0.3e-3, side_beam_thickness=5e-3),
+                 fidelity=replace(tb.fidelity, side_beams=True))
+    g = tb.geometry
+    y = tb.start_state()
+    b = K.N_CONE + K.NB * g.n_rollers
+    P, U, RHO = tb.args()
+    Z = g.n_rollers
+    beta = g.roller_axis_angle
+
+    def forces(state):
+        F, T, Fc, Fg, Tg = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty(3)
+        diag = (np.empty((Z, 4)), np.empty((Z, 2, tb.n_slices)), np.empty((Z, K.N_FRICTION)), np.empty(K.N_CAGE_DIAG))
+        K.contact_forces(state, P, U, RHO, F, T, Fc, diag[0], Fg, Tg, *diag[1:])
+        return F, Fg, diag[3]
+
+    F0, Fg0, _ = forces(y)
+    # the rollers' mid-points sit a_j cos(beta) (quasi-static, about 1e-6 m) off the pocket centres: move
+    # the cage so that each small-end gap is 1 um
+    qs = tb.quasi_static()
+    s0 = np.array([a * math.cos(beta) + r * math.sin(beta) for a, r in qs.roller_displacements])
+    assert np.ptp(s0) < 1e-12   # Fa only: every roller alike
+    shifted = y.copy()
+    shifted[b] += (0.3e-3 - 1e-6 + s0[0]) / math.cos(beta)
+    F1, Fg1, cg = forces(shifted)
+    expect = Z * 1e8 * 1e-6 * math.cos(beta)
+    assert Fg1[0] - Fg0[0] == pytest.approx(-expect, rel=1e-9)
+    assert (F1[:, 0] - F0[:, 0]).sum() == pytest.approx(expect, rel=1e-9)
+    assert cg[4] == pytest.approx(Z * 100.0, rel=1e-9)

@@ -106,6 +106,9 @@ VALUES = {
     "side_beam_axial_clearance": P("0.3 mm", "length", "assumed",
                                    "Delta delta' of eq. 39 (roller end to side beam), not given: of the order of "
                                    "the pocket clearance 0.27 mm"),
+    "side_beam_thickness": P("5 mm", "length", "assumed",
+                             "h_s of eq. 40 (the beam's width the end's squeeze film flows across), not given: "
+                             "the cage thickness of Table 1"),
     "pocket_switch": P("continuous", "text", "assumed",
                        "the paper switches film/boundary state abruptly at Delta h0; the continuous switch has no "
                        "jump in force or friction (lubrication/laws/cage.py)"),
@@ -214,6 +217,7 @@ SCENES["tapered"] = {
     "lubricant.limiting_stress": "grease_limiting_shear_stress", "lubricant.limiting_slope": "grease_limiting_shear_slope",
     "lubricant.yield_rate": "grease_yield_regularisation_rate", "lubricant.shear_modulus": "film_shear_modulus",
     "cage.modulus": "cage_modulus", "cage.poisson": "cage_poisson",
+    "cage.side_beam_clearance": "side_beam_axial_clearance", "cage.side_beam_thickness": "side_beam_thickness",
     "flange.asperity_friction": "flange_asperity_friction", "flange.asperity_b": "flange_asperity_b",
     "flange.asperity_c": "flange_asperity_c", "flange.roughness": "flange_roughness", "flange.rib_film": "rib_film_model",
 }

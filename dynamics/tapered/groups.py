@@ -71,7 +71,9 @@ class Fidelity(Group):
     "contact" (contact only beyond the land clearance) or "film"; ``damping_alpha`` alpha_e [s/m] of
     eq. 11 (slices, flange, contact-only pocket and land); ``cone_mass`` [kg] (paper A gives none);
     ``quaternion_stabilisation`` [1/s]; ``friction_speed`` v_reg [m/s] of the regularised Coulomb
-    friction of the contact-only pocket and land (mu tanh(v/v_reg)); ``pocket_switch`` of the film pocket."""
+    friction of the contact-only pocket and land (mu tanh(v/v_reg)); ``pocket_switch`` of the film pocket;
+    ``side_beams``: the roller ends against the pocket's side beams (eqs. 39-40, the cage's axial DOF free;
+    False: the cage's axial position held)."""
 
     TABLE: ClassVar[str] = "model"
 
@@ -86,6 +88,7 @@ class Fidelity(Group):
     quaternion_stabilisation: float = 10.0
     friction_speed: float = 1e-3
     pocket_switch: str = "continuous"
+    side_beams: bool = True
 
     def __post_init__(self):
         if isinstance(self.slices, bool) or int(self.slices) != self.slices or self.slices < 1:
@@ -174,7 +177,9 @@ class Cage(Group):
     """The cage: ``mass`` [kg] (a ring: the bars' share of the inertia is not known), ``modulus`` [Pa]
     and ``poisson`` of its polyamide (needed by the contact-only pocket and land); the film pocket's
     ``pocket_critical_film`` [m], ``pocket_stiffness`` [N/m], ``pocket_damping`` [N s/m]; the land's
-    ``land_critical_film`` [m] (film land); ``boundary_friction`` mu_bd (all levels)."""
+    ``land_critical_film`` [m] (film land); ``boundary_friction`` mu_bd (all levels); the side beams'
+    axial ``side_beam_clearance`` Delta delta' [m] (roller end to beam, each side) and ``side_beam_thickness``
+    h_s [m] (eq. 40's squeeze flows across it)."""
 
     TABLE: ClassVar[str] = "cage"
 
@@ -186,9 +191,12 @@ class Cage(Group):
     pocket_stiffness: float = 0.0
     pocket_damping: float = 0.0
     land_critical_film: float = 0.0
+    side_beam_clearance: float = 0.0
+    side_beam_thickness: float = 0.0
 
     def __post_init__(self):
         self.positive("mass")
+        self.non_negative("side_beam_clearance", "side_beam_thickness")
         self.non_negative("boundary_friction", "pocket_critical_film", "pocket_stiffness", "pocket_damping",
                           "land_critical_film")
         if (self.modulus is None) != (self.poisson is None):

@@ -50,7 +50,7 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   lambda = h/sigma are evaluated once at the start's flange load and the ideal rib entrainment speed
   (a fixed film: the film's change with load in the run is the next fidelity level);
 
-* the cage (option ``cage``): a rigid body (axial position held; radial x2, three rotations) with one
+* the cage (option ``cage``): a rigid body (six DOF with the side beams, below; without them its axial position held) with one
   pocket per roller.  Roller j's mid-point M, seen in the cage frame, is off its pocket's mid-plane by
   s = t_j.(M - c_cage) (t_j the pocket's circumferential unit vector); the gaps to the leading and
   trailing crossbeams are Delta - s and Delta + s (Delta the pocket clearance), each a whole-roller line
@@ -69,8 +69,11 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   against the sliding; the land touches the cage's bore when their centres are more than the radial
   clearance (0.25 mm) apart, a line contact of the land's width, with friction torque mu_bd q r.
 
-Not yet: the side-beam contacts (eqs. 39-42; until then the cage's axial position is held: its other
-five DOF are free), the cone's tilt, a rib film that follows the load.  :func:`forces_many` returns slice
+* side beams (option ``side_beams``, eqs. 39-40): each roller end against its pocket's side beam across the
+  axial clearance Delta' (squeeze film and boundary state, or contact only); with them the cage has all six
+  DOF, without them its axial position is held.
+
+Not yet: the cone's tilt, a rib film that follows the load.  :func:`forces_many` returns slice
 loads, contact loads, friction and cage diagnostics at sampled states; the model's ``diagnostics`` reads
 tilt, skew and slip from them.
 """
@@ -81,7 +84,7 @@ import math
 import numpy as np
 from numba import njit
 
-from lubrication.laws.cage import guide_land_short_bearing, guide_land_torque, pocket_force
+from lubrication.laws.cage import guide_land_short_bearing, guide_land_torque, pocket_force, side_beam_force
 from lubrication.laws.collision import hertz_force
 from lubrication.laws.film import dowson_toyoda_central
 from lubrication.laws.jit import INLINE, JIT
@@ -286,6 +289,8 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
                 Fc[2] -= f2
         if P[P_CAGE] != 0.0:
             _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR)
+            if P[P_SIDEGAP] > 0.0:
+                _side_beams(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG)
     if P[P_CAGE] != 0.0:
         _guide_land(y, P, Fc, Fg, Tg, CG)
         CG[0], CG[1], CG[2] = Fg[1], Fg[2], Tg[0]
@@ -345,6 +350,62 @@ def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, l
         Tg[0] += x0
         Tg[1] += x1
         Tg[2] += x2
+
+
+@njit(**INLINE)
+def _side_beams(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG):
+    """Roller j's ends against its pocket's side beams (eqs. 39-40): the pocket's centre C_j and axis a_j
+    (the roller's nominal axis) ride with the cage; the roller's mid-point M is off C_j along a_j by
+    s = a_j.(M - C_j), so the large end's gap is Delta' - s and the small end's Delta' + s.  Film pocket:
+    :func:`lubrication.laws.cage.side_beam_force` (squeeze of the end's strip across the beam's thickness,
+    boundary state below the critical film); contact-only pocket: a line contact (the pocket's constant,
+    eq. 11's damping) once the gap closes.  The force acts along a_j at the end face's centre, on the roller
+    and (opposite) on the cage."""
+    Z = int(P[P_Z])
+    b = N_CONE + Z * NB
+    g0, g1, g2 = y[b], y[b + 1], y[b + 2]
+    qc = y[b + 3:b + 7] / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
+    phi = 2.0 * math.pi * j / Z
+    cp, sp = math.cos(phi), math.sin(phi)
+    cb, sb = math.cos(P[P_BETA0]), math.sin(P[P_BETA0])
+    cw = np.empty(3)
+    quat_rotate(qc, np.array([P[P_POCKX], P[P_PITCH] * cp, P[P_PITCH] * sp]), cw)
+    a = np.empty(3)
+    quat_rotate(qc, np.array([cb, sb * cp, sb * sp]), a)
+    wc = np.empty(3)
+    quat_rotate(qc, y[b + 10:b + 13], wc)
+    s = a[0] * (m0 - g0 - cw[0]) + a[1] * (m1 - g1 - cw[1]) + a[2] * (m2 - g2 - cw[2])
+    half = 0.5 * P[P_LEN]
+    for end in range(2):
+        sg = 1.0 if end == 0 else -1.0            # large end (+a), small end (-a)
+        gap = P[P_SIDEGAP] - sg * s
+        if P[P_POCKETMODE] == POCKET_CONTACT and gap >= 0.0:
+            continue
+        p0, p1, p2 = m0 + sg * half * e0, m1 + sg * half * e1, m2 + sg * half * e2   # end face centre
+        r0, r1, r2 = p0 - c0, p1 - c1, p2 - c2
+        w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
+        h0, h1, h2 = p0 - g0, p1 - g1, p2 - g2
+        k0, k1, k2 = _cross(wc[0], wc[1], wc[2], h0, h1, h2)
+        rel = (a[0] * (v0 + w0 - y[b + 7] - k0) + a[1] * (v1 + w1 - y[b + 8] - k1)
+               + a[2] * (v2 + w2 - y[b + 9] - k2))
+        rate = -sg * rel                           # d(gap)/dt
+        if P[P_POCKETMODE] == POCKET_FILM:
+            d = P[P_DLARGE] if end == 0 else P[P_DSMALL]
+            f = side_beam_force(gap, rate, d, P[P_HSIDE], P[P_ETA], P[P_HCRIT], P[P_KH], P[P_CH])
+        else:
+            f = slice_force(-gap, -rate, P[P_KPOCKET], P[P_ALPHA])
+        if f <= 0.0:
+            continue
+        f0, f1, f2 = -sg * f * a[0], -sg * f * a[1], -sg * f * a[2]
+        _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
+        Fg[0] -= f0
+        Fg[1] -= f1
+        Fg[2] -= f2
+        x0, x1, x2 = _cross(h0, h1, h2, -f0, -f1, -f2)
+        Tg[0] += x0
+        Tg[1] += x1
+        Tg[2] += x2
+        CG[4] += f
 
 
 @njit(**INLINE)
@@ -442,11 +503,12 @@ def rhs(t, y, args, dydt):
     if P[P_CAGE] != 0.0:
         b = N_CONE + Z * NB
         q = y[b + 3:b + 7]
-        dydt[b] = 0.0                                  # axial position held (the side-beam contacts come next)
+        free = P[P_SIDEGAP] > 0.0                      # the side beams hold it axially; else held
+        dydt[b] = y[b + 7] if free else 0.0
         dydt[b + 1] = y[b + 8]
         dydt[b + 2] = y[b + 9]
         quat_derivative(q, y[b + 10:b + 13], dydt[b + 3:b + 7], P[P_QSTAB])
-        dydt[b + 7] = 0.0
+        dydt[b + 7] = Fg[0] / P[P_MCG] if free else 0.0
         dydt[b + 8] = Fg[1] / P[P_MCG] - g
         dydt[b + 9] = Fg[2] / P[P_MCG]
         qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)

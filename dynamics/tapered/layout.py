@@ -39,8 +39,11 @@ LAND_NONE, LAND_CONTACT, LAND_FILM = 0.0, 1.0, 2.0
  P_FFRIC, P_MUA, P_FBC, P_FCC, P_LAMBDA, P_HRIB, P_FA1, P_FB1, P_FP01,
  P_KPOCKET, P_KLAND, P_VREG,
  # the film's shear modulus of the limited raceway traction (elastic_limited)
- P_GSHEAR) = range(77)
-P_SIZE = 77
+ P_GSHEAR,
+ # side beams (eqs. 39-40): axial clearance (0: none, the cage's axial DOF held), pocket centre's radius
+ # and axial offset from the cage centre, the roller axis angle, end diameters, the beams' thickness
+ P_SIDEGAP, P_PITCH, P_POCKX, P_BETA0, P_DLARGE, P_DSMALL, P_HSIDE) = range(84)
+P_SIZE = 84
 
 # per-roller loads of loads_many / forces: columns
 LOAD_NAMES = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]")
@@ -49,5 +52,6 @@ L_CUP, L_CONE, L_FLANGE, L_POCKET = range(4)
 FRICTION_NAMES = ("Cup traction [N]", "Cone traction [N]", "Flange friction [N]", "Pocket friction [N]",
                   "Cup sliding speed max [m/s]", "Cone sliding speed max [m/s]", "Flange sliding speed [m/s]")
 N_FRICTION = 7
-CAGE_NAMES = ("Cage force on cage y [N]", "Cage force on cage z [N]", "Cage torque x [N m]", "Guide land load [N]")
-N_CAGE_DIAG = 4
+CAGE_NAMES = ("Cage force on cage y [N]", "Cage force on cage z [N]", "Cage torque x [N m]", "Guide land load [N]",
+              "Side beam load [N]")
+N_CAGE_DIAG = 5

@@ -198,6 +198,13 @@ class TaperedBearing:
             P[L.P_RLAND], P[L.P_CLAND] = g.land_radius, 0.5 * g.guide_land_clearance
             P[L.P_BLAND], P[L.P_HLAND] = g.guide_land_width, c.land_critical_film
             P[L.P_POCKETMODE], P[L.P_LANDMODE] = L.POCKETS[fi.pocket], L.LANDS[fi.guide_land]
+            if fi.side_beams:
+                if not (c.side_beam_clearance > 0.0 and c.side_beam_thickness > 0.0):
+                    raise fail("cage.side_beam_clearance", c.side_beam_clearance,
+                               "and cage.side_beam_thickness must be > 0 with model.side_beams = true")
+                P[L.P_SIDEGAP], P[L.P_HSIDE] = c.side_beam_clearance, c.side_beam_thickness
+                P[L.P_PITCH], P[L.P_POCKX], P[L.P_BETA0] = g.pitch_radius, -g.cage_x, g.roller_axis_angle
+                P[L.P_DLARGE], P[L.P_DSMALL] = g.large_end_diameter, g.small_end_diameter
             if c.modulus is not None:
                 ep = self.pocket_modulus()
                 P[L.P_KPOCKET] = sl.line_constant(g.effective_length, ep)
@@ -360,6 +367,7 @@ class TaperedBearing:
                 out["Cage slip [-]"] = (wc - out["Cage speed [rad/s]"]) / wc if wc else np.full(len(Y), np.nan)
             out["Cage centre [m]"] = Y[:, b + 1:b + 3] - Y[:, 1:3]
             out["Guide land load [N]"] = cage[:, 3]
+            out["Side beam load [N]"] = cage[:, 4]
         return out
 
 

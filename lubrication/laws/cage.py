@@ -226,6 +226,24 @@ def side_beam_squeeze(gap, gap_rate, end_diameter, beam_thickness, eta):
     return eta * end_diameter * beam_thickness ** 3 * (-gap_rate) / gap ** 3
 
 
+@njit(**INLINE)
+def side_beam_force(gap, gap_rate, end_diameter, beam_thickness, eta, critical_film, k_h, c_h):
+    """Force [N] (>= 0, pushing roller end and side beam apart) of :func:`side_beam_squeeze` with the
+    pocket's boundary state below the critical film (the continuous switch of :func:`pocket_force`): the
+    squeeze evaluated at max(h_a, h_crit), plus k_h d - c_h r dh_a/dt where h_a < h_crit (d = h_crit - h_a,
+    the damping ramped in by r = min(d/h_crit, 1) as :func:`pocket_force` does; the solids' share, >= 0), so
+    the force is continuous in the gap and bounded as it closes."""
+    h = gap if gap > critical_film else critical_film
+    f = side_beam_squeeze(h, gap_rate, end_diameter, beam_thickness, eta)
+    if gap < critical_film:
+        d = critical_film - gap
+        ramp = d / critical_film if d < critical_film else 1.0
+        b = k_h * d - c_h * ramp * gap_rate
+        if b > 0.0:
+            f += b
+    return f
+
+
 @njit(**JIT)
 def guide_land_short_bearing(e_x, e_y, v_x, v_y, radius, clearance, width, eta, surface_speed):
     """``(F_x, F_y)`` [N]: the half-Sommerfeld short-bearing film force on the journal (the land) when
