@@ -43,8 +43,7 @@ def main(argv=None) -> dict:
         case = load_case(ROOT / "cases" / f"{name}.toml", overrides=over + ["integrator.method=rk4", f"integrator.dt={dt}"])
         t0 = time.perf_counter()
         s = S.run(case).summary
-        w = s["Paper window (analysis.window)"] if isinstance(s["Paper window (analysis.window)"], dict) else \
-            s.get("Last cage revolution") or s["Record's second half (shorter than a cage revolution)"]
+        w = S.main_window(s)[2]
         rows[rpm] = {"case": name, "RK4 step [s]": dt, "wall [s]": time.perf_counter() - t0, "window [s]": w["Window [s]"],
                      "Skew, loaded zone, mean [rad]": w["Skew [rad]"]["loaded zone"]["mean"],
                      "Skew, unloaded zone, mean [rad]": w["Skew [rad]"]["unloaded zone"]["mean"],

@@ -282,6 +282,28 @@ def _revolve(points_xr, psi, tangential):
     return np.stack([x, r * c - tangential * s, r * s + tangential * c], axis=-1)
 
 
+def body_grid(pts, body: int, values: dict):
+    """One body of a ParaView bearing mesh: the structured surface ``pts`` (..., 3) as an
+    UnstructuredGrid with cell data "Body [-]" = ``body`` and each of ``values`` as constant point data."""
+    import pyvista as pv
+
+    m = pv.StructuredGrid(pts[..., 0], pts[..., 1], pts[..., 2]).cast_to_unstructured_grid()
+    m.cell_data["Body [-]"] = np.full(m.n_cells, body, dtype=np.int32)
+    for key, value in values.items():
+        m.point_data[key] = np.full(m.n_points, value)
+    return m
+
+
+def raceway_surface(geometry, which: str, u, n_psi: int, shift=(0.0, 0.0, 0.0)):
+    """Points (n_along, n_psi, 3) of the ``which`` ("cup" or "cone") raceway over the rollers' length ``u``
+    (from the contact points at its ends), revolved about the bearing axis and moved by ``shift``."""
+    ends = np.array([geometry.contact_point(ui, which) for ui in (u[0], u[-1])])
+    psi = np.linspace(0.0, 2.0 * np.pi, n_psi)
+    X, P = np.meshgrid(np.linspace(ends[0, 0], ends[1, 0], len(u)), psi, indexing="ij")
+    R, _ = np.meshgrid(np.linspace(ends[0, 1], ends[1, 1], len(u)), psi, indexing="ij")
+    return _revolve((X, R), P, 0.0) + np.asarray(shift, dtype=float)
+
+
 def bearing_mesh(geometry, res, n_around: int = 24, n_along: int = 9):
     """The cup, cone and rollers at equilibrium as one pyvista UnstructuredGrid (module docstring)."""
     import pyvista as pv
@@ -294,22 +316,11 @@ def bearing_mesh(geometry, res, n_around: int = 24, n_along: int = 9):
     blocks = []
 
     def grid(pts, body, loads):
-        sg = pv.StructuredGrid(pts[..., 0], pts[..., 1], pts[..., 2])
-        m = sg.cast_to_unstructured_grid()
-        m.cell_data["Body [-]"] = np.full(m.n_cells, body, dtype=np.int32)
-        for key, value in zip(("Cup load [N]", "Cone load [N]", "Flange load [N]"), loads):
-            m.point_data[key] = np.full(m.n_points, value)
-        return m
+        return body_grid(pts, body, dict(zip(("Cup load [N]", "Cone load [N]", "Flange load [N]"), loads)))
 
     # raceways: the lines over the rollers' length, revolved about the axis
     for body, which in ((0, "cup"), (1, "cone")):
-        ends = np.array([g.contact_point(ui, which) for ui in (u[0], u[-1])])
-        xs = np.linspace(ends[0, 0], ends[1, 0], n_along)
-        rs = np.linspace(ends[0, 1], ends[1, 1], n_along)
-        psi = np.linspace(0.0, 2.0 * np.pi, 4 * n_around + 1)
-        X, P = np.meshgrid(xs, psi, indexing="ij")
-        R, _ = np.meshgrid(rs, psi, indexing="ij")
-        blocks.append(grid(_revolve((X, R), P, 0.0), body, (0.0, 0.0, 0.0)))
+        blocks.append(grid(raceway_surface(g, which, u, 4 * n_around + 1), body, (0.0, 0.0, 0.0)))
     # rollers: frustums about their axes, displaced (a, r) and tilted in their meridional planes
     for j, psi in enumerate(res.azimuths):
         a, r = res.roller_displacements[j]

@@ -421,13 +421,8 @@ def summarise(case, model, t, Y, D, qs) -> dict:
         s["Last cage revolution"] = window_summary(model, t, D, t[-1] - period, t[-1])
     else:
         s["Record's second half (shorter than a cage revolution)"] = window_summary(model, t, D, 0.5 * t[-1], t[-1])
-    # the headline means as top-level keys (what `lubedyn study` tabulates): the paper's window when the
-    # record reaches it, else the last cage revolution, else the record's second half
-    for key in ("Paper window (analysis.window)", "Last cage revolution",
-                "Record's second half (shorter than a cage revolution)"):
-        w = s.get(key)
-        if isinstance(w, dict):
-            break
+    # the headline means as top-level keys (what `lubedyn study` tabulates), from main_window
+    _, key, w = main_window(s)
     s["Averaged over"] = f"{key}: {w['Window [s]'][0]:.4g}-{w['Window [s]'][1]:.4g} s"
     for name, q, zone in (("Skew", "Skew [rad]", "loaded zone"), ("Skew", "Skew [rad]", "unloaded zone"),
                           ("Tilt", "Tilt [rad]", "loaded zone"), ("Tilt", "Tilt [rad]", "unloaded zone"),
@@ -462,17 +457,28 @@ class TaperedRun:
     diagnostics: dict = field(default_factory=dict)
 
 
+#: the summary's averaging windows, in order of preference: (short name, summary key)
+WINDOWS = (("paper window", "Paper window (analysis.window)"), ("last cage revolution", "Last cage revolution"),
+           ("second half", "Record's second half (shorter than a cage revolution)"))
+
+
+def main_window(s: dict) -> tuple[str, str, dict]:
+    """(short name, summary key, statistics) of the window a summary's headline numbers come from: the
+    paper's window when the record reaches it, else the last cage revolution, else the record's second
+    half."""
+    for name, key in WINDOWS:
+        if isinstance(s.get(key), dict):
+            return name, key, s[key]
+    raise KeyError("no averaging window in the summary")
+
+
 def headline(s: dict) -> list[str]:
     lines = []
     for k in ("Simulated time [s]", "Ideal cage speed [rpm]", "Largest cup load [N]", "RK4 step [s]",
               "Accepted steps [-]", "Integration wall time [s]"):
         if k in s:
             lines.append(f"{k:<44} {s[k]:.6g}" if isinstance(s[k], float) else f"{k:<44} {s[k]}")
-    for name, key in (("paper window", "Paper window (analysis.window)"), ("last cage revolution", "Last cage revolution"),
-                      ("second half", "Record's second half (shorter than a cage revolution)")):
-        w = s.get(key)
-        if isinstance(w, dict):
-            break
+    name, _, w = main_window(s)
     lines.append(f"Averaged over the {name}: {w['Window [s]'][0]:.4g}-{w['Window [s]'][1]:.4g} s")
     for k, unit in (("Tilt [rad]", "rad"), ("Skew [rad]", "rad"), ("Roller slip [-]", "-")):
         v = w[k]["loaded zone"]["mean"]
@@ -604,6 +610,8 @@ def frame_mesh(model, y, fields: dict, n_around: int = 16, n_along: int = 7):
     from dynamics.rotations import to_scipy
     from dynamics.tapered import layout as L
 
+    from .static_scene import body_grid, raceway_surface
+
     g = model.geometry
     l = g.effective_length
     u = np.linspace(-0.5 * l, 0.5 * l, n_along)
@@ -612,20 +620,12 @@ def frame_mesh(model, y, fields: dict, n_around: int = 16, n_along: int = 7):
     blocks = []
 
     def grid(pts, body, values):
-        m = pv.StructuredGrid(pts[..., 0], pts[..., 1], pts[..., 2]).cast_to_unstructured_grid()
-        m.cell_data["Body [-]"] = np.full(m.n_cells, body, dtype=np.int32)
-        for key, v in values.items():
-            m.point_data[key] = np.full(m.n_points, float(v))
-        return m
+        return body_grid(pts, body, {k: float(v) for k, v in values.items()})
 
     zero = {k: 0.0 for k in fields}
     psi = np.linspace(0.0, 2.0 * np.pi, 4 * n_around + 1)
     for body, which, shift in ((0, "cup", (0.0, 0.0, 0.0)), (1, "cone", y[0:3])):
-        ends = np.array([g.contact_point(ui, which) for ui in (u[0], u[-1])])
-        X, P = np.meshgrid(np.linspace(ends[0, 0], ends[1, 0], n_along), psi, indexing="ij")
-        R, _ = np.meshgrid(np.linspace(ends[0, 1], ends[1, 1], n_along), psi, indexing="ij")
-        pts = np.stack([X + shift[0], R * np.cos(P) + shift[1], R * np.sin(P) + shift[2]], axis=-1)
-        blocks.append(grid(pts, body, zero))
+        blocks.append(grid(raceway_surface(g, which, u, psi.size, shift), body, zero))
     rho = np.asarray(g.roller_radius(u), dtype=float)
     U, T = np.meshgrid(u - uc, t, indexing="ij")
     RHO, _ = np.meshgrid(rho, t, indexing="ij")

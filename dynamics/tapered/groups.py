@@ -196,9 +196,8 @@ class Cage(Group):
 
     def __post_init__(self):
         self.positive("mass")
-        self.non_negative("side_beam_clearance", "side_beam_thickness")
         self.non_negative("boundary_friction", "pocket_critical_film", "pocket_stiffness", "pocket_damping",
-                          "land_critical_film")
+                          "land_critical_film", "side_beam_clearance", "side_beam_thickness")
         if (self.modulus is None) != (self.poisson is None):
             raise self.fail("modulus", "and cage.poisson go together")
         if self.modulus is not None:

@@ -144,6 +144,19 @@ def _slice_film(load, radius, P):
 
 
 @njit(**INLINE)
+def _load_cage(Fg, Tg, h0, h1, h2, f0, f1, f2):
+    """The reaction of a force (f0, f1, f2) on a roller, acting on the cage at h (from the cage's centre):
+    -f added to the cage's force and h x (-f) to its torque."""
+    Fg[0] -= f0
+    Fg[1] -= f1
+    Fg[2] -= f2
+    x0, x1, x2 = _cross(h0, h1, h2, -f0, -f1, -f2)
+    Tg[0] += x0
+    Tg[1] += x1
+    Tg[2] += x2
+
+
+@njit(**INLINE)
 def _traction_per_speed(load, radius, P):
     """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N]: pi eps eta
     sqrt(R'/(2 h0)) times the slice width (:func:`lubrication.laws.traction.paper_raceway_traction`)."""
@@ -193,6 +206,13 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
     ex_b = np.array([1.0, 0.0, 0.0])
     e = np.empty(3)
     wi = np.empty(3)
+    # the cage's attitude (unit quaternion) and inertial angular velocity, once for all its contacts
+    bc = N_CONE + Z * NB
+    qc = np.empty(4)
+    wc = np.zeros(3)
+    if P[P_CAGE] != 0.0:
+        qc[:] = y[bc + 3:bc + 7] / math.sqrt(y[bc + 3] ** 2 + y[bc + 4] ** 2 + y[bc + 5] ** 2 + y[bc + 6] ** 2)
+        quat_rotate(qc, y[bc + 10:bc + 13], wc)
     for j in range(Z):
         b = N_CONE + j * NB
         c0, c1, c2 = y[b], y[b + 1], y[b + 2]
@@ -288,27 +308,25 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
                 Fc[1] -= f1
                 Fc[2] -= f2
         if P[P_CAGE] != 0.0:
-            _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR)
+            _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR)
             if P[P_SIDEGAP] > 0.0:
-                _side_beams(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG)
+                _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG)
     if P[P_CAGE] != 0.0:
-        _guide_land(y, P, Fc, Fg, Tg, CG)
+        _guide_land(y, P, wc, Fc, Fg, Tg, CG)
         CG[0], CG[1], CG[2] = Fg[1], Fg[2], Tg[0]
 
 
 @njit(**INLINE)
-def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR):
-    """Roller j against the crossbeams of its pocket (module docstring): forces on the roller and the cage."""
+def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR):
+    """Roller j against the crossbeams of its pocket (module docstring): forces on the roller and the cage
+    (``qc`` the cage's unit quaternion, ``wc`` its inertial angular velocity)."""
     Z = int(P[P_Z])
     b = N_CONE + Z * NB
     g0, g1, g2 = y[b], y[b + 1], y[b + 2]
-    qc = y[b + 3:b + 7] / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
     phi = 2.0 * math.pi * j / Z
     tb = np.array([0.0, -math.sin(phi), math.cos(phi)])
     t = np.empty(3)
     quat_rotate(qc, tb, t)                        # the pocket's circumferential unit vector, inertial
-    wc = np.empty(3)
-    quat_rotate(qc, y[b + 10:b + 13], wc)         # cage angular velocity, inertial
     s = t[0] * (m0 - g0) + t[1] * (m1 - g1) + t[2] * (m2 - g2)
     for side in range(2):
         sg = 1.0 if side == 0 else -1.0           # leading beam (+t), trailing beam (-t)
@@ -343,17 +361,11 @@ def _pocket(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, l
         _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
         loads[j, 3] += q
         FR[j, 3] += f
-        Fg[0] -= f0
-        Fg[1] -= f1
-        Fg[2] -= f2
-        x0, x1, x2 = _cross(h0, h1, h2, -f0, -f1, -f2)
-        Tg[0] += x0
-        Tg[1] += x1
-        Tg[2] += x2
+        _load_cage(Fg, Tg, h0, h1, h2, f0, f1, f2)
 
 
 @njit(**INLINE)
-def _side_beams(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG):
+def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG):
     """Roller j's ends against its pocket's side beams (eqs. 39-40): the pocket's centre C_j and axis a_j
     (the roller's nominal axis) ride with the cage; the roller's mid-point M is off C_j along a_j by
     s = a_j.(M - C_j), so the large end's gap is Delta' - s and the small end's Delta' + s.  Film pocket:
@@ -364,7 +376,6 @@ def _side_beams(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, 
     Z = int(P[P_Z])
     b = N_CONE + Z * NB
     g0, g1, g2 = y[b], y[b + 1], y[b + 2]
-    qc = y[b + 3:b + 7] / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
     phi = 2.0 * math.pi * j / Z
     cp, sp = math.cos(phi), math.sin(phi)
     cb, sb = math.cos(P[P_BETA0]), math.sin(P[P_BETA0])
@@ -372,8 +383,6 @@ def _side_beams(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, 
     quat_rotate(qc, np.array([P[P_POCKX], P[P_PITCH] * cp, P[P_PITCH] * sp]), cw)
     a = np.empty(3)
     quat_rotate(qc, np.array([cb, sb * cp, sb * sp]), a)
-    wc = np.empty(3)
-    quat_rotate(qc, y[b + 10:b + 13], wc)
     s = a[0] * (m0 - g0 - cw[0]) + a[1] * (m1 - g1 - cw[1]) + a[2] * (m2 - g2 - cw[2])
     half = 0.5 * P[P_LEN]
     for end in range(2):
@@ -398,24 +407,15 @@ def _side_beams(j, y, P, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, 
             continue
         f0, f1, f2 = -sg * f * a[0], -sg * f * a[1], -sg * f * a[2]
         _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
-        Fg[0] -= f0
-        Fg[1] -= f1
-        Fg[2] -= f2
-        x0, x1, x2 = _cross(h0, h1, h2, -f0, -f1, -f2)
-        Tg[0] += x0
-        Tg[1] += x1
-        Tg[2] += x2
+        _load_cage(Fg, Tg, h0, h1, h2, f0, f1, f2)
         CG[4] += f
 
 
 @njit(**INLINE)
-def _guide_land(y, P, Fc, Fg, Tg, CG):
+def _guide_land(y, P, wc, Fc, Fg, Tg, CG):
     """The cage's centering surface on the cone's guide land (module docstring)."""
     Z = int(P[P_Z])
     b = N_CONE + Z * NB
-    qc = y[b + 3:b + 7] / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
-    wc = np.empty(3)
-    quat_rotate(qc, y[b + 10:b + 13], wc)
     # the land (journal) relative to the cage (bearing), in the radial plane (y, z)
     ex, ey = y[1] - y[b + 1], y[2] - y[b + 2]
     vx, vy = y[4] - y[b + 8], y[5] - y[b + 9]

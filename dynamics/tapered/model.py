@@ -358,11 +358,8 @@ class TaperedBearing:
         if self.has_cage:
             b = L.N_CONE + L.NB * self.n_rollers
             q = Y[:, b + 3:b + 7] / np.linalg.norm(Y[:, b + 3:b + 7], axis=1)[:, None]
-            w = Y[:, b + 10:b + 13]
-            # x component of R(q) w
-            qw, qx, qy, qz = q.T
-            r00, r01, r02 = 1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qw * qz), 2 * (qx * qz + qw * qy)
-            out["Cage speed [rad/s]"] = r00 * w[:, 0] + r01 * w[:, 1] + r02 * w[:, 2]
+            # x component of R(q) omega_body: the first row of the rotation matrices
+            out["Cage speed [rad/s]"] = np.einsum("nj,nj->n", _matrices(q)[:, 0, :], Y[:, b + 10:b + 13])
             with np.errstate(divide="ignore", invalid="ignore"):
                 out["Cage slip [-]"] = (wc - out["Cage speed [rad/s]"]) / wc if wc else np.full(len(Y), np.nan)
             out["Cage centre [m]"] = Y[:, b + 1:b + 3] - Y[:, 1:3]
