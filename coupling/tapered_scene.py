@@ -232,12 +232,18 @@ class IntegratorTable(_Model):
 
 class AnalysisTable(_Model):
     """``window`` [s]: the averaging window of the summary (paper A's 0.1-0.18 s), clipped to the record;
-    beside it the summary always reports the record's last cage revolution.  A roller is in the loaded
+    beside it the summary always reports the record's last cage revolution, and, when the record is at
+    least twice ``converged_window`` [s] long, the "Converged window": the record's last
+    ``converged_window`` against the one before it (:func:`converged_summary`; its means are called
+    converged when every headline mean moved by at most ``converged_tolerance`` of its size).  A roller is
+    in the loaded
     zone when its cone load exceeds ``loaded_zone_fraction`` of the quasi-static start's largest.
     ``frames``: ParaView frames of the ``.pvd`` series."""
 
     window: Annotated[list[Q("time", ge=0)], Field(min_length=2, max_length=2)] = Field(
         default_factory=lambda: [0.1, 0.18])
+    converged_window: Q("time", gt=0) = 0.08
+    converged_tolerance: Q("dimensionless", gt=0) = 0.02
     loaded_zone_fraction: Q("dimensionless", gt=0, lt=1) = 0.01
     frames: PositiveInt = 50
 
@@ -393,6 +399,46 @@ def window_summary(model, t, D, lo, hi) -> dict:
     return out
 
 
+#: the headline means: (summary name, window statistic, zone or None for a whole-bearing statistic)
+HEADLINE = (("Skew, loaded zone", "Skew [rad]", "loaded zone"), ("Skew, unloaded zone", "Skew [rad]", "unloaded zone"),
+            ("Tilt, loaded zone", "Tilt [rad]", "loaded zone"), ("Tilt, unloaded zone", "Tilt [rad]", "unloaded zone"),
+            ("Roller slip, loaded zone", "Roller slip [-]", "loaded zone"),
+            ("Roller slip, unloaded zone", "Roller slip [-]", "unloaded zone"), ("Cage slip", "Cage slip [-]", None))
+
+
+def _headline_mean(w: dict, stat: str, zone):
+    if stat not in w:
+        return None
+    return w[stat][zone]["mean"] if zone else w[stat]["mean"]
+
+
+def converged_summary(model, t, D, width: float, tolerance: float) -> dict | None:
+    """The record's last ``width`` [s] against the ``width`` before it: the window statistics of the last
+    (:func:`window_summary`) and, per headline mean (:data:`HEADLINE`), its value in both windows, the
+    change and the change relative to the last window's magnitude.  "Converged [-]" when every relative
+    change is at most ``tolerance`` (a mean that is None in either window, an empty zone, is left out).
+    The change is the uncertainty issue 24 asks of a mean: how much it still moves from one window to the
+    next.  None when the record is shorter than two windows."""
+    end = float(t[-1])
+    if end - float(t[0]) < 2.0 * width:
+        return None
+    last = window_summary(model, t, D, end - width, end)
+    before = window_summary(model, t, D, end - 2.0 * width, end - width)
+    changes, worst = {}, 0.0
+    for name, stat, zone in HEADLINE:
+        a, b = _headline_mean(last, stat, zone), _headline_mean(before, stat, zone)
+        if a is None or b is None:
+            continue
+        rel = abs(a - b) / abs(a) if a != 0.0 else (0.0 if a == b else math.inf)
+        worst = max(worst, rel)
+        changes[name] = {"mean": a, "mean in the window before": b, "change": a - b, "relative change [-]": rel}
+    last["Window-to-window change"] = changes
+    last["Largest relative change [-]"] = worst
+    last["Tolerance [-]"] = tolerance
+    last["Converged [-]"] = bool(worst <= tolerance)
+    return last
+
+
 def summarise(case, model, t, Y, D, qs) -> dict:
     """The scene's summary (module docstring): the paper's window and the last cage revolution."""
     from dynamics.tapered import layout as L
@@ -421,18 +467,23 @@ def summarise(case, model, t, Y, D, qs) -> dict:
         s["Last cage revolution"] = window_summary(model, t, D, t[-1] - period, t[-1])
     else:
         s["Record's second half (shorter than a cage revolution)"] = window_summary(model, t, D, 0.5 * t[-1], t[-1])
-    # the headline means as top-level keys (what `lubedyn study` tabulates), from main_window
+    conv = converged_summary(model, t, D, case.analysis.converged_window, case.analysis.converged_tolerance)
+    if conv is not None:
+        s["Converged window"] = conv
+    # the headline means as top-level keys (what `lubedyn study` tabulates), from main_window, and from
+    # the converged window with their window-to-window change
     _, key, w = main_window(s)
     s["Averaged over"] = f"{key}: {w['Window [s]'][0]:.4g}-{w['Window [s]'][1]:.4g} s"
-    for name, q, zone in (("Skew", "Skew [rad]", "loaded zone"), ("Skew", "Skew [rad]", "unloaded zone"),
-                          ("Tilt", "Tilt [rad]", "loaded zone"), ("Tilt", "Tilt [rad]", "unloaded zone"),
-                          ("Roller slip", "Roller slip [-]", "loaded zone"),
-                          ("Roller slip", "Roller slip [-]", "unloaded zone")):
-        unit = q.rpartition(" ")[2]
-        s[f"{name}, {zone}, mean {unit}"] = w[q][zone]["mean"]
+    for name, stat, zone in HEADLINE:
+        unit = stat.rpartition(" ")[2]
+        if stat in w:
+            s[f"{name}, mean {unit}"] = _headline_mean(w, stat, zone)
+        # None when the record is shorter than two converged windows or the zone is empty
+        c = conv["Window-to-window change"].get(name, {}) if conv is not None else {}
+        s[f"{name}, converged mean {unit}"] = c.get("mean")
+        s[f"{name}, window-to-window change {unit}"] = c.get("change")
+    s["Converged window, converged [-]"] = None if conv is None else conv["Converged [-]"]
     s["Skew amplitude, loaded zone [rad]"] = w["Skew [rad]"]["loaded zone"]["amplitude"]
-    if "Cage slip [-]" in w:
-        s["Cage slip, mean [-]"] = w["Cage slip [-]"]["mean"]
     s["Skew periodicity [-]"] = w.get("Skew periodicity [-]")
     end = {"Largest cup load [N]": "Cup load [N]", "Largest cone load [N]": "Cone load [N]",
            "Largest flange load [N]": "Flange load [N]", "Largest pocket load [N]": "Pocket load [N]"}
@@ -487,6 +538,12 @@ def headline(s: dict) -> list[str]:
             lines.append(f"{label:<44} {v:.6g}")
     if "Cage speed, mean [rpm]" in w:
         lines.append(f"{'  Cage speed, mean [rpm]':<44} {w['Cage speed, mean [rpm]']:.6g}")
+    c = s.get("Converged window")
+    if isinstance(c, dict):
+        verdict = "converged" if c["Converged [-]"] else "NOT converged"
+        lines.append(f"Converged window {c['Window [s]'][0]:.4g}-{c['Window [s]'][1]:.4g} s: {verdict} (headline means "
+                     f"moved by up to {100 * c['Largest relative change [-]']:.3g} % from the window before; "
+                     f"tolerance {100 * c['Tolerance [-]']:.3g} %)")
     return lines
 
 

@@ -35,6 +35,34 @@ def test_periodicity_is_one_for_a_motion_steady_in_the_load_frame_and_small_for_
     assert S.periodicity(t[:5], x[:5], lag) is None
 
 
+def test_converged_window_reports_a_drift_as_its_window_to_window_change():
+    """The converged window (issue 24: a mean with its uncertainty) on built signals, 17 rollers, all
+    loaded, 0.3 s sampled every 0.1 ms: a skew drifting as a + b t moves by exactly b x width between the
+    last two windows (the means of a linear function over equal windows), so its relative change is
+    b w/(a + b (T - w/2)) and the window is not converged beyond that tolerance; constant signals change
+    by nothing; a record shorter than two windows has no converged window."""
+    from types import SimpleNamespace
+
+    Z = 17
+    t = np.linspace(0.0, 0.3, 3001)
+    a, b, width = 4e-3, 2e-3, 0.08
+    ones = np.ones((t.size, Z))
+    D = {"Loaded zone [-]": ones.astype(bool), "Skew [rad]": (a + b * t)[:, None] * ones,
+         "Tilt [rad]": -3e-5 * ones, "Roller slip [-]": 1e-4 * ones, "Spin slip [-]": 1e-4 * ones,
+         "Radial displacement [m]": 1e-6 * ones, "Orbital speed [rad/s]": 110.0 * ones}
+    model = SimpleNamespace(n_rollers=Z)
+    expected = b * width / (a + b * (t[-1] - width / 2))
+    c = S.converged_summary(model, t, D, width, tolerance=0.5 * expected)
+    skew = c["Window-to-window change"]["Skew, loaded zone"]
+    assert skew["change"] == pytest.approx(b * width, rel=1e-9)
+    assert skew["relative change [-]"] == pytest.approx(expected, rel=1e-9)
+    assert c["Window-to-window change"]["Tilt, loaded zone"]["change"] == pytest.approx(0.0, abs=1e-18)
+    assert "Skew, unloaded zone" not in c["Window-to-window change"]      # no roller is unloaded
+    assert c["Largest relative change [-]"] == pytest.approx(expected, rel=1e-9) and not c["Converged [-]"]
+    assert S.converged_summary(model, t, D, width, tolerance=2.0 * expected)["Converged [-]"]
+    assert S.converged_summary(model, t[:1500], D, 0.08, 0.02) is None
+
+
 @pytest.fixture(scope="module")
 def smoke_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("fig5")
@@ -137,3 +165,41 @@ def test_trend_signs_that_hold_from_3_ms_to_the_papers_window():
     assert skew5 > 2.0 * skew2 > 0.0
     (_, slip10), (_, slip40) = run("trb_preload_10um"), run("trb_preload_40um")
     assert abs(slip40) < 0.8 * abs(slip10)
+
+
+def test_under_an_axial_force_the_skewed_rollers_traction_screws_the_cone_in():
+    """Why the cone creeps axially with F_a as a force (the base of Figs. 14-16; docs/paper_a.md): the
+    rib's friction skews the rollers, a skewed roller slides axially on the raceways (skew x u_e), and
+    the raceway traction against that sliding pulls the cone along F_a.  Independent check: the
+    quasi-static solver (which has no traction) under F_a plus that traction -- read from the kernel at
+    the run's end state as the cone's axial force with traction minus without -- carries the dynamic
+    cup loads.  Smoke size, 10 ms: measured traction -2.5 kN (16 % of F_a), dynamic largest cup load
+    5,382 N, quasi-static 4,546 N under F_a alone (18 % off) and 5,305 N under F_a plus the traction
+    (1.4 %: the rib's friction, absent from the quasi-static solver, moves the loads 1.0 %).  Without
+    the rib's friction the rollers do not skew (1.9e-6 rad), the traction is -6 N and both agree to 5e-5."""
+    from dynamics.tapered import kernels as K
+    from dynamics.tapered import layout as L
+    from dynamics.tapered.quasistatic import solve
+
+    def creep(*overrides):
+        case = load_case("cases/trb_grease_fa15kN.toml", smoke=True, overrides=["integrator.duration=10 ms", *overrides])
+        run = S.run(case)
+        model = S.build(case)
+        P, U, RHO = model.args()
+        y = run.y[-1:]
+        loads, _, _, _, fc = K.forces_many(y, (P, U, RHO))
+        P0 = P.copy()
+        P0[L.P_TRACTION] = 0.0
+        traction = fc[0, 0] - K.forces_many(y, (P0, U, RHO))[4][0, 0]
+        fa = model.operating.axial_load
+        qs = [solve(model.geometry, axial_load=f, inner_speed=model.speed, n_slices=model.n_slices).cup_loads.max()
+              for f in (fa, fa - traction)]
+        return traction / fa, loads[0, :, 0].max(), qs
+
+    share, cup, (qs_fa, qs_fa_traction) = creep()
+    assert -0.3 < share < -0.08
+    assert cup > 1.1 * qs_fa
+    assert cup == pytest.approx(qs_fa_traction, rel=0.02)
+    share, cup, (qs_fa, qs_fa_traction) = creep("model.flange_friction=none")
+    assert abs(share) < 1e-3
+    assert cup == pytest.approx(qs_fa_traction, rel=2e-4) and cup == pytest.approx(qs_fa, rel=1e-3)
