@@ -73,7 +73,10 @@ class Fidelity(Group):
     ``quaternion_stabilisation`` [1/s]; ``friction_speed`` v_reg [m/s] of the regularised Coulomb
     friction of the contact-only pocket and land (mu tanh(v/v_reg)); ``pocket_switch`` of the film pocket;
     ``side_beams``: the roller ends against the pocket's side beams (eqs. 39-40, the cage's axial DOF free;
-    False: the cage's axial position held)."""
+    False: the cage's axial position held); ``traction_evaluation`` of the limited raceway traction:
+    "quadrature" (the strip law's Gauss rule at every slice and evaluation) or "table" (the same law
+    tabulated once per raceway over sliding speed and line load, read by cubic Hermite interpolation:
+    :meth:`dynamics.tapered.model.TaperedBearing.traction_tables`)."""
 
     TABLE: ClassVar[str] = "model"
 
@@ -89,6 +92,7 @@ class Fidelity(Group):
     friction_speed: float = 1e-3
     pocket_switch: str = "continuous"
     side_beams: bool = True
+    traction_evaluation: str = "quadrature"
 
     def __post_init__(self):
         if isinstance(self.slices, bool) or int(self.slices) != self.slices or self.slices < 1:
@@ -98,6 +102,7 @@ class Fidelity(Group):
         self.choice("pocket", tuple(POCKETS))
         self.choice("guide_land", tuple(LANDS))
         self.choice("pocket_switch", tuple(POCKET_SWITCHES))
+        self.choice("traction_evaluation", ("quadrature", "table"))
         self.non_negative("damping_alpha", "quaternion_stabilisation")
         self.positive("cone_mass", "friction_speed")
         if (self.pocket == "none") != (self.guide_land == "none"):

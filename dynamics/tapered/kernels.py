@@ -93,6 +93,7 @@ from lubrication.laws.slices import slice_contact_3d, slice_force
 from lubrication.laws.traction import (elastic_limited, elastic_strip_slope, limited_ellipse_traction,
                                       limited_strip_traction, paper_raceway_traction)
 
+from ..interp import CLAMP, hermite2
 from ..rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
 from .layout import *  # noqa: F401,F403  (indices and option codes: dynamics.tapered.layout)
 from .layout import (AXIAL_FORCE, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
@@ -103,7 +104,8 @@ from .layout import (P_ALPHA, P_ALPHAG, P_AXIAL, P_BLAND, P_CAGE, P_CH, P_CLAND,
                      P_HLAND, P_HRIB, P_ICT, P_ICX, P_IX, P_IY, P_KF, P_KH, P_KLAND, P_KPOCKET, P_KW, P_LAMBDA,
                      P_LANDMODE, P_LEN, P_M, P_MC, P_MCG, P_MUA, P_MUBD, P_NEXP, P_NS, P_OMEGA, P_PHI0,
                      P_POCKET, P_POCKETMODE, P_PVC, P_QSTAB, P_RHOM, P_RLAND, P_RS, P_RXI, P_RXO, P_SWITCH,
-                     P_TAUL0, P_TAUY, P_TRACTION, P_UC, P_UE, P_US, P_VREG, P_WIDTH, P_Z)
+                     P_TAUL0, P_TAUY, P_TRACTION, P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_UC, P_UE, P_US, P_VREG,
+                     P_WIDTH, P_Z)
 
 _dowson_toyoda = njit(**INLINE)(dowson_toyoda_central)   # the law of lubrication.laws.film, compiled here
 
@@ -164,19 +166,59 @@ def _traction_per_speed(load, radius, P):
     return paper_raceway_traction(1.0, P[P_ETA], radius, h0, b) * P[P_WIDTH]
 
 
+@njit(**JIT)
+def strip_viscous_traction(w, radius, vs, P):
+    """The limited Herschel-Bulkley traction per unit length [N/m] of a raceway strip of reduced radius
+    ``radius`` [m] carrying the line load ``w`` [N/m] and sliding at ``vs`` [m/s]
+    (:func:`lubrication.laws.traction.limited_strip_traction` over the Hertz strip of :func:`_slice_film`,
+    Gauss rule), before the film's elastic shear: the function the traction tables hold."""
+    _, b, p0, h0 = _slice_film(w * P[P_WIDTH], radius, P)
+    return limited_strip_traction(vs, h0, b, p0, _rheo(P))
+
+
+@njit(**JIT)
+def strip_viscous_table(V, W, radius, P):
+    """:func:`strip_viscous_traction` at every (V[i], W[j]): the values of a traction table."""
+    out = np.empty((V.size, W.size))
+    for i in range(V.size):
+        for j in range(W.size):
+            out[i, j] = strip_viscous_traction(W[j], radius, V[i], P)
+    return out
+
+
 @njit(**INLINE)
-def _slice_traction(load, radius, vs, P):
-    """Magnitude [N] of the raceway traction of a slice sliding at ``vs`` >= 0 [m/s] (the force opposes
-    the roller's sliding): eq. 12 ("paper") or the limited Herschel-Bulkley strip law ("limited",
-    :func:`lubrication.laws.traction.limited_strip_traction` over the slice's Hertz strip) in series with
-    the film's elastic shear (:func:`lubrication.laws.traction.elastic_limited`, shear modulus G)."""
+def _table_viscous(race, w, vs, P, counter):
+    """The viscous part of the limited traction per unit length [N/m] from raceway ``race``'s table (cubic
+    Hermite in log v_s and log w of the logarithm of the values), or -1 when (v_s, w) lies outside it
+    (the caller then evaluates the law)."""
+    off = int(P[P_TTOFF0 + race])
+    n0 = int(P[P_TTN0])
+    n1 = int(P[P_TTN1])
+    before = counter[0]
+    u = hermite2(P[off:off + n0], P[off + n0:off + n0 + n1], 1, 1,
+                 P[off + n0 + n1:off + n0 + n1 + 4 * n0 * n1].reshape((4, n0, n1)), 1, vs, w, CLAMP, counter)
+    return u if counter[0] == before else -1.0
+
+
+@njit(**INLINE)
+def _slice_traction(load, race, vs, P, counter):
+    """Magnitude [N] of the raceway traction of a slice of raceway ``race`` (0 cup, 1 cone) sliding at
+    ``vs`` >= 0 [m/s] (the force opposes the roller's sliding): eq. 12 ("paper") or the limited
+    Herschel-Bulkley strip law ("limited", :func:`strip_viscous_traction`, from the raceway's table when
+    the model has tables and (v_s, w) lies inside) in series with the film's elastic shear
+    (:func:`lubrication.laws.traction.elastic_limited`, shear modulus G)."""
+    radius = P[P_RXO] if race == 0 else P[P_RXI]
     if P[P_TRACTION] == TRACTION_PAPER:
         return _traction_per_speed(load, radius, P) * vs
     if vs <= 0.0:
         return 0.0
     w, b, p0, h0 = _slice_film(load, radius, P)
-    viscous = limited_strip_traction(vs, h0, b, p0, _rheo(P)) * P[P_WIDTH]
-    return elastic_limited(viscous, elastic_strip_slope(P[P_GSHEAR], b, P[P_UE], h0) * P[P_WIDTH], vs)
+    viscous = -1.0
+    if P[P_TTAB] != 0.0:
+        viscous = _table_viscous(race, w, vs, P, counter)
+    if viscous < 0.0:
+        viscous = limited_strip_traction(vs, h0, b, p0, _rheo(P))
+    return elastic_limited(viscous * P[P_WIDTH], elastic_strip_slope(P[P_GSHEAR], b, P[P_UE], h0) * P[P_WIDTH], vs)
 
 
 @njit(**JIT)
@@ -200,6 +242,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
     CG[:] = 0.0
     if P[P_CONTACTS] == 0.0:
         return
+    counter = np.zeros(1, dtype=np.int64)      # queries outside a traction table (dynamics.interp)
     dx, dy, dz = y[0], y[1], y[2]
     vcx, vcy, vcz = y[3], y[4], y[5]
     om = P[P_OMEGA]
@@ -257,7 +300,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
                     s0, s1, s2 = u0 - un * n0, u1 - un * n1, u2 - un * n2
                     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                     if vs > 0.0:
-                        ft = _slice_traction(f, P[P_RXO] if race == 0 else P[P_RXI], vs, P)
+                        ft = _slice_traction(f, race, vs, P, counter)
                         f0 -= ft * s0 / vs
                         f1 -= ft * s1 / vs
                         f2 -= ft * s2 / vs

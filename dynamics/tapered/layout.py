@@ -43,7 +43,11 @@ LAND_NONE, LAND_CONTACT, LAND_FILM = 0.0, 1.0, 2.0
  # side beams (eqs. 39-40): axial clearance (0: none, the cage's axial DOF held), pocket centre's radius
  # and axial offset from the cage centre, the roller axis angle, end diameters, the beams' thickness
  P_SIDEGAP, P_PITCH, P_POCKX, P_BETA0, P_DLARGE, P_DSMALL, P_HSIDE) = range(84)
-P_SIZE = 84
+# the limited traction's tables (TaperedBearing.traction_tables), appended to P after P_SIZE: a flag, the
+# node counts along sliding speed and line load, and the offset of each raceway's block (cup, cone); a
+# block is [log v nodes (n0), log w nodes (n1), Hermite data (4 x n0 x n1)]
+P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_TTOFF1 = 84, 85, 86, 87, 88
+P_SIZE = 89
 
 # per-roller loads of loads_many / forces: columns
 LOAD_NAMES = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]")

@@ -209,7 +209,49 @@ class TaperedBearing:
                 ep = self.pocket_modulus()
                 P[L.P_KPOCKET] = sl.line_constant(g.effective_length, ep)
                 P[L.P_KLAND] = sl.line_constant(g.guide_land_width, ep)
+        if fi.traction == "limited" and fi.traction_evaluation == "table":
+            P = self.traction_tables(P)
         return P, np.ascontiguousarray(u), np.ascontiguousarray(rho)
+
+    #: traction tables: nodes along the sliding speed (log, 1e-12-100 m/s) and the line load (log, 8
+    #: decades below the load of :data:`TABLE_PEAK_PRESSURE`)
+    TABLE_NODES: ClassVar[tuple[int, int]] = (128, 256)
+    TABLE_SPEEDS: ClassVar[tuple[float, float]] = (1e-12, 100.0)
+    TABLE_PEAK_PRESSURE: ClassVar[float] = 4e9
+    TABLE_LOAD_DECADES: ClassVar[float] = 8.0
+
+    def traction_tables(self, P: np.ndarray) -> np.ndarray:
+        """``P`` with the limited traction's tables appended (``model.traction_evaluation = "table"``).
+
+        Per raceway, :func:`dynamics.tapered.kernels.strip_viscous_traction` (the limited
+        Herschel-Bulkley strip law over the slice's Hertz strip, before the elastic shear) on a grid of
+        :data:`TABLE_NODES` nodes, log-spaced in the sliding speed over :data:`TABLE_SPEEDS` and in the
+        line load over :data:`TABLE_LOAD_DECADES` decades up to the load whose Hertz peak pressure is
+        :data:`TABLE_PEAK_PRESSURE` (w = 2 pi R' p0^2/E'), in log-log space with PCHIP node derivatives
+        (:func:`dynamics.interp.hermite_data`).  The kernel reads them with
+        :func:`dynamics.interp.hermite2` and evaluates the law itself outside them.  The law's film, Hertz
+        strip and rheology are fixed for a run, so the traction per length depends on (v_s, w) only.
+        Accuracy: tests/test_trb_dynamics.py measures it against the law at random points (the
+        traction with its elastic shear within the strip quadrature's own error, 3e-4)."""
+        from ..interp import hermite_data, prepare_axis
+
+        n0, n1 = self.TABLE_NODES
+        V = np.logspace(math.log10(self.TABLE_SPEEDS[0]), math.log10(self.TABLE_SPEEDS[1]), n0)
+        blocks = []
+        for race, radius in enumerate((P[L.P_RXO], P[L.P_RXI])):
+            w_max = 2.0 * math.pi * radius * self.TABLE_PEAK_PRESSURE**2 / P[L.P_EP]
+            W = np.logspace(math.log10(w_max) - self.TABLE_LOAD_DECADES, math.log10(w_max), n1)
+            values = K.strip_viscous_table(V, W, radius, P)
+            if not np.all(values > 0.0):
+                raise DynamicsInputError(f"the limited traction is not > 0 on its table ({('cup', 'cone')[race]}): "
+                                         "use model.traction_evaluation = 'quadrature'")
+            axes = [prepare_axis(V, True), prepare_axis(W, True)]
+            blocks.append(np.concatenate([axes[0], axes[1], hermite_data(axes, np.log(values)).ravel()]))
+        P = P.copy()
+        P[L.P_TTAB], P[L.P_TTN0], P[L.P_TTN1] = 1.0, n0, n1
+        P[L.P_TTOFF0] = P.size
+        P[L.P_TTOFF1] = P.size + blocks[0].size
+        return np.ascontiguousarray(np.concatenate([P] + blocks))
 
     # ---------------------------------------------------------------- start
     def quasi_static(self) -> QuasiStaticResult:
