@@ -102,7 +102,7 @@ class ModelTable(_Model):
     friction_speed: Q("velocity", gt=0) = 1e-3
     pocket_switch: Literal["continuous", "paper"] = "continuous"
     side_beams: bool = True
-    traction_evaluation: Literal["quadrature", "table"] = "quadrature"
+    traction_evaluation: Literal["quadrature", "table"] = "table"
 
 
 class LubricantTable(_Model):

@@ -76,7 +76,9 @@ class Fidelity(Group):
     False: the cage's axial position held); ``traction_evaluation`` of the limited raceway traction:
     "quadrature" (the strip law's Gauss rule at every slice and evaluation) or "table" (the same law
     tabulated once per raceway over sliding speed and line load, read by cubic Hermite interpolation:
-    :meth:`dynamics.tapered.model.TaperedBearing.traction_tables`)."""
+    :meth:`dynamics.tapered.model.TaperedBearing.traction_tables`; the default: over 0.18 s of Fig. 5's
+    point the loaded-zone mean skew agrees with "quadrature" to 1.1e-6 and the tilt to 7e-8, relative,
+    and the right-hand side costs 2-4 x less, benchmarks/results/trb_target.json)."""
 
     TABLE: ClassVar[str] = "model"
 
@@ -92,7 +94,7 @@ class Fidelity(Group):
     friction_speed: float = 1e-3
     pocket_switch: str = "continuous"
     side_beams: bool = True
-    traction_evaluation: str = "quadrature"
+    traction_evaluation: str = "table"
 
     def __post_init__(self):
         if isinstance(self.slices, bool) or int(self.slices) != self.slices or self.slices < 1:
