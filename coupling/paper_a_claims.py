@@ -170,7 +170,8 @@ def trend(first: Value, last: Value, claimed: int, magnitude: bool = False) -> t
     have_conv = first.converged is not None and last.converged is not None
     dc = f(last.converged) - f(first.converged) if have_conv else dp
     u = abs(first.uncertainty or 0.0) + abs(last.uncertainty or 0.0)
-    what = ("|X| " if magnitude else "") + f"{_sign_word(dp)} by {dp:+.3g} (paper's window)"
+    scale = max(abs(f(first.paper)), abs(f(last.paper)), 1e-300)
+    what = ("|X| " if magnitude else "") + f"{_sign_word(dp)} by {dp:+.3g} ({100 * dp / scale:+.2g} %, paper's window)"
     if have_conv:
         what += f", {dc:+.3g} converged (uncertainty {u:.2g})"
     if abs(dc) <= u:
