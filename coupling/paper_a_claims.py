@@ -556,8 +556,34 @@ def sensitivity(folder) -> list[dict]:
     return sorted(out, key=lambda r: -(r["skew range [-]"] or 0))
 
 
+def _traction_evaluation(run: Path) -> str:
+    """The run's model.traction_evaluation (its case.resolved.toml; "quadrature" before the key existed)."""
+    import tomllib
+
+    f = Path(run) / "case.resolved.toml"
+    if not f.is_file():
+        return "?"
+    return str(tomllib.loads(f.read_text()).get("model", {}).get("traction_evaluation", "quadrature"))
+
+
+def run_times(folder) -> list[dict]:
+    """Per study found under ``folder``: runs, workers, wall time [s] and the traction evaluation its runs
+    used (from ``study.json`` and the runs' summaries)."""
+    out = []
+    for name in MAIN_STUDIES + SENSITIVITY_STUDIES:
+        path = Path(folder) / name / "study.json"
+        if not path.is_file():
+            continue
+        r = json.loads(path.read_text())["runs"]
+        st = Study.load(Path(folder) / name)
+        how = sorted({_traction_evaluation(f) for f in st.folders})
+        out.append({"study": name, "runs": r["total"], "workers": r["workers"], "wall time [s]": r["wall time [s]"],
+                    "traction evaluation": ", ".join(how)})
+    return out
+
+
 def markdown(folder) -> str:
-    """The checklist (claims, conclusions, sensitivity) as markdown."""
+    """The checklist (claims, conclusions, sensitivity, run times) as markdown."""
     rows = claims(folder)
     lines = ["| fig | paper A's claim | paper | lubedyn | verdict | how measured |", "|---|---|---|---|---|---|"]
     for r in rows:
@@ -574,6 +600,12 @@ def markdown(folder) -> str:
             rng = "-" if r["skew range [-]"] is None else f"{r['skew range [-]']:.2f}"
             lines.append(f"| `{r['key']}` ({r['study']}) | {', '.join(map(str, r['values']))} | {fmt(r['skew'], '.3g')} | "
                          f"{fmt(r['tilt'], '.2g')} | {fmt(r['slip'], '.2g')} | {rng} |")
+    times = run_times(folder)
+    if times:
+        lines += ["", "| study | runs | workers | wall time | raceway traction evaluated by |", "|---|---|---|---|---|"]
+        for t in times:
+            lines.append(f"| `{t['study']}` | {t['runs']} | {t['workers']} | {t['wall time [s]'] / 60:.1f} min | "
+                         f"{t['traction evaluation']} |")
     counts = {}
     for r in rows:
         counts[r.verdict] = counts.get(r.verdict, 0) + 1

@@ -448,7 +448,7 @@ def summarise(case, model, t, Y, D, qs) -> dict:
     ideal = float(kin["cage speed [rad/s]"])
     s = {"Rollers [-]": model.n_rollers, "Slices per roller [-]": model.n_slices,
          "Fidelity": {k: getattr(case.model, k) for k in ("traction", "flange_friction", "pocket", "guide_land",
-                                                         "pocket_switch")},
+                                                         "pocket_switch", "traction_evaluation")},
          "Integrator": case.integrator.method, "Cone speed [rpm]": model.speed * 30 / math.pi,
          "Simulated time [s]": float(t[-1]), "Samples [-]": int(t.size),
          "Ideal cage speed [rad/s]": ideal, "Ideal cage speed [rpm]": ideal * 30 / math.pi,
