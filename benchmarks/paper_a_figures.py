@@ -35,6 +35,11 @@ from coupling.outputs import read_timeseries  # noqa: E402
 OUT = ROOT / "benchmarks" / "results" / "paper_a"
 SPEEDS = ("2000 rpm", "3000 rpm", "4000 rpm", "5000 rpm")
 PRELOADS = ("10 um", "20 um", "30 um", "40 um")
+#: Figs. 6-9 and 10-13: (time-series column, scale, axis label, what)
+TIME_PANELS = (("Roller 0 tilt [rad]", 1e4, "tilt [1e-4 rad]", "roller tilt"),
+               ("Roller 0 skew [rad]", 1e3, "skew [1e-3 rad]", "roller skew"),
+               ("Roller 0 roller slip [-]", 100.0, "roller slip [%]", "roller slip (eq. 52)"),
+               ("Cage slip [-]", 100.0, "cage slip [%]", "cage slip (eq. 52)"))
 
 
 def _series(folder: Path):
@@ -146,28 +151,16 @@ def main(argv=None) -> list[Path]:
     OUT.mkdir(parents=True, exist_ok=True)
     written = []
     speed = C.Study.load(base / "trb_speed")
-    preload = C.Study.load(base / "trb_preload")
-    if speed is not None:
-        if fig05(speed, OUT / "fig05.png"):
-            written.append(OUT / "fig05.png")
-        for n, (col, scale, ylabel, what) in enumerate((
-                ("Roller 0 tilt [rad]", 1e4, "tilt [1e-4 rad]", "roller tilt"),
-                ("Roller 0 skew [rad]", 1e3, "skew [1e-3 rad]", "roller skew"),
-                ("Roller 0 roller slip [-]", 100.0, "roller slip [%]", "roller slip (eq. 52)"),
-                ("Cage slip [-]", 100.0, "cage slip [%]", "cage slip (eq. 52)")), start=6):
+    if speed is not None and fig05(speed, OUT / "fig05.png"):
+        written.append(OUT / "fig05.png")
+    for st, key, labels, first, what_runs in (
+            (speed, "speed", SPEEDS, 6, "Fr 20 kN, axial locked, 2-5 krpm"),
+            (C.Study.load(base / "trb_preload"), "axial_displacement", PRELOADS, 10, "Fr 0, 2,500 rpm, preload 10-40 um")):
+        if st is None:
+            continue
+        for n, (col, scale, ylabel, what) in enumerate(TIME_PANELS, start=first):
             path = OUT / f"fig{n:02d}.png"
-            _time_figure(speed, "speed", SPEEDS, col, scale, ylabel,
-                         f"Paper A Fig. {n}: {what}, Fr 20 kN, axial locked, 2-5 krpm", path)
-            written.append(path)
-    if preload is not None:
-        for n, (col, scale, ylabel, what) in enumerate((
-                ("Roller 0 tilt [rad]", 1e4, "tilt [1e-4 rad]", "roller tilt"),
-                ("Roller 0 skew [rad]", 1e3, "skew [1e-3 rad]", "roller skew"),
-                ("Roller 0 roller slip [-]", 100.0, "roller slip [%]", "roller slip (eq. 52)"),
-                ("Cage slip [-]", 100.0, "cage slip [%]", "cage slip (eq. 52)")), start=10):
-            path = OUT / f"fig{n:02d}.png"
-            _time_figure(preload, "axial_displacement", PRELOADS, col, scale, ylabel,
-                         f"Paper A Fig. {n}: {what}, Fr 0, 2,500 rpm, preload 10-40 um", path)
+            _time_figure(st, key, labels, col, scale, ylabel, f"Paper A Fig. {n}: {what}, {what_runs}", path)
             written.append(path)
     for n, name, key, group, title, paper in (
             (14, "trb_plastic_viscosity", "consistency", None,
