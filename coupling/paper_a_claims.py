@@ -58,7 +58,7 @@ CONVERGED = "Converged window"
 MAIN_STUDIES = ("trb_speed", "trb_preload", "trb_plastic_viscosity", "trb_yield_stress", "trb_grease_temperature")
 SENSITIVITY_STUDIES = ("trb_sensitivity_shear_modulus", "trb_sensitivity_limiting_slope", "trb_sensitivity_rib_roughness",
                        "trb_sensitivity_rib_film", "trb_sensitivity_damping", "trb_sensitivity_flange_mixing",
-                       "trb_plastic_viscosity_paper_reading")
+                       "trb_plastic_viscosity_paper_reading", "trb_plastic_viscosity_apparent_reading")
 
 
 @dataclass
