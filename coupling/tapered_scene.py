@@ -79,6 +79,10 @@ class OperatingTable(_Model):
     axial_load: Q("force", ge=0) = 0.0
     axial_displacement: Q("length") = 0.0
     gravity: Q("acceleration", ge=0) = 0.0
+    cone_tilt: Literal["locked", "free"] = "locked"
+    load_offset: Q("length") = 0.0
+    applied_moment: Annotated[list[Q("energy")], Field(min_length=2, max_length=2)] = Field(
+        default_factory=lambda: [0.0, 0.0])
 
     @model_validator(mode="after")
     def _axial(self):
@@ -290,7 +294,8 @@ def build(case: TaperedCase):
     g = build_geometry(case)
     m = case.model
     try:
-        groups = {"operating": G.Operating(**dict(case.operating)),
+        groups = {"operating": G.Operating(**{**dict(case.operating),
+                                              "applied_moment": tuple(case.operating.applied_moment)}),
                   "fidelity": G.Fidelity(**dict(m)),
                   "lubricant": G.Lubricant(**case.lubricant.group_values()),
                   "initial": G.Initial(cone_offset=tuple(case.initial.cone_offset),
