@@ -254,7 +254,8 @@ class TaperedBearing:
         """The cone at the quasi-static displacement; each roller at its quasi-static position and tilt
         in its meridional plane, orbiting at the ideal cage speed and spinning at the ideal roller speed;
         the cage concentric with the cone, its pockets centred on the rollers, at the ideal cage speed;
-        then :attr:`initial`'s offsets."""
+        then :attr:`initial`'s offsets.  With the tilt free, the cone at the 2-D solver's tilt, then moved
+        onto the kernel's balance (:meth:`_balance_cone`)."""
         g = self.geometry
         qs = self.quasi_static() if qs is None else qs
         _, _, _, uc = g.roller_mass_properties()
@@ -278,15 +279,15 @@ class TaperedBearing:
             w_inertial = np.array([w_cage, 0.0, 0.0]) + w_spin * e
             quat_rotate_inverse(y[b + 3:b + 7].copy(), w_inertial, y[b + 10:b + 13])
         y[1:3] += np.asarray(self.initial.cone_offset, dtype=float)
-        if self.tilt_free:
-            y[self.tilt_index:self.tilt_index + 2] = qs.cone_tilt
-            self._balance_cone(y, qs)
         if self.has_cage:
             b = L.N_CONE + L.NB * self.n_rollers
             y[b:b + 3] = (g.cage_x, qs.cone_displacement[1], qs.cone_displacement[2])
             y[b + 1:b + 3] += np.asarray(self.initial.cage_offset, dtype=float)
             y[b + 3] = 1.0
             y[b + 10] = w_cage
+        if self.tilt_free:
+            y[self.tilt_index:self.tilt_index + 2] = qs.cone_tilt
+            self._balance_cone(y, qs)
         return y
 
     def _balance_cone(self, y, qs, tol: float = 1e-11, max_iterations: int = 20) -> None:
