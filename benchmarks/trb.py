@@ -42,6 +42,7 @@ OPTIONS = {
     "flange friction none": ["model.flange_friction=none"],
     "5 slices": ["model.slices=5"],
     "20 slices": ["model.slices=20"],
+    "cone tilt free, load 10 mm off": ["operating.cone_tilt=free", "operating.load_offset=10 mm"],
 }
 
 

@@ -1,10 +1,22 @@
 r"""Quasi-static equilibrium of a tapered roller bearing: rigid rings, cup fixed, sliced rollers.
 
-Unknowns: the cone's translation d = (d_x, d_y, d_z) (its tilts are locked: the shaft's other
+Unknowns: the cone's translation d = (d_x, d_y, d_z) (its tilts locked by default: the shaft's other
 support carries the moment) and, for each roller j at azimuth psi_j = 2 pi j/Z (psi = 0 along +y,
 the radial load's direction), its displacement (a_j, r_j) and tilt theta_j in its meridional plane
 (x axial towards the large end, r radial; skew and circumferential motion are the cage's and are
 not modelled here).  The cone moves in roller j's plane by (d_x, d_y cos psi_j + d_z sin psi_j).
+
+With ``cone_tilt = "free"`` the cone's tilt (theta_y, theta_z), a small rotation about its reference
+point (the origin of the meridional coordinates), joins the unknowns: roller j sees it as the in-plane
+rotation phi_j = theta . e_t(psi_j) = -theta_y sin psi_j + theta_z cos psi_j of the cone's raceway line
+and rib about that point (e_t = (0, -sin psi, cos psi) the tangential axis).  Its out-of-plane part (a
+rotation about the roller's radial axis, which moves the roller across the cone by theta x, and looks to
+it like a skew) changes the interferences at second order only: at 4e-4 rad the compiled kernel's
+exact 3-D evaluation of this equilibrium is off by about 1e-4 of the tilt and 1e-3 of x_F F_r in the
+cone's moment (the dynamic start removes it, :meth:`dynamics.tapered.model.TaperedBearing.start_state`).
+The external moment is that of the radial load at the axial position ``load_offset`` x_F, x_F F_r about
+z (its point moves with the tilt by theta x x_F e_x: work M . theta), plus an applied (M_y, M_z); the
+cone's moment balance is checked a posteriori from the contact points (as the force balance).
 
 Contacts (laws in :mod:`lubrication.laws.slices` and :mod:`lubrication.laws.tapered`):
 
