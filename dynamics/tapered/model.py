@@ -299,6 +299,8 @@ class TaperedBearing:
         finite-difference Jacobian (the rollers where the 2-D solver put them) removes it, so the run starts
         without a tilt transient; the rollers keep the 2-D solver's balance (their residual accelerations
         are of the same second order, tens of m/s^2 against 1e6 m/s^2 per um of approach)."""
+        if not self.fidelity.contacts:      # free bodies: nothing holds the cone, nothing to balance
+            return
         args = self.args(qs)
         P = args[0]
         k = self.tilt_index
@@ -321,7 +323,11 @@ class TaperedBearing:
                 yp = y.copy()
                 yp[i] += h
                 J[:, c] = (residual(yp) - r) / h
-            y[idx] -= np.linalg.solve(J, r)
+            try:
+                y[idx] -= np.linalg.solve(J, r)
+            except np.linalg.LinAlgError:
+                log.warning("the cone's start balance: singular Jacobian, the 2-D solver's start kept")
+                return
             r = residual(y)
             # forces [N] and moments over the pitch radius [N] against the largest load
             size = np.max(np.abs(r / np.where(np.array(idx) < 3, 1.0, self.geometry.pitch_radius)))
