@@ -42,7 +42,8 @@ OPTIONS = {
     "flange friction none": ["model.flange_friction=none"],
     "5 slices": ["model.slices=5"],
     "20 slices": ["model.slices=20"],
-    "traction table": ["model.traction_evaluation=table"],
+    "traction by quadrature (no table)": ["model.traction_evaluation=quadrature"],
+    "cone tilt free, load 10 mm off": ["operating.cone_tilt=free", "operating.load_offset=10 mm"],
 }
 
 

@@ -9,6 +9,9 @@ maps one to one onto a group of :class:`dynamics.tapered.model.TaperedBearing`, 
     speed = "2400 rpm"          # cone; cup fixed
     radial_load = "20 kN"       # along +y
     axial = "locked"            # "locked" (at axial_displacement: > 0 a preload) or "force" (free under axial_load)
+    cone_tilt = "locked"        # or "free": the cone tilts (two small rotations) under the loads' moment
+    load_offset = "0 mm"        # the radial load's axial position from the cone's reference point (tilt free)
+    applied_moment = ["0 N m", "0 N m"]   # (M_y, M_z) about that point (tilt free)
     [model]                     # Fidelity: the options of issue 22, each a key
     slices = 10
     traction = "limited"        # "paper" (eq. 12), "limited" (HB + limiting shear + elastic film), "none"
@@ -42,7 +45,11 @@ omega_ideal the geometry's own ideal cage speed omega_i (1 - gamma)/2.  A roller
 while its cone load exceeds ``analysis.loaded_zone_fraction`` of the start's largest.  Periodicity:
 :func:`periodicity` (1 when every roller repeats its neighbour's signal one roller pass later).
 
-Not yet (issue 23): the tilting cone, a rib film that follows the load.
+With ``operating.cone_tilt = "free"`` the summary adds the cone's tilt (theta_y, theta_z) [rad]: its
+quasi-static start, and per window its mean and amplitude; the time series carries it (the state's
+"Cone tilt y/z [rad]" and the contacts' moment on the cone).
+
+Not yet (issue 23): a rib film that follows the load.
 """
 from __future__ import annotations
 
@@ -79,6 +86,10 @@ class OperatingTable(_Model):
     axial_load: Q("force", ge=0) = 0.0
     axial_displacement: Q("length") = 0.0
     gravity: Q("acceleration", ge=0) = 0.0
+    cone_tilt: Literal["locked", "free"] = "locked"
+    load_offset: Q("length") = 0.0
+    applied_moment: Annotated[list[Q("energy")], Field(min_length=2, max_length=2)] = Field(
+        default_factory=lambda: [0.0, 0.0])
 
     @model_validator(mode="after")
     def _axial(self):
@@ -291,7 +302,8 @@ def build(case: TaperedCase):
     g = build_geometry(case)
     m = case.model
     try:
-        groups = {"operating": G.Operating(**dict(case.operating)),
+        groups = {"operating": G.Operating(**{**dict(case.operating),
+                                              "applied_moment": tuple(case.operating.applied_moment)}),
                   "fidelity": G.Fidelity(**dict(m)),
                   "lubricant": G.Lubricant(**case.lubricant.group_values()),
                   "initial": G.Initial(cone_offset=tuple(case.initial.cone_offset),
@@ -323,7 +335,8 @@ def describe(case: TaperedCase, model) -> str:
         step = f"DOPRI5 rtol {ig.rtol:g}"
     return (f"tapered roller bearing, {model.n_rollers} rollers x {model.n_slices} slices, traction {m.traction}, "
             f"pocket {m.pocket}, land {m.guide_land}, flange friction {m.flange_friction}; "
-            f"{op.speed * 30 / math.pi:g} rpm, F_r {op.radial_load:g} N, axial {op.axial}; "
+            f"{op.speed * 30 / math.pi:g} rpm, F_r {op.radial_load:g} N, axial {op.axial}"
+            f"{f', cone tilt free (load at {op.load_offset * 1e3:g} mm)' if op.cone_tilt == 'free' else ''}; "
             f"{ig.duration * 1e3:g} ms, {step}")
 
 
@@ -385,6 +398,9 @@ def window_summary(model, t, D, lo, hi) -> dict:
         m = out[name]["all"]["mean"]
         out[name.replace("[rad]", "mean [deg]")] = None if m is None else math.degrees(m)
     out["Rollers in the loaded zone, mean [-]"] = float(np.mean(zone.sum(axis=1)))
+    if "Cone tilt [rad]" in D:
+        for k, ax in enumerate("yz"):
+            out[f"Cone tilt {ax} [rad]"] = _stats(D["Cone tilt [rad]"][w, k])
     orbital = float(np.mean(D["Orbital speed [rad/s]"][w]))
     if orbital > 0.0:
         lag = 2.0 * math.pi / (model.n_rollers * orbital)
@@ -484,6 +500,19 @@ def summarise(case, model, t, Y, D, qs) -> dict:
         s[f"{name}, converged mean {unit}"] = c.get("mean")
         s[f"{name}, window-to-window change {unit}"] = c.get("change")
     s["Converged window, converged [-]"] = None if conv is None else conv["Converged [-]"]
+    if model.tilt_free:
+        i_x, i_t = model.cone_inertia()
+        s["Cone tilt"] = "free"
+        s["Load offset [m]"] = model.operating.load_offset
+        s["Cone polar and transverse moments of inertia [kg m^2]"] = [i_x, i_t]
+        s["Cone inertia"] = ("assumed: a steel annulus of model.cone_mass over the cone's width, outer radius the "
+                             "cone raceway's (TaperedBearing.cone_inertia)")
+        k = model.tilt_index
+        for j, ax in enumerate("yz"):
+            s[f"Quasi-static cone tilt {ax} [rad]"] = float(qs.cone_tilt[j])
+            s[f"Start cone tilt {ax} [rad]"] = float(Y[0, k + j])
+            s[f"Cone tilt {ax}, mean [rad]"] = w[f"Cone tilt {ax} [rad]"]["mean"]
+            s[f"Cone tilt {ax}, amplitude [rad]"] = w[f"Cone tilt {ax} [rad]"]["amplitude"]
     s["Skew amplitude, loaded zone [rad]"] = w["Skew [rad]"]["loaded zone"]["amplitude"]
     s["Skew periodicity [-]"] = w.get("Skew periodicity [-]")
     end = {"Largest cup load [N]": "Cup load [N]", "Largest cone load [N]": "Cone load [N]",
@@ -653,6 +682,9 @@ def _columns(model, Y, D) -> dict:
         cols["Guide land load [N]"] = D["Guide land load [N]"]
     for k, ax in enumerate("xyz"):
         cols[f"Force of rollers and cage on the cone, {ax} [N]"] = D["Cone force [N]"][:, k]
+    if "Cone moment [N m]" in D:
+        for k, ax in enumerate("yz"):
+            cols[f"Moment of rollers and cage on the cone, {ax} [N m]"] = D["Cone moment [N m]"][:, k + 1]
     return cols
 
 
@@ -683,7 +715,11 @@ def frame_mesh(model, y, fields: dict, n_around: int = 16, n_along: int = 7):
     zero = {k: 0.0 for k in fields}
     psi = np.linspace(0.0, 2.0 * np.pi, 4 * n_around + 1)
     for body, which, shift in ((0, "cup", (0.0, 0.0, 0.0)), (1, "cone", y[0:3])):
-        blocks.append(grid(raceway_surface(g, which, u, psi.size, shift), body, zero))
+        pts = raceway_surface(g, which, u, psi.size)
+        if which == "cone" and model.tilt_free:      # tilted about the cone's reference point
+            k = model.tilt_index
+            pts = Rotation.from_rotvec([0.0, y[k], y[k + 1]]).apply(pts.reshape(-1, 3)).reshape(pts.shape)
+        blocks.append(grid(pts + np.asarray(shift, dtype=float), body, zero))
     rho = np.asarray(g.roller_radius(u), dtype=float)
     U, T = np.meshgrid(u - uc, t, indexing="ij")
     RHO, _ = np.meshgrid(rho, t, indexing="ij")

@@ -496,7 +496,7 @@ def _trb_window(s):
     return main_window(s)[2]
 
 
-def _check_trb_dynamic(s, case, loaded):
+def _check_trb_dynamic(s, case, loaded, flange=0.03):
     """Every tapered dynamics case at smoke size (1 ms from the quasi-static start): the loads stay on the
     quasi-static equilibrium (a separate 2-D solver, issue 23 sec. 3), the rollers' orbital speed and
     the cage's within 1 % of the geometry's ideal cage speed (eq. 52), whose ratio to the cone speed is the
@@ -507,7 +507,8 @@ def _check_trb_dynamic(s, case, loaded):
     # 1e-3 test in tests/test_trb_dynamics.py).  The largest over the run: at the start a roller sits on
     # the load line, later ones between.
     assert s["Largest cup load [N]"] == pytest.approx(s["Quasi-static largest cup load [N]"], rel=0.02)
-    assert s["Largest flange load [N]"] == pytest.approx(s["Quasi-static largest flange load [N]"], rel=0.03)
+    if flange is not None:
+        assert s["Largest flange load [N]"] == pytest.approx(s["Quasi-static largest flange load [N]"], rel=flange)
     assert s["Ideal cage speed [rpm]"] / s["Cone speed [rpm]"] == pytest.approx(1057 / 2400, rel=2e-3)
     assert w["Roller slip [-]"]["all"]["largest magnitude"] < 0.01
     assert w["Cage speed, mean [rpm]"] == pytest.approx(s["Ideal cage speed [rpm]"], rel=0.01)
@@ -526,6 +527,30 @@ def check_trb_fig5_2400rpm(s, case):
     assert s["Cone speed [rpm]"] == pytest.approx(2400.0)
     assert s["Ideal cage speed [rpm]"] == pytest.approx(1057.0, rel=2e-3)
     _check_trb_dynamic(s, case, (7, 10))
+
+
+def check_trb_fig5_tilt(s, case):
+    """Fig. 5's point with the cone's tilt free and the radial load 10 mm off the rollers' mid-plane: the
+    common checks (7-10 rollers loaded); the run starts on the quasi-static tilt (the start moves it onto
+    the kernel's balance by 1e-4, asserted 1e-3) and, over the smoke run, its mean stays within 5 % of it
+    (measured 2 %: the rollers' traction and the cage's forces add a moment the frictionless solver
+    leaves out); the load between the mid-plane and the effective load centre (17.7 mm) tilts the cone
+    about z with the sign of the mid-plane load's tilt, 1e-4-1e-3 rad (quasi-static -4.0e-4; at the
+    mid-plane -9.5e-4), and hardly about y.  The loads as the common checks, but the largest flange load
+    within 20 % of the quasi-static one (measured +13 %): the raceway traction and the flange friction,
+    which the frictionless solver leaves out, make a moment about y that tilts the free cone by 3.6e-6 rad
+    at the start (its balance) and 2.8e-5 rad over the smoke run, which moves the stiff rib contacts (0.1 um
+    of axial motion at the rib is 20 % of a 200 N flange load)."""
+    assert case["operating"]["cone_tilt"] == "free" and case["operating"]["load_offset"] == pytest.approx(0.01)
+    qz = s["Quasi-static cone tilt z [rad]"]
+    assert -1e-3 < qz < -1e-4
+    assert s["Start cone tilt z [rad]"] == pytest.approx(qz, rel=1e-3)
+    assert s["Cone tilt z, mean [rad]"] == pytest.approx(qz, rel=0.05)
+    assert abs(s["Cone tilt y, mean [rad]"]) < 0.1 * abs(qz)
+    assert s["Cone tilt z, amplitude [rad]"] >= 0.0
+    assert len(s["Cone polar and transverse moments of inertia [kg m^2]"]) == 2
+    assert s["Largest flange load [N]"] == pytest.approx(s["Quasi-static largest flange load [N]"], rel=0.2)
+    _check_trb_dynamic(s, case, (7, 10), flange=None)
 
 
 def _check_trb_speed(s, case):

@@ -210,11 +210,11 @@ def test_the_guide_land_contact_pushes_the_cage_back_to_centre():
     F, T, Fc, Fg, Tg = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty(3)
     loads = np.empty((Z, 4))
     diag = (np.empty((Z, 2, tb.n_slices)), np.empty((Z, K.N_FRICTION)), np.empty(K.N_CAGE_DIAG))
-    K.contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, *diag)
+    K.contact_forces(y, P, U, RHO, F, T, Fc, np.empty(3), loads, Fg, Tg, *diag)
     y_free = y.copy()
     y_free[b + 1] = y[1]  # the same state with the cage centred: no land contact
     F0, Fc0, Fg0 = np.empty((Z, 3)), np.empty(3), np.empty(3)
-    K.contact_forces(y_free, P, U, RHO, F0, T, Fc0, loads, Fg0, Tg, *diag)
+    K.contact_forces(y_free, P, U, RHO, F0, T, Fc0, np.empty(3), loads, Fg0, Tg, *diag)
     assert Fg[1] - Fg0[1] - (F0[:, 1].sum() - F[:, 1].sum()) == pytest.approx(100.0, rel=1e-6)
     assert Fc[1] - Fc0[1] == pytest.approx(-100.0, rel=1e-6)
 
@@ -448,7 +448,7 @@ def test_the_side_beams_push_an_axially_displaced_cage_back():
     def forces(state):
         F, T, Fc, Fg, Tg = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty(3)
         diag = (np.empty((Z, 4)), np.empty((Z, 2, tb.n_slices)), np.empty((Z, K.N_FRICTION)), np.empty(K.N_CAGE_DIAG))
-        K.contact_forces(state, P, U, RHO, F, T, Fc, diag[0], Fg, Tg, *diag[1:])
+        K.contact_forces(state, P, U, RHO, F, T, Fc, np.empty(3), diag[0], Fg, Tg, *diag[1:])
         return F, Fg, diag[3]
 
     F0, Fg0, _ = forces(y)

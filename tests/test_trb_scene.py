@@ -179,7 +179,8 @@ def _torques(y, P, U, RHO):
 
     Z, ns = int(P[L.P_Z]), int(P[L.P_NS])
     F, T = np.zeros((Z, 3)), np.zeros((Z, 3))
-    K.contact_forces(np.ascontiguousarray(y), P, U, RHO, F, T, np.zeros(3), np.zeros((Z, 4)), np.zeros(3), np.zeros(3),
+    K.contact_forces(np.ascontiguousarray(y), P, U, RHO, F, T, np.zeros(3), np.zeros(3), np.zeros((Z, 4)), np.zeros(3),
+                     np.zeros(3),
                      np.zeros((Z, 2, ns)), np.zeros((Z, L.N_FRICTION)), np.zeros(L.N_CAGE_DIAG))
     return T[0]
 

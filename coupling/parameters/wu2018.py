@@ -171,6 +171,10 @@ VALUES = {
                                 "grease part by 1 - exp(-B lambda^C)"),
     "rib_film_model": P("hamrock_dowson", "text", "assumed",
                         "eq. 24 has no length scale (notes 2.6); 'paper_eq24' reads it as h_c/r_s"),
+    "cone_mass": P("5 kg", "mass", "assumed",
+                   "paper A gives no ring masses: about a steel cone of the 78.5 mm raceway radius and 50 mm width"),
+    "radial_load_offset": P("0 mm", "length", "assumed",
+                            "paper A gives no load point: the radial load at the roller mid-points' plane"),
     # operating point of Fig. 5
     "radial_load": P("20 kN", "force", "Fig. 5"),
     "inner_speed": P("2400 rpm", "angular velocity", "Fig. 5"),
@@ -211,6 +215,7 @@ SCENES["tapered"] = {
     "cage.pocket_stiffness": "pocket_contact_stiffness", "cage.pocket_damping": "pocket_contact_damping",
     "cage.boundary_friction": "boundary_friction", "cage.land_critical_film": "guide_land_critical_film",
     "operating.speed": "inner_speed", "operating.radial_load": "radial_load",
+    "operating.load_offset": "radial_load_offset", "model.cone_mass": "cone_mass",
     "model.traction": "raceway_traction_law", "model.flange_friction": "flange_friction_mixing",
     "lubricant.grease": "grease_name", "lubricant.temperature_c": "grease_temperature_c",
     "lubricant.base_oil_viscosity": "base_oil_viscosity", "lubricant.reading": "grease_viscosity_reading",

@@ -30,7 +30,7 @@ from lubrication.laws.flange import RIB_FILMS
 from lubrication.laws.grease import READINGS, Grease
 
 from ..groups import Group
-from .layout import AXIAL_MODES, FLANGE_FRICTIONS, LANDS, POCKETS, TRACTIONS
+from .layout import AXIAL_MODES, CONE_TILTS, FLANGE_FRICTIONS, LANDS, POCKETS, TRACTIONS
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -39,7 +39,12 @@ class Operating(Group):
     ``axial``: "locked" (the cone's axial DOF held at ``axial_displacement`` [m], closing: 0 is zero
     clearance as paper A's Figs. 5-9 hold it, notes 2.7; > 0 a preload) or "force" (free under
     ``axial_load`` [N], closing the bearing);
-    ``gravity`` [m/s^2] along -y on every body (0: none)."""
+    ``gravity`` [m/s^2] along -y on every body (0: none);
+    ``cone_tilt``: "locked" (the cone's tilts held at zero: the shaft's other support carries the
+    moment the loads make) or "free" (the cone tilts about its reference point, the origin of the
+    geometry's meridional coordinates, under the contacts' moments and the loads'); the radial load
+    acts at the axial position ``load_offset`` [m] from that reference point (a moment x_F F_r about z),
+    plus ``applied_moment`` (M_y, M_z) [N m] about it; both act only with the tilt free."""
 
     TABLE: ClassVar[str] = "operating"
 
@@ -49,9 +54,18 @@ class Operating(Group):
     axial_load: float = 0.0
     axial_displacement: float = 0.0
     gravity: float = 0.0
+    cone_tilt: str = "locked"
+    load_offset: float = 0.0
+    applied_moment: tuple = (0.0, 0.0)
 
     def __post_init__(self):
         self.choice("axial", tuple(AXIAL_MODES))
+        self.choice("cone_tilt", tuple(CONE_TILTS))
+        if not (isinstance(self.load_offset, (int, float)) and math.isfinite(self.load_offset)):
+            raise self.fail("load_offset", "must be a finite length [m]")
+        m = self.applied_moment
+        if len(m) != 2 or not all(math.isfinite(float(x)) for x in m):
+            raise self.fail("applied_moment", "must be two finite numbers (M_y, M_z) [N m]")
         self.non_negative("speed", "radial_load", "axial_load", "gravity")
         if not math.isfinite(self.axial_displacement):
             raise self.fail("axial_displacement", "must be finite")

@@ -5,6 +5,7 @@ State (:mod:`dynamics.tapered.layout`; :class:`dynamics.tapered.model.TaperedBea
     [cone x, y, z, vx, vy, vz]                                  (6; the cone's spin is prescribed)
     [roller j: c (3), q (4), v (3), omega_body (3)] x Z          (13 per roller)
     [cage: c (3), q (4), v (3), omega_body (3)]                  (13; present unless pocket = "none")
+    [cone tilt: theta_y, theta_z, theta_y', theta_z']             (4; present with cone_tilt = "free")
 
 c is the roller's mass centre, q the unit quaternion (scalar first, :mod:`dynamics.rotations`) that maps
 the roller's body frame (x along its axis, towards the large end) to the inertial frame (x the bearing
@@ -73,7 +74,24 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   axial clearance Delta' (squeeze film and boundary state, or contact only); with them the cage has all six
   DOF, without them its axial position is held.
 
-Not yet: the cone's tilt, a rib film that follows the load.  :func:`forces_many` returns slice
+* the cone's tilt (option ``operating.cone_tilt``; "locked" by default: the shaft's other support carries
+  the moment, and nothing below is evaluated).  "free": the state carries theta = (0, theta_y, theta_z),
+  a small rotation of the cone about its reference point (the origin of the geometry's meridional
+  coordinates, displaced by d), and its rate; two angles, not a quaternion, because the cone's attitude
+  matters only through its axis a = R(theta) e_x (raceway and rib are surfaces of revolution and the
+  spin is prescribed), tilts are 1e-5-1e-4 rad (no singularity near) and a quaternion would carry the
+  prescribed spin angle and a norm drift for a 2-DOF motion.  R(theta) is the exact rotation of the
+  rotation vector (the raceway stays a rigid surface); the equations of motion keep first order in the
+  tilt (their second-order terms are 1e-4 of the first at 1e-4 rad).  Each cone slice and the rib are
+  evaluated in the cone frame (S_c = R^T (S - d), e_c = R^T e, :func:`slice_contact_3d`, point and normal
+  back with R), the cone's surface velocity is v_d + (Omega a + (0, theta_y', theta_z')) x (P - d), the
+  guide land's centre moves by R x_L e_x - x_L e_x (x_L its axial station) and its force acts on the axis
+  there.  The moments of these forces about the cone's reference point, the radial load's x_F F_r about z
+  (F_r acting at ``operating.load_offset`` x_F) and an applied moment drive the tilt (Euler's equations
+  of the spinning cone, gyroscopic coupling I_x Omega included: :func:`rhs`).  The cone's mass centre is
+  taken at its reference point (its weight makes no moment).
+
+Not yet: a rib film that follows the load.  :func:`forces_many` returns slice
 loads, contact loads, friction and cage diagnostics at sampled states; the model's ``diagnostics`` reads
 tilt, skew and slip from them.
 """
@@ -94,7 +112,7 @@ from lubrication.laws.traction import (elastic_limited, elastic_strip_slope, lim
                                       limited_strip_traction, paper_raceway_traction)
 
 from ..interp import CLAMP, hermite2
-from ..rotations import euler_rate, quat_derivative, quat_rotate, quat_rotate_inverse
+from ..rotations import euler_rate, quat_derivative, quat_from_rotvec, quat_rotate, quat_rotate_inverse, quat_to_matrix
 from .layout import *  # noqa: F401,F403  (indices and option codes: dynamics.tapered.layout)
 from .layout import (AXIAL_FORCE, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
                      N_CONE, N_FRICTION, NB, POCKET_CONTACT, POCKET_FILM, TRACTION_LIMITED, TRACTION_PAPER)
@@ -106,6 +124,7 @@ from .layout import (P_ALPHA, P_ALPHAG, P_AXIAL, P_BLAND, P_CAGE, P_CH, P_CLAND,
                      P_POCKET, P_POCKETMODE, P_PVC, P_QSTAB, P_RHOM, P_RLAND, P_RS, P_RXI, P_RXO, P_SWITCH,
                      P_TAUL0, P_TAUY, P_TRACTION, P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_UC, P_UE, P_US, P_VREG,
                      P_WIDTH, P_Z)
+from .layout import P_ICONET, P_ICONEX, P_LANDX, P_LOADX, P_MY, P_MZ, P_TILT, P_TILTAT
 
 _dowson_toyoda = njit(**INLINE)(dowson_toyoda_central)   # the law of lubrication.laws.film, compiled here
 
@@ -222,9 +241,11 @@ def _slice_traction(load, race, vs, P, counter):
 
 
 @njit(**JIT)
-def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
+def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     """Contact forces and torques: F[j] force on roller j [N], T[j] torque about its mass centre
-    (inertial frame) [N m], Fc the force of all rollers (and the cage) on the cone [N], loads[j] =
+    (inertial frame) [N m], Fc the force of all rollers (and the cage) on the cone [N], Tc their moment
+    about the cone's (displaced) reference point [N m] (computed with the cone's tilt free; zeros when it
+    is locked, which keeps the locked path's cost), loads[j] =
     (cup, cone, flange, pocket) sums of the normal forces' magnitudes [N]; Fg, Tg the force [N] and the
     torque about its centre [N m] on the cage; SL[j, race, k] the slice loads [N] (race 0 cup, 1 cone);
     FR[j] the friction diagnostics (:data:`dynamics.tapered.layout.FRICTION_NAMES`); CG the cage's
@@ -234,6 +255,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
     F[:, :] = 0.0
     T[:, :] = 0.0
     Fc[:] = 0.0
+    Tc[:] = 0.0
     Fg[:] = 0.0
     Tg[:] = 0.0
     loads[:, :] = 0.0
@@ -246,6 +268,26 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
     dx, dy, dz = y[0], y[1], y[2]
     vcx, vcy, vcz = y[3], y[4], y[5]
     om = P[P_OMEGA]
+    # the cone's angular velocity and attitude: the prescribed spin Omega about its axis a = R e_x and,
+    # tilted, the tilt rate (0, theta_y', theta_z'); R the rotation of the rotation vector (0, theta_y,
+    # theta_z) (rows r.. below; the identity when the tilt is locked)
+    tilted = P[P_TILT] != 0.0
+    wx, wy, wz = om, 0.0, 0.0
+    lx, ly, lvx, lvy = 0.0, 0.0, 0.0, 0.0
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
+    if tilted:
+        kt = int(P[P_TILTAT])
+        qt = np.empty(4)
+        quat_from_rotvec(np.array([0.0, y[kt], y[kt + 1]]), qt)
+        Rm = np.empty((3, 3))
+        quat_to_matrix(qt, Rm)
+        r00, r01, r02, r10, r11, r12, r20, r21, r22 = (Rm[0, 0], Rm[0, 1], Rm[0, 2], Rm[1, 0], Rm[1, 1], Rm[1, 2],
+                                                       Rm[2, 0], Rm[2, 1], Rm[2, 2])
+        wx, wy, wz = om * r00, om * r10 + y[kt + 2], om * r20 + y[kt + 3]
+        # the guide land's centre and velocity (y, z) at its axial station x_L, moved by the tilt
+        xl = P[P_LANDX]
+        lx, ly = xl * r10, xl * r20
+        lvx, lvy = xl * y[kt + 3], -xl * y[kt + 2]
     ex_b = np.array([1.0, 0.0, 0.0])
     e = np.empty(3)
     wi = np.empty(3)
@@ -276,15 +318,27 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
             for k in range(ns):
                 u = U[k]
                 s0, s1, s2 = m0 + u * e0 - ox, m1 + u * e1 - oy, m2 + u * e2 - oz
-                delta, q0, q1, q2, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, RHO[k], px, pr, nx, nr)
+                if race == 1 and tilted:
+                    # the cone's raceway is a surface of revolution about its own axis: the slice in the
+                    # cone frame (R^T), the contact point and normal back (R)
+                    delta, c0_, c1_, c2_, k0_, k1_, k2_ = slice_contact_3d(
+                        r00 * s0 + r10 * s1 + r20 * s2, r01 * s0 + r11 * s1 + r21 * s2, r02 * s0 + r12 * s1 + r22 * s2,
+                        r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2,
+                        RHO[k], px, pr, nx, nr)
+                    if delta <= 0.0:
+                        continue
+                    q0, q1, q2 = r00 * c0_ + r01 * c1_ + r02 * c2_, r10 * c0_ + r11 * c1_ + r12 * c2_, r20 * c0_ + r21 * c1_ + r22 * c2_
+                    n0, n1, n2 = r00 * k0_ + r01 * k1_ + r02 * k2_, r10 * k0_ + r11 * k1_ + r12 * k2_, r20 * k0_ + r21 * k1_ + r22 * k2_
+                else:
+                    delta, q0, q1, q2, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, RHO[k], px, pr, nx, nr)
                 if delta <= 0.0:
                     continue
                 P0, P1, P2 = q0 + ox, q1 + oy, q2 + oz     # contact point, inertial
                 r0, r1, r2 = P0 - c0, P1 - c1, P2 - c2
                 w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
                 u0, u1, u2 = v0 + w0, v1 + w1, v2 + w2     # roller surface velocity at P
-                if race == 1:                               # cone surface: v_d + Omega e_x x (P - d)
-                    a0, a1, a2 = _cross(om, 0.0, 0.0, q0, q1, q2)
+                if race == 1:                               # cone surface: v_d + w_cone x (P - d)
+                    a0, a1, a2 = _cross(wx, wy, wz, q0, q1, q2)
                     u0 -= vcx + a0
                     u1 -= vcy + a1
                     u2 -= vcz + a2
@@ -314,18 +368,30 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
                     Fc[0] -= f0
                     Fc[1] -= f1
                     Fc[2] -= f2
+                    if tilted:
+                        t0, t1, t2 = _cross(q0, q1, q2, -f0, -f1, -f2)
+                        Tc[0] += t0
+                        Tc[1] += t1
+                        Tc[2] += t2
         # flange: the large-end sphere against the rib (on the cone)
         us = P[P_US]
         s0, s1, s2 = m0 + us * e0 - dx, m1 + us * e1 - dy, m2 + us * e2 - dz
-        d0, _, _, _, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, 0.0, P[P_FLX], P[P_FLR],
-                                                   P[P_FLNX], P[P_FLNR])
+        if tilted:      # the rib in the cone frame, its normal back
+            d0, _, _, _, k0_, k1_, k2_ = slice_contact_3d(
+                r00 * s0 + r10 * s1 + r20 * s2, r01 * s0 + r11 * s1 + r21 * s2, r02 * s0 + r12 * s1 + r22 * s2,
+                r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2,
+                0.0, P[P_FLX], P[P_FLR], P[P_FLNX], P[P_FLNR])
+            n0, n1, n2 = r00 * k0_ + r01 * k1_ + r02 * k2_, r10 * k0_ + r11 * k1_ + r12 * k2_, r20 * k0_ + r21 * k1_ + r22 * k2_
+        else:
+            d0, _, _, _, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, 0.0, P[P_FLX], P[P_FLR],
+                                                       P[P_FLNX], P[P_FLNR])
         delta = P[P_RS] + d0
         if delta > 0.0:
             q0, q1, q2 = s0 - P[P_RS] * n0, s1 - P[P_RS] * n1, s2 - P[P_RS] * n2
             P0, P1, P2 = q0 + dx, q1 + dy, q2 + dz
             r0, r1, r2 = P0 - c0, P1 - c1, P2 - c2
             w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
-            a0, a1, a2 = _cross(om, 0.0, 0.0, q0, q1, q2)
+            a0, a1, a2 = _cross(wx, wy, wz, q0, q1, q2)
             u0, u1, u2 = v0 + w0 - vcx - a0, v1 + w1 - vcy - a1, v2 + w2 - vcz - a2
             un = u0 * n0 + u1 * n1 + u2 * n2
             f = hertz_force(delta, -un, P[P_KF], P[P_ALPHA])
@@ -350,12 +416,21 @@ def contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG):
                 Fc[0] -= f0
                 Fc[1] -= f1
                 Fc[2] -= f2
+                if tilted:
+                    t0, t1, t2 = _cross(q0, q1, q2, -f0, -f1, -f2)
+                    Tc[0] += t0
+                    Tc[1] += t1
+                    Tc[2] += t2
         if P[P_CAGE] != 0.0:
             _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR)
             if P[P_SIDEGAP] > 0.0:
                 _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG)
     if P[P_CAGE] != 0.0:
-        _guide_land(y, P, wc, Fc, Fg, Tg, CG)
+        fy0, fz0 = Fc[1], Fc[2]
+        _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy)
+        if tilted:      # the land's force acts on the cone's axis at the land's station x_L
+            Tc[1] -= P[P_LANDX] * (Fc[2] - fz0)
+            Tc[2] += P[P_LANDX] * (Fc[1] - fy0)
         CG[0], CG[1], CG[2] = Fg[1], Fg[2], Tg[0]
 
 
@@ -455,13 +530,14 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
 
 
 @njit(**INLINE)
-def _guide_land(y, P, wc, Fc, Fg, Tg, CG):
-    """The cage's centering surface on the cone's guide land (module docstring)."""
+def _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy):
+    """The cage's centering surface on the cone's guide land (module docstring); (lx, ly) and (lvx, lvy)
+    move the land's centre and velocity (y, z) off the cone's (the tilt; 0 when locked)."""
     Z = int(P[P_Z])
     b = N_CONE + Z * NB
     # the land (journal) relative to the cage (bearing), in the radial plane (y, z)
-    ex, ey = y[1] - y[b + 1], y[2] - y[b + 2]
-    vx, vy = y[4] - y[b + 8], y[5] - y[b + 9]
+    ex, ey = y[1] + lx - y[b + 1], y[2] + ly - y[b + 2]
+    vx, vy = y[4] + lvx - y[b + 8], y[5] + lvy - y[b + 9]
     r, c, w = P[P_RLAND], P[P_CLAND], P[P_BLAND]
     ecc = math.sqrt(ex * ex + ey * ey)
     fx, fy, torque = 0.0, 0.0, 0.0
@@ -507,13 +583,14 @@ def rhs(t, y, args, dydt):
     F = np.empty((Z, 3))
     T = np.empty((Z, 3))
     Fc = np.empty(3)
+    Tc = np.empty(3)
     loads = np.empty((Z, 4))
     Fg = np.empty(3)
     Tg = np.empty(3)
     SL = np.empty((Z, 2, ns))
     FR = np.empty((Z, N_FRICTION))
     CG = np.empty(N_CAGE_DIAG)
-    contact_forces(y, P, U, RHO, F, T, Fc, loads, Fg, Tg, SL, FR, CG)
+    contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG)
     g = P[P_GRAV]                                      # gravity along -y
     # cone: translation under the rollers' forces, F_r along +y, F_a along -x (closing the bearing)
     mc = P[P_MC]
@@ -557,6 +634,18 @@ def rhs(t, y, args, dydt):
         qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
         quat_rotate_inverse(qn, Tg, tb)
         euler_rate(np.array([P[P_ICX], P[P_ICT], P[P_ICT]]), y[b + 10:b + 13], tb, dydt[b + 10:b + 13])
+    if P[P_TILT] != 0.0:
+        # the cone's tilt (small rotations theta_y, theta_z about its reference point): Euler's equations
+        # of the spinning cone, H = I_x Omega a + I_t (0, theta_y', theta_z'), dH/dt = M with
+        # a' = (0, theta_z', -theta_y') (first order in the tilt):
+        #   I_t theta_y'' = M_y - I_x Omega theta_z',   I_t theta_z'' = M_z + I_x Omega theta_y'
+        # M: the contacts' moment Tc, the radial load's x_F F_r about z and the applied moment
+        k = int(P[P_TILTAT])
+        gyro = P[P_ICONEX] * P[P_OMEGA]
+        dydt[k] = y[k + 2]
+        dydt[k + 1] = y[k + 3]
+        dydt[k + 2] = (Tc[1] + P[P_MY] - gyro * y[k + 3]) / P[P_ICONET]
+        dydt[k + 3] = (Tc[2] + P[P_MZ] + P[P_LOADX] * P[P_FR] + gyro * y[k + 2]) / P[P_ICONET]
 
 
 @njit(**JIT)
@@ -568,21 +657,23 @@ def loads_many(Y, args):
     F = np.empty((Z, 3))
     T = np.empty((Z, 3))
     Fc = np.empty(3)
+    Tc = np.empty(3)
     Fg = np.empty(3)
     Tg = np.empty(3)
     SL = np.empty((Z, 2, int(P[P_NS])))
     FR = np.empty((Z, N_FRICTION))
     CG = np.empty(N_CAGE_DIAG)
     for i in range(Y.shape[0]):
-        contact_forces(Y[i], P, U, RHO, F, T, Fc, out[i], Fg, Tg, SL, FR, CG)
+        contact_forces(Y[i], P, U, RHO, F, T, Fc, Tc, out[i], Fg, Tg, SL, FR, CG)
     return out
 
 
 @njit(**JIT)
 def forces_many(Y, args):
     """At each sampled state: loads (n, Z, 4) as :func:`loads_many`, slice loads (n, Z, 2, n_s) [N] (cup,
-    cone), friction diagnostics (n, Z, N_FRICTION), cage diagnostics (n, N_CAGE_DIAG) and the force of
-    the rollers and the cage on the cone (n, 3) [N]."""
+    cone), friction diagnostics (n, Z, N_FRICTION), cage diagnostics (n, N_CAGE_DIAG) and the force [N]
+    of the rollers and the cage on the cone and, with the cone's tilt free, their moment about its
+    reference point [N m] (n, 6: force x, y, z, moment x, y, z; the moment 0 when the tilt is locked)."""
     P, U, RHO = args
     Z = int(P[P_Z])
     ns = int(P[P_NS])
@@ -591,11 +682,11 @@ def forces_many(Y, args):
     SL = np.empty((n, Z, 2, ns))
     FR = np.empty((n, Z, N_FRICTION))
     CG = np.empty((n, N_CAGE_DIAG))
-    FC = np.empty((n, 3))
+    FC = np.empty((n, 6))
     F = np.empty((Z, 3))
     T = np.empty((Z, 3))
     Fg = np.empty(3)
     Tg = np.empty(3)
     for i in range(n):
-        contact_forces(Y[i], P, U, RHO, F, T, FC[i], loads[i], Fg, Tg, SL[i], FR[i], CG[i])
+        contact_forces(Y[i], P, U, RHO, F, T, FC[i, :3], FC[i, 3:], loads[i], Fg, Tg, SL[i], FR[i], CG[i])
     return loads, SL, FR, CG, FC

@@ -6,19 +6,24 @@ Part of :mod:`dynamics.tapered` (:mod:`dynamics.tapered.kernels` gives the equat
     [cone x, y, z, vx, vy, vz]                                  N_CONE = 6 (the cone's spin is prescribed)
     [roller j: c (3), q (4), v (3), omega_body (3)] x Z          NB = 13 per roller
     [cage: c (3), q (4), v (3), omega_body (3)]                  13 (present unless pocket = "none")
+    [cone tilt: theta_y, theta_z, theta_y', theta_z']             N_TILT = 4 (present with cone_tilt = "free")
 
 c the mass centre, q the unit quaternion (scalar first) from the body frame (x along the body's axis)
 to the inertial frame (x the bearing axis, the cup fixed), omega_body the body-frame angular velocity.
+The cone's tilt (option ``operating.cone_tilt = "free"``) is appended after the last body, so the locked
+layout (and every index above) is the same with and without it: theta = (0, theta_y, theta_z) the small
+rotation vector of the cone about its reference point (:mod:`dynamics.tapered.kernels`).
 """
 from __future__ import annotations
 
-N_CONE, NB = 6, 13
+N_CONE, NB, N_TILT = 6, 13, 4
 # offsets inside a body block
 B_C, B_Q, B_V, B_W = 0, 3, 7, 10
 
 # option codes (the float parameter vector carries them as floats)
 AXIAL_MODES = {"locked": 0, "force": 1}   # "locked": held at operating.axial_displacement
 AXIAL_LOCKED, AXIAL_FORCE = 0.0, 1.0
+CONE_TILTS = {"locked": 0, "free": 1}    # "locked": the shaft's other support carries the moment
 TRACTIONS = {"none": 0, "paper": 1, "limited": 2}
 TRACTION_NONE, TRACTION_PAPER, TRACTION_LIMITED = 0.0, 1.0, 2.0
 FLANGE_FRICTIONS = {"none": 0, "paper": 1, "load_share": 2}     # eqs. 22-23 as printed / fluid load share
@@ -42,12 +47,16 @@ LAND_NONE, LAND_CONTACT, LAND_FILM = 0.0, 1.0, 2.0
  P_GSHEAR,
  # side beams (eqs. 39-40): axial clearance (0: none, the cage's axial DOF held), pocket centre's radius
  # and axial offset from the cage centre, the roller axis angle, end diameters, the beams' thickness
- P_SIDEGAP, P_PITCH, P_POCKX, P_BETA0, P_DLARGE, P_DSMALL, P_HSIDE) = range(84)
-# the limited traction's tables (TaperedBearing.traction_tables), appended to P after P_SIZE: a flag, the
-# node counts along sliding speed and line load, and the offset of each raceway's block (cup, cone); a
-# block is [log v nodes (n0), log w nodes (n1), Hermite data (4 x n0 x n1)]
-P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_TTOFF1 = 84, 85, 86, 87, 88
-P_SIZE = 89
+ P_SIDEGAP, P_PITCH, P_POCKX, P_BETA0, P_DLARGE, P_DSMALL, P_HSIDE,
+ # the cone's tilt: flag (CONE_TILTS), offset of the state's tilt block, transverse and polar moments of
+ # inertia of the cone, the radial load's axial position from the cone's reference point, the applied
+ # moment (y, z) about it, the guide land's axial position from the cone's reference point
+ P_TILT, P_TILTAT, P_ICONET, P_ICONEX, P_LOADX, P_MY, P_MZ, P_LANDX,
+ # the limited traction's tables (TaperedBearing.traction_tables), appended to P after P_SIZE: a flag, the
+ # node counts along sliding speed and line load, and the offset of each raceway's block (cup, cone); a
+ # block is [log v nodes (n0), log w nodes (n1), Hermite data (4 x n0 x n1)]
+ P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_TTOFF1) = range(97)
+P_SIZE = 97
 
 # per-roller loads of loads_many / forces: columns
 LOAD_NAMES = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]")

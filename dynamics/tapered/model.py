@@ -99,8 +99,32 @@ class TaperedBearing:
         return self.fidelity.pocket != "none"
 
     @property
-    def n_state(self) -> int:
+    def tilt_free(self) -> bool:
+        return self.operating.cone_tilt == "free"
+
+    @property
+    def tilt_index(self) -> int:
+        """Offset of the cone's tilt block (theta_y, theta_z, rates) in the state: after the last body."""
         return L.N_CONE + L.NB * (self.n_rollers + (1 if self.has_cage else 0))
+
+    @property
+    def n_state(self) -> int:
+        return self.tilt_index + (L.N_TILT if self.tilt_free else 0)
+
+    def cone_inertia(self) -> tuple[float, float]:
+        """(I_x, I_t) [kg m^2] of the cone, assumed (paper A gives no ring data): a steel annulus of the
+        cone's mass m (``model.cone_mass``) and width w from the raceway's small end, -l_e cos(beta)/2, to
+        the guide land's far edge, outer radius the cone raceway's contact radius r_o, bore r_i from the
+        mass, pi (r_o^2 - r_i^2) w rho = m; I_x = m (r_o^2 + r_i^2)/2, I_t = m (3 (r_o^2 + r_i^2) + w^2)/12
+        (about the ring's centre, taken at the cone's reference point)."""
+        g, m = self.geometry, self.fidelity.cone_mass
+        w = g.land_x + 0.5 * g.guide_land_width + 0.5 * g.effective_length * math.cos(g.roller_axis_angle)
+        ro = float(g.contact_radii[1])
+        ri2 = ro * ro - m / (math.pi * w * g.density)
+        if not ri2 > 0.0:
+            raise fail("model.cone_mass", m, f"kg exceeds a solid steel disc of the cone's {2e3 * ro:.4g} mm raceway "
+                                             f"diameter and {1e3 * w:.4g} mm width (the cone's assumed inertia)")
+        return 0.5 * m * (ro * ro + ri2), m * (3.0 * (ro * ro + ri2) + w * w) / 12.0
 
     def ideal(self) -> dict:
         """The geometry's ideal kinematics at the cone speed (:meth:`TaperedRollerGeometry.kinematics`)."""
@@ -155,6 +179,12 @@ class TaperedBearing:
         P[L.P_FA], P[L.P_FR] = op.axial_load, op.radial_load
         P[L.P_AXIAL] = L.AXIAL_MODES[op.axial]
         P[L.P_GRAV] = op.gravity
+        if self.tilt_free:
+            P[L.P_TILT], P[L.P_TILTAT] = L.CONE_TILTS["free"], self.tilt_index
+            P[L.P_ICONEX], P[L.P_ICONET] = self.cone_inertia()
+            P[L.P_LOADX] = op.load_offset
+            P[L.P_MY], P[L.P_MZ] = (float(v) for v in op.applied_moment)
+            P[L.P_LANDX] = g.land_x
         P[L.P_KW] = sl.slice_constant(sl.palmgren_line_constant(g.effective_length), fi.slices)
         P[L.P_KF] = g.flange_hertz_constant()
         P[L.P_ALPHA] = fi.damping_alpha
@@ -258,13 +288,16 @@ class TaperedBearing:
         """The equilibrium the run starts from (same loads, slices and speed)."""
         op = self.operating
         kw = dict(axial_load=op.axial_load) if op.axial == "force" else dict(axial_displacement=op.axial_displacement)
+        if self.tilt_free:
+            kw.update(cone_tilt="free", load_offset=op.load_offset, applied_moment=tuple(op.applied_moment))
         return solve(self.geometry, radial_load=op.radial_load, inner_speed=op.speed, n_slices=self.n_slices, **kw)
 
     def start_state(self, qs: QuasiStaticResult | None = None) -> np.ndarray:
         """The cone at the quasi-static displacement; each roller at its quasi-static position and tilt
         in its meridional plane, orbiting at the ideal cage speed and spinning at the ideal roller speed;
         the cage concentric with the cone, its pockets centred on the rollers, at the ideal cage speed;
-        then :attr:`initial`'s offsets."""
+        then :attr:`initial`'s offsets.  With the tilt free, the cone at the 2-D solver's tilt, then moved
+        onto the kernel's balance (:meth:`_balance_cone`)."""
         g = self.geometry
         qs = self.quasi_static() if qs is None else qs
         _, _, _, uc = g.roller_mass_properties()
@@ -294,7 +327,56 @@ class TaperedBearing:
             y[b + 1:b + 3] += np.asarray(self.initial.cage_offset, dtype=float)
             y[b + 3] = 1.0
             y[b + 10] = w_cage
+        if self.tilt_free:
+            y[self.tilt_index:self.tilt_index + 2] = qs.cone_tilt
+            self._balance_cone(y, qs)
         return y
+
+    def _balance_cone(self, y, qs, tol: float = 1e-11, max_iterations: int = 20) -> None:
+        """With the tilt free: move the cone (y, z, the tilts; x too under an axial force) from the 2-D
+        solver's equilibrium onto the compiled kernel's, in place.  The 2-D solver sees the tilt in each
+        roller's plane only (phi_j = theta . e_t); its out-of-plane part (a rotation about the roller's radial
+        axis, which shifts the roller across the cone by theta x) is second order and moves the kernel's
+        cone moment by about 1e-3 of x_F F_r at 1e-3 rad.  Newton on the kernel's cone accelerations with a
+        finite-difference Jacobian (the rollers where the 2-D solver put them) removes it, so the run starts
+        without a tilt transient; the rollers keep the 2-D solver's balance (their residual accelerations
+        are of the same second order, tens of m/s^2 against 1e6 m/s^2 per um of approach)."""
+        if not self.fidelity.contacts:      # free bodies: nothing holds the cone, nothing to balance
+            return
+        args = self.args(qs)
+        P = args[0]
+        k = self.tilt_index
+        idx = ([0] if self.operating.axial == "force" else []) + [1, 2, k, k + 1]
+        acc = [3, 4, 5, k + 2, k + 3]
+        acc = [acc[[0, 1, 2, k, k + 1].index(i)] for i in idx]
+        scale = np.array([P[L.P_MC] if i < 3 else P[L.P_ICONET] for i in idx])
+        steps = np.array([1e-9 if i < 3 else 1e-8 for i in idx])
+        d = np.zeros_like(y)
+
+        def residual(state):
+            K.rhs(0.0, state, args, d)
+            return d[acc] * scale
+
+        r = residual(y)
+        ref = max(abs(self.operating.radial_load), abs(self.operating.axial_load), 1.0)
+        for it in range(max_iterations):
+            J = np.empty((len(idx), len(idx)))
+            for c, (i, h) in enumerate(zip(idx, steps)):
+                yp = y.copy()
+                yp[i] += h
+                J[:, c] = (residual(yp) - r) / h
+            try:
+                y[idx] -= np.linalg.solve(J, r)
+            except np.linalg.LinAlgError:
+                log.warning("the cone's start balance: singular Jacobian, the 2-D solver's start kept")
+                return
+            r = residual(y)
+            # forces [N] and moments over the pitch radius [N] against the largest load
+            size = np.max(np.abs(r / np.where(np.array(idx) < 3, 1.0, self.geometry.pitch_radius)))
+            log.debug("cone balance, iteration %d: %.3g N", it + 1, size)
+            if size < tol * ref:
+                return
+        log.warning("the cone's start balance stopped at %.3g N after %d iterations", size, max_iterations)
 
     def state_names(self) -> list[str]:
         names = [f"Cone {k} [m]" for k in "xyz"] + [f"Cone v{k} [m/s]" for k in "xyz"]
@@ -302,6 +384,8 @@ class TaperedBearing:
         for body in bodies:
             names += [f"{body} {k} [m]" for k in "xyz"] + [f"{body} q{k} [-]" for k in range(4)]
             names += [f"{body} v{k} [m/s]" for k in "xyz"] + [f"{body} body w{k} [rad/s]" for k in "xyz"]
+        if self.tilt_free:
+            names += ["Cone tilt y [rad]", "Cone tilt z [rad]", "Cone tilt rate y [rad/s]", "Cone tilt rate z [rad/s]"]
         return names
 
     def state_layout(self) -> dict:
@@ -312,6 +396,8 @@ class TaperedBearing:
         if self.has_cage:
             b = L.N_CONE + self.n_rollers * L.NB
             out["cage"] = slice(b, b + L.NB)
+        if self.tilt_free:
+            out["cone tilt"] = slice(self.tilt_index, self.tilt_index + L.N_TILT)
         return out
 
     def omega_max(self) -> float:
@@ -378,11 +464,16 @@ class TaperedBearing:
           ideal kinematics (notes 2.9; NaN at rest);
         - the cage: "Cage speed [rad/s]" (about x, inertial), "Cage slip [-]", "Cage centre [m]" (n, 2)
           relative to the cone's, "Guide land load [N]";
-        - "Cone force [N]" (n, 3) of the rollers and cage on the cone."""
+        - "Cone force [N]" (n, 3) of the rollers and cage on the cone; with the cone's tilt free, "Cone moment
+          [N m]" (n, 3), their moment about its reference point, and "Cone tilt [rad]" (n, 2) theta_y,
+          theta_z."""
         Y = np.atleast_2d(np.asarray(Y, dtype=float))
         args = self.args() if args is None else args
         loads, slices, friction, cage, cone = K.forces_many(np.ascontiguousarray(Y), args)
-        out = {"Slice loads [N]": slices, "Cone force [N]": cone}
+        out = {"Slice loads [N]": slices, "Cone force [N]": cone[:, :3]}
+        if self.tilt_free:
+            out["Cone moment [N m]"] = cone[:, 3:]
+            out["Cone tilt [rad]"] = Y[:, self.tilt_index:self.tilt_index + 2]
         for k, name in enumerate(L.LOAD_NAMES):
             out[name] = loads[:, :, k]
         for k, name in enumerate(L.FRICTION_NAMES):

@@ -1,10 +1,22 @@
 r"""Quasi-static equilibrium of a tapered roller bearing: rigid rings, cup fixed, sliced rollers.
 
-Unknowns: the cone's translation d = (d_x, d_y, d_z) (its tilts are locked: the shaft's other
+Unknowns: the cone's translation d = (d_x, d_y, d_z) (its tilts locked by default: the shaft's other
 support carries the moment) and, for each roller j at azimuth psi_j = 2 pi j/Z (psi = 0 along +y,
 the radial load's direction), its displacement (a_j, r_j) and tilt theta_j in its meridional plane
 (x axial towards the large end, r radial; skew and circumferential motion are the cage's and are
 not modelled here).  The cone moves in roller j's plane by (d_x, d_y cos psi_j + d_z sin psi_j).
+
+With ``cone_tilt = "free"`` the cone's tilt (theta_y, theta_z), a small rotation about its reference
+point (the origin of the meridional coordinates), joins the unknowns: roller j sees it as the in-plane
+rotation phi_j = theta . e_t(psi_j) = -theta_y sin psi_j + theta_z cos psi_j of the cone's raceway line
+and rib about that point (e_t = (0, -sin psi, cos psi) the tangential axis).  Its out-of-plane part (a
+rotation about the roller's radial axis, which moves the roller across the cone by theta x, and looks to
+it like a skew) changes the interferences at second order only: at 4e-4 rad the compiled kernel's
+exact 3-D evaluation of this equilibrium is off by about 1e-4 of the tilt and 1e-3 of x_F F_r in the
+cone's moment (the dynamic start removes it, :meth:`dynamics.tapered.model.TaperedBearing.start_state`).
+The external moment is that of the radial load at the axial position ``load_offset`` x_F, x_F F_r about
+z (its point moves with the tilt by theta x x_F e_x: work M . theta), plus an applied (M_y, M_z); the
+cone's moment balance is checked a posteriori from the contact points (as the force balance).
 
 Contacts (laws in :mod:`lubrication.laws.slices` and :mod:`lubrication.laws.tapered`):
 
@@ -41,7 +53,7 @@ from __future__ import annotations
 
 import logging
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -83,13 +95,22 @@ class QuasiStaticResult:
     iterations: int
     residual: float
     force_balance_error: float
+    cone_tilt: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    cone_moment: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    applied_moment: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    moment_balance_error: float = 0.0
 
 
 class _Model:
     """Assembles the energy, residual and Gauss-Newton Hessian of the bearing (plain numpy)."""
 
-    def __init__(self, g: TaperedRollerGeometry, n_slices, centrifugal, gyro_moment):
+    def __init__(self, g: TaperedRollerGeometry, n_slices, centrifugal, gyro_moment, tilt=False):
         self.g = g
+        # the cone's unknowns: translation (3) and, with its tilt free, the tilt (theta_y, theta_z) scaled
+        # to a length by the pitch radius (the contacts' lever arm)
+        self.tilt = bool(tilt)
+        self.nc = 5 if self.tilt else 3
+        self.tilt_scale = g.pitch_radius
         self.Z = int(g.n_rollers)
         self.psi = 2.0 * math.pi * np.arange(self.Z) / self.Z
         self.u, _ = g.slices(n_slices)
@@ -104,7 +125,12 @@ class _Model:
         self.mw2 = centrifugal / (g.pitch_radius + self.uc * math.sin(g.roller_axis_angle))
 
     def unpack(self, q):
-        return q[:3], q[3:].reshape(self.Z, 3)
+        return q[:3], q[self.nc:].reshape(self.Z, 3)
+
+    def in_plane_tilt(self, q, j):
+        """phi_j = theta . e_t(psi_j) [rad]: the cone's tilt seen in roller j's meridional plane (a rotation
+        (x, r) -> (x cos phi - r sin phi, x sin phi + r cos phi) about the cone's reference point)."""
+        return (-math.sin(self.psi[j]) * q[3] + math.cos(self.psi[j]) * q[4]) / self.tilt_scale
 
     def contacts(self, q):
         """For each roller: lists of (delta, grad over [a, r, theta~], grad over the cone's in-plane
@@ -118,6 +144,9 @@ class _Model:
             ex, er = math.cos(beta), math.sin(beta)
             cx, cr = a, g.pitch_radius + r
             dr = d[1] * math.cos(self.psi[j]) + d[2] * math.sin(self.psi[j])
+            if self.tilt:
+                out.append(self._tilted_contacts(q, j, d[0], dr, cx, cr, ex, er))
+                continue
             rows = []
             for which, moves in (("cup", 0.0), ("cone", 1.0)):
                 x, n, _ = g.race(which)
@@ -142,6 +171,51 @@ class _Model:
             out.append(rows)
         return out
 
+    def _tilted_contacts(self, q, j, dx, dr, cx, cr, ex, er):
+        """Roller j's rows of :meth:`contacts` with the cone's tilt free: the cone's raceway line and rib
+        rotated by phi_j (:meth:`in_plane_tilt`) about its reference point, then moved by (dx, dr); each
+        row's cone gradient is per slice over (dx, dr, phi):  d(delta)/d(dx, dr) = n', and
+        d(delta)/d(phi) = -rho c (J n').e/sqrt(1 - c^2) - (J n').(S - d) (J the quarter turn (a, b) ->
+        (-b, a), c = n'.e), which is rotating the roller by -phi about the cone's reference point."""
+        g = self.g
+        phi = self.in_plane_tilt(q, j)
+        cp, sp = math.cos(phi), math.sin(phi)
+        rows = []
+        for which, moves in (("cup", False), ("cone", True)):
+            x, n, _ = g.race(which)
+            if moves:
+                px, pr = cp * x[0] - sp * x[1] + dx, sp * x[0] + cp * x[1] + dr
+                nx, nr = cp * n[0] - sp * n[1], sp * n[0] + cp * n[1]
+            else:
+                (px, pr), (nx, nr) = x, n
+            dl = np.empty(len(self.u))
+            gr = np.empty((len(self.u), 3))
+            cv = np.empty(len(self.u))
+            gc = np.zeros((len(self.u), 3))
+            for k, (u, rho) in enumerate(zip(self.u, self.rho)):
+                sx, sr = cx + u * ex, cr + u * er
+                dl[k] = sl.slice_interference(sx, sr, ex, er, rho, px, pr, nx, nr)
+                gx, gy, gb = sl.slice_interference_gradient(ex, er, rho, u, nx, nr)
+                gr[k] = gx, gy, gb / self.scale
+                cv[k] = sl.slice_interference_curvature(ex, er, rho, u, nx, nr) / self.scale**2
+                if moves:
+                    c = nx * ex + nr * er
+                    jn_e = -nr * ex + nx * er
+                    gc[k] = nx, nr, (-rho * c * jn_e / math.sqrt(max(1.0 - c * c, 1e-300))
+                                     - (-nr * (sx - dx) + nx * (sr - dr)))
+            rows.append((dl, gr, gc, cv))
+        nf0, us = g.flange_normal, g.sphere_center_u
+        nf = np.array([cp * nf0[0] - sp * nf0[1], sp * nf0[0] + cp * nf0[1]])
+        pf = np.array([cp * g.flange_point[0] - sp * g.flange_point[1] + dx,
+                       sp * g.flange_point[0] + cp * g.flange_point[1] + dr])
+        sx, sr = cx + us * ex, cr + us * er
+        df = g.end_sphere_radius - (nf[0] * (sx - pf[0]) + nf[1] * (sr - pf[1]))
+        dbeta = -us * (nf[0] * -er + nf[1] * ex)
+        curv = us * (nf[0] * ex + nf[1] * er) / self.scale**2
+        gcf = np.array([[nf[0], nf[1], -(-nf[1] * (sx - dx) + nf[0] * (sr - dr))]])
+        rows.append((np.array([df]), np.array([[-nf[0], -nf[1], dbeta / self.scale]]), gcf, np.array([curv])))
+        return rows
+
     def _laws(self, delta, kind):
         dp = np.maximum(delta, 0.0)
         if kind < 2:
@@ -154,31 +228,38 @@ class _Model:
         """The largest total contact load [N] of any roller contact at the contacts ``cs``."""
         return max(float(self._laws(row[0], kind)[1].sum()) for rows in cs for kind, row in enumerate(rows))
 
-    def evaluate(self, q, f_cone):
-        """(energy, residual, Hessian, contacts) at q; f_cone the external force on the cone (x, y, z)."""
-        Z = self.Z
-        n = 3 + 3 * Z
+    def evaluate(self, q, f_cone, m_cone=None):
+        """(energy, residual, Hessian, contacts) at q; f_cone the external force on the cone (x, y, z),
+        m_cone the external moment (y, z) about its reference point (tilt free)."""
+        Z, nc = self.Z, self.nc
+        n = nc + 3 * Z
         grad = np.zeros(n)
         H = np.zeros((n, n))
         d, rl = self.unpack(q)
         energy = -float(f_cone @ d)
         grad[:3] -= f_cone
+        if self.tilt:
+            energy -= float(m_cone @ q[3:5]) / self.tilt_scale
+            grad[3:5] -= m_cone / self.tilt_scale
         cs = self.contacts(q)
         for j, rows in enumerate(cs):
             c, s = math.cos(self.psi[j]), math.sin(self.psi[j])
             # map of the cone's in-plane (dx, dr) onto (d_x, d_y, d_z)
             P = np.array([[1.0, 0.0, 0.0], [0.0, c, s]])
-            idx = np.r_[0:3, 3 + 3 * j: 6 + 3 * j]
+            if self.tilt:   # (dx, dr, phi) onto (d_x, d_y, d_z, theta_y~, theta_z~)
+                P = np.array([[1.0, 0.0, 0.0, 0.0, 0.0], [0.0, c, s, 0.0, 0.0],
+                              [0.0, 0.0, 0.0, -s / self.tilt_scale, c / self.tilt_scale]])
+            idx = np.r_[0:nc, nc + 3 * j: nc + 3 + 3 * j]
             # the gyroscopic moment the contacts supply, at the nominal axis angle (constant): its change
             # with the roller's tilt (1.6e-5 of it at 3e-6 rad) is a negative tilt stiffness that stalls the
             # solver where the literal geometry is near a mechanism
             energy -= self.mg * rl[j, 2] / self.scale
-            grad[3 + 3 * j + 2] -= self.mg / self.scale
+            grad[nc + 3 * j + 2] -= self.mg / self.scale
             # centrifugal: the potential -m omega_c^2 rho^2/2 of the mass centre at radius rho = R_p + r +
             # u_c sin(beta) (u_c along the axis from the mid-point the unknowns place), so the force follows
             # the roller's displacement and has the moment m omega_c^2 rho u_c cos(beta) about the mid-point
             beta = self.g.roller_axis_angle + rl[j, 2] / self.scale
-            cb, sb, ir, it = math.cos(beta), math.sin(beta), 3 + 3 * j + 1, 3 + 3 * j + 2
+            cb, sb, ir, it = math.cos(beta), math.sin(beta), nc + 3 * j + 1, nc + 3 * j + 2
             rho = self.g.pitch_radius + rl[j, 1] + self.uc * sb
             drho = self.uc * cb / self.scale
             # -m omega_c^2 (rho^2 - rho_0^2)/2 with rho - rho_0 formed without cancellation
@@ -193,7 +274,10 @@ class _Model:
             for kind, (dl, gr, gc, cv) in enumerate(rows):
                 e, f, kp = self._laws(dl, kind)
                 energy += float(e.sum())
-                J = np.hstack([np.outer(np.ones(len(dl)), gc @ P), gr])   # d delta / d [d, roller]
+                if self.tilt:
+                    J = np.hstack([gc @ P, gr])
+                else:
+                    J = np.hstack([np.outer(np.ones(len(dl)), gc @ P), gr])   # d delta / d [d, roller]
                 grad[idx] += f @ J
                 H[np.ix_(idx, idx)] += J.T @ (kp[:, None] * J)
                 H[idx[-1], idx[-1]] += float(f @ cv)
@@ -208,11 +292,22 @@ class _Model:
 
 def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_load: float | None = None,
           axial_displacement: float | None = None, inner_speed: float = 0.0, n_slices: int = 20,
-          gyroscopic: bool = True, tol: float = 1e-10, max_iterations: int = 400) -> QuasiStaticResult:
+          gyroscopic: bool = True, tol: float = 1e-10, max_iterations: int = 400, cone_tilt: str = "locked",
+          load_offset: float = 0.0, applied_moment=(0.0, 0.0)) -> QuasiStaticResult:
     """Quasi-static equilibrium (module docstring).  Give ``axial_load`` [N] (F_a > 0 closes) or
     ``axial_displacement`` [m] (s > 0 closes; 0 locks the axial DOF), not both; ``radial_load`` [N]
-    along +y; ``inner_speed`` [rad/s] of the cone for the centrifugal and gyroscopic loads."""
+    along +y; ``inner_speed`` [rad/s] of the cone for the centrifugal and gyroscopic loads.
+    ``cone_tilt`` "locked" (tilts held at 0) or "free": then the cone's tilt (theta_y, theta_z) is
+    solved for too, under the moment of the radial load acting at ``load_offset`` [m] from the cone's
+    reference point (load_offset F_r about z) plus ``applied_moment`` (M_y, M_z) [N m]."""
     g = geometry
+    if cone_tilt not in ("locked", "free"):
+        raise InputError(f"cone_tilt = {cone_tilt!r} is not allowed; choose 'locked' or 'free'")
+    tilt = cone_tilt == "free"
+    if not math.isfinite(float(load_offset)):
+        raise InputError(f"load_offset = {load_offset!r} must be a finite length [m]")
+    if len(applied_moment) != 2 or not all(math.isfinite(float(v)) for v in applied_moment):
+        raise InputError(f"applied_moment = {applied_moment!r} must be two finite numbers (M_y, M_z) [N m]")
     if (axial_load is None) == (axial_displacement is None):
         raise InputError(f"axial_load = {axial_load!r}, axial_displacement = {axial_displacement!r}: "
                          "give exactly one of them")
@@ -236,11 +331,13 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
         beta = g.roller_axis_angle
         ws = -kin["roller spin relative to cage [rad/s]"]
         mg = wc * math.sin(beta) * (ix * (ws + wc * math.cos(beta)) - iy * wc * math.cos(beta))
-    model = _Model(g, n_slices, fc, -mg)
-    n = 3 + 3 * model.Z
+    model = _Model(g, n_slices, fc, -mg, tilt)
+    n = model.nc + 3 * model.Z
     free = np.ones(n, bool)
     q = np.zeros(n)
     f_cone = np.array([0.0, float(radial_load), 0.0])
+    # the external moment (y, z) on the cone about its reference point: F_r e_y at x_F e_x, plus M
+    m_cone = np.array([float(applied_moment[0]), float(applied_moment[1]) + float(load_offset) * float(radial_load)])
     if axial_displacement is not None:
         free[0] = False
         q[0] = -float(axial_displacement)
@@ -250,11 +347,13 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
     k_ref = (10 / 9) * model.k_w * len(model.u) * 1e-6 ** (1 / 9)
     trust = 5e-6
     mu = 1e-3
-    energy, grad, H, cs = model.evaluate(q, f_cone)
+    energy, grad, H, cs = model.evaluate(q, f_cone, m_cone)
     stop, it, res = "iteration limit", 0, math.inf
     for it in range(1, max_iterations + 1):
         f_scale = max(float(np.abs(f_cone).max()), model.fc, abs(model.mg) / model.scale, 1.0,
                       model.largest_load(cs))
+        if tilt:
+            f_scale = max(f_scale, float(np.abs(m_cone).max()) / model.tilt_scale)
         res = float(np.abs(grad[free]).max()) / f_scale
         log.debug("iteration %d: residual %.3g, mu %.3g, trust %.3g m", it, res, mu, trust)
         if res < tol:
@@ -262,7 +361,7 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
             break
         if res < 1e-4 and not model.near:
             model.near = True
-            energy, grad, H, cs = model.evaluate(q, f_cone)
+            energy, grad, H, cs = model.evaluate(q, f_cone, m_cone)
         Hf = H[np.ix_(free, free)]
         D = np.maximum(np.diag(Hf), 1e-6 * k_ref)
         accepted = False
@@ -274,7 +373,7 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
                 step *= trust / big
             qt = q.copy()
             qt[free] += step
-            e_t, g_t, H_t, cs_t = model.evaluate(qt, f_cone)
+            e_t, g_t, H_t, cs_t = model.evaluate(qt, f_cone, m_cone)
             # energy descent; near the solution the energy change falls below its rounding, where a
             # falling residual decides
             if e_t < energy or (e_t <= energy + 1e-10 * abs(energy)
@@ -295,10 +394,10 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
     if stop != "tolerance met":
         raise ConvergenceError(f"tapered quasi-static solve: {stop} after {it} iterations, relative force "
                                f"residual {res:.3g} (tolerance {tol:g})")
-    return _result(model, q, cs, f_cone, fc, mg, kin, stop, it, res)
+    return _result(model, q, cs, f_cone, fc, mg, kin, stop, it, res, m_cone)
 
 
-def _result(model, q, cs, f_cone, fc, mg, kin, stop, it, res):
+def _result(model, q, cs, f_cone, fc, mg, kin, stop, it, res, m_cone):
     g, Z = model.g, model.Z
     d, rl = model.unpack(q)
     cup_sl, cone_sl = np.zeros((Z, len(model.u))), np.zeros((Z, len(model.u)))
@@ -306,7 +405,13 @@ def _result(model, q, cs, f_cone, fc, mg, kin, stop, it, res):
                                     "cup_d", "cone_d", "flange_d")}
     normals = (g.cup_normal, g.cone_normal, g.flange_normal)
     cone_force = np.zeros(3)
+    cone_moment = np.zeros(3)
     for j, rows in enumerate(cs):
+        if model.tilt:
+            phi = model.in_plane_tilt(q, j)
+            rot = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+            normals = (g.cup_normal, rot @ g.cone_normal, rot @ g.flange_normal)
+            cone_moment += _cone_moment(model, q, j, rows, normals, d)
         for kind, (name, (dl, _, _, _)) in enumerate(zip(("cup", "cone", "flange"), rows)):
             f = model._laws(dl, kind)[1]
             if kind == 0:
@@ -328,6 +433,12 @@ def _result(model, q, cs, f_cone, fc, mg, kin, stop, it, res):
     scale = max(float(np.abs(f_cone).max()), out["cup"].max(), 1.0)
     if balance > 1e-6 * scale:
         log.warning("tapered quasi-static: cone force balance error %.3g N", balance)
+    applied = np.array([0.0, m_cone[0], m_cone[1]])
+    moment_error = 0.0
+    if model.tilt:
+        moment_error = float(np.abs(cone_moment + applied)[1:].max())
+        if moment_error > 1e-6 * max(scale * model.tilt_scale, float(np.abs(applied).max())):
+            log.warning("tapered quasi-static: cone moment balance error %.3g N m", moment_error)
     return QuasiStaticResult(
         azimuths=model.psi.copy(), cup_loads=out["cup"], cone_loads=out["cone"], flange_loads=out["flange"],
         cup_angles=out["cup_a"], cone_angles=out["cone_a"], flange_angles=out["flange_a"],
@@ -336,4 +447,37 @@ def _result(model, q, cs, f_cone, fc, mg, kin, stop, it, res):
         roller_tilts=rl[:, 2] / model.scale, cone_displacement=d.copy(),
         axial_load=float(cone_force[0]) if f_cone[0] == 0.0 else float(-f_cone[0]),
         radial_load=float(f_cone[1]), centrifugal_force=fc, gyroscopic_moment=mg, kinematics=kin,
-        stop_reason=stop, iterations=it, residual=res, force_balance_error=balance)
+        stop_reason=stop, iterations=it, residual=res, force_balance_error=balance,
+        cone_tilt=q[3:5] / model.tilt_scale if model.tilt else np.zeros(2), cone_moment=cone_moment,
+        applied_moment=applied, moment_balance_error=moment_error)
+
+
+def _cone_moment(model, q, j, rows, normals, d):
+    """The moment (x, y, z) [N m] about the cone's reference point of roller j's forces on the cone, from
+    the contact points (a posteriori, independent of the residual): each cone slice's load -q n' at its
+    rim point S - rho (n' - c e)/|n' - c e| and the rib's at S_f - r_s n_f', in the roller's plane
+    M_t = (x - d_x) f_r - (r - d_r) f_x about the tangential axis e_t = (0, -sin psi, cos psi)."""
+    g = model.g
+    _, rl = model.unpack(q)
+    a, r, th = rl[j]
+    beta = g.roller_axis_angle + th / model.scale
+    ex, er = math.cos(beta), math.sin(beta)
+    cx, cr = a, g.pitch_radius + r
+    c_psi, s_psi = math.cos(model.psi[j]), math.sin(model.psi[j])
+    dr = d[1] * c_psi + d[2] * s_psi
+    mt = 0.0
+    n = normals[1]
+    for k, (u, rho) in enumerate(zip(model.u, model.rho)):
+        f = float(model._laws(rows[1][0][k:k + 1], 1)[1][0])
+        if f <= 0.0:
+            continue
+        c = n[0] * ex + n[1] * er
+        m = np.array([n[0] - c * ex, n[1] - c * er])
+        px, pr = np.array([cx + u * ex, cr + u * er]) - rho * m / np.linalg.norm(m)
+        mt += (px - d[0]) * (-f * n[1]) - (pr - dr) * (-f * n[0])
+    qf = float(model._laws(rows[2][0], 2)[1][0])
+    if qf > 0.0:
+        nf, us = normals[2], g.sphere_center_u
+        px, pr = cx + us * ex - g.end_sphere_radius * nf[0], cr + us * er - g.end_sphere_radius * nf[1]
+        mt += (px - d[0]) * (-qf * nf[1]) - (pr - dr) * (-qf * nf[0])
+    return mt * np.array([0.0, -s_psi, c_psi])
