@@ -483,7 +483,8 @@ _ROLLER_FRONT = ("the roller kinds' traction (coupling.film_points.evaluate_ehl_
                  "7.5 m/s, SRR 6.6e-4; 3 of 40); median 0.37 / 0.13 % (the rigid law before: 14 % / 8.1 %, its "
                  "low-slip traction the viscosity at the one-cell spike); cases/maps/README.md")
 _ROLLER_TRANSITION = ("the transition slip s_t (the traction's normalised coordinate, the slip at half the linear "
-                      "traction) follows the jitter of the slope a (s_t ~ 1/a: cup, 7 m/s, 45-52 kN/m, a 7.68, 6.60, 8.03 and s_t 1.29, 1.57, 1.35e-2): max 13.5 % cone "
+                      "traction) follows the jitter of the slope a (s_t ~ 1/a: cup, 7 m/s, 45-52 kN/m, a 7.68, "
+                      "6.60, 8.03 and s_t 1.29, 1.57, 1.35e-2): max 13.5 % cone "
                       "(23.2 kN/m, 7.7 m/s) / 8.4 % cup (58 kN/m, 15.2 m/s), 4 / 8 of 40 points above 3 %, median "
                       "0.19 / 0.24 % (rigid law before: 112 % / 39 %)")
 KNOWN_MISSES: dict = {
