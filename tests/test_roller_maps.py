@@ -273,3 +273,19 @@ def test_lithium_grease_map_fails_with_one_line_naming_the_parameter():
     with pytest.raises(InputError, match=r"^rheology = 'grease' is not allowed; choose one of 'eyring', 'herschel_bulkley'$"):
         fp.evaluate_ehl_line(dict(fp.ehl_roller_cone_default_params(), rheology="grease"),
                              {"Line load [N/m]": 5e4, "Entrainment speed [m/s]": 10.0})
+
+
+def test_map_case_lubricant_table_takes_a_grease():
+    """A roller map case's [lubricant] with [lubricant.herschel_bulkley] (the EHL scenes' syntax: eta0 is the
+    consistency phi0) resolves into the kind's grease parameters; a kind without them refuses it in one line."""
+    from coupling.config import CASES_DIR, CaseError, load_case
+
+    lub = ["lubricant.viscosity.law=barus", "lubricant.viscosity.eta0=8.44 Pa s", "lubricant.viscosity.alpha=4.662e-8 m^2/N",
+           "lubricant.herschel_bulkley.yield_stress=351.8 Pa", "lubricant.herschel_bulkley.exponent=0.7196"]
+    case = load_case(CASES_DIR / "map_ehl_roller_cone.toml", overrides=lub + ["lubricant.density.law=incompressible",
+                                                                             "lubricant.density.rho0=870 kg/m^3"])
+    assert {k: case.params[k] for k in ("rheology", "hb_consistency", "hb_yield_stress", "hb_exponent", "hb_creep")} == \
+        dict(fp.roller_grease_params("polyurea", 30.0))
+    with pytest.raises(CaseError, match=r"^lubricant.herschel_bulkley = .* is not used by kind 'ball_ball' \(only the "
+                                        r"roller kinds take a grease"):
+        load_case(CASES_DIR / "map_ball_ball.toml", overrides=lub)
