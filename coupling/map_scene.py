@@ -182,7 +182,8 @@ class CaseModel(_Model):
 
 
 #: the parameters of a map kind that the [lubricant] table sets
-LUBRICANT_PARAMS = ("viscosity_law", "eta0", "alpha", "density_law", "rho0", "eyring_stress")
+LUBRICANT_PARAMS = ("viscosity_law", "eta0", "alpha", "density_law", "rho0", "eyring_stress", "rheology", "hb_consistency",
+                    "hb_yield_stress", "hb_exponent", "hb_creep")
 
 
 def _lubricant_params(lub, kind_name, defaults, params) -> dict:
@@ -208,8 +209,15 @@ def _lubricant_params(lub, kind_name, defaults, params) -> dict:
             raise _rule("lubricant.eyring_stress", lub.eyring_stress, f"is not used by kind {kind_name!r}")
         out["eyring_stress"] = lub.eyring_stress
     if lub.herschel_bulkley is not None:
-        raise _rule("lubricant.herschel_bulkley", lub.herschel_bulkley.model_dump(),
-                    f"is not used by kind {kind_name!r} (the map kinds are Newtonian or Eyring)")
+        if "rheology" not in defaults:
+            raise _rule("lubricant.herschel_bulkley", lub.herschel_bulkley.model_dump(),
+                        f"is not used by kind {kind_name!r} (only the roller kinds take a grease; the others are "
+                        "Newtonian or Eyring)")
+        # a grease on a roller kind (coupling.film_points.base._lubricant): the viscosity law is the consistency
+        # phi(p) = phi0 exp(alpha p), as in the EHL scenes' [lubricant.herschel_bulkley]
+        hb = lub.herschel_bulkley
+        out.update({"rheology": "herschel_bulkley", "hb_consistency": visc.eta0, "hb_yield_stress": hb.yield_stress,
+                    "hb_exponent": hb.exponent, "hb_creep": hb.creep})
     return out
 
 

@@ -315,6 +315,7 @@ from .ehl import (  # noqa: F401  (the package's API: names used by maps, scenes
     ROLLER_SRR_MIN, ehl_roller_cone_default_params, ehl_roller_cup_default_params, evaluate_ehl_line,
     field_ehl_line, roller_race_radius, ROLLER_TRACTION_SHEAR, ROLLER_TRANSITION, ROLLER_TRACTION_NORMALISED,
     transition_slide_to_roll, saturated_transition, normalised_slip, LIGHTER_LOAD_STEP, ROLLER_LINE_LOADS,
+    couette_profile, maxwell_traction, roller_grease_params,
 )
 
 

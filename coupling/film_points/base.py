@@ -99,6 +99,7 @@ ROLLER_EYRING_STRESS = 5e6  # Pa, Reynolds-Eyring tau0 of the roller map (assume
 GREASE_ALPHA = si("Wu2018", "pressure_viscosity")
 ROLLER_BASE_OIL_ETA0 = si("Wu2018", "base_oil_viscosity")  # assumed (paper A gives none)
 ROLLER_BASE_OIL_RHO0 = si("Wu2018", "base_oil_density")  # assumed
+ROLLER_FILM_SHEAR_MODULUS = si("Wu2018", "film_shear_modulus")  # assumed (Johnson & Tevaarwerk 1977: 0.3-3 GPa)
 SHAFT_SPEED_A = printed("Wu2018", "inner_speed", "rpm") * 2 * math.pi / 60  # rad/s, figure 5
 
 
@@ -110,6 +111,10 @@ def _reduced_modulus(E1, nu1, E2, nu2):
 
 VISCOSITY_LAWS = ("barus", "roelands", "constant")
 DENSITY_LAWS = ("dowson_higginson", "incompressible")
+# Poiseuille flow of the roller kinds' film ("rheology"): Reynolds-Eyring (the base oil, tau0 = eyring_stress)
+# or Herschel-Bulkley (a grease: consistency phi0 = hb_consistency [Pa s^n] with the Barus alpha, yield stress
+# hb_yield_stress [Pa], exponent hb_exponent, creep hb_creep; lubrication.laws.lubricant.HerschelBulkleyFlow)
+RHEOLOGIES = ("eyring", "herschel_bulkley")
 
 
 def _get(params, key, default=None):
@@ -142,5 +147,20 @@ def _lubricant(params):
         dens = lub.Incompressible(rho0)
     else:
         raise unknown_choice("density_law", dlaw, DENSITY_LAWS)
+    rheology = params.get("rheology", "eyring")  # absent (the ball kinds): eyring_stress decides
+    if rheology not in RHEOLOGIES:
+        raise unknown_choice("rheology", rheology, RHEOLOGIES)
+    if rheology == "herschel_bulkley":
+        phi0 = float(_get(params, "hb_consistency", 0.0))
+        if not phi0 > 0.0 or not math.isfinite(phi0):
+            raise InputError(f"params.hb_consistency = {params.get('hb_consistency')!r}: rheology = 'herschel_bulkley' "
+                             "needs the grease's consistency phi0 > 0 [Pa s^n] (paper A Table 2: polyurea 8.44, "
+                             "calcium 49.23 at 30 C)")
+        if law != "barus":
+            raise InputError(f"params.viscosity_law = {law!r}: rheology = 'herschel_bulkley' takes the consistency "
+                             "phi = phi0 exp(alpha p) (Barus, paper A eq. 26); allowed: 'barus'")
+        hb = lub.HerschelBulkleyFlow(float(_get(params, "hb_yield_stress", 0.0)),
+                                     float(_get(params, "hb_exponent", 1.0)), float(_get(params, "hb_creep", 0.0)))
+        return lub.Lubricant(lub.Barus(phi0, float(_get(params, "alpha"))), dens, herschel_bulkley=hb)
     tau0 = params.get("eyring_stress")  # absent or None: Newtonian
     return lub.Lubricant(visc, dens, None if tau0 is None else float(tau0))

@@ -14,7 +14,7 @@ from lubrication.errors import ConvergenceError, InputError, unknown_choice
 from .base import (AxisDef, BALL_DIAMETER, BALL_MODULUS, BALL_POISSON, GREASE_ALPHA, INNER_GROOVE_RADIUS, N_BALLS,
                    OIL_ALPHA, OIL_ETA0, OIL_RHO0, OUTER_GROOVE_RADIUS, PAPER_B_AXIAL_LOAD, PITCH_DIAMETER_6206,
                    RING_MODULUS, RING_POISSON, ROLLER_BASE_OIL_ETA0, ROLLER_BASE_OIL_RHO0, ROLLER_EFFECTIVE_LENGTH,
-                   ROLLER_EYRING_STRESS, ROLLER_INNER_CONTACT_ANGLE, ROLLER_MEAN_DIAMETER, ROLLER_MODULUS,
+                   ROLLER_EYRING_STRESS, ROLLER_FILM_SHEAR_MODULUS, ROLLER_INNER_CONTACT_ANGLE, ROLLER_MEAN_DIAMETER, ROLLER_MODULUS,
                    ROLLER_PITCH_DIAMETER, ROLLER_POISSON, _get, _lubricant, _reduced_modulus)
 
 log = logging.getLogger(__name__)
@@ -194,6 +194,14 @@ def _roller_params(race: str) -> dict:
         # (hydrodynamic film, no outlet jitter); secant / tangent at M = 0.18-0.29: K 1.004-1.016,
         # C 0.995-1.001 (7 m/s), K 1.013-1.027, C 0.994-1.011 (28 m/s)
         "secant_min_moes_M": 0.25,
+        # the film's elastic shear (Johnson & Tevaarwerk's Maxwell fluid) in the traction: see
+        # evaluate_ehl_line, "Traction"; inf gives the rigid limiting-shear law of the ball kinds
+        "film_shear_modulus": ROLLER_FILM_SHEAR_MODULUS,
+        # Poiseuille flow: "eyring" (the base oil above) or "herschel_bulkley" (a grease: hb_consistency phi0
+        # [Pa s^n] with the Barus alpha, hb_yield_stress [Pa], hb_exponent, hb_creep; eta0 and eyring_stress
+        # are then unused; coupling.film_points.base._lubricant, roller_grease_params)
+        "rheology": "eyring",
+        "hb_consistency": 0.0, "hb_yield_stress": 0.0, "hb_exponent": 1.0, "hb_creep": 0.0,
         "race": race,
         "radius_x": roller_race_radius(race),
         "length": 1.0,
@@ -201,6 +209,24 @@ def _roller_params(race: str) -> dict:
         "outlet_film_lengths": ROLLER_OUTLET_FILM_LENGTHS,
     })
     return params
+
+
+def roller_grease_params(name: str, temperature_c: float = 30.0) -> dict:
+    """The parameters that make a roller kind's film a grease of paper A's Table 2 (``name`` polyurea, lithium
+    or calcium at ``temperature_c`` [C], 15-70, lubrication.laws.grease.grease_at): rheology =
+    "herschel_bulkley", hb_consistency phi0 [Pa s^n], hb_yield_stress tau_y [Pa], hb_exponent n (the Barus
+    alpha stays the kind's, Table 1's 4.662e-8 m^2/N, which the paper gives for polyurea at 30 C only).
+    Merge them into the params of a build (``build_map("ehl_roller_cone", {**roller_grease_params(...)})``)
+    or write them in a map case's [params]; they are recorded in the map's provenance."""
+    from lubrication.laws.grease import grease_at
+
+    from ..parameters.wu2018 import GREASE_TABLE
+
+    if name not in GREASE_TABLE:
+        raise unknown_choice("grease", name, sorted(GREASE_TABLE))
+    g = grease_at(GREASE_TABLE[name], float(temperature_c), GREASE_ALPHA, name)
+    return {"rheology": "herschel_bulkley", "hb_consistency": float(g.consistency),
+            "hb_yield_stress": float(g.yield_stress), "hb_exponent": float(g.exponent), "hb_creep": 0.0}
 
 
 def ehl_roller_cone_default_params() -> dict:
@@ -222,6 +248,19 @@ def _film_scaled_domain(params, contact):
     from lubrication.laws.contact import line_contact
     from lubrication.laws.film import moes_line_central
 
+    if contact.lubricant.herschel_bulkley is not None:
+        # a grease: Moes' M and L would read the consistency phi0 as Pa s (8-49 Pa s^n: films and domains ~10
+        # times too long; calcium then failed on every point); take the Newtonian film of its apparent
+        # viscosity at the rolling shear rate (lubrication.ehl's own start for the grease)
+        import dataclasses
+
+        from lubrication.ehl.newton import _hb_apparent_start
+        from lubrication.laws.lubricant import Barus
+
+        lub = contact.lubricant
+        eta_app, _ = _hb_apparent_start(contact)
+        contact = dataclasses.replace(contact, lubricant=dataclasses.replace(
+            lub, viscosity=Barus(eta_app, lub.viscosity.pressure_viscosity), herschel_bulkley=None))
     R = contact.radius_x
     h = moes_line_central(contact.moes_M, contact.moes_L) * R * math.sqrt(2 * contact.U)
     b = line_contact(contact.load, R, contact.e_star).b
@@ -475,6 +514,8 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
 
     key = _ehl_key(params, load, speed)
     if key in _EHL_CACHE:
+        if isinstance(_EHL_CACHE[key], ConvergenceError):  # a failed point fails once per process, not per SRR node
+            raise _EHL_CACHE[key]
         return _EHL_CACHE[key]
     line = params["contact"] == "line"
     length = float(params["length"]) if line else 1.0  # 1 m for the per-length roller kinds
@@ -531,6 +572,13 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
         attempts.append((dataclasses.replace(grid, x_max=grid.x_max + 1.0), slow))
     else:
         attempts.append((dataclasses.replace(grid, y_max=grid.y_max + 0.5), slow))
+    hb = contact.lubricant.herschel_bulkley
+    if hb is not None:
+        # a grease (rheology = "herschel_bulkley"): the solver's own Newtonian starts (lubrication.ehl.solve,
+        # _solve_hb: four apparent viscosities), then the same with a damped step.  The oil's continuations
+        # are left out: each of their solves from scratch is itself those four starts, and a grease the
+        # solver cannot reach (Table 2's lithium, n = 0.31) would take minutes per point before failing
+        attempts = [(grid, options), (grid, slow)]
     errors = []
     for number, attempt in enumerate(attempts):
         grid, options = attempt[:2]
@@ -576,7 +624,22 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
             errors.append(str(exc))
             log.info("EHL point (%s): attempt %d failed: %s", text, number + 1, exc)
     else:
-        raise ConvergenceError(f"EHL point ({text}): {' / then: '.join(errors)}")
+        if hb is not None:
+            log.info("EHL point (%s), Herschel-Bulkley: %s", text, " / then: ".join(errors))
+            err = ConvergenceError(
+                f"params.rheology = 'herschel_bulkley' (hb_consistency = {contact.lubricant.viscosity.eta0:g} Pa s^n, "
+                f"hb_yield_stress = {hb.yield_stress:g} Pa, hb_exponent = {hb.exponent:g}): the EHL line contact did "
+                f"not converge at {text} from the solver's Newtonian starts, nor with a damped step (measured on "
+                "the roller kinds: Table 2's polyurea and calcium converge at 50-135 kN/m, 10 m/s, lithium does not; "
+                "change the grease's "
+                "parameters or the axes)")
+        else:
+            err = ConvergenceError(f"EHL point ({text}): {' / then: '.join(errors)}")
+        if _depth == 0:  # (a failure inside the load continuation had fewer fallbacks than a direct call has)
+            if len(_EHL_CACHE) >= _EHL_CACHE_SIZE:
+                _EHL_CACHE.pop(next(iter(_EHL_CACHE)))
+            _EHL_CACHE[key] = err
+        raise err
     if number:
         log.info("EHL point (%s) converged at attempt %d (%s)", text, number + 1, options)
     out = {
@@ -624,7 +687,7 @@ def evaluate_ehl(params: dict, point: dict) -> dict:
     sol = base["solution"]
     c = dataclasses.replace(sol.contact, slide_to_roll=srr)
     traction = dataclasses.replace(sol, contact=c).traction_coefficient()
-    out = {k: float(v) for k, v in base.items() if k != "solution"}
+    out = {k: float(v) for k, v in base.items() if k not in ("solution", "couette", "transition")}
     out["Traction coefficient [-]"] = float(traction)
     return out
 
@@ -678,7 +741,21 @@ def evaluate_ehl_line(params: dict, point: dict) -> dict:
     stays at sigma ~ 1 at every node.  A map of these kinds (``PointKind.sheared``, coupling.maps.FilmMap
     "sheared") therefore returns "Traction coefficient [-]" at (w, u, s) as G interpolated at
     (w, u, T^-1(s / c(w, u))), c interpolated; its own table of "Traction coefficient [-]" is kept for
-    plots only.  A caller with a kernel of its own takes the kernel arrays of G and c and does the same."""
+    plots only.  A caller with a kernel of its own takes the kernel arrays of G and c and does the same.
+
+    The traction itself (since 25 Nov 2026) is the film's as a Maxwell fluid of shear modulus
+    ``film_shear_modulus`` G (paper A's assumed 1 GPa, the one the bearing's limited raceway law uses;
+    :func:`maxwell_traction`, Johnson & Tevaarwerk 1977) capped by the limiting shear stress; G = inf is the
+    rigid limiting-shear law of the ball kinds.  Why: with the rigid law the low-slip traction in the
+    hydrodynamic-to-EHL transition (28-46 kN/m) was the viscosity at the one-cell pressure spike, which is
+    neither grid-converged (cone, 31.66 kN/m, 17.7 m/s, mu(1e-4): 2.98e-4 / 5.79e-4 / 7.12e-4 on 257 / 513 /
+    1025 nodes) nor smooth in load (s_t plateaued, then fell 50-fold within a 7 % load step; the map missed
+    the traction by 14 % and s_t by 112 %).  An element crosses that spike in a small part of its relaxation
+    time eta/G and shears elastically there: the Maxwell traction of the same states is 1.581e-4 / 1.595e-4 /
+    1.596e-4, smooth in load on 257 nodes (interpolated along load sweeps at the map's node ratio 1.072: worst
+    2-8 % against 50-140 % for the rigid law).  It also gives the heavy loads the finite initial slope of
+    measured traction curves (2 G b^2/(u h) per metre when the whole strip shears elastically:
+    lubrication.laws.traction.elastic_strip_slope), where the rigid Barus law was limited from SRR 1e-7 on."""
     import math
 
     if float(params.get("length", 1.0)) != 1.0:
@@ -689,14 +766,19 @@ def evaluate_ehl_line(params: dict, point: dict) -> dict:
     out["Approach [m]"] = out["Central film thickness [m]"] + out["Approach [m]"]  # u(0) = h_c - h00
     out = {LINE_RENAMES.get(k, k): v for k, v in out.items()}
     base = ehl_load_response(params, point["Load [N]"], float(point["Entrainment speed [m/s]"]))
+    shear_modulus = float(params.get("film_shear_modulus", math.inf))
+    if "couette" not in base:
+        base["couette"] = couette_profile(base["solution"])
     if "transition" not in base:
-        base["transition"] = transition_slide_to_roll(base["solution"])
+        base["transition"] = transition_slide_to_roll(base["couette"], shear_modulus)
     s_t = saturated_transition(base["transition"])
     srr = float(point.get("Slide-to-roll ratio [-]", 0.0))
+    # the traction of the kind: the film's Maxwell shear (maxwell_traction; = the ball kinds' rigid law at G = inf)
+    out["Traction coefficient [-]"] = math.copysign(maxwell_traction(base["couette"], abs(srr), shear_modulus), srr)
     out[ROLLER_TRANSITION] = s_t
     # odd in the slide-to-roll ratio, as the traction (the axis itself is > 0)
-    out[ROLLER_TRACTION_NORMALISED] = (math.copysign(_traction_at(base["solution"], normalised_slip(abs(srr)) * s_t), srr)
-                                       if srr != 0.0 else 0.0)
+    out[ROLLER_TRACTION_NORMALISED] = (math.copysign(maxwell_traction(base["couette"], normalised_slip(abs(srr)) * s_t,
+                                                                      shear_modulus), srr) if srr != 0.0 else 0.0)
     return out
 
 
@@ -708,24 +790,101 @@ def _traction_at(sol, srr: float) -> float:
     return float(dataclasses.replace(sol, contact=c).traction_coefficient())
 
 
-def transition_slide_to_roll(sol) -> float:
-    """Slide-to-roll ratio s_t [-] at which the traction of ``sol`` is half its Newtonian value:
-    mu(s_t) = s_t a / 2, a = int eta u_e/h dx / w the Newtonian traction per unit slide-to-roll ratio
-    (EHLSolution._shear_integrals, same quadrature).  mu(s)/(a s) = int min(A, B/s) dx / int A dx falls
-    monotonically from 1 (every point Newtonian) to 0 (every point at its limiting stress B = tau_L0 +
-    gamma p); its half point is the Newtonian-to-limited front of the contact.  Bisection in log s over
-    [1e-16, 1e6]; inf if the traction is above half its Newtonian value at 1e6, 0 if below at 1e-16."""
+def couette_profile(sol) -> dict:
+    """The Couette-shear data of a converged line contact at its quadrature points, in the order of x (the
+    flow's direction): x [m] (node spacing gaps ``gap``, the first from the domain's inlet), the quadrature
+    weights ``dx`` [m], gauge pressure ``p`` (>= 0), film ``h`` (>= the solver's floor), viscosity or
+    consistency ``eta`` (the lubricant's law at p), the entrainment speed ``u``, the load per length ``load``,
+    the traction law and the Herschel-Bulkley flow (None for an oil) -- the quadrature of
+    ``EHLSolution._shear_integrals``."""
     P, c = sol.problem, sol.contact
+    if not c.is_line:
+        raise InputError("couette_profile: a line contact's solution is needed (point contacts: traction_coefficient)")
     b = P.basis
-    pq = np.maximum(np.asarray(b.interpolate(sol.pressure)), 0.0)
-    hq = np.asarray(b.interpolate(np.maximum(sol.film_thickness, P.o.h_floor * P.hscale)))
-    eta = c.lubricant.viscosity(pq)
-    dx = np.asarray(b.dx)
-    newtonian = float(np.sum(eta * c.mean_speed / hq * dx))
+    x = np.asarray(b.global_coordinates(), float)[0].ravel()
+    order = np.argsort(x, kind="stable")
+    pq = np.maximum(np.asarray(b.interpolate(sol.pressure)), 0.0).ravel()[order]
+    hq = np.asarray(b.interpolate(np.maximum(sol.film_thickness, P.o.h_floor * P.hscale))).ravel()[order]
+    dx = np.broadcast_to(np.asarray(b.dx), b.interpolate(sol.pressure).shape).ravel()[order]
+    xs = x[order]
+    x0 = float(P.mesh.p[0].min())
+    return {"x": xs, "gap": np.diff(xs, prepend=x0), "dx": np.array(dx), "p": pq, "h": hq,
+            "eta": np.asarray(c.lubricant.viscosity(pq), float), "u": float(c.mean_speed), "load": float(sol.load),
+            "traction": c.traction, "hb": c.lubricant.herschel_bulkley}
+
+
+def maxwell_traction(profile: dict, srr: float, shear_modulus: float = math.inf) -> float:
+    """Traction coefficient [-] (>= 0) of a line contact's Couette shear at slide-to-roll ratio ``srr`` >= 0,
+    the film a Maxwell fluid of shear modulus G = ``shear_modulus`` [Pa] whose stress is capped by the
+    traction law's limit (Johnson & Tevaarwerk 1977, Proc. R. Soc. A 356, 215: elastic, viscous and
+    plastic in series), ``profile`` from :func:`couette_profile`.
+
+    An element convected at the entrainment speed u through the contact is sheared at D = s u/h; its
+    stress obeys (u/G) dtau/dx + tau/eta_e = D (eta_e = tau_v/D, tau_v the viscous stress at D: eta D for
+    an oil, tau_y + phi D^n for a Herschel-Bulkley grease), integrated exactly between quadrature points
+    with the coefficients of the later point, tau <- tau_v + (tau - tau_v) exp(-G gap D/(u tau_v)), and
+    capped, tau <- min(tau, tau_L), tau_L = tau_L0 + gamma p (``limiting_shear``; no cap for
+    ``newtonian``), from tau = 0 at the inlet; mu = sum tau dx / load.  G = inf is the rigid law of
+    ``EHLSolution.traction_coefficient`` (tau = min(tau_v, tau_L)) to round-off.
+
+    Why (issue 22, the roller maps): with the rigid law the low-slip traction of a contact in the
+    hydrodynamic-to-EHL transition is eta(p_max)-weighted -- half of int eta/h dx sits at the one or two
+    quadrature points of the pressure spike (cone, 17.7 m/s, 31-33 kN/m, 257 nodes), so it jumps with the
+    spike's discrete height (mu(1e-4) 2.98e-4 on 257, 5.79e-4 on 513, 7.12e-4 on 1025 nodes at 31.6 kN/m;
+    not smooth in load on 257 or 513 nodes).  An element crosses that spike (0.1-0.3 b, 1e-7-1e-6 s at
+    17.7 m/s) in a small part of its relaxation time eta/G (2e-5 s at eta = 2e4 Pa s, G = 1 GPa): there it
+    shears elastically, and its stress no longer depends on eta."""
+    s = float(srr)
+    if s <= 0.0:
+        return 0.0
+    tr = profile["traction"]
+    if tr.model not in ("limiting_shear", "newtonian"):
+        raise InputError(f"params.traction_model = {tr.model!r}: the Maxwell traction of the line kinds takes "
+                         "'limiting_shear' or 'newtonian'")
+    p, h, eta, u = profile["p"], profile["h"], profile["eta"], profile["u"]
+    D = s * u / h
+    hb = profile["hb"]
+    tau_v = eta * D if hb is None else hb.yield_stress + eta * D ** hb.exponent
+    cap = (tr.limiting_shear_stress + tr.limiting_shear_slope * p) if tr.model == "limiting_shear" else np.full_like(p, np.inf)
+    if not math.isfinite(shear_modulus):
+        return float(np.sum(np.minimum(tau_v, cap) * profile["dx"])) / profile["load"]
+    # z = gap/(u lambda), lambda = eta_e/G the relaxation time; tau_v (1 - e^-z) -> G D gap/u where eta_e is
+    # large (the elastic limit), written with expm1 so that it does not round to 0
+    z = shear_modulus * profile["gap"] * D / (u * tau_v)
+    tau = _maxwell_march(tau_v * -np.expm1(-z), np.exp(-z), cap)
+    return float(np.sum(tau * profile["dx"])) / profile["load"]
+
+
+def _maxwell_march(gain, keep, cap):
+    """tau_i = min(tau_{i-1} keep_i + gain_i, cap_i), tau_{-1} = 0 (see maxwell_traction)."""
+    out = np.empty_like(gain)
+    t = 0.0
+    for i, (g, k, c) in enumerate(zip(gain.tolist(), keep.tolist(), cap.tolist())):
+        t = t * k + g
+        if t > c:
+            t = c
+        out[i] = t
+    return out
+
+
+def transition_slide_to_roll(profile, shear_modulus: float = math.inf) -> float:
+    """Slide-to-roll ratio s_t [-] at which the traction (:func:`maxwell_traction` of the
+    :func:`couette_profile` ``profile``, or of a solution) is half its linear value: mu(s_t) = s_t a / 2,
+    a = lim mu(s)/s (taken at s = 1e-12, below every cap on the kinds' axes: the Newtonian slope int eta
+    u_e/h dx / w for G = inf, the Maxwell one otherwise).  mu(s)/(a s) falls monotonically from 1 (no
+    point capped) to 0 (every point at its limiting stress tau_L0 + gamma p); its half point is the
+    linear-to-limited front of the contact.  Bisection in log s over [1e-16, 1e6]; inf if the traction is
+    above half its linear value at 1e6, 0 if below at 1e-16 (a grease without elasticity: the yield stress
+    makes a infinite)."""
+    if not isinstance(profile, dict):
+        profile = couette_profile(profile)
+    s0 = 1e-12
+    slope = maxwell_traction(profile, s0, shear_modulus) / s0
+    if not (slope > 0.0 and math.isfinite(slope)):
+        return 0.0
 
     def ratio(ln_s):
-        sliding = np.exp(ln_s) * c.mean_speed
-        return float(np.sum(c.traction.stress(eta, sliding, hq, pq) * dx)) / (np.exp(ln_s) * newtonian)
+        return maxwell_traction(profile, float(np.exp(ln_s)), shear_modulus) / (np.exp(ln_s) * slope)
 
     lo, hi = np.log(1e-16), np.log(1e6)
     if ratio(hi) > 0.5:
