@@ -41,7 +41,7 @@ def main():
     axes[1].legend()
     fig.suptitle(f"circular EHL contact, M = 100, L = 10, {n} x {n} nodes")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("ehl_point_contact"), dpi=100)
     return {"h_c Newton [m]": newton.central_film_thickness, "h_c multigrid [m]": mg.central_film_thickness,
             "h_c formula [m]": h_formula, "load Newton [N]": newton.load, "load multigrid [N]": mg.load,
             "load given [N]": c.load}

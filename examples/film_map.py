@@ -52,7 +52,7 @@ def main():
     ax.set_ylabel(f"force at h0 = {h0 * 1e6:g} um [N]")
     ax.legend()
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("film_map"), dpi=100)
     return {"map force [N]": from_map, "direct force [N]": direct["Force [N]"],
             "accuracy, force median [-]": fmap.accuracy["Force [N]"]["median"],
             "squeeze map/closed form, max deviation [-]": float(np.max(np.abs(np.array(squeeze) / closed - 1)))}

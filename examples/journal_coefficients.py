@@ -54,7 +54,7 @@ def main():
     b.legend()
     fig.suptitle(f"journal R {R * 1e3:g} mm, c {C * 1e6:g} um, L/D 0.1, {OMEGA:g} rad/s")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("journal_coefficients"), dpi=100)
     return rows
 
 

@@ -42,7 +42,7 @@ def main():
     two_d.plot_pressure(ax=b)
     b.set_title(f"square pad: {two_d.load / width:.4g} N/m mean (side leakage)")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("own_gap"), dpi=100)
     return {"1-D load [N/m]": one_d.load, "Rayleigh [N/m]": exact, "square pad load per width [N/m]": two_d.load / width}
 
 

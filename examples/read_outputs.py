@@ -45,7 +45,7 @@ def main():
     b.set_xlabel("time [ms]")
     b.set_ylabel("ball 0 axial position [um]")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("read_outputs"), dpi=100)
     return {"Simulated time [s]": summary["Simulated time [s]"], "samples": t.size,
             "frames": len(frames.time_values), "blocks in the last frame": last.n_blocks if hasattr(last, "n_blocks") else 1,
             "last sample time [s]": float(t[-1])}

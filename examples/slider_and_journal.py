@@ -47,7 +47,7 @@ def main():
     j.plot_pressure(ax=b)
     b.set_title(f"journal: |F| {j.load:.4g} N (Ocvirk {wj:.4g})")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("slider_and_journal"), dpi=100)
     return {"slider load [N/m]": s.load, "slider exact [N/m]": ws, "journal load [N]": j.load, "Ocvirk [N]": wj}
 
 
