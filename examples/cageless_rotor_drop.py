@@ -1,4 +1,7 @@
-"""The cage-less ball bearing's rotor drop, with its collisions and Lyapunov exponents.
+"""Rotor drop on the cage-less ball bearing
+========================================
+
+The cage-less ball bearing's rotor drop, with its collisions and Lyapunov exponents.
 
 Paper B's cage-less 6206 (``cases/cageless_6206_3krpm.toml``: the rotor, spinning at 3,000 rpm, drops onto
 the inner ring, Fr 2000 N, Fa 200 N; the ball-ball oil film read from the FEM map ``cases/maps/ball_ball.npz``)

@@ -1,4 +1,7 @@
-"""Cavitation models compared on one bearing.
+"""Cavitation models on one bearing
+================================
+
+Cavitation models compared on one bearing.
 
 An infinitely long journal bearing (R = 50 mm, c = 50 um, eccentricity 0.6, oil 0.02 Pa s, journal surface
 speed 10 m/s) solved with each of the four cavitation models of :class:`lubrication.Cavitation`, each against

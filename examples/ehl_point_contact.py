@@ -1,4 +1,7 @@
-"""An EHL point contact (circular, M = 100, L = 10) by the FEM Newton solver and by FAS multigrid:
+"""EHL point contact: Newton and multigrid
+=======================================
+
+An EHL point contact (circular, M = 100, L = 10) by the FEM Newton solver and by FAS multigrid:
 the pressure spike and the film's horseshoe, and the central film against Nijenbanning, Venner and
 Moes' formula.
 

@@ -1,4 +1,7 @@
-"""A film map built, saved, loaded, queried and checked: paper B's ball-ball oil film (Reynolds FEM,
+"""A film map: build, save, query, check
+=====================================
+
+A film map built, saved, loaded, queried and checked: paper B's ball-ball oil film (Reynolds FEM,
 Barus viscosity, Dowson-Higginson density) on polar axes (central gap, pressure number rho, squeeze
 angle theta), a small grid solved in this process.
 

@@ -1,4 +1,7 @@
-"""Film stiffness and damping of a journal bearing against eccentricity, by the FEM film solver's
+"""Journal stiffness and damping against eccentricity
+==================================================
+
+Film stiffness and damping of a journal bearing against eccentricity, by the FEM film solver's
 perturbation equations, beside Ocvirk's short-bearing closed forms.
 
 L/D = 1/10 (short), half-Sommerfeld cavitation.  The 2 x 2 matrices come in the solver's x, y frame

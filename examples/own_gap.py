@@ -1,4 +1,7 @@
-"""Your own gap function: a parallel slider with a Rayleigh step written as a Python function.
+"""Your own gap function
+=====================
+
+Your own gap function: a parallel slider with a Rayleigh step written as a Python function.
 
 ``FunctionGap(func)`` takes any ``h(x)`` (``x`` has shape (dim, ...)); here a step from h_in to h_out
 at 0.7183 of the length (Rayleigh's optimum proportions for a step ratio 1.866) over a 2-D pad.  With

@@ -1,4 +1,7 @@
-"""Reading a run's outputs: summary.json, the time series (.npz) and the VTK fields, with numpy and
+"""Reading a run's outputs (numpy, pyvista, ParaView)
+==================================================
+
+Reading a run's outputs: summary.json, the time series (.npz) and the VTK fields, with numpy and
 pyvista.  Runs the smoke-size main job (paper B's rotor drop) into a temporary folder first, through
 the same entry point as ``lubedyn run``.
 

@@ -1,4 +1,7 @@
-"""Paper A's tapered roller bearing in time from Python: Fig. 5's operating point (Fr 20 kN, 2,400 rpm,
+"""The tapered roller bearing in time
+==================================
+
+Paper A's tapered roller bearing in time from Python: Fig. 5's operating point (Fr 20 kN, 2,400 rpm,
 axial locked) with and without the roller-end/rib friction, to see what skews the rollers.
 
 ``coupling.config.load_case`` reads a bundled case with overrides (the same keys as ``lubedyn run --set``);

@@ -1,4 +1,7 @@
-"""Paper A's tapered roller bearing at quasi-static equilibrium from Python: the load distribution
+"""The tapered roller bearing at quasi-static equilibrium
+======================================================
+
+Paper A's tapered roller bearing at quasi-static equilibrium from Python: the load distribution
 under a radial load with the axial motion locked, against Stribeck's estimate of the most loaded roller.
 
 ``coupling.parameters.wu2018.tapered_geometry()`` builds the geometry of Table 1 with the parameter
