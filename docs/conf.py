@@ -81,3 +81,47 @@ html_theme_options = {"description": "lubricant films, film maps and rolling-bea
 # type names in dataclass fields (``Gap`` is both lubrication.Gap and lubrication.gaps.Gap, the same class
 # re-exported); the link goes to one of them, which is right.
 suppress_warnings = ["config.cache", "ref.python"]
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Docstrings.  The project writes its docstrings' math as plain text (STYLE.md, "Docs in the code"), where
+# |x| is an absolute value or a norm; reStructuredText reads |x| as a substitution reference, which the
+# project never uses.  So bars outside literal text are escaped before the docstring is parsed: inline
+# literals (``...``), literal blocks (after "::") and doctest blocks are left as they are (the docstrings
+# have no grid tables or line blocks, whose bars are markup).  Everything else in a docstring must be valid reStructuredText (the build runs with -W).
+import re as _re
+
+_INLINE_LITERAL = _re.compile(r"(``.*?``)")
+
+
+def _escape_bars(line: str) -> str:
+    parts = _INLINE_LITERAL.split(line)
+    return "".join(p if p.startswith("``") else _re.sub(r"(?<!\\)\|", r"\\|", p) for p in parts)
+
+
+def _escape_docstring_bars(app, what, name, obj, options, lines):
+    literal_indent = None      # indentation of the paragraph that opened a literal block, while inside it
+    in_doctest = False
+    for i, line in enumerate(lines):
+        stripped = line.strip()
+        indent = len(line) - len(line.lstrip())
+        if literal_indent is not None:
+            if stripped and indent <= literal_indent:
+                literal_indent = None
+            else:
+                continue
+        if in_doctest:
+            if not stripped:
+                in_doctest = False
+            continue
+        if stripped.startswith(">>>"):
+            in_doctest = True
+            continue
+        if "|" in line:
+            lines[i] = _escape_bars(line)
+        if stripped.endswith("::"):
+            literal_indent = indent
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _escape_docstring_bars)
