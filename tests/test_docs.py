@@ -4,7 +4,8 @@ generated from the pydantic case models by docs/_ext/case_reference.py, lists ev
 The build runs Sphinx as ``lubedyn``'s CI installs it (the ``test`` extra carries the ``docs`` packages) with
 ``-W`` and without executing the examples gallery (``-D plot_gallery=0``: tests/test_examples.py runs every
 example already), so a broken page, reference, link or docstring fails here.  Measured on the 2-core
-machine: about 35 s (importing every module for the API reference is most of it)."""
+machine: 37 s alone, 61 s inside a full run at load average 6-8 (importing every module for the API reference
+is most of it); the case-reference checks 15 s (they validate every bundled case)."""
 from __future__ import annotations
 
 import importlib
