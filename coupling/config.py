@@ -54,6 +54,7 @@ import re
 import tomllib
 import types
 import typing
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
 
@@ -99,6 +100,24 @@ class Dimension(str):
     """Marker in a quantity's metadata: its dimension (for messages)."""
 
 
+@dataclass(frozen=True)
+class Bounds:
+    """Marker in a quantity's metadata: its range in SI and why (for messages and the generated case
+    reference of the documentation, ``docs/_ext/case_reference.py``)."""
+
+    gt: float | None = None
+    ge: float | None = None
+    lt: float | None = None
+    le: float | None = None
+    why: str = ""
+
+    def text(self, dimension: str) -> str:
+        """``"must be > 0 m"``, or ``""`` without bounds."""
+        if self.gt is None and self.ge is None and self.lt is None and self.le is None:
+            return ""
+        return _bounds_text(si_unit(dimension), self.gt, self.ge, self.lt, self.le)
+
+
 def Q(dimension: str, *, gt=None, ge=None, lt=None, le=None, why: str = ""):
     """An annotated float: a quantity of ``dimension`` converted to SI, range-checked."""
 
@@ -116,7 +135,7 @@ def Q(dimension: str, *, gt=None, ge=None, lt=None, le=None, why: str = ""):
             raise PydanticCustomError("quantity", "{text}", {"text": text})
         return x
 
-    return Annotated[float, BeforeValidator(convert), Dimension(dimension)]
+    return Annotated[float, BeforeValidator(convert), Dimension(dimension), Bounds(gt, ge, lt, le, why)]
 
 
 def _listify(value):

@@ -75,7 +75,7 @@ args, J)`` or forward differences (n extra rhs calls per accepted step); one
 inverse of W per step.  Same ``(Y, stats)`` contract as DOPRI5.
 
 Stiffness of the ball contacts (measured with ``benchmarks/dynamics_tools.py``)
---------------------------------------------------------------------------
+-------------------------------------------------------------------------------
 A ball of 3.5 g on a contact of stiffness k = 1e9 N/m has omega = sqrt(k/m)
 = 5.3e5 rad/s.  Explicit stability on the imaginary axis (:func:`stability_limit`,
 computed from the stability polynomials): RK4 |h omega| <= 2 sqrt(2) = 2.83;

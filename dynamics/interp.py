@@ -48,6 +48,7 @@ Methods (``method``)
    cheaper than method 1.  Monotone data stay monotone along grid lines; between
    them neither cubic method guarantees monotonicity in 2-D/3-D (the sequential
    method is nonlinear in the data, this one has cross-derivative terms).
+
 Speed: the hermite kernels have a single exit (a NaN result is selected at the
 end after a harmless evaluation at the clamped point), write the counter on
 every query (adding 0 or 1) and call only ``inline="always"`` helpers, so that

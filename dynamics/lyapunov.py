@@ -68,7 +68,7 @@ replacement search is a ball query of the same tree per evolution step
 (20,000 Henon samples, 20,000 steps: 1.3 s).
 
 Measured (full length; smoke-length versions are in tests/test_lyapunov.py)
---------------------------------------------------------------------------
+---------------------------------------------------------------------------
 Lorenz, T = 1e4 s after a 10 s transient, t_orth = 0.05 s: dt = 0.005 s ->
 (0.90576, 6.6e-5, -14.57248), sum -13.666660 (exact -13.666667); the same with
 the forward-difference J: 0.90576, sum -13.666660; dt = 0.01 s -> 0.90628.

@@ -1,4 +1,7 @@
-"""An EHL point contact (circular, M = 100, L = 10) by the FEM Newton solver and by FAS multigrid:
+"""EHL point contact: Newton and multigrid
+=======================================
+
+An EHL point contact (circular, M = 100, L = 10) by the FEM Newton solver and by FAS multigrid:
 the pressure spike and the film's horseshoe, and the central film against Nijenbanning, Venner and
 Moes' formula.
 
@@ -41,7 +44,7 @@ def main():
     axes[1].legend()
     fig.suptitle(f"circular EHL contact, M = 100, L = 10, {n} x {n} nodes")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("ehl_point_contact"), dpi=100)
     return {"h_c Newton [m]": newton.central_film_thickness, "h_c multigrid [m]": mg.central_film_thickness,
             "h_c formula [m]": h_formula, "load Newton [N]": newton.load, "load multigrid [N]": mg.load,
             "load given [N]": c.load}

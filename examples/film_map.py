@@ -1,4 +1,7 @@
-"""A film map built, saved, loaded, queried and checked: paper B's ball-ball oil film (Reynolds FEM,
+"""A film map: build, save, query, check
+=====================================
+
+A film map built, saved, loaded, queried and checked: paper B's ball-ball oil film (Reynolds FEM,
 Barus viscosity, Dowson-Higginson density) on polar axes (central gap, pressure number rho, squeeze
 angle theta), a small grid solved in this process.
 
@@ -52,7 +55,7 @@ def main():
     ax.set_ylabel(f"force at h0 = {h0 * 1e6:g} um [N]")
     ax.legend()
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("film_map"), dpi=100)
     return {"map force [N]": from_map, "direct force [N]": direct["Force [N]"],
             "accuracy, force median [-]": fmap.accuracy["Force [N]"]["median"],
             "squeeze map/closed form, max deviation [-]": float(np.max(np.abs(np.array(squeeze) / closed - 1)))}

@@ -1,4 +1,7 @@
-"""Film stiffness and damping of a journal bearing against eccentricity, by the FEM film solver's
+"""Journal stiffness and damping against eccentricity
+==================================================
+
+Film stiffness and damping of a journal bearing against eccentricity, by the FEM film solver's
 perturbation equations, beside Ocvirk's short-bearing closed forms.
 
 L/D = 1/10 (short), half-Sommerfeld cavitation.  The 2 x 2 matrices come in the solver's x, y frame
@@ -54,7 +57,7 @@ def main():
     b.legend()
     fig.suptitle(f"journal R {R * 1e3:g} mm, c {C * 1e6:g} um, L/D 0.1, {OMEGA:g} rad/s")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("journal_coefficients"), dpi=100)
     return rows
 
 

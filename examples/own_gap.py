@@ -1,4 +1,7 @@
-"""Your own gap function: a parallel slider with a Rayleigh step written as a Python function.
+"""Your own gap function
+=====================
+
+Your own gap function: a parallel slider with a Rayleigh step written as a Python function.
 
 ``FunctionGap(func)`` takes any ``h(x)`` (``x`` has shape (dim, ...)); here a step from h_in to h_out
 at 0.7183 of the length (Rayleigh's optimum proportions for a step ratio 1.866) over a 2-D pad.  With
@@ -42,7 +45,7 @@ def main():
     two_d.plot_pressure(ax=b)
     b.set_title(f"square pad: {two_d.load / width:.4g} N/m mean (side leakage)")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("own_gap"), dpi=100)
     return {"1-D load [N/m]": one_d.load, "Rayleigh [N/m]": exact, "square pad load per width [N/m]": two_d.load / width}
 
 

@@ -1,4 +1,7 @@
-"""Reading a run's outputs: summary.json, the time series (.npz) and the VTK fields, with numpy and
+"""Reading a run's outputs (numpy, pyvista, ParaView)
+==================================================
+
+Reading a run's outputs: summary.json, the time series (.npz) and the VTK fields, with numpy and
 pyvista.  Runs the smoke-size main job (paper B's rotor drop) into a temporary folder first, through
 the same entry point as ``lubedyn run``.
 
@@ -45,7 +48,7 @@ def main():
     b.set_xlabel("time [ms]")
     b.set_ylabel("ball 0 axial position [um]")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("read_outputs"), dpi=100)
     return {"Simulated time [s]": summary["Simulated time [s]"], "samples": t.size,
             "frames": len(frames.time_values), "blocks in the last frame": last.n_blocks if hasattr(last, "n_blocks") else 1,
             "last sample time [s]": float(t[-1])}

@@ -1,4 +1,7 @@
-"""An inclined slider and a short journal bearing from Python, each against its closed form.
+"""A slider and a journal bearing
+==============================
+
+An inclined slider and a short journal bearing from Python, each against its closed form.
 
 Slider: plane pad, h_in = 2 h_out (K = 1), runner at 5 m/s, 50 mm long, oil 0.05 Pa s: load per unit
 width against W = 12 eta u_m l^2/(K^2 h_out^2) [ln(1 + K) - 2K/(2 + K)].  Journal: L/D = 1/10 at
@@ -47,7 +50,7 @@ def main():
     j.plot_pressure(ax=b)
     b.set_title(f"journal: |F| {j.load:.4g} N (Ocvirk {wj:.4g})")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("slider_and_journal"), dpi=100)
     return {"slider load [N/m]": s.load, "slider exact [N/m]": ws, "journal load [N]": j.load, "Ocvirk [N]": wj}
 
 

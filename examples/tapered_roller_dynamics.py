@@ -1,4 +1,7 @@
-"""Paper A's tapered roller bearing in time from Python: Fig. 5's operating point (Fr 20 kN, 2,400 rpm,
+"""The tapered roller bearing in time
+==================================
+
+Paper A's tapered roller bearing in time from Python: Fig. 5's operating point (Fr 20 kN, 2,400 rpm,
 axial locked) with and without the roller-end/rib friction, to see what skews the rollers.
 
 ``coupling.config.load_case`` reads a bundled case with overrides (the same keys as ``lubedyn run --set``);
@@ -13,11 +16,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from coupling import tapered_scene as S
-from coupling.config import load_case
+from coupling.config import CASES_DIR, load_case
 
 from _common import SMOKE, png
 
-CASE = __import__("pathlib").Path(__file__).resolve().parents[1] / "cases" / "trb_fig5_2400rpm.toml"
+CASE = CASES_DIR / "trb_fig5_2400rpm.toml"
 
 
 def main():
@@ -46,7 +49,7 @@ def main():
     b.legend(fontsize=8)
     fig.suptitle("paper A, Fig. 5's point: the rib's friction skews the rollers")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("tapered_roller_dynamics"), dpi=100)
     return out
 
 

@@ -1,4 +1,7 @@
-"""Paper A's tapered roller bearing at quasi-static equilibrium from Python: the load distribution
+"""The tapered roller bearing at quasi-static equilibrium
+======================================================
+
+Paper A's tapered roller bearing at quasi-static equilibrium from Python: the load distribution
 under a radial load with the axial motion locked, against Stribeck's estimate of the most loaded roller.
 
 ``coupling.parameters.wu2018.tapered_geometry()`` builds the geometry of Table 1 with the parameter
@@ -43,7 +46,7 @@ def main():
     b.legend()
     fig.suptitle(f"Fr {fr / 1e3:g} kN, 2,400 rpm, axial locked: {res.stop_reason}")
     fig.tight_layout()
-    fig.savefig(png(__file__), dpi=100)
+    fig.savefig(png("tapered_roller_static"), dpi=100)
     return {"most loaded roller, cup [N]": float(res.cup_loads.max()), "Stribeck [N]": stribeck,
             "induced thrust [N]": res.axial_load, "ideal cage speed [rpm]": res.kinematics["cage speed [rad/s]"] * 30 / math.pi}
 

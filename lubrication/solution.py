@@ -350,6 +350,9 @@ class FilmSolution:
     def summary(self, boundaries=None, coefficients=None) -> dict:
         """Flat mapping of scalar results; names carry units.
 
+        1-D films are per unit width: their names say so
+        (:func:`per_unit_width`), e.g. ``"Load per unit width [N/m]"``.
+
         Parameters
         ----------
         boundaries : iterable of str, optional
@@ -358,9 +361,6 @@ class FilmSolution:
         coefficients : tuple, optional
             ``(names, K, C)`` from :meth:`coefficients`, listed as
             ``"Stiffness K[a,b] [N/m]"`` and ``"Damping C[a,b] [N s/m]"``.
-
-        1-D films are per unit width: their names say so
-        (:func:`per_unit_width`), e.g. ``"Load per unit width [N/m]"``.
         """
         out = {
             "Load [N]": self.load,

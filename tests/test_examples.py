@@ -102,3 +102,28 @@ def test_tapered_roller_dynamics(example):
     assert r["ideal cage speed [rpm]"] == pytest.approx(2400 * (1 - gamma) / 2, rel=1e-9)
     for k in ("cage speed, flange friction (eqs. 22-23) [rpm]", "cage speed, no flange friction [rpm]"):
         assert r[k] == pytest.approx(r["ideal cage speed [rpm]"], rel=0.01)
+
+
+def test_cavitation_models(example):
+    """The long journal at eccentricity 0.6 on 32 P2 elements (128 P1 for JFO): each model's load against its
+    closed form (measured at smoke size: none -3e-5, half-Sommerfeld -3e-5, Swift-Stieber -8e-5, JFO -2e-4),
+    full Sommerfeld perpendicular to the line of centres, and JFO fed at the largest gap carrying
+    Swift-Stieber's load."""
+    r = example("cavitation_models")
+    for model in ("none", "half_sommerfeld", "reynolds", "jfo"):
+        assert r[f"{model} load [N/m]"] == pytest.approx(r[f"{model} closed form [N/m]"], rel=1e-3)
+    assert r["none attitude [deg]"] == pytest.approx(90.0, abs=1e-6)
+    assert r["half_sommerfeld load [N/m]"] < r["reynolds load [N/m]"] < r["none load [N/m]"]
+
+
+def test_cageless_rotor_drop(example):
+    """5 ms of the 3,000 rpm drop: the rotor follows the friction law Omega_0 - mu F_r r_c t / J_rotor while it
+    slips (measured 2e-14); the ring catches up after the rigid two-inertia estimate (the balls' drag holds it
+    back: measured 1.83 ms against 1.51 ms); every collision event is counted in the summary; the whole-system
+    exponents carry an uncertainty and a verdict."""
+    r = example("cageless_rotor_drop")
+    assert r["samples while slipping"] > 100
+    assert r["rotor speed, largest deviation from the friction law [-]"] < 1e-9
+    assert r["ring catch-up, rigid estimate [s]"] < r["ring catch-up, measured [s]"] < 1.3 * r["ring catch-up, rigid estimate [s]"]
+    assert r["collisions"] == r["collisions (summary)"] > 0
+    assert r["Lyapunov exponent 1, whole system (Benettin) verdict"] in ("positive", "not positive")

@@ -28,7 +28,7 @@ State vector (:meth:`CagelessBearing.state_layout` names every entry)::
     [ball 0 block, ball 1 block, ...]                      (Z x 13 or Z x 6)
 
 Ball-race contact (rigid rings, groove curvature centres)
---------------------------------------------------------
+---------------------------------------------------------
 The groove of a race is a torus; its curvature centre circle has radius
 R_oc = D_o/2 - r_o (outer, about the origin) and R_ic = D_i/2 + r_i (inner,
 about the inner-ring centre c_i, axial offset z_i).  For a ball at radial
@@ -49,8 +49,7 @@ entrainment u_e = |((v_ball + v_race)/2 - v_p)_t| with v_p the velocity of the
 contact point (it moves with the ball's orbit).  Spin and rolling-resistance
 moments are not modelled.
 
-Functional slots (paper B, Table 4: width W = 3.5 mm across the groove,
-length L_s = 11.5 mm along it, depth 1 mm; EDM-cut in the raceway)
+Functional slots (paper B, Table 4: width W = 3.5 mm across the groove, length L_s = 11.5 mm along it, depth 1 mm; EDM-cut in the raceway)
     The groove surface is missing where the contact point lies within
     |s| < L_s/2 (arc length along the race from the slot centre) and |z_p| <
     W/2 (axial, from the groove centre plane): the groove force is multiplied

@@ -2,16 +2,16 @@
 
 Part of :mod:`dynamics.cageless`.  :class:`~dynamics.cageless.CagelessBearing` holds one of each:
 
-=============  ==========  ===============================================================
-group          case table  what
-=============  ==========  ===============================================================
-``bearing``    [bearing]   geometry, materials, masses and inertias
-``operating``  [operating] loads, speed, scenario (drop / steady / free), rotor contact
-``fidelity``   [model]     degrees of freedom, Hertz constants, damping, traction, yield
-``films``      [films]     the oil: viscosity, pressure-viscosity; ball-ball and race films
-``slots``      [slots]     the local functional slots
-``initial``    [initial]   the starting arrangement and its seeded perturbation (ensembles)
-=============  ==========  ===============================================================
+=============  ===========  ===============================================================
+group          case table   what
+=============  ===========  ===============================================================
+``bearing``    [bearing]    geometry, materials, masses and inertias
+``operating``  [operating]  loads, speed, scenario (drop / steady / free), rotor contact
+``fidelity``   [model]      degrees of freedom, Hertz constants, damping, traction, yield
+``films``      [films]      the oil: viscosity, pressure-viscosity; ball-ball and race films
+``slots``      [slots]      the local functional slots
+``initial``    [initial]    the starting arrangement and its seeded perturbation (ensembles)
+=============  ===========  ===============================================================
 
 Paper data are not defaults here: paper B's values come from its parameter set
 (:mod:`coupling.parameters.zhang2024`); the defaults are model options and numerical settings.

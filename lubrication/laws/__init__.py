@@ -1,7 +1,9 @@
 """The laws written once: the ground floor that both :mod:`lubrication` and :mod:`dynamics` import.
 
-=============  ========================================================module         laws
-=============  ========================================================``contact``    reduced modulus, relative radii, Hertz point contact (exact
+=============  ========================================================
+module         laws
+=============  ========================================================
+``contact``    reduced modulus, relative radii, Hertz point contact (exact
                elliptic integrals, Hamrock-Brewe fits), line contact, contact
                stiffness Q = K delta^1.5, springs in series, Hunt-Crossley alpha
 ``bearing``    rolling-bearing geometry and kinematics: race radii, pitch
@@ -31,6 +33,7 @@
                reading of paper A's Table 1), flange, crown, cage land,
                ideal kinematics, end sliding, roller mass
 =============  ========================================================
+
 Everything here is a pure function of floats (or a frozen SI dataclass) with
 its published source in the docstring; nothing imports a solver.  Each law is
 tested against its source (``tests/test_laws_*.py``), and

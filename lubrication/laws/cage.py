@@ -50,7 +50,7 @@ film gives 4.0 eta u_m R/h (:data:`HALF_SOMMERFELD_COEFFICIENT`), the full Somme
 Gap (eq. 33): delta = Delta delta - (roller centre's displacement towards the beam), Delta delta =
 (l_c - d_w)/2 = 0.27 mm (Table 1) (:func:`pocket_gap`).
 
-Boundary state (delta < dh0, eqs. 36-37): the solids are deformed by delta_h = dh0 - delta and
+Boundary state (delta < dh0, eqs. 36-37): the solids are deformed by delta_h = dh0 - delta and::
 
     paper:      q = k_h delta_h + c_h d(delta_h)/dt + q_film(dh0),  f = mu_bd q + f_film(dh0)
     continuous: q = k_h delta_h + c_h min(delta_h/dh0, 1) d(delta_h)/dt (>= 0) + q_film(dh0, d delta/dt),

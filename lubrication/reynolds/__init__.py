@@ -22,7 +22,7 @@ identically in the full film, so full-film solutions keep the Galerkin orders
 (2 for P1, 3 for P2 in L2).
 
 Cavitation models (``Cavitation.model``)
----------------------------------------
+----------------------------------------
 - ``"none"``: full Sommerfeld, r = 0, p free.
 - ``"half_sommerfeld"``: the Guembel approximation -- the full-Sommerfeld
   solution with pressures below p_cav replaced by p_cav.  Not mass conserving
@@ -48,7 +48,7 @@ iterations (mean factor :data:`AMG_STALL_FACTOR`), SuperLU takes over for the
 rest of the solve and ``info["linear_solver"]`` says so.
 
 JFO with P2 elements is inaccurate: use P1
------------------------------------------
+------------------------------------------
 The complementarity ``(p - p_cav) r = 0`` is imposed at the nodes, but P2
 vertex functions are negative over part of their support, so a nodal void
 fraction r >= 0 does not keep the interpolated fluid fraction in [0, 1] and
