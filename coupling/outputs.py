@@ -378,12 +378,14 @@ def write_pvd(path, entries) -> Path:
     return write_text(path, "\n".join(lines))
 
 
-def write_timeseries(path, time, columns: dict, meta: dict | None = None) -> Path:
+def write_timeseries(path, time, columns: dict, meta: dict | None = None, compress: bool = False) -> Path:
     """A self-describing time series: ``.npz`` with ``"Time [s]"`` and one array
     per column (names carry units, e.g. ``"Ball 1 x [m]"``) plus a JSON
     ``"__meta__"`` entry (case, units convention, anything in ``meta``).
 
-    Read it back with :func:`read_timeseries` (or ``numpy.load``).
+    Stored uncompressed unless ``compress``: the columns are mostly incompressible floats (measured on the
+    README's main job: 39.5 MB plain in 0.05 s against 29.7 MB zip-deflated in 0.9 s, a tenth of the warm
+    run).  Read it back with :func:`read_timeseries` (or ``numpy.load``), either way.
     """
     import io
 
@@ -397,7 +399,8 @@ def write_timeseries(path, time, columns: dict, meta: dict | None = None) -> Pat
             raise ValueError(f"column {name!r} has {value.shape[:1]} samples, time has {len(arrays['Time [s]'])}")
         arrays[name] = value
     header = {"format": "lubedyn time series", "version": 1, "columns": list(arrays), **(meta or {})}
-    np.savez_compressed(buffer, __meta__=np.array(json.dumps(header, default=str)), **arrays)
+    save = np.savez_compressed if compress else np.savez
+    save(buffer, __meta__=np.array(json.dumps(header, default=str)), **arrays)
     return write_bytes(path, buffer.getvalue())
 
 

@@ -156,3 +156,21 @@ def test_timeseries_roundtrip_and_refuses_ragged_columns(tmp_path):
     with pytest.raises(ValueError, match="Ball 2"):
         write_timeseries(tmp_path / "bad.npz", t, {"Ball 2 x [m]": np.ones(4)})
     assert not (tmp_path / "bad.npz").exists()
+
+
+def test_timeseries_round_trip_plain_and_compressed(tmp_path):
+    """write_timeseries stores plain .npz by default and zip-deflated with compress=True; read_timeseries
+    gives back the same columns and meta bit for bit either way, and the plain file is the larger one for
+    data that compresses (a smooth signal)."""
+    import numpy as np
+
+    from coupling.outputs import read_timeseries, write_timeseries
+
+    t = np.linspace(0.0, 1.0, 2001)
+    cols = {"Smooth [m]": np.round(np.sin(t), 3), "Flag [-]": (t > 0.5).astype(float)}
+    for name, compress in (("plain.npz", False), ("deflated.npz", True)):
+        write_timeseries(tmp_path / name, t, cols, {"case": "x"}, compress=compress)
+        back, meta = read_timeseries(tmp_path / name)
+        assert np.array_equal(back["Time [s]"], t) and meta["case"] == "x"
+        assert all(np.array_equal(back[k], v) for k, v in cols.items())
+    assert (tmp_path / "plain.npz").stat().st_size > (tmp_path / "deflated.npz").stat().st_size
