@@ -64,7 +64,7 @@ def _time_figure(st: C.Study, key: str, labels, column: str, scale: float, ylabe
             continue
         cols = _series(st.folders[idx[0]])
         t = cols["Time [s]"]
-        x = cols[column] if column in cols else cols[column.replace("Roller 0 ", "")]
+        x = cols[column]
         if "Roller 0 loaded zone [-]" in cols and column.startswith("Roller 0"):
             _shade(ax, t, cols["Roller 0 loaded zone [-]"] > 0.5)
         ax.plot(t, scale * x, lw=0.7)

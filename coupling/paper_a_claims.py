@@ -148,9 +148,9 @@ def window_value(s: dict, stat: str, zone: str | None, what: str = "mean") -> Va
     unc = None
     c = s.get(CONVERGED)
     if isinstance(c, dict) and what == "mean":
-        label = {"Skew [rad]": "Skew", "Tilt [rad]": "Tilt", "Roller slip [-]": "Roller slip",
-                 "Cage slip [-]": "Cage slip"}.get(stat)
-        key = f"{label}, {zone}" if zone else label
+        from .tapered_scene import HEADLINE
+
+        key = next((name for name, st, z in HEADLINE if st == stat and z == zone), None)
         ch = c.get("Window-to-window change", {}).get(key)
         unc = None if ch is None else ch["change"]
     return Value(paper, conv, unc)
@@ -225,7 +225,7 @@ def _roller_series(folder: Path, name: str) -> tuple[np.ndarray, np.ndarray] | N
     while f"Roller {j} {base[0].lower()}{base[1:]} [{unit}" in cols:
         out.append(cols[f"Roller {j} {base[0].lower()}{base[1:]} [{unit}"])
         j += 1
-    return (cols["Time [s]"] if "Time [s]" in cols else cols["t [s]"]), np.stack(out, axis=1)
+    return cols["Time [s]"], np.stack(out, axis=1)
 
 
 def _oscillation(t, x, lo, hi) -> float:
@@ -254,7 +254,8 @@ def _whirl(folder: Path, lo=0.1, hi=0.18) -> dict | None:
     w = (t >= lo) & (t <= hi)
     y, z = cols["Cage centre from the cone's, y [m]"][w], cols["Cage centre from the cone's, z [m]"][w]
     r = np.hypot(y, z)
-    turns = abs(np.unwrap(np.arctan2(z, y))[-1] - np.unwrap(np.arctan2(z, y))[0]) / (2 * math.pi)
+    angle = np.unwrap(np.arctan2(z, y))
+    turns = abs(angle[-1] - angle[0]) / (2 * math.pi)
     return {"radius [m]": float(r.mean()), "cv": float(r.std() / r.mean()), "turns": float(turns)}
 
 

@@ -153,15 +153,23 @@ def _rheo(P):
 
 
 @njit(**INLINE)
-def _slice_film(load, radius, P):
-    """(line load w [N/m], Hertz half-width b [m], peak pressure p0 [Pa], Dowson-Toyoda central film h0
-    [m] at the ideal entrainment speed) of a slice carrying ``load`` [N] on a raceway of reduced radius
+def _strip_film(w, radius, P):
+    """(Hertz half-width b [m], peak pressure p0 [Pa], Dowson-Toyoda central film h0 [m] at the ideal
+    entrainment speed) of a strip carrying the line load ``w`` [N/m] on a raceway of reduced radius
     ``radius``: b = sqrt(8 w R'/(pi E')), p0 = 2 w/(pi b)."""
-    w = load / P[P_WIDTH]
     ep = P[P_EP]
     b = math.sqrt(8.0 * w * radius / (math.pi * ep))
     h0 = radius * _dowson_toyoda(P[P_ETA] * P[P_UE] / (ep * radius), P[P_PVC] * ep, w / (ep * radius))
-    return w, b, 2.0 * w / (math.pi * b), h0
+    return b, 2.0 * w / (math.pi * b), h0
+
+
+@njit(**INLINE)
+def _slice_film(load, radius, P):
+    """(line load w [N/m], b, p0, h0) of a slice carrying ``load`` [N] (:func:`_strip_film` at
+    w = load/width)."""
+    w = load / P[P_WIDTH]
+    b, p0, h0 = _strip_film(w, radius, P)
+    return w, b, p0, h0
 
 
 @njit(**INLINE)
@@ -178,6 +186,34 @@ def _load_cage(Fg, Tg, h0, h1, h2, f0, f1, f2):
 
 
 @njit(**INLINE)
+def _rot(R, a0, a1, a2):
+    """R a (R a 3 x 3 array)."""
+    return (R[0, 0] * a0 + R[0, 1] * a1 + R[0, 2] * a2, R[1, 0] * a0 + R[1, 1] * a1 + R[1, 2] * a2,
+            R[2, 0] * a0 + R[2, 1] * a1 + R[2, 2] * a2)
+
+
+@njit(**INLINE)
+def _rot_t(R, a0, a1, a2):
+    """R^T a (from the inertial frame into the tilted cone's)."""
+    return (R[0, 0] * a0 + R[1, 0] * a1 + R[2, 0] * a2, R[0, 1] * a0 + R[1, 1] * a1 + R[2, 1] * a2,
+            R[0, 2] * a0 + R[1, 2] * a1 + R[2, 2] * a2)
+
+
+@njit(**INLINE)
+def _load_cone(Fc, Tc, tilted, q0, q1, q2, f0, f1, f2):
+    """The reaction of a force (f0, f1, f2) on a roller at q (from the cone's reference point), acting on
+    the cone: -f added to Fc and, with the tilt free, q x (-f) to Tc."""
+    Fc[0] -= f0
+    Fc[1] -= f1
+    Fc[2] -= f2
+    if tilted:
+        t0, t1, t2 = _cross(q0, q1, q2, -f0, -f1, -f2)
+        Tc[0] += t0
+        Tc[1] += t1
+        Tc[2] += t2
+
+
+@njit(**INLINE)
 def _traction_per_speed(load, radius, P):
     """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N]: pi eps eta
     sqrt(R'/(2 h0)) times the slice width (:func:`lubrication.laws.traction.paper_raceway_traction`)."""
@@ -191,7 +227,7 @@ def strip_viscous_traction(w, radius, vs, P):
     ``radius`` [m] carrying the line load ``w`` [N/m] and sliding at ``vs`` [m/s]
     (:func:`lubrication.laws.traction.limited_strip_traction` over the Hertz strip of :func:`_slice_film`,
     Gauss rule), before the film's elastic shear: the function the traction tables hold."""
-    _, b, p0, h0 = _slice_film(w * P[P_WIDTH], radius, P)
+    b, p0, h0 = _strip_film(w, radius, P)
     return limited_strip_traction(vs, h0, b, p0, _rheo(P))
 
 
@@ -270,23 +306,20 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     om = P[P_OMEGA]
     # the cone's angular velocity and attitude: the prescribed spin Omega about its axis a = R e_x and,
     # tilted, the tilt rate (0, theta_y', theta_z'); R the rotation of the rotation vector (0, theta_y,
-    # theta_z) (rows r.. below; the identity when the tilt is locked)
+    # theta_z) (used only when the tilt is free)
     tilted = P[P_TILT] != 0.0
     wx, wy, wz = om, 0.0, 0.0
     lx, ly, lvx, lvy = 0.0, 0.0, 0.0, 0.0
-    r00, r01, r02, r10, r11, r12, r20, r21, r22 = 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
+    Rm = np.empty((3, 3))
     if tilted:
         kt = int(P[P_TILTAT])
         qt = np.empty(4)
         quat_from_rotvec(np.array([0.0, y[kt], y[kt + 1]]), qt)
-        Rm = np.empty((3, 3))
         quat_to_matrix(qt, Rm)
-        r00, r01, r02, r10, r11, r12, r20, r21, r22 = (Rm[0, 0], Rm[0, 1], Rm[0, 2], Rm[1, 0], Rm[1, 1], Rm[1, 2],
-                                                       Rm[2, 0], Rm[2, 1], Rm[2, 2])
-        wx, wy, wz = om * r00, om * r10 + y[kt + 2], om * r20 + y[kt + 3]
+        wx, wy, wz = om * Rm[0, 0], om * Rm[1, 0] + y[kt + 2], om * Rm[2, 0] + y[kt + 3]
         # the guide land's centre and velocity (y, z) at its axial station x_L, moved by the tilt
         xl = P[P_LANDX]
-        lx, ly = xl * r10, xl * r20
+        lx, ly = xl * Rm[1, 0], xl * Rm[2, 0]
         lvx, lvy = xl * y[kt + 3], -xl * y[kt + 2]
     ex_b = np.array([1.0, 0.0, 0.0])
     e = np.empty(3)
@@ -321,14 +354,13 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                 if race == 1 and tilted:
                     # the cone's raceway is a surface of revolution about its own axis: the slice in the
                     # cone frame (R^T), the contact point and normal back (R)
-                    delta, c0_, c1_, c2_, k0_, k1_, k2_ = slice_contact_3d(
-                        r00 * s0 + r10 * s1 + r20 * s2, r01 * s0 + r11 * s1 + r21 * s2, r02 * s0 + r12 * s1 + r22 * s2,
-                        r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2,
-                        RHO[k], px, pr, nx, nr)
+                    t0, t1, t2 = _rot_t(Rm, s0, s1, s2)
+                    a0, a1, a2 = _rot_t(Rm, e0, e1, e2)
+                    delta, c0_, c1_, c2_, k0_, k1_, k2_ = slice_contact_3d(t0, t1, t2, a0, a1, a2, RHO[k], px, pr, nx, nr)
                     if delta <= 0.0:
                         continue
-                    q0, q1, q2 = r00 * c0_ + r01 * c1_ + r02 * c2_, r10 * c0_ + r11 * c1_ + r12 * c2_, r20 * c0_ + r21 * c1_ + r22 * c2_
-                    n0, n1, n2 = r00 * k0_ + r01 * k1_ + r02 * k2_, r10 * k0_ + r11 * k1_ + r12 * k2_, r20 * k0_ + r21 * k1_ + r22 * k2_
+                    q0, q1, q2 = _rot(Rm, c0_, c1_, c2_)
+                    n0, n1, n2 = _rot(Rm, k0_, k1_, k2_)
                 else:
                     delta, q0, q1, q2, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, RHO[k], px, pr, nx, nr)
                 if delta <= 0.0:
@@ -365,23 +397,16 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                 loads[j, race] += f
                 SL[j, race, k] = f
                 if race == 1:
-                    Fc[0] -= f0
-                    Fc[1] -= f1
-                    Fc[2] -= f2
-                    if tilted:
-                        t0, t1, t2 = _cross(q0, q1, q2, -f0, -f1, -f2)
-                        Tc[0] += t0
-                        Tc[1] += t1
-                        Tc[2] += t2
+                    _load_cone(Fc, Tc, tilted, q0, q1, q2, f0, f1, f2)
         # flange: the large-end sphere against the rib (on the cone)
         us = P[P_US]
         s0, s1, s2 = m0 + us * e0 - dx, m1 + us * e1 - dy, m2 + us * e2 - dz
         if tilted:      # the rib in the cone frame, its normal back
-            d0, _, _, _, k0_, k1_, k2_ = slice_contact_3d(
-                r00 * s0 + r10 * s1 + r20 * s2, r01 * s0 + r11 * s1 + r21 * s2, r02 * s0 + r12 * s1 + r22 * s2,
-                r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2,
-                0.0, P[P_FLX], P[P_FLR], P[P_FLNX], P[P_FLNR])
-            n0, n1, n2 = r00 * k0_ + r01 * k1_ + r02 * k2_, r10 * k0_ + r11 * k1_ + r12 * k2_, r20 * k0_ + r21 * k1_ + r22 * k2_
+            t0, t1, t2 = _rot_t(Rm, s0, s1, s2)
+            a0, a1, a2 = _rot_t(Rm, e0, e1, e2)
+            d0, _, _, _, k0_, k1_, k2_ = slice_contact_3d(t0, t1, t2, a0, a1, a2, 0.0, P[P_FLX], P[P_FLR], P[P_FLNX],
+                                                          P[P_FLNR])
+            n0, n1, n2 = _rot(Rm, k0_, k1_, k2_)
         else:
             d0, _, _, _, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, 0.0, P[P_FLX], P[P_FLR],
                                                        P[P_FLNX], P[P_FLNR])
@@ -413,14 +438,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                         FR[j, 2] = ff
                 _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
                 loads[j, 2] += f
-                Fc[0] -= f0
-                Fc[1] -= f1
-                Fc[2] -= f2
-                if tilted:
-                    t0, t1, t2 = _cross(q0, q1, q2, -f0, -f1, -f2)
-                    Tc[0] += t0
-                    Tc[1] += t1
-                    Tc[2] += t2
+                _load_cone(Fc, Tc, tilted, q0, q1, q2, f0, f1, f2)
         if P[P_CAGE] != 0.0:
             _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR)
             if P[P_SIDEGAP] > 0.0:

@@ -124,7 +124,7 @@ class TaperedBearing:
         if not ri2 > 0.0:
             raise fail("model.cone_mass", m, f"kg exceeds a solid steel disc of the cone's {2e3 * ro:.4g} mm raceway "
                                              f"diameter and {1e3 * w:.4g} mm width (the cone's assumed inertia)")
-        return 0.5 * m * (ro * ro + ri2), m * (3.0 * (ro * ro + ri2) + w * w) / 12.0
+        return annulus_inertia(m, ro * ro + ri2, w)
 
     def ideal(self) -> dict:
         """The geometry's ideal kinematics at the cone speed (:meth:`TaperedRollerGeometry.kinematics`)."""
@@ -220,8 +220,7 @@ class TaperedBearing:
             ro, ri, h = 0.5 * g.cage_outer_diameter, 0.5 * g.cage_inner_diameter, g.cage_thickness
             P[L.P_CAGE], P[L.P_MCG] = 1.0, c.mass
             # the cage ring as an annulus (its bars' share of the inertia is not known: assumed)
-            P[L.P_ICX] = 0.5 * c.mass * (ro * ro + ri * ri)
-            P[L.P_ICT] = c.mass * (3.0 * (ro * ro + ri * ri) + h * h) / 12.0
+            P[L.P_ICX], P[L.P_ICT] = annulus_inertia(c.mass, ro * ro + ri * ri, h)
             P[L.P_POCKET], P[L.P_LEN], P[L.P_RHOM] = g.pocket_clearance, g.effective_length, g.mean_roller_radius
             P[L.P_HCRIT], P[L.P_KH], P[L.P_CH] = c.pocket_critical_film, c.pocket_stiffness, c.pocket_damping
             P[L.P_MUBD], P[L.P_SWITCH] = c.boundary_friction, POCKET_SWITCHES[fi.pocket_switch]
@@ -499,6 +498,13 @@ class TaperedBearing:
             out["Guide land load [N]"] = cage[:, 3]
             out["Side beam load [N]"] = cage[:, 4]
         return out
+
+
+def annulus_inertia(mass: float, radii_squared: float, width: float) -> tuple[float, float]:
+    """(polar, transverse about its centre) moments of inertia [kg m^2] of a ring of ``mass`` [kg], outer and
+    inner radii with r_o^2 + r_i^2 = ``radii_squared`` [m^2] and axial ``width`` [m]: m (r_o^2 + r_i^2)/2
+    and m (3 (r_o^2 + r_i^2) + w^2)/12."""
+    return 0.5 * mass * radii_squared, mass * (3.0 * radii_squared + width * width) / 12.0
 
 
 def attitude(Y, n_rollers):
