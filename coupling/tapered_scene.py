@@ -14,7 +14,7 @@ maps one to one onto a group of :class:`dynamics.tapered.model.TaperedBearing`, 
     applied_moment = ["0 N m", "0 N m"]   # (M_y, M_z) about that point (tilt free)
     [model]                     # Fidelity: the options of issue 22, each a key
     slices = 10
-    traction = "limited"        # "paper" (eq. 12), "limited" (HB + limiting shear + elastic film), "none"
+    traction = "limited"        # "paper" (eq. 12), "limited" (HB + limiting shear + elastic film), "map" (roller EHL maps), "none"
     flange_friction = "none"    # "paper" (eqs. 22-23), "load_share", "none"
     pocket = "film"             # "film" (eqs. 30-38), "contact" (contact only), "none" (no cage)
     guide_land = "film"         # "film", "contact", "none" (with pocket = "none")
@@ -103,7 +103,7 @@ class ModelTable(_Model):
     """:class:`dynamics.tapered.groups.Fidelity` (the fidelity options of issue 22)."""
 
     slices: PositiveInt = 20
-    traction: Literal["none", "paper", "limited"] = "limited"
+    traction: Literal["none", "paper", "limited", "map"] = "limited"
     flange_friction: Literal["none", "paper", "load_share"] = "none"
     pocket: Literal["none", "contact", "film"] = "film"
     guide_land: Literal["none", "contact", "film"] = "film"
@@ -321,10 +321,31 @@ def build(case: TaperedCase):
                     raise DynamicsInputError(f"flange.{key} = None: must be given with model.flange_friction = "
                                              f"{m.flange_friction!r}", key=f"flange.{key}")
             groups["flange"] = G.Flange(**f)
+        if m.traction == "map":
+            groups["traction_maps"] = roller_traction_maps()
         return TaperedBearing(geometry=g, **groups)
     except DynamicsInputError as exc:
         raise InputError(str(exc)) from None
 
+
+
+#: the roller EHL maps that raceway traction "map" reads (cup, cone): built by cases/map_ehl_roller_cup.toml
+#: and cases/map_ehl_roller_cone.toml (cases/maps/README.md: axes, lubricant, accuracy)
+ROLLER_TRACTION_MAPS = ("maps/ehl_roller_cup.npz", "maps/ehl_roller_cone.npz")
+
+
+def roller_traction_maps() -> tuple:
+    """The shipped roller EHL maps (cup, cone) of :data:`ROLLER_TRACTION_MAPS`, loaded once per process."""
+    from .config import CASES_DIR
+    from .maps import FilmMap
+
+    global _ROLLER_MAPS
+    if _ROLLER_MAPS is None:
+        _ROLLER_MAPS = tuple(FilmMap.load(CASES_DIR / rel) for rel in ROLLER_TRACTION_MAPS)
+    return _ROLLER_MAPS
+
+
+_ROLLER_MAPS = None
 
 
 def describe(case: TaperedCase, model) -> str:

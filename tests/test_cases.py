@@ -553,6 +553,18 @@ def check_trb_fig5_tilt(s, case):
     _check_trb_dynamic(s, case, (7, 10), flange=None)
 
 
+def check_trb_fig5_traction_map(s, case):
+    """Fig. 5's point with the raceway traction from the roller EHL maps: as check_trb_fig5_2400rpm (the
+    loads are the quasi-static ones whatever the traction law), the fidelity says "map", and RK4's
+    automatic step follows the maps' low-slip slope (tests/test_trb_traction_map.py checks that slope
+    against the maps themselves), longer than the strip law's 2.2 us elastic step at this point."""
+    assert case["model"]["traction"] == "map"
+    assert s["Fidelity"]["traction"] == "map"
+    check_trb_fig5_2400rpm(s, case)
+    if "RK4 step [s]" in s:
+        assert s["RK4 step [s]"] > 2.2e-6
+
+
 def _check_trb_speed(s, case):
     """The speed series: Fr 20 kN as Fig. 5, the common checks (Stribeck's static estimate is not used:
     at 5 krpm the rollers' centrifugal load, about 500 N, adds 10 % to the cup's)."""

@@ -77,8 +77,9 @@ class Operating(Group):
 @dataclass(frozen=True, kw_only=True)
 class Fidelity(Group):
     """Numerical and modelling choices: ``slices`` per roller and raceway; ``contacts`` False: free
-    bodies (a test of the equations of motion); ``traction`` "none", "paper" (eq. 12) or "limited" (the
-    limited Herschel-Bulkley strip law, an extension); ``flange_friction`` "none", "paper" (eqs. 22-23 as
+    bodies (a test of the equations of motion); ``traction`` "none", "paper" (eq. 12), "limited" (the
+    limited Herschel-Bulkley strip law, an extension) or "map" (the roller EHL maps' film traction at the
+    run's entrainment speed: :meth:`dynamics.tapered.model.TaperedBearing.map_traction_tables`); ``flange_friction`` "none", "paper" (eqs. 22-23 as
     printed) or "load_share" (the grease term weighted by the fluid share); ``pocket`` "none" (no cage),
     "contact" (contact only: the roller touches a crossbeam beyond the pocket clearance, line contact,
     friction mu_bd) or "film" (:func:`lubrication.laws.cage.pocket_force`); ``guide_land`` "none",

@@ -111,11 +111,12 @@ from lubrication.laws.slices import slice_contact_3d, slice_force
 from lubrication.laws.traction import (elastic_limited, elastic_strip_slope, limited_ellipse_traction,
                                       limited_strip_traction, paper_raceway_traction)
 
-from ..interp import CLAMP, hermite2
+from ..interp import CLAMP, hermite1, hermite2
 from ..rotations import euler_rate, quat_derivative, quat_from_rotvec, quat_rotate, quat_rotate_inverse, quat_to_matrix
 from .layout import *  # noqa: F401,F403  (indices and option codes: dynamics.tapered.layout)
 from .layout import (AXIAL_FORCE, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
-                     N_CONE, N_FRICTION, NB, POCKET_CONTACT, POCKET_FILM, TRACTION_LIMITED, TRACTION_PAPER)
+                     N_CONE, N_FRICTION, NB, POCKET_CONTACT, POCKET_FILM, TRACTION_LIMITED, TRACTION_MAP,
+                     TRACTION_PAPER)
 from .layout import (P_ALPHA, P_ALPHAG, P_AXIAL, P_BLAND, P_CAGE, P_CH, P_CLAND, P_CONNR, P_CONNX, P_CONR,
                      P_CONTACTS, P_CONX, P_CUPNR, P_CUPNX, P_CUPR, P_CUPX, P_DR, P_EP, P_ETA, P_FA, P_FA1, P_FB1,
                      P_FBC, P_FCC, P_FFRIC, P_FLNR, P_FLNX, P_FLR, P_FLX, P_FP01, P_FR, P_GAMMAL, P_GRAV, P_HCRIT,
@@ -125,6 +126,7 @@ from .layout import (P_ALPHA, P_ALPHAG, P_AXIAL, P_BLAND, P_CAGE, P_CH, P_CLAND,
                      P_TAUL0, P_TAUY, P_TRACTION, P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_UC, P_UE, P_US, P_VREG,
                      P_WIDTH, P_Z)
 from .layout import P_ICONET, P_ICONEX, P_LANDX, P_LOADX, P_MY, P_MZ, P_TILT, P_TILTAT
+from .layout import P_TMA, P_TMB, P_TMCEN, P_TMNW, P_TMNX, P_TMOFF0, P_TMSHI, P_TMSLO
 
 _dowson_toyoda = njit(**INLINE)(dowson_toyoda_central)   # the law of lubrication.laws.film, compiled here
 
@@ -255,18 +257,53 @@ def _table_viscous(race, w, vs, P, counter):
     return u if counter[0] == before else -1.0
 
 
+@njit(**JIT)
+def map_traction_coefficient(race, w, s, P, counter):
+    """Traction coefficient [-] of raceway ``race`` (0 cup, 1 cone) at line load ``w`` [N/m] and
+    slide-to-roll ratio ``s`` >= 0 from the roller EHL map's tables at the run's entrainment speed
+    (:meth:`dynamics.tapered.model.TaperedBearing.map_traction_tables`), read as the map reads its sheared
+    traction (:class:`coupling.maps.FilmMap`, "sheared"): the transition slip s_t(w) (cubic Hermite in
+    log w of log s_t), the normalised slip sigma = s/s_t, the map's coordinate x = centre exp(asinh(ln
+    sigma / a)/b) (clamped to the axis), and G(w, x) (cubic Hermite in log w, log x of log G).  Below the
+    slide-to-roll axis' first node the traction is linear in s (the maps' convention: the film's shear
+    is linear there); above its last node it is held; a load outside the axis is clamped (counted in
+    ``counter[0]``)."""
+    off = int(P[P_TMOFF0 + race])
+    nw = int(P[P_TMNW])
+    nx = int(P[P_TMNX])
+    aw = P[off:off + nw]
+    ax = P[off + nw:off + nw + nx]
+    c0 = off + nw + nx
+    g0 = c0 + 2 * nw
+    scale = 1.0
+    lo = P[P_TMSLO]
+    if s < lo:
+        scale = s / lo
+        s = lo
+    elif s > P[P_TMSHI]:
+        s = P[P_TMSHI]
+    st = hermite1(aw, 1, P[c0:g0].reshape((2, nw)), 1, w, CLAMP, counter)
+    x = P[P_TMCEN] * math.exp(math.asinh(math.log(s / st) / P[P_TMA]) / P[P_TMB])
+    g = hermite2(aw, ax, 1, 1, P[g0:g0 + 4 * nw * nx].reshape((4, nw, nx)), 1, w, x, CLAMP, counter)
+    return scale * g
+
+
 @njit(**INLINE)
 def _slice_traction(load, race, vs, P, counter):
     """Magnitude [N] of the raceway traction of a slice of raceway ``race`` (0 cup, 1 cone) sliding at
-    ``vs`` >= 0 [m/s] (the force opposes the roller's sliding): eq. 12 ("paper") or the limited
+    ``vs`` >= 0 [m/s] (the force opposes the roller's sliding): eq. 12 ("paper"), the limited
     Herschel-Bulkley strip law ("limited", :func:`strip_viscous_traction`, from the raceway's table when
     the model has tables and (v_s, w) lies inside) in series with the film's elastic shear
-    (:func:`lubrication.laws.traction.elastic_limited`, shear modulus G)."""
+    (:func:`lubrication.laws.traction.elastic_limited`, shear modulus G), or the roller EHL map's
+    traction coefficient times the slice load ("map", :func:`map_traction_coefficient`, at the slide-to-roll
+    ratio v_s/u_e of the run's ideal entrainment speed)."""
     radius = P[P_RXO] if race == 0 else P[P_RXI]
     if P[P_TRACTION] == TRACTION_PAPER:
         return _traction_per_speed(load, radius, P) * vs
     if vs <= 0.0:
         return 0.0
+    if P[P_TRACTION] == TRACTION_MAP:  # the EHL map's film traction (its elastic shear included)
+        return map_traction_coefficient(race, load / P[P_WIDTH], vs / P[P_UE], P, counter) * load
     w, b, p0, h0 = _slice_film(load, radius, P)
     viscous = -1.0
     if P[P_TTAB] != 0.0:

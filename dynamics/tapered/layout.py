@@ -24,8 +24,8 @@ B_C, B_Q, B_V, B_W = 0, 3, 7, 10
 AXIAL_MODES = {"locked": 0, "force": 1}   # "locked": held at operating.axial_displacement
 AXIAL_LOCKED, AXIAL_FORCE = 0.0, 1.0
 CONE_TILTS = {"locked": 0, "free": 1}    # "locked": the shaft's other support carries the moment
-TRACTIONS = {"none": 0, "paper": 1, "limited": 2}
-TRACTION_NONE, TRACTION_PAPER, TRACTION_LIMITED = 0.0, 1.0, 2.0
+TRACTIONS = {"none": 0, "paper": 1, "limited": 2, "map": 3}
+TRACTION_NONE, TRACTION_PAPER, TRACTION_LIMITED, TRACTION_MAP = 0.0, 1.0, 2.0, 3.0
 FLANGE_FRICTIONS = {"none": 0, "paper": 1, "load_share": 2}     # eqs. 22-23 as printed / fluid load share
 POCKETS = {"none": 0, "contact": 1, "film": 2}                  # "film": lubrication.laws.cage.pocket_force
 POCKET_NONE, POCKET_CONTACT, POCKET_FILM = 0.0, 1.0, 2.0
@@ -55,8 +55,14 @@ LAND_NONE, LAND_CONTACT, LAND_FILM = 0.0, 1.0, 2.0
  # the limited traction's tables (TaperedBearing.traction_tables), appended to P after P_SIZE: a flag, the
  # node counts along sliding speed and line load, and the offset of each raceway's block (cup, cone); a
  # block is [log v nodes (n0), log w nodes (n1), Hermite data (4 x n0 x n1)]
- P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_TTOFF1) = range(97)
-P_SIZE = 97
+ P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_TTOFF1,
+ # the roller EHL maps' traction at the run's entrainment speed (TaperedBearing.map_traction_tables,
+ # traction "map"), appended after P_SIZE: node counts along line load and the maps' slide-to-roll
+ # coordinate, the offset of each raceway's block (cup, cone), the normalised-slip map (a, b, centre of
+ # coupling.film_points.normalised_slip) and the slide-to-roll axis' ends; a block is [log w nodes (nw),
+ # log x nodes (nx), Hermite data of log s_t (2 x nw), Hermite data of log G (4 x nw x nx)]
+ P_TMNW, P_TMNX, P_TMOFF0, P_TMOFF1, P_TMA, P_TMB, P_TMCEN, P_TMSLO, P_TMSHI) = range(106)
+P_SIZE = 106
 
 # per-roller loads of loads_many / forces: columns
 LOAD_NAMES = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]")

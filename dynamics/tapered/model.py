@@ -49,6 +49,10 @@ class TaperedBearing:
     cage: Cage | None = None
     flange: Flange | None = None
     initial: Initial = Initial()
+    #: raceway traction "map": the roller EHL maps (cup, cone), objects with a film map's interface
+    #: (:class:`coupling.maps.FilmMap`: ``axes``, ``sheared`` and ``map(output, *coords)``), read at the
+    #: run's entrainment speed by :meth:`map_traction_tables`
+    traction_maps: tuple = ()
 
     GROUP_CLASSES: ClassVar[dict] = {"operating": Operating, "fidelity": Fidelity, "lubricant": Lubricant,
                                      "cage": Cage, "flange": Flange, "initial": Initial}
@@ -72,6 +76,8 @@ class TaperedBearing:
             for name in ("pocket_critical_film", "pocket_stiffness", "land_critical_film"):
                 if not getattr(self.cage, name) > 0.0:
                     raise fail(f"cage.{name}", getattr(self.cage, name), "must be > 0 with the film pocket or land")
+        if f.traction == "map" and len(self.traction_maps) != 2:
+            raise fail("model.traction", "map", "needs the roller EHL maps of both raceways (cup, cone)")
         needs_grease = f.traction == "limited" or f.flange_friction != "none"
         if needs_grease and self.lubricant.grease() is None:
             raise fail("lubricant.consistency", None, "must be given (a grease) with model.traction = 'limited' or "
@@ -240,6 +246,8 @@ class TaperedBearing:
                 P[L.P_KLAND] = sl.line_constant(g.guide_land_width, ep)
         if fi.traction == "limited" and fi.traction_evaluation == "table":
             P = self.traction_tables(P)
+        if fi.traction == "map":
+            P = self.map_traction_tables(P)
         return P, np.ascontiguousarray(u), np.ascontiguousarray(rho)
 
     #: traction tables: nodes along the sliding speed (log, 1e-12-100 m/s) and the line load (log, 8
@@ -280,6 +288,77 @@ class TaperedBearing:
         P[L.P_TTAB], P[L.P_TTN0], P[L.P_TTN1] = 1.0, n0, n1
         P[L.P_TTOFF0] = P.size
         P[L.P_TTOFF1] = P.size + blocks[0].size
+        return np.ascontiguousarray(np.concatenate([P] + blocks))
+
+    MAP_TRACTION: ClassVar[str] = "Traction coefficient [-]"
+    MAP_AXES: ClassVar[list] = ["Line load [N/m]", "Entrainment speed [m/s]", "Slide-to-roll ratio [-]"]
+
+    def map_traction_tables(self, P: np.ndarray) -> np.ndarray:
+        """``P`` with the roller EHL maps' traction at the run's ideal entrainment speed u_e appended
+        (raceway traction "map", read by :func:`dynamics.tapered.kernels.map_traction_coefficient`).
+
+        Per raceway (cup, cone: :attr:`traction_maps`) the map's sheared traction (coupling.maps.FilmMap,
+        "sheared": the transition slip s_t(w, u) and the traction G(w, u, x) at the normalised slip's
+        coordinate x, cubic Hermite in log w, log u, log x of the log values) restricted to u = u_e: the
+        map's own node data (values and derivatives at its w and x nodes) combined with the cubic Hermite
+        weights of u_e in its speed cell.  A tricubic Hermite restricted to a plane of one axis is the
+        bicubic Hermite of those data, so the kernel reads the map's own interpolant, to round-off
+        (tests/test_trb_traction_map.py), at the cost of a 2-D instead of a 3-D query.  The map's traction
+        is the film's (a Maxwell fluid capped by limiting shear, in the map's own lubricant:
+        coupling.film_points.ehl, ``evaluate_ehl_line``), so the kernel adds no elastic shear of its own.
+        u_e outside the maps' speed axis is refused (one line naming operating.speed)."""
+        from ..interp import _hvalue
+
+        ue = float(P[L.P_UE])
+        spec, shape = None, None
+        blocks = []
+        for race, fmap in zip(("cup", "cone"), self.traction_maps):
+            names = [a.name for a in fmap.axes]
+            if names != self.MAP_AXES:
+                raise fail("model.traction", "map", f"needs a roller map on {self.MAP_AXES}; the {race} map has {names}")
+            sp = fmap.sheared.get(self.MAP_TRACTION)
+            if sp is None or getattr(fmap, "method", "hermite") != "hermite":
+                raise fail("model.traction", "map", f"needs the {race} map's sheared {self.MAP_TRACTION!r}, "
+                                                    "interpolated by cubic Hermite")
+            u_axis, s_axis = fmap.axes[1], fmap.axes[2]
+            if not u_axis.lo <= ue <= u_axis.hi:
+                raise fail("operating.speed", f"{self.speed * 30.0 / math.pi:.6g} rpm",
+                           f"gives the entrainment speed {ue:.4g} m/s, outside the {race} roller map's "
+                           f"{u_axis.lo:g}-{u_axis.hi:g} m/s (model.traction = 'map'; rebuild the map or use "
+                           f"'limited')")
+            shift, values = fmap.kernel_arrays(sp["shift"]), fmap.kernel_arrays(sp["values"])
+            for ka in (shift, values):
+                if tuple(ka.logs) != (1, 1, 1) or ka.logv != 1:
+                    raise fail("model.traction", "map", f"needs the {race} map's traction on log axes, log values")
+            # u_e's cell and cubic Hermite weights (value, derivative data of the two nodes) in t = log u
+            au = shift.axes[1]
+            t = min(max(math.log(ue), au[0]), au[-1])
+            j = min(int(np.searchsorted(au, t, side="right")) - 1, au.size - 2)
+            wu = _hvalue(au, j, t)
+
+            def restrict(deriv, bits):
+                """Node data of the plane u = u_e: index s = s0 + 2 s1 + 4 s2 (bit k: d/d axis k); keep the
+                derivative sets ``bits`` of the remaining axes, combine the u-value and u-derivative sets."""
+                out = []
+                for s0 in bits:
+                    out.append(wu[0] * deriv[s0, :, j] + wu[1] * deriv[s0, :, j + 1]
+                               + wu[2] * deriv[s0 + 2, :, j] + wu[3] * deriv[s0 + 2, :, j + 1])
+                return np.stack(out)
+
+            st = restrict(shift.values, (0, 1))[:, :, 0]          # s_t does not vary along x: its data at x_0
+            G = restrict(values.values, (0, 1, 4, 5))             # sets (value, d/dw, d/dx, d2/dw dx)
+            aw, ax = shift.axes[0], shift.axes[2]
+            key = (float(sp["a"]), float(sp["b"]), float(sp["centre"]), s_axis.lo, s_axis.hi)
+            if spec is not None and (key != spec or (aw.size, ax.size) != shape):
+                raise fail("model.traction", "map", "needs the cup and cone maps on the same nodes, slide-to-roll "
+                                                    "axis and normalised slip")
+            spec, shape = key, (aw.size, ax.size)
+            blocks.append(np.concatenate([aw, ax, st.ravel(), G.ravel()]))
+        P = P.copy()
+        P[L.P_TMNW], P[L.P_TMNX] = shape
+        P[L.P_TMA], P[L.P_TMB], P[L.P_TMCEN], P[L.P_TMSLO], P[L.P_TMSHI] = spec
+        P[L.P_TMOFF0] = P.size
+        P[L.P_TMOFF1] = P.size + blocks[0].size
         return np.ascontiguousarray(np.concatenate([P] + blocks))
 
     # ---------------------------------------------------------------- start
@@ -418,6 +497,8 @@ class TaperedBearing:
         the kernel's Dowson-Toyoda at that load; the sliding at a contact a distance rho_m off the roller's
         axis relaxes at lambda = (k_cup + k_cone)(1/m + rho_m^2/I_x) (translation and spin)."""
         lu = self.lubricant
+        if self.fidelity.traction == "map":
+            return self._map_traction_rate(qs)
         if self.fidelity.traction != "limited" or not math.isfinite(lu.shear_modulus):
             return 0.0
         from lubrication.laws.film import dowson_toyoda_central
@@ -433,6 +514,21 @@ class TaperedBearing:
             r = g.reduced_radius(race)
             h = r * dowson_toyoda_central(lu.viscosity() * ue / (ep * r), lu.pressure_viscosity * ep, w / (ep * r))
             k += 2.0 * lu.shear_modulus * (8.0 * r * load / (math.pi * ep)) / (ue * h)
+        m, ix, _, _ = g.roller_mass_properties()
+        return k * (1.0 / m + g.mean_roller_radius**2 / ix)
+
+    def _map_traction_rate(self, qs: QuasiStaticResult | None = None) -> float:
+        """:meth:`traction_rate` of the "map" traction: its low-slip slope d(traction)/d(v_s) = (mu/s) Q/u_e
+        (mu/s of the map's linear branch, at the slide-to-roll axis' first node) at the start's largest cup
+        load on both raceways."""
+        g = self.geometry
+        qs = self.quasi_static() if qs is None else qs
+        load = max(float(np.max(qs.cup_loads)), 1.0)
+        P = self.args()[0]
+        counter = np.zeros(1, dtype=np.int64)
+        s0 = float(P[L.P_TMSLO])
+        k = sum(K.map_traction_coefficient(race, load / g.effective_length, s0, P, counter) / s0 * load / P[L.P_UE]
+                for race in (0, 1))
         m, ix, _, _ = g.roller_mass_properties()
         return k * (1.0 / m + g.mean_roller_radius**2 / ix)
 

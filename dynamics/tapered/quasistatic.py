@@ -386,6 +386,11 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
                 break
             if capped:
                 trust *= 0.5
+                # a capped step that is not a descent direction (an indefinite Hessian: a roller barely held
+                # in the unloaded zone at low speed) stays one however short: damp it towards the gradient
+                # (measured: Fig. 5's point at 1,000-1,400 rpm with 5 slices stagnated at a residual 0.05-0.4)
+                if float(np.dot(step, grad[free])) >= 0.0:
+                    mu *= 4.0
             else:
                 mu *= 4.0
         if not accepted:
