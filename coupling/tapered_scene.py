@@ -615,7 +615,7 @@ def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str =
     kw = dict(method="dopri5", rtol=ig.rtol, atol=ig.atol)
     dt = None
     if ig.method == "rk4":
-        stable = model.stable_step(qs)
+        stable = model.stable_step(qs, y0)
         dt = 0.8 * stable if ig.dt == "auto" else ig.dt
         # the integrator refuses a step beyond the limit on the imaginary axis; the estimate folds the
         # traction's real-axis decay into an equivalent omega
@@ -634,7 +634,7 @@ def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str =
     scene.update(res.stats)
     scene["Integration wall time [s]"] = t_int
     if ig.method == "rk4":
-        scene["RK4 stable step estimate [s]"] = model.stable_step(qs)
+        scene["RK4 stable step estimate [s]"] = stable
         scene["RK4 step [s]"] = dt
     summary = outputs.run_summary(case, name, smoke, scene, t0, t_build)
     result = TaperedRun(summary=summary, t=res.t, y=res.y, diagnostics=D)
