@@ -136,3 +136,18 @@ def test_diffusion_drops_zero_entries_like_scikit_fem():
     assert np.any(local == 0.0)  # the case this test is about
     assert np.array_equal(K.indptr, K_ref.indptr) and np.array_equal(K.indices, K_ref.indices)
     assert np.array_equal(K.data, K_ref.data)
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_constant_lubricant_coefficients_without_the_pressure_field(element):
+    # a pressure-independent lubricant's laws do not read p: evaluating them at gauge 0
+    # (pressure=False, the linear film's assembly) gives the same fields as at the interpolated p
+    m = lmesh.rectangle(np.linspace(0.0, 1.0, 9), np.linspace(0.0, 0.5, 5), "quad")
+    prob = _Problem(_film(m, element))
+    assert prob.linear
+    rng = np.random.default_rng(11)
+    p, r = rng.uniform(0.0, 1e6, prob.N), np.zeros(prob.N)
+    full, short = prob.coefficients(p, r), prob.coefficients(p, r, pressure=False)
+    assert short["pq"] is None and short["gp"] is None
+    for key in ("eta", "deta", "rho", "drho", "r", "gr"):
+        assert np.array_equal(np.asarray(full[key]), np.asarray(short[key])), key

@@ -82,9 +82,12 @@ def assemble_diffusion(basis, a) -> sp.csr_matrix:
             data[j, i] = np.sum(a * dot(grads[j], grads[i]) * dx, axis=1)
             if i != j:
                 data[i, j] = data[j, i]
-    rows = np.tile(ed, (nb, 1)).ravel()  # block j * nb + i: element_dofs[i]
-    cols = np.repeat(ed, nb, axis=0).ravel()  # block j * nb + i: element_dofs[j]
-    data = data.ravel()
+    index = np.int32 if basis.N < np.iinfo(np.int32).max else np.int64  # what scipy would pick
+    rows = np.empty((nb, nb, nt), dtype=index)
+    cols = np.empty((nb, nb, nt), dtype=index)
+    rows[...] = ed[None, :, :]  # block (j, i): element_dofs[i]
+    cols[...] = ed[:, None, :]  # block (j, i): element_dofs[j]
+    rows, cols, data = rows.ravel(), cols.ravel(), data.ravel()
     nonzero = data != 0
     if not np.all(nonzero):  # what scikit-fem's eliminate_zeros does before the conversion
         data, rows, cols = data[nonzero], rows[nonzero], cols[nonzero]
@@ -219,7 +222,8 @@ def _as_vector_field(value, x, dim, key):
             arr = np.zeros(dim)
         if arr.shape != (dim,):
             raise InputError(f"{key} = {value!r} must have {dim} component(s) for a {dim}-D film")
-        out = arr.reshape((dim,) + (1,) * (x.ndim - 1)) * np.ones(x.shape[1:])
+        out = np.empty(x.shape)  # one pass (not arr * ones: two arrays and two passes, same values)
+        out[...] = arr.reshape((dim,) + (1,) * (x.ndim - 1))
     if out.shape != x.shape:
         raise InputError(f"{key} returned shape {out.shape}, expected {x.shape}")
     return out
@@ -229,7 +233,7 @@ def _as_scalar_field(value, x, key):
     if callable(value):
         out = np.asarray(value(x), dtype=float)
     else:
-        out = float(value) * np.ones(x.shape[1:])
+        out = np.full(x.shape[1:], float(value))
     if out.shape != x.shape[1:]:
         raise InputError(f"{key} returned shape {out.shape}, expected {x.shape[1:]}")
     return out
