@@ -4,6 +4,7 @@ Part of :mod:`lubrication.reynolds` (the package docstring gives the equations a
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 import skfem
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
@@ -45,6 +46,79 @@ def _source_load(v, w):
     return w["g"] * v
 
 
+# --------------------------------------------------------------------------
+# the hot forms of the Reynolds solve, assembled without scikit-fem's generic
+# path: the same numbers (the same products and sums in the same order, so the
+# same matrix and vectors bit for bit; tests/test_reynolds_fast_paths.py compares
+# them with asm on line, triangle, quad, P2, curved and periodic meshes)
+
+
+def _local_arrays(basis, i):
+    phi = basis.basis[i][0]
+    return np.asarray(phi), np.asarray(phi.grad)
+
+
+def assemble_diffusion(basis, a) -> sp.csr_matrix:
+    """``asm(_diffusion, basis, a=a).tocsr()``: the matrix of int a grad u . grad v.
+
+    ``a``: array (nelems, nqp) at the quadrature points.  Why not ``asm``: on the
+    1M-DOF P1 benchmark (1000 x 1000 quads) it spent 1.8-2.9 s, of which the form
+    kernel evaluated all 16 local pairs through ``DiscreteField`` arithmetic (ndarray
+    subclass wrapping, 0.7 s), and ``eliminate_zeros`` copied the 16M COO entries even
+    when none is zero.  Here the kernel is evaluated on plain arrays for i <= j only
+    (a grad phi_j . grad phi_i is symmetric bit for bit: the products commute), zeros
+    are removed only if there are any, and the COO triplets are laid out exactly as
+    scikit-fem lays them out (block ``j * nbfun + i``: rows = dofs of i, columns =
+    dofs of j), so scipy's COO -> CSR conversion sums the duplicates in the same order.
+    """
+    nb, nt = basis.Nbfun, basis.nelems
+    a = np.asarray(a)
+    dx = np.asarray(basis.dx)
+    grads = [_local_arrays(basis, i)[1] for i in range(nb)]
+    ed = np.asarray(basis.element_dofs)
+    data = np.empty((nb, nb, nt))
+    for j in range(nb):
+        for i in range(j + 1):
+            data[j, i] = np.sum(a * dot(grads[j], grads[i]) * dx, axis=1)
+            if i != j:
+                data[i, j] = data[j, i]
+    index = np.int32 if basis.N < np.iinfo(np.int32).max else np.int64  # what scipy would pick
+    rows = np.empty((nb, nb, nt), dtype=index)
+    cols = np.empty((nb, nb, nt), dtype=index)
+    rows[...] = ed[None, :, :]  # block (j, i): element_dofs[i]
+    cols[...] = ed[:, None, :]  # block (j, i): element_dofs[j]
+    rows, cols, data = rows.ravel(), cols.ravel(), data.ravel()
+    nonzero = data != 0
+    if not np.all(nonzero):  # what scikit-fem's eliminate_zeros does before the conversion
+        data, rows, cols = data[nonzero], rows[nonzero], cols[nonzero]
+    return sp.coo_matrix((data, (rows, cols)), shape=(basis.N, basis.N)).tocsr()
+
+
+def _load_vector(basis, local) -> np.ndarray:
+    """Sum the local load vectors ``local(i) -> (nelems,)`` into the global one in
+    scikit-fem's COO order (block i: dofs of basis function i), as its ``toarray``
+    does (one pass, in order: ``np.bincount`` adds its weights in input order)."""
+    rows = np.asarray(basis.element_dofs).ravel()
+    data = np.concatenate([local(i) for i in range(basis.Nbfun)])
+    return np.bincount(rows, weights=data, minlength=basis.N)
+
+
+def assemble_flux_load(basis, f) -> np.ndarray:
+    """``asm(_flux_load, basis, f=f)``: the vector of int f . grad v, ``f`` (dim, nelems,
+    nqp).  Same numbers; without ``asm``'s ``DiscreteField`` wrapping (see
+    :func:`assemble_diffusion`)."""
+    f = np.asarray(f)
+    dx = np.asarray(basis.dx)
+    return _load_vector(basis, lambda i: np.sum(dot(f, _local_arrays(basis, i)[1]) * dx, axis=1))
+
+
+def assemble_source_load(basis, g) -> np.ndarray:
+    """``asm(_source_load, basis, g=g)``: the vector of int g v, ``g`` (nelems, nqp)."""
+    g = np.asarray(g)
+    dx = np.asarray(basis.dx)
+    return _load_vector(basis, lambda i: np.sum(g * _local_arrays(basis, i)[0] * dx, axis=1))
+
+
 _ELEMENTS = {
     ("line", "P1"): skfem.ElementLineP1,
     ("line", "P2"): skfem.ElementLineP2,
@@ -65,11 +139,41 @@ def _cell_kind(mesh) -> str:
     raise InputError(f"mesh type {type(mesh).__name__} is not supported; use line, triangle or quad meshes")
 
 
+class _InverseJacobianOnce:
+    """A scikit-fem mapping that computes ``invDF(X, tind)`` once for the same ``X`` and
+    ``tind`` objects and delegates everything else.
+
+    Why: scikit-fem's ``ElementH1.gbasis`` asks the mapping for ``invDF`` once per basis
+    function, and the isoparametric (quad) mapping recomputes the inverse Jacobian every
+    time: 4 times 0.15-0.2 s on a 1000 x 1000 quad mesh, 0.6-0.8 s of repeated work in
+    building the basis.  Used only while :func:`make_basis` builds the basis (which then
+    gets the mesh's own mapping back), so the cached array does not outlive it.  The same
+    numbers: the one computation is scikit-fem's own.
+    """
+
+    def __init__(self, mapping):
+        self._mapping = mapping
+        self._key = None
+        self._value = None
+
+    def __getattr__(self, name):
+        return getattr(self._mapping, name)
+
+    def invDF(self, X, tind=None):
+        if self._key is None or self._key[0] is not X or self._key[1] is not tind:
+            self._key, self._value = (X, tind), self._mapping.invDF(X, tind)
+        return self._value
+
+
 def make_basis(mesh, element: str = "P1") -> skfem.CellBasis:
-    """The scalar Lagrange basis (``P1``/``P2``) of ``mesh``."""
+    """The scalar Lagrange basis (``P1``/``P2``) of ``mesh``; the inverse Jacobians
+    computed once for all basis functions (:class:`_InverseJacobianOnce`)."""
     elem = _ELEMENTS[(_cell_kind(mesh), element)]()
     intorder = 4 if element == "P2" else 3
-    return skfem.Basis(mesh, elem, intorder=intorder)
+    mapping = mesh.mapping()
+    basis = skfem.Basis(mesh, elem, mapping=_InverseJacobianOnce(mapping), intorder=intorder)
+    basis.mapping = mapping
+    return basis
 
 
 def unwrapped_dofs(basis) -> tuple[skfem.Mesh, np.ndarray]:
@@ -118,7 +222,8 @@ def _as_vector_field(value, x, dim, key):
             arr = np.zeros(dim)
         if arr.shape != (dim,):
             raise InputError(f"{key} = {value!r} must have {dim} component(s) for a {dim}-D film")
-        out = arr.reshape((dim,) + (1,) * (x.ndim - 1)) * np.ones(x.shape[1:])
+        out = np.empty(x.shape)  # one pass (not arr * ones: two arrays and two passes, same values)
+        out[...] = arr.reshape((dim,) + (1,) * (x.ndim - 1))
     if out.shape != x.shape:
         raise InputError(f"{key} returned shape {out.shape}, expected {x.shape}")
     return out
@@ -128,7 +233,7 @@ def _as_scalar_field(value, x, key):
     if callable(value):
         out = np.asarray(value(x), dtype=float)
     else:
-        out = float(value) * np.ones(x.shape[1:])
+        out = np.full(x.shape[1:], float(value))
     if out.shape != x.shape[1:]:
         raise InputError(f"{key} returned shape {out.shape}, expected {x.shape[1:]}")
     return out

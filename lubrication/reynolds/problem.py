@@ -16,8 +16,8 @@ from .. import mesh as meshes
 from ..errors import InputError, unknown_choice
 from .diagnosis import amg_probe_iterations
 from .film import AMG_STALL_FACTOR, DIRECT_SOLVER_MAX_DOFS, Film
-from .forms import (_advection, _as_scalar_field, _as_vector_field, _diffusion, _flux_load, _mass, _source_load,
-    _streamline, interpolate, make_basis)
+from .forms import (_advection, _as_scalar_field, _as_vector_field, _mass, _streamline, assemble_diffusion,
+    assemble_flux_load, assemble_source_load, interpolate, make_basis)
 
 log = logging.getLogger(__name__)
 
@@ -49,14 +49,23 @@ class _Problem:
         for k, qd in film.mode_velocities.items():
             hdot = hdot + float(qd) * self.modes[k]
         self.hdot = hdot
-        speed = np.sqrt(np.sum(self.um**2, axis=0))
-        order = 2.0 if film.element == "P2" else 1.0
-        hk = np.broadcast_to(self._element_size()[:, None], speed.shape)
-        self.tau = np.where(speed > 0, hk / (2.0 * order * np.where(speed > 0, speed, 1.0)), 0.0)
+        self._tau = None
         self.N = b.N
         self._dirichlet()
         self.linear = film.lubricant.is_constant
         self.cav = film.cavitation
+
+    @property
+    def tau(self):
+        """Streamline-diffusion parameter h_K/(2 order |u_m|) at the quadrature points (0 where
+        u_m = 0).  Computed on first use: only JFO cavitation (and its film coefficients) reads
+        it, and the element sizes cost 0.4 s on a 1000 x 1000 quad mesh."""
+        if self._tau is None:
+            speed = np.sqrt(np.sum(self.um**2, axis=0))
+            order = 2.0 if self.film.element == "P2" else 1.0
+            hk = np.broadcast_to(self._element_size()[:, None], speed.shape)
+            self._tau = np.where(speed > 0, hk / (2.0 * order * np.where(speed > 0, speed, 1.0)), 0.0)
+        return self._tau
 
     def _element_size(self):
         m = self.film.mesh
@@ -79,9 +88,7 @@ class _Problem:
         film, b = self.film, self.basis
         values = np.full(self.N, np.nan)
         if film.dirichlet is None:
-            facets = film.mesh.boundary_facets()
-            dofs = b.get_dofs(facets).all()
-            values[dofs] = film.ambient_pressure
+            values[self._boundary_dofs()] = film.ambient_pressure
         else:
             names = film.mesh.boundaries or {}
             for name, value in film.dirichlet.items():
@@ -107,15 +114,44 @@ class _Problem:
         self.p_fixed = np.where(self.fixed, values, 0.0)
         self.free = ~self.fixed
 
+    def _boundary_dofs(self):
+        """The dofs on every boundary facet (``film.dirichlet is None``).
+
+        P1 (vertex dofs only): the nodal dofs of :func:`lubrication.mesh.boundary_vertices`,
+        which finds them without building the mesh's facets (scikit-fem's
+        ``boundary_facets`` costs 0.9-1.5 s on a 1000 x 1000 quad mesh, about a sixth of the
+        whole solve).  Other elements: scikit-fem's ``get_dofs(boundary_facets())`` (their
+        basis has built the facets already, for the edge dofs).  Both give the same set
+        (``tests/test_reynolds_fast_paths.py``).
+        """
+        b, mesh = self.basis, self.film.mesh
+        e = b.elem
+        vertex_only = e.nodal_dofs == 1 and not (e.facet_dofs or e.interior_dofs or getattr(e, "edge_dofs", 0))
+        verts = meshes.boundary_vertices(mesh) if vertex_only else None
+        if verts is None:
+            return b.get_dofs(mesh.boundary_facets()).all()
+        return b.nodal_dofs[0, verts]
+
     # ------------------------------------------------------------------
-    def coefficients(self, p, r):
-        """Quadrature-point fields for the current iterate."""
+    def coefficients(self, p, r, pressure: bool = True):
+        """Quadrature-point fields for the current iterate.
+
+        ``pressure=False`` (only for pressure-independent lubricants, ``self.linear``): the
+        laws are evaluated at gauge pressure 0 instead of at the interpolated p, which they do
+        not read, and ``pq``/``gp`` are None: this skips interpolating p and its gradient
+        (0.15-0.25 s on the 1M-DOF benchmark).
+        """
         lub = self.film.lubricant
-        pf = interpolate(self.basis, p)
-        pq = np.asarray(pf) - self.film.ambient_pressure
-        gp = pf.grad
-        eta, deta = lub.viscosity(pq), lub.viscosity.derivative(pq)
-        rho, drho = lub.density(pq), lub.density.derivative(pq)
+        if pressure:
+            pf = interpolate(self.basis, p)
+            pq = np.asarray(pf) - self.film.ambient_pressure
+            gp = pf.grad
+            at = pq
+        else:
+            pq = gp = None
+            at = np.zeros(self.h.shape)
+        eta, deta = lub.viscosity(at), lub.viscosity.derivative(at)
+        rho, drho = lub.density(at), lub.density.derivative(at)
         rf = interpolate(self.basis, r, zero=not np.any(r))
         return dict(pq=pq, gp=gp, eta=eta, deta=deta, rho=rho, drho=drho, r=np.asarray(rf), gr=rf.grad)
 
@@ -132,18 +168,18 @@ class _Problem:
                 R = R + Jr @ r
             return R, A, Jr
         b = self.basis
-        c = self.coefficients(p, r)
+        c = self.coefficients(p, r, pressure=not self.linear)
         h, um, hdot = self.h, self.um, self.hdot
         theta = 1.0 - c["r"]
         k = c["rho"] * h**3 / (12.0 * c["eta"])
-        K0 = asm(_diffusion, b, a=k).tocsr()
+        K0 = assemble_diffusion(b, k)
         A = K0
         if not self.linear:
             dk = h**3 / 12.0 * (c["drho"] / c["eta"] - c["rho"] * c["deta"] / c["eta"] ** 2)
             bvec = dk * c["gp"] - c["drho"] * h * theta * um
             A = (K0 + asm(_advection, b, b=bvec) + asm(_mass, b, c=c["drho"] * theta * hdot)).tocsr()
         # R = k grad p . grad v - rho h theta um . grad v + rho theta hdot v - SU(r)
-        R = K0 @ p + asm(_flux_load, b, f=-c["rho"] * h * theta * um) + asm(_source_load, b, g=c["rho"] * theta * hdot)
+        R = K0 @ p + assemble_flux_load(b, -c["rho"] * h * theta * um) + assemble_source_load(b, c["rho"] * theta * hdot)
         Jr = None
         if with_void:
             S = asm(_streamline, b, s=self.tau * c["rho"] * h, beta=um)
