@@ -148,6 +148,99 @@ def test_level_films_equal_the_elastic_kernel():
                                small.kernel.deflect_direct(small.P * P.ph) / P.hscale, rtol=1e-10)
 
 
+@pytest.mark.parametrize("line, radius_y", [(False, None), (False, 0.02), (True, None)])
+def test_grid_without_the_mesh_equals_the_basis(line, radius_y):
+    """_Problem's dof locations, grid index and boundary dofs, computed from the
+    node axes alone (the mesh and basis are built on first use), against those
+    of the scikit-fem P1 basis and its boundary facets."""
+    from lubrication.ehl.problem import _Problem
+
+    kw = dict(radius_y=radius_y) if radius_y else {}
+    c = EHLContact.from_moes(100, 10, line=line, **kw)
+    P = _Problem(c, EHLGrid(nx=33), EHLOptions())
+    assert P._basis is None and P._mesh is None
+    b = P.basis
+    np.testing.assert_array_equal(P.doflocs, b.doflocs)
+    ix = np.rint((b.doflocs[0] - P.xs[0]) / P.dx).astype(int)
+    flat = ix if line else ix * P.shape[1] + np.rint((b.doflocs[1] - P.ys[0]) / P.dy).astype(int)
+    np.testing.assert_array_equal(P.flat, flat)
+    fixed = np.zeros(b.N, dtype=bool)
+    fixed[b.get_dofs(P.mesh.boundary_facets()).all()] = True
+    np.testing.assert_array_equal(P.fixed, fixed)
+    assert P.N == b.N and P.u.shape == (1 if line else 2, b.nelems, b.X.shape[-1])
+
+
+@pytest.mark.parametrize("visc, dens", [("barus", "incompressible"), ("roelands", "dowson_higginson"),
+                                        ("constant", "dowson_higginson")])
+def test_coarsest_grid_kernels_against_the_numpy_path(visc, dens):
+    """The compiled coarsest-grid sweeps (film by the dense product, the laws'
+    coefficients, line relaxation: dense_relaxations) against the same sweeps
+    through MultigridEHL.film, .coefficients (the laws' own __call__) and
+    line_relax; a law the kernels do not know keeps the numpy path."""
+    import dataclasses
+
+    from lubrication.ehl.multigrid import MultigridEHL, _law_codes, coefficients_kernel, dense_relaxations
+    from lubrication.ehl.problem import _Problem
+    from lubrication.laws import lubricant as L
+
+    v = dict(barus=L.Barus(0.04, 2e-8), roelands=L.Roelands(0.04, alpha=2e-8), constant=L.ConstantViscosity(0.04))
+    d = dict(incompressible=L.Incompressible(870.0), dowson_higginson=L.DowsonHigginson(870.0))
+    c = EHLContact.from_moes(100, 10)
+    c = dataclasses.replace(c, lubricant=L.Lubricant(viscosity=v[visc], density=d[dens]))
+    P = _Problem(c, EHLGrid(nx=33), EHLOptions())
+    mg = MultigridEHL(P, c)
+    assert mg._laws is not None
+    lv = mg.levels[0]
+    rng = np.random.default_rng(3)
+    lv.P = rng.uniform(-0.1, 1.2, lv.shape)
+    lv.P[0], lv.P[-1], lv.P[:, 0], lv.P[:, -1] = 0, 0, 0, 0
+    lv.hcorr = rng.uniform(0, 0.1, lv.shape)
+    lv.f = rng.uniform(-1, 1, lv.shape)
+    mg.H00 = 0.3
+    H = mg.film(lv)
+    rho_ref, eps_ref = mg.coefficients(lv, H)
+    rho, eps = np.empty(lv.shape), np.empty(lv.shape)
+    coefficients_kernel(lv.P, H, P.ph, mg.lam, *mg._laws, rho, eps)
+    np.testing.assert_allclose(rho, rho_ref, rtol=1e-14)
+    np.testing.assert_allclose(eps, eps_ref, rtol=1e-13)
+    ref = lv.P.copy()
+    o = mg.o
+    for _ in range(4):
+        lv_P, lv.P = lv.P, ref
+        H = mg.film(lv)
+        rho_ref, eps_ref = mg.coefficients(lv, H)
+        line_relax(ref, H, rho_ref, eps_ref, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs,
+                   o.omega_jac)
+        lv.P = lv_P
+    out = lv.P.copy()
+    Hb, rb, eb = (np.empty(lv.shape) for _ in range(3))
+    dense_relaxations(4, out, mg.H00, lv.rigid, lv.hcorr, lv.dense, lv.f, lv.K, lv.hx, lv.hy, lv.order,
+                      o.xi_switch, o.omega_gs, o.omega_jac, P.ph, mg.lam, *mg._laws, Hb, rb, eb)
+    np.testing.assert_allclose(out, ref, rtol=1e-11, atol=1e-13)
+    assert np.max(np.abs(out - lv.P)) > 1e-3  # the sweeps did change the pressure
+
+    class Other(L.Barus):  # a subclass may redefine __call__: the numpy path
+        pass
+
+    assert _law_codes(Other(0.04, 2e-8), d[dens]) is None
+
+
+def test_deflection_by_row_transforms_equals_rfftn():
+    """_deflect (real transforms along y on the nx rows only) against scipy's
+    rfftn/irfftn on the padded array."""
+    import scipy.fft
+
+    from lubrication.ehl.multigrid import _deflect
+
+    rng = np.random.default_rng(2)
+    for shape in ((17, 17), (33, 49), (65, 65)):
+        fs = tuple(scipy.fft.next_fast_len(2 * m - 1, real=True) for m in shape)
+        P = rng.uniform(0, 1, shape)
+        spec = scipy.fft.rfftn(rng.uniform(0, 1, fs))
+        ref = scipy.fft.irfftn(scipy.fft.rfftn(P, s=fs) * spec, s=fs)[:shape[0], :shape[1]]
+        np.testing.assert_allclose(_deflect(P, fs, spec), ref, rtol=0, atol=1e-13 * np.abs(ref).max())
+
+
 @pytest.mark.parametrize("line", [False, True])
 def test_uniform_weights_equal_the_assembled_ones(line):
     """The multigrid's nodal weights (cell area times adjacent cells / 4)

@@ -102,7 +102,7 @@ def check_solution(sol: EHLSolution) -> list[str]:
                        f"{COARSE_TOLERANCE:.0%}) at M = {c.moes_M:.4g}, L = {c.moes_L:.4g}; use grid.nx >= "
                        f"{_finer(nx, max(k, 1))}")
     if c.is_line:
-        x = np.asarray(P.basis.doflocs[0], dtype=float)
+        x = np.asarray(P.doflocs[0], dtype=float)
         order = np.argsort(x)
         x, p = x[order], np.asarray(sol.pressure, dtype=float)[order]
         pmax = float(np.max(p))

@@ -20,7 +20,7 @@ from .solution import EHLSolution
 log = logging.getLogger(__name__)
 
 def _hertz_guess(P: _Problem):
-    loc = P.basis.doflocs
+    loc = P.doflocs
     r2 = (loc[0] / P.bx) ** 2
     if not P.c.is_line:
         r2 = r2 + (loc[1] / P.by) ** 2
@@ -154,7 +154,7 @@ def _prolong(coarse: EHLSolution, P: _Problem) -> np.ndarray:
     Pc = coarse.problem
     axes = (Pc.xs,) if Pc.c.is_line else (Pc.xs, Pc.ys)
     f = RegularGridInterpolator(axes, _grid_values(Pc, coarse.pressure), bounds_error=False, fill_value=0.0)
-    return f(P.basis.doflocs.T)
+    return f(P.doflocs.T)
 
 
 def _active_set_newton(P: _Problem, p, h00, W):
@@ -567,7 +567,7 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None, rtol=None, max_damped=None
         if log.isEnabledFor(logging.DEBUG):
             i = int(np.argmax(np.abs(dp)))
             j = int(np.searchsorted(idx, i))
-            loc = P.basis.doflocs[:, i]
+            loc = P.doflocs[:, i]
             log.debug("EHL FB %d: largest step %.2e p_ref at x/b = %.3f%s (p/p_ref %.3f, s R %.2e, h/hs %.3e)", it,
                       dp[i] / ps, loc[0] / P.bx, "" if contact.is_line else f", y/b = {loc[1] / P.by:.3f}",
                       p[i] / ps, (s * R[idx])[j] if j < idx.size and idx[j] == i else 0.0, hn[i] / P.hscale)

@@ -28,7 +28,7 @@ class EHLSolution:
 
     def _centre_line(self, values):
         P = self.problem
-        loc = P.basis.doflocs
+        loc = P.doflocs
         on = np.ones(P.N, dtype=bool) if P.c.is_line else np.abs(loc[1]) < 0.5 * P.dy
         order = np.argsort(loc[0][on])
         return loc[0][on][order], values[on][order]
@@ -37,7 +37,7 @@ class EHLSolution:
     def central_film_thickness(self) -> float:
         """h at x = y = 0 [m]."""
         P = self.problem
-        d = np.linalg.norm(P.basis.doflocs, axis=0)
+        d = np.linalg.norm(P.doflocs, axis=0)
         return float(self.film_thickness[np.argmin(d)])
 
     @property
@@ -94,7 +94,7 @@ class EHLSolution:
 
         P = self.problem
         pts = np.zeros((P.N, 3))
-        pts[:, : P.basis.doflocs.shape[0]] = P.basis.doflocs.T
+        pts[:, : P.doflocs.shape[0]] = P.doflocs.T
         t = P.mesh.t
         nv = t.shape[0]
         kind = pv.CellType.LINE if nv == 2 else pv.CellType.QUAD

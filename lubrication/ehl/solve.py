@@ -200,7 +200,7 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
         coarse_hn = Pc.film(coarse.pressure, coarse.h00)
         # the coarser level's films, for the a-posteriori check (check_solution)
         coarse_level = dict(nx=int(Pc.shape[0]), central_film=float(coarse_hn[np.argmin(np.linalg.norm(
-            Pc.basis.doflocs, axis=0))]), minimum_film=float(np.min(coarse_hn)),
+            Pc.doflocs, axis=0))]), minimum_film=float(np.min(coarse_hn)),
             converged=coarse.film_thickness is not None)
         initial = EHLSolution(contact, P, _prolong(coarse, P), None, coarse.h00,
                               dict(coarse_iterations=coarse.info.get("iterations")))
