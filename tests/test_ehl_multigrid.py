@@ -95,6 +95,35 @@ def test_band_solver_against_dense(compiled):
     np.testing.assert_allclose(y, np.linalg.solve(A, b), rtol=1e-9, atol=1e-10)
 
 
+@pytest.mark.parametrize("diag", [-5.0, -0.5, 0.0])
+def test_line_band_solver_equals_the_general_one(diag):
+    """_band_solve_line (kl = 3, ku = 2, fixed trip counts over three zero
+    padding rows) against band_solve: the same solution to the bit, without
+    pivoting (diag -5) and with frequent pivoting (-0.5, 0: diagonals no
+    larger than the off-diagonals), and on rows cut to the diagonal (the
+    cavitated rows of the line relaxation)."""
+    from lubrication.ehl.multigrid import _band_solve_line
+
+    rng = np.random.default_rng(7)
+    for n in (1, 2, 4, 15, 255):
+        S0 = np.zeros((n, 9))
+        S0[:, :6] = rng.uniform(-1, 1, (n, 6))
+        S0[:, 3] += diag
+        S0[rng.uniform(size=n) < 0.2, :] = 0.0
+        S0[:, 3] = np.where(S0[:, 3] == 0.0, -1.0, S0[:, 3])
+        for r in range(n):  # columns outside the system are zero
+            for w in range(9):
+                if not 0 <= r + w - 3 < n:
+                    S0[r, w] = 0.0
+        y0 = rng.uniform(-1, 1, n)
+        S, y = S0.copy(), y0.copy()
+        ok = band_solve(S, y, n, 3, 2)
+        Sp, yp = np.zeros((n + 3, 9)), np.zeros(n + 3)
+        Sp[:n], yp[:n] = S0, y0
+        assert _band_solve_line(Sp, yp, n) == ok
+        np.testing.assert_array_equal(yp[:n], y)
+
+
 @pytest.mark.parametrize("compiled", [True, False])
 def test_line_relaxation_keeps_an_exact_solution(compiled):
     """A P with f = L(P) exactly is a fixed point of the mixed Gauss-Seidel /

@@ -75,12 +75,14 @@ of them, at about 0.5 residual reduction per cycle.  nu0 = 40 (Venner's
 value) gave the same cycles with 10-30 % more time; one H00 update per visit
 needed 25 instead of 16 cycles at M = 100 (V-cycles).
 
-Elastic deflection on each level: the DC-FFT product with the padded length
-raised to FFT-friendly sizes >= 2n - 1 (2n = 514 for 257 nodes contains the
-prime 257: three times slower), the real transforms along y run on the n
-pressure rows only (:func:`_deflect`: 257 x 257 2.0 ms against rfftn's
-4.4 ms), and a dense product on grids of at most
-600 nodes (the coarsest, where the FFT call overhead dominates: 17 x 17
+Elastic deflection on each level: the DC-FFT product padded to 2n - 2 per
+axis (the influence coefficients are even, so the two offsets +-(n-1) that
+this length folds together are equal; 512 for 257 nodes, a power of two,
+against next_fast_len(2n - 1) = 540 before and 2n = 514, which contains the
+prime 257: three times slower; :func:`_level_spectrum`), the real
+transforms along y run on the n pressure rows only (:func:`_deflect`;
+257 x 257 films 1.6 ms against 4.4 ms with rfftn on 540^2), and a dense
+product on grids of at most 600 nodes (the coarsest, where the FFT call overhead dominates: 17 x 17
 dense 9 us; 33 x 33 dense 177 us against 51 us by FFT, measured).
 
 Stopping (target grid, after every cycle).  Residual test: the relative
@@ -123,13 +125,20 @@ Kernels are numba (``@njit(cache=True)``): :func:`line_relax` (one sweep),
 :func:`dense_relaxations` (film, :func:`coefficients_kernel` and sweep in
 one call per block of sweeps between H00 updates, for the Barus, Roelands
 and constant viscosities and the Dowson-Higginson and constant densities;
-other laws take the numpy path).  Everything else is numpy.  Cost at
-257 x 257, M = 100 (AMD EPYC, 2 shared CPUs, one solve profiled, 0.87 s
-CPU): line relaxation 0.35 s (about 90 ns per node and sweep on every
-level, 17 x 17 included: the coarsest sweeps are computation, not call
-overhead), FFT films 0.26 s, coefficients 0.06 s, the rest (residuals,
-transfers, norms) about 0.15 s; the grid setup (:class:`_Problem` without
-mesh and basis) 0.04 s.
+other laws take the numpy path).  The line systems are solved by
+:func:`_band_solve_line` (band_solve's operations with fixed trip counts:
+23 against 47 ns per row), and the sweeps on the FFT levels read
+column-major copies of their arrays (lines run along x: 257 x 257 3.3
+against 5.0 ms per sweep).  Everything else is numpy.  Cost at 257 x 257,
+M = 100 (AMD EPYC, 2 shared CPUs, one solve timed by level, 0.74 s CPU with
+the timers): FFT and dense films 0.22 s, line sweeps 0.17 s on the FFT
+levels and 0.07 s for the 2500 coarsest sweeps (compiled blocks),
+coefficients 0.06 s, the rest (operator, residual and norm arithmetic,
+transfers) about 0.2 s; the grid setup (:class:`_Problem` without mesh and
+basis) 0.04 s.  Before these changes (main at ac1a7de) the same solve
+took 1.0-1.1 s: setup 0.27 s, sweeps 0.4 s (90 ns per node and sweep on
+every level, 17 x 17 included: the coarsest sweeps were computation, not
+call overhead), films 0.4 s.
 
 References: Brandt, Multigrid techniques: 1984 guide (GMD Studien 85) and
 Trottenberg, Oosterlee & Schueller, Multigrid (Academic Press 2001) for the
@@ -240,6 +249,61 @@ def band_solve(S, y, n, kl, ku):
 
 
 @njit(cache=True)
+def _band_solve_line(S, y, n):
+    """:func:`band_solve` for the line systems (kl = 3, ku = 2, window width 9)
+    with the same operations in the same order, so the same result to the bit
+    (tested), but with fixed trip counts: ``S`` and ``y`` carry three rows
+    below the n of the system, zero in S, so the pivot search and the
+    elimination need no ``min(n, ...)`` bounds (a zero sub-diagonal entry
+    gives m = 0 and no update; columns >= n of S are zero and only ever feed
+    columns >= n), and the loops unroll.  Measured (AMD EPYC, 255 rows):
+    23.5 against 47 ns per row without pivoting, 42 against 54 ns with
+    frequent pivoting.  Returns False if a pivot is zero."""
+    for k in range(n):
+        best = k
+        amax = abs(S[k, 3])
+        v = abs(S[k + 1, 2])
+        if v > amax:
+            amax = v
+            best = k + 1
+        v = abs(S[k + 2, 1])
+        if v > amax:
+            amax = v
+            best = k + 2
+        v = abs(S[k + 3, 0])
+        if v > amax:
+            amax = v
+            best = k + 3
+        if amax == 0.0:
+            return False
+        if best != k:
+            d = best - k
+            for c in range(k, min(n, k + 6)):
+                wk = c - k + 3
+                t = S[k, wk]
+                S[k, wk] = S[best, wk - d]
+                S[best, wk - d] = t
+            t = y[k]
+            y[k] = y[best]
+            y[best] = t
+        piv = S[k, 3]
+        for dr in range(1, 4):
+            r = k + dr
+            m = S[r, 3 - dr] / piv
+            if m != 0.0:
+                for dc in range(1, 6):
+                    S[r, dc - dr + 3] -= m * S[k, dc + 3]
+                S[r, 3 - dr] = 0.0
+                y[r] -= m * y[k]
+    for k in range(n - 1, -1, -1):
+        s = y[k]
+        for dc in range(1, min(6, n - k)):
+            s -= S[k, dc + 3] * y[k + dc]
+        y[k] = s / S[k, 3]
+    return True
+
+
+@njit(cache=True)
 def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac):
     """One sweep of the mixed Gauss-Seidel / Jacobi-distributive line
     relaxation (lines along x, the module docstring's scheme) of
@@ -251,8 +315,8 @@ def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac)
     kl, ku = 3, 2
     width = 2 * kl + ku + 1
     Pold = P.copy()
-    S = np.zeros((n, width))
-    y = np.zeros(n)
+    S = np.zeros((n + _KL, width))  # three zero rows below: _band_solve_line's fixed trip counts
+    y = np.zeros(n + _KL)
     gsrow = np.zeros(n, dtype=np.bool_)
     dK = np.zeros(6)
     rx2, ry2, rhx = 1.0 / (hx * hx), 1.0 / (hy * hy), 1.0 / hx
@@ -308,7 +372,7 @@ def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac)
                     elif c == 2 and not gs:
                         a -= 0.25 * xe
                     S[r, c + kl] = a
-        if not band_solve(S, y, n, kl, ku):
+        if not _band_solve_line(S, y, n):
             y[:] = 0.0
         for i in range(1, nx - 1):
             r = i - 1
@@ -566,6 +630,40 @@ class MultigridOptions:
                 raise InputError(f"multigrid.{key} = {v!r} must be in (0, 1]")
 
 
+def _level_spectrum(Kk, kscale):
+    """Padded lengths and rfftn spectrum of the influence coefficients ``Kk``
+    (offsets -(n-1) .. n-1 per axis, ElasticKernel._kernel) times ``kscale``
+    for the DC-FFT product of :func:`_deflect`.
+
+    The coefficients are even in each offset (a uniform load on a rectangle
+    centred on the node; equal to 1.5e-14 relative at 257 x 257, round-off of
+    the closed form), so the two offsets +-(n-1), which a circular length of
+    2n - 2 folds onto one index, carry the same value and 2n - 2 suffices
+    instead of 2n - 1 (the outputs 0 .. n-1 see every offset -(n-1) .. n-1
+    once): the pair is averaged.  On the multigrid grids 2n - 2 is a power of
+    two (512 for 257 nodes, against 540 = next_fast_len(513)): 257 x 257
+    films 1.6 ms against 2.0-4.7 ms, 129^2 0.37 against 0.48 ms, 513^2 8.9
+    against 10.6 ms (AMD EPYC, loaded, medians of 40).  Axes where 2n - 2 is
+    not an FFT-friendly length keep next_fast_len(2n - 1)."""
+    K = np.asarray(Kk, dtype=float)
+    shape = tuple((q + 1) // 2 for q in K.shape)
+    fft_shape = []
+    for axis, n in enumerate(shape):
+        L = 2 * n - 2
+        if n > 2 and scipy.fft.next_fast_len(L, real=True) == L:
+            K = np.moveaxis(K, axis, 0)
+            folded = K[:-1].copy()
+            folded[0] = 0.5 * (K[0] + K[-1])  # offsets -(n-1) and n-1: one index mod 2n - 2
+            K = np.moveaxis(folded, 0, axis)
+        else:
+            L = scipy.fft.next_fast_len(2 * n - 1, real=True)
+        fft_shape.append(L)
+    padded = np.zeros(fft_shape)
+    idx = [np.arange(-(n - 1), -(n - 1) + k) % q for n, k, q in zip(shape, K.shape, fft_shape)]
+    padded[np.ix_(*idx)] = K
+    return tuple(fft_shape), scipy.fft.rfftn(padded) * kscale
+
+
 class _Level:
     def __init__(self, X, Y, bx, e_star, kscale, ratio, kernel=None):
         self.X, self.Y = X, Y
@@ -579,10 +677,7 @@ class _Level:
         mx, my = min(_KX, nx), min(_KY, ny)
         K[:mx, :my] = Kk[nx - 1:nx - 1 + mx, ny - 1:ny - 1 + my] * kscale
         self.K = K
-        # DC-FFT as in ElasticKernel.deflect, but padded to FFT-friendly sizes >= 2n - 1
-        # (2n = 514 for 257 nodes has the prime factor 257: 2-3 times slower)
-        self.fft_shape = tuple(scipy.fft.next_fast_len(2 * m - 1, real=True) for m in self.shape)
-        self.spectrum = self.kernel.padded_spectrum(self.fft_shape) * kscale
+        self.fft_shape, self.spectrum = _level_spectrum(Kk, kscale)
         self.dense = None
         if nx * ny <= _DENSE_MAX:
             # small (coarsest) grids: the same influence coefficients as a dense
@@ -699,7 +794,16 @@ class MultigridEHL:
         H = self.film(lv)
         rho, eps = self.coefficients(lv, H)
         o = self.o
-        line_relax(lv.P, H, rho, eps, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)
+        if lv.dense is None:
+            # the sweep reads the arrays along x (lines i = 1 .. nx - 2 at fixed j): column-major copies make
+            # those reads contiguous; the same arithmetic (equal to the bit), 257 x 257: 3.3 ms against
+            # 5.0 ms per sweep, the five copies 0.2 ms (AMD EPYC, medians of 40)
+            P = np.asfortranarray(lv.P)
+            line_relax(P, np.asfortranarray(H), np.asfortranarray(rho), np.asfortranarray(eps),
+                       np.asfortranarray(lv.f), lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)
+            lv.P[...] = P
+        else:
+            line_relax(lv.P, H, rho, eps, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)
         self.work += lv.N / self.levels[-1].N
 
     def load(self, lv):
