@@ -44,6 +44,7 @@ OPTIONS = {
     "20 slices": ["model.slices=20"],
     "traction by quadrature (no table)": ["model.traction_evaluation=quadrature"],
     "cone tilt free, load 10 mm off": ["operating.cone_tilt=free", "operating.load_offset=10 mm"],
+    "traction from the roller EHL maps": ["model.traction=map"],
 }
 
 
@@ -117,33 +118,46 @@ def slice_convergence(counts=(5, 10, 20, 40, 80), duration=0.005) -> dict:
     return out
 
 
+#: the runs of :func:`target`: the limited traction by quadrature and by table, the EHL maps' traction
+#: ("map"), and the map run at half its automatic step (its step error)
+TARGET_RUNS = {"quadrature": ["model.traction_evaluation=quadrature"],
+               "table": ["model.traction_evaluation=table"],
+               "map": ["model.traction=map"]}
+
+
 def target() -> dict:
     """Issue 23's target, 0.18 s of the full 17-roller model at converged accuracy in under 10 s warm on one
     core: RK4 at the 'auto' step (0.8 x the stable-step estimate; RK4 converges at order 3.6-3.9 there,
-    tests/test_trb_scene.py) with the limited traction by quadrature and by table, the order
-    quadrature, table, quadrature, table after a warm-up run, the means over the paper's window."""
+    tests/test_trb_scene.py) with the limited traction by quadrature and by table, and with the roller EHL
+    maps' traction ("map"); the order quadrature, table, map, quadrature, table, map after a warm-up run;
+    the map once more at half its step (its step error); the means over the paper's window."""
     from coupling import tapered_scene as S
     from coupling.config import load_case
 
-    def once(how):
-        case = load_case(CASE, overrides=["integrator.duration=0.18", "output.write=[]",
-                                          f"model.traction_evaluation={how}"])
+    def once(over):
+        case = load_case(CASE, overrides=["integrator.duration=0.18", "output.write=[]", *over])
         t0 = time.perf_counter()
         s = S.run(case).summary
         return {"wall [s]": time.perf_counter() - t0, "integration [s]": s["Integration wall time [s]"],
-                "steps": s.get("Accepted steps [-]"), **_means(s)}
+                "steps": s.get("Accepted steps [-]"), "RK4 step [s]": s.get("RK4 step [s]"), **_means(s)}
 
-    S.run(load_case(CASE, smoke=True, overrides=["model.traction_evaluation=table"]))      # compile
-    runs = {f"{how} #{i}": once(how) for i in (1, 2) for how in ("quadrature", "table")}
-    best = {how: min(r["integration [s]"] for k, r in runs.items() if k.startswith(how)) for how in ("quadrature", "table")}
+    for over in TARGET_RUNS.values():                                                           # compile
+        S.run(load_case(CASE, smoke=True, overrides=list(over)))
+    runs = {f"{how} #{i}": once(over) for i in (1, 2) for how, over in TARGET_RUNS.items()}
+    half = 0.5 * runs["map #1"]["RK4 step [s]"]
+    runs["map, half step"] = once([*TARGET_RUNS["map"], f"integrator.dt={half!r}"])
+    best = {how: min(r["integration [s]"] for k, r in runs.items() if k.split(" #")[0] == how) for how in TARGET_RUNS}
     q, t = runs["quadrature #1"], runs["table #1"]
+    keys = ("Skew, loaded zone, mean [rad]", "Tilt, loaded zone, mean [rad]", "Roller slip, loaded zone, mean [-]",
+            "Cage speed, mean [rpm]")
+    m, mh = runs["map #1"], runs["map, half step"]
     out = {"machine": machine_info(), "case": str(CASE.relative_to(ROOT)), "simulated time [s]": 0.18,
            "runs": runs, "best integration time [s]": best, "speed-up of the table [-]": best["quadrature"] / best["table"],
+           "speed-up of the map over the table [-]": best["table"] / best["map"],
            "relative difference of the means (table vs quadrature)": {
-               k: abs(t[k] - q[k]) / max(abs(q[k]), 1e-30) for k in ("Skew, loaded zone, mean [rad]",
-                                                                      "Tilt, loaded zone, mean [rad]",
-                                                                      "Roller slip, loaded zone, mean [-]",
-                                                                      "Cage speed, mean [rpm]")},
+               k: abs(t[k] - q[k]) / max(abs(q[k]), 1e-30) for k in keys},
+           "relative step error of the map's means (auto vs half step)": {
+               k: abs(m[k] - mh[k]) / max(abs(mh[k]), 1e-30) for k in keys},
            "target [s]": 10.0}
     write_json(RESULTS / "trb_target.json", out)
     return out
@@ -155,7 +169,7 @@ def main(argv=None) -> dict:
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--target", action="store_true",
                     help="only issue 23's target: 0.18 s of Fig. 5's point with RK4 at the 'auto' step, the limited "
-                         "traction by quadrature and by table (results/trb_target.json)")
+                         "traction by quadrature and by table, the maps' traction (results/trb_target.json)")
     ap.add_argument("--slices", action="store_true",
                     help="only the slice convergence of the mean skew and tilt (5-80 slices, 5 ms; results/trb_slices.json)")
     a = ap.parse_args(argv)
