@@ -481,12 +481,20 @@ _ROLLER_FRONT = ("the roller kinds' traction (coupling.film_points.evaluate_ehl_
                  "+-5 % bump where the spike forms (cone, 31-33 kN/m, 17.7 m/s; smooth on 513 nodes): max "
                  "8.5 % cone (33.3 kN/m, 7.2 m/s, SRR 3.5e-5; 3 of 40 points above 3 %) / 5.2 % cup (55 kN/m, "
                  "7.5 m/s, SRR 6.6e-4; 3 of 40); median 0.37 / 0.13 % (the rigid law before: 14 % / 8.1 %, its "
-                 "low-slip traction the viscosity at the one-cell spike); cases/maps/README.md")
+                 "low-slip traction the viscosity at the one-cell spike).  Not fixed by a compressible film (28 Nov 2026, "
+                 "benchmarks/roller_traction_sweeps.py, Dowson-Higginson, dense load sweeps, no rebuild): the knee sharpens "
+                 "(d ln a/d ln w up to 17-18 at 21-26 kN/m, 7 m/s) and a map of it would still miss by 14-18 % at load "
+                 "node ratio 1.10, 7-11 % at 22-28 m/s, 6.6-7.2 % across a 1.12 speed step, and 2.5-7.4 % above the knee, "
+                 "where 257-node a is up to 15-23 % off the 1025-node value; on 513 nodes still 2.4-3.2 % at node ratio "
+                 "1.023; 1025 nodes would do at node ratio ~1.05 (2.2 %) but fail to converge at 39-44 kN/m, 7 m/s; "
+                 "cases/maps/README.md")
 _ROLLER_TRANSITION = ("the transition slip s_t (the traction's normalised coordinate, the slip at half the linear "
                       "traction) follows the jitter of the slope a (s_t ~ 1/a: cup, 7 m/s, 45-52 kN/m, a 7.68, "
                       "6.60, 8.03 and s_t 1.29, 1.57, 1.35e-2): max 13.5 % cone "
                       "(23.2 kN/m, 7.7 m/s) / 8.4 % cup (58 kN/m, 15.2 m/s), 4 / 8 of 40 points above 3 %, median "
-                      "0.19 / 0.24 % (rigid law before: 112 % / 39 %)")
+                      "0.19 / 0.24 % (rigid law before: 112 % / 39 %); with a Dowson-Higginson film (28 Nov 2026 "
+                      "pre-check, no rebuild) 16-52 % at load node ratio 1.10 (7-8.8 m/s) and 10-19 % across a 1.12 speed step "
+                      "(7 m/s), 2.1-3.5 % on 513 nodes at node ratio 1.023")
 KNOWN_MISSES: dict = {
     ("ehl_roller_cone", "Traction coefficient [-]"): _ROLLER_FRONT,
     ("ehl_roller_cup", "Traction coefficient [-]"): _ROLLER_FRONT,
