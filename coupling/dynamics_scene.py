@@ -519,8 +519,6 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
     ig = case.integrator
     progress = sys.stderr.isatty()
     log.info("integrating %s", describe(case, setup))
-    # the writers' and the spectrum's imports run in a thread while the compiled integrator holds no GIL
-    outputs.preload_writers(case.output.write if out_dir is not None else (), extra=("scipy.signal",))
     try:
         res = integrate(rhs, setup.y0, setup.t_out, model.args(), method=ig.method, rtol=ig.rtol, atol=ig.atol,
                         dt=ig.dt, max_steps=ig.max_steps, progress=progress,

@@ -120,46 +120,6 @@ def write_json(path, mapping: dict) -> Path:
     return write_text(path, json.dumps(mapping, indent=2, default=json_default) + "\n")
 
 
-def preload_writers(write, extra=()) -> "threading.Thread | None":
-    """Import the libraries that writing ``write`` (a case's ``output.write`` list) will need --
-    matplotlib with the Agg canvas for "png", pyvista for "pvd" -- and the modules ``extra`` (the
-    analysis' own, e.g. ``scipy.signal``) in a daemon thread, and return it (None if nothing is to be
-    imported).
-
-    Why: a dynamics run spends its first second or two in a compiled integrator that releases the GIL,
-    while one of the machine's cores waits; importing matplotlib.pyplot and pyvista there (0.5-1 s each
-    on the benchmark machine) takes them off the run's critical path (issue 18).  Nothing else changes:
-    an import is the same module object whichever thread runs it first (Python's per-module import
-    locks), and a failed import here is left to the writer, which raises it where it always did."""
-    import importlib
-    import sys
-    import threading
-
-    names = []
-    if "png" in write and "matplotlib.pyplot" not in sys.modules:
-        names.append("matplotlib.pyplot")
-    if "pvd" in write and "pyvista" not in sys.modules:
-        names.append("pyvista")
-    names += [name for name in extra if name not in sys.modules]
-    if not names:
-        return None
-
-    def target():
-        for name in names:
-            try:
-                if name == "matplotlib.pyplot":
-                    import matplotlib
-
-                    matplotlib.use("Agg")  # as the writers do before they draw
-                importlib.import_module(name)
-            except Exception as exc:  # noqa: BLE001 -- the writer imports it again and reports the error
-                log.debug("preloading %s failed (%s); the writer imports it", name, exc)
-
-    thread = threading.Thread(target=target, name="lubedyn-preload", daemon=True)
-    thread.start()
-    return thread
-
-
 def save_figure(path, figure, dpi: int = 120) -> Path:
     """Save a matplotlib figure atomically (Agg canvas; never opens a window)."""
     import io
