@@ -144,7 +144,7 @@ def target() -> dict:
     for over in TARGET_RUNS.values():                                                           # compile
         S.run(load_case(CASE, smoke=True, overrides=list(over)))
     runs = {f"{how} #{i}": once(over) for i in (1, 2) for how, over in TARGET_RUNS.items()}
-    half = 0.5 * runs["map #1"]["RK4 step [s]"]
+    half = 0.5 * float(runs["map #1"]["RK4 step [s]"])
     runs["map, half step"] = once([*TARGET_RUNS["map"], f"integrator.dt={half!r}"])
     best = {how: min(r["integration [s]"] for k, r in runs.items() if k.split(" #")[0] == how) for how in TARGET_RUNS}
     q, t = runs["quadrature #1"], runs["table #1"]

@@ -45,8 +45,8 @@ def test_oscillator_and_decay_against_the_stability_polynomial():
 def test_paper_reading_auto_step_is_stable_where_the_closed_form_was_not():
     """Fig. 14's base (Fa 15 kN, 2,800 rpm) with phi read as a viscosity at 38.44 Pa s: the closed forms
     (contacts, traction) allow 18.8 us, the start's spectrum 8.25 us (a decay at 3.4e5 1/s that they do not
-    model).  RK4 at the old "auto" step (0.8 x 18.8 us) is stopped by the growth guard within 10 ms, naming
-    a stable step below 9 us; at the new one (0.8 x 8.25 us) the same 10 ms complete with the guard's
+    model).  RK4 at the old "auto" step (0.8 x 18.8 us) stops within 10 ms (the growth guard, naming a
+    stable step below 9 us, or the state turning non-finite first); at the new one (0.8 x 8.25 us) the same 10 ms complete with the guard's
     largest |h lambda| below the limit."""
     from coupling import tapered_scene as ts
     from coupling.config import CASES_DIR, load_case
@@ -66,8 +66,11 @@ def test_paper_reading_auto_step_is_stable_where_the_closed_form_was_not():
     t_out = np.linspace(0.0, 1e-2, 101)
     with pytest.raises(IntegrationError) as err:
         integrate(K.rhs, y0, t_out, args, method="rk4", dt=0.8 * closed)
-    assert "a stable step is dt <= " in str(err.value)
-    told = float(str(err.value).split("a stable step is dt <= ")[1].split(" ")[0])
-    assert told < 9e-6
+    # the growth guard names a stable step, unless the blow-up turns the state non-finite within the 5
+    # steps it waits (which of the two depends on round-off: both seen)
+    msg = str(err.value)
+    assert "a stable step is dt <= " in msg or "non-finite" in msg, msg
+    if "a stable step is dt <= " in msg:
+        assert float(msg.split("a stable step is dt <= ")[1].split(" ")[0]) < 9e-6
     res = integrate(K.rhs, y0, t_out, args, method="rk4", dt=0.8 * spectral)
     assert res.stats["Largest estimated h*|lambda| (RK4) [-]"] < stability_limit("rk4", "real")
