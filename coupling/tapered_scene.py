@@ -348,6 +348,22 @@ def roller_traction_maps() -> tuple:
 _ROLLER_MAPS = None
 
 
+def traction_map_summary(model) -> dict:
+    """What the raceway traction "map" read: each map's file, its build's input hash (the ball-ball map's
+    convention, ``FilmMap.input_hash``) and the lubricant its films were solved with (the maps' own, not the
+    case's grease), and the entrainment speed it was read at."""
+    from dynamics.tapered import layout as L
+
+    out = {"Raceway traction maps": {}, "Raceway traction map entrainment speed [m/s]": float(model.args()[0][L.P_UE])}
+    for race, rel, fmap in zip(("cup", "cone"), ROLLER_TRACTION_MAPS, model.traction_maps):
+        prm = fmap.provenance.get("params", {})
+        out["Raceway traction maps"][race] = {
+            "file": rel, "input hash": fmap.input_hash,
+            "lubricant": {k: prm.get(k) for k in ("eta0", "alpha", "viscosity_law", "density_law", "eyring_stress",
+                                                  "film_shear_modulus", "limiting_shear_stress", "limiting_shear_slope")}}
+    return out
+
+
 def describe(case: TaperedCase, model) -> str:
     op, m, ig = case.operating, case.model, case.integrator
     if ig.method == "rk4":
@@ -494,6 +510,8 @@ def summarise(case, model, t, Y, D, qs) -> dict:
          "Quasi-static largest cup load [N]": float(np.max(qs.cup_loads)),
          "Quasi-static largest cone load [N]": float(np.max(qs.cone_loads)),
          "Quasi-static largest flange load [N]": float(np.max(qs.flange_loads))}
+    if case.model.traction == "map":
+        s.update(traction_map_summary(model))
     lo, hi = case.analysis.window
     if t[-1] >= lo + (t[1] - t[0]):
         s["Paper window (analysis.window)"] = window_summary(model, t, D, lo, min(hi, t[-1]))

@@ -560,6 +560,11 @@ def check_trb_fig5_traction_map(s, case):
     against the maps themselves), longer than the strip law's 2.2 us elastic step at this point."""
     assert case["model"]["traction"] == "map"
     assert s["Fidelity"]["traction"] == "map"
+    # the summary names what the traction read: both maps, their build hash and their own lubricant
+    maps = s["Raceway traction maps"]
+    assert set(maps) == {"cup", "cone"} and all(len(m["input hash"]) == 64 for m in maps.values())
+    assert maps["cup"]["lubricant"]["eta0"] == pytest.approx(0.1)
+    assert s["Raceway traction map entrainment speed [m/s]"] == pytest.approx(11.03, rel=1e-3)
     check_trb_fig5_2400rpm(s, case)
     if "RK4 step [s]" in s:
         assert s["RK4 step [s]"] > 2.2e-6
