@@ -43,7 +43,9 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   :func:`lubrication.laws.traction.paper_raceway_traction`), "limited" the Herschel-Bulkley strip law
   with Barus consistency and a limiting shear stress (an extension,
   :func:`lubrication.laws.traction.limited_strip_traction`) in series with the film's elastic shear
-  (Johnson-Tevaarwerk's slope 2 G b^2/(u_e h), :func:`lubrication.laws.traction.elastic_limited`), "none";
+  (Johnson-Tevaarwerk's slope 2 G b^2/(u_e h), :func:`lubrication.laws.traction.elastic_limited`), "map"
+  the roller EHL maps' film traction coefficient at the slice's line load and slide-to-roll ratio v_s/u_e
+  times the slice load (:func:`map_traction_coefficient`), "none";
 * flange friction (option ``flange_friction``, eqs. 22-23, :func:`lubrication.laws.flange.flange_friction`):
   mu_a q exp(-B lambda^C) + w f_grease against the roller end's sliding on the rib, f_grease eq. 27's
   limited Herschel-Bulkley traction over the Hertz ellipse (semi-axes and p0 scale as q^(1/3) from the
