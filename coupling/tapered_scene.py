@@ -352,9 +352,7 @@ def traction_map_summary(model) -> dict:
     """What the raceway traction "map" read: each map's file, its build's input hash (the ball-ball map's
     convention, ``FilmMap.input_hash``) and the lubricant its films were solved with (the maps' own, not the
     case's grease), and the entrainment speed it was read at."""
-    from dynamics.tapered import layout as L
-
-    out = {"Raceway traction maps": {}, "Raceway traction map entrainment speed [m/s]": float(model.args()[0][L.P_UE])}
+    out = {"Raceway traction maps": {}, "Raceway traction map entrainment speed [m/s]": model.entrainment_speed}
     for race, rel, fmap in zip(("cup", "cone"), ROLLER_TRACTION_MAPS, model.traction_maps):
         prm = fmap.provenance.get("params", {})
         out["Raceway traction maps"][race] = {
@@ -623,8 +621,8 @@ def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str =
 
     t0 = time.perf_counter()
     model = build(case)
-    args = model.args()
     qs = model.quasi_static()
+    args = model.args(qs)  # the packed arrays on the same equilibrium (the rib film reads it): solved once
     y0 = model.start_state(qs)
     t_build = time.perf_counter() - t0
     log.info("integrating %s", describe(case, model))
@@ -633,7 +631,7 @@ def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str =
     kw = dict(method="dopri5", rtol=ig.rtol, atol=ig.atol)
     dt = None
     if ig.method == "rk4":
-        stable = model.stable_step(qs, y0)
+        stable = model.stable_step(qs, y0, args)
         dt = 0.8 * stable if ig.dt == "auto" else ig.dt
         # the integrator refuses a step beyond the limit on the imaginary axis; the estimate folds the
         # traction's real-axis decay into an equivalent omega

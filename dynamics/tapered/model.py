@@ -203,7 +203,7 @@ class TaperedBearing:
         P[L.P_TRACTION] = L.TRACTIONS[fi.traction]
         P[L.P_ETA], P[L.P_PVC], P[L.P_EP] = lu.viscosity(), lu.pressure_viscosity, g.e_prime
         P[L.P_RXO], P[L.P_RXI] = g.reduced_radius("cup"), g.reduced_radius("cone")
-        P[L.P_UE] = max(float(self.ideal()["entrainment speed [m/s]"]), 1e-3)
+        P[L.P_UE] = self.entrainment_speed
         P[L.P_WIDTH] = g.effective_length / fi.slices
         P[L.P_VREG] = fi.friction_speed
         grease = lu.grease()
@@ -307,7 +307,7 @@ class TaperedBearing:
         is the film's (a Maxwell fluid capped by limiting shear, in the map's own lubricant:
         coupling.film_points.ehl, ``evaluate_ehl_line``), so the kernel adds no elastic shear of its own.
         u_e outside the maps' speed axis is refused (one line naming operating.speed)."""
-        from ..interp import _hvalue
+        from ..interp import _hvalue, _locate_call
 
         ue = float(P[L.P_UE])
         spec, shape = None, None
@@ -332,8 +332,7 @@ class TaperedBearing:
                     raise fail("model.traction", "map", f"needs the {race} map's traction on log axes, log values")
             # u_e's cell and cubic Hermite weights (value, derivative data of the two nodes) in t = log u
             au = shift.axes[1]
-            t = min(max(math.log(ue), au[0]), au[-1])
-            j = min(int(np.searchsorted(au, t, side="right")) - 1, au.size - 2)
+            j, t, _ = _locate_call(au, math.log(ue))
             wu = _hvalue(au, j, t)
 
             def restrict(deriv, bits):
@@ -489,64 +488,64 @@ class TaperedBearing:
         k = 2.0 * (10.0 / 9.0) * q / sl.approach(q, kl)
         return math.sqrt(k / m)
 
-    def traction_rate(self, qs: QuasiStaticResult | None = None) -> float:
-        """Decay rate [1/s] of a roller's sliding under the "limited" raceway traction's elastic slope (0
-        for the other laws, whose slopes are orders smaller): the slice slopes 2 G b_k^2 w_k/(u_e h) summed
-        over a race give 2 G (8 R' Q/(pi E'))/(u_e h) for a roller load Q (b^2 = 8 w R'/(pi E') is linear
-        in the slice load), at the start's largest cup load on both races (cup and cone R'), the film h of
-        the kernel's Dowson-Toyoda at that load; the sliding at a contact a distance rho_m off the roller's
-        axis relaxes at lambda = (k_cup + k_cone)(1/m + rho_m^2/I_x) (translation and spin)."""
-        lu = self.lubricant
-        if self.fidelity.traction == "map":
-            return self._map_traction_rate(qs)
-        if self.fidelity.traction != "limited" or not math.isfinite(lu.shear_modulus):
-            return 0.0
-        from lubrication.laws.film import dowson_toyoda_central
+    @property
+    def entrainment_speed(self) -> float:
+        """The ideal entrainment speed u_e [m/s] the raceway films and tractions are evaluated at (floored
+        at 1 mm/s for a bearing at rest)."""
+        return max(float(self.ideal()["entrainment speed [m/s]"]), 1e-3)
 
-        g = self.geometry
+    def traction_rate(self, qs: QuasiStaticResult | None = None, args=None) -> float:
+        """Decay rate [1/s] of a roller's sliding under the raceway traction's low-slip slope k (0 for the
+        laws whose slopes are orders smaller: "paper", "none", an infinitely stiff film): the sliding at a
+        contact a distance rho_m off the roller's axis relaxes at lambda = (k_cup + k_cone)(1/m +
+        rho_m^2/I_x) (translation and spin), at the start's largest cup load Q on both races.
+
+        - "limited": the elastic slope; the slice slopes 2 G b_k^2 w_k/(u_e h) summed over a race give
+          2 G (8 R' Q/(pi E'))/(u_e h) (b^2 = 8 w R'/(pi E') is linear in the slice load), h the kernel's
+          Dowson-Toyoda film at that load (cup and cone R');
+        - "map": (mu/s) Q/u_e, mu/s the maps' linear branch at the slide-to-roll axis' first node
+          (``args``: the model's packed arrays, built when not given)."""
+        lu, g = self.lubricant, self.geometry
+        law = self.fidelity.traction
+        if not (law == "map" or (law == "limited" and math.isfinite(lu.shear_modulus))):
+            return 0.0
         qs = self.quasi_static() if qs is None else qs
         load = max(float(np.max(qs.cup_loads)), 1.0)
         w = load / g.effective_length
-        ue = max(float(self.ideal()["entrainment speed [m/s]"]), 1e-3)
-        ep = g.e_prime
+        ue = self.entrainment_speed
         k = 0.0
-        for race in ("cup", "cone"):
-            r = g.reduced_radius(race)
-            h = r * dowson_toyoda_central(lu.viscosity() * ue / (ep * r), lu.pressure_viscosity * ep, w / (ep * r))
-            k += 2.0 * lu.shear_modulus * (8.0 * r * load / (math.pi * ep)) / (ue * h)
+        if law == "map":
+            P = (self.args(qs) if args is None else args)[0]
+            s0 = float(P[L.P_TMSLO])
+            counter = np.zeros(1, dtype=np.int64)
+            for race in (0, 1):
+                k += K.map_traction_coefficient(race, w, s0, P, counter) / s0 * load / ue
+        else:
+            from lubrication.laws.film import dowson_toyoda_central
+
+            ep = g.e_prime
+            for race in ("cup", "cone"):
+                r = g.reduced_radius(race)
+                h = r * dowson_toyoda_central(lu.viscosity() * ue / (ep * r), lu.pressure_viscosity * ep, w / (ep * r))
+                k += 2.0 * lu.shear_modulus * (8.0 * r * load / (math.pi * ep)) / (ue * h)
         m, ix, _, _ = g.roller_mass_properties()
         return k * (1.0 / m + g.mean_roller_radius**2 / ix)
 
-    def _map_traction_rate(self, qs: QuasiStaticResult | None = None) -> float:
-        """:meth:`traction_rate` of the "map" traction: its low-slip slope d(traction)/d(v_s) = (mu/s) Q/u_e
-        (mu/s of the map's linear branch, at the slide-to-roll axis' first node) at the start's largest cup
-        load on both raceways."""
-        g = self.geometry
-        qs = self.quasi_static() if qs is None else qs
-        load = max(float(np.max(qs.cup_loads)), 1.0)
-        P = self.args()[0]
-        counter = np.zeros(1, dtype=np.int64)
-        s0 = float(P[L.P_TMSLO])
-        k = sum(K.map_traction_coefficient(race, load / g.effective_length, s0, P, counter) / s0 * load / P[L.P_UE]
-                for race in (0, 1))
-        m, ix, _, _ = g.roller_mass_properties()
-        return k * (1.0 / m + g.mean_roller_radius**2 / ix)
-
-    def stable_step(self, qs: QuasiStaticResult | None = None, y0: np.ndarray | None = None) -> float:
+    def stable_step(self, qs: QuasiStaticResult | None = None, y0: np.ndarray | None = None, args=None) -> float:
         """An estimate of RK4's largest stable step [s]: the smaller of 2 sqrt(2)/omega_max (the contact
         modes, imaginary axis), 2.785/lambda (the traction's decay, real axis: :meth:`traction_rate`) and,
         given the start state ``y0``, the step the right-hand side's own spectrum there allows
-        (:meth:`spectral_step`): the closed forms know the raceway contacts and traction only, and a mode
+        (:meth:`spectral_step`; ``args`` the packed arrays when the caller has them): the closed forms know the raceway contacts and traction only, and a mode
         they miss -- the pocket films' squeeze damping with phi read as a viscosity (paper A's reading:
         a decay at 3.4e5 1/s, 8.3 us at phi = 38.44) -- once made the "auto" step unstable."""
         from ..integrators import stability_limit
 
         step = stability_limit("rk4", "imaginary") / self.omega_max()
-        rate = self.traction_rate(qs)
+        rate = self.traction_rate(qs, args)
         if rate > 0.0:
             step = min(step, stability_limit("rk4", "real") / rate)
         if y0 is not None:
-            step = min(step, self.spectral_step(y0))
+            step = min(step, self.spectral_step(y0, args))
         return step
 
     def spectral_step(self, y0: np.ndarray, args=None) -> float:
