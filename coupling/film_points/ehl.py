@@ -239,7 +239,7 @@ def ehl_roller_cup_default_params() -> dict:
     return _roller_params("cup")
 
 
-def _film_scaled_domain(params, contact):
+def _film_scaled_domain(params, contact, lengths=None, base=None):
     """(x_min, x_max) [Hertz half-widths b] of a line contact's domain scaled with its film: x_min =
     -hypot(x_min0, k_in r), x_max = hypot(x_max0, k_out r), r = sqrt(2 R h_Moes)/b (see
     ROLLER_INLET_FILM_LENGTHS)."""
@@ -265,8 +265,25 @@ def _film_scaled_domain(params, contact):
     h = moes_line_central(contact.moes_M, contact.moes_L) * R * math.sqrt(2 * contact.U)
     b = line_contact(contact.load, R, contact.e_star).b
     r = math.sqrt(2 * R * h) / b
-    k_in, k_out = float(params["inlet_film_lengths"]), float(_get(params, "outlet_film_lengths", 1.5))
-    return -math.hypot(float(params["x_min"]), k_in * r), math.hypot(float(params["x_max"]), k_out * r)
+    k_in, k_out = lengths or (float(params["inlet_film_lengths"]), float(_get(params, "outlet_film_lengths", 1.5)))
+    x0, x1 = base or (float(params["x_min"]), float(params["x_max"]))
+    return -math.hypot(x0, k_in * r), math.hypot(x1, k_out * r)
+
+
+def _graded_fields(params, contact) -> dict:
+    """EHLGrid grading fields of a film-scaled line contact (``grid_refine`` > 1; {} for a uniform grid):
+    the zone [-hypot(z_in, c_in r), hypot(z_out, c_out r)] b, r = sqrt(2 R h_Moes)/b, cells ``grid_refine``
+    times shorter there (see ROLLER_GRID_REFINE)."""
+    r = float(_get(params, "grid_refine", 1.0))
+    if r == 1.0:
+        return {}
+    import math
+
+    lo, hi = _film_scaled_domain(params, contact, lengths=(float(_get(params, "refine_inlet_lengths", 1.1)),
+                                                             float(_get(params, "refine_outlet_lengths", 0.1))),
+                                 base=(float(_get(params, "refine_x_min", -1.5)),
+                                       float(_get(params, "refine_x_max", 1.2))))
+    return dict(refine=r, refine_zone=(lo, hi), refine_width=float(_get(params, "refine_width", 1.0)))
 
 
 def _ehl_setup(params, load, speed):
@@ -288,7 +305,7 @@ def _ehl_setup(params, load, speed):
 
         # fixed node count on a domain that grows smoothly with the film (_film_scaled_domain)
         x_lo, x_hi = _film_scaled_domain(params, contact)
-        grid = EHLGrid(nx=table[res], x_min=x_lo, x_max=x_hi)
+        grid = EHLGrid(nx=table[res], x_min=x_lo, x_max=x_hi, **_graded_fields(params, contact))
     else:
         grid = _ehl_grid(table[res], line, float(params["x_min"]), float(params["x_max"]), float(params["y_max"]))
     return contact, grid, EHLOptions()
@@ -405,9 +422,12 @@ def _short_inlet_start(contact, grid, options, x_min):
 
     from lubrication import ehl
 
-    cells = int(round((grid.x_max - x_min) * (grid.nx - 1) / (grid.x_max - grid.x_min)))
-    dx = (grid.x_max - grid.x_min) / (grid.nx - 1)
-    short = dataclasses.replace(grid, nx=cells + 1, x_min=grid.x_max - cells * dx)
+    if grid.graded:  # the same nodes count on the shorter domain (only a start)
+        short = dataclasses.replace(grid, x_min=x_min)
+    else:
+        cells = int(round((grid.x_max - x_min) * (grid.nx - 1) / (grid.x_max - grid.x_min)))
+        dx = (grid.x_max - grid.x_min) / (grid.nx - 1)
+        short = dataclasses.replace(grid, nx=cells + 1, x_min=grid.x_max - cells * dx)
     sol = None
     for variant in ({}, {"method": "active_set"}):
         try:
@@ -456,7 +476,8 @@ def _continuation_start(params, contact, grid, options):
             for fw, fu, fd in path:
                 c = dataclasses.replace(contact, load=contact.load * fw, mean_speed=contact.mean_speed * fu)
                 lo, hi = _film_scaled_domain(params, c)
-                g = EHLGrid(nx=grid.nx, x_min=min(fd * lo, -1.5), x_max=max(fd * hi, 1.5))
+                g = dataclasses.replace(grid, x_min=min(fd * lo, -1.5), x_max=max(fd * hi, 1.5),
+                                        **_graded_fields(params, c))
                 sol = solve_ehl(c, g, options, initial=sol)
             # the last step's solution is only a start for the final grid: converge it there
             return solve_ehl(contact, grid, options, initial=sol)

@@ -93,3 +93,63 @@ class UniformForms:
             part = np.asarray(c).reshape(self.E, -1) @ L
             local = part if local is None else local + part
         return np.bincount(self._rhs_idx, weights=local.ravel(), minlength=self.N)
+
+
+class ElementForms(UniformForms):
+    """:class:`UniformForms` for grids of unequal elements (the graded line grids of
+    :class:`lubrication.ehl.EHLGrid`): the same templates, one per element (E x Q x n^2), so that
+    ``a_e = sum_q c(e, q) T[e, q]``; the interface is the same.  Checked against ``skfem.asm`` in
+    tests/test_ehl_graded.py."""
+
+    def __init__(self, basis):
+        b = basis
+        dofs = np.asarray(b.element_dofs)  # (n, E)
+        n, E = dofs.shape
+        w = np.asarray(b.dx)  # (E, Q)
+        ph = np.transpose(np.array([np.asarray(b.basis[i][0]) for i in range(n)]), (1, 2, 0))  # (E, Q, n)
+        dp = np.transpose(np.array([np.asarray(b.basis[i][0].grad) for i in range(n)]), (1, 2, 3, 0))  # (dim, E, Q, n)
+        self.n, self.E, self.dim = n, E, dp.shape[0]
+        self.N = int(b.N)
+        self.dofs = dofs
+        self.phi, self.dphi = ph, dp
+        Q = w.shape[1]
+        W = w[:, :, None, None]
+
+        def outer(a, c):
+            return (W * a[:, :, :, None] * c[:, :, None, :]).reshape(E, Q, n * n)
+
+        self.mass = outer(ph, ph)
+        self.adv = [outer(dp[d], ph) for d in range(self.dim)]
+        self.dirn = [outer(ph, dp[d]) for d in range(self.dim)]
+        self.gg = [[outer(dp[d], dp[e]) for e in range(self.dim)] for d in range(self.dim)]
+        self.val = w[:, :, None] * ph  # (E, Q, n)
+        self.grd = [w[:, :, None] * dp[d] for d in range(self.dim)]
+        rows = np.repeat(dofs.T, n, axis=1).ravel()
+        cols = np.tile(dofs.T, (1, n)).ravel()
+        key = rows.astype(np.int64) * self.N + cols
+        uniq, inv = np.unique(key, return_inverse=True)
+        self._map = inv.ravel()
+        self.nnz = uniq.size
+        self.indices = (uniq % self.N).astype(np.int32)
+        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(uniq // self.N, minlength=self.N))]).astype(np.int32)
+        self._rhs_idx = dofs.T.ravel()
+
+    def interpolate(self, values):
+        ve = np.asarray(values)[self.dofs].T  # (E, n)
+        return (np.einsum("en,eqn->eq", ve, self.phi),
+                np.array([np.einsum("en,eqn->eq", ve, self.dphi[d]) for d in range(self.dim)]))
+
+    def matrix(self, terms):
+        local = None
+        for c, T in terms:
+            part = np.einsum("eq,eqk->ek", np.asarray(c).reshape(self.E, -1), T)
+            local = part if local is None else local + part
+        data = np.bincount(self._map, weights=local.ravel(), minlength=self.nnz)
+        return sp.csr_matrix((data, self.indices.copy(), self.indptr.copy()), shape=(self.N, self.N))
+
+    def vector(self, terms):
+        local = None
+        for c, L in terms:
+            part = np.einsum("eq,eqn->en", np.asarray(c).reshape(self.E, -1), L)
+            local = part if local is None else local + part
+        return np.bincount(self._rhs_idx, weights=local.ravel(), minlength=self.N)

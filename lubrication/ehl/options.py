@@ -9,20 +9,75 @@ from ..errors import InputError, unknown_choice
 
 @dataclass(frozen=True)
 class EHLGrid:
-    """Uniform grid: ``nx`` x ``ny`` nodes on x in [x_min, x_max] b_x and
-    |y| <= y_max b_y (b_x, b_y: Hertz semi-axes along x and y)."""
+    """``nx`` x ``ny`` nodes on x in [x_min, x_max] b_x and |y| <= y_max b_y (b_x, b_y: Hertz
+    semi-axes along x and y); uniform unless ``refine`` > 1.
+
+    Graded line grids (line contacts only): with ``refine`` = r > 1 the nodes are equidistant in
+    the node density rho(x) = 1 + (r - 1) S(x), S a smooth bump, 1 on ``refine_zone`` = (x_lo, x_hi)
+    [b] and falling to 0 over ``refine_width`` [b] either side (S = (tanh((x - x_lo)/w) - tanh((x -
+    x_hi)/w))/2): cells inside the zone are r times shorter than outside, and neighbouring cells
+    differ by a factor close to 1 (smooth grading keeps P1/SUPG second order).  The node
+    positions (:meth:`x_nodes`) depend only on the grid's fields, so the grid with (nx - 1)/2 + 1
+    nodes on the same fields is nested in this one to round-off (every second node).  Why
+    (issue 22, the roller maps): the outlet pressure spike of a line contact is a fraction of a
+    cell wide on a uniform 257-node grid, and the traction's low-slip slope and transition slip,
+    which the spike carries, jitter by +-10 % between neighbouring loads; 1025 uniform nodes
+    resolve it but do not converge at every load."""
 
     nx: int = 129
     ny: int | None = None
     x_min: float = -4.5
     x_max: float = 1.5
     y_max: float = 3.0
+    refine: float = 1.0
+    refine_zone: tuple = (-1.2, 1.2)
+    refine_width: float = 0.25
 
     def __post_init__(self):
         if self.nx < 9:
             raise InputError(f"grid nx = {self.nx!r} must be >= 9")
         if not self.x_min < 0 < self.x_max:
             raise InputError(f"grid x range [{self.x_min}, {self.x_max}] must contain 0")
+        if not (self.refine >= 1.0 and self.refine <= 100.0):
+            raise InputError(f"grid refine = {self.refine!r} must be in [1, 100] (1: uniform)")
+        lo, hi = (float(v) for v in self.refine_zone)
+        if not lo < hi:
+            raise InputError(f"grid refine_zone = {self.refine_zone!r} must be (x_lo, x_hi) with x_lo < x_hi [b]")
+        if not self.refine_width > 0:
+            raise InputError(f"grid refine_width = {self.refine_width!r} must be > 0 [b]")
+        if self.refine != 1.0 and self.ny is not None:
+            raise InputError(f"grid refine = {self.refine!r} with ny = {self.ny!r}: graded grids are for line "
+                             "contacts (ny = None)")
+
+    @property
+    def graded(self) -> bool:
+        return self.refine != 1.0
+
+    def x_nodes(self) -> "np.ndarray":
+        """Node positions along x [b_x] (nx of them, from x_min to x_max)."""
+        import numpy as np
+
+        if not self.graded:
+            return np.linspace(self.x_min, self.x_max, self.nx)
+        # cumulative node density on a fine sampling (40 samples per transition width, 4096 at least; not
+        # depending on nx, so that coarser() grids are nested), inverted by linear interpolation
+        lo, hi = (float(v) for v in self.refine_zone)
+        w = float(self.refine_width)
+        span = self.x_max - self.x_min
+        n = int(max(4096, 40 * span / w)) + 1
+        s = np.linspace(self.x_min, self.x_max, n)
+        rho = 1.0 + (self.refine - 1.0) * 0.5 * (np.tanh((s - lo) / w) - np.tanh((s - hi) / w))
+        cum = np.concatenate([[0.0], np.cumsum(0.5 * (rho[1:] + rho[:-1]) * np.diff(s))])
+        x = np.interp(np.linspace(0.0, cum[-1], self.nx), cum, s)
+        x[0], x[-1] = self.x_min, self.x_max
+        return x
+
+    def coarser(self) -> "EHLGrid":
+        """The nested grid with (nx - 1)/2 + 1 nodes (ny likewise), same range and grading."""
+        import dataclasses
+
+        return dataclasses.replace(self, nx=(self.nx - 1) // 2 + 1,
+                                   ny=None if self.ny is None else (self.ny - 1) // 2 + 1)
 
 
 @dataclass(frozen=True)

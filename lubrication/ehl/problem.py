@@ -11,10 +11,11 @@ from skfem import BilinearForm, LinearForm, asm
 from skfem.helpers import dot, grad
 
 from .. import mesh as meshes
-from ..elastic import ElasticKernel
+from ..elastic import ElasticKernel, line_influence_matrix
+from ..errors import InputError
 from ..laws import contact as hertz
 from ..reynolds.forms import _advection, _diffusion, _flux_load, _mass, _source_load, _streamline, make_basis
-from .assembly import UniformForms
+from .assembly import ElementForms, UniformForms
 from .contact import EHLContact, _eyring_terms, _log_slope, supg_parameter
 from .options import EHLGrid, EHLOptions
 
@@ -55,8 +56,13 @@ class _Problem:
             self.delta_hertz = hp.approach
         self.hscale = self.bx**2 / contact.radius_x
         nx = grid.nx
-        xs = np.linspace(grid.x_min * self.bx, grid.x_max * self.bx, nx)
-        self.dx = xs[1] - xs[0]
+        self.graded = bool(grid.graded)
+        if self.graded and not contact.is_line:
+            raise InputError(f"grid refine = {grid.refine!r}: graded grids are for line contacts")
+        xs = grid.x_nodes() * self.bx if self.graded else np.linspace(grid.x_min * self.bx, grid.x_max * self.bx, nx)
+        # SUPG element size: the spacing, per element ((E, 1), broadcast over the quadrature points) on a
+        # graded grid
+        self.dx = np.diff(xs)[:, None] if self.graded else xs[1] - xs[0]
         if contact.is_line:
             self.shape = (nx,)
             spacing = (self.dx,)
@@ -90,7 +96,9 @@ class _Problem:
         self.N = int(np.prod(self.shape))
         self.flat = np.arange(self.N)
         loc = self.doflocs
-        self.kernel = ElasticKernel(self.shape, spacing, contact.e_star)
+        # elastic operator: FFT of the Toeplitz kernel (uniform grids), the dense matrix of the node cells
+        # (graded line grids, :func:`lubrication.elastic.line_influence_matrix`)
+        self.kernel = None if self.graded else ElasticKernel(self.shape, spacing, contact.e_star)
         x = loc[0]
         self.rigid = x**2 / (2 * contact.radius_x)
         if not contact.is_line:
@@ -103,7 +111,7 @@ class _Problem:
         # Dirichlet p = 0 on the whole boundary
         self.fixed = boundary.ravel()
         self.free0 = ~self.fixed
-        self._Kdense = None
+        self._Kdense = line_influence_matrix(xs, contact.e_star) if self.graded else None
         self._Kloc = None
 
     @property
@@ -111,7 +119,8 @@ class _Problem:
         """The film mesh (:func:`lubrication.mesh.rectangle` quads or an interval), built on first use."""
         if self._mesh is None:
             if self.c.is_line:
-                self._mesh = meshes.interval(self.xs[0], self.xs[-1], self.shape[0] - 1)
+                self._mesh = meshes.interval(self.xs[0], self.xs[-1], self.shape[0] - 1,
+                                             points=self.xs if self.graded else None)
             else:
                 self._mesh = meshes.rectangle(self.xs, self.ys, "quad")
         return self._mesh
@@ -136,7 +145,7 @@ class _Problem:
     @property
     def forms(self):
         if self._forms is None:
-            self._forms = UniformForms(self.basis)
+            self._forms = ElementForms(self.basis) if self.graded else UniformForms(self.basis)
         return self._forms
 
     @property
@@ -152,7 +161,10 @@ class _Problem:
         number of cells at the node over the number of a cell's vertices (P1 on
         a uniform tensor grid; equal to :attr:`weights` to round-off)."""
         if self._weights is None:
-            if self.c.is_line:
+            if self.graded:
+                cells = np.diff(self.xs)
+                w = np.concatenate([[0.0], cells]) * 0.5 + np.concatenate([cells, [0.0]]) * 0.5
+            elif self.c.is_line:
                 w = np.full(self.shape, self.dx)
                 w[[0, -1]] *= 0.5
             else:
@@ -164,6 +176,8 @@ class _Problem:
 
     # -- elastic operator in dof ordering --------------------------------
     def deflect(self, p):
+        if self.graded:  # line dofs are the nodes in order (flat is the identity)
+            return self._Kdense @ p
         grid = np.zeros(np.prod(self.shape))
         grid[self.flat] = p
         u = self.kernel.deflect(grid.reshape(self.shape)).ravel()
@@ -184,6 +198,11 @@ class _Problem:
 
     def K_local(self):
         """Sparse truncation of K to offsets |di|, |dj| <= stencil."""
+        if self._Kloc is None and self.graded:
+            s = self.o.stencil
+            n = self.N
+            self._Kloc = sp.diags([np.diagonal(self._Kdense, d) for d in range(-s, s + 1)], list(range(-s, s + 1)),
+                                  shape=(n, n), format="csr")
         if self._Kloc is None:
             s = self.o.stencil
             Kk = self.kernel._kernel

@@ -182,8 +182,7 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
         return out
     P = _Problem(contact, grid, options)
     if nests:
-        coarse_grid = EHLGrid(nx=(grid.nx - 1) // 2 + 1, ny=None if grid.ny is None else (grid.ny - 1) // 2 + 1,
-                              x_min=grid.x_min, x_max=grid.x_max, y_max=grid.y_max)
+        coarse_grid = grid.coarser()
         try:
             coarse = _solve_ehl(contact, coarse_grid, options, sequence=True, _final=False, _coarse=True)
         except ConvergenceError as exc:
