@@ -13,7 +13,7 @@ error a map would make, estimated on the sweeps themselves:
   of the 9 errors per point).  "mu1e-4" etc. interpolate the traction at a fixed SRR directly.
 
 ``python benchmarks/roller_traction_sweeps.py sweep TAG --races cone,cup --speeds 7,7.857 --loads 5000,150000,73
-[--density dowson_higginson] [--resolution default] [--coefficients secant]`` -> results/roller_sweeps/TAG.pkl
+[--density dowson_higginson] [--resolution default] [--coefficients secant] [--refine 6]`` -> results/roller_sweeps/TAG.pkl
 (2 worker processes); ``python benchmarks/roller_traction_sweeps.py summary`` -> results/roller_traction_sweeps.json
 from every TAG.pkl present (the sweeps, their layouts and the error tables).
 """
@@ -42,11 +42,13 @@ OUTS = {"hc": "Central film thickness [m]", "hmin": "Minimum film thickness [m]"
 
 
 def _point(task):
-    race, u, w, density, resolution, coefficients = task
+    race, u, w, density, resolution, coefficients, refine = task
     from coupling.film_points import ehl
 
     p = ehl._roller_params(race)
     p.update(density_law=density, resolution=resolution)
+    if refine != 1.0:  # a graded line grid (lubrication.ehl.EHLGrid.refine; the kinds' zone scaled with the film)
+        p["grid_refine"] = refine
     if coefficients:
         p["coefficients"] = coefficients
     t = time.perf_counter()
@@ -65,14 +67,14 @@ def _point(task):
     return res
 
 
-def sweep(tag, races, speeds, loads, density, resolution, coefficients, workers=2):
-    tasks = [(r, u, float(w), density, resolution, coefficients) for r in races for u in speeds for w in loads]
+def sweep(tag, races, speeds, loads, density, resolution, coefficients, workers=2, refine=1.0):
+    tasks = [(r, u, float(w), density, resolution, coefficients, refine) for r in races for u in speeds for w in loads]
     t0 = time.perf_counter()
     with Pool(workers) as pool:
         results = list(pool.imap(_point, tasks, chunksize=4))
     RAW.mkdir(parents=True, exist_ok=True)
     data = dict(results=results, loads=np.asarray(loads), speeds=list(speeds), races=list(races), SIG=SIG, SRRS=SRRS,
-                density=density, resolution=resolution, coefficients=coefficients, wall=time.perf_counter() - t0,
+                density=density, resolution=resolution, coefficients=coefficients, refine=refine, wall=time.perf_counter() - t0,
                 load_average=list(os.getloadavg()))
     with open(RAW / f"{tag}.pkl", "wb") as fh:
         pickle.dump(data, fh)
@@ -172,11 +174,16 @@ def summary():
     from _common import machine_info, write_json
 
     keys = list(OUTS) + ["s_t", "mu0.0001", "mu0.001", "mu0.01"]
-    result = {"machine": machine_info(), "sweeps": {}}
+    # the raw sweeps are not versioned: sweeps summarised before (and whose .pkl is gone) are kept from the JSON
+    out = HERE / "results" / "roller_traction_sweeps.json"
+    import json
+
+    kept = json.loads(out.read_text())["sweeps"] if out.exists() else {}
+    result = {"machine": machine_info(), "sweeps": kept}
     for path in sorted(RAW.glob("*.pkl")):
         with open(path, "rb") as fh:
             d = pickle.load(fh)
-        entry = {k: d.get(k) for k in ("density", "resolution", "coefficients", "wall", "load_average")}
+        entry = {k: d.get(k) for k in ("density", "resolution", "coefficients", "refine", "wall", "load_average")}
         entry.update(races=d["races"], speeds=d["speeds"], loads=[float(d["loads"][0]), float(d["loads"][-1]), len(d["loads"])],
                      failed=[(r["race"], r["u"], r["w"], r.get("err", "")[:200]) for r in d["results"] if not r["ok"]],
                      points=len(d["results"]), load=[], speed=[], slope={})
@@ -199,7 +206,7 @@ def summary():
                     entry["speed"].append({"race": race, "nodes": nodes, "at": mid,
                                            "errors": {key: _stats(e, ww) for key, (e, ww) in E.items()}})
         result["sweeps"][path.stem] = entry
-    return write_json(HERE / "results" / "roller_traction_sweeps.json", result)
+    return write_json(out, result)
 
 
 def main(argv=None):
@@ -213,11 +220,12 @@ def main(argv=None):
     ap.add_argument("--resolution", default="default")
     ap.add_argument("--coefficients", default="", help="override the kinds' 'secant' (e.g. 'linearised')")
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--refine", type=float, default=1.0, help="graded line grid: the kinds' grid_refine (1: uniform)")
     a = ap.parse_args(argv)
     if a.mode == "sweep":
         lo, hi, n = a.loads.split(",")
         sweep(a.tag, a.races.split(","), [float(s) for s in a.speeds.split(",")], np.geomspace(float(lo), float(hi), int(n)),
-              a.density, a.resolution, a.coefficients, a.workers)
+              a.density, a.resolution, a.coefficients, a.workers, a.refine)
     else:
         print(summary())
 

@@ -59,7 +59,11 @@ class UniformForms:
                     for e in range(self.dim)] for d in range(self.dim)]
         self.val = w[:, None] * ph  # (Q, n)
         self.grd = [w[:, None] * dp[d] for d in range(self.dim)]
-        # COO (element, i, j) -> CSR position
+        self._scatter(dofs)
+
+    def _scatter(self, dofs):
+        """The COO (element, i, j) -> CSR map of the element matrices and the load-vector scatter."""
+        n = dofs.shape[0]
         rows = np.repeat(dofs.T, n, axis=1).ravel()  # (E, i, j) order: row = dofs[i, e]
         cols = np.tile(dofs.T, (1, n)).ravel()
         key = rows.astype(np.int64) * self.N + cols
@@ -77,11 +81,15 @@ class UniformForms:
         return ve @ self.phi.T, np.array([ve @ self.dphi[d].T for d in range(self.dim)])
 
     # ---------------------------------------------------------- assembly
+    def _local(self, c, T):
+        """Per-element products sum_q c(e, q) T[q, :] (one template for every element)."""
+        return np.asarray(c).reshape(self.E, -1) @ T
+
     def matrix(self, terms):
         """CSR matrix of sum_k c_k(e, q) T_k for ``terms`` = [(c_k, T_k), ...]."""
         local = None
         for c, T in terms:
-            part = np.asarray(c).reshape(self.E, -1) @ T
+            part = self._local(c, T)
             local = part if local is None else local + part
         data = np.bincount(self._map, weights=local.ravel(), minlength=self.nnz)
         return sp.csr_matrix((data, self.indices.copy(), self.indptr.copy()), shape=(self.N, self.N))
@@ -90,7 +98,7 @@ class UniformForms:
         """Load vector of sum_k c_k(e, q) L_k for ``terms`` = [(c_k, L_k), ...] (L: ``val`` or ``grd[d]``)."""
         local = None
         for c, L in terms:
-            part = np.asarray(c).reshape(self.E, -1) @ L
+            part = self._local(c, L)
             local = part if local is None else local + part
         return np.bincount(self._rhs_idx, weights=local.ravel(), minlength=self.N)
 
@@ -124,32 +132,13 @@ class ElementForms(UniformForms):
         self.gg = [[outer(dp[d], dp[e]) for e in range(self.dim)] for d in range(self.dim)]
         self.val = w[:, :, None] * ph  # (E, Q, n)
         self.grd = [w[:, :, None] * dp[d] for d in range(self.dim)]
-        rows = np.repeat(dofs.T, n, axis=1).ravel()
-        cols = np.tile(dofs.T, (1, n)).ravel()
-        key = rows.astype(np.int64) * self.N + cols
-        uniq, inv = np.unique(key, return_inverse=True)
-        self._map = inv.ravel()
-        self.nnz = uniq.size
-        self.indices = (uniq % self.N).astype(np.int32)
-        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(uniq // self.N, minlength=self.N))]).astype(np.int32)
-        self._rhs_idx = dofs.T.ravel()
+        self._scatter(dofs)
 
     def interpolate(self, values):
         ve = np.asarray(values)[self.dofs].T  # (E, n)
         return (np.einsum("en,eqn->eq", ve, self.phi),
                 np.array([np.einsum("en,eqn->eq", ve, self.dphi[d]) for d in range(self.dim)]))
 
-    def matrix(self, terms):
-        local = None
-        for c, T in terms:
-            part = np.einsum("eq,eqk->ek", np.asarray(c).reshape(self.E, -1), T)
-            local = part if local is None else local + part
-        data = np.bincount(self._map, weights=local.ravel(), minlength=self.nnz)
-        return sp.csr_matrix((data, self.indices.copy(), self.indptr.copy()), shape=(self.N, self.N))
-
-    def vector(self, terms):
-        local = None
-        for c, L in terms:
-            part = np.einsum("eq,eqn->en", np.asarray(c).reshape(self.E, -1), L)
-            local = part if local is None else local + part
-        return np.bincount(self._rhs_idx, weights=local.ravel(), minlength=self.N)
+    def _local(self, c, T):
+        """Per-element products sum_q c(e, q) T[e, q, :] (a template per element)."""
+        return np.einsum("eq,eqk->ek", np.asarray(c).reshape(self.E, -1), T)
