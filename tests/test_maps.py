@@ -486,8 +486,11 @@ _ROLLER_FRONT = ("the roller kinds' traction (coupling.film_points.evaluate_ehl_
                  "(d ln a/d ln w up to 17-18 at 21-26 kN/m, 7 m/s) and a map of it would still miss by 14-18 % at load "
                  "node ratio 1.10, 7-11 % at 22-28 m/s, 6.6-7.2 % across a 1.12 speed step, and 2.5-7.4 % above the knee, "
                  "where 257-node a is up to 15-23 % off the 1025-node value; on 513 nodes still 2.4-3.2 % at node ratio "
-                 "1.023; 1025 nodes would do at node ratio ~1.05 (2.2 %) but fail to converge at 39-44 kN/m, 7 m/s; "
-                 "cases/maps/README.md")
+                 "1.023; 1025 nodes would do at node ratio ~1.05 (2.2 %) but fail to converge at 39-44 kN/m, 7 m/s.  "
+                 "Graded line grids (session 14, EHLGrid.refine): with the Dowson-Higginson film the knee is smooth "
+                 "(15-45 kN/m, 7 m/s, all 31 loads converge; 3.0 % max at node ratio 1.076) but above it the graded "
+                 "Newton fails (50-80 kN/m as independent points, 4 of 20 loads along a continuation to 117 kN/m), "
+                 "and the uniform film there misses by median ~2 %; cases/maps/README.md")
 _ROLLER_TRANSITION = ("the transition slip s_t (the traction's normalised coordinate, the slip at half the linear "
                       "traction) follows the jitter of the slope a (s_t ~ 1/a: cup, 7 m/s, 45-52 kN/m, a 7.68, "
                       "6.60, 8.03 and s_t 1.29, 1.57, 1.35e-2): max 13.5 % cone "
