@@ -207,6 +207,10 @@ def _roller_params(race: str) -> dict:
         "length": 1.0,
         "inlet_film_lengths": ROLLER_INLET_FILM_LENGTHS,
         "outlet_film_lengths": ROLLER_OUTLET_FILM_LENGTHS,
+        # graded line grid (_graded_fields; 1: uniform) and the Newton's pseudo-transient continuation
+        # (lubrication.ehl EHLOptions.pseudo_transient; 0: off)
+        "grid_refine": 1.0,
+        "pseudo_transient": 0.0,
     })
     return params
 
@@ -313,7 +317,7 @@ def _ehl_setup(params, load, speed):
         grid = EHLGrid(nx=table[res], x_min=x_lo, x_max=x_hi, **_graded_fields(params, contact))
     else:
         grid = _ehl_grid(table[res], line, float(params["x_min"]), float(params["x_max"]), float(params["y_max"]))
-    return contact, grid, EHLOptions()
+    return contact, grid, EHLOptions(pseudo_transient=float(_get(params, "pseudo_transient", 0.0)))
 
 
 def _ehl_grid(nodes, line: bool, x_min: float, x_max: float, y_max: float):
@@ -1001,7 +1005,7 @@ def _roller_line_loads() -> tuple:
     transition slip s_t falls by 35 e-folds per e-fold of load there (cone, 17.7 m/s: s_t = 4.6e-2 at
     30 kN/m, 1.7e-6 at 40 kN/m).  On 16 log nodes (ratio 1.50) the knee fell inside one cell (K and C
     missed by 7-8 %)."""
-    bands = (np.geomspace(700.0, 1.4e4, 9), np.geomspace(1.4e4, 5.6e4, 21), np.geomspace(5.6e4, 3.0e5, 6))
+    bands = (np.geomspace(700.0, 1.4e4, 9), np.geomspace(1.4e4, 5.6e4, 29), np.geomspace(5.6e4, 3.0e5, 6))
     nodes = np.concatenate([bands[0], bands[1][1:], bands[2][1:]])
     return tuple(float(x) for x in nodes)
 
@@ -1011,7 +1015,7 @@ EHL_ROLLER_LINE_AXES = (
     AxisDef("Line load [N/m]", 700.0, 3.0e5, len(ROLLER_LINE_LOADS), "log", explicit=ROLLER_LINE_LOADS),
     # 13 nodes (ratio 1.12): the transition slip moves by ~17 e-folds per e-fold of speed in the
     # Newtonian-to-limited transition (it depends on load and speed mostly through Moes' M ~ w/sqrt(u))
-    AxisDef("Entrainment speed [m/s]", 7.0, 28.0, 13, "log"),
+    AxisDef("Entrainment speed [m/s]", 7.0, 28.0, 17, "log"),
     # 37 nodes (9 per decade): the traction is tabulated on the normalised slip, whose axis spans 12
     # decades on these nodes (3 per decade; ROLLER_TRACTION_SHEAR); the nodes cost no EHL solve
     AxisDef("Slide-to-roll ratio [-]", ROLLER_SRR_MIN, 0.1, 37, "log"),

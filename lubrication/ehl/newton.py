@@ -157,6 +157,34 @@ def _prolong(coarse: EHLSolution, P: _Problem) -> np.ndarray:
     return f(P.doflocs.T)
 
 
+def _pseudo_transient(P: _Problem, p, hn, R, A, D, state):
+    """Pseudo-transient continuation of the Newton step (``EHLOptions.pseudo_transient``): the Jacobian gains
+    the lumped transient term of d(rho h)/dt with a pseudo time step dtau, dR_i/dp_i += w_i rho'_i h_i/dtau
+    and dR_i/dh_i += w_i rho_i/dtau (the residual, the converged state and the convergence test are
+    unchanged: backward Euler in pseudo time linearised at the current state, where the transient term
+    vanishes).  dtau grows as the residual falls (switched evolution relaxation, Mulder & van Leer 1985):
+    dtau = dtau0 |R_0|/|R|, dtau0 = ``pseudo_transient`` transit times of the domain (its length over u_m);
+    off once dtau exceeds 1e10 transit times (plain Newton, quadratic convergence kept).  Why (issue 22): where the viscosity is
+    eta0 exp(alpha p) with alpha p = 30-60 the Poiseuille flow vanishes, the film is held by its Couette
+    balance d(rho h)/dx = 0 alone, whose Jacobian has a near-null mode (a pressure whose deflection is
+    constant there); finer grids resolve it and the plain Newton step jumps by p_Hertz along it.  The
+    transient term penalises that mode (measured: paper A's cone at 7 m/s, Dowson-Higginson film, graded
+    257 nodes: 53.6-87.3 kN/m failed with every fallback and converge with dtau0 = 1)."""
+    r = float(np.linalg.norm(R[P.free0]))
+    if "r0" not in state:
+        state["r0"] = max(r, 1e-300)
+    transit = (P.xs[-1] - P.xs[0]) / abs(P.c.mean_speed)
+    dtau = P.o.pseudo_transient * transit * state["r0"] / max(r, 1e-300)
+    if dtau >= 1e10 * transit:
+        return A, D
+    lub = P.c.lubricant
+    pp = np.maximum(p, 0.0)
+    w = P.weights / dtau
+    A = (A + sp.diags(w * lub.density.derivative(pp) * hn)).tocsr()
+    D = (D + sp.diags(w * lub.density(pp))).tocsr()
+    return A, D
+
+
 def _active_set_newton(P: _Problem, p, h00, W):
     """Bordered Newton with a projected active set (the module docstring's
     scheme; line contacts by default).  Returns ``(p, h00, history, gmres)``."""
@@ -166,9 +194,12 @@ def _active_set_newton(P: _Problem, p, h00, W):
     history = []
     gm = 0
     rejected = None
+    ptc = {} if options.pseudo_transient > 0 else None
     for it in range(1, options.max_iter + 1):
         _spend(P)
         R, hn, A, D, aux = P.assemble(p, h00)
+        if ptc is not None:
+            A, D = _pseudo_transient(P, p, hn, R, A, D, ptc)
         added_any = False
         for _inner in range(options.active_set_passes):
             # Newton step with the cavitated set fixed at p = 0; free nodes the

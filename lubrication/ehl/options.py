@@ -111,8 +111,14 @@ class EHLOptions:
     # level counts its share of the nodes), every start and fallback included; None: the default of
     # the contact kind, DEFAULT_MAX_WORK (math.inf: unbounded)
     max_work: float | None = None
+    # pseudo-transient continuation of the active-set Newton iteration: the initial pseudo time step in
+    # transit times of the domain, its length over u_m (0: off); see newton._pseudo_transient
+    pseudo_transient: float = 0.0
 
     def __post_init__(self):
+        if not self.pseudo_transient >= 0:
+            raise InputError(f"solver.pseudo_transient = {self.pseudo_transient!r} must be >= 0 (transit times of the domain; "
+                             "0: off)")
         for key, value, allowed in (("method", self.method, EHL_METHODS),
                                     ("first_order_start", self.first_order_start, FIRST_ORDER_STARTS)):
             if value not in allowed:
