@@ -467,42 +467,14 @@ def test_dask_worker_processes_give_the_same_real_map(tmp_path):
 SHIPPED_MAPS = Path(__file__).resolve().parents[1] / "cases" / "maps"
 
 
-# (map, output) pairs that miss the target, with the measured cause (strict xfail): the roller maps on
-# paper A's axes (issue 22, section 4; cases/maps/README.md).  Fixed 25 Nov 2026: their K and C (the knee
-# at 18-46 kN/m: 34 load nodes dense over 14-56 kN/m, secants above M = 0.25) and the cone's central film
-# (interpolated at x = 0 instead of the nearest node's).  The earlier roller map uses Eyring flow (22 Nov 2026): its Newtonian h_min, damping and approach missed (max 6.1 /
-# 3.4 / 3.4 %) because the Newtonian line contact had several exact solutions per (load, speed)
-# (coupling/film_points.py, ehl_roller_race_default_params; tests/test_ehl.py pins it).
-_ROLLER_FRONT = ("the roller kinds' traction (coupling.film_points.evaluate_ehl_line; since 25 Nov 2026 the film's "
-                 "Maxwell shear, G = 1 GPa, capped by limiting shear, on the normalised slip) is itself not smooth in "
-                 "load on the kinds' 257 nodes: its linear slope a jumps by up to +-10 % between neighbouring load "
-                 "nodes at 37-56 kN/m, 7 m/s (cup: 5.99, 6.15, 6.16, 7.68, 6.60, 8.03, 7.56), where 95 % of a comes "
-                 "from the cells within 0.3 b of the one-node pressure spike (measured 40-49 kN/m), and keeps a "
-                 "+-5 % bump where the spike forms (cone, 31-33 kN/m, 17.7 m/s; smooth on 513 nodes): max "
-                 "8.5 % cone (33.3 kN/m, 7.2 m/s, SRR 3.5e-5; 3 of 40 points above 3 %) / 5.2 % cup (55 kN/m, "
-                 "7.5 m/s, SRR 6.6e-4; 3 of 40); median 0.37 / 0.13 % (the rigid law before: 14 % / 8.1 %, its "
-                 "low-slip traction the viscosity at the one-cell spike).  Not fixed by a compressible film (28 Nov 2026, "
-                 "benchmarks/roller_traction_sweeps.py, Dowson-Higginson, dense load sweeps, no rebuild): the knee sharpens "
-                 "(d ln a/d ln w up to 17-18 at 21-26 kN/m, 7 m/s) and a map of it would still miss by 14-18 % at load "
-                 "node ratio 1.10, 7-11 % at 22-28 m/s, 6.6-7.2 % across a 1.12 speed step, and 2.5-7.4 % above the knee, "
-                 "where 257-node a is up to 15-23 % off the 1025-node value; on 513 nodes still 2.4-3.2 % at node ratio "
-                 "1.023; 1025 nodes would do at node ratio ~1.05 (2.2 %) but fail to converge at 39-44 kN/m, 7 m/s.  "
-                 "Graded line grids (session 14, EHLGrid.refine): with the Dowson-Higginson film the knee is smooth "
-                 "(15-45 kN/m, 7 m/s, all 31 loads converge; 3.0 % max at node ratio 1.076) but above it the graded "
-                 "Newton fails (50-80 kN/m as independent points, 4 of 20 loads along a continuation to 117 kN/m), "
-                 "and the uniform film there misses by median ~2 %; cases/maps/README.md")
-_ROLLER_TRANSITION = ("the transition slip s_t (the traction's normalised coordinate, the slip at half the linear "
-                      "traction) follows the jitter of the slope a (s_t ~ 1/a: cup, 7 m/s, 45-52 kN/m, a 7.68, "
-                      "6.60, 8.03 and s_t 1.29, 1.57, 1.35e-2): max 13.5 % cone "
-                      "(23.2 kN/m, 7.7 m/s) / 8.4 % cup (58 kN/m, 15.2 m/s), 4 / 8 of 40 points above 3 %, median "
-                      "0.19 / 0.24 % (rigid law before: 112 % / 39 %); with a Dowson-Higginson film (28 Nov 2026 "
-                      "pre-check, no rebuild) 16-52 % at load node ratio 1.10 (7-8.8 m/s) and 10-19 % across a 1.12 speed step "
-                      "(7 m/s), 2.1-3.5 % on 513 nodes at node ratio 1.023")
+# (map, output) pairs that miss the target, with the measured cause (strict xfail).  None since 28 Nov 2026:
+# the roller maps' traction and transition slip missed (max 8.5 / 13.5 %) while their 257-node solutions were
+# uniform and incompressible (the traction's low-slip slope jumped +-10 % between loads with the one-node
+# pressure spike); rebuilt with a Dowson-Higginson film on a graded grid, solved with the pseudo-transient
+# Newton (cases/maps/README.md, "Rebuilt 28 Nov 2026"), every output meets the target.  Earlier fixes: K and C
+# (25 Nov 2026, the knee), the cone's central film (interpolated at x = 0), the Newtonian roller map's several
+# exact solutions per point (22 Nov 2026, Eyring flow; tests/test_ehl.py pins it).
 KNOWN_MISSES: dict = {
-    ("ehl_roller_cone", "Traction coefficient [-]"): _ROLLER_FRONT,
-    ("ehl_roller_cup", "Traction coefficient [-]"): _ROLLER_FRONT,
-    ("ehl_roller_cone", "Transition slide-to-roll ratio [-]"): _ROLLER_TRANSITION,
-    ("ehl_roller_cup", "Transition slide-to-roll ratio [-]"): _ROLLER_TRANSITION,
 }
 
 

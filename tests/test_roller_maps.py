@@ -275,15 +275,20 @@ def test_lithium_grease_map_fails_with_one_line_naming_the_parameter():
                              {"Line load [N/m]": 5e4, "Entrainment speed [m/s]": 10.0})
 
 
-def test_map_case_lubricant_table_takes_a_grease():
+def test_map_case_lubricant_table_takes_a_grease(tmp_path):
     """A roller map case's [lubricant] with [lubricant.herschel_bulkley] (the EHL scenes' syntax: eta0 is the
     consistency phi0) resolves into the kind's grease parameters; a kind without them refuses it in one line."""
     from coupling.config import CASES_DIR, CaseError, load_case
 
     lub = ["lubricant.viscosity.law=barus", "lubricant.viscosity.eta0=8.44 Pa s", "lubricant.viscosity.alpha=4.662e-8 m^2/N",
            "lubricant.herschel_bulkley.yield_stress=351.8 Pa", "lubricant.herschel_bulkley.exponent=0.7196"]
-    case = load_case(CASES_DIR / "map_ehl_roller_cone.toml", overrides=lub + ["lubricant.density.law=incompressible",
-                                                                             "lubricant.density.rho0=870 kg/m^3"])
+    # the shipped case gives the film's density in [params] (density_law, Dowson-Higginson); a [lubricant] table
+    # gives the whole lubricant, density included, so that line goes (one place for the lubricant)
+    text = (CASES_DIR / "map_ehl_roller_cone.toml").read_text()
+    assert 'density_law = "dowson_higginson"\n' in text
+    path = tmp_path / "map_ehl_roller_cone.toml"
+    path.write_text(text.replace('density_law = "dowson_higginson"\n', ""))
+    case = load_case(path, overrides=lub + ["lubricant.density.law=incompressible", "lubricant.density.rho0=870 kg/m^3"])
     assert {k: case.params[k] for k in ("rheology", "hb_consistency", "hb_yield_stress", "hb_exponent", "hb_creep")} == \
         dict(fp.roller_grease_params("polyurea", 30.0))
     with pytest.raises(CaseError, match=r"^lubricant.herschel_bulkley = .* is not used by kind 'ball_ball' \(only the "

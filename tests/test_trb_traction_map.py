@@ -93,7 +93,9 @@ def test_kernel_traction_against_a_direct_ehl_solve(model, P, race, load):
 def test_stable_step_follows_the_maps_low_slip_slope(model):
     """RK4's step estimate of the "map" traction: the decay rate (k_cup + k_cone)(1/m + rho_m^2/I_x) with
     k = (mu/s) Q/u_e from the maps' own reader at the axis' first slip node and the start's largest cup
-    load; it lies below the strip law's elastic slope at this point (the RK4 step 8.6 against 2.2 us)."""
+    load; it lies below the strip law's elastic slope at this point (stable step 4.6 against 2.8 us with the maps
+    rebuilt 28 Nov 2026, whose compressible film has about twice the low-slip slope of the incompressible one
+    before: 8.6 us then)."""
     qs = model.quasi_static()
     g = model.geometry
     load = float(np.max(qs.cup_loads))
@@ -103,7 +105,7 @@ def test_stable_step_follows_the_maps_low_slip_slope(model):
     m, ix, _, _ = g.roller_mass_properties()
     assert model.traction_rate(qs) == pytest.approx(k * (1 / m + g.mean_roller_radius**2 / ix), rel=1e-10)
     limited = ts.build(load_case(CASE, overrides=["model.traction=limited"]))
-    assert model.stable_step(qs) > 2.0 * limited.stable_step(qs)
+    assert model.stable_step(qs) > 1.5 * limited.stable_step(qs)
 
 
 def test_entrainment_speed_outside_the_maps_is_one_line():

@@ -597,6 +597,12 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
             # load continuation from a lighter converged state, itself solved with these fallbacks, with a
             # damped Newton step (LIGHTER_LOAD_STEP)
             attempts.insert(2, (grid, slow, "lighter"))
+            if options.pseudo_transient > 0:
+                # ... and with the undamped step: with the pseudo-transient Newton the damped step is the slower
+                # (measured: paper A's cup, Dowson-Higginson film, graded 257 nodes, 109.6 kN/m, 8.3 m/s (M = 1.64)
+                # fails with every other fallback and with max_step 0.5 from the converged 0.9 of the load, and
+                # converges from it in 50 iterations with the default step)
+                attempts.insert(2, (grid, options, "lighter"))
     attempts.append((grid, slow, 2.0))
     if line and not film_scaled:
         attempts.append((dataclasses.replace(grid, x_max=grid.x_max + 1.0), slow))
@@ -998,14 +1004,17 @@ ROLLER_SRR_MIN = 1e-5
 
 def _roller_line_loads() -> tuple:
     """Line-load nodes [N/m] of the roller kinds: log-uniform in three bands, 0.7-14 kN/m (8 cells, ratio
-    1.45), 14-56 kN/m (20 cells, ratio 1.072) and 56-300 kN/m (5 cells, ratio 1.40): 34 nodes.  The middle
+    1.45), 14-56 kN/m (36 cells, ratio 1.039; 20 cells of 1.072 before 28 Nov 2026) and 56-300 kN/m (5 cells,
+    ratio 1.40): 50 nodes.  The middle
     band holds the hydrodynamic-to-EHL knee (measured on 257 nodes, linearised K: d ln K/d ln w falls
     from 2.3-3.0 to ~0 within one 11 % load step at 20-22 kN/m (cone, 7 m/s), 34-38 (cone, 28 m/s),
     25-27 (cup, 7 m/s), 38-42 kN/m (cup, 28 m/s)) and the traction's Newtonian-to-limited front, whose
     transition slip s_t falls by 35 e-folds per e-fold of load there (cone, 17.7 m/s: s_t = 4.6e-2 at
     30 kN/m, 1.7e-6 at 40 kN/m).  On 16 log nodes (ratio 1.50) the knee fell inside one cell (K and C
-    missed by 7-8 %)."""
-    bands = (np.geomspace(700.0, 1.4e4, 9), np.geomspace(1.4e4, 5.6e4, 29), np.geomspace(5.6e4, 3.0e5, 6))
+    missed by 7-8 %).  With the smooth films of the rebuilt maps (Dowson-Higginson, graded grid) a map at
+    node ratio 1.076 missed the traction by 3.0 % in the knee (cone, 7 m/s; benchmarks/roller_traction_sweeps.py,
+    sweep dh_graded6_cone7) and one at 1.05 the damping by 3.18 % (24.5 kN/m, 7.5 m/s): hence 1.039."""
+    bands = (np.geomspace(700.0, 1.4e4, 9), np.geomspace(1.4e4, 5.6e4, 37), np.geomspace(5.6e4, 3.0e5, 6))
     nodes = np.concatenate([bands[0], bands[1][1:], bands[2][1:]])
     return tuple(float(x) for x in nodes)
 
@@ -1013,8 +1022,9 @@ def _roller_line_loads() -> tuple:
 ROLLER_LINE_LOADS = _roller_line_loads()
 EHL_ROLLER_LINE_AXES = (
     AxisDef("Line load [N/m]", 700.0, 3.0e5, len(ROLLER_LINE_LOADS), "log", explicit=ROLLER_LINE_LOADS),
-    # 13 nodes (ratio 1.12): the transition slip moves by ~17 e-folds per e-fold of speed in the
-    # Newtonian-to-limited transition (it depends on load and speed mostly through Moes' M ~ w/sqrt(u))
+    # 17 nodes (ratio 1.09; 13 of 1.12 before 28 Nov 2026): the knee moves with Moes' M ~ w/sqrt(u), so a
+    # speed step moves it like a load step of its square root (with 13 speeds the rebuilt cone map missed
+    # the damping by 4.7 % at 35 kN/m, 24.5 m/s)
     AxisDef("Entrainment speed [m/s]", 7.0, 28.0, 17, "log"),
     # 37 nodes (9 per decade): the traction is tabulated on the normalised slip, whose axis spans 12
     # decades on these nodes (3 per decade; ROLLER_TRACTION_SHEAR); the nodes cost no EHL solve

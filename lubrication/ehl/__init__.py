@@ -71,6 +71,13 @@ the Newton iteration on a graded 257-node grid fails at 14 of 38 loads of a 3 %-
 continuation (full steps of 1-6 p_Hertz from the converged neighbour, the cavitated set moving),
 as it does on uniform 1025 nodes: the finer the spike is resolved, the harder the iteration.
 
+Pseudo-transient continuation (``EHLOptions(pseudo_transient=dtau0)``, the active-set Newton): the
+Jacobian gains the lumped transient term of d(rho h)/dt with a pseudo time step that grows as the
+residual falls (switched evolution relaxation), so the step is damped along the near-null mode of the
+Couette-dominated zone and the iteration ends as plain Newton (:func:`newton._pseudo_transient`).  With
+it and a compressible (Dowson-Higginson) film, paper A's roller contacts converge on the graded grid over
+the whole map range (0.7-300 kN/m, 7-28 m/s), and the roller maps are built so (cases/maps/README.md).
+
 Coupled solver
 --------------
 Newton on (p, h00): J = A + D K with A = dR/dp at fixed h (sparse), D = dR/dh
