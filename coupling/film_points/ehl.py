@@ -280,9 +280,10 @@ def _graded_fields(params, contact) -> dict:
     refine_inlet_lengths r), hypot(refine_x_max, refine_outlet_lengths r)] b (defaults -1.5, 1.1, 1.2, 0.1;
     r = sqrt(2 R h_Moes)/b as for the domain), graded over ``refine_width`` [b] (default 1).  The zone covers
     the pressurised part of paper A's roller films in the hydrodynamic-to-EHL knee (measured on the cone at
-    7 m/s, 15-120 kN/m: p > 0.05 p_Hertz from -(0.7-1.14) r b to 0.3 b, the peak at -(0.2-0.4) r b).  An option for
-    studies (benchmarks/ehl_graded.py, roller_traction_sweeps.py --refine); no shipped map uses it
-    (cases/maps/README.md, "Measured 28 Nov 2026, graded line grids")."""
+    7 m/s, 15-120 kN/m: p > 0.05 p_Hertz from -(0.7-1.14) r b to 0.3 b, the peak at -(0.2-0.4) r b).  The shipped
+    roller maps use it (refine 6, with a Dowson-Higginson film and pseudo_transient 0.1: their map cases'
+    [params]); the kinds' default stays the uniform grid (cases/maps/README.md, "Measured 28 Nov 2026,
+    session 14"; benchmarks/ehl_graded.py, roller_traction_sweeps.py --refine)."""
     r = float(_get(params, "grid_refine", 1.0))
     if r == 1.0:
         return {}
