@@ -84,8 +84,8 @@ def line_influence_matrix(x, e_star: float) -> np.ndarray:
     mid = 0.5 * (x[1:] + x[:-1])
     left = np.concatenate([[x[0] - (mid[0] - x[0])], mid])
     right = np.concatenate([mid, [x[-1] + (x[-1] - mid[-1])]])
-    X = x[:, None]
-    return -2.0 / (np.pi * e_star) * (_G(X - left[None, :]) - _G(X - right[None, :]))
+    centre, half = 0.5 * (left + right), 0.5 * (right - left)
+    return strip_influence(x[:, None] - centre[None, :], half[None, :], e_star)
 
 
 @dataclass

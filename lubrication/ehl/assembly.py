@@ -51,15 +51,23 @@ class UniformForms:
         ph = phi[:, 0, :].T  # (Q, n)
         dp = np.transpose(dphi[:, :, 0, :], (1, 2, 0))  # (dim, Q, n)
         self.phi, self.dphi = ph, dp
-        Q = w.size
-        self.mass = (w[:, None, None] * ph[:, :, None] * ph[:, None, :]).reshape(Q, n * n)
-        self.adv = [(w[:, None, None] * dp[d][:, :, None] * ph[:, None, :]).reshape(Q, n * n) for d in range(self.dim)]
-        self.dirn = [(w[:, None, None] * ph[:, :, None] * dp[d][:, None, :]).reshape(Q, n * n) for d in range(self.dim)]
-        self.gg = [[(w[:, None, None] * dp[d][:, :, None] * dp[e][:, None, :]).reshape(Q, n * n)
-                    for e in range(self.dim)] for d in range(self.dim)]
-        self.val = w[:, None] * ph  # (Q, n)
-        self.grd = [w[:, None] * dp[d] for d in range(self.dim)]
+        self._templates(w, ph, dp)
         self._scatter(dofs)
+
+    def _templates(self, w, ph, dp):
+        """The form templates from the quadrature weights ``w`` (..., Q), basis values ``ph`` (..., Q, n) and
+        gradients ``dp`` (dim, ..., Q, n): one set (uniform grid, no leading axis) or one per element (E, ...)."""
+        n = ph.shape[-1]
+
+        def outer(a, c):
+            return (w[..., None, None] * a[..., :, None] * c[..., None, :]).reshape(*w.shape, n * n)
+
+        self.mass = outer(ph, ph)
+        self.adv = [outer(dp[d], ph) for d in range(self.dim)]
+        self.dirn = [outer(ph, dp[d]) for d in range(self.dim)]
+        self.gg = [[outer(dp[d], dp[e]) for e in range(self.dim)] for d in range(self.dim)]
+        self.val = w[..., None] * ph  # (..., Q, n)
+        self.grd = [w[..., None] * dp[d] for d in range(self.dim)]
 
     def _scatter(self, dofs):
         """The COO (element, i, j) -> CSR map of the element matrices and the load-vector scatter."""
@@ -120,18 +128,7 @@ class ElementForms(UniformForms):
         self.N = int(b.N)
         self.dofs = dofs
         self.phi, self.dphi = ph, dp
-        Q = w.shape[1]
-        W = w[:, :, None, None]
-
-        def outer(a, c):
-            return (W * a[:, :, :, None] * c[:, :, None, :]).reshape(E, Q, n * n)
-
-        self.mass = outer(ph, ph)
-        self.adv = [outer(dp[d], ph) for d in range(self.dim)]
-        self.dirn = [outer(ph, dp[d]) for d in range(self.dim)]
-        self.gg = [[outer(dp[d], dp[e]) for e in range(self.dim)] for d in range(self.dim)]
-        self.val = w[:, :, None] * ph  # (E, Q, n)
-        self.grd = [w[:, :, None] * dp[d] for d in range(self.dim)]
+        self._templates(w, ph, dp)
         self._scatter(dofs)
 
     def interpolate(self, values):

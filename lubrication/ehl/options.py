@@ -56,6 +56,7 @@ class EHLGrid:
     def x_nodes(self) -> "np.ndarray":
         """Node positions along x [b_x] (nx of them, from x_min to x_max)."""
         import numpy as np
+        from scipy.integrate import cumulative_trapezoid
 
         if not self.graded:
             return np.linspace(self.x_min, self.x_max, self.nx)
@@ -67,7 +68,7 @@ class EHLGrid:
         n = int(max(4096, 40 * span / w)) + 1
         s = np.linspace(self.x_min, self.x_max, n)
         rho = 1.0 + (self.refine - 1.0) * 0.5 * (np.tanh((s - lo) / w) - np.tanh((s - hi) / w))
-        cum = np.concatenate([[0.0], np.cumsum(0.5 * (rho[1:] + rho[:-1]) * np.diff(s))])
+        cum = cumulative_trapezoid(rho, s, initial=0.0)
         x = np.interp(np.linspace(0.0, cum[-1], self.nx), cum, s)
         x[0], x[-1] = self.x_min, self.x_max
         return x
