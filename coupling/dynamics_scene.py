@@ -369,8 +369,10 @@ def model_groups(case: DynamicsCase, **built) -> dict:
     return out
 
 
-def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
-    """Bearing model, quasi-static initial state and output times (raises InputError)."""
+def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = False) -> DynamicsSetup:
+    """Bearing model, quasi-static initial state and output times (raises InputError).  With
+    ``precompile``, the kernels the run will call (integrator, forces, Benettin) start compiling in a
+    second process if numba's cache lacks them (a first run), while this one compiles the model."""
     from dynamics.cageless import CagelessBearing
     from dynamics.errors import DynamicsInputError
 
@@ -396,6 +398,10 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
         built["model.traction_maps"] = tuple(arrays)
     try:
         model = CagelessBearing(**model_groups(case, **built))
+        if precompile:
+            from dynamics.specialise import compile_in_background
+
+            compile_in_background(kernel_jobs(case, model))
         y0 = model.initial_state()
     except DynamicsInputError as exc:  # its message names the case key already
         raise InputError(str(exc)) from None
@@ -404,6 +410,22 @@ def build(case: DynamicsCase, source: str | None = None) -> DynamicsSetup:
     n = int(round(ig.duration / ig.sample_interval))
     t_out = np.linspace(0.0, n * ig.sample_interval, n + 1)
     return DynamicsSetup(model=model, y0=y0, t_out=t_out, map_path=map_path, map_info=info)
+
+
+def kernel_jobs(case: DynamicsCase, model) -> list:
+    """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (integrator, forces
+    at the samples, Benettin): :func:`build` has those numba's cache lacks compiled in a second process
+    while it compiles the model, since they do not contain the model's code (:mod:`dynamics.specialise`)."""
+    from dynamics.cageless import rhs, rhs_scaled
+    from dynamics.cageless.kernels import forces_many_example
+    from dynamics.integrators import kernel_example
+    from dynamics.lyapunov import spectrum_kernel_example
+
+    args = model.args()
+    jobs = [kernel_example(case.integrator.method, rhs, args), forces_many_example(args)]
+    if case.analysis.lyapunov_exponents:
+        jobs.append(spectrum_kernel_example(rhs_scaled, (args, model.state_scales())))
+    return jobs
 
 
 def values_per_sample(model) -> int:
@@ -513,7 +535,7 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
     from dynamics.integrators import integrate
 
     t0 = time.perf_counter()
-    setup = build(case, source or None)
+    setup = build(case, source or None, precompile=True)
     model = setup.model
     t_build = time.perf_counter() - t0
     ig = case.integrator

@@ -49,18 +49,11 @@ The one-call forms above (:class:`OneShot`) allocate ``Y`` and ``work``
 
 Caching
 -------
-numba cannot cache across processes a kernel that receives the rhs *as an
-argument* (the argument type carries the object identity), nor a closure or a
-wrapper over a global rhs.  What caches is a kernel whose rhs is a *module
-global*: :func:`specialise` uses such a module, generated from the kernel
-source with ``rhs`` turned from a parameter into an imported global.  For the
-shipped bearing models these modules are generated ahead of time
-(``python -m dynamics.codegen``) into :mod:`dynamics.kernels` and committed; for
-other right-hand sides they are generated at run time only into a folder the
-caller names with ``LUBEDYN_KERNEL_CACHE``, and otherwise the generic kernels
-``rk4``/``dopri5``/``ros2`` (``cache=False``) are compiled once per process.
-Each generated module carries a digest of every source its kernel may reach
-(numba's cache does not track callees) and is used only while it matches.
+:func:`specialise` binds a right-hand side to a kernel source through a numba function pointer
+(:mod:`dynamics.specialise`): the kernel is compiled once per argument types, for any right-hand
+side, and numba caches it across processes; the right-hand side is compiled once for the signature
+the kernel calls it with.  The generic kernels ``rk4``/``dopri5``/``ros2`` take the right-hand side as
+a plain argument (numba then specialises on its identity and cannot cache them across processes).
 
 Stiff problems: ``ros2(rhs, jac, y0, t_out, args, rtol, atol, h0, h_max, max_steps, use_fd)``
 -----------------------------------------------------------------------------------------------
@@ -132,7 +125,9 @@ import numpy as np
 from numba import njit
 
 from .errors import DynamicsInputError, IntegrationError
-from .specialise import register_generic, specialise
+from numba import types as _nt
+
+from .specialise import register_kernel, specialise
 
 logger = logging.getLogger(__name__)
 
@@ -775,10 +770,21 @@ dopri5 = OneShot("dopri5", _dopri5_generic, 1)
 ros2 = OneShot("ros2", _ros2_generic, 2)
 
 
-# specialisation (dynamics.specialise): the generic kernels are the fallback of each kernel source
-register_generic(_rk4_impl, _rk4_generic)
-register_generic(_dopri5_impl, _dopri5_generic)
-register_generic(_ros2_impl, _ros2_generic)
+
+# binding to a right-hand side (dynamics.specialise): how each kernel calls its callables
+def _rhs_signature(types):
+    """``rhs(t, y, args, dydt)`` as the kernels call it: y and dydt are fresh C-contiguous arrays."""
+    vec = _nt.float64[::1]
+    return _nt.void(_nt.float64, vec, types["args"], vec)
+
+
+def _jac_signature(types):
+    return _nt.void(_nt.float64, _nt.float64[::1], types["args"], _nt.float64[:, ::1])
+
+
+register_kernel(_rk4_impl, rhs=_rhs_signature)
+register_kernel(_dopri5_impl, rhs=_rhs_signature)
+register_kernel(_ros2_impl, rhs=_rhs_signature, jac=_jac_signature)
 
 
 # stability ----------------------------------------------------------------------
@@ -889,7 +895,7 @@ class IntegrationResult:
 
 
 def resumable_kernel(method, rhs, jac=None):
-    """The resumable kernel of ``method`` specialised to ``rhs`` (cached across processes):
+    """The resumable kernel of ``method`` bound to ``rhs`` (cached across processes, :mod:`dynamics.specialise`):
     ``kernel(t_out, args, params, Y, work, i_stop)`` (see :func:`new_run`, :func:`make_params`)."""
     if method not in METHODS:
         raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {METHODS}")
@@ -897,6 +903,13 @@ def resumable_kernel(method, rhs, jac=None):
         return specialise(_ros2_impl, rhs=rhs, jac=no_jac if jac is None else jac)
     impl = _rk4_impl if method == "rk4" else _dopri5_impl
     return specialise(impl, rhs=rhs)
+
+
+def kernel_example(method, rhs, args, jac=None):
+    """``(kernel, example arguments)`` of :func:`integrate`'s kernel for ``rhs`` and ``args``, for
+    :func:`dynamics.specialise.compile_in_background` (the arguments have the types of its calls)."""
+    Y, work = new_run(np.zeros(1), np.zeros(2))
+    return resumable_kernel(method, rhs, jac), (np.zeros(2), args, make_params(), Y, work, 1)
 
 
 def kernel_for(method, rhs, jac=None):

@@ -111,7 +111,9 @@ from numba import njit
 
 from .errors import DynamicsInputError
 from .integrators import stability_limit
-from .specialise import register_generic, specialise
+from numba import types as _nt
+
+from .specialise import register_kernel, specialise
 
 logger = logging.getLogger(__name__)
 
@@ -201,8 +203,9 @@ def _benettin_impl(rhs, jvp, y0, V0, keep, args, t0, dt, steps_per_orth, n_orth,
     return log_sum, accumulated, running, y, t, status
 
 
-benettin_kernel = njit(cache=False)(_benettin_impl)
-register_generic(_benettin_impl, benettin_kernel)
+benettin_kernel = njit(cache=False)(_benettin_impl)  # generic: rhs and jvp as plain arguments
+register_kernel(_benettin_impl, rhs=lambda T: _nt.void(_nt.float64, _nt.float64[::1], T["args"], _nt.float64[::1]),
+                jvp=lambda T: _nt.void(_nt.float64, _nt.float64[::1], _nt.float64[::1], T["args"], _nt.float64[::1]))
 
 
 @njit(cache=True)
@@ -240,8 +243,9 @@ def _benettin_map_impl(step, jac, x0, V0, args, n_iter, n_transient):
     return log_sum / max(n_iter - n_transient, 1), x
 
 
-benettin_map_kernel = njit(cache=False)(_benettin_map_impl)
-register_generic(_benettin_map_impl, benettin_map_kernel)
+benettin_map_kernel = njit(cache=False)(_benettin_map_impl)  # generic: step and jac as plain arguments
+register_kernel(_benettin_map_impl, step=lambda T: _nt.void(_nt.float64[::1], T["args"], _nt.float64[::1]),
+                jac=lambda T: _nt.void(_nt.float64[::1], T["args"], _nt.float64[:, ::1]))
 
 
 @dataclass(frozen=True)
@@ -426,6 +430,13 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
     times = (np.arange(n_orth) + 1) * steps_per_orth * dt
     return LyapunovSpectrum(exponents=lam[order], times=times, running=running[n_transient:, order],
                             y_final=y_final)
+
+
+def spectrum_kernel_example(rhs, args, jvp=None):
+    """``(kernel, example arguments)`` of :func:`lyapunov_spectrum`'s kernel for ``rhs`` and ``args``, for
+    :func:`dynamics.specialise.compile_in_background` (the arguments have the types of its call)."""
+    kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
+    return kernel, (np.zeros(1), np.zeros((1, 1)), np.ones(1), args, 0.0, 1.0, 1, 1, 0, jvp is None)
 
 
 def lyapunov_spectrum_map(step, jac, x0, args=(), *, n_iter, n_transient=0, n_exponents=None, seed=0):

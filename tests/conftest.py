@@ -11,17 +11,9 @@ perturbation.  At N = 30 three fail by construction, because they check the pert
 itself (the finite-difference Jacobian test, the Swift-Stieber complementarity residual at 1e-9),
 and the nested-vs-plain JFO bounds of test_solver_paths hold to about 10-20 units (measured
 there).
-
-The suite opts in to run-time kernel generation (``LUBEDYN_KERNEL_CACHE``, a folder in the system's
-temporary directory, never the home directory): the kernels of the tests' own right-hand sides are
-then numba-cached across test processes and sessions, as the shipped models' kernels are by
-:mod:`dynamics.kernels`.  A library user who does not set it gets no generated files.
 """
 import os
-import tempfile
-from pathlib import Path
 
-os.environ.setdefault("LUBEDYN_KERNEL_CACHE", str(Path(tempfile.gettempdir()) / "lubedyn-test-kernels"))
 
 import numpy as np
 import pytest

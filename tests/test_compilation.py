@@ -45,18 +45,11 @@ def test_each_top_level_compilation_is_logged_once_and_a_warm_call_not(caplog):
     assert not [r for r in caplog.records if r.name == "coupling.compilation"]
 
 
-def test_generated_kernels_get_readable_names():
-    class Fake:
-        pass
+def test_bound_kernels_get_readable_names():
+    from dynamics import integrators
 
-    fake = Fake()
-
-    def kernel():
-        pass
-
-    kernel.__module__ = "_lubedyn_kernels.k_dopri5_impl__dynamics_cageless_rhs__0123456789abcdef"
-    fake.py_func = kernel
-    assert kernel_name(fake) == "dopri5 kernel (dynamics_cageless_rhs)"
+    assert kernel_name(integrators.resumable_kernel("dopri5", integrators.no_jac).dispatcher) == (
+        "dopri5 kernel (dynamics.integrators)")
     _, outer = _fresh_kernels()
     name = kernel_name(outer)
     assert name.startswith("_fresh_kernels.<locals>.outer (") and name.endswith("test_compilation)")

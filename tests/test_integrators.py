@@ -13,7 +13,6 @@ from numba import njit
 from scipy.integrate import solve_ivp
 
 from dynamics import integrators as I
-from dynamics import specialise as S
 from dynamics.errors import DynamicsInputError, IntegrationError
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -296,8 +295,9 @@ def test_contact_study_accuracy_limits_the_step():
     assert err_small < 1e-4 < 1e-2 < err_limit  # stable but inaccurate at the limit
 
 
-def test_specialised_kernel_hits_numba_cache_in_a_new_process(tmp_path):
-    """The generated kernel of a module-level rhs compiles once and loads from cache afterwards."""
+def test_bound_kernel_hits_numba_cache_in_a_new_process(tmp_path):
+    """The kernel bound to a module-level rhs compiles once (a fresh numba cache) and loads from the
+    cache in the next process."""
     script = textwrap.dedent("""
         import numpy as np, sys
         sys.path.insert(0, sys.argv[1])
@@ -307,7 +307,7 @@ def test_specialised_kernel_hits_numba_cache_in_a_new_process(tmp_path):
         Y, st = k(np.array([1.0]), np.array([0.0, 1.0]), 0.5, (np.array([[-1.0]]),))
         print(len(k.stats.cache_hits), len(k.stats.cache_misses), Y[-1, 0])
     """)
-    env = dict(os.environ, LUBEDYN_KERNEL_CACHE=str(tmp_path))
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
     here = os.path.dirname(__file__)
     runs = [subprocess.run([sys.executable, "-c", script, here], env=env, capture_output=True, text=True,
                            check=True).stdout.split() for _ in range(2)]
@@ -355,28 +355,6 @@ def test_dopri5_step_count_on_stiff_linear_problem_is_set_by_the_real_stability_
     expected = 1e4 / I.stability_limit("dopri5", "real")
     assert counts[0] == pytest.approx(expected, rel=0.03)
     assert counts[1] == pytest.approx(expected, rel=0.03)
-
-
-@njit(cache=True)
-def stale_decay(t, y, args, dydt):
-    """y' = -2 y (a module-level rhs used only by the stale-source test)."""
-    dydt[0] = -2.0 * y[0]
-
-
-def test_stale_kernel_source_is_refused_and_the_generic_kernel_used(monkeypatch, tmp_path):
-    """A process that imported dynamics.integrators before an edit shifted its lines would read another
-    kernel's source for the generated file (inspect reads the new file at the old line numbers); the
-    generator must refuse it, and specialise must fall back to the generic kernel, whose answer is still
-    the exact exp(-2 t)."""
-    monkeypatch.setenv("LUBEDYN_KERNEL_CACHE", str(tmp_path))
-    real = S.inspect.getsource
-    monkeypatch.setattr(S.inspect, "getsource", lambda f: real(I._rk4_impl) if f is I._dopri5_impl else real(f))
-    with pytest.raises(ImportError, match="changed since import"):
-        S._generate_source(I._dopri5_impl, {"rhs": stale_decay})
-    kernel = I.kernel_for("dopri5", stale_decay)  # the resumable kernel from specialise, run in one call
-    Y, st = kernel(np.array([1.0]), np.array([0.0, 0.5, 1.0]), (), 1e-10, 1e-12, 0.0, 0.0, 10**6)
-    np.testing.assert_allclose(Y[:, 0], np.exp(-2.0 * np.array([0.0, 0.5, 1.0])), rtol=1e-8)
-    assert not list(tmp_path.glob("k_dopri5_impl__*.py"))
 
 
 # RK4 growth guard (issue 20, item 3) ---------------------------------------------------------------

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from numba import njit, types
 import numpy as np
 
 from lubrication.laws.collision import BB_HCUT, BB_VREG, hertz_force
@@ -15,6 +15,7 @@ from lubrication.laws.traction import traction_coefficient
 from .. import contacts as C
 from ..contacts import FILM_NONE, ball_ball_friction_coefficient, ball_ball_normal, plastic_memory_rate
 from ..interp import HERMITE, hermite3, interp3
+from ..specialise import register_kernel, specialise
 from .layout import (D_AI, D_AO, D_BBN, D_BBT, D_BBX, D_BBY, D_BBZ, D_GAP, D_H, D_PHASE, D_PSI, D_PSIDOT, D_QE, D_QI,
     D_QO, D_SPIN, D_SRRI, D_SRRO, D_VSI, D_VSO, I_BALLBALL, I_DOF, I_DRIVE, I_FILM, I_TRACTION, I_Z,
     NB_6DOF, NB_PLANAR, N_DIAG, N_RING, N_RING_DIAG, P_ALPHA, P_D, P_FX, P_FY, P_FZ, P_G, P_HCI, P_HCO,
@@ -550,15 +551,31 @@ def forces(t, y, args):
     return diag, ring_diag, dydt
 
 
-@njit(**JIT)
-def forces_many(t, Y, args):
-    """:func:`forces` at every row of ``Y`` (shape (m, n)): ``(diag (m, Z, N_DIAG), ring (m, N_RING_DIAG))``."""
+def _forces_many_impl(evaluate, t, Y, args):
     m = Y.shape[0]
     Z = args[0][I_Z]
     D = np.zeros((m, Z, N_DIAG))
     R = np.zeros((m, N_RING_DIAG))
+    dydt = np.empty(Y.shape[1])
     for i in range(m):
-        d, r, _ = forces(t[i], Y[i], args)
-        D[i] = d
-        R[i] = r
+        evaluate(t[i], Y[i], args, dydt, D[i], R[i])
     return D, R
+
+
+# the right-hand side's body reached through a function pointer (dynamics.specialise): compiled once,
+# not linked and re-optimised a second time into this loop (4.5-5.8 s of a cold run when it was)
+register_kernel(_forces_many_impl, evaluate=lambda T: types.void(
+    types.float64, types.float64[::1], T["args"], types.float64[::1], types.float64[:, ::1], types.float64[::1]))
+
+
+def forces_many_example(args):
+    """``(kernel, example arguments)`` of :func:`forces_many` (:func:`dynamics.specialise.compile_in_background`)."""
+    return specialise(_forces_many_impl, evaluate=_evaluate), (np.zeros(1), np.zeros((1, 1)), args)
+
+
+def forces_many(t, Y, args):
+    """:func:`forces` at every row of ``Y`` (shape (m, n)) at times ``t``: ``(diag (m, Z, N_DIAG), ring (m,
+    N_RING_DIAG))``, the same numbers as :func:`forces` row by row."""
+    t = np.ascontiguousarray(t, dtype=np.float64)
+    Y = np.ascontiguousarray(Y, dtype=np.float64)
+    return specialise(_forces_many_impl, evaluate=_evaluate)(t, Y, args)
