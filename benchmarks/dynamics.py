@@ -73,12 +73,9 @@ Sections
    measured 0.1 s run of the drop (quick: 10 ms, extrapolated).
 6. First-call compile time in fresh processes with empty caches (cold) and
    again (warm): ``NUMBA_CACHE_DIR`` (numba's on-disk cache of every
-   ``cache=True`` function) and ``LUBEDYN_KERNEL_CACHE`` (where
-   :func:`dynamics.integrators.specialise` writes the rhs-specialised
-   integrator source; default ``$XDG_CACHE_HOME/lubedyn/kernels`` or
-   ``~/.cache/lubedyn/kernels``) both point into a new temporary directory;
-   and ``lubedyn run cases/cageless_6206_10krpm_short.toml --smoke`` cold and
-   warm the same way.
+   ``cache=True`` function, the bound kernels of :mod:`dynamics.specialise`
+   included) points into a new temporary directory; and ``lubedyn run
+   cases/cageless_6206_10krpm_short.toml --smoke`` cold and warm the same way.
 
 Times are wall-clock medians of ``--repeats`` runs and also ratios to a
 reference run in the same process (DOPRI5 rtol 1e-6 over the first 1 ms of
@@ -114,7 +111,6 @@ from dynamics.cageless import (  # noqa: E402
     D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, forces, forces_many, rhs)
 from dynamics.errors import DynamicsInputError, IntegrationError  # noqa: E402
 from dynamics.integrators import integrate, stability_limit  # noqa: E402
-from dynamics.specialise import kernel_cache_dir  # noqa: E402
 
 log = logging.getLogger("benchmarks.dynamics")
 ROOT = Path(__file__).resolve().parents[1]
@@ -876,7 +872,6 @@ from coupling.config import load_case
 from coupling.dynamics_scene import build
 from dynamics.cageless import rhs
 from dynamics.integrators import integrate
-from dynamics.specialise import kernel_cache_dir
 t1 = time.perf_counter()
 case = load_case(sys.argv[1])
 s = build(case, sys.argv[1])
@@ -886,19 +881,16 @@ t3 = time.perf_counter()
 integrate(rhs, s.y0, np.array([0.0, 1e-5]), s.model.args(), method="rk4", dt=1e-6)
 t4 = time.perf_counter()
 print(json.dumps({"import [s]": t1 - t0, "case + model + quasi-static state (compiles rhs, forces) [s]": t2 - t1,
-                  "first dopri5 call [s]": t3 - t2, "first rk4 call [s]": t4 - t3, "total [s]": t4 - t0,
-                  "kernel_cache_dir": str(kernel_cache_dir())}))
+                  "first dopri5 call [s]": t3 - t2, "first rk4 call [s]": t4 - t3, "total [s]": t4 - t0}))
 """
 
 
 def bench_compile(skip_cli):
-    out = {"how": ("fresh subprocesses with NUMBA_CACHE_DIR=<tmp>/numba and LUBEDYN_KERNEL_CACHE=<tmp>/kernels "
-                   "(both empty at the cold run; the same directories again for the warm run)"),
-           "default kernel cache dir": str(kernel_cache_dir()), "load average": load()}
+    out = {"how": ("fresh subprocesses with NUMBA_CACHE_DIR=<tmp>/numba (empty at the cold run; the same "
+                   "directory again for the warm run)"), "load average": load()}
     py = sys.executable
     with tempfile.TemporaryDirectory(prefix="lubedyn-bench-cache-") as tmp:
-        env = dict(os.environ, NUMBA_CACHE_DIR=str(Path(tmp) / "numba"),
-                   LUBEDYN_KERNEL_CACHE=str(Path(tmp) / "kernels"))
+        env = dict(os.environ, NUMBA_CACHE_DIR=str(Path(tmp) / "numba"))
         for label in ("cold", "warm"):
             t0 = time.perf_counter()
             p = subprocess.run([py, "-c", _FIRST, str(CASE)], env=env, cwd=ROOT, capture_output=True, text=True)
@@ -910,15 +902,12 @@ def bench_compile(skip_cli):
                 r["stderr"] = p.stderr[-2000:]
             out[f"python -c, {label}"] = r
             log.info("first call %s: %.1f s", label, wall)
-        out["cache files after the runs"] = {
-            "numba": len(list((Path(tmp) / "numba").rglob("*.nbi"))),
-            "kernels": sorted(p.name for p in (Path(tmp) / "kernels").glob("*.py"))}
+        out["cache files after the runs"] = {"numba": len(list((Path(tmp) / "numba").rglob("*.nbi")))}
         if not skip_cli:
             exe = Path(py).with_name("lubedyn")
             cmd = [str(exe) if exe.exists() else "lubedyn", "run", str(SHORT_CASE), "--smoke"]
             with tempfile.TemporaryDirectory(prefix="lubedyn-bench-cli-") as tmp2:
-                env2 = dict(os.environ, NUMBA_CACHE_DIR=str(Path(tmp2) / "numba"),
-                            LUBEDYN_KERNEL_CACHE=str(Path(tmp2) / "kernels"))
+                env2 = dict(os.environ, NUMBA_CACHE_DIR=str(Path(tmp2) / "numba"))
                 for label in ("cold", "warm"):
                     t0 = time.perf_counter()
                     p = subprocess.run(cmd + ["--out", str(Path(tmp2) / f"out_{label}")], env=env2, cwd=ROOT,
@@ -1118,8 +1107,7 @@ def main(argv=None):
     t1 = time.perf_counter()
     run(model, y0, np.array([0.0, 1e-6]), "rk4", 1e-7)
     t2 = time.perf_counter()
-    data["first calls in this process [s]"] = {"dopri5": t1 - t0, "rk4": t2 - t1,
-                                               "kernel cache dir": str(kernel_cache_dir())}
+    data["first calls in this process [s]"] = {"dopri5": t1 - t0, "rk4": t2 - t1}
     clock = Clock(model, y0)
     data["reference run"] = clock.describe()
     data["model"] = {"states [-]": int(y0.size), "omega_max at the initial state [rad/s]": model.omega_max(y0),

@@ -36,7 +36,7 @@ print(t1 - t0, time.perf_counter() - t1)
 def first_call_seconds(rhs_module, rhs_name, y0, args=(), method="dopri5", cache_dir=None, extra_path=None):
     """Import and first-call times [s] of a kernel in a *fresh* Python process.
 
-    ``method``: "dopri5" or "rk4" (specialised, cross-process cached kernel) or
+    ``method``: "dopri5" or "rk4" (bound by pointer, cross-process cached kernel) or
     "generic" (the argument-taking DOPRI5 kernel, compiled in every process).
     The rhs must be importable as ``rhs_module.rhs_name`` (``extra_path`` is
     prepended to ``sys.path``) and take a tuple of floats ``args``.  Call
@@ -50,7 +50,7 @@ def first_call_seconds(rhs_module, rhs_name, y0, args=(), method="dopri5", cache
 
     env = dict(os.environ)
     if cache_dir is not None:
-        env["LUBEDYN_KERNEL_CACHE"] = str(cache_dir)
+        env["NUMBA_CACHE_DIR"] = str(cache_dir)
     if extra_path:
         env["PYTHONPATH"] = os.pathsep.join([str(extra_path), env.get("PYTHONPATH", "")])
     cmd = [sys.executable, "-c", _FIRST_CALL_SCRIPT, rhs_module, rhs_name, method,
