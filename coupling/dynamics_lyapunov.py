@@ -259,8 +259,8 @@ def benettin_start(given: float, detected: float | None, t_end: float) -> float:
 def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
     """The k largest Lyapunov exponents of the whole bearing (Benettin, RK4 on
     state and tangent vectors with QR re-orthonormalisation every 50 steps,
-    forward-difference tangent dynamics on the scaled state of
-    :func:`dynamics.cageless.rhs_scaled`), over the rest of the run from ``start`` (the
+    forward-difference tangent dynamics on the state scaled by
+    :meth:`CagelessBearing.state_scales`), over the rest of the run from ``start`` (the
     per-direction analysis' window start: the later of ``analysis.transient`` and the detected end of
     the transient), or from ``analysis.transient`` when ``start`` is None or would leave less than half
     the record after it; the summary gives the start used.
@@ -278,7 +278,7 @@ def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
     so the finite-time exponents converge slowly; the summary gives the
     relative change of the largest one over the second half of the window as
     a convergence measure."""
-    from dynamics.cageless import rhs_scaled
+    from dynamics.cageless import rhs
     from dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
 
     k = case.analysis.lyapunov_exponents
@@ -289,7 +289,7 @@ def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
     dt = 0.3 / omega
     t_c = time.perf_counter()
     # the first tenth of the window aligns the random initial tangent vectors (its stretching is discarded)
-    res = lyapunov_spectrum(rhs_scaled, Y[i0] / scale, (model.args(), scale), dt=dt, t_total=0.9 * window,
+    res = lyapunov_spectrum(rhs, Y[i0], model.args(), scale=scale, dt=dt, t_total=0.9 * window,
                             t_transient=0.1 * window, t_orth=50 * dt, n_exponents=k, omega_max=omega, t0=float(t[i0]),
                             frozen=memory_states(model))
     out = {"Benettin window start [s]": float(t[i0]), "Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,

@@ -416,7 +416,7 @@ def kernel_jobs(case: DynamicsCase, model) -> list:
     """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (integrator, forces
     at the samples, Benettin): :func:`build` has those numba's cache lacks compiled in a second process
     while it compiles the model, since they do not contain the model's code (:mod:`dynamics.specialise`)."""
-    from dynamics.cageless import rhs, rhs_scaled
+    from dynamics.cageless import rhs
     from dynamics.cageless.kernels import forces_many_example
     from dynamics.integrators import kernel_example
     from dynamics.lyapunov import spectrum_kernel_example
@@ -424,7 +424,7 @@ def kernel_jobs(case: DynamicsCase, model) -> list:
     args = model.args()
     jobs = [kernel_example(case.integrator.method, rhs, args), forces_many_example(args)]
     if case.analysis.lyapunov_exponents:
-        jobs.append(spectrum_kernel_example(rhs_scaled, (args, model.state_scales())))
+        jobs.append(spectrum_kernel_example(rhs, args))
     return jobs
 
 

@@ -126,10 +126,11 @@ def no_jvp(t, y, v, args, out):
     out[:] = np.nan
 
 
-def _benettin_impl(rhs, jvp, y0, V0, keep, args, t0, dt, steps_per_orth, n_orth, n_transient, use_fd):
-    n = y0.shape[0]
+def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, n_orth, n_transient, use_fd):
+    # state and tangent vectors live on the scaled state z = y / scale; rhs and jvp see y = z * scale
+    n = z0.shape[0]
     k = V0.shape[0]
-    y = y0.copy()
+    y = z0.copy()
     V = V0.copy()
     ys = np.empty(n)
     Vs = np.empty((k, n))
@@ -138,6 +139,8 @@ def _benettin_impl(rhs, jvp, y0, V0, keep, args, t0, dt, steps_per_orth, n_orth,
     f0 = np.empty(n)
     ytmp = np.empty(n)
     ftmp = np.empty(n)
+    yr = np.empty(n)  # a state in rhs' units
+    vr = np.empty(n)
     log_sum = np.zeros(k)
     running = np.full((n_orth, k), np.nan)
     t = t0
@@ -159,7 +162,11 @@ def _benettin_impl(rhs, jvp, y0, V0, keep, args, t0, dt, steps_per_orth, n_orth,
                         for j in range(n):
                             Vs[i, j] = V[i, j] + a * kV[stage - 1, i, j]
                 ts = t + c[stage] * dt
-                rhs(ts, ys, args, f0)
+                for j in range(n):
+                    yr[j] = ys[j] * scale[j]
+                rhs(ts, yr, args, f0)
+                for j in range(n):
+                    f0[j] /= scale[j]
                 ky[stage, :] = f0
                 for i in range(k):
                     if use_fd:
@@ -175,13 +182,20 @@ def _benettin_impl(rhs, jvp, y0, V0, keep, args, t0, dt, steps_per_orth, n_orth,
                         eps = FD_EPS * (1.0 + math.sqrt(yn)) / vn
                         for j in range(n):
                             ytmp[j] = ys[j] + eps * Vs[i, j]
-                        rhs(ts, ytmp, args, ftmp)
+                        for j in range(n):
+                            yr[j] = ytmp[j] * scale[j]
+                        rhs(ts, yr, args, ftmp)
+                        for j in range(n):
+                            ftmp[j] /= scale[j]
                         for j in range(n):
                             kV[stage, i, j] = keep[j] * (ftmp[j] - f0[j]) / eps
                     else:
-                        jvp(ts, ys, Vs[i], args, ftmp)
                         for j in range(n):
-                            kV[stage, i, j] = keep[j] * ftmp[j]
+                            yr[j] = ys[j] * scale[j]
+                            vr[j] = Vs[i, j] * scale[j]
+                        jvp(ts, yr, vr, args, ftmp)
+                        for j in range(n):
+                            kV[stage, i, j] = keep[j] * ftmp[j] / scale[j]
             for j in range(n):
                 y[j] += dt * (w[0] * ky[0, j] + w[1] * ky[1, j] + w[2] * ky[2, j] + w[3] * ky[3, j])
             for i in range(k):
@@ -343,7 +357,7 @@ def _positive(key, value):
 
 
 def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient=0.0, n_exponents=None,
-                      jvp=None, t0=0.0, seed=0, omega_max=None, frozen=None):
+                      jvp=None, t0=0.0, seed=0, omega_max=None, frozen=None, scale=None):
     """Lyapunov spectrum of the flow ``dy/dt = rhs(t, y, args)`` by Benettin's method.
 
     Parameters
@@ -377,6 +391,13 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
         exponents are then those of the other states with the memory shared
         by the reference and the perturbed trajectories; ``n_exponents`` is
         at most n - len(frozen).
+    scale : array_like (n,), optional
+        A natural perturbation size of each state entry (e.g. 1 um for a
+        position, 1 rad/s for a speed): state and tangent vectors are
+        integrated on z = y / scale, where one finite-difference step suits
+        every entry (exponents do not change under a constant scaling, but
+        forward differences on a state mixing micrometres and thousands of
+        rad/s do; ``tests/test_bearing_lyapunov.py``).  Default: no scaling.
 
     Returns
     -------
@@ -417,9 +438,17 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
     G = np.random.default_rng(seed).standard_normal((n, k)) * keep[:, None]
     V0 = np.linalg.qr(G)[0].T.copy()
     V0[:, keep == 0.0] = 0.0  # exactly zero (QR round-off)
+    if scale is None:
+        scale = np.ones(n)
+    else:
+        scale = np.array(scale, dtype=np.float64, ndmin=1)
+        if scale.shape != (n,) or not np.all(np.isfinite(scale) & (scale > 0.0)):
+            raise DynamicsInputError(f"scale (shape {scale.shape}) must hold {n} finite numbers > 0")
     kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
-    log_sum, accumulated, running, y_final, t_end, status = kernel(
-        y0, V0, keep, args, float(t0), dt, steps_per_orth, n_orth + n_transient, n_transient, jvp is None)
+    log_sum, accumulated, running, z_final, t_end, status = kernel(
+        y0 / scale, V0, keep, scale, args, float(t0), dt, steps_per_orth, n_orth + n_transient, n_transient,
+        jvp is None)
+    y_final = z_final * scale
     if status != 0:
         from .errors import IntegrationError
 
@@ -436,7 +465,7 @@ def spectrum_kernel_example(rhs, args, jvp=None):
     """``(kernel, example arguments)`` of :func:`lyapunov_spectrum`'s kernel for ``rhs`` and ``args``, for
     :func:`dynamics.specialise.compile_in_background` (the arguments have the types of its call)."""
     kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
-    return kernel, (np.zeros(1), np.zeros((1, 1)), np.ones(1), args, 0.0, 1.0, 1, 1, 0, jvp is None)
+    return kernel, (np.zeros(1), np.zeros((1, 1)), np.ones(1), np.ones(1), args, 0.0, 1.0, 1, 1, 0, jvp is None)
 
 
 def lyapunov_spectrum_map(step, jac, x0, args=(), *, n_iter, n_transient=0, n_exponents=None, seed=0):

@@ -1,4 +1,4 @@
-"""Lyapunov spectrum of the bearing model on its scaled state (dynamics.cageless.rhs_scaled).
+"""Lyapunov spectrum of the bearing model on its scaled state (lyapunov_spectrum's ``scale``).
 
 A frictionless, undamped bearing (no traction, no contact damping, no ball-ball
 contacts) is a Hamiltonian system: its flow preserves phase-space volume, so the
@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dynamics.cageless import rhs, rhs_scaled
+from dynamics.cageless import rhs
 from dynamics.lyapunov import lyapunov_spectrum
 from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
@@ -32,7 +32,7 @@ def test_full_spectrum_of_a_conservative_bearing_sums_to_zero(conservative):
     scale = model.state_scales()
     omega = model.omega_max(y0)
     dt = 0.3 / omega
-    res = lyapunov_spectrum(rhs_scaled, y0 / scale, (model.args(), scale), dt=dt, t_total=2e-3, t_orth=20 * dt,
+    res = lyapunov_spectrum(rhs, y0, model.args(), scale=scale, dt=dt, t_total=2e-3, t_orth=20 * dt,
                             omega_max=omega)
     lam = res.exponents
     assert lam.size == y0.size

@@ -79,9 +79,36 @@ def test_lorenz_spectrum_py_func_kernel(lorenz_on_attractor):
     """Plain-Python kernel on a short run: the sum is still exact (trace J = -13.667 at every point)."""
     V0 = np.eye(3)
     log_sum, acc, running, y, t, status = L.benettin_kernel.py_func(
-        lorenz, lorenz_jvp, lorenz_on_attractor, V0, np.ones(3), LORENZ, 0.0, 0.01, 5, 20, 2, False)
+        lorenz, lorenz_jvp, lorenz_on_attractor, V0, np.ones(3), np.ones(3), LORENZ, 0.0, 0.01, 5, 20, 2, False)
     assert status == 0 and acc == pytest.approx(0.9)
     assert np.sum(log_sum) / acc == pytest.approx(LORENZ_SUM, rel=1e-4)
+
+
+@njit(cache=True)
+def lorenz_on_z(t, z, args, dzdt):
+    """Lorenz on the scaled state z = y / scale, ``args = (LORENZ, scale)``: the explicit change of
+    variables that lyapunov_spectrum's ``scale`` does inside its kernel."""
+    p, scale = args
+    y = z * scale
+    lorenz(t, y, p, dzdt)
+    for i in range(z.size):
+        dzdt[i] /= scale[i]
+
+
+def test_scale_is_the_change_of_variables_to_the_last_bit(lorenz_on_attractor):
+    """``scale`` gives the bits of Benettin on the explicitly rescaled Lorenz system (forward differences,
+    two exponents, frozen third entry), and, without the frozen entry, the largest exponent of the
+    literature within 3 % as the unscaled run does (a constant scaling does not change exponents)."""
+    scale = np.array([1e-3, 1.0, 1e2])
+    kw = dict(dt=0.01, t_total=20.0, t_transient=2.0, n_exponents=2, frozen=[2])
+    a = L.lyapunov_spectrum(lorenz, lorenz_on_attractor, LORENZ, scale=scale, **kw)
+    b = L.lyapunov_spectrum(lorenz_on_z, lorenz_on_attractor / scale, (LORENZ, scale), **kw)
+    assert np.array_equal(a.exponents, b.exponents) and np.array_equal(a.running, b.running)
+    assert np.array_equal(a.y_final, b.y_final * scale)
+    kw = dict(dt=0.01, t_total=200.0, t_transient=5.0, n_exponents=1)
+    for s in (scale, None):
+        lam = L.lyapunov_spectrum(lorenz, lorenz_on_attractor, LORENZ, scale=s, **kw).exponents[0]
+        assert lam == pytest.approx(LORENZ_L1, rel=0.03)
 
 
 def test_henon_map_spectrum():

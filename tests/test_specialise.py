@@ -120,7 +120,7 @@ def test_background_compilation_fills_the_cache_the_caller_then_loads(tmp_path):
         Y, work = I.new_run(y0, t)
         params = I.make_params(dt=0.01, guard=True)
         ben = S.specialise(L._benettin_impl, rhs=duffing, jvp=L.no_jvp)
-        ben_args = (y0, np.eye(2), np.ones(2), ARGS, 0.0, 0.01, 10, 20, 2, True)
+        ben_args = (y0, np.eye(2), np.ones(2), np.ones(2), ARGS, 0.0, 0.01, 10, 20, 2, True)
         started = S.compile_in_background([(rk, (t, ARGS, params, Y, work, 1)), (ben, ben_args)])
         rk(t, ARGS, params, Y, work, len(t))
         ls = ben(*ben_args)
@@ -135,7 +135,7 @@ def test_background_compilation_fills_the_cache_the_caller_then_loads(tmp_path):
     Y = I.kernel_for("rk4", duffing)(np.array([1.0, 0.0]), np.linspace(0.0, 2.0, 21), 0.01, ARGS)[0]
     assert float(out[6]) == Y[-1, 0]
     ls = S.specialise(L._benettin_impl, rhs=duffing, jvp=L.no_jvp)(
-        np.array([1.0, 0.0]), np.eye(2), np.ones(2), ARGS, 0.0, 0.01, 10, 20, 2, True)
+        np.array([1.0, 0.0]), np.eye(2), np.ones(2), np.ones(2), ARGS, 0.0, 0.01, 10, 20, 2, True)
     assert float(out[7]) == ls[0][0]
 
 

@@ -129,7 +129,7 @@ from .invariants import (  # noqa: F401  (the package's API)
 )
 from .kernels import (  # noqa: F401  (the package's API)
     _ball_races, _evaluate, _race_contact, _rotate3, _slot_directions, _slot_weight, _smooth_in,
-    _traction_from_map, forces, forces_many, rhs, rhs_scaled,
+    _traction_from_map, forces, forces_many, rhs,
 )
 from .layout import (  # noqa: F401  (the package's API)
     ARG_COUNTER, DIAG_NAMES, DOFS, D_AI, D_AO, D_BBN, D_BBT, D_BBX, D_BBY, D_BBZ, D_GAP, D_H, D_PHASE,

@@ -522,22 +522,6 @@ def rhs(t, y, args, dydt):
 
 
 @njit(**JIT)
-def rhs_scaled(t, z, args, dzdt):
-    """``rhs`` of the scaled state z = y / scale, ``args = (model args, scale)``.
-
-    Lyapunov exponents do not change under a constant scaling of the state,
-    but finite-difference tangent dynamics do: the state mixes metres
-    (contact deflections of micrometres) with rad/s (thousands), and one
-    perturbation size cannot suit both.  On z every entry has its natural
-    perturbation scale (:meth:`CagelessBearing.state_scales`)."""
-    inner, scale = args[0], args[1]
-    y = z * scale
-    rhs(t, y, inner, dzdt)
-    for i in range(z.size):
-        dzdt[i] /= scale[i]
-
-
-@njit(**JIT)
 def forces(t, y, args):
     """Contact forces at a state: ``(diag (Z, N_DIAG), ring_diag (N_RING_DIAG,), dydt)``.
 
