@@ -614,6 +614,16 @@ def headline(s: dict) -> list[str]:
     return lines
 
 
+def kernel_jobs(case: TaperedCase, model) -> list:
+    """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (the integrator): they
+    do not contain the model's code, so a first run compiles them in a second process while it compiles
+    the model (:func:`dynamics.specialise.compile_in_background`)."""
+    from dynamics.integrators import kernel_example
+    from dynamics.tapered import kernels as K
+
+    return [kernel_example(case.integrator.method, K.rhs, model.args())]
+
+
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:
     from dynamics.errors import DynamicsInputError, IntegrationError
     from dynamics.integrators import integrate
@@ -621,6 +631,10 @@ def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str =
 
     t0 = time.perf_counter()
     model = build(case)
+    # a first run compiles the integrator kernel in a second process meanwhile (dynamics.specialise)
+    from dynamics.specialise import compile_in_background
+
+    compile_in_background(kernel_jobs(case, model))
     qs = model.quasi_static()
     args = model.args(qs)  # the packed arrays on the same equilibrium (the rib film reads it): solved once
     y0 = model.start_state(qs)

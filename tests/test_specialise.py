@@ -174,3 +174,18 @@ def test_the_dynamics_scenes_background_jobs_are_the_kernels_its_run_compiles():
     assert len(jobs) == 3
     for bound, example in jobs:
         assert bound.signature(*example) in bound.dispatcher.overloads, bound.impl.__name__
+
+
+def test_the_tapered_scenes_background_job_is_the_kernel_its_run_compiles():
+    """As for the cage-less scene: after a smoke run of the Fig. 5 tapered case, the integrator kernel
+    the run compiled in a second process on a cold cache has the signature its run calls."""
+    from coupling import tapered_scene as ts
+    from coupling.cli import load_case_file
+
+    path, _, case = load_case_file(str(ROOT / "cases/trb_fig5_2400rpm.toml"), smoke=True)
+    run = ts.run(case, None, source=str(path), smoke=True)
+    assert run.summary["Accepted steps [-]"] > 0
+    jobs = ts.kernel_jobs(case, ts.build(case))
+    assert len(jobs) == 1
+    bound, example = jobs[0]
+    assert bound.signature(*example) in bound.dispatcher.overloads
