@@ -157,7 +157,11 @@ def compile_in_background(jobs) -> int:
     A cold run calls it before it compiles its model: the kernels do not depend on the model's code,
     so the second core compiles them meanwhile, and :class:`Bound` waits for the child before it would
     compile the same signature itself (then loading it from the cache).  If the child fails or the
-    cache cannot be written, the kernel is compiled in this process as before: the result is the same."""
+    cache cannot be written, the kernel is compiled in this process as before: the result is the same.
+    Nothing is started on a machine with one usable core, or with ``LUBEDYN_BACKGROUND_COMPILE=0`` (set
+    in the worker processes of studies and map sweeps, which are parallel already)."""
+    if os.environ.get("LUBEDYN_BACKGROUND_COMPILE", "1") == "0" or _usable_cores() < 2:
+        return 0
     todo, keys = [], []
     for bound, example in jobs:
         sig = bound.signature(*example)
@@ -184,10 +188,19 @@ def compile_in_background(jobs) -> int:
     return len(todo)
 
 
+def _usable_cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
 def _wait_for_background(impl, signature):
     proc = _PENDING.pop((impl, signature), None)
     if proc is None:
         return
+    if proc.poll() is None:
+        logger.info("waiting for the second process to finish compiling %s", impl.__name__.strip("_"))
     t0 = time.perf_counter()
     while proc.poll() is None:  # short waits: a Ctrl-C is taken at once
         time.sleep(0.02)

@@ -189,3 +189,21 @@ def test_the_tapered_scenes_background_job_is_the_kernel_its_run_compiles():
     assert len(jobs) == 1
     bound, example = jobs[0]
     assert bound.signature(*example) in bound.dispatcher.overloads
+
+
+def test_background_compilation_can_be_switched_off(monkeypatch):
+    """LUBEDYN_BACKGROUND_COMPILE=0 (the pool workers of studies and map sweeps set it) starts nothing,
+    and neither does a machine with one usable core."""
+    bound = I.resumable_kernel("rk4", duffing_softer)
+    Y, work = I.new_run(np.zeros(2), np.zeros(2))
+    job = (bound, (np.zeros(2), (np.zeros(2), np.ones(1)), I.make_params(), Y, work, 1))
+    monkeypatch.setattr(S, "_is_cached", lambda dispatcher, sig: False)  # as on a cold cache
+    started = []
+    monkeypatch.setattr(S.subprocess, "Popen", lambda *a, **k: started.append(a) or (_ for _ in ()).throw(OSError("x")))
+    monkeypatch.setenv("LUBEDYN_BACKGROUND_COMPILE", "0")
+    assert S.compile_in_background([job]) == 0 and not started
+    monkeypatch.setenv("LUBEDYN_BACKGROUND_COMPILE", "1")
+    monkeypatch.setattr(S, "_usable_cores", lambda: 1)
+    assert S.compile_in_background([job]) == 0 and not started
+    monkeypatch.setattr(S, "_usable_cores", lambda: 2)
+    assert S.compile_in_background([job]) == 0 and len(started) == 1  # tried; its OSError is reported, not raised

@@ -98,7 +98,7 @@ def _die_with_parent(parent_pid: int) -> str:
 
 def _init_worker(parent_pid: int):
     """Pool initializer: ignore SIGINT (the parent handles Ctrl-C and stops the workers), die with the
-    parent, one BLAS thread."""
+    parent, one BLAS thread, no background compilation of kernels."""
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -106,6 +106,8 @@ def _init_worker(parent_pid: int):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})  # blocked by the parent while forking
     _die_with_parent(parent_pid)
     _limit_threads()
+    # the workers are the parallelism: no second process compiling kernels beside each (dynamics.specialise)
+    os.environ["LUBEDYN_BACKGROUND_COMPILE"] = "0"
 
 
 @contextlib.contextmanager
