@@ -615,13 +615,15 @@ def headline(s: dict) -> list[str]:
 
 
 def kernel_jobs(case: TaperedCase, model) -> list:
-    """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (the integrator): they
+    """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (the integrator, the
+    forces at the samples): they
     do not contain the model's code, so a first run compiles them in a second process while it compiles
     the model (:func:`dynamics.specialise.compile_in_background`)."""
     from dynamics.integrators import kernel_example
     from dynamics.tapered import kernels as K
 
-    return [kernel_example(case.integrator.method, K.rhs, model.args())]
+    args = model.args()
+    return [kernel_example(case.integrator.method, K.rhs, args), K.forces_many_example(args)]
 
 
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:

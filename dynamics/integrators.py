@@ -913,7 +913,7 @@ def kernel_example(method, rhs, args, jac=None):
 
 
 def kernel_for(method, rhs, jac=None):
-    """The compiled kernel of ``method`` specialised to ``rhs`` (cached across processes), whole run in one call.
+    """The compiled kernel of ``method`` bound to ``rhs`` (cached across processes), whole run in one call.
 
     Same call as the generic kernel without the leading callables:
     ``rk4: (y0, t_out, dt, args)``, ``dopri5: (y0, t_out, args, rtol, atol, h0, h_max, max_steps)``,

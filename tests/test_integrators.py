@@ -91,7 +91,7 @@ BLOW_UP, NOT_A_NUMBER = (0.0,), (1.0,)
 
 
 def rk4(rhs, y0, t_out, dt, args):
-    """The RK4 kernel specialised to rhs (numba-cached across test sessions)."""
+    """The RK4 kernel bound to rhs (numba-cached across test sessions)."""
     return I.kernel_for("rk4", rhs)(y0, t_out, dt, args)
 
 

@@ -186,9 +186,31 @@ def test_the_tapered_scenes_background_job_is_the_kernel_its_run_compiles():
     run = ts.run(case, None, source=str(path), smoke=True)
     assert run.summary["Accepted steps [-]"] > 0
     jobs = ts.kernel_jobs(case, ts.build(case))
-    assert len(jobs) == 1
-    bound, example = jobs[0]
-    assert bound.signature(*example) in bound.dispatcher.overloads
+    assert len(jobs) == 2
+    for bound, example in jobs:
+        assert bound.signature(*example) in bound.dispatcher.overloads, bound.impl.__name__
+
+
+def test_tapered_forces_many_equals_contact_forces_row_by_row():
+    """The tapered bearing's forces_many (contact_forces through a function pointer) gives the bits of
+    contact_forces at each sampled state of a smoke run."""
+    from coupling import tapered_scene as ts
+    from coupling.cli import load_case_file
+    from dynamics.tapered import kernels as K
+
+    path, _, case = load_case_file(str(ROOT / "cases/trb_fig5_2400rpm.toml"), smoke=True)
+    run = ts.run(case, None, source=str(path), smoke=True)
+    model = ts.build(case)
+    P, U, RHO = args = model.args(model.quasi_static())
+    Y = run.y[::max(1, len(run.y) // 4)]
+    loads, SL, FR, CG, FC = K.forces_many(Y, args)
+    Z, ns = int(P[K.P_Z]), int(P[K.P_NS])
+    for i in range(len(Y)):
+        F, T, Fc, Tc, ld = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty((Z, 4))
+        sl, fr, cg = np.empty((Z, 2, ns)), np.empty((Z, K.N_FRICTION)), np.empty(K.N_CAGE_DIAG)
+        K.contact_forces(np.ascontiguousarray(Y[i]), P, U, RHO, F, T, Fc, Tc, ld, np.empty(3), np.empty(3), sl, fr, cg)
+        assert np.array_equal(loads[i], ld) and np.array_equal(SL[i], sl) and np.array_equal(FR[i], fr)
+        assert np.array_equal(CG[i], cg) and np.array_equal(FC[i], np.concatenate([Fc, Tc]))
 
 
 def test_background_compilation_can_be_switched_off(monkeypatch):

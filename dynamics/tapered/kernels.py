@@ -103,6 +103,7 @@ import math
 
 import numpy as np
 from numba import njit
+from numba import types as nbtypes
 
 from lubrication.laws.cage import guide_land_short_bearing, guide_land_torque, pocket_force, side_beam_force
 from lubrication.laws.collision import hertz_force
@@ -114,6 +115,7 @@ from lubrication.laws.traction import (elastic_limited, elastic_strip_slope, lim
                                       limited_strip_traction, paper_raceway_traction)
 
 from ..interp import _dot, _hvalue, _locate, _pair2
+from ..specialise import register_kernel, specialise
 from ..rotations import euler_rate, quat_derivative, quat_from_rotvec, quat_rotate, quat_rotate_inverse, quat_to_matrix
 from .layout import *  # noqa: F401,F403  (indices and option codes: dynamics.tapered.layout)
 from .layout import (AXIAL_FORCE, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
@@ -739,12 +741,7 @@ def loads_many(Y, args):
     return out
 
 
-@njit(**JIT)
-def forces_many(Y, args):
-    """At each sampled state: loads (n, Z, 4) as :func:`loads_many`, slice loads (n, Z, 2, n_s) [N] (cup,
-    cone), friction diagnostics (n, Z, N_FRICTION), cage diagnostics (n, N_CAGE_DIAG) and the force [N]
-    of the rollers and the cage on the cone and, with the cone's tilt free, their moment about its
-    reference point [N m] (n, 6: force x, y, z, moment x, y, z; the moment 0 when the tilt is locked)."""
+def _forces_many_impl(contact, Y, args):
     P, U, RHO = args
     Z = int(P[P_Z])
     ns = int(P[P_NS])
@@ -756,8 +753,38 @@ def forces_many(Y, args):
     FC = np.empty((n, 6))
     F = np.empty((Z, 3))
     T = np.empty((Z, 3))
+    Fc = np.empty(3)
+    Tc = np.empty(3)
     Fg = np.empty(3)
     Tg = np.empty(3)
     for i in range(n):
-        contact_forces(Y[i], P, U, RHO, F, T, FC[i, :3], FC[i, 3:], loads[i], Fg, Tg, SL[i], FR[i], CG[i])
+        contact(Y[i], P, U, RHO, F, T, Fc, Tc, loads[i], Fg, Tg, SL[i], FR[i], CG[i])
+        FC[i, :3] = Fc
+        FC[i, 3:] = Tc
     return loads, SL, FR, CG, FC
+
+
+def _contact_signature(types):
+    """:func:`contact_forces` as :func:`_forces_many_impl` calls it (rows of C-contiguous arrays)."""
+    P, U, RHO = types["args"].types
+    v, m = nbtypes.float64[::1], nbtypes.float64[:, ::1]
+    return nbtypes.void(v, P, U, RHO, m, m, v, v, m, v, v, nbtypes.float64[:, :, ::1], m, v)
+
+
+# contact_forces reached through a function pointer (dynamics.specialise): compiled once, not linked and
+# re-optimised a second time into this loop
+register_kernel(_forces_many_impl, contact=_contact_signature)
+
+
+def forces_many_example(args):
+    """``(kernel, example arguments)`` of :func:`forces_many` (:func:`dynamics.specialise.compile_in_background`)."""
+    return specialise(_forces_many_impl, contact=contact_forces), (np.zeros((1, 1)), args)
+
+
+def forces_many(Y, args):
+    """At each sampled state: loads (n, Z, 4) as :func:`loads_many`, slice loads (n, Z, 2, n_s) [N] (cup,
+    cone), friction diagnostics (n, Z, N_FRICTION), cage diagnostics (n, N_CAGE_DIAG) and the force [N]
+    of the rollers and the cage on the cone and, with the cone's tilt free, their moment about its
+    reference point [N m] (n, 6: force x, y, z, moment x, y, z; the moment 0 when the tilt is locked)."""
+    return specialise(_forces_many_impl, contact=contact_forces)(np.ascontiguousarray(Y, dtype=np.float64), args)
+
