@@ -322,9 +322,10 @@ def test_rk4_step_limit_of_the_limited_traction():
     """The "limited" raceway traction's elastic slope (G = 1 GPa, 2 G b^2/(u_e h) per slice) adds a fast
     decay of the rollers' sliding: RK4's stable step (by bisection, loads within 5 % of DOPRI5's over
     1 ms at 2,400 rpm, Fa 15 kN) falls from the contact modes' 2.1e-5 s to about 5e-6 s, and
-    :meth:`TaperedBearing.stable_step`'s closed form 2.785/lambda (lambda of :meth:`traction_rate`) lies
-    below it within a factor 2 (measured 3.16e-6 s against 4.96e-6 s: 1.57, conservative; at G = 3e8 Pa
-    the same 1.57, at 1e8 Pa the contact modes' limit returns)."""
+    :meth:`TaperedBearing.stable_step`'s closed form 2.785/lambda (lambda of :meth:`traction_rate`, the
+    larger eigenvalue of the roller's translation-spin sliding system) lies just below it (measured
+    4.72e-6 s against 4.96e-6 s: 5 % conservative; the trace used before 28 Nov 2026 gave 3.16e-6 s, 1.57;
+    at 1e8 Pa the contact modes' limit returns)."""
     from dataclasses import replace
 
     tb = bearing(speed=2400 * RPM, traction="limited", pocket="contact")

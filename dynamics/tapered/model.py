@@ -34,6 +34,16 @@ from .quasistatic import QuasiStaticResult, solve
 log = logging.getLogger(__name__)
 
 
+def sliding_decay_rate(k1: float, k2: float, m: float, ix: float, rho: float) -> float:
+    """Larger decay rate [1/s] of a roller's rolling-direction speed and spin under linear tractions of
+    slopes ``k1`` (cup) and ``k2`` (cone) [N s/m] at radius ``rho`` [m] on opposite sides (mass ``m``,
+    axial moment of inertia ``ix``): the larger eigenvalue of [[(k1 + k2)/m, (k1 - k2) rho/m], [(k1 - k2)
+    rho/ix, (k1 + k2) rho^2/ix]] (:meth:`TaperedBearing.traction_rate`)."""
+    tr = (k1 + k2) * (1.0 / m + rho**2 / ix)
+    det = 4.0 * k1 * k2 * rho**2 / (m * ix)
+    return 0.5 * (tr + math.sqrt(max(tr * tr - 4.0 * det, 0.0)))
+
+
 @dataclass(frozen=True, kw_only=True)
 class TaperedBearing:
     """Paper A's tapered roller bearing (SI units): the ``geometry`` law and six frozen groups
@@ -495,10 +505,17 @@ class TaperedBearing:
         return max(float(self.ideal()["entrainment speed [m/s]"]), 1e-3)
 
     def traction_rate(self, qs: QuasiStaticResult | None = None, args=None) -> float:
-        """Decay rate [1/s] of a roller's sliding under the raceway traction's low-slip slope k (0 for the
-        laws whose slopes are orders smaller: "paper", "none", an infinitely stiff film): the sliding at a
-        contact a distance rho_m off the roller's axis relaxes at lambda = (k_cup + k_cone)(1/m +
-        rho_m^2/I_x) (translation and spin), at the start's largest cup load Q on both races.
+        """Decay rate [1/s] of a roller's sliding under the raceway traction's low-slip slopes k_cup, k_cone
+        (0 for the laws whose slopes are orders smaller: "paper", "none", an infinitely stiff film), at the
+        start's largest cup load Q on both races.  The roller's rolling-direction speed v and spin omega
+        slide at the cup by s_1 = v + rho_m omega and at the cone by s_2 = v - rho_m omega (relative to
+        their raceways), so that m v' = -k_1 s_1 - k_2 s_2 and I_x omega' = -rho_m (k_1 s_1 - k_2 s_2): the
+        rate is the larger eigenvalue of that 2 x 2 system, lambda = (tr + sqrt(tr^2 - 4 det))/2 with
+        tr = (k_1 + k_2)(1/m + rho_m^2/I_x) and det = 4 k_1 k_2 rho_m^2/(m I_x).  (Until 28 Nov 2026 the
+        rate was the trace tr, an upper bound 1.5 times the eigenvalue for equal slopes on a solid roller,
+        I_x = m rho^2/2: the "auto" RK4 step was 1.5 times smaller than the stability limit needs; the
+        eigenvalue agrees with the right-hand side's own spectrum at the start, :meth:`spectral_step`, and
+        with the bisected stability limit of ``tests/test_trb_dynamics.py``.)
 
         - "limited": the elastic slope; the slice slopes 2 G b_k^2 w_k/(u_e h) summed over a race give
           2 G (8 R' Q/(pi E'))/(u_e h) (b^2 = 8 w R'/(pi E') is linear in the slice load), h the kernel's
@@ -513,13 +530,13 @@ class TaperedBearing:
         load = max(float(np.max(qs.cup_loads)), 1.0)
         w = load / g.effective_length
         ue = self.entrainment_speed
-        k = 0.0
+        k = []  # cup, cone
         if law == "map":
             P = (self.args(qs) if args is None else args)[0]
             s0 = float(P[L.P_TMSLO])
             counter = np.zeros(1, dtype=np.int64)
             for race in (0, 1):
-                k += K.map_traction_coefficient(race, w, s0, P, counter) / s0 * load / ue
+                k.append(K.map_traction_coefficient(race, w, s0, P, counter) / s0 * load / ue)
         else:
             from lubrication.laws.film import dowson_toyoda_central
 
@@ -527,9 +544,9 @@ class TaperedBearing:
             for race in ("cup", "cone"):
                 r = g.reduced_radius(race)
                 h = r * dowson_toyoda_central(lu.viscosity() * ue / (ep * r), lu.pressure_viscosity * ep, w / (ep * r))
-                k += 2.0 * lu.shear_modulus * (8.0 * r * load / (math.pi * ep)) / (ue * h)
+                k.append(2.0 * lu.shear_modulus * (8.0 * r * load / (math.pi * ep)) / (ue * h))
         m, ix, _, _ = g.roller_mass_properties()
-        return k * (1.0 / m + g.mean_roller_radius**2 / ix)
+        return sliding_decay_rate(k[0], k[1], m, ix, g.mean_roller_radius)
 
     def stable_step(self, qs: QuasiStaticResult | None = None, y0: np.ndarray | None = None, args=None) -> float:
         """An estimate of RK4's largest stable step [s]: the smaller of 2 sqrt(2)/omega_max (the contact
