@@ -35,6 +35,8 @@ import time
 import numba
 from numba.core.types import FunctionType
 
+from .errors import DynamicsInputError
+
 logger = logging.getLogger(__name__)
 
 _KERNELS = {}  # kernel source -> (cached dispatcher, {callable name: signature builder})
@@ -106,11 +108,11 @@ class Bound:
         for name, func in zip(self._builders, self._ordered):
             sig = sigs[name]
             if not hasattr(func, "compile"):
-                raise TypeError(f"{name} = {func!r} must be an @njit function")
+                raise DynamicsInputError(f"{name} = {func!r} must be an @njit function")
             func.compile(sig.args)
             got = func.overloads[tuple(sig.args)].signature.return_type
             if got != sig.return_type:
-                raise TypeError(f"{name} = {func.py_func.__qualname__} returns {got}; the kernel "
+                raise DynamicsInputError(f"{name} = {func.py_func.__qualname__} returns {got}; the kernel "
                                 f"{self.impl.__name__} needs {sig.return_type} ({name}{sig})")
         full = _kernel_signature(sigs, types)
         _wait_for_background(self.impl, full)

@@ -73,7 +73,9 @@ def test_a_callable_returning_a_value_is_refused_by_name():
         dydt[0] = -y[0]
         return 1.0
 
-    with pytest.raises(TypeError, match=r"rhs = .*returns returns float64; the kernel _dopri5_impl needs none"):
+    from dynamics.errors import DynamicsInputError
+
+    with pytest.raises(DynamicsInputError, match=r"rhs = .*returns returns float64; the kernel _dopri5_impl needs none"):
         I.integrate(returns, [1.0], [0.0, 1.0], ())
 
 
