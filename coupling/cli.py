@@ -405,17 +405,20 @@ def _logging_to_stderr(verbosity: int):
     root.setLevel(level)
     for lg in quiet.values():
         lg.setLevel(logging.DEBUG if verbosity >= 2 else logging.ERROR)
-    # "compiling kernels (first run only)" (coupling.compilation, INFO) on a terminal even without -v
-    compiling = logging.getLogger("coupling.compilation")
-    saved_compiling = compiling.level
+    # "compiling kernels (first run only)" (coupling.compilation, and dynamics.specialise for the second
+    # process's share, INFO) on a terminal even without -v
+    compiling = [logging.getLogger(name) for name in ("coupling.compilation", "dynamics.specialise")]
+    saved_compiling = [lg.level for lg in compiling]
     if sys.stderr.isatty():
-        compiling.setLevel(min(level, logging.INFO))
+        for lg in compiling:
+            lg.setLevel(min(level, logging.INFO))
     try:
         yield
     finally:
         root.removeHandler(handler)
         root.setLevel(saved[0])
-        compiling.setLevel(saved_compiling)
+        for lg, lvl in zip(compiling, saved_compiling):
+            lg.setLevel(lvl)
         for name, lg in quiet.items():
             lg.setLevel(saved[1][name])
 

@@ -627,6 +627,15 @@ def kernel_jobs(case: TaperedCase, model) -> list:
 
 
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:
+    """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold cache are
+    reported as they compile (:func:`coupling.compilation.report_compilation`)."""
+    from .compilation import report_compilation
+
+    with report_compilation():
+        return _run(case, out_dir, name=name, source=source, smoke=smoke)
+
+
+def _run(case: TaperedCase, out_dir, *, name: str, source: str, smoke: bool) -> TaperedRun:
     from dynamics.errors import DynamicsInputError, IntegrationError
     from dynamics.integrators import integrate
     from dynamics.tapered import kernels as K

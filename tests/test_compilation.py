@@ -69,3 +69,20 @@ def test_cli_shows_compilation_lines_on_a_terminal_without_verbose(monkeypatch):
         line = "lubedyn: INFO: coupling.compilation: compiling kernels (first run only): 1 "
         assert (line in err.getvalue()) == shown
     assert logging.getLogger("coupling.compilation").level == logging.NOTSET  # restored
+
+
+def test_the_second_process_is_announced_on_a_terminal_without_verbose(monkeypatch):
+    """The CLI shows dynamics.specialise's INFO line (the kernels compiled in a second process) on a
+    terminal without -v, as it shows coupling.compilation's, and not in a pipe."""
+    import logging
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    for terminal, shown in ((True, True), (False, False)):
+        err = Terminal() if terminal else io.StringIO()
+        monkeypatch.setattr("sys.stderr", err)
+        with cli._logging_to_stderr(0):
+            logging.getLogger("dynamics.specialise").info("compiling kernels (first run only): x in a second process")
+        assert ("in a second process" in err.getvalue()) == shown
