@@ -417,12 +417,13 @@ def kernel_jobs(case: DynamicsCase, model) -> list:
     at the samples, Benettin): :func:`build` has those numba's cache lacks compiled in a second process
     while it compiles the model, since they do not contain the model's code (:mod:`dynamics.specialise`)."""
     from dynamics.cageless import rhs
-    from dynamics.cageless.kernels import forces_many_example
+    from dynamics.cageless.kernels import forces_example, forces_many_example
     from dynamics.integrators import kernel_example
     from dynamics.lyapunov import spectrum_kernel_example
 
     args = model.args()
-    jobs = [kernel_example(case.integrator.method, rhs, args), forces_many_example(args)]
+    # forces first: the quasi-static start calls it right after the model has compiled
+    jobs = [forces_example(args), kernel_example(case.integrator.method, rhs, args), forces_many_example(args)]
     if case.analysis.lyapunov_exponents:
         jobs.append(spectrum_kernel_example(rhs, args))
     return jobs

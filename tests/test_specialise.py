@@ -174,7 +174,7 @@ def test_the_dynamics_scenes_background_jobs_are_the_kernels_its_run_compiles():
     run = ds.run(case, None, source=str(path), smoke=True)
     assert run.summary["Lyapunov exponent 1, whole system (Benettin) [1/s]"] is not None
     jobs = ds.kernel_jobs(case, ds.build(case, str(path)).model)
-    assert len(jobs) == 3
+    assert len(jobs) == 4
     for bound, example in jobs:
         assert bound.signature(*example) in bound.dispatcher.overloads, bound.impl.__name__
 

@@ -521,17 +521,12 @@ def rhs(t, y, args, dydt):
     _evaluate(t, y, args, dydt, np.empty((0, 0)), np.empty(0))
 
 
-@njit(**JIT)
-def forces(t, y, args):
-    """Contact forces at a state: ``(diag (Z, N_DIAG), ring_diag (N_RING_DIAG,), dydt)``.
-
-    Columns of ``diag`` are named by :data:`DIAG_NAMES`; the ball-ball columns
-    of row j belong to the pair (j, j+1 mod Z) and give the force on ball j+1."""
+def _forces_impl(evaluate, t, y, args):
     Z = args[0][I_Z]
     dydt = np.empty(y.size)
     diag = np.zeros((Z, N_DIAG))
     ring_diag = np.zeros(N_RING_DIAG)
-    _evaluate(t, y, args, dydt, diag, ring_diag)
+    evaluate(t, y, args, dydt, diag, ring_diag)
     return diag, ring_diag, dydt
 
 
@@ -547,9 +542,30 @@ def _forces_many_impl(evaluate, t, Y, args):
 
 
 # the right-hand side's body reached through a function pointer (dynamics.specialise): compiled once,
-# not linked and re-optimised a second time into this loop (4.5-5.8 s of a cold run when it was)
-register_kernel(_forces_many_impl, evaluate=lambda T: types.void(
-    types.float64, types.float64[::1], T["args"], types.float64[::1], types.float64[:, ::1], types.float64[::1]))
+# not linked and re-optimised a second time into these kernels (forces_many: 4.5-5.8 s of a cold run
+# when it was, forces 1 s)
+def _evaluate_signature(types_):
+    """``_evaluate(t, y, args, dydt, diag, ring_diag)`` as the kernels call it (C-contiguous arrays)."""
+    v = types.float64[::1]
+    return types.void(types.float64, v, types_["args"], v, types.float64[:, ::1], v)
+
+
+register_kernel(_forces_impl, evaluate=_evaluate_signature)
+register_kernel(_forces_many_impl, evaluate=_evaluate_signature)
+
+
+def forces(t, y, args):
+    """Contact forces at a state: ``(diag (Z, N_DIAG), ring_diag (N_RING_DIAG,), dydt)``.
+
+    Columns of ``diag`` are named by :data:`DIAG_NAMES`; the ball-ball columns
+    of row j belong to the pair (j, j+1 mod Z) and give the force on ball j+1.  The model's body is
+    reached through a function pointer (:mod:`dynamics.specialise`), compiled once with ``rhs``."""
+    return specialise(_forces_impl, evaluate=_evaluate)(float(t), np.ascontiguousarray(y, dtype=np.float64), args)
+
+
+def forces_example(args):
+    """``(kernel, example arguments)`` of :func:`forces` (:func:`dynamics.specialise.compile_in_background`)."""
+    return specialise(_forces_impl, evaluate=_evaluate), (0.0, np.zeros(1), args)
 
 
 def forces_many_example(args):
