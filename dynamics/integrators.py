@@ -123,10 +123,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
-
-from .errors import DynamicsInputError, IntegrationError
 from numba import types as _nt
 
+from .errors import DynamicsInputError, IntegrationError
 from .specialise import register_kernel, specialise
 
 logger = logging.getLogger(__name__)
@@ -770,10 +769,10 @@ dopri5 = OneShot("dopri5", _dopri5_generic, 1)
 ros2 = OneShot("ros2", _ros2_generic, 2)
 
 
-
 # binding to a right-hand side (dynamics.specialise): how each kernel calls its callables
-def _rhs_signature(types):
-    """``rhs(t, y, args, dydt)`` as the kernels call it: y and dydt are fresh C-contiguous arrays."""
+def rhs_signature(types):
+    """``rhs(t, y, args, dydt)`` as the kernels call it (y and dydt fresh C-contiguous arrays), from the
+    numba ``types`` of the kernel's arguments (:func:`dynamics.specialise.register_kernel`)."""
     vec = _nt.float64[::1]
     return _nt.void(_nt.float64, vec, types["args"], vec)
 
@@ -782,9 +781,9 @@ def _jac_signature(types):
     return _nt.void(_nt.float64, _nt.float64[::1], types["args"], _nt.float64[:, ::1])
 
 
-register_kernel(_rk4_impl, rhs=_rhs_signature)
-register_kernel(_dopri5_impl, rhs=_rhs_signature)
-register_kernel(_ros2_impl, rhs=_rhs_signature, jac=_jac_signature)
+register_kernel(_rk4_impl, rhs=rhs_signature)
+register_kernel(_dopri5_impl, rhs=rhs_signature)
+register_kernel(_ros2_impl, rhs=rhs_signature, jac=_jac_signature)
 
 
 # stability ----------------------------------------------------------------------

@@ -108,11 +108,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
-
-from .errors import DynamicsInputError
-from .integrators import stability_limit
 from numba import types as _nt
 
+from .errors import DynamicsInputError
+from .integrators import rhs_signature, stability_limit
 from .specialise import register_kernel, specialise
 
 logger = logging.getLogger(__name__)
@@ -218,7 +217,7 @@ def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, 
 
 
 benettin_kernel = njit(cache=False)(_benettin_impl)  # generic: rhs and jvp as plain arguments
-register_kernel(_benettin_impl, rhs=lambda T: _nt.void(_nt.float64, _nt.float64[::1], T["args"], _nt.float64[::1]),
+register_kernel(_benettin_impl, rhs=rhs_signature,
                 jvp=lambda T: _nt.void(_nt.float64, _nt.float64[::1], _nt.float64[::1], T["args"], _nt.float64[::1]))
 
 
