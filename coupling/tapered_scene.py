@@ -616,9 +616,8 @@ def headline(s: dict) -> list[str]:
 
 def kernel_jobs(case: TaperedCase, model) -> list:
     """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (the integrator, the
-    forces at the samples): they
-    do not contain the model's code, so a first run compiles them in a second process while it compiles
-    the model (:func:`dynamics.specialise.compile_in_background`)."""
+    forces at the samples): they do not contain the model's code, so a first run compiles them in a second
+    process while it compiles the model (:func:`dynamics.specialise.compile_in_background`)."""
     from dynamics.integrators import kernel_example
     from dynamics.tapered import kernels as K
 

@@ -166,7 +166,11 @@ def compile_in_background(jobs) -> int:
         return 0
     todo, keys = [], []
     for bound, example in jobs:
-        sig = bound.signature(*example)
+        try:
+            sig = bound.signature(*example)
+        except Exception as exc:  # noqa: BLE001 - an optimisation only: never fails the run
+            logger.debug("no background compilation of %s: %s", bound.impl.__name__, exc)
+            continue
         key = (bound.impl, sig)
         if key in _PENDING or key in keys or _is_cached(bound.dispatcher, sig):
             continue

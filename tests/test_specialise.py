@@ -232,3 +232,11 @@ def test_background_compilation_can_be_switched_off(monkeypatch):
     assert S.compile_in_background([job]) == 0 and not started
     monkeypatch.setattr(S, "_usable_cores", lambda: 2)
     assert S.compile_in_background([job]) == 0 and len(started) == 1  # tried; its OSError is reported, not raised
+
+
+def test_a_job_whose_signature_cannot_be_built_is_skipped_not_raised(monkeypatch):
+    """The background compilation is an optimisation: a job it cannot type is left to the run itself."""
+    bound = I.resumable_kernel("rk4", duffing_softer)
+    monkeypatch.setattr(S, "_usable_cores", lambda: 2)
+    monkeypatch.setenv("LUBEDYN_BACKGROUND_COMPILE", "1")
+    assert S.compile_in_background([(bound, (object(),))]) == 0
