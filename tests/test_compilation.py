@@ -55,14 +55,21 @@ def test_bound_kernels_get_readable_names():
     assert name.startswith("_fresh_kernels.<locals>.outer (") and name.endswith("test_compilation)")
 
 
-def test_cli_shows_compilation_lines_on_a_terminal_without_verbose(monkeypatch):
-    class Terminal(io.StringIO):
-        def isatty(self):
-            return True
+class _Terminal(io.StringIO):
+    def isatty(self):
+        return True
 
-    for terminal, shown in ((True, True), (False, False)):
-        err = Terminal() if terminal else io.StringIO()
+
+def _stderrs(monkeypatch):
+    """A terminal's stderr, then a pipe's, each installed as sys.stderr: ``(stream, is_terminal)``."""
+    for terminal in (True, False):
+        err = _Terminal() if terminal else io.StringIO()
         monkeypatch.setattr("sys.stderr", err)
+        yield err, terminal
+
+
+def test_cli_shows_compilation_lines_on_a_terminal_without_verbose(monkeypatch):
+    for err, shown in _stderrs(monkeypatch):
         _, outer = _fresh_kernels()
         with cli._logging_to_stderr(0), report_compilation():
             outer(np.float64(1.0))
@@ -74,15 +81,8 @@ def test_cli_shows_compilation_lines_on_a_terminal_without_verbose(monkeypatch):
 def test_the_second_process_is_announced_on_a_terminal_without_verbose(monkeypatch):
     """The CLI shows dynamics.specialise's INFO line (the kernels compiled in a second process) on a
     terminal without -v, as it shows coupling.compilation's, and not in a pipe."""
-    import logging
-
-    class Terminal(io.StringIO):
-        def isatty(self):
-            return True
-
-    for terminal, shown in ((True, True), (False, False)):
-        err = Terminal() if terminal else io.StringIO()
-        monkeypatch.setattr("sys.stderr", err)
+    for err, shown in _stderrs(monkeypatch):
         with cli._logging_to_stderr(0):
             logging.getLogger("dynamics.specialise").info("compiling kernels (first run only): x in a second process")
         assert ("in a second process" in err.getvalue()) == shown
+    assert logging.getLogger("dynamics.specialise").level == logging.NOTSET  # restored
