@@ -216,7 +216,6 @@ def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, 
     return log_sum, accumulated, running, y, t, status
 
 
-benettin_kernel = njit(cache=False)(_benettin_impl)  # generic: rhs and jvp as plain arguments
 register_kernel(_benettin_impl, rhs=rhs_signature,
                 jvp=lambda T: _nt.void(_nt.float64, _nt.float64[::1], _nt.float64[::1], T["args"], _nt.float64[::1]))
 
@@ -256,7 +255,6 @@ def _benettin_map_impl(step, jac, x0, V0, args, n_iter, n_transient):
     return log_sum / max(n_iter - n_transient, 1), x
 
 
-benettin_map_kernel = njit(cache=False)(_benettin_map_impl)  # generic: step and jac as plain arguments
 register_kernel(_benettin_map_impl, step=lambda T: _nt.void(_nt.float64[::1], T["args"], _nt.float64[::1]),
                 jac=lambda T: _nt.void(_nt.float64[::1], T["args"], _nt.float64[:, ::1]))
 

@@ -240,3 +240,18 @@ def test_a_job_whose_signature_cannot_be_built_is_skipped_not_raised(monkeypatch
     monkeypatch.setattr(S, "_usable_cores", lambda: 2)
     monkeypatch.setenv("LUBEDYN_BACKGROUND_COMPILE", "1")
     assert S.compile_in_background([(bound, (object(),))]) == 0
+
+
+def test_the_call_cache_tells_argument_types_apart():
+    """Bound calls find their compiled entry by numba's type fingerprints of the arguments: the same types
+    reuse one entry (one signature compiled), other types (a float32 coefficient array) get their own
+    and their own numbers; the result is the same as the first call's for the same arguments."""
+    y0, t = np.array([1.0, 0.0]), np.linspace(0.0, 1.0, 11)
+    k = I.kernel_for("rk4", duffing_softer)
+    a = k(y0, t, 0.01, ARGS)[0]
+    n_sigs = len(k.kernel.dispatcher.signatures)
+    assert np.array_equal(a, k(y0, t, 0.01, ARGS)[0]) and len(k.kernel.dispatcher.signatures) == n_sigs
+    args32 = (ARGS[0].astype(np.float32), ARGS[1])
+    b = k(y0, t, 0.01, args32)[0]
+    assert len(k.kernel.dispatcher.signatures) == n_sigs + 1
+    assert np.abs(b - a).max() < 1e-6 and not np.array_equal(a, b)  # float32 coefficients: rounded, same ODE
