@@ -27,8 +27,9 @@ def kernel_name(dispatcher) -> str:
     py = getattr(dispatcher, "py_func", None)
     module = getattr(py, "__module__", "") or ""
     name = getattr(py, "__qualname__", repr(dispatcher))
-    if name.startswith("_") and name.endswith("_impl"):
-        name = f"{name.strip('_').removesuffix('_impl')} kernel"
+    from dynamics.specialise import kernel_label
+
+    name = kernel_label(name)
     return f"{name} ({module})" if module else name
 
 

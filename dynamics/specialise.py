@@ -140,6 +140,13 @@ class Bound:
         return entry(*self._ordered, *args)
 
 
+def kernel_label(name: str) -> str:
+    """A kernel source's readable name: ``_dopri5_impl`` -> ``dopri5 kernel``; other names unchanged."""
+    if name.startswith("_") and name.endswith("_impl"):
+        return f"{name.strip('_').removesuffix('_impl')} kernel"
+    return name
+
+
 def _kernel_signature(callable_sigs, types):
     return tuple(FunctionType(s) for s in callable_sigs.values()) + tuple(types)
 
@@ -204,7 +211,7 @@ def compile_in_background(jobs) -> int:
     for key in keys:
         _PENDING[key] = proc
     logger.info("compiling kernels (first run only): %s in a second process",
-                ", ".join(f"{name.strip('_').removesuffix('_impl')} kernel ({module})" for module, name, _ in todo))
+                ", ".join(f"{kernel_label(name)} ({module})" for module, name, _ in todo))
     return len(todo)
 
 
@@ -220,7 +227,7 @@ def _wait_for_background(impl, signature):
     if proc is None:
         return
     if proc.poll() is None:
-        logger.info("waiting for the second process to finish compiling %s", impl.__name__.strip("_"))
+        logger.info("waiting for the second process to finish compiling the %s", kernel_label(impl.__name__))
     t0 = time.perf_counter()
     while proc.poll() is None:  # short waits: a Ctrl-C is taken at once
         time.sleep(0.02)
