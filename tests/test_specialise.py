@@ -144,10 +144,11 @@ def test_background_compilation_fills_the_cache_the_caller_then_loads(tmp_path):
 
 def test_forces_many_equals_forces_row_by_row():
     """The cage-less bearing's forces_many (the model's body through a function pointer) gives the
-    bits of forces() at each state."""
+    bits of forces() at each state, and forces' state derivative is the bits of rhs, which calls the
+    body directly (compiled into it, not through a pointer)."""
     from coupling.cli import load_case_file
     from coupling.dynamics_scene import build
-    from dynamics.cageless import forces, forces_many
+    from dynamics.cageless import forces, forces_many, rhs
 
     path, _, case = load_case_file(str(ROOT / "cases/cageless_6206_10krpm_short.toml"),
                                    smoke=True)
@@ -158,8 +159,11 @@ def test_forces_many_equals_forces_row_by_row():
     t = np.array([0.0, 1e-4, 2e-4, 3e-4])
     D, R = forces_many(t, Y, setup.model.args())
     for i in range(4):
-        d, r, _ = forces(t[i], Y[i], setup.model.args())
+        d, r, dydt = forces(t[i], Y[i], setup.model.args())
         assert np.array_equal(D[i], d) and np.array_equal(R[i], r)
+        direct = np.empty_like(dydt)
+        rhs(t[i], np.ascontiguousarray(Y[i]), setup.model.args(), direct)
+        assert np.array_equal(dydt, direct)
 
 
 def test_the_dynamics_scenes_background_jobs_are_the_kernels_its_run_compiles():
