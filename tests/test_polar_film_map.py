@@ -59,6 +59,30 @@ def test_polar_reader_matches_the_map_and_its_gap_derivative(polar, kernel):
     assert checked >= 8
 
 
+def test_map_ends_in_the_parameters_change_no_bit(polar):
+    """The bearing's parameter vector carries the map's axis ends (``with_map_ends``, read instead of four
+    exponentials a film read); a vector without them (as ``ball_ball_parameters`` returns it) makes the
+    kernels compute them from the axes: the collision's force, film, approach, phase and share are the
+    same to the bit, across the lock, the map's gap range, above it and in separation."""
+    from lubrication.laws import collision as LC
+
+    fmap, params, bbp, (ax0, ax1, ax2, vals, opts, counter) = polar
+    ends = bbp[LC.BB_MAP_H0:LC.BB_MAP_X1TOP + 1]
+    assert ends == pytest.approx([fmap.axes[0].lo, fmap.axes[0].hi, fmap.axes[1].lo, fmap.axes[1].hi], rel=1e-12)
+    bare = bbp.copy()
+    bare[LC.BB_MAP_H0:LC.BB_MAP_X1TOP + 1] = np.nan
+    rng = np.random.default_rng(7)
+    phases = set()
+    for _ in range(400):
+        g = math.exp(rng.uniform(math.log(1e-8), math.log(2e-4))) * rng.choice([-0.01, 1.0])
+        v, ue = rng.uniform(-1.0, 3.0), rng.uniform(0.0, 8.0)
+        a = C.ball_ball_normal(g, v, ue, 0.0, bbp, C.FILM_MAP, ax0, ax1, ax2, vals, opts, counter)
+        b = C.ball_ball_normal(g, v, ue, 0.0, bare, C.FILM_MAP, ax0, ax1, ax2, vals, opts, counter)
+        assert a == b
+        phases.add(a[3])
+    assert len(phases) >= 2
+
+
 # ----------------------------------------------------------------------------- beyond the map's axes
 def test_above_the_last_gap_node_the_reader_matches_a_reynolds_solve(polar):
     """Above the map's last gap node (50 um) the reader scales the film self-similarly (F = h Phi(rho,

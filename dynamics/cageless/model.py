@@ -18,7 +18,7 @@ from lubrication.laws.collision import ball_ball_parameters
 from lubrication.laws.film import hamrock_dowson_central
 
 from .. import contacts as C
-from ..contacts import FILM_KINDS
+from ..contacts import FILM_KINDS, with_map_ends
 from ..errors import DynamicsInputError
 from ..groups import fail
 from .groups import Bearing, Films, Fidelity, Initial, Operating, Slots
@@ -328,6 +328,7 @@ class CagelessBearing:
         if self.films.ball_ball == "map":
             map_ax0, map_ax1, map_ax2, map_vals, map_opts = _map_arrays(self.films.map, MAP_SPEED_AXES[
                 self.films.map_speed_axis])
+            bbp = with_map_ends(bbp, map_ax0, map_ax1, map_opts)
         counter = np.zeros(1, dtype=np.int64)
         tmap = _traction_arrays(self.fidelity.traction_maps) if self.fidelity.traction == "map" else None
         return (iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap)

@@ -46,10 +46,12 @@ from .jit import INLINE, JIT
 PHASE_SEPARATED, PHASE_FILM, PHASE_ELASTIC, PHASE_PLASTIC, PHASE_RECOVERY = 0, 1, 2, 3, 4
 PHASE_NAMES = ("separated", "film", "elastic", "elastic-plastic", "recovery")
 
-# indices of the ball-ball parameter vector (see ball_ball_parameters)
+# indices of the ball-ball parameter vector (see ball_ball_parameters); BB_MAP_*: the film map's axis ends
+# [m, m, -, -] (first and last gap node, first and last pressure-number node), filled by
+# dynamics.contacts.with_map_ends for the map the kernels read, NaN until then
 (BB_K, BB_R, BB_ESTAR, BB_PY, BB_DY, BB_FY, BB_ALPHA, BB_C0, BB_HR, BB_HCUT, BB_MUF, BB_MUB, BB_VREG, BB_TAU,
- BB_SQF, BB_FLAW, BB_ETA, BB_PVA, BB_SLOPE) = range(19)
-BB_SIZE = 19
+ BB_SQF, BB_FLAW, BB_ETA, BB_PVA, BB_SLOPE, BB_MAP_H0, BB_MAP_HTOP, BB_MAP_X1LO, BB_MAP_X1TOP) = range(23)
+BB_SIZE = 23
 
 # ball-ball friction laws (BB_FLAW; :func:`ball_ball_friction_coefficient`)
 FRICTION_LAWS = {"exponential_share": 0, "paper": 1}
@@ -113,6 +115,7 @@ def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alph
     p[BB_FLAW] = FRICTION_LAWS[friction_law]
     p[BB_ETA], p[BB_PVA] = viscosity, pressure_viscosity
     p[BB_SLOPE] = _positive("asperity slope [-]", asperity_slope)
+    p[BB_MAP_H0:BB_MAP_X1TOP + 1] = np.nan
     return p
 
 
