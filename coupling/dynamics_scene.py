@@ -911,7 +911,7 @@ def _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring,
             scene3d = _Scene3D(case, setup)
             for k, i in enumerate(picks):
                 fname = f"frames/frame_{k:05d}.vtp"
-                scene3d.frame(Y[i], diag[i], D_BBN, D_H).save(stage / fname)
+                outputs.write_frame(stage / fname, scene3d.frame(Y[i], diag[i], D_BBN, D_H))
                 entries.append((float(t[i]), fname))
             outputs.write_pvd(stage / "bearing.pvd", entries)
         if "png" in write:

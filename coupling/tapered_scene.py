@@ -696,7 +696,7 @@ def _run(case: TaperedCase, out_dir, *, name: str, source: str, smoke: bool) -> 
             entries = []
             for k, i in enumerate(picks):
                 fname = f"frames/frame_{k:05d}.vtu"
-                frame_mesh(model, res.y[i], {key: D[key][i] for key in FRAME_FIELDS}).save(stage / fname)
+                outputs.write_frame(stage / fname, frame_mesh(model, res.y[i], {key: D[key][i] for key in FRAME_FIELDS}))
                 entries.append((float(res.t[i]), fname))
             outputs.write_pvd(stage / "bearing.pvd", entries)
         if "png" in write:

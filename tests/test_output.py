@@ -145,6 +145,35 @@ def test_pvd_collection_reads_back_in_pyvista(tmp_path):
     assert abs(block.bounds[1] - 3.0) < 1e-2  # sphere of radius 3
 
 
+def test_frames_read_back_as_written_and_unwritable_frames_name_the_path(tmp_path):
+    """``write_frame`` (zlib level 1 through VTK's writer): pyvista and meshio (two independent readers)
+    read back the points, cells and arrays of a PolyData and an UnstructuredGrid (meshio: the latter) exactly; a frame that
+    cannot be written is an OutputError naming its path."""
+    from coupling.outputs import OutputError, write_frame
+
+    poly = pv.Sphere(radius=2.0, theta_resolution=24, phi_resolution=12)
+    poly.point_data["Film pressure [Pa]"] = np.linspace(0.0, 3e8, poly.n_points)
+    poly.point_data["Body [-]"] = np.arange(poly.n_points, dtype=np.int32) % 5
+    grid = pv.ImageData(dimensions=(4, 3, 2)).triangulate()  # tetrahedra (meshio reads no voxels)
+    grid.cell_data["Body [-]"] = np.arange(grid.n_cells, dtype=np.int32)
+    for mesh, name in ((poly, "f.vtp"), (grid, "g.vtu")):
+        write_frame(tmp_path / name, mesh)
+        back = pv.read(tmp_path / name)
+        assert type(back) is type(mesh)
+        assert np.array_equal(back.points, mesh.points)
+        for data, ref in ((back.point_data, mesh.point_data), (back.cell_data, mesh.cell_data)):
+            assert sorted(data.keys()) == sorted(ref.keys())
+            for key in ref.keys():
+                assert np.array_equal(data[key], ref[key]) and data[key].dtype == ref[key].dtype
+    m = meshio.read(tmp_path / "g.vtu")  # meshio reads .vtu, not .vtp
+    assert np.array_equal(m.points, grid.points) and np.array_equal(m.cell_data["Body [-]"][0], grid.cell_data["Body [-]"])
+    assert np.array_equal(pv.read(tmp_path / "f.vtp").faces, poly.faces)
+    assert np.array_equal(pv.read(tmp_path / "g.vtu").cells, grid.cells)
+    (tmp_path / "a_file").write_text("")
+    with pytest.raises(OutputError, match="a_file"):
+        write_frame(tmp_path / "a_file" / "f.vtp", poly)
+
+
 def test_timeseries_roundtrip_and_refuses_ragged_columns(tmp_path):
     from coupling.outputs import read_timeseries, write_timeseries
 
