@@ -114,7 +114,7 @@ from lubrication.laws.collision import (BB_ALPHA, BB_HCUT, BB_MAP_H0, BB_MAP_HTO
                                         ball_ball_friction_coefficient, squeeze_film_closed_form, thornton_force)
 from lubrication.laws.jit import INLINE, JIT
 
-from .interp import HERMITE, hermite3_grad, interp3_grad
+from .interp import hermite3_grad, interp3_grad
 
 
 # film kinds
@@ -173,16 +173,6 @@ def _film(h, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts,
     return 0.0, 0.0
 
 
-@njit(**INLINE)  # shared by the two film-map readers; inlined like the other leaves
-def _map3_grad(ax0, ax1, ax2, vals, opts, x0, x1, x2, counter):
-    """Value and gradient of a packed 3-axis film map (``opts``: logs, method, mode; see :func:`_film_map`)."""
-    if opts[MO_METHOD] == HERMITE:
-        return hermite3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
-                             opts[MO_LOGV], x0, x1, x2, opts[MO_MODE], counter)
-    return interp3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals[0],
-                        opts[MO_LOGV], opts[MO_METHOD], x0, x1, x2, opts[MO_MODE], counter)
-
-
 @njit(**JIT)
 def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     """F and dF/dh (fixed v, u_e) from a ball_ball map on (gap, rho, theta); see :func:`_film_map`."""
@@ -215,7 +205,15 @@ def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     scale, rq = 1.0, rho
     if rho < rho_lo:
         scale, rq = rho / rho_lo, rho_lo * (1.0 + 1e-12)
-    f, d0, d1, d2 = _map3_grad(ax0, ax1, ax2, vals, opts, hq, rq, th, counter)
+    # the reader by the values' type, in this function (numba prunes the other branch only on an argument of
+    # the function it compiles): hermite data (8, n0, n1, n2) or linear/pchip values (n0, n1, n2); a
+    # model with a hermite map then never compiles the linear/pchip reader (2.4 s of the cold compile)
+    if vals.ndim == 4:
+        f, d0, d1, d2 = hermite3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
+                                      opts[MO_LOGV], hq, rq, th, opts[MO_MODE], counter)
+    else:
+        f, d0, d1, d2 = interp3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
+                                     opts[MO_LOGV], opts[MO_METHOD], hq, rq, th, opts[MO_MODE], counter)
     if f != f:
         return f, f
     if f < 0.0:
@@ -234,8 +232,10 @@ def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
 def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     """Tabulated squeeze force over (gap, approach speed or squeeze number,
     entrainment speed), read with :mod:`dynamics.interp` (``vals`` of shape
-    (1, n0, n1, n2), or (8, n0, n1, n2) from ``hermite_data`` for the hermite
-    method; a two-axis table is given a constant third axis by the builder).
+    (n0, n1, n2) for the linear and pchip methods, (8, n0, n1, n2) from
+    ``hermite_data`` for the hermite method: the reader is chosen by the
+    array's dimension, at compile time; a two-axis table is given a constant
+    third axis by the builder).
 
     The gap is floored at the map's first node (it plays the role of h_r); an
     approach speed below the first node scales the force linearly in v (the
@@ -267,7 +267,12 @@ def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
         if v < v0:
             scale = v / v0
             x1 = v0 * (1.0 + 1e-12)  # stay inside the axis after the log/exp round trip
-    f, d0, d1, _ = _map3_grad(ax0, ax1, ax2, vals, opts, h, x1, ue, counter)
+    if vals.ndim == 4:  # by the values' type, as in _film_map_polar
+        f, d0, d1, _ = hermite3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
+                                     opts[MO_LOGV], h, x1, ue, opts[MO_MODE], counter)
+    else:
+        f, d0, d1, _ = interp3_grad(ax0, ax1, ax2, opts[MO_LOG0], opts[MO_LOG1], opts[MO_LOG2], vals,
+                                    opts[MO_LOGV], opts[MO_METHOD], h, x1, ue, opts[MO_MODE], counter)
     if f != f:
         return f, f
     if f < 0.0:

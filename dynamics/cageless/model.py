@@ -34,9 +34,10 @@ logger = logging.getLogger(__name__)
 
 # ----------------------------------------------------------------------------- model builder
 def _map_arrays(film_map, axis1_kind):
-    """(ax0, ax1, ax2, vals (k, n0, n1, n2), opts) for the map kernel from a force map's kernel arrays
+    """(ax0, ax1, ax2, vals, opts) for the map kernel from a force map's kernel arrays
     ``(axes, logs, values, logv, method)`` (:class:`coupling.maps.KernelArrays`); a two-axis map (gap,
-    speed) gets a constant third axis."""
+    speed) gets a constant third axis.  ``vals``: (8, n0, n1, n2) hermite data, or (n0, n1, n2) values
+    of the linear and pchip methods (the kernels choose the reader by this dimension at compile time)."""
     if len(film_map) == 6:  # (axes, logs, values, logv, method, axis kind name): coupling.maps.FilmMap.dynamics_film_map
         axis1_kind = MAP_SPEED_AXES[film_map[5]]
         film_map = tuple(film_map[:5])
@@ -64,10 +65,8 @@ def _map_arrays(film_map, axis1_kind):
             v3 = np.zeros((8,) + shape + (2,))
             v3[:4] = vals[..., None]
         else:
-            v3 = np.repeat(vals[..., None], 2, axis=-1)[None]
+            v3 = np.repeat(vals[..., None], 2, axis=-1)
         vals = v3
-    elif not hermite:
-        vals = vals[None]
     opts = np.zeros(C.MO_SIZE, dtype=np.int64)
     opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = logs
     opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = int(logv), int(method), 0
