@@ -128,6 +128,31 @@ from numba import types as _nt
 from .errors import DynamicsInputError, IntegrationError
 from .specialise import register_kernel, specialise
 
+
+# Copies into slices by explicit loops: numba compiles an array-to-slice assignment (``a[:] = b``) with its
+# shape-mismatch error message (string formatting), about 1.7 s of compile time for each combination of
+# dimensions in every process that compiles a kernel; the loops give the same values without it.
+@njit(cache=True, inline="always")
+def put(dst, start, src):
+    """dst[start:start + len(src)] = src (1-D)."""
+    for i in range(src.shape[0]):
+        dst[start + i] = src[i]
+
+
+@njit(cache=True, inline="always")
+def put_row(dst, row, src):
+    """dst[row, :] = src (dst 2-D, src 1-D)."""
+    for i in range(src.shape[0]):
+        dst[row, i] = src[i]
+
+
+@njit(cache=True, inline="always")
+def put2(dst, src):
+    """dst[:, :] = src (2-D)."""
+    for i in range(src.shape[0]):
+        for j in range(src.shape[1]):
+            dst[i, j] = src[i, j]
+
 logger = logging.getLogger(__name__)
 
 # stats indices and status codes ------------------------------------------------
@@ -184,8 +209,8 @@ def _load_state(work):
 def _store_state(work, y, f, t, h, accepted, rejected, nfev, status, h_next, filled, n_nonfinite, phase):
     """Write back what :func:`_load_state` read, with the state ``y`` and its derivative ``f``."""
     n = y.shape[0]
-    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
-    work[N_WORK_SCALARS + n:N_WORK_SCALARS + 2 * n] = f
+    put(work, N_WORK_SCALARS, y)
+    put(work, N_WORK_SCALARS + n, f)
     work[W_T] = t
     work[W_H] = h
     work[W_ACCEPTED] = accepted
@@ -334,15 +359,15 @@ def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
                                 break
                         else:
                             unstable_steps = 0
-                y[:] = tmp
+                put(y, 0, tmp)
                 accepted += 1
                 t_reached = t + h
             if status != STATUS_OK:
                 break
             t_reached = t_out[i]
-            Y[i, :] = y
+            put_row(Y, i, y)
             filled = i + 1
-    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y
+    put(work, N_WORK_SCALARS, y)
     work[W_T] = t_reached
     work[W_ACCEPTED] = accepted
     work[W_NFEV] = 4 * accepted + (4 if (status == STATUS_NONFINITE or status == STATUS_UNSTABLE) else 0)
@@ -492,13 +517,13 @@ def _dopri5_impl(rhs, t_out, args, params, Y, work, i_stop):
             t = t_end if last else t + h
             while filled < m and t_out[filled] <= t:
                 if filled == m - 1 and last:
-                    Y[filled, :] = y1
+                    put_row(Y, filled, y1)
                 else:
                     _dense_eval(rcont, (t_out[filled] - t_old) / h, ytmp)
-                    Y[filled, :] = ytmp
+                    put_row(Y, filled, ytmp)
                 filled += 1
-            y[:] = y1
-            k1[:] = k7
+            put(y, 0, y1)
+            put(k1, 0, k7)
             if hnew > h_max:
                 hnew = h_max
             if reject:
@@ -597,7 +622,7 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
             if use_fd:
                 for j in range(n):
                     delta = FD_SQRT_EPS * (abs(y[j]) + atol / rtol)
-                    ytmp[:] = y
+                    put(ytmp, 0, y)
                     ytmp[j] = y[j] + delta
                     rhs(t, ytmp, args, fnew)
                     for i in range(n):
@@ -618,14 +643,14 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
         ok = _all_finite(W.ravel())
         if ok:
             Winv = np.linalg.inv(W)
-            k1[:] = Winv @ f0
+            put(k1, 0, Winv @ f0)
             for j in range(n):
                 ytmp[j] = y[j] + h * k1[j]
             rhs(t + h, ytmp, args, f1)
             nfev += 1
             for j in range(n):
                 f1[j] -= 2.0 * k1[j]
-            k2[:] = Winv @ f1
+            put(k2, 0, Winv @ f1)
             err = 0.0
             for j in range(n):
                 y1[j] = y[j] + h * (1.5 * k1[j] + 0.5 * k2[j])
@@ -656,13 +681,13 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
             t = t_end if last else t + h
             while filled < m and t_out[filled] <= t:
                 if filled == m - 1 and last:
-                    Y[filled, :] = y1
+                    put_row(Y, filled, y1)
                 else:
                     _hermite(y, f0, y1, fnew, h, (t_out[filled] - t_old) / h, ytmp)
-                    Y[filled, :] = ytmp
+                    put_row(Y, filled, ytmp)
                 filled += 1
-            y[:] = y1
-            f0[:] = fnew
+            put(y, 0, y1)
+            put(f0, 0, fnew)
             need_jac = True
             hnew = min(h * fac, h_max)
             if last:
@@ -686,7 +711,7 @@ def new_run(y0, t_out, h0=0.0):
     Y = np.full((m, n), np.nan)
     Y[0] = y0
     work = np.zeros(N_WORK_SCALARS + 2 * n)
-    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y0
+    put(work, N_WORK_SCALARS, y0)
     work[W_H] = h0
     work[W_FILLED] = 1
     work[W_PHASE] = PHASE_NEW

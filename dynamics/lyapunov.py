@@ -111,7 +111,7 @@ from numba import njit
 from numba import types as _nt
 
 from .errors import DynamicsInputError
-from .integrators import rhs_signature, stability_limit
+from .integrators import put, put2, put_row, rhs_signature, stability_limit
 from .specialise import register_kernel, specialise
 
 logger = logging.getLogger(__name__)
@@ -151,8 +151,8 @@ def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, 
         for s in range(steps_per_orth):
             for stage in range(4):
                 if stage == 0:
-                    ys[:] = y
-                    Vs[:, :] = V
+                    put(ys, 0, y)
+                    put2(Vs, V)
                 else:
                     a = c[stage] * dt
                     for j in range(n):
@@ -166,7 +166,7 @@ def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, 
                 rhs(ts, yr, args, f0)
                 for j in range(n):
                     f0[j] /= scale[j]
-                ky[stage, :] = f0
+                put_row(ky, stage, f0)
                 for i in range(k):
                     if use_fd:
                         vn = 0.0
@@ -206,7 +206,7 @@ def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, 
             status = 3
             break
         Q, R = np.linalg.qr(np.ascontiguousarray(V.T))
-        V[:, :] = Q.T
+        put2(V, Q.T)
         if q >= n_transient:
             accumulated += steps_per_orth * dt
             for i in range(k):
@@ -230,7 +230,7 @@ def _benettin_map_kernel_body(x, J, V, log_sum, tmp):
             for b in range(n):
                 s += J[a, b] * V[i, b]
             tmp[i, a] = s
-    V[:, :] = tmp
+    put2(V, tmp)
 
 
 def _benettin_map_impl(step, jac, x0, V0, args, n_iter, n_transient):
@@ -246,9 +246,9 @@ def _benettin_map_impl(step, jac, x0, V0, args, n_iter, n_transient):
         jac(x, args, J)
         _benettin_map_kernel_body(x, J, V, log_sum, tmp)
         step(x, args, xn)
-        x[:] = xn
+        put(x, 0, xn)
         Q, R = np.linalg.qr(np.ascontiguousarray(V.T))
-        V[:, :] = Q.T
+        put2(V, Q.T)
         if it >= n_transient:
             for i in range(k):
                 log_sum[i] += math.log(abs(R[i, i]))

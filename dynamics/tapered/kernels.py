@@ -384,7 +384,9 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     qc = np.empty(4)
     wc = np.zeros(3)
     if P[P_CAGE] != 0.0:
-        qc[:] = y[bc + 3:bc + 7] / math.sqrt(y[bc + 3] ** 2 + y[bc + 4] ** 2 + y[bc + 5] ** 2 + y[bc + 6] ** 2)
+        qn = math.sqrt(y[bc + 3] ** 2 + y[bc + 4] ** 2 + y[bc + 5] ** 2 + y[bc + 6] ** 2)
+        for i in range(4):  # a loop, not qc[:] = ...: see dynamics.integrators.put
+            qc[i] = y[bc + 3 + i] / qn
         quat_rotate(qc, y[bc + 10:bc + 13], wc)
     for j in range(Z):
         b = N_CONE + j * NB
@@ -759,8 +761,9 @@ def _forces_many_impl(contact, Y, args):
     Tg = np.empty(3)
     for i in range(n):
         contact(Y[i], P, U, RHO, F, T, Fc, Tc, loads[i], Fg, Tg, SL[i], FR[i], CG[i])
-        FC[i, :3] = Fc
-        FC[i, 3:] = Tc
+        for m in range(3):  # loops, not slice assignments: see dynamics.integrators.put
+            FC[i, m] = Fc[m]
+            FC[i, 3 + m] = Tc[m]
     return loads, SL, FR, CG, FC
 
 
