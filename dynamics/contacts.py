@@ -109,9 +109,10 @@ import math
 
 from numba import njit
 
-from lubrication.laws.collision import (BB_ALPHA, BB_HCUT, BB_MAP_H0, BB_MAP_HTOP, BB_MAP_X1LO, BB_MAP_X1TOP, BB_R, BB_SQF, BB_TAU, BB_VREG, PHASE_FILM,
-                                        PHASE_PLASTIC, PHASE_RECOVERY, PHASE_SEPARATED,
-                                        ball_ball_friction_coefficient, squeeze_film_closed_form, thornton_force)
+from lubrication.laws.collision import (BB_ALPHA, BB_HCUT, BB_MAP_H0, BB_MAP_HTOP, BB_MAP_X1LO, BB_MAP_X1TOP, BB_R,
+                                        BB_SQF, BB_TAU, BB_VREG, PHASE_FILM, PHASE_PLASTIC, PHASE_RECOVERY,
+                                        PHASE_SEPARATED, ball_ball_friction_coefficient, squeeze_film_closed_form,
+                                        thornton_force)
 from lubrication.laws.jit import INLINE, JIT
 
 from .interp import hermite3_grad, interp3_grad

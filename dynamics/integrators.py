@@ -153,6 +153,7 @@ def put2(dst, src):
         for j in range(src.shape[1]):
             dst[i, j] = src[i, j]
 
+
 logger = logging.getLogger(__name__)
 
 # stats indices and status codes ------------------------------------------------

@@ -166,7 +166,8 @@ def test_frames_read_back_as_written_and_unwritable_frames_name_the_path(tmp_pat
             for key in ref.keys():
                 assert np.array_equal(data[key], ref[key]) and data[key].dtype == ref[key].dtype
     m = meshio.read(tmp_path / "g.vtu")  # meshio reads .vtu, not .vtp
-    assert np.array_equal(m.points, grid.points) and np.array_equal(m.cell_data["Body [-]"][0], grid.cell_data["Body [-]"])
+    assert np.array_equal(m.points, grid.points)
+    assert np.array_equal(m.cell_data["Body [-]"][0], grid.cell_data["Body [-]"])
     assert np.array_equal(pv.read(tmp_path / "f.vtp").faces, poly.faces)
     assert np.array_equal(pv.read(tmp_path / "g.vtu").cells, grid.cells)
     (tmp_path / "a_file").write_text("")
