@@ -23,7 +23,7 @@ import numpy as np
 from numba import njit
 
 from dynamics.interp import (_FMA, _INLINE, _JIT, _cell, _dtdx_at, _finish, _refuse, hermite1, hermite2, hermite3,
-                             interp1, interp2, interp3)
+                             hermite3_grad, interp1, interp2, interp3, interp3_grad)
 
 HERMITE_CELLS = 3
 
@@ -92,6 +92,27 @@ def hsum3(ax0, ax1, ax2, log0, log1, log2, deriv, logv, points, mode, counter):
     for q in range(points.shape[0]):
         s += hermite3(ax0, ax1, ax2, log0, log1, log2, deriv, logv, points[q, 0], points[q, 1], points[q, 2], mode,
                       counter)
+    return s
+
+
+# value + gradient consumed inside numba (as the dynamics kernels use a query: no output arrays), 3-D
+@njit(**_JIT)
+def hgsum3(ax0, ax1, ax2, log0, log1, log2, deriv, logv, points, mode, counter):
+    s = 0.0
+    for q in range(points.shape[0]):
+        r = hermite3_grad(ax0, ax1, ax2, log0, log1, log2, deriv, logv, points[q, 0], points[q, 1], points[q, 2],
+                          mode, counter)
+        s += r[0] + r[1] + r[2] + r[3]
+    return s
+
+
+@njit(**_JIT)
+def gsum3(ax0, ax1, ax2, log0, log1, log2, values, logv, method, points, mode, counter):
+    s = 0.0
+    for q in range(points.shape[0]):
+        r = interp3_grad(ax0, ax1, ax2, log0, log1, log2, values, logv, method, points[q, 0], points[q, 1],
+                         points[q, 2], mode, counter)
+        s += r[0] + r[1] + r[2] + r[3]
     return s
 
 
@@ -340,4 +361,15 @@ def csum3(ax0, ax1, ax2, log0, log1, log2, cells, logv, points, mode, counter):
     for q in range(points.shape[0]):
         s += hermite3_cells(ax0, ax1, ax2, log0, log1, log2, cells, logv, points[q, 0], points[q, 1], points[q, 2],
                             mode, counter)
+    return s
+
+
+@njit(**_JIT)
+def cgsum3(ax0, ax1, ax2, log0, log1, log2, cells, logv, points, mode, counter):
+    """:func:`hgsum3` for the per-cell variant."""
+    s = 0.0
+    for q in range(points.shape[0]):
+        r = hermite3_cells_grad(ax0, ax1, ax2, log0, log1, log2, cells, logv, points[q, 0], points[q, 1],
+                                points[q, 2], mode, counter)
+        s += r[0] + r[1] + r[2] + r[3]
     return s

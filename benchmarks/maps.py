@@ -132,18 +132,35 @@ def query_cost(repeats=5, n=200_000):
                     data = deriv if method == interp.HERMITE else vals
                     interp.evaluate(tuple(axes[:nd]), logs[:nd], data, 0, method, pts, 0, counter, grad=True)
 
+                def grad_inside():
+                    """value and gradient consumed in a numba loop (3-D), as the dynamics kernels use a query"""
+                    if method == HERMITE_CELLS:
+                        return interp_cells.cgsum3(axes[0], axes[1], axes[2], 1, 0, 0, cells, 0, pts, 0, counter)
+                    if method == interp.HERMITE:
+                        return interp_cells.hgsum3(axes[0], axes[1], axes[2], 1, 0, 0, deriv, 0, pts, 0, counter)
+                    return interp_cells.gsum3(axes[0], axes[1], axes[2], 1, 0, 0, vals, 0, method, pts, 0, counter)
+
                 value()
                 grad()  # compile
                 t_val, all_val, _ = _common.timed(value, repeats)
                 t_grad, all_grad, _ = _common.timed(grad, repeats)
                 cpu_val, cpu_grad = _cpu_min(value, repeats), _cpu_min(grad, repeats)
-                out.append({"axes": nd, "method": mname, "queries": qname, "ns per value query": t_val / n * 1e9,
-                            "ns per value+gradient query (with output stores)": t_grad / n * 1e9,
-                            "min thread CPU ns per value query": cpu_val / n * 1e9,
-                            "min thread CPU ns per value+gradient query": cpu_grad / n * 1e9})
+                row = {"axes": nd, "method": mname, "queries": qname, "ns per value query": t_val / n * 1e9,
+                       "ns per value+gradient query (with output stores)": t_grad / n * 1e9,
+                       "min thread CPU ns per value query": cpu_val / n * 1e9,
+                       "min thread CPU ns per value+gradient query": cpu_grad / n * 1e9}
+                inside = ""
+                if nd == 3:
+                    grad_inside()  # compile
+                    t_in, _, _ = _common.timed(grad_inside, repeats)
+                    cpu_in = _cpu_min(grad_inside, repeats)
+                    row["ns per value+gradient query inside numba"] = t_in / n * 1e9
+                    row["min thread CPU ns per value+gradient query inside numba"] = cpu_in / n * 1e9
+                    inside = f"; inside numba {t_in / n * 1e9:6.1f} wall median, {cpu_in / n * 1e9:6.1f} CPU min"
+                out.append(row)
                 print(f"query {nd}-D {mname:13s} {qname:6s}: value {t_val / n * 1e9:7.1f} ns wall median, "
                       f"{cpu_val / n * 1e9:6.1f} CPU min; value+grad {t_grad / n * 1e9:7.1f} wall median, "
-                      f"{cpu_grad / n * 1e9:6.1f} CPU min", flush=True)
+                      f"{cpu_grad / n * 1e9:6.1f} CPU min{inside}", flush=True)
     return out
 
 
