@@ -368,7 +368,11 @@ def write_frame(path, mesh, level: int = 1) -> Path:
     the format is that of ``mesh.save``."""
     from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter, vtkXMLUnstructuredGridWriter
 
-    writer = vtkXMLPolyDataWriter() if mesh.GetClassName() == "vtkPolyData" else vtkXMLUnstructuredGridWriter()
+    writers = {"vtkPolyData": vtkXMLPolyDataWriter, "vtkUnstructuredGrid": vtkXMLUnstructuredGridWriter}
+    kind = mesh.GetClassName()
+    if kind not in writers:
+        raise TypeError(f"write_frame writes vtkPolyData and vtkUnstructuredGrid, not {kind}")
+    writer = writers[kind]()
     writer.SetInputData(mesh)
     writer.SetDataModeToBinary()
     writer.SetCompressorTypeToZLib()
