@@ -256,7 +256,7 @@ def benettin_start(given: float, detected: float | None, t_end: float) -> float:
     return max(detected, given)
 
 
-def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
+def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict:
     """The k largest Lyapunov exponents of the whole bearing (Benettin, RK4 on
     state and tangent vectors with QR re-orthonormalisation every 50 steps,
     forward-difference tangent dynamics on the state scaled by
@@ -277,7 +277,8 @@ def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
     trajectories.  Collisions stay non-smooth (contact onset, film rupture),
     so the finite-time exponents converge slowly; the summary gives the
     relative change of the largest one over the second half of the window as
-    a convergence measure."""
+    a convergence measure.  ``progress(fraction)`` is called as the spectrum advances (100 kernel
+    calls, bit-identical to one: :func:`dynamics.lyapunov.lyapunov_spectrum`'s ``n_chunks``)."""
     from dynamics.cageless import rhs
     from dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
 
@@ -291,7 +292,7 @@ def _benettin(case, model, t, Y, shaft_speed, start=None) -> dict:
     # the first tenth of the window aligns the random initial tangent vectors (its stretching is discarded)
     res = lyapunov_spectrum(rhs, Y[i0], model.args(), scale=scale, dt=dt, t_total=0.9 * window,
                             t_transient=0.1 * window, t_orth=50 * dt, n_exponents=k, omega_max=omega, t0=float(t[i0]),
-                            frozen=memory_states(model))
+                            frozen=memory_states(model), n_chunks=100, progress=progress)
     out = {"Benettin window start [s]": float(t[i0]), "Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,
            "Benettin time [s]": time.perf_counter() - t_c}
     for i, (lam, u, verdict) in enumerate(zip(res.exponents, res.uncertainty, res.verdicts)):

@@ -619,7 +619,9 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
         # the whole-system spectrum runs in a thread (its compiled kernel releases the GIL) while the rest
         # of the analysis, the frames and the figures are made; its entries join the summary before the
         # time series and summary.json are written (_BackgroundResult)
-        benettin = _BackgroundResult(_benettin, case, model, t, Y, shaft, start=summary.get("Lyapunov window start [s]"))
+        benettin = _BackgroundResult(_benettin, case, model, t, Y, shaft,
+                                     start=summary.get("Lyapunov window start [s]"),
+                                     progress_label="Lyapunov spectrum (Benettin)")
     # characteristic frequencies at the inner ring's mean speed over the analysed window
     # (after a drop the ring is still spinning up: the lines move during the run)
     keep = t >= case.analysis.transient
@@ -658,13 +660,19 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
 
 class _BackgroundResult:
     """``func(*args, **kwargs)`` in a daemon thread; :meth:`result` waits and returns it (or raises its
-    exception).  A daemon thread does not hold up the interpreter's exit after a Ctrl-C."""
+    exception).  A daemon thread does not hold up the interpreter's exit after a Ctrl-C.  With
+    ``progress_label``, ``func`` is also given ``progress=`` (a callable taking the fraction done) and, on a
+    terminal, :meth:`result` shows a bar under that label while it waits."""
 
-    def __init__(self, func, *args, **kwargs):
+    def __init__(self, func, *args, progress_label: str | None = None, **kwargs):
         import threading
 
         self._out = None
         self._exc = None
+        self._label = progress_label
+        self.fraction = 0.0
+        if progress_label is not None:
+            kwargs["progress"] = self._advance
 
         def target():
             try:
@@ -675,9 +683,26 @@ class _BackgroundResult:
         self._thread = threading.Thread(target=target, name="lubedyn-benettin", daemon=True)
         self._thread.start()
 
+    def _advance(self, fraction: float):
+        self.fraction = fraction  # one float store, read by result() in the main thread
+
     def result(self):
-        while self._thread.is_alive():
-            self._thread.join(0.1)  # short joins: a Ctrl-C in the main thread is taken at once
+        bar = None
+        if self._label is not None and self._thread.is_alive() and sys.stderr.isatty():
+            from tqdm.auto import tqdm
+
+            bar = tqdm(total=100, desc=self._label, unit="%", disable=None,
+                       bar_format="{l_bar}{bar}| {n:.0f}/{total} % [{elapsed}<{remaining}]")
+        shown = 0
+        try:
+            while self._thread.is_alive():
+                self._thread.join(0.1)  # short joins: a Ctrl-C in the main thread is taken at once
+                if bar is not None and int(100 * self.fraction) > shown:
+                    bar.update(int(100 * self.fraction) - shown)
+                    shown = int(100 * self.fraction)
+        finally:
+            if bar is not None:
+                bar.close()
         if self._exc is not None:
             raise self._exc
         return self._out

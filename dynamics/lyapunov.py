@@ -125,12 +125,16 @@ def no_jvp(t, y, v, args, out):
     out[:] = np.nan
 
 
-def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, n_orth, n_transient, use_fd):
-    # state and tangent vectors live on the scaled state z = y / scale; rhs and jvp see y = z * scale
-    n = z0.shape[0]
-    k = V0.shape[0]
-    y = z0.copy()
-    V = V0.copy()
+def _benettin_impl(rhs, jvp, y, V, keep, scale, args, t0, dt, steps_per_orth, q_begin, q_end, n_transient, use_fd,
+                   log_sum, accumulated, running):
+    """Orthonormalisation intervals ``q_begin`` .. ``q_end - 1`` of Benettin's method: ``y`` (the scaled
+    state z = y / scale; rhs and jvp see z * scale) and the tangent rows ``V`` advance in place, ``log_sum``,
+    ``accumulated[0]`` and the rows of ``running`` fill in.  Every quantity carried from one interval to the
+    next lives in these arrays and the time is computed from the interval's index, so a run made of several
+    calls is bit-identical to one call over all intervals (:func:`lyapunov_spectrum`'s ``n_chunks``).
+    Returns ``(t reached, status)``: 0, or 3 for a non-finite state or tangent vector."""
+    n = y.shape[0]
+    k = V.shape[0]
     ys = np.empty(n)
     Vs = np.empty((k, n))
     ky = np.empty((4, n))
@@ -140,14 +144,11 @@ def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, 
     ftmp = np.empty(n)
     yr = np.empty(n)  # a state in rhs' units
     vr = np.empty(n)
-    log_sum = np.zeros(k)
-    running = np.full((n_orth, k), np.nan)
-    t = t0
+    t = t0 + (q_begin * steps_per_orth) * dt if q_begin > 0 else t0
     c = (0.0, 0.5, 0.5, 1.0)
     w = (1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0)
-    accumulated = 0.0
     status = 0
-    for q in range(n_orth):
+    for q in range(q_begin, q_end):
         for s in range(steps_per_orth):
             for stage in range(4):
                 if stage == 0:
@@ -208,12 +209,12 @@ def _benettin_impl(rhs, jvp, z0, V0, keep, scale, args, t0, dt, steps_per_orth, 
         Q, R = np.linalg.qr(np.ascontiguousarray(V.T))
         put2(V, Q.T)
         if q >= n_transient:
-            accumulated += steps_per_orth * dt
+            accumulated[0] += steps_per_orth * dt
             for i in range(k):
                 log_sum[i] += math.log(abs(R[i, i]))
             for i in range(k):
-                running[q, i] = log_sum[i] / accumulated
-    return log_sum, accumulated, running, y, t, status
+                running[q, i] = log_sum[i] / accumulated[0]
+    return t, status
 
 
 register_kernel(_benettin_impl, rhs=rhs_signature,
@@ -354,7 +355,8 @@ def _positive(key, value):
 
 
 def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient=0.0, n_exponents=None,
-                      jvp=None, t0=0.0, seed=0, omega_max=None, frozen=None, scale=None):
+                      jvp=None, t0=0.0, seed=0, omega_max=None, frozen=None, scale=None, n_chunks=1,
+                      progress=None):
     """Lyapunov spectrum of the flow ``dy/dt = rhs(t, y, args)`` by Benettin's method.
 
     Parameters
@@ -395,6 +397,12 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
         every entry (exponents do not change under a constant scaling, but
         forward differences on a state mixing micrometres and thousands of
         rad/s do; ``tests/test_bearing_lyapunov.py``).  Default: no scaling.
+    n_chunks : int
+        Number of kernel calls the run is cut into (at orthonormalisation intervals); the result is
+        bit-identical for any number (``tests/test_lyapunov.py``).  Control returns to Python between
+        them, for ``progress``.
+    progress : callable, optional
+        ``progress(fraction)`` after each chunk, with the fraction of the intervals done (ending at 1.0).
 
     Returns
     -------
@@ -442,10 +450,20 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
         if scale.shape != (n,) or not np.all(np.isfinite(scale) & (scale > 0.0)):
             raise DynamicsInputError(f"scale (shape {scale.shape}) must hold {n} finite numbers > 0")
     kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
-    log_sum, accumulated, running, z_final, t_end, status = kernel(
-        y0 / scale, V0, keep, scale, args, float(t0), dt, steps_per_orth, n_orth + n_transient, n_transient,
-        jvp is None)
-    y_final = z_final * scale
+    total = n_orth + n_transient
+    z, V = y0 / scale, V0.copy()
+    log_sum, accumulated, running = np.zeros(k), np.zeros(1), np.full((total, k), np.nan)
+    stops = np.unique(np.linspace(0, total, max(1, min(int(n_chunks), total)) + 1).round().astype(np.int64))
+    t_end, status = float(t0), 0
+    for q_begin, q_end in zip(stops[:-1], stops[1:]):
+        t_end, status = kernel(z, V, keep, scale, args, float(t0), dt, steps_per_orth, int(q_begin), int(q_end),
+                               n_transient, jvp is None, log_sum, accumulated, running)
+        if status != 0:
+            break
+        if progress is not None:
+            progress(float(q_end) / total)
+    accumulated = float(accumulated[0])
+    y_final = z * scale
     if status != 0:
         from .errors import IntegrationError
 
@@ -462,7 +480,8 @@ def spectrum_kernel_example(rhs, args, jvp=None):
     """``(kernel, example arguments)`` of :func:`lyapunov_spectrum`'s kernel for ``rhs`` and ``args``, for
     :func:`dynamics.specialise.compile_in_background` (the arguments have the types of its call)."""
     kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
-    return kernel, (np.zeros(1), np.zeros((1, 1)), np.ones(1), np.ones(1), args, 0.0, 1.0, 1, 1, 0, jvp is None)
+    return kernel, (np.zeros(1), np.zeros((1, 1)), np.ones(1), np.ones(1), args, 0.0, 1.0, 1, 0, 1, 0, jvp is None,
+                    np.zeros(1), np.zeros(1), np.zeros((1, 1)))
 
 
 def lyapunov_spectrum_map(step, jac, x0, args=(), *, n_iter, n_transient=0, n_exponents=None, seed=0):

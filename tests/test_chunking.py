@@ -130,3 +130,31 @@ def test_cli_summary_is_the_same_on_a_terminal_and_on_a_pipe(tmp_path):
     differ = {k: (a[k], b[k]) for k in a if a[k] != b[k] and not (isinstance(a[k], float) and math.isnan(a[k]))}
     assert not differ
     assert a["Accepted steps [-]"] > 100 and a["Simulated time [s]"] == pytest.approx(4e-4)
+
+
+def test_background_result_hands_progress_and_errors_to_the_waiting_thread():
+    """The whole-system spectrum runs in a thread (coupling.dynamics_scene._BackgroundResult): with a label
+    the function gets ``progress=``, whose last fraction the waiting thread reads (its bar, on a terminal,
+    only displays it), the result is the function's own, and its exception reaches the caller."""
+    import threading
+
+    from coupling.dynamics_scene import _BackgroundResult
+
+    go = threading.Event()
+
+    def work(x, progress=None):
+        go.wait(5.0)
+        for k in range(1, 5):
+            progress(k / 4)
+        return 2 * x
+
+    job = _BackgroundResult(work, 21, progress_label="test")
+    assert job.fraction == 0.0
+    go.set()
+    assert job.result() == 42 and job.fraction == 1.0
+
+    def fails():
+        raise ValueError("from the thread")
+
+    with pytest.raises(ValueError, match="from the thread"):
+        _BackgroundResult(fails).result()

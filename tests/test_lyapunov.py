@@ -77,11 +77,27 @@ def test_lorenz_spectrum(lorenz_on_attractor, use_jvp):
 
 def test_lorenz_spectrum_py_func_kernel(lorenz_on_attractor):
     """Plain-Python kernel on a short run: the sum is still exact (trace J = -13.667 at every point)."""
-    V0 = np.eye(3)
-    log_sum, acc, running, y, t, status = L._benettin_impl(
-        lorenz, lorenz_jvp, lorenz_on_attractor, V0, np.ones(3), np.ones(3), LORENZ, 0.0, 0.01, 5, 20, 2, False)
-    assert status == 0 and acc == pytest.approx(0.9)
-    assert np.sum(log_sum) / acc == pytest.approx(LORENZ_SUM, rel=1e-4)
+    y, V, log_sum, acc, running = lorenz_on_attractor.copy(), np.eye(3), np.zeros(3), np.zeros(1), np.zeros((20, 3))
+    t, status = L._benettin_impl(lorenz, lorenz_jvp, y, V, np.ones(3), np.ones(3), LORENZ, 0.0, 0.01, 5, 0, 20, 2,
+                                 False, log_sum, acc, running)
+    assert status == 0 and acc[0] == pytest.approx(0.9) and t == pytest.approx(1.0)
+    assert np.sum(log_sum) / acc[0] == pytest.approx(LORENZ_SUM, rel=1e-4)
+
+
+@pytest.mark.parametrize("use_jvp", [False, True])
+def test_a_run_cut_into_chunks_gives_the_bits_of_one_call(lorenz_on_attractor, use_jvp):
+    """``n_chunks`` only decides where control returns to Python: 1, 7 and one call per interval give the
+    same exponents, running estimates and final state to the last bit (forward differences and a jvp),
+    and ``progress`` sees the fraction done rise to 1."""
+    kw = dict(dt=0.01, t_total=4.0, t_orth=0.05, t_transient=0.5, n_exponents=2, jvp=lorenz_jvp if use_jvp else None)
+    one = L.lyapunov_spectrum(lorenz, lorenz_on_attractor, LORENZ, **kw)
+    seen = []
+    for n_chunks in (7, 10_000):
+        cut = L.lyapunov_spectrum(lorenz, lorenz_on_attractor, LORENZ, n_chunks=n_chunks, progress=seen.append, **kw)
+        assert np.array_equal(cut.exponents, one.exponents) and np.array_equal(cut.running, one.running)
+        assert np.array_equal(cut.y_final, one.y_final)
+    assert seen[0] > 0.0 and seen[6] == 1.0 and seen[-1] == 1.0 and np.all(np.diff(seen[:7]) > 0)
+    assert len(seen) - 7 >= one.running.shape[0] + 10  # 10,000 asked: one call an interval (80 + about 10)
 
 
 @njit(cache=True)
