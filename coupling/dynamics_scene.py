@@ -693,13 +693,11 @@ class _BackgroundResult:
 
             bar = tqdm(total=100, desc=self._label, unit="%", disable=None,
                        bar_format="{l_bar}{bar}| {n:.0f}/{total} % [{elapsed}<{remaining}]")
-        shown = 0
         try:
             while self._thread.is_alive():
                 self._thread.join(0.1)  # short joins: a Ctrl-C in the main thread is taken at once
-                if bar is not None and int(100 * self.fraction) > shown:
-                    bar.update(int(100 * self.fraction) - shown)
-                    shown = int(100 * self.fraction)
+                if bar is not None:
+                    bar.update(int(100 * self.fraction) - bar.n)
         finally:
             if bar is not None:
                 bar.close()

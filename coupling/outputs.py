@@ -362,10 +362,10 @@ def write_frame(path, mesh, level: int = 1) -> Path:
     """One frame of a ParaView series: a pyvista PolyData (``.vtp``) or UnstructuredGrid (``.vtu``) in VTK's
     XML format, binary (base64 inline), zlib-compressed at ``level`` (1-9).  Frames are written into a
     staging folder (:func:`staged`) that moves into place whole, so a frame is written directly, without
-    :func:`write_bytes`' temporary file and fsync (148 frames: 0.62-0.66 against 0.77-0.89 s).  Level 1 instead of pyvista's default: measured on a 3,572-point frame of
-    the cage-less bearing, 3.2 against 8.2 ms a frame for 99 against 95 kB (4 % larger; levels 8-9 take
-    45-120 ms for no smaller file).  VTK's own writer, since pyvista's ``save`` has no compression level;
-    the format is that of ``mesh.save``."""
+    :func:`write_bytes`' temporary file and fsync (148 frames: 0.62-0.66 against 0.77-0.89 s).  Level 1
+    instead of pyvista's default: measured on a 3,572-point frame of the cage-less bearing, 3.2 against
+    8.2 ms a frame for 99 against 95 kB (4 % larger; levels 8-9 take 45-120 ms for no smaller file).  VTK's
+    own writer, since pyvista's ``save`` has no compression level; the format is that of ``mesh.save``."""
     from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter, vtkXMLUnstructuredGridWriter
 
     writers = {"vtkPolyData": vtkXMLPolyDataWriter, "vtkUnstructuredGrid": vtkXMLUnstructuredGridWriter}

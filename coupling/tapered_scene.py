@@ -614,14 +614,17 @@ def headline(s: dict) -> list[str]:
     return lines
 
 
-def kernel_jobs(case: TaperedCase, model) -> list:
+def kernel_jobs(case: TaperedCase) -> list:
     """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (the integrator, the
     forces at the samples): they do not contain the model's code, so a first run compiles them in a second
     process while it compiles the model (:func:`dynamics.specialise.compile_in_background`)."""
     from dynamics.integrators import kernel_example
     from dynamics.tapered import kernels as K
 
-    args = model.args()
+    # only the argument types count here: (P, U, RHO) are C-contiguous float64 vectors for every case
+    # (TaperedBearing.args; tests/test_specialise.py checks the jobs' signatures against a run's), and the
+    # real ones cost 35-95 ms (traction tables), which the run builds anyway on its quasi-static state
+    args = (np.zeros(1), np.zeros(1), np.zeros(1))
     return [kernel_example(case.integrator.method, K.rhs, args), K.forces_many_example(args)]
 
 
@@ -644,7 +647,7 @@ def _run(case: TaperedCase, out_dir, *, name: str, source: str, smoke: bool) -> 
     # a first run compiles the integrator kernel in a second process meanwhile (dynamics.specialise)
     from dynamics.specialise import compile_in_background
 
-    compile_in_background(kernel_jobs(case, model))
+    compile_in_background(kernel_jobs(case))
     qs = model.quasi_static()
     args = model.args(qs)  # the packed arrays on the same equilibrium (the rib film reads it): solved once
     y0 = model.start_state(qs)
@@ -696,7 +699,8 @@ def _run(case: TaperedCase, out_dir, *, name: str, source: str, smoke: bool) -> 
             entries = []
             for k, i in enumerate(picks):
                 fname = f"frames/frame_{k:05d}.vtu"
-                outputs.write_frame(stage / fname, frame_mesh(model, res.y[i], {key: D[key][i] for key in FRAME_FIELDS}))
+                fields = {key: D[key][i] for key in FRAME_FIELDS}
+                outputs.write_frame(stage / fname, frame_mesh(model, res.y[i], fields))
                 entries.append((float(res.t[i]), fname))
             outputs.write_pvd(stage / "bearing.pvd", entries)
         if "png" in write:

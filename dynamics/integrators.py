@@ -129,21 +129,15 @@ from .errors import DynamicsInputError, IntegrationError
 from .specialise import register_kernel, specialise
 
 
-# Copies into slices by explicit loops: numba compiles an array-to-slice assignment (``a[:] = b``) with its
-# shape-mismatch error message (string formatting), about 1.7 s of compile time for each combination of
-# dimensions in every process that compiles a kernel; the loops give the same values without it.
+# Copies into slices by explicit loops, in compiled kernels: numba compiles an array-to-slice assignment
+# (``a[:] = b``) with its shape-mismatch error message (string formatting), about 1.7 s of compile time for
+# each combination of dimensions in every process that compiles a kernel; the loops give the same values
+# without it.  A row: ``put(Y[i], 0, y)``.
 @njit(cache=True, inline="always")
 def put(dst, start, src):
     """dst[start:start + len(src)] = src (1-D)."""
     for i in range(src.shape[0]):
         dst[start + i] = src[i]
-
-
-@njit(cache=True, inline="always")
-def put_row(dst, row, src):
-    """dst[row, :] = src (dst 2-D, src 1-D)."""
-    for i in range(src.shape[0]):
-        dst[row, i] = src[i]
 
 
 @njit(cache=True, inline="always")
@@ -366,7 +360,7 @@ def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
             if status != STATUS_OK:
                 break
             t_reached = t_out[i]
-            put_row(Y, i, y)
+            put(Y[i], 0, y)
             filled = i + 1
     put(work, N_WORK_SCALARS, y)
     work[W_T] = t_reached
@@ -518,10 +512,10 @@ def _dopri5_impl(rhs, t_out, args, params, Y, work, i_stop):
             t = t_end if last else t + h
             while filled < m and t_out[filled] <= t:
                 if filled == m - 1 and last:
-                    put_row(Y, filled, y1)
+                    put(Y[filled], 0, y1)
                 else:
                     _dense_eval(rcont, (t_out[filled] - t_old) / h, ytmp)
-                    put_row(Y, filled, ytmp)
+                    put(Y[filled], 0, ytmp)
                 filled += 1
             put(y, 0, y1)
             put(k1, 0, k7)
@@ -682,10 +676,10 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
             t = t_end if last else t + h
             while filled < m and t_out[filled] <= t:
                 if filled == m - 1 and last:
-                    put_row(Y, filled, y1)
+                    put(Y[filled], 0, y1)
                 else:
                     _hermite(y, f0, y1, fnew, h, (t_out[filled] - t_old) / h, ytmp)
-                    put_row(Y, filled, ytmp)
+                    put(Y[filled], 0, ytmp)
                 filled += 1
             put(y, 0, y1)
             put(f0, 0, fnew)
@@ -705,6 +699,14 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
     _store_state(work, y, f0, t, h, accepted, rejected, nfev, status, h_next, filled, n_nonfinite, phase)
 
 
+def chunk_bounds(count: int, n_chunks: int) -> np.ndarray:
+    """Boundaries 0 = b_0 < b_1 < ... = ``count`` of at most ``n_chunks`` nearly equal runs of ``count``
+    items (output intervals of :func:`integrate`, orthonormalisation intervals of
+    :func:`dynamics.lyapunov.lyapunov_spectrum`): where a chunked run returns to Python."""
+    n = max(1, min(int(n_chunks), int(count)))
+    return np.unique(np.linspace(0, count, n + 1).round().astype(np.int64))
+
+
 def new_run(y0, t_out, h0=0.0):
     """Fresh ``(Y, work)`` of a run from ``y0`` at ``t_out[0]`` (``h0``: the adaptive methods' first step,
     0: automatic)."""
@@ -712,7 +714,7 @@ def new_run(y0, t_out, h0=0.0):
     Y = np.full((m, n), np.nan)
     Y[0] = y0
     work = np.zeros(N_WORK_SCALARS + 2 * n)
-    put(work, N_WORK_SCALARS, y0)
+    work[N_WORK_SCALARS:N_WORK_SCALARS + n] = y0
     work[W_H] = h0
     work[W_FILLED] = 1
     work[W_PHASE] = PHASE_NEW
@@ -1100,8 +1102,7 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     # state stays in `work`, so the chunks only decide when control comes back for the bar (the run is
     # bit-identical to a one-chunk run, tests/test_chunking.py)
     # (a one-chunk run skips the chunk arithmetic: on a cheap rhs the Python steps cost more than the kernel)
-    stops = [m] if n_chunks == 1 else (np.unique(np.linspace(0, m - 1, n_chunks + 1).round().astype(np.int64))[1:]
-                                       + 1).tolist()
+    stops = [m] if n_chunks == 1 else (chunk_bounds(m - 1, n_chunks)[1:] + 1).tolist()
     params = make_params(rtol=rtol if method != "rk4" else 0.0, atol=atol if method != "rk4" else 0.0,
                          h_max=h_max if method != "rk4" else 0.0, max_steps=max_steps, use_fd=jac is None,
                          dt=dt if method == "rk4" else 0.0, guard=method == "rk4")

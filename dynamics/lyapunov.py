@@ -111,7 +111,7 @@ from numba import njit
 from numba import types as _nt
 
 from .errors import DynamicsInputError
-from .integrators import put, put2, put_row, rhs_signature, stability_limit
+from .integrators import chunk_bounds, put, put2, rhs_signature, stability_limit
 from .specialise import register_kernel, specialise
 
 logger = logging.getLogger(__name__)
@@ -167,7 +167,7 @@ def _benettin_impl(rhs, jvp, y, V, keep, scale, args, t0, dt, steps_per_orth, q_
                 rhs(ts, yr, args, f0)
                 for j in range(n):
                     f0[j] /= scale[j]
-                put_row(ky, stage, f0)
+                put(ky[stage], 0, f0)
                 for i in range(k):
                     if use_fd:
                         vn = 0.0
@@ -453,7 +453,7 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
     total = n_orth + n_transient
     z, V = y0 / scale, V0.copy()
     log_sum, accumulated, running = np.zeros(k), np.zeros(1), np.full((total, k), np.nan)
-    stops = np.unique(np.linspace(0, total, max(1, min(int(n_chunks), total)) + 1).round().astype(np.int64))
+    stops = chunk_bounds(total, n_chunks)
     t_end, status = float(t0), 0
     for q_begin, q_end in zip(stops[:-1], stops[1:]):
         t_end, status = kernel(z, V, keep, scale, args, float(t0), dt, steps_per_orth, int(q_begin), int(q_end),

@@ -196,7 +196,7 @@ def test_the_tapered_scenes_background_job_is_the_kernel_its_run_compiles():
     path, _, case = load_case_file(str(ROOT / "cases/trb_fig5_2400rpm.toml"), smoke=True)
     run = ts.run(case, None, source=str(path), smoke=True)
     assert run.summary["Accepted steps [-]"] > 0
-    jobs = ts.kernel_jobs(case, ts.build(case))
+    jobs = ts.kernel_jobs(case)
     assert len(jobs) == 2
     for bound, example in jobs:
         assert bound.signature(*example) in bound.dispatcher.overloads, bound.impl.__name__

@@ -115,6 +115,7 @@ from lubrication.laws.traction import (elastic_limited, elastic_strip_slope, lim
                                       limited_strip_traction, paper_raceway_traction)
 
 from ..interp import _dot, _hvalue, _locate, _pair2
+from ..integrators import put
 from ..specialise import register_kernel, specialise
 from ..rotations import euler_rate, quat_derivative, quat_from_rotvec, quat_rotate, quat_rotate_inverse, quat_to_matrix
 from .layout import *  # noqa: F401,F403  (indices and option codes: dynamics.tapered.layout)
@@ -761,9 +762,8 @@ def _forces_many_impl(contact, Y, args):
     Tg = np.empty(3)
     for i in range(n):
         contact(Y[i], P, U, RHO, F, T, Fc, Tc, loads[i], Fg, Tg, SL[i], FR[i], CG[i])
-        for m in range(3):  # loops, not slice assignments: see dynamics.integrators.put
-            FC[i, m] = Fc[m]
-            FC[i, 3 + m] = Tc[m]
+        put(FC[i], 0, Fc)
+        put(FC[i], 3, Tc)
     return loads, SL, FR, CG, FC
 
 
