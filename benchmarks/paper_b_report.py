@@ -163,7 +163,8 @@ def rows_sensitivity(study: Path) -> list[tuple]:
     import csv
 
     with open(study / "study.csv", newline="") as f:
-        rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+        # runs with warnings are results too (their warnings are in the "warnings" column); failed runs are not
+        rows = [r for r in csv.DictReader(f) if r["status"] in ("ok", "ok-with-warnings")]
     key = "Ball-ball collisions [-]"
     axes = [c for c in rows[0] if c.endswith(" [SI]") is False and c + " [SI]" in rows[0]]
     others = [a for a in axes if a != "slots.azimuths"]

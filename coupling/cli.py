@@ -256,7 +256,9 @@ def cmd_run(args) -> int:
 
 
 def cmd_study(args) -> int:
-    """``lubedyn study``: run a study (:mod:`coupling.study`) and write its tables; exit 1 when a run failed."""
+    """``lubedyn study``: run a study (:mod:`coupling.study`) and write its tables; exit 1 when a run failed.
+    Runs that finished with warnings are counted on the final line (each one is logged, and tabulated
+    as ``ok-with-warnings``) but do not change the exit code: their results exist, flagged."""
     from lubrication.errors import InputError
 
     from .study import read_study, run_study
@@ -278,7 +280,7 @@ def cmd_study(args) -> int:
     finally:
         progress.setLevel(saved)
     _say(f"study: {result.total} runs ({result.reused} reused, {result.ran} run, {len(result.failed)} failed), "
-         f"{result.backend}")
+         f"{len(result.warned)} with warnings, {result.backend}")
     _say(f"wrote {out}/: " + ", ".join(p.name for p in result.files) + f"; run folders in {out}/runs/")
     if result.failed:
         folder, message = result.failed[0]

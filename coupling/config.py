@@ -6,7 +6,10 @@ module is the *only* place where raw user input is read: it merges the
 mapping, checks the scene kind, validates the result with pydantic (unknown
 keys forbidden, with close matches), converts every quantity to SI once
 (:mod:`coupling.units`) and turns any mistake into a one-line
-:class:`CaseError` naming the dotted key, the value and what is allowed.
+:class:`CaseError` naming the dotted key, the value and what is allowed.  A bare number is SI,
+and every length is checked against the lengths of its own scene (:func:`check_scale`: a film thin
+against its length, :data:`THIN_FILM`), so that ``clearance = 50`` meant in um is refused with
+``bare numbers are SI (m): write "50 um"`` rather than run as 50 m.
 
 Film case layout (``scene = "film"``; every quantity: a number in SI or a
 string with units)::
@@ -49,6 +52,7 @@ The EHL scene's layout is in :mod:`coupling.ehl_case`, the map and dynamics scen
 from __future__ import annotations
 
 import copy
+import logging
 import math
 import re
 import tomllib
@@ -58,7 +62,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, ValidationError, model_validator
+from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, ValidationError, ValidationInfo,
+                      model_validator)
 from pydantic_core import PydanticCustomError
 
 from lubrication.errors import InputError, did_you_mean
@@ -66,7 +71,7 @@ from lubrication.laws.lubricant import DowsonHigginson
 
 from .parameters import SETS as PARAMETER_SETS
 from .parameters import apply_parameter_set, parameter_set
-from .units import UnitError, parse_quantity, si_unit
+from .units import UnitError, parse_quantity, si_unit, unit_hint, written
 
 SCENES = ("film", "ehl", "map", "dynamics", "static", "tapered")
 PLANNED_SCENES: tuple[str, ...] = ()
@@ -75,6 +80,7 @@ PLANNED_SCENES: tuple[str, ...] = ()
 SCENE_MODULES = {"ehl": "coupling.ehl_case", "map": "coupling.map_scene", "dynamics": "coupling.dynamics_scene",
                  "static": "coupling.static_scene", "tapered": "coupling.tapered_scene"}
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
+log = logging.getLogger(__name__)
 
 
 class CaseError(InputError):
@@ -162,6 +168,168 @@ class _Model(BaseModel):
 
 
 # ---------------------------------------------------------------------------
+# scales: a quantity checked against the scales of its own scene
+#
+# A bare number for a dimensioned key is SI (``clearance = 50`` is 50 m).  The schema cannot tell a
+# bare 50 that means um from a real 50 m, but the scene can: every length is compared with the
+# lengths it lives among, and a failure names the key, its value, the scale it was compared with and
+# the unit it was probably meant in (``bare numbers are SI (m): write "50 um"``).  The checks run in
+# the models' validators, so that ``lubedyn validate``, ``run`` and ``--set`` share them;
+# :func:`validate_raw` hands the validators the raw mapping (pydantic's validation context), from
+# which a check tells a bare number from a string with units.
+
+THIN_FILM = 0.1
+"""The largest film thickness over the length it spreads over (h/L) a case may give.  Reynolds'
+equation is the leading order of the Navier-Stokes equations in the film's aspect ratio: it drops
+terms of relative order (h/L)^2 (and the reduced Reynolds number Re h/L, which ``validity.max_reynolds``
+watches after the solve), so it needs h/L << 1; 0.1 is where "much less" ends (the dropped terms are
+then about 1 %).  Bearing films are far below it (a journal's c/R is about 1e-3, a slider's h/L 1e-4 to
+1e-3): a ratio above 0.1 is a slipped unit, not a film."""
+THIN_FILM_WHY = "Reynolds' equation is the thin-film limit of the flow equations: it needs h/L << 1"
+
+
+@dataclass(frozen=True)
+class Scaled:
+    """One quantity of a scale check: its dotted key from the case's root, its value in SI and its
+    dimension.  A derived key (``"gap.pocket_end - gap.pocket_start"``) is shown, never blamed."""
+
+    key: str
+    value: float
+    dimension: str = "length"
+    given: bool = True  # False: derived from given keys (shown, never blamed)
+
+
+def context_raw(info) -> dict | None:
+    """The raw case mapping a validator was given (:func:`validate_raw` passes it), or None."""
+    context = getattr(info, "context", None)
+    return context.get("raw") if isinstance(context, dict) else None
+
+
+def _raw_at(raw: dict | None, key: str):
+    node = raw
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    return node
+
+
+def _is_bare(value) -> bool:
+    if isinstance(value, list):
+        return bool(value) and all(_is_bare(v) for v in value)
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _hint(raw_value, dimension: str, passes) -> str | None:
+    """The unit rewrite of ``raw_value`` (a number or a string with units, or a list of them) that
+    makes ``passes(si)`` hold (:func:`coupling.units.unit_hint`); a list's largest entry decides."""
+    if not isinstance(raw_value, list):
+        return unit_hint(raw_value, dimension, passes)
+    forms = [written(v, dimension) for v in raw_value]
+    if not forms or any(f is None for f in forms) or len({f[1] for f in forms}) != 1:
+        return None
+    big = max(range(len(forms)), key=lambda i: abs(forms[i][0]))
+    one = unit_hint(raw_value[big], dimension, lambda si: passes(abs(si)))
+    if one is None:
+        return None
+    unit = one.split(" ", 1)[1]
+    return "[" + ", ".join(f"'{f[0]:g} {unit}'" for f in forms) + "]"
+
+
+def check_scale(raw: dict | None, name: str, ratio, quantities, *, limit: float, why: str,
+                lower: bool = False, strict: bool = False, blame=None, also=()) -> tuple[str, str] | None:
+    """None when ``ratio(values)`` (values: ``{key: SI value}`` of ``quantities``) is within ``limit``
+    (``<=``, or ``<`` when ``strict``; ``>=`` when ``lower``), else ``(key, text)`` of a one-line error.
+
+    The key blamed is the first of ``blame`` (default: the quantities' keys, in order) that was written
+    as a bare number (``raw``: the case mapping; None when unknown: every value counts as bare) and
+    becomes right in another common unit; that rewrite is the hint (``bare numbers are SI (m): write
+    "50 um"``).  When none does, the first bare one (else the first) is blamed and no unit is
+    suggested: a value written with units is taken as meant, and the message shows what it was
+    compared with.  ``also``: predicates ``f(values) -> bool`` (the scene's other scale checks) that a
+    suggested value must pass too.
+
+    >>> check_scale({"gap": {"clearance": 50, "radius": "25 mm"}}, "clearance/radius",
+    ...             lambda v: v["gap.clearance"] / v["gap.radius"],
+    ...             [Scaled("gap.clearance", 50.0), Scaled("gap.radius", 0.025)], limit=0.1, why="thin")
+    ... # doctest: +NORMALIZE_WHITESPACE
+    ('gap.clearance', '= 50 (50 m) is out of scale: clearance/radius = 2000 with gap.radius = 0.025 m
+      must be <= 0.1 (thin); bare numbers are SI (m): write "50 um"')
+    """
+    values = {q.key: q.value for q in quantities}
+
+    def ok(r: float) -> bool:
+        if not math.isfinite(r):
+            return False
+        if lower:
+            return r > limit if strict else r >= limit
+        return r < limit if strict else r <= limit
+
+    r = ratio(values)
+    if ok(r):
+        return None
+    by_key = {q.key: q for q in quantities}
+    order = [k for k in (blame or [q.key for q in quantities]) if k in by_key and by_key[k].given]
+    bare = [k for k in order if _is_bare(_raw_at(raw, k) if raw is not None else by_key[k].value)]
+    blamed, suggestion = by_key[(bare or order)[0]] if order else quantities[0], None
+    for key in order:  # a unit is suggested for a bare number only: one with units is taken as meant
+        q = by_key[key]
+        raw_value = _raw_at(raw, key) if raw is not None else q.value
+        if not _is_bare(raw_value):
+            continue
+
+        def passes(si, key=key):
+            trial = {**values, key: si}
+            return ok(ratio(trial)) and all(check(trial) for check in also)
+
+        found = _hint(raw_value, q.dimension, passes)
+        if found is not None:
+            blamed, suggestion = q, found
+            break
+    unit = si_unit(blamed.dimension)
+    raw_value = _raw_at(raw, blamed.key) if raw is not None and blamed.given else None
+    shown = f"{blamed.value:g} {unit}" if raw_value is None else f"{_show(raw_value)} ({blamed.value:g} {unit})"
+    others = ", ".join(f"{q.key} = {q.value:g} {si_unit(q.dimension)}" for q in quantities if q is not blamed)
+    op = (">" if strict else ">=") if lower else ("<" if strict else "<=")
+    text = (f"= {shown} is out of scale: {name} = {r:.4g}" + (f" with {others}" if others else "")
+            + f" must be {op} {limit:g} ({why})")
+    if blamed.given and (raw is None or _is_bare(raw_value)):
+        text += _bare_text(blamed.dimension, suggestion)
+    return blamed.key, text
+
+
+def _bare_text(dimension: str, suggestion: str | None) -> str:
+    if suggestion and not suggestion.startswith("["):
+        suggestion = f'"{suggestion}"'
+    return f"; bare numbers are SI ({si_unit(dimension)})" + (f": write {suggestion}" if suggestion else "")
+
+
+def bare_hint(raw: dict | None, key: str, dimension: str, passes) -> str:
+    """``'; bare numbers are SI (m): write "50 um"'`` for a rule on ``key`` (dotted from the case's root)
+    that was written as a bare number, in the unit whose SI value satisfies ``passes(si)``
+    (:func:`coupling.units.unit_hint`); ``""`` when it was written with units (or is unknown): the
+    hint of the schema's older rules (a step on its pad ...), whose wording it keeps."""
+    value = _raw_at(raw, key)
+    if raw is None or not _is_bare(value):
+        return ""
+    return _bare_text(dimension, _hint(value, dimension, passes))
+
+
+def thin_film(raw: dict | None, film: Scaled, length: Scaled, name: str | None = None, *,
+              limit: float = THIN_FILM, why: str = THIN_FILM_WHY) -> tuple[str, str] | None:
+    """:func:`check_scale` of a film thickness over the length it spreads over: |h|/L <= ``limit``
+    (``name``: how the ratio is called, default ``"clearance/radius"`` from the keys)."""
+    name = name or f"{film.key.rsplit('.', 1)[-1]}/{length.key.rsplit('.', 1)[-1]}"
+    return check_scale(raw, name, lambda v: abs(v[film.key]) / v[length.key], [film, length], limit=limit, why=why)
+
+
+def raise_scale(failed: tuple[str, str] | None) -> None:
+    """Raise a failed scale check as a case rule on its (root-relative) key."""
+    if failed is not None:
+        raise _root_rule(failed[0], None, failed[1])
+
+
+# ---------------------------------------------------------------------------
 # gaps
 
 
@@ -184,9 +352,10 @@ class StepSliderGap(_Model):
     length: PositiveLength
 
     @model_validator(mode="after")
-    def _step_inside(self):
+    def _step_inside(self, info: ValidationInfo):
         if not self.x_step < self.length:
-            raise rule("x_step", self.x_step, f"must be < length = {self.length:g} m")
+            raise rule("x_step", self.x_step, f"must be < length = {self.length:g} m" + bare_hint(
+                context_raw(info), "gap.x_step", "length", lambda si: si < self.length))
         return self
 
 
@@ -202,11 +371,16 @@ class PocketedSliderGap(_Model):
     depth: Length
 
     @model_validator(mode="after")
-    def _pocket_inside(self):
+    def _pocket_inside(self, info: ValidationInfo):
+        raw = context_raw(info)
         if not self.pocket_start < self.pocket_end:
+            start = bare_hint(raw, "gap.pocket_start", "length", lambda si: si < self.pocket_end)
+            if start:  # a bare pocket_start is the likelier slip
+                raise rule("pocket_start", self.pocket_start, f"must be < pocket_end = {self.pocket_end:g} m" + start)
             raise rule("pocket_end", self.pocket_end, f"must be > pocket_start = {self.pocket_start:g} m")
         if not self.pocket_end <= self.length:
-            raise rule("pocket_end", self.pocket_end, f"must be <= length = {self.length:g} m")
+            raise rule("pocket_end", self.pocket_end, f"must be <= length = {self.length:g} m" + bare_hint(
+                raw, "gap.pocket_end", "length", lambda si: self.pocket_start < si <= self.length))
         return self
 
 
@@ -223,7 +397,7 @@ class JournalGap(_Model):
     eccentricity_y: Length | None = None
 
     @model_validator(mode="after")
-    def _eccentricity(self):
+    def _eccentricity(self, info: ValidationInfo):
         by_ratio = self.eccentricity_ratio is not None or self.attitude_angle is not None
         by_xy = self.eccentricity_x is not None or self.eccentricity_y is not None
         if by_ratio and by_xy:
@@ -234,8 +408,11 @@ class JournalGap(_Model):
             self.eccentricity_x, self.eccentricity_y = ex, ey
             eps = math.hypot(ex, ey) / self.clearance
             if eps >= 1.0:
+                raw, c = context_raw(info), self.clearance
+                hint = (bare_hint(raw, "gap.eccentricity_x", "length", lambda si: math.hypot(si, ey) < c)
+                        or bare_hint(raw, "gap.eccentricity_y", "length", lambda si: math.hypot(ex, si) < c))
                 raise rule("eccentricity_x", ex, f"and eccentricity_y = {ey:g} give an eccentricity ratio "
-                           f"{eps:.4g}; it must be < 1 (the journal would touch the bearing)")
+                           f"{eps:.4g}; it must be < 1 (the journal would touch the bearing)" + hint)
         else:
             self.eccentricity_ratio = self.eccentricity_ratio or 0.0
             self.attitude_angle = self.attitude_angle or 0.0
@@ -284,6 +461,27 @@ GapModel = Annotated[
 SLIDERS = ("inclined_slider", "step_slider", "pocketed_slider")
 JOURNAL_MIN_NX = 3  # fewest cells around a periodic journal mesh (lubrication.mesh.PERIODIC_MIN_CELLS)
 ROUND = ("sphere_plane", "sphere_sphere", "ellipsoid_plane")
+# each gap's film thicknesses and the lengths they spread over (thin-film check, THIN_FILM)
+FILM_LENGTHS = {
+    "inclined_slider": (("h_in", "length"), ("h_out", "length")),
+    "step_slider": (("h_in", "length"), ("h_out", "length")),
+    "pocketed_slider": (("h_in", "length"), ("h_out", "length")),
+    "journal": (("clearance", "radius"), ("clearance", "length")),
+    "sphere_plane": (("h0", "radius"),),
+    "sphere_sphere": (("h0", "radius1"), ("h0", "radius2")),
+    "cylinder_plane": (("h0", "radius"),),
+    "ellipsoid_plane": (("h0", "radius_x"), ("h0", "radius_y")),
+}
+# each curved gap's radius of curvature along x and along y (None: straight): the film domain ends
+# inside the body (a sphere pair: the smaller ball, chosen when checked)
+BODY_RADII = {"sphere_plane": ("radius", "radius"), "sphere_sphere": ("radius1", "radius1"),
+              "cylinder_plane": ("radius", None), "ellipsoid_plane": ("radius_x", "radius_y")}
+BODY_ENDS_WHY = "the film domain must lie on the body, whose surface ends at its radius"
+JOURNAL_MIN_CLEARANCE = 1e-5
+"""The smallest journal clearance ratio c/R a case may give: steel's thermal expansion, 1.2e-5 per K,
+changes the radial clearance by about 1.2e-5 R per kelvin between journal and bearing, so a c/R below
+1e-5 would be closed by a 1 K temperature difference; machined bearings run at c/R near 1e-3.  (Films
+between balls or on sliders have no such floor: their thickness is set by the load, not machined.)"""
 
 # ---------------------------------------------------------------------------
 # the other tables
@@ -444,9 +642,19 @@ FILM_MAX_PRESSURE = 3e9  # Pa: validity.max_pressure of film scenes (ValidityMod
 EHL_MAX_PRESSURE = 4e9  # Pa: validity.max_pressure of EHL scenes
 
 
-class ValidityModel(_Model):
+class BoundsModel(_Model):
+    """``[validity]`` of every scene: ``strict`` (default true): an output outside its physical bound
+    (:data:`coupling.bounds.BOUNDS`: a traction coefficient above 1, a fraction outside [0, 1], a film
+    thicker than a tenth of the radius ...) ends the run with a one-line error (exit 1) and writes
+    nothing; ``strict = false`` writes it with a WARNING listed under "Warnings" in summary.json."""
+
+    strict: bool = True
+
+
+class ValidityModel(BoundsModel):
     """Where the scene's model holds; a result outside gets a warning (logged, and listed under
-    "Warnings" in summary.json), never a refusal.
+    "Warnings" in summary.json), never a refusal (``strict``: see :class:`BoundsModel`, which is
+    about impossible outputs, not these ranges).
 
     ``max_pressure``: the largest pressure the model is trusted at (film scenes 3 GPa: beyond it the
     solids of a rigid-surface film would deform and the viscosity law is extrapolated; EHL scenes
@@ -503,7 +711,9 @@ class FilmCase(_Model):
         return 1 if self.mesh.domain == "interval" else 2
 
     @model_validator(mode="after")
-    def _resolve(self):
+    def _resolve(self, info: ValidationInfo):
+        raw = context_raw(info)
+        self._check_gap_scales(raw)
         if self.lubricant.eyring_stress is not None:
             raise _root_rule("lubricant.eyring_stress", self.lubricant.eyring_stress, "is for EHL scenes (scene = "
                              "'ehl'); the film solver is Newtonian, remove it")
@@ -511,11 +721,55 @@ class FilmCase(_Model):
             raise _root_rule("lubricant.herschel_bulkley", self.lubricant.herschel_bulkley.model_dump(),
                              "is for EHL scenes (scene = 'ehl'); the film solver is Newtonian, remove it")
         self._resolve_domain()
+        self._check_mesh_scales(raw)
         self._resolve_motion()
         self._check_boundaries()
         if self.validity.max_pressure is None:
             self.validity.max_pressure = FILM_MAX_PRESSURE
         return self
+
+    def _check_gap_scales(self, raw):
+        """Every film thickness of the gap thin against the lengths it spreads over (THIN_FILM), a
+        pocket's depth against the pocket's width, and a journal's clearance above its thermal floor."""
+        g = self.gap
+
+        def q(key):
+            return Scaled(f"gap.{key}", getattr(g, key))
+
+        for film, length in FILM_LENGTHS[g.type]:
+            raise_scale(thin_film(raw, q(film), q(length)))
+        if g.type == "pocketed_slider":
+            width = Scaled("gap.pocket_end - gap.pocket_start", g.pocket_end - g.pocket_start, given=False)
+            raise_scale(thin_film(raw, q("depth"), width, "depth/(pocket width)"))
+        if g.type == "journal":
+            raise_scale(check_scale(raw, "clearance/radius", lambda v: v["gap.clearance"] / v["gap.radius"],
+                                    [q("clearance"), q("radius")], limit=JOURNAL_MIN_CLEARANCE, lower=True,
+                                    blame=["gap.radius", "gap.clearance"],
+                                    why="1 K between journal and bearing would close it: steel expands "
+                                        "1.2e-5 of the radius per kelvin"))
+
+    def _check_mesh_scales(self, raw):
+        """The film domain on its body: a slider's within the pad's length of the origin, a curved
+        gap's inside the body's radius along each axis."""
+        m, g = self.mesh, self.gap
+        if g.type in SLIDERS and m.x is not None:
+            raise_scale(check_scale(raw, "max |x|/length", lambda v: v["mesh.x"] / v["gap.length"],
+                                    [Scaled("mesh.x", max(abs(m.x[0]), abs(m.x[1]))), Scaled("gap.length", g.length)],
+                                    limit=1.0 + 1e-9, why="the film lies under the pad [0, length]"))
+        if g.type not in BODY_RADII:
+            return
+        rx, ry = BODY_RADII[g.type]
+        if g.type == "sphere_sphere" and g.radius2 < g.radius1:
+            rx = ry = "radius2"
+        checks = [("mesh.radius", m.radius, rx), ("mesh.radius", m.radius, ry)] if m.domain == "disk" else [
+            ("mesh.x", m.x, rx), ("mesh.y", m.y, ry)]
+        for key, extent, radius in checks:
+            if extent is None or radius is None:
+                continue
+            size = max(abs(extent[0]), abs(extent[1])) if isinstance(extent, list) else extent
+            body = Scaled(f"gap.{radius}", getattr(g, radius))
+            raise_scale(check_scale(raw, f"{key}/{body.key}", lambda v, k=key: v[k] / v[body.key],
+                                    [Scaled(key, size), body], limit=1.0, strict=True, why=BODY_ENDS_WHY))
 
     def _resolve_domain(self):
         m, g = self.mesh, self.gap
@@ -794,6 +1048,48 @@ def apply_overrides(raw: dict, overrides) -> dict:
     return out
 
 
+_TOML_AT = re.compile(r"\(at line (\d+), column (\d+)\)")
+_NUMBER_BEFORE = re.compile(r"(?:^|[=\[,{])\s*([-+]?(?:\d[\d_]*\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*$")
+_UNIT_AFTER = re.compile(r"^([A-Za-z\u00b5\u03bc\u00b0%][^,\]}#\"']*?)\s*(?:[,\]}#]|$)")
+
+
+def _toml_hint(text: str, message: str) -> str:
+    """``; quantities with units are TOML strings: write "50 um"`` when the TOML error sits at a unit
+    written after a bare number (``clearance = 50 um``), else ``""``.
+
+    >>> _toml_hint("clearance = 50 um", "Expected newline ... (at line 1, column 16)")
+    '; quantities with units are TOML strings: write "50 um"'
+    """
+    at = _TOML_AT.search(message)
+    if not at:
+        return ""
+    lines = text.splitlines()
+    row, col = int(at.group(1)) - 1, int(at.group(2)) - 1
+    if not 0 <= row < len(lines):
+        return ""
+    line = lines[row]
+    number, unit = _NUMBER_BEFORE.search(line[:col]), _UNIT_AFTER.match(line[col:])
+    if not (number and unit):
+        return ""
+    return f'; quantities with units are TOML strings: write "{number.group(1)} {unit.group(1).strip()}"'
+
+
+def parse_toml(text: str, source: str = "") -> dict:
+    """The mapping of a case's TOML ``text`` (``source``: the file, for messages); a leading UTF-8
+    byte-order mark, which TOML does not allow but some editors write, is skipped (logged at DEBUG);
+    a syntax error is a :class:`CaseError` (``invalid TOML: ...``, with a hint when it sits at a unit
+    written without quotes)."""
+    if text.startswith("\ufeff"):
+        log.debug("%s: skipped the UTF-8 byte-order mark at its start (TOML allows none)", source or "case text")
+        text = text[1:]
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        message = " ".join(str(exc).split())
+        where = f"{source}: " if source else ""
+        raise CaseError(f"{where}invalid TOML: {message}{_toml_hint(text, message)}") from None
+
+
 def read_toml(path) -> dict:
     path = Path(path)
     if not path.is_file():
@@ -802,11 +1098,10 @@ def read_toml(path) -> dict:
             hint = f"; the bundled case is {CASES_DIR / (path.stem + '.toml')}"
         raise CaseError(f"case file {str(path)!r} not found{hint}")
     try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError(f"{path}: invalid TOML: {' '.join(str(exc).split())}") from None
+        text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError:
         raise CaseError(f"{path}: not a UTF-8 text file") from None
+    return parse_toml(text, str(path))
 
 
 def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
@@ -840,7 +1135,7 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
         raise CaseError(str(exc)) from None
     model = case_model(scene)
     try:
-        case = model.model_validate(raw)
+        case = model.model_validate(raw, context={"raw": raw})  # the raw values: bare numbers (check_scale)
     except ValidationError as exc:
         text = format_validation_error(exc, model)
         if " is required" in text and not named_set:
@@ -859,11 +1154,7 @@ def load_case(path, *, smoke: bool = False, overrides=()) -> Case:
 
 
 def load_case_text(text: str, **kwargs) -> Case:
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError(f"invalid TOML: {' '.join(str(exc).split())}") from None
-    return validate_raw(raw, **kwargs)
+    return validate_raw(parse_toml(text), **kwargs)
 
 
 def resolved_toml(case: Case, header: str = "") -> str:

@@ -24,6 +24,26 @@ SPIN_UP_TOLERANCE = 0.01
 COLLISION_BIN = 2e-3
 
 
+def spin_up_end(t, ring_speed, rotor_speed=None, *, tolerance=SPIN_UP_TOLERANCE) -> tuple[float | None, str]:
+    """End [s] of the spin-up after a drop, and the reason, as ``(t_spin, reason)``: the first time after
+    which the inner ring speed stays within ``tolerance`` (1 %) of the rotor speed to the end of the record;
+    the record's start with no rotor (``rotor_speed`` None: a steady or free scenario).  ``t_spin`` is None
+    when the ring is not within the tolerance at the end of the record: the record ends inside the spin-up,
+    and ``reason`` says so ("... still spinning up").  The rule of both Lyapunov analyses: the per-direction
+    exponents are not computed then (:func:`transient_end`), the whole-system ones are "not converged"
+    (:func:`whole_system_verdicts`)."""
+    t = np.asarray(t, dtype=float)
+    if rotor_speed is None:
+        return float(t[0]), "no rotor to catch up with (inner ring driven or free)"
+    off = np.abs(np.asarray(ring_speed) - np.asarray(rotor_speed)) > tolerance * np.abs(rotor_speed)
+    if off[-1]:
+        return None, (f"the inner ring is not within {tolerance:.0%} of the rotor speed at the end "
+                      f"of the record ({t[-1]:.4g} s): still spinning up")
+    last_off = np.flatnonzero(off)
+    t_spin = float(t[last_off[-1] + 1]) if last_off.size else float(t[0])
+    return t_spin, f"inner ring within {tolerance:.0%} of the rotor speed from {t_spin:.4g} s"
+
+
 def transient_end(t, ring_speed, rotor_speed=None, collision_times=(), *, tolerance=SPIN_UP_TOLERANCE,
                   bin_width=COLLISION_BIN) -> tuple[float, str]:
     """Detected end [s] of the start-up transient of a run, and the reason, as ``(t_end, reason)``.
@@ -36,16 +56,9 @@ def transient_end(t, ring_speed, rotor_speed=None, collision_times=(), *, tolera
     bin whose count is at most the median count of that bin and all later ones (the rate has dropped
     to its later median).  ``t_end`` is the later of (1) and (2)."""
     t = np.asarray(t, dtype=float)
-    if rotor_speed is None:
-        t_spin, why = float(t[0]), "no rotor to catch up with (inner ring driven or free)"
-    else:
-        off = np.abs(np.asarray(ring_speed) - np.asarray(rotor_speed)) > tolerance * np.abs(rotor_speed)
-        if off[-1]:
-            return float(t[-1]), (f"the inner ring is not within {tolerance:.0%} of the rotor speed at the end "
-                                  f"of the record ({t[-1]:.4g} s): still spinning up")
-        last_off = np.flatnonzero(off)
-        t_spin = float(t[last_off[-1] + 1]) if last_off.size else float(t[0])
-        why = f"inner ring within {tolerance:.0%} of the rotor speed from {t_spin:.4g} s"
+    t_spin, why = spin_up_end(t, ring_speed, rotor_speed, tolerance=tolerance)  # (1), the shared rule
+    if t_spin is None:
+        return float(t[-1]), why
     times = np.asarray(collision_times, dtype=float)
     edges = np.arange(t_spin, t[-1] + 1e-12, bin_width)
     if edges.size < 3:
@@ -277,7 +290,12 @@ def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict
     trajectories.  Collisions stay non-smooth (contact onset, film rupture),
     so the finite-time exponents converge slowly; the summary gives the
     relative change of the largest one over the second half of the window as
-    a convergence measure.  ``progress(fraction)`` is called as the spectrum advances (100 kernel
+    a convergence measure.  Each exponent's verdict is :func:`whole_system_verdicts`': "positive" only
+    beyond two uncertainties and with its running estimate settled (moved at most 20 % over the second
+    half, :data:`dynamics.lyapunov.SETTLED`), else "not converged (moved X % over the second half)"; and
+    "not converged (... still spinning up)" for every exponent of a record that ends inside the spin-up
+    (:func:`spin_up_end`, the rule by which the per-direction exponents are not computed).
+    ``progress(fraction)`` is called as the spectrum advances (100 kernel
     calls, bit-identical to one: :func:`dynamics.lyapunov.lyapunov_spectrum`'s ``n_chunks``)."""
     from dynamics.cageless import rhs
     from dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
@@ -295,7 +313,8 @@ def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict
                             frozen=memory_states(model), n_chunks=100, progress=progress)
     out = {"Benettin window start [s]": float(t[i0]), "Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,
            "Benettin time [s]": time.perf_counter() - t_c}
-    for i, (lam, u, verdict) in enumerate(zip(res.exponents, res.uncertainty, res.verdicts)):
+    verdicts = whole_system_verdicts(res, record_spin_up(case, model, t, Y))
+    for i, (lam, u, verdict) in enumerate(zip(res.exponents, res.uncertainty, verdicts)):
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/s]"] = float(lam)
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/rev]"] = float(per_shaft_revolution(lam,
                                                                                                        shaft_speed))
@@ -308,6 +327,28 @@ def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict
     out["Benettin largest exponent, change over the second half [-]"] = (
         float(abs(running[-1] - half) / abs(running[-1])) if running[-1] else None)
     return out
+
+
+def record_spin_up(case, model, t, Y) -> str:
+    """Why the record of a drop ends inside the spin-up (:func:`spin_up_end` on the inner ring and rotor
+    speeds of the states ``Y``), or "" (it does not, or the scenario has no rotor)."""
+    if case.operating.scenario != "drop":
+        return ""
+    names = [name for name, _ in model.state_layout()]
+    t_spin, why = spin_up_end(t, Y[:, names.index("Inner ring speed")], Y[:, names.index("Rotor speed")])
+    return why if t_spin is None else ""
+
+
+def whole_system_verdicts(spectrum, spin_up: str = "") -> list[str]:
+    """Verdicts of the whole-system exponents of ``spectrum`` (a :class:`dynamics.lyapunov.LyapunovSpectrum`):
+    each exponent's own (:func:`dynamics.lyapunov.verdict`: "positive" beyond two uncertainties once its
+    running estimate has settled, "not positive", or "not converged (moved X % over the second half)"),
+    except that a record ending inside the spin-up (``spin_up``: the reason :func:`record_spin_up` gives)
+    makes every one "not converged (<reason>)": finite-time exponents of the transient say nothing about
+    the motion the bearing settles into, and the per-direction analysis is not computed there."""
+    if spin_up:
+        return [f"not converged ({spin_up})"] * len(spectrum.exponents)
+    return list(spectrum.verdicts)
 
 
 def _delay(x) -> int:

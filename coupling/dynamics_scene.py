@@ -55,12 +55,13 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import Field, model_validator
 
+from dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubrication.errors import ConvergenceError, InputError
 from lubrication.laws import bearing as bearings
 
 from . import outputs
 from .dynamics_lyapunov import _benettin, _lyapunov_per_direction
-from .config import CASES_DIR, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
+from .config import CASES_DIR, BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
 
 log = logging.getLogger(__name__)
 
@@ -213,9 +214,12 @@ class FilmsTable(_Model):
 
 
 class IntegratorTable(_Model):
+    """``rtol`` and ``atol``: DOPRI5's tolerances, refused where its error control means nothing
+    (:data:`dynamics.integrators.RTOL_MAX` = 1e-3, ``ATOL_MAX`` = 1e-8: the measurement is there)."""
+
     method: Literal["dopri5", "rk4"] = "dopri5"
-    rtol: Q("dimensionless", gt=0, lt=1) = 1e-6
-    atol: Q("dimensionless", gt=0) = 1e-9
+    rtol: Q("dimensionless", gt=0, le=RTOL_MAX, why=RTOL_WHY) = 1e-6
+    atol: Q("dimensionless", gt=0, le=ATOL_MAX, why=ATOL_WHY) = 1e-9
     dt: PositiveTime | None = None
     duration: PositiveTime = 0.02
     sample_interval: PositiveTime = 2e-6
@@ -269,6 +273,7 @@ class DynamicsCase(_Model):
     analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)
     limits: LimitsModel = Field(default_factory=LimitsModel)
+    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: coupling.bounds
     smoke: dict[str, Any] | None = None
 
     @model_validator(mode="after")
@@ -343,7 +348,7 @@ def _film_map(case: DynamicsCase, source: str | None):
     from .maps import FilmMap
 
     path = _map_path(case, source)
-    fmap = FilmMap.load(path)
+    fmap = FilmMap.load(path, key="films.map")
     if fmap.kind != "ball_ball":
         raise InputError(f"films.map = {case.films.map!r} is a map of kind {fmap.kind!r}; ball_ball is needed")
     return path, fmap
@@ -389,7 +394,7 @@ def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = F
         arrays = []
         for race, name in zip(("inner", "outer"), case.model.traction_maps):
             path = _map_path(case, source, name, "model.traction_maps")
-            fmap = FilmMap.load(path)
+            fmap = FilmMap.load(path, key="model.traction_maps")
             if fmap.kind != f"ehl_ball_{race}_race":
                 raise InputError(f"model.traction_maps = {name!r} is a map of kind {fmap.kind!r}; the {race} race "
                                  f"needs kind 'ehl_ball_{race}_race'")

@@ -35,12 +35,34 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field, ValidationInfo, model_validator
 
 from lubrication.laws.bearing import STRIBECK
 
-from .config import (EHL_MAX_PRESSURE, Length, LimitsModel, LubricantModel, PositiveInt, PositiveLength, Q,
-                     ValidityModel, Velocity, _Model, _root_rule, _show, rule)
+from .config import (EHL_MAX_PRESSURE, THIN_FILM, Length, LimitsModel, LubricantModel, PositiveInt, PositiveLength,
+                     Q, Scaled, ValidityModel, Velocity, _Model, _root_rule, _show, bare_hint, check_scale,
+                     context_raw, raise_scale, rule, thin_film)
+
+SMALL_CONTACT = THIN_FILM
+"""The largest Hertz contact semi-axis over the radius of curvature along it (b/R_x, and a/R_y of a
+point contact), and a line contact's half-width over its length, that a case may give.  Hertz's theory
+(and the EHL solver's parabolic gap on elastic half-spaces) is the leading order in b/R, as Reynolds'
+equation is in h/L (:data:`coupling.config.THIN_FILM`, the same 0.1); a hardened steel contact reaches
+b/R = 0.1 only near 6-7 GPa, above the 4 GPa of validity.max_pressure, so a larger ratio is a slipped
+unit (a modulus of 207 Pa for 207 GPa) or a load far beyond any film."""
+SMALL_CONTACT_WHY = ("Hertz's half-space contact and the EHL film's parabolic gap need a contact much smaller "
+                     "than the radii of curvature")
+GROOVE_MAX_CONFORMITY = 1.0
+"""The largest groove radius over the ball diameter (conformity r/D) a case may give: bearing grooves
+conform closely (0.505-0.58; ISO 281 rates radial ball bearings for r <= 0.52-0.53 D); above r = D the
+race is nearly flat and a groove radius that large is a slipped unit."""
+FILL = (0.25, 1.0)
+"""The range of a bearing's fill Z D/(pi d_m), the share of the pitch circle its Z elements take: below
+1 they fit side by side; at 0.25 neighbours are three element diameters apart, sparser than any caged
+bearing (paper B's cage-less bearing: 0.92, paper A's tapered roller bearing: 0.65)."""
+ROLLER_MAX_SLENDERNESS = 20.0
+"""The largest roller effective length over its diameter a case may give: needle rollers, the most
+slender, reach about 10 (ISO 3096); a longer one is a slipped unit."""
 
 def _two_power_plus_one(n: int, smallest: int) -> bool:
     return n >= smallest and (n - 1) & (n - 2) == 0
@@ -203,9 +225,13 @@ class GridModel(_Model):
 
 
 class TractionModel(_Model):
-    """Shear law for friction: newtonian | limiting_shear (|tau| <= tau_L0 + gamma p) | eyring."""
+    """Shear law for friction: limiting_shear (|tau| <= tau_L0 + gamma p, the default) | eyring |
+    newtonian.  The default follows measured EHL traction (Bair & Winer 1979: a limiting shear stress
+    proportional to pressure, gamma 0.04-0.1 for mineral oils; :class:`lubrication.ehl.Traction`); a
+    Newtonian shear at the Hertz zone's piezoviscous viscosity gives coefficients far above 1, which the
+    run refuses (:mod:`coupling.bounds`)."""
 
-    model: Literal["newtonian", "limiting_shear", "eyring"] = "newtonian"
+    model: Literal["newtonian", "limiting_shear", "eyring"] = "limiting_shear"
     limiting_shear_stress: Q("pressure", gt=0) = 5e6
     limiting_shear_slope: Q("dimensionless", ge=0) = 0.08
     eyring_stress: Q("pressure", gt=0) = 5e6
@@ -254,7 +280,8 @@ class BearingModel(_Model):
     load_distribution: Literal["stribeck", "quasi_static"] = "stribeck"
 
     @model_validator(mode="after")
-    def _kind(self):
+    def _kind(self, info: ValidationInfo):
+        raw = context_raw(info)
         if self.type == "ball":
             for key in ("inner_groove_radius", "outer_groove_radius"):
                 if getattr(self, key) is None:
@@ -262,7 +289,7 @@ class BearingModel(_Model):
             if self.effective_length is not None:
                 raise rule("effective_length", self.effective_length, "is for type = 'roller' only")
             self.diametral_clearance = self.diametral_clearance or 0.0
-            self._ball_geometry()
+            self._ball_geometry(raw)
             if self.stribeck_constant is None:
                 self.stribeck_constant = STRIBECK["point"]
         else:
@@ -272,6 +299,7 @@ class BearingModel(_Model):
             for key in ("effective_length", "contact_angle"):
                 if getattr(self, key) is None:
                     raise rule(key, None, "is required for type = 'roller'")
+            self._element_scales(raw)
             if self.load_distribution != "stribeck":
                 raise rule("load_distribution", self.load_distribution, "'quasi_static' is implemented for "
                            "type = 'ball' only; use 'stribeck'")
@@ -287,21 +315,48 @@ class BearingModel(_Model):
         return self
 
 
-    def _ball_geometry(self):
-        """The ball inside the pitch circle and a clearance that leaves the free contact angle below
-        90 deg (cos beta0 = 1 - P_d / (2 B D) > 0), checked only once the grooves are wider than the
-        ball (else :mod:`lubrication.laws.bearing` names the groove radius), so that each message names the
-        key that is wrong."""
+    def _element_scales(self, raw):
+        """The element inside the pitch circle, the Z elements around it (:data:`FILL`), a roller's
+        slenderness (:data:`ROLLER_MAX_SLENDERNESS`): its lengths against each other."""
+        if not self.element_diameter < self.pitch_diameter:
+            raise rule("element_diameter", self.element_diameter, f"must be < pitch_diameter = "
+                       f"{self.pitch_diameter:g} m" + bare_hint(raw, "bearing.element_diameter", "length",
+                                                               lambda si: si < self.pitch_diameter))
+        D, dm = Scaled("bearing.element_diameter", self.element_diameter), Scaled("bearing.pitch_diameter",
+                                                                                self.pitch_diameter)
+        fill = lambda v: self.n_elements * v[D.key] / (math.pi * v[dm.key])  # noqa: E731
+        name = f"fill Z D/(pi d_m) (Z = {self.n_elements})"
+        raise_scale(check_scale(raw, name, fill, [D, dm], limit=FILL[1], strict=True,
+                                why="the elements fit side by side around the pitch circle"))
+        raise_scale(check_scale(raw, name, fill, [dm, D], limit=FILL[0], lower=True,
+                                why="no bearing spaces its elements three diameters apart"))
+        if self.type == "roller":
+            length = Scaled("bearing.effective_length", self.effective_length)
+            raise_scale(check_scale(raw, "effective_length/element_diameter", lambda v: v[length.key] / v[D.key],
+                                    [length, D], limit=ROLLER_MAX_SLENDERNESS,
+                                    why="needle rollers, the most slender, reach about 10"))
+
+    def _ball_geometry(self, raw=None):
+        """The ball inside the pitch circle, grooves that conform (:data:`GROOVE_MAX_CONFORMITY`) and a
+        clearance that leaves the free contact angle below 90 deg (cos beta0 = 1 - P_d / (2 B D) > 0),
+        checked only once the grooves are wider than the ball (else :mod:`lubrication.laws.bearing`
+        names the groove radius), so that each message names the key that is wrong."""
         D = self.element_diameter
-        if not D < self.pitch_diameter:
-            raise rule("element_diameter", D, f"must be < pitch_diameter = {self.pitch_diameter:g} m")
+        self._element_scales(raw)
+        for key in ("inner_groove_radius", "outer_groove_radius"):
+            r = Scaled(f"bearing.{key}", getattr(self, key))
+            raise_scale(check_scale(raw, f"{key}/element_diameter", lambda v, k=r.key: v[k] / D,
+                                    [r, Scaled("bearing.element_diameter", D)], limit=GROOVE_MAX_CONFORMITY,
+                                    blame=[r.key], why="bearing grooves conform closely to the ball, "
+                                    "r/D = 0.505-0.58"))
         if not min(self.inner_groove_radius, self.outer_groove_radius) > 0.5 * D:
             return  # the groove radius is what is wrong: lubrication.laws.bearing names it ("must be > D/2")
         bd = self.inner_groove_radius + self.outer_groove_radius - D
         if not self.diametral_clearance < 2.0 * bd:
             raise rule("diametral_clearance", self.diametral_clearance, f"must be < 2 B D = {2 * bd:g} m, where "
                        f"the free contact angle reaches 90 deg (B D = inner_groove_radius + outer_groove_radius - "
-                       f"element_diameter = {bd:g} m)")
+                       f"element_diameter = {bd:g} m)" + bare_hint(raw, "bearing.diametral_clearance", "length",
+                                                                    lambda si: si < 2.0 * bd))
 
 
 class DimensionlessModel(_Model):
@@ -344,7 +399,7 @@ class EHLCase(_Model):
         return "bearing" if self.bearing is not None else ("dimensionless" if self.dimensionless is not None else "direct")
 
     @model_validator(mode="after")
-    def _resolve(self):
+    def _resolve(self, info: ValidationInfo):
         c, op = self.contact, self.operating
         if self.bearing is not None and self.dimensionless is not None:
             raise _root_rule("dimensionless", {}, "cannot be combined with [bearing]; give one")
@@ -394,7 +449,99 @@ class EHLCase(_Model):
             g.y_max = 3.0
         if self.validity.max_pressure is None:
             self.validity.max_pressure = EHL_MAX_PRESSURE
+        if self.mode != "dimensionless":  # Moes' M and L fix the contact's proportions themselves
+            self._check_scales(context_raw(info))
         return self
+
+    def _contact_load(self, e_star: float):
+        """(R_x, R_y or None, load [N, or N/m for lines], line length or None, the load's key) of the
+        case's contact with reduced modulus ``e_star``; None when it has no load (an approach) or its
+        bearing cannot be solved (the scene's build names why)."""
+        c, op = self.contact, self.operating
+        if self.mode == "bearing":
+            from lubrication.errors import InputError
+
+            from .ehl_scene import race_contact
+
+            try:
+                race = race_contact(self, e_star)
+            except (InputError, ValueError, ArithmeticError):
+                return None
+            line = race.radius_y is None
+            key = "bearing.radial_load" if self.bearing.radial_load > 0.0 else "bearing.axial_load"
+            return race.radius_x, race.radius_y, race.load_per_length if line else race.load, race.length, key
+        rx, ry = c.reduced_radii()
+        if op.load_per_length is not None:
+            return rx, None, op.load_per_length, c.length, "operating.load_per_length"
+        if op.load is None:
+            return None
+        return rx, ry, op.load / c.length if c.line else op.load, c.length, "operating.load"
+
+    def _check_scales(self, raw):
+        """A film possible: an approach thin against R_x (THIN_FILM), a Hertz contact small against the
+        radii of curvature and a line contact's half-width small against its length (SMALL_CONTACT).
+        Blamed: a bare modulus that a unit puts right (a bare 207 is 207 Pa: "207 GPa"), else a short
+        line's length, else the load."""
+        from lubrication.laws.contact import line_contact, point_contact, reduced_modulus
+
+        c, op, mat = self.contact, self.operating, self.materials
+        rx, _ = c.reduced_radii()
+        radius_x = Scaled("contact.radius_x", rx, given=c.radius_x is not None and not c.by_bodies)
+        if op.approach is not None and self.mode == "direct":
+            raise_scale(thin_film(raw, Scaled("operating.approach", op.approach), radius_x, "|approach|/R_x"))
+        m1 = Scaled("materials.modulus1", mat.modulus1, "pressure")
+        moduli = [m1] + ([Scaled("materials.modulus2", mat.modulus2, "pressure")]
+                         if mat.modulus2 != mat.modulus1 or (raw or {}).get("materials", {}).get("modulus2") else [])
+
+        def e_star_of(v):  # modulus2 follows modulus1 unless it was given
+            return reduced_modulus(v[m1.key], mat.poisson1, v.get("materials.modulus2", v[m1.key]), mat.poisson2)
+
+        got = self._contact_load(e_star_of({q.key: q.value for q in moduli}))
+        if got is None:
+            return
+        rx, ry, load, length, load_key = got
+        line = ry is None
+        per_length = line and load_key == "operating.load"  # N on contact.length
+        if self.mode == "bearing":
+            load_q = Scaled(load_key, getattr(self.bearing, load_key.split(".")[1]), "force")
+        else:
+            load_q = Scaled(load_key, op.load if per_length else load,
+                            "force per length" if line and not per_length else "force")
+
+        def size(v):  # the largest Hertz semi-axis over its radius of curvature
+            if self.mode == "bearing":
+                again = self._contact_load(e_star_of(v))
+                if again is None:
+                    return 0.0
+                Rx, Ry, w = again[:3]
+            else:
+                w = v.get(load_key, load_q.value)
+                Rx, Ry, w = rx, ry, w / v.get("contact.length", length) if per_length else w
+            e_star = e_star_of(v)
+            if Ry is None:
+                return line_contact(w, Rx, e_star).b / Rx
+            h = point_contact(w, Rx, Ry, e_star)
+            along_x, across = (h.b, h.a) if Ry >= Rx else (h.a, h.b)
+            return max(along_x / Rx, across / Ry)
+
+        small = lambda v: size(v) <= SMALL_CONTACT  # noqa: E731
+        if line and length is not None:  # first: a short line is what a wide one means then
+            b = line_contact(load, rx, e_star_of({q.key: q.value for q in moduli})).b
+            key = "bearing.effective_length" if self.mode == "bearing" else "contact.length"
+
+            def per_metre(v):
+                if self.mode == "bearing":
+                    return load
+                return v[load_key] / v[key] if per_length else v[load_key]
+
+            raise_scale(check_scale(raw, "b/length (Hertz half-width over the line's length)",
+                                    lambda v: line_contact(per_metre(v), rx, e_star_of(v)).b / v[key],
+                                    [Scaled(key, length), load_q] + moduli + [Scaled("b", b, given=False)],
+                                    limit=SMALL_CONTACT, why="a line contact is long against its width",
+                                    also=[small]))
+        shown = [Scaled("R_x", rx, given=False)] + ([] if line else [Scaled("R_y", ry, given=False)])
+        raise_scale(check_scale(raw, "Hertz semi-axis/radius of curvature", size, [load_q] + moduli + shown,
+                                limit=SMALL_CONTACT, why=SMALL_CONTACT_WHY))
 
     def _require_physics(self):
         if self.materials is None:

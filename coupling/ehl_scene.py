@@ -271,6 +271,20 @@ def film_reynolds_number(contact: EHLContact, solution) -> float:
     return rho0 * speed * solution.central_film_thickness / lub.viscosity.eta0
 
 
+def bound_scales(setup: EHLSetup, solution) -> dict:
+    """The scales the outputs' physical bounds refer to (:mod:`coupling.bounds`): the dry contact's
+    Hertz pressure under the load (given, or the film's with a prescribed approach), the reduced
+    radius along x and the applied load (given loads only)."""
+    c = setup.contact
+    load = c.load if c.load is not None else float(solution.load)
+    out = {"radius": c.radius_x}
+    if load > 0.0:
+        out["hertz_pressure"] = float(hertz_data(c, load).get("Hertz pressure [Pa]", math.nan))
+    if c.load is not None:
+        out["applied_load_per_length" if c.is_line else "applied_load"] = c.load
+    return out
+
+
 @dataclass
 class EHLRun:
     """What :func:`run` produced: the setup, the solution, the summary and the files written."""
@@ -306,7 +320,7 @@ def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smo
     validity.report(scene_summary, found)
     if checks:
         scene_summary["Warnings"] = checks + found
-    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
+    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build, scales=bound_scales(setup, solution))
     result = EHLRun(case=case, setup=setup, solution=solution, summary=summary)
     if out_dir is None:
         return result

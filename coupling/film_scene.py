@@ -297,6 +297,39 @@ def resolution_warnings(case: FilmCase, solution) -> list[str]:
     return [f"{text} ({_mesh_keys(case.mesh, solution.info['min_gap_refine'])}, or finer)"]
 
 
+def bound_scales(case: FilmCase, film, solution) -> dict:
+    """The scales the outputs' physical bounds refer to (:mod:`coupling.bounds`).
+
+    ``viscous_pressure``: for an iso-viscous, Newtonian film, the largest boundary pressure plus
+    6 eta0 U L / h_min^2 (wedge and step films: a slider's largest pressure is below 0.2 times it) plus
+    12 eta0 |V| L^2 / h_min^3 (squeeze films: a sphere's is 3 eta0 V R / h_min^2), with U the fastest
+    surface speed, V the squeeze speed, L the mesh's largest extent (a journal's unwrapped
+    circumference) and h_min the thinnest gap; absent when the viscosity rises with pressure (the
+    pressure then has no iso-viscous bound)."""
+    out = {}
+    lub = case.lubricant
+    if lub.viscosity.law != "constant" or lub.eyring_stress is not None:
+        return out
+    mo = case.motion
+    speeds = [float(np.linalg.norm(mo.velocity_lower))]
+    if mo.speed is not None:
+        speeds.append(abs(mo.speed) * case.gap.radius)
+    elif mo.velocity_upper is not None:
+        speeds.append(float(np.linalg.norm(mo.velocity_upper)))
+    speeds += [abs(v) for v in mo.mode_velocities.values()]
+    squeeze = abs(mo.squeeze or 0.0)
+    p = np.asarray(film.mesh.p, dtype=float)
+    extent = float(np.max(np.ptp(p, axis=1)))
+    if case.mesh.domain == "journal":  # unwrapped: the circumference
+        extent = max(extent, 2.0 * math.pi * case.gap.radius)
+    h_min, eta = float(solution.h_min), float(lub.viscosity.eta0)
+    boundary = max([abs(case.boundary.ambient)] + [abs(v) for v in case.boundary.pressures.values()])
+    if h_min > 0.0:
+        out["viscous_pressure"] = (boundary + 6.0 * eta * max(speeds) * extent / h_min ** 2
+                                   + 12.0 * eta * squeeze * extent ** 2 / h_min ** 3)
+    return out
+
+
 @dataclass
 class FilmRun:
     """What :func:`run` produced: the solution, the summary and the files written."""
@@ -326,9 +359,11 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     scene_summary["Film Reynolds number [-]"] = reynolds
     validity.report(scene_summary, validity.warnings_for(
         case.validity, max_pressure=solution.p_max, min_film=solution.h_min, reynolds=reynolds,
-        model="the rigid-surface Reynolds film") + resolution_warnings(case, solution)
-        + [w for w in (solution.fluid_fraction_warning(),) if w])
-    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
+        model="the rigid-surface Reynolds film") + resolution_warnings(case, solution))
+    if solution.warnings:  # the solver's own check (JFO fluid fraction), logged by lub.solve already
+        scene_summary["Warnings"] = scene_summary.get("Warnings", []) + solution.warnings
+    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build,
+                                  scales=bound_scales(case, film, solution))
     result = FilmRun(case=case, film=film, solution=solution, summary=summary)
     if out_dir is None:
         return result

@@ -19,6 +19,7 @@ units, checked against the unit in the axis name)::
     scheduler = ""              # Dask scheduler address ("tcp://host:8786"): solve there instead
     cache_dir = ""              # solved points and built maps; "" -> <out>/.map-cache
     accuracy_points = 20        # random off-grid points solved directly for the accuracy report
+    accuracy_tolerance = 0.03   # largest relative error of that report without a WARNING (at build and load)
     seed = 0
     on_failure = "raise" | "fill"
     [output]
@@ -33,7 +34,8 @@ Outputs of ``run``: ``<kind>.npz`` (:meth:`FilmMap.save`), ``map.png`` (each
 output against the first axis, lines over the second), ``fields.pvd`` with
 ``field_NNN.vtu`` (the kind's film fields, a series along the first axis;
 open ``fields.pvd`` in ParaView; the "time" of each frame is the first axis'
-value), ``summary.json`` (accuracy report, fit errors, build information),
+value), ``summary.json`` (accuracy report, fit errors, build information; under "Warnings" the map's
+accuracy warning when an output's error exceeds ``build.accuracy_tolerance``, also logged),
 ``case.resolved.toml``.  Everything is written through a staging folder
 (:func:`coupling.outputs.staged`): a failed build leaves the output folder
 as it was (solved points stay in the cache, so the next run resumes).
@@ -54,8 +56,8 @@ from pydantic_core import PydanticCustomError
 from lubrication.errors import InputError, did_you_mean
 from lubrication.laws.lubricant import DowsonHigginson
 
-from . import maps, outputs
-from .config import LimitsModel, LubricantModel, _Model, resolved_toml
+from . import maps, outputs, validity
+from .config import BoundsModel, LimitsModel, LubricantModel, _Model, resolved_toml
 from .units import DIMENSIONS, UnitError, parse_quantity, parse_units
 
 log = logging.getLogger(__name__)
@@ -94,6 +96,8 @@ class BuildModel(_Model):
     scheduler: str = ""
     cache_dir: str = ""
     accuracy_points: Annotated[int, Field(strict=True, ge=0)] = 20
+    # stored in the map, which warns again when it is loaded (coupling.maps.ACCURACY_TOLERANCE: why 3 %)
+    accuracy_tolerance: Annotated[float, Field(gt=0)] = maps.ACCURACY_TOLERANCE  # largest error without a warning
     seed: Annotated[int, Field(strict=True, ge=0)] = 0
     on_failure: Literal["raise", "fill"] = "raise"
 
@@ -118,6 +122,7 @@ class CaseModel(_Model):
     build: BuildModel = Field(default_factory=BuildModel)
     output: MapOutputModel = Field(default_factory=MapOutputModel)
     limits: LimitsModel = Field(default_factory=LimitsModel)
+    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: coupling.bounds
     smoke: dict[str, Any] | None = None
 
     @model_validator(mode="after")
@@ -388,6 +393,7 @@ def summarise(case: CaseModel, setup: MapSetup, fmap: maps.FilmMap) -> dict:
         "Map loaded from cache": "loaded from cache" in p,
         "Accuracy points [-]": fmap.accuracy.get("requested points", 0),
         "Failed accuracy points [-]": len(fmap.accuracy.get("failed points", [])),
+        "Accuracy tolerance [-]": fmap.accuracy_tolerance,
         "Map input sha256": p.get("input sha256", {}).get("map", ""),
     }
     for name in fmap.outputs:
@@ -445,8 +451,13 @@ def run(case: CaseModel, out_dir=None, *, name: str = "map", source: str = "", s
     workers = None if b.scheduler else effective_workers(case, setup.points)
     fmap = maps.build_map(setup.kind, case.params, setup.axes, method=b.method, workers=workers,
                           scheduler=b.scheduler or None, cache_dir=cache, progress=True,
-                          accuracy_points=b.accuracy_points, seed=b.seed, on_failure=b.on_failure)
-    summary = outputs.run_summary(case, name, smoke, summarise(case, setup, fmap), t0, t_build)
+                          accuracy_points=b.accuracy_points, seed=b.seed, on_failure=b.on_failure,
+                          accuracy_tolerance=b.accuracy_tolerance, warn=False)
+    scene_summary = summarise(case, setup, fmap)
+    where = (f"map file {str(Path(out_dir) / map_file_name(case))!r}" if out_dir is not None
+             and "map" in case.output.write else "")
+    validity.report(scene_summary, [text for text in (fmap.accuracy_warning(where),) if text])
+    summary = outputs.run_summary(case, name, smoke, scene_summary, t0, t_build)
     result = MapRun(case=case, setup=setup, map=fmap, summary=summary)
     if out_dir is None:
         return result

@@ -330,15 +330,22 @@ def write_run(out_dir, resolved: str, summary: dict, write, fields=None, figure=
     return [out / n for n in names]
 
 
-def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float) -> dict:
+def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float,
+                scales: dict | None = None) -> dict:
     """The summary every scene writes: identity, the scene's own results, the values its paper does not
-    give (``"Assumed values"``: :func:`coupling.parameters.assumed_values`), timing."""
+    give (``"Assumed values"``: :func:`coupling.parameters.assumed_values`), timing.
+
+    Every scene's results pass through here before anything is written: each value is checked against
+    its physical bound (:func:`coupling.bounds.enforce`, with the scene's ``scales``), which raises
+    :class:`coupling.bounds.ImplausibleResult` or, under ``[validity] strict = false``, adds a warning."""
     import time
 
     from . import __version__
 
+    from .bounds import enforce, strict_of
     from .parameters import assumed_values
 
+    scene_summary = enforce(dict(scene_summary), scales, strict=strict_of(case))
     summary = {"Case": name, "Scene": case.scene, "Description": case.description}
     summary.update(scene_summary)
     assumed = assumed_values(case)

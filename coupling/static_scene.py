@@ -52,7 +52,7 @@ from pydantic import Field, model_validator
 from lubrication.errors import InputError
 
 from . import outputs
-from .config import LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
+from .config import BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
 
 log = logging.getLogger(__name__)
 
@@ -142,6 +142,7 @@ class StaticCase(_Model):
     solver: SolverTable = Field(default_factory=SolverTable)
     output: OutputTable = Field(default_factory=OutputTable)
     limits: LimitsModel = Field(default_factory=LimitsModel)
+    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: coupling.bounds
     smoke: dict[str, Any] | None = None
 
 

@@ -37,11 +37,24 @@ the parent, one BLAS thread each) or, with ``scheduler``, to a Dask cluster, who
 bit-identical whatever the backend and worker count.
 
 ``DIR`` gets ``study.csv`` (one row per run: the axis values as given and in SI, the member, the
-outputs, the run folder, the status and error), ``study.json`` (the study resolved, per point the
-median, min, max, spread = max - min and standard deviation over its members of each numeric output,
-the failures, the machine and timing) and ``study.png`` (per output a panel against the first axis:
-the median over members, the min-max band, one line per combination of the other axes; ``[paper]``
-values as markers), written together through a staging folder (:func:`coupling.outputs.staged`).
+outputs, the run folder, the status, warnings and error), ``study.json`` (the study resolved, per
+point the median, min, max, spread = max - min and standard deviation over its members of each
+numeric output and how many members failed or warned, the failed and the warned runs, the machine
+and timing) and ``study.png`` (per output a panel against the first axis: the median over members,
+the min-max band, one line per combination of the other axes; ``[paper]`` values as markers; points
+with a warned member circled in orange, points with a failed member crossed in red, points with no
+finished member absent), written together through a staging folder (:func:`coupling.outputs.staged`).
+
+Every run carries its health into the tables, because a study is where results are compared and a
+warning left in one run folder's ``summary.json`` is a warning nobody reads: the ``status`` of a run
+is ``ok``, ``ok-with-warnings`` (it finished and its summary.json lists ``"Warnings"``, e.g. a
+validity range left or a resolution guard fired) or ``failed`` (its message in ``error``).  The
+``warnings`` cell of study.csv is empty for a clean run, else the count and every warning's one-line
+text: ``2: first text | second text`` (one cell that a spreadsheet filter and ``split(" | ")`` both
+read; study.json lists them per run).  Warned runs stay in the statistics (their values are results,
+flagged); each point says how many of its members warned.  Every warned run is logged (WARNING, one
+line naming its folder, the count and the first warning) whether it ran now or is reused, so a
+resumed study reports what a fresh one does.
 """
 from __future__ import annotations
 
@@ -294,6 +307,34 @@ def _message(exc: BaseException) -> str:
     """A failed run's message: lubedyn's own errors as they are, others with their type."""
     text = _one_line(exc)
     return text if isinstance(exc, LubedynError) else f"{type(exc).__name__}: {text}"
+
+
+def run_warnings(summary) -> list[str]:
+    """The warnings a finished run's summary lists (its ``"Warnings"``; absent: none), one line each."""
+    found = summary.get("Warnings") if isinstance(summary, dict) else None
+    if not found:
+        return []
+    return [_one_line(str(w)) for w in (found if isinstance(found, list) else [found])]
+
+
+def status(result) -> str:
+    """A run's status in the tables from its ``(status, payload)``: ``"ok"``, ``"ok-with-warnings"``
+    (finished, its summary lists warnings) or ``"failed"``."""
+    state, payload = result
+    if state != "ok":
+        return "failed"
+    return "ok-with-warnings" if run_warnings(payload) else "ok"
+
+
+def warnings_cell(warnings: list[str]) -> str:
+    """study.csv's ``warnings`` cell: empty, or ``"2: first | second"`` (the count, every text)."""
+    return f"{len(warnings)}: " + " | ".join(warnings) if warnings else ""
+
+
+def warned_line(folder: str, warnings: list[str]) -> str:
+    """The log line of a warned run: ``runs/x/m0: 2 warnings, the first: ... (all in its summary.json)``."""
+    count = f"{len(warnings)} warning" + ("s, the first" if len(warnings) > 1 else "")
+    return f"{folder}: {count}: {warnings[0]}" + (" (all in its summary.json)" if len(warnings) > 1 else "")
 
 
 # ---------------------------------------------------------------------------
@@ -570,7 +611,8 @@ def _duration(seconds: float) -> str:
 
 @dataclass
 class StudyResult:
-    """What :func:`run_study` did: runs in total, reused, run now, failed (folder, message), files."""
+    """What :func:`run_study` did: runs in total, reused, run now, failed (folder, message), files;
+    ``warned``: the runs that finished with warnings, (folder, [warning, ...]), reused or run now."""
 
     out: Path
     total: int
@@ -579,6 +621,7 @@ class StudyResult:
     failed: list
     backend: str
     files: list
+    warned: list = field(default_factory=list)
 
 
 def run_study(study: StudyFile, study_path, out, *, smoke: bool | None = None, workers: int | None = None,
@@ -606,31 +649,43 @@ def run_study(study: StudyFile, study_path, out, *, smoke: bool | None = None, w
     if reused:
         check_outputs(study, results[reused[0].index][1], reused[0].folder)
         checked = True
+    for run in reused:  # a resumed study says again what the run said when it ran
+        found = run_warnings(results[run.index][1])
+        if found:
+            log.warning("reused run %s", warned_line(run.folder, found))
     log.info("%d runs: %d reused (finished in %s/runs), %d to run", len(plan.runs), len(reused), out, len(todo))
     specs = [{"case": str(plan.base), "smoke": smoke, "overrides": r.overrides, "folder": str(out / r.folder)}
              for r in plan.runs]
     done = 0
 
-    def accept(i, status, payload, seconds):
+    def accept(i, state, payload, seconds):
         nonlocal done, checked
         done += 1
         run = plan.runs[i]
-        results[i] = (status, payload)
-        if status == "ok":
+        results[i] = (state, payload)
+        if state == "ok":
             if not checked:
                 check_outputs(study, payload, out / run.folder)
                 checked = True
-            log.info("run %d/%d done (%s), %s", done, len(todo), run.label, _duration(seconds))
+            found = run_warnings(payload)
+            if found:
+                log.warning("run %d/%d done with warnings (%s), %s; %s", done, len(todo), run.label,
+                            _duration(seconds), warned_line(run.folder, found))
+            else:
+                log.info("run %d/%d done (%s), %s", done, len(todo), run.label, _duration(seconds))
         else:
             log.warning("run %d/%d failed (%s): %s", done, len(todo), run.label, payload)
 
     backend = _execute(specs, todo, workers, scheduler, accept, scheduler_key)
-    failed = [(plan.runs[i].folder, payload) for i, (status, payload) in enumerate(results) if status != "ok"]
+    failed = [(plan.runs[i].folder, payload) for i, (state, payload) in enumerate(results) if state != "ok"]
+    warned = [(plan.runs[i].folder, run_warnings(payload)) for i, (state, payload) in enumerate(results)
+              if state == "ok" and run_warnings(payload)]
     info = {"backend": backend, "workers": workers, "scheduler": scheduler if isinstance(scheduler, str) else None,
             "smoke": smoke, "total": len(plan.runs), "reused": len(reused), "ran": len(todo),
-            "failed": len(failed), "started [UTC]": started, "wall time [s]": time.perf_counter() - t0}
+            "failed": len(failed), "ok with warnings": len(warned), "started [UTC]": started,
+            "wall time [s]": time.perf_counter() - t0}
     files = write_tables(study, study_path, plan, results, out, info)
-    return StudyResult(out, len(plan.runs), len(reused), len(todo), failed, backend, files)
+    return StudyResult(out, len(plan.runs), len(reused), len(todo), failed, backend, files, warned)
 
 
 # ---------------------------------------------------------------------------
@@ -650,18 +705,20 @@ def _cell(value) -> str:
 
 def table(study: StudyFile, plan: Plan, results: list) -> str:
     """``study.csv``: one row per run: each axis's value as given and in SI, the member, the outputs,
-    the run folder (relative to the study folder), the status ("ok" or "failed") and the error."""
+    the run folder (relative to the study folder), the status (:func:`status`), the warnings
+    (:func:`warnings_cell`) and the error."""
     keys, names = list(study.axes), study.study.outputs
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow([c for k in keys for c in (k, f"{k} [SI]")] + ["member"] + names
-                    + ["run folder", "status", "error"])
-    for run, (status, payload) in zip(plan.runs, results):
+                    + ["run folder", "status", "warnings", "error"])
+    for run, result in zip(plan.runs, results):
         values, si = plan.points[run.point], plan.si[run.point]
-        summary = payload if status == "ok" else {}
+        ok = result[0] == "ok"
+        summary = result[1] if ok else {}
         writer.writerow([c for k in keys for c in (given(values[k]), _cell(si[k]))] + [run.member]
-                        + [_cell(summary.get(n)) for n in names] + [run.folder, status,
-                                                                    "" if status == "ok" else payload])
+                        + [_cell(summary.get(n)) for n in names]
+                        + [run.folder, status(result), warnings_cell(run_warnings(summary)), "" if ok else result[1]])
     return buffer.getvalue()
 
 
@@ -672,16 +729,17 @@ def _number(value) -> float | None:
 
 
 def aggregates(study: StudyFile, plan: Plan, results: list) -> list[dict]:
-    """Per point: its axis values, run folders, and per output the members' values with their median,
-    min, max, spread (max - min) and population standard deviation (None when no member gave a
-    finite number)."""
+    """Per point: its axis values, run folders, how many members failed and how many finished with
+    warnings (their values are in the statistics: a reader of a point's median must know that some of
+    it is flagged), and per output the finished members' values with their median, min, max, spread
+    (max - min) and population standard deviation (None when no member gave a finite number)."""
     out = []
     for p, values in enumerate(plan.points):
         runs = [r for r in plan.runs if r.point == p]
         ok = [results[r.index][1] for r in runs if results[r.index][0] == "ok"]
         entry = {"axes": {k: given(v) for k, v in values.items()}, "axes [SI]": plan.si[p],
                  "run folders": [r.folder for r in runs], "members": len(runs), "failed": len(runs) - len(ok),
-                 "outputs": {}}
+                 "ok with warnings": sum(1 for s in ok if run_warnings(s)), "outputs": {}}
         for name in study.study.outputs:
             numbers = [x for x in (_number(s.get(name)) for s in ok) if x is not None and math.isfinite(x)]
             stats = {"values": [s.get(name) for s in ok], "median": None, "min": None, "max": None,
@@ -720,6 +778,13 @@ def _first_axis_x(study: StudyFile, plan: Plan):
     return xs, (list(range(len(labels))), labels), False
 
 
+_HEALTH_MARKS = {  # study.png: a point with a warned / failed member (labelled once per panel, see _panel)
+    "ok with warnings": {"marker": "o", "ms": 11, "mfc": "none", "mec": "tab:orange", "mew": 1.8,
+                         "label": "with warnings (study.csv)"},
+    "failed": {"marker": "x", "ms": 9, "color": "tab:red", "mew": 1.8, "label": "a member failed (study.csv)"},
+}
+
+
 def _panel(ax, study: StudyFile, plan: Plan, stats: list, name: str, groups: dict, first_axis) -> None:
     """One output of study.png: a line (median) and band (min-max) per group of points, paper markers."""
     xs, ticks, numeric = first_axis
@@ -737,6 +802,10 @@ def _panel(ax, study: StudyFile, plan: Plan, stats: list, name: str, groups: dic
                 lo = [math.nan if s["min"] is None else s["min"] for s in pick]
                 hi = [math.nan if s["max"] is None else s["max"] for s in pick]
                 ax.fill_between(x, lo, hi, color=line.get_color(), alpha=0.2, lw=0)
+            for key, style in _HEALTH_MARKS.items():  # the health of each point, over its median
+                marked = [(xs[p], m) for p, m in zip(members, med) if stats[p][key] and not math.isnan(m)]
+                if marked:
+                    ax.plot(*zip(*marked), ls="none", **style)
         with contextlib.suppress(AttributeError):  # plain values on the y axis, not "1e-9 + 750.3"
             ax.ticklabel_format(axis="y", useOffset=False)
     if name in study.paper:
@@ -748,8 +817,12 @@ def _panel(ax, study: StudyFile, plan: Plan, stats: list, name: str, groups: dic
         ax.set_xticks(ticks[0], ticks[1])
     ax.set_title(name, fontsize="medium")
     ax.grid(alpha=0.3)
-    if any(h.get_label() and not h.get_label().startswith("_") for h in ax.get_lines()):
-        ax.legend(fontsize="small")
+    handles = {}  # one legend entry per label (the health markers repeat per group of points)
+    for h in ax.get_lines():
+        if h.get_label() and not h.get_label().startswith("_"):
+            handles.setdefault(h.get_label(), h)
+    if handles:
+        ax.legend(handles.values(), handles.keys(), fontsize="small")
 
 
 def figure(study: StudyFile, plan: Plan, stats: list):
@@ -794,8 +867,12 @@ def write_tables(study: StudyFile, study_path, plan: Plan, results: list, out: P
            "base case": str(plan.base), "study": study.model_dump(), "runs": info,
            "points": stats, "failed runs": [{"run folder": r.folder, "error": results[r.index][1]}
                                             for r in plan.runs if results[r.index][0] != "ok"],
+           "warned runs": [{"run folder": r.folder, "warnings": run_warnings(results[r.index][1])}
+                           for r in plan.runs if status(results[r.index]) == "ok-with-warnings"],
            "run list": [{"run folder": r.folder, "point": r.point, "member": r.member, "overrides": r.overrides,
-                         "status": results[r.index][0]} for r in plan.runs],
+                         "status": status(results[r.index]),
+                         "warnings": run_warnings(results[r.index][1]) if results[r.index][0] == "ok" else []}
+                        for r in plan.runs],
            "machine": _machine(), "finished [UTC]": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
     fig = figure(study, plan, stats)
     try:

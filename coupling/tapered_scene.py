@@ -63,10 +63,11 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import BeforeValidator, Field, model_validator
 
+from dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubrication.errors import ConvergenceError, InputError
 
 from . import outputs
-from .config import LimitsModel, PositiveInt, Q, _Model, resolved_toml, rule
+from .config import BoundsModel, LimitsModel, PositiveInt, Q, _Model, resolved_toml, rule
 from .parameters.wu2018 import GREASE_TABLE as GREASES
 from .static_scene import BearingTable
 
@@ -218,12 +219,13 @@ class IntegratorTable(_Model):
     """``method``: "rk4" (fixed step ``dt``; "auto": 0.8 x :meth:`TaperedBearing.stable_step`, the
     default) or "dopri5" (adaptive, ``rtol``/``atol``).  benchmarks/trb.py (20 ms): RK4 at the stable-step
     estimate is 4.8 x faster than DOPRI5 at rtol 1e-6, its mean skew and tilt within 2.5e-5 and 9.8e-5 of
-    DOPRI5 at rtol 1e-9; at half of it 2.6 x, within 1.5e-6 and 5.9e-6."""
+    DOPRI5 at rtol 1e-9; at half of it 2.6 x, within 1.5e-6 and 5.9e-6.  ``rtol`` <= 1e-3 and ``atol`` <=
+    1e-8: beyond them DOPRI5's error control means nothing (measured: :data:`dynamics.integrators.RTOL_MAX`)."""
 
     method: Literal["dopri5", "rk4"] = "rk4"
     dt: StepOrAuto = "auto"
-    rtol: Q("dimensionless", gt=0, lt=1) = 1e-7
-    atol: Q("dimensionless", gt=0) = 1e-12
+    rtol: Q("dimensionless", gt=0, le=RTOL_MAX, why=RTOL_WHY) = 1e-7
+    atol: Q("dimensionless", gt=0, le=ATOL_MAX, why=ATOL_WHY) = 1e-12
     duration: Q("time", gt=0)
     sample_interval: Q("time", gt=0) = 20e-6
     max_steps: PositiveInt = 50_000_000
@@ -284,6 +286,7 @@ class TaperedCase(_Model):
     analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)
     limits: LimitsModel = Field(default_factory=LimitsModel)
+    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: coupling.bounds
     smoke: dict[str, Any] | None = None
 
 

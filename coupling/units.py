@@ -191,3 +191,66 @@ def parse_quantity(value, dimension: str) -> float:
         raise UnitError(f"has units of {dimension_name(dim)}, expected {dimension} ({si_unit(dimension)})")
     # 15 significant digits: "50 um" -> 5e-05, not 4.9999999999999996e-05
     return float(f"{number * factor:.15g}")
+
+
+# ---------------------------------------------------------------------------
+# unit hints: the value a user probably meant when a number is out of scale
+
+# the units a quantity is commonly written in, by dimension: the candidates of a unit hint
+COMMON_UNITS: dict[str, tuple[str, ...]] = {
+    "length": ("m", "mm", "um", "nm"),
+    "pressure": ("Pa", "kPa", "MPa", "GPa"),
+    "force": ("N", "kN"),
+    "force per length": ("N/m", "kN/m"),
+    "velocity": ("m/s", "mm/s"),
+}
+
+
+def written(value, dimension: str) -> tuple[float, float] | None:
+    """(number, factor to SI of its units) of a quantity as the user wrote it, or None when it is no
+    quantity of ``dimension``: a bare number is SI (factor 1).
+
+    >>> written(50, "length"), written("50 um", "length"), written("50 Pa", "length")
+    ((50.0, 1.0), (50.0, 1e-06), None)
+    """
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, (int, float)):
+        return float(value), 1.0
+    if not isinstance(value, str):
+        return None
+    match = _NUMBER.match(value)
+    if not match:
+        return None
+    if not match.group(2):
+        return float(match.group(1)), 1.0
+    try:
+        factor, dim = parse_units(match.group(2))
+    except UnitError:
+        return None
+    return (float(match.group(1)), factor) if dim == DIMENSIONS[dimension] else None
+
+
+def unit_hint(value, dimension: str, passes) -> str | None:
+    """``value``'s number (as written) in the common unit nearest to the one written (in powers of ten)
+    whose SI value satisfies ``passes(si)``: the value the user probably meant; None when no common
+    unit does.  A bare 50 for a clearance that must be below 2.5 mm:
+
+    >>> unit_hint(50, "length", lambda si: si <= 2.5e-3)
+    '50 um'
+    >>> unit_hint("50 um", "length", lambda si: si >= 1e-2)
+    '50 mm'
+    """
+    form = written(value, dimension)
+    if form is None:
+        return None
+    number, factor = form
+    candidates = []
+    for unit in COMMON_UNITS.get(dimension, ()):
+        f = parse_units(unit)[0]
+        if not math.isclose(f, factor, rel_tol=1e-9):
+            candidates.append((abs(math.log10(f / factor)), unit, f))
+    for _, unit, f in sorted(candidates):
+        if passes(float(f"{number * f:.15g}")):
+            return f"{number:g} {unit}"
+    return None

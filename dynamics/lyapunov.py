@@ -290,10 +290,23 @@ class LyapunovSpectrum:
         return batch_means_uncertainty(self.times, self.running)
 
     @property
+    def change(self) -> np.ndarray:
+        """Change [1/s] of each running estimate over the second half of the averaging time,
+        |running[-1] - running[q // 2]| (:func:`second_half_change`)."""
+        return second_half_change(self.running)
+
+    @property
+    def convergence(self) -> np.ndarray:
+        """Relative change of each running estimate over the second half, ``change / |exponent|`` (inf
+        for an exponent of exactly 0)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.exponents != 0.0, self.change / np.abs(self.exponents), np.inf)
+
+    @property
     def verdicts(self) -> list:
-        """Per exponent: "positive" when it exceeds ``VERDICT_FACTOR`` uncertainties, else "not positive"
-        ("undetermined" without an uncertainty)."""
-        return [verdict(lam, u) for lam, u in zip(self.exponents, self.uncertainty)]
+        """Per exponent: "positive" when it exceeds ``VERDICT_FACTOR`` uncertainties and has settled, "not
+        positive", "not converged (moved X % over the second half)" or "undetermined" (see :func:`verdict`)."""
+        return [verdict(lam, u, d) for lam, u, d in zip(self.exponents, self.uncertainty, self.change)]
 
     @property
     def sum(self) -> float:
@@ -316,18 +329,47 @@ class LyapunovSpectrum:
 BATCHES = 10
 #: an exponent is "positive" when it exceeds this many uncertainties (about a one-sided 2-sigma test)
 VERDICT_FACTOR = 2.0
+#: a verdict needs a settled estimate.  A "positive" exponent: its running value moved over the second
+#: half of the record by at most this fraction of itself (Wolf's ``resolved`` uses the same 20 %,
+#: ``WOLF_CONVERGED``).  A "not positive" one: by at most the larger of that and the band VERDICT_FACTOR x
+#: uncertainty its verdict is judged against, since an exponent at 0 has no relative change and its running
+#: value wanders by about one uncertainty (measured, change / band: Lorenz' flow direction at T = 20-500 s
+#: 0.06-0.64, a harmonic oscillator at T = 7.7-50 s 0.11-0.25, Wolf on pure sines 0.03-0.69).
+SETTLED = 0.2
 
 
-def verdict(exponent, uncertainty) -> str:
+def second_half_change(running) -> np.ndarray:
+    """|running[-1] - running[q // 2]|: how far running estimates (q,) or (q, k) moved over the second half."""
+    r = np.asarray(running, dtype=float)
+    if r.shape[0] == 0:
+        return np.full(r.shape[1:], np.nan)
+    return np.abs(r[-1] - r[r.shape[0] // 2])
+
+
+def verdict(exponent, uncertainty, change=None) -> str:
     """"positive" when ``exponent > VERDICT_FACTOR * uncertainty``, "not positive" otherwise,
-    "undetermined" when the uncertainty is not finite.
+    "undetermined" when the uncertainty is not finite; with ``change`` (how far the running estimate
+    moved over the second half of the record, :func:`second_half_change`), "not converged (moved X % over
+    the second half)" instead unless the estimate has settled: ``change <= SETTLED |exponent|`` for a
+    positive one, ``change <= max(SETTLED |exponent|, VERDICT_FACTOR uncertainty)`` otherwise.
 
     >>> verdict(0.9, 0.05), verdict(0.01, 0.02), verdict(-1.0, 0.1), verdict(0.5, float("nan"))
     ('positive', 'not positive', 'not positive', 'undetermined')
+    >>> verdict(0.9, 0.05, change=0.72), verdict(0.9, 0.05, change=0.1), verdict(0.001, 0.02, change=0.03)
+    ('not converged (moved 80 % over the second half)', 'positive', 'not positive')
+    >>> verdict(-0.5, 0.02, change=0.4)
+    'not converged (moved 80 % over the second half)'
     """
     if not np.isfinite(uncertainty) or not np.isfinite(exponent):
         return "undetermined"
-    return "positive" if exponent > VERDICT_FACTOR * uncertainty else "not positive"
+    positive = exponent > VERDICT_FACTOR * uncertainty
+    if change is not None:
+        limit = SETTLED * abs(exponent) if positive else max(SETTLED * abs(exponent), VERDICT_FACTOR * uncertainty)
+        if not change <= limit:  # NaN: not settled either
+            moved = (f"{100.0 * change / abs(exponent):.0f} %" if exponent != 0.0 and np.isfinite(change)
+                     else f"by {change:.3g}")
+            return f"not converged (moved {moved} over the second half)"
+    return "positive" if positive else "not positive"
 
 
 def batch_means_uncertainty(times, running, batches=BATCHES) -> np.ndarray:
@@ -591,18 +633,54 @@ class RosensteinResult:
 
 
 def mean_period(x, dt):
-    """Mean period [s] of a signal: 1 / (power-weighted mean frequency) (Rosenstein's Theiler window)."""
-    x = np.asarray(x, dtype=float) - np.mean(x)
+    """Mean period [s] of a signal: 1 / (power-weighted mean frequency) (Rosenstein's Theiler window).
+    A series without variation (:func:`series_shortfall`) has none: DynamicsInputError."""
+    x = np.asarray(x, dtype=float)
+    reason = series_shortfall(x)
+    if reason:
+        raise DynamicsInputError(f"x has {reason}: it has no mean period")
+    x = x - np.mean(x)
     p = np.abs(np.fft.rfft(x)) ** 2
     f = np.fft.rfftfreq(x.size, dt)
     fm = np.sum(f[1:] * p[1:]) / np.sum(p[1:])
     return 1.0 / fm
 
 
+#: fewest samples of a series any time-series exponent looks at
+MIN_SERIES = 3
+
+
+def series_shortfall(x) -> str:
+    """Why the series ``x`` cannot give a time-series exponent at all ("" if it can): fewer than
+    ``MIN_SERIES`` samples, non-finite values, or a constant series (its range at most 16 rounding units of
+    its size: a delay embedding of it is one point, so no neighbour and no divergence).
+
+    >>> import numpy as np
+    >>> series_shortfall(np.full(500, 0.3))
+    '500 samples of a constant (0.3): not computed, a constant series has no divergence to follow'
+    >>> series_shortfall([1.0, 2.0]), series_shortfall(np.sin(np.arange(9.0)))
+    ('2 samples: too short (at least 3)', '')
+    """
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1:
+        return f"shape {x.shape}: not a 1-D series"
+    if x.size < MIN_SERIES:
+        return f"{x.size} samples: too short (at least {MIN_SERIES})"
+    if not np.all(np.isfinite(x)):
+        return f"{int(np.count_nonzero(~np.isfinite(x)))} non-finite samples of {x.size}"
+    if np.ptp(x) <= 16.0 * np.finfo(float).eps * float(np.max(np.abs(x))):
+        return (f"{x.size} samples of a constant ({x[0]:.6g}): not computed, a constant series has no divergence "
+                "to follow")
+    return ""
+
+
 def _rosenstein_record(x, dt, dim, delay, theiler, t_follow):
     """``(reason, theiler, n_follow)``: ``reason`` is "" when the record is long enough for Rosenstein's
     method, else why not (the neighbour search needs M - n_follow >= 2 theiler + 10 embedded points,
-    M = N - (dim - 1) delay)."""
+    M = N - (dim - 1) delay; a series that is constant or too short for anything: :func:`series_shortfall`)."""
+    reason = series_shortfall(x)
+    if reason:
+        return reason, None, 0
     theiler = int(round(mean_period(x, dt) / dt)) if theiler is None else int(theiler)
     n_follow = int(round((t_follow if t_follow is not None else 0.2 * x.size * dt) / dt)) + 1
     M = x.size - (dim - 1) * delay
@@ -747,7 +825,7 @@ WOLF_SCALE_MIN = 1e-4
 #: fewest evolution steps of a record (the batch-means uncertainty needs 10 blocks of 2 at least)
 WOLF_MIN_STEPS = 20
 #: "not resolved" when the running estimate changed by more than this fraction over the last half ...
-WOLF_CONVERGED = 0.2
+WOLF_CONVERGED = SETTLED
 #: ... or the uncertainty exceeds this fraction of the exponent
 WOLF_RESOLVED = 0.5
 
@@ -815,8 +893,9 @@ class WolfResult:
 
     @property
     def verdict(self) -> str:
-        """"positive" beyond ``VERDICT_FACTOR`` uncertainties, else "not positive" (see :func:`verdict`)."""
-        return verdict(self.exponent_bits, self.uncertainty_bits)
+        """"positive" beyond ``VERDICT_FACTOR`` uncertainties, else "not positive"; "not converged (moved X %
+        over the second half)" where the running estimate has not settled (see :func:`verdict`)."""
+        return verdict(self.exponent_bits, self.uncertainty_bits, float(second_half_change(self.running)))
 
     @property
     def resolved(self) -> bool:
@@ -830,7 +909,11 @@ class WolfResult:
 def _wolf_record(x, dt, dim, delay, evolve, theiler):
     """``(reason, theiler)``: ``reason`` is "" when ``x`` is long enough for :func:`largest_lyapunov_wolf`,
     else why not.  The delay embedding takes (dim - 1) delay samples; the rest must hold
-    ``WOLF_MIN_STEPS`` evolution steps and, after one step, neighbours outside the Theiler window."""
+    ``WOLF_MIN_STEPS`` evolution steps and, after one step, neighbours outside the Theiler window (a
+    series that is constant or too short for anything: :func:`series_shortfall`)."""
+    reason = series_shortfall(x)
+    if reason:
+        return reason, None
     theiler = int(round(mean_period(x, dt) / dt)) if theiler is None else int(theiler)
     span = (dim - 1) * delay
     need = span + max(WOLF_MIN_STEPS * evolve + 1, evolve + 2 * theiler + 10)

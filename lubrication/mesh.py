@@ -84,8 +84,7 @@ def rectangle(xs, ys, cell: str = "quad", periodic_x: bool = False) -> skfem.Mes
         raise InputError(f"a periodic rectangle mesh needs at least {PERIODIC_MIN_CELLS} cells along x "
                          f"(got {len(xs) - 1})")
     if periodic_x:
-        cls = skfem.MeshQuad1DG if cell == "quad" else skfem.MeshTri1DG
-        m = cls.init_tensor(xs, ys, periodic=[0])
+        m = _periodic_x(skfem.MeshQuad1DG if cell == "quad" else skfem.MeshTri1DG, xs, ys)
     else:
         cls = skfem.MeshQuad if cell == "quad" else skfem.MeshTri
         m = cls.init_tensor(xs, ys)
@@ -97,6 +96,42 @@ def rectangle(xs, ys, cell: str = "quad", periodic_x: bool = False) -> skfem.Mes
         names["left"] = lambda x, t: np.abs(x[0] - xs[0]) < t
         names["right"] = lambda x, t: np.abs(x[0] - xs[-1]) < t
     return _tag(m, names)
+
+
+def _periodic_x(cls, xs, ys) -> skfem.Mesh:
+    """``cls.init_tensor(xs, ys, periodic=[0])`` of scikit-fem (``MeshDG.init_tensor`` and
+    ``MeshDG.periodic``, the same vertex order, elements and ``_orig`` / ``_ix``), built from
+    C-contiguous arrays.
+
+    Why not scikit-fem's own: ``MeshDG.periodic`` reorders the vertices with
+    ``np.hstack((doflocs[:, oix], doflocs[:, ix]))``; a fancy index along the second axis gives a
+    Fortran-ordered array, which the mesh then copies to C order, logging "Transforming over 1000
+    vertices to C_CONTIGUOUS." (WARNING, logger ``skfem``) for every periodic film of more than
+    1000 vertices built from Python (tests/test_film_health.py).
+    """
+    from dataclasses import replace
+
+    mesh = cls.__bases__[-1].init_tensor(xs, ys)
+    ix = mesh.nodes_satisfying(lambda x: x[0] == xs.min())  # eliminated (left side) ...
+    ix0 = mesh.nodes_satisfying(lambda x: x[0] == xs.max())  # ... replaced by the right side
+    ix, first = np.unique(ix, return_index=True)
+    ix0 = ix0[first]
+    if len(ix) != len(ix0):  # pragma: no cover - a tensor mesh has as many vertices on both sides
+        raise InputError("periodic mesh: the two sides have different vertex counts")
+    n = mesh.nvertices
+    remap = np.empty(n, dtype=np.int32)
+    remap[ix] = np.arange(n - len(ix), n, dtype=np.int32)
+    oix = np.setdiff1d(np.arange(n, dtype=np.int32), ix)
+    remap[oix] = np.arange(n - len(ix), dtype=np.int32)
+    doflocs = np.ascontiguousarray(np.hstack((mesh.doflocs[:, oix], mesh.doflocs[:, ix])))
+    t = np.ascontiguousarray(remap[mesh.t])
+    reordered = replace(mesh, doflocs=doflocs, t=t, sort_t=False)
+    reremap = np.arange(n, dtype=np.int32)
+    reremap[remap[ix]] = remap[ix0]
+    periodic = cls.from_mesh(reordered, np.ascontiguousarray(reremap[t]))
+    periodic._orig = reordered
+    periodic._ix = reremap
+    return periodic
 
 
 def disk(radius: float, refinements: int = 4, smoothed: bool = True, order: int = 1) -> skfem.Mesh:
@@ -204,7 +239,9 @@ def unwrapped(mesh) -> skfem.Mesh:
         count += uniq.size
         remaining = remaining[~same]
     base = type(mesh).__bases__[-1]  # MeshQuad1 / MeshTri1
-    um = base(np.concatenate(points, axis=1), new.reshape(nv, nel).astype(np.int32), sort_t=False)
+    # C order (pts[:, canon] is Fortran-ordered): scikit-fem would copy it and log a WARNING
+    um = base(np.ascontiguousarray(np.concatenate(points, axis=1)), new.reshape(nv, nel).astype(np.int32),
+              sort_t=False)
     if mesh.boundaries:
         def carry(facets):
             elements = mesh.f2t[0, facets]

@@ -298,6 +298,24 @@ class FilmSolution:
                 f"fewer than {need} for {self.film.element}: the load converges in the iterations but not in "
                 f"the mesh; refine the mesh about {factor}x across that zone")
 
+    @property
+    def warnings(self) -> list[str]:
+        """One-line warnings about this solution (empty: none), each logged (WARNING, logger
+        ``lubrication.solution``) once by :func:`lubrication.reynolds.solve` when it returned the
+        solution; today the JFO fluid fraction below 0 (:meth:`fluid_fraction_warning`).  Also in
+        ``info["warnings"]``; the film scene lists them under "Warnings" in summary.json."""
+        return list(self.info.get("warnings", ()))
+
+    def report_warnings(self) -> "FilmSolution":
+        """Check the solution (:meth:`fluid_fraction_warning`), keep what it finds in
+        ``info["warnings"]`` (:attr:`warnings`) and log each line at WARNING; returns ``self``.
+        :func:`lubrication.reynolds.solve` calls it on the solution it returns."""
+        found = [text for text in (self.fluid_fraction_warning(),) if text]
+        self.info["warnings"] = found
+        for text in found:
+            log.warning("%s", text)
+        return self
+
     def fluid_fraction_warning(self) -> str | None:
         """One line if a JFO film's fluid fraction leaves [0, 1] at a node (below -1e-9): the
         complementarity bounds the void fraction r = 1 - theta from below only, so a film that

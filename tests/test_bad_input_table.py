@@ -72,7 +72,7 @@ ROWS = [
     (TD, ["integrator.sample_interval=1 s"], 2, ["integrator.sample_interval", "at least 2 samples"]),
     (TD, ["cage.mass=-1 kg"], 2, ["cage.mass", "> 0"]),
     (D, ["integrator.method=rk5"], 2, ["integrator.method = 'rk5'", "did you mean 'rk4'"]),
-    (D, ["integrator.rtol=0"], 2, ["integrator.rtol = 0", "(0, 1)"]),
+    (D, ["integrator.rtol=0"], 2, ["integrator.rtol = 0", "(0, 0.001]"]),
     (D, ["model.dof=7dof"], 2, ["model.dof = '7dof'", "did you mean '6dof'"]),
     (D, ["operating.scenario=fall"], 2, ["operating.scenario = 'fall'", "'drop', 'steady', 'free'"]),
     # maps

@@ -126,4 +126,5 @@ def test_cageless_rotor_drop(example):
     assert r["rotor speed, largest deviation from the friction law [-]"] < 1e-9
     assert r["ring catch-up, rigid estimate [s]"] < r["ring catch-up, measured [s]"] < 1.3 * r["ring catch-up, rigid estimate [s]"]
     assert r["collisions"] == r["collisions (summary)"] > 0
-    assert r["Lyapunov exponent 1, whole system (Benettin) verdict"] in ("positive", "not positive")
+    verdict = r["Lyapunov exponent 1, whole system (Benettin) verdict"]
+    assert verdict in ("positive", "not positive") or verdict.startswith("not converged (")

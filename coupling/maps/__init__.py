@@ -45,6 +45,12 @@ EHL traction on a log slide-to-roll axis from 1e-3 because through SRR = 0 it is
 bearing kernel (polar arrays when :mod:`dynamics.contacts` reads them, else resampled on the Cartesian
 nodes it reads, :func:`cartesian_resample`).
 
+Accuracy tolerance: a map whose accuracy report shows a relative error above its tolerance (the
+largest relative error of any output; :data:`ACCURACY_TOLERANCE` = 3 % unless the build says otherwise,
+stored in the report as ``"tolerance"``) logs one WARNING line when it is built and whenever it is
+loaded, naming the map, each output that misses, its worst error, the axis values of the worst point and
+the tolerance (:meth:`FilmMap.accuracy_warning`); the map scene lists it under "Warnings" in summary.json.
+
 Failed points: a point whose solve raises is recorded (its message kept) and
 not cached, so a later build retries it.  With ``on_failure = "raise"`` (the
 default) the build, after solving and persisting every other point, raises
@@ -81,8 +87,8 @@ from .provenance import (  # noqa: F401  (the package's API)
     _canonical, code_fingerprint, point_hash, sha256_text, versions,
 )
 from .registry import (  # noqa: F401  (the package's API)
-    FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR, _show_point, _unknown_key, axis_key, axis_unit,
-    get_kind, kinds, register_kind, resolve_axes,
+    ACCURACY_TOLERANCE, FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR, _show_point, _unknown_key, axis_key,
+    axis_unit, get_kind, kinds, register_kind, resolve_axes,
 )
 from .sweep import (  # noqa: F401  (the package's API)
     _PointStore, _chunks, _die_with_parent, _init_worker, _limit_threads, _sigint_blocked, _solve_chunk,

@@ -13,7 +13,7 @@ from lubrication.errors import ConvergenceError, InputError, unknown_choice
 
 from .filmmap import FilmMap
 from .provenance import _canonical, code_fingerprint, sha256_text, versions
-from .registry import METHODS, _show_point, _unknown_key, get_kind, resolve_axes
+from .registry import ACCURACY_TOLERANCE, METHODS, _show_point, _unknown_key, get_kind, resolve_axes
 from .sweep import _PointStore, solve_points
 
 log = logging.getLogger(__name__)
@@ -47,7 +47,8 @@ def random_points(axes, n: int, seed: int = 0) -> np.ndarray:
 
 def build_map(kind, params: dict | None = None, axes=None, *, method: str = "hermite", workers=None, scheduler=None,
               cache_dir=None, progress: bool = True, accuracy_points: int = 0, seed: int = 0,
-              on_failure: str = "raise", fit: bool = True) -> FilmMap:
+              on_failure: str = "raise", fit: bool = True, accuracy_tolerance: float = ACCURACY_TOLERANCE,
+              warn: bool = True) -> FilmMap:
     """Solve ``kind`` on the grid of ``axes`` and return a :class:`FilmMap`.
 
     Parameters
@@ -64,6 +65,12 @@ def build_map(kind, params: dict | None = None, axes=None, *, method: str = "her
     progress : tqdm bar (off when not on a terminal)
     accuracy_points : number of random off-grid points solved directly for the accuracy report
     on_failure : "raise" or "fill" (see the module docstring)
+    accuracy_tolerance : the largest relative error of the accuracy report without a warning
+        (:data:`~coupling.maps.ACCURACY_TOLERANCE`, 3 %); stored in the report (``"tolerance"``), so that
+        the map warns again when loaded (:meth:`FilmMap.load`).  Not an input of the map's hash: a cached
+        map is judged against the tolerance of the build that loads it.
+    warn : log :meth:`FilmMap.accuracy_warning` (WARNING) when the report is above the tolerance (the map
+        scene passes False and reports the line itself, naming its output file)
 
     The map's input hash covers the kind's name, the parameters, the axis
     nodes, the method, the number and seed of accuracy points and the code
@@ -94,13 +101,18 @@ def build_map(kind, params: dict | None = None, axes=None, *, method: str = "her
                                             "accuracy": [int(accuracy_points), int(seed)], "on_failure": on_failure}))
     cache = Path(cache_dir) if cache_dir is not None else None
     map_file = cache / f"{kind.name}-{hashes['map'][:16]}.npz" if cache is not None else None
+    if not (isinstance(accuracy_tolerance, (int, float)) and accuracy_tolerance > 0):
+        raise InputError(f"accuracy_tolerance = {accuracy_tolerance!r} must be a relative error > 0 "
+                         f"(default {ACCURACY_TOLERANCE})")
     if map_file is not None and map_file.is_file():
         try:
-            cached = FilmMap.load(map_file)
+            cached = FilmMap.load(map_file, check=False)
             if cached.provenance.get("input sha256", {}).get("map") == hashes["map"]:
                 log.info("map %s: inputs unchanged, loaded %s", kind.name, map_file)
                 cached.provenance["loaded from cache"] = str(map_file)
-                return cached
+                if cached.accuracy:
+                    cached.accuracy["tolerance"] = float(accuracy_tolerance)
+                return _warned(cached, map_file, warn)
         except InputError as exc:
             log.warning("rebuilding: cached map unreadable (%s)", exc)
     store = _PointStore(cache / "points" / kind.name if cache is not None else None)
@@ -149,9 +161,18 @@ def build_map(kind, params: dict | None = None, axes=None, *, method: str = "her
     if accuracy_points:
         fmap.accuracy = accuracy_report(fmap, kind, params, accuracy_points, seed=seed, workers=workers,
                                         scheduler=scheduler, store=store, progress=progress, code=code)
+        fmap.accuracy["tolerance"] = float(accuracy_tolerance)
     fmap.provenance["build time [s]"] = time.perf_counter() - t0
     if map_file is not None:
         fmap.save(map_file)
+    return _warned(fmap, map_file, warn)
+
+
+def _warned(fmap: FilmMap, map_file, warn: bool) -> FilmMap:
+    """Log the map's accuracy warning (if ``warn`` and its report is above its tolerance)."""
+    text = fmap.accuracy_warning(f"map file {str(map_file)!r}" if map_file is not None else "") if warn else None
+    if text:
+        log.warning("%s", text)
     return fmap
 
 
@@ -160,7 +181,8 @@ def accuracy_report(fmap: FilmMap, kind, params: dict, n: int, *, seed: int = 0,
     """Solve ``n`` random off-grid points (:func:`random_points`) directly and compare with the map.
 
     Returns {output: {"median", "max", "points", "worst point"}} plus "seed", "requested points" and
-    "failed points" (points whose direct solve failed are left out)."""
+    "failed points" (points whose direct solve failed are left out); :func:`build_map` adds the
+    "tolerance" the report is judged against (:meth:`FilmMap.accuracy_warning`)."""
     pts = random_points(fmap.axes, n, seed)
     plist = [{a.name: float(x) for a, x in zip(fmap.axes, row)} for row in pts]
     results, info = solve_points(get_kind(kind), params, plist, workers=workers, scheduler=scheduler, store=store,

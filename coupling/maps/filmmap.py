@@ -8,7 +8,9 @@ from typing import NamedTuple
 import dataclasses
 import io
 import json
+import logging
 import math
+import zipfile
 
 import numpy as np
 
@@ -17,7 +19,12 @@ from lubrication.errors import InputError, unknown_choice
 
 from .. import outputs
 from .fit import PowerLawFit, fit_power_law, local_floor, relative_error
-from .registry import FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR
+from .registry import ACCURACY_TOLERANCE, FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR
+
+log = logging.getLogger(__name__)
+
+#: what a film map file is, for the message when a file given as one is not
+EXPECTED_FILE = "expected a film map .npz written by `lubedyn run` of a map case (e.g. cases/map_ball_ball.toml)"
 
 # ---------------------------------------------------------------------------
 # the map
@@ -260,6 +267,33 @@ class FilmMap:
                             "worst point": [float(x) for x in points[worst]]}
         return report
 
+    @property
+    def accuracy_tolerance(self) -> float:
+        """The largest relative error the accuracy report may show without a warning: the build's
+        (``accuracy["tolerance"]``), else :data:`~coupling.maps.ACCURACY_TOLERANCE` (maps built before the
+        tolerance was stored)."""
+        return float(self.accuracy.get("tolerance", ACCURACY_TOLERANCE))
+
+    def accuracy_warning(self, source: str = "") -> str | None:
+        """One line when an output of the accuracy report has a relative error above
+        :attr:`accuracy_tolerance` (None otherwise, and for a map without a report): ``source`` (the map
+        file; default ``"map <kind>"``), each such output with its worst error, its median and the axis
+        values of its worst point, worst output first, and the tolerance."""
+        tol = self.accuracy_tolerance
+        misses = sorted(((rep["max"], name, rep) for name, rep in self.accuracy.items()
+                         if isinstance(rep, dict) and rep.get("max", 0.0) > tol), key=lambda m: -m[0])
+        if not misses:
+            return None
+        parts = []
+        for worst, name, rep in misses:
+            at = ", ".join(f"{a.name} = {x:.4g}" for a, x in zip(self.axes, rep.get("worst point", ())))
+            parts.append(f"{name} up to {100 * worst:.3g} % at ({at}), median {100 * rep['median']:.2g} % of "
+                         f"{rep.get('points', '?')} points")
+        return (f"{source or 'map ' + (self.kind or '?')}: interpolation error above the map's accuracy tolerance "
+                f"{100 * tol:.3g} %: " + "; ".join(parts) + "; errors relative to direct solves at random off-grid "
+                "points (the map's accuracy report): values read from the map near there carry them (rebuild it "
+                "with more nodes on the axes, or set build.accuracy_tolerance if they are acceptable)")
+
     # -- storage
     def _header(self) -> dict:
         return {
@@ -283,21 +317,40 @@ class FilmMap:
         return outputs.write_bytes(path, buffer.getvalue())
 
     @classmethod
-    def load(cls, path) -> "FilmMap":
-        """Read a file written by :meth:`save`; checks the format name and version."""
+    def load(cls, path, *, key: str = "", check: bool = True) -> "FilmMap":
+        """Read a file written by :meth:`save`; checks the format name and version.
+
+        ``key``: the case key that named the file (``"films.map"``), for the messages.  A file that is not
+        a film map raises one-line :class:`~lubrication.errors.InputError` saying what it is and what is
+        expected.  ``check``: log :meth:`accuracy_warning` (WARNING) when the map's accuracy report is
+        above its tolerance."""
         path = Path(path)
+        subject = f"{key} = {str(path)!r}" if key else f"map file {str(path)!r}"
         if not path.is_file():
-            raise InputError(f"map file {str(path)!r} not found")
+            raise InputError(f"{subject} not found")
+        with open(path, "rb") as f:
+            head = f.read(512)
+        if not head.startswith(b"PK"):  # an .npz is a zip archive
+            raise InputError(f"{subject} {_what_file(head)}, not a film map: {EXPECTED_FILE}")
         try:
             with np.load(path, allow_pickle=False) as data:
+                if "header" not in data.files:
+                    raise InputError(f"{subject} is an .npz without the film map's header (arrays: "
+                                     f"{', '.join(data.files[:6]) or 'none'}): {EXPECTED_FILE}")
                 header = json.loads(str(data["header"]))
                 arrays = {k: np.array(data[k]) for k in data.files if k != "header"}
-        except (KeyError, ValueError, OSError) as exc:
-            raise InputError(f"map file {str(path)!r} is not a lubedyn film map ({' '.join(str(exc).split())})") from None
-        if header.get("format") != FORMAT:
-            raise InputError(f"map file {str(path)!r}: format {header.get('format')!r}, expected {FORMAT!r}")
+        except InputError:
+            raise
+        except (KeyError, ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
+            # numpy's own text for object arrays advises loading them "unsafely" with allow_pickle: never passed on
+            why = ("it holds Python objects, which a film map never does" if "pickle" in str(exc)
+                   else " ".join(str(exc).split()))
+            raise InputError(f"{subject} is not a readable film map ({why}): {EXPECTED_FILE}") from None
+        if not isinstance(header, dict) or header.get("format") != FORMAT:
+            got = header.get("format") if isinstance(header, dict) else None
+            raise InputError(f"{subject}: format {got!r}, expected {FORMAT!r} ({EXPECTED_FILE})")
         if header.get("format_version") != FORMAT_VERSION:
-            raise InputError(f"map file {str(path)!r}: format_version = {header.get('format_version')!r}; this "
+            raise InputError(f"{subject}: format_version = {header.get('format_version')!r}; this "
                              f"lubedyn reads version {FORMAT_VERSION} (rebuild the map)")
         axes = [MapAxis(a["name"], arrays[a["array"]], a["scale"]) for a in header["axes"]]
         values = {o["name"]: arrays[o["array"]] for o in header["outputs"]}
@@ -305,10 +358,15 @@ class FilmMap:
                                    "terms": tuple(f.get("terms", ())),
                                    "quadratic": tuple(tuple(q) for q in f.get("quadratic", ()))})
                     if f is not None else None) for k, f in header.get("fits", {}).items()}
-        return cls(axes, values, method=header["method"],
+        fmap = cls(axes, values, method=header["method"],
                    log_values={o["name"]: o["log_values"] for o in header["outputs"]},
                    provenance=header.get("provenance", {}), fits=fits, accuracy=header.get("accuracy", {}),
                    sheared=header.get("sheared", {}))
+        if check:
+            text = fmap.accuracy_warning(subject)
+            if text:
+                log.warning("%s", text)
+        return fmap
 
     # -- plots
     def plot(self, outputs_=None, *, lines: int = 5):
@@ -361,6 +419,22 @@ class FilmMap:
 
 
 _json_default = outputs.json_default
+
+
+def _what_file(head: bytes) -> str:
+    """What a file that is not a zip archive is, from its first bytes."""
+    if not head:
+        return "is empty"
+    if head.startswith(b"\x93NUMPY"):
+        return "is a single NumPy array (.npy)"
+    try:
+        text = head.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        if exc.start < len(head) - 3:  # not a character cut at the end of the bytes read
+            return "is not an .npz (zip) archive"
+        text = head[:exc.start].decode("utf-8")
+    return "is a text file" if "\x00" not in text else "is not an .npz (zip) archive"
+
 
 POLAR_AXES = ("Pressure number [-]", "Squeeze angle [rad]")
 CARTESIAN_SQUEEZE = (0.0, 0.01, 0.03, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9)

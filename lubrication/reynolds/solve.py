@@ -55,6 +55,9 @@ def solve(film: Film, initial=None) -> "FilmSolution":
     set start the iteration.  (:func:`solve_nested` starts from coarser
     meshes.)
 
+    The returned solution has checked itself (:meth:`FilmSolution.report_warnings`): a JFO
+    fluid fraction below 0 is logged at WARNING and listed in ``solution.warnings``.
+
     Well-posedness of JFO: the cavitated fraction is transported along the
     mean velocity, so a JFO film needs lubricant supply -- a boundary whose
     pressure is above the cavitation pressure, or an inflow boundary.  A
@@ -73,7 +76,7 @@ def solve(film: Film, initial=None) -> "FilmSolution":
                     log.info("nested (coarse-to-fine) start failed (%s); solving on the mesh itself", exc)
         elif levels > 0:
             return solve_nested(film, levels)
-    return _solve_single(film, initial)
+    return _solve_single(film, initial).report_warnings()
 
 
 def _solve_single(film: Film, initial=None) -> "FilmSolution":
@@ -365,7 +368,7 @@ def solve_nested(film: Film, levels: int = 2) -> "FilmSolution":
         record.append((solution.info["dofs"], solution.info["iterations"], solution.info["wall_time"]))
     solution.info["nested"] = record
     solution.info["nested_wall_time"] = time.perf_counter() - t0
-    return solution
+    return solution.report_warnings()
 
 
 def film_coefficients(solution) -> tuple[list[str], np.ndarray, np.ndarray]:
