@@ -138,7 +138,8 @@ def test_iteration_limit_hint_is_computed_from_the_state():
     assert light.value.stop["reason"] == "iteration limit"
     with pytest.raises(ConvergenceError) as heavy:
         solve_ehl(_line(1000, 10), EHLGrid(nx=129), EHLOptions(max_iter=2), sequence=False)
-    assert "M = 1000 is beyond what 129 nodes resolve (about M <= 74): use grid.nx >= 513" in str(heavy.value)
+    assert ("M = 1000 is a very heavily loaded (or slow) contact, beyond what 129 nodes resolve (about M <= 74): "
+            "use grid.nx >= 513") in str(heavy.value)
 
 
 def test_scene_summary_has_stop_reason_and_check_warnings(tmp_path):

@@ -130,6 +130,13 @@ start on every grid; if the second-order iteration from it fails, second
 order from the prolonged coarse second-order solution is tried (measured
 need: M = 20, L = 10 on 1025 nodes).  A coarse level that does not converge
 in ``coarse_max_iter`` steps hands its last iterate on (it is only a start).
+Where a coarse level fails outright (a heavily loaded contact it does not
+resolve: the active-set iteration stalls, its Jacobian turns singular), the
+requested grid is solved once more from the Hertz start, without the nested
+levels (measured: Dowson-Higginson M = 500, L = 5 and Barus M = 2000, L = 5
+line contacts, whose 257- or 129-node levels fail, converge so on 513 and 1025
+nodes); if that fails too, the error names the level that failed and the grid
+asked for.
 Starts (coarse levels, first-order stages) are converged only to
 ``coarse_rtol`` (1e-3 of p_Hertz: the next grid changes the pressure by
 0.2 - 0.5 p_Hertz at the spike), the final stage to ``rtol``.
@@ -220,11 +227,31 @@ non-finite pressure, film collapsed, work budget, a-posteriori check failed,
 or the multigrid's diverged/stagnated).  The active-set error's hint is computed
 from the state (the test that refused a converged step, cavitated-set changes,
 the film floor, a finer grid only where M exceeds what the grid resolves).
+Hints name what a case file can set ([grid] nx, ny; [solver] method,
+max_step, max_iter) and, from Python, the EHLOptions field; where Moes' M is
+the cause (a very heavily loaded or slow contact), they say so and name the
+grid or method measured to converge there; an error on a coarser level of the
+nested start names that level and the grid asked for.
 A converged solution can still be wrong where the grid does not resolve the
-outlet constriction (measured: line M = 1000, L = 10 on 257 nodes, +86 % off
-Moes; multigrid M = 1000 on 129 x 129, -35 %): :func:`check_solution`
-compares it with the closed form and with the one-level-coarser solution and
-warns (``EHLOptions(strict=True)``: raises), naming the grid needed.
+contact (measured: line M = 1000, L = 10 on 257 nodes, +86 % off Moes, +49 %
+with a Dowson-Higginson density; multigrid M = 1000 on 129 x 129, -35 %):
+:func:`check_solution` compares it with the closed form (Barus, incompressible,
+Newtonian) and, for every density, viscosity and flow law, with the same
+contact on the one-level-coarser grid (the nested or FMG start's level, or
+solved from the solution by :func:`lubrication.ehl.solve._resolution_levels`),
+and, where the coarser level cannot tell (it collapsed, differs by more than
+5 %, or the inlet's piezoviscous rise spans fewer than 6 cells), with the
+one-level-finer grid; it warns (``EHLOptions(strict=True)``: raises),
+naming the figures and the grid needed (point contacts: the finer grid only up
+to 4500 nodes, 33 x 33 -> 65 x 65; above, the coarser level's estimate where
+that level has 8 cells across the Hertz contact).
+Measured cost (lubrication/ehl/checks.py has the sweep): a line contact's
+coarser level 0.04-0.11 s (median; at most 0.8 s), the finer one where it is
+solved 0.07-0.7 s (median; at most 2.2 s), beside solves of 0.1-1.7 s on
+129-1025 nodes; a point contact's nested level is reused where it converged,
+else solved in 0.1-2.7 s (solves of 1-90 s); its finer level 1-10 s.
+``EHLOptions(check_resolution=False)`` skips these solves (the closed form and
+the inlet are still checked).
 ``EHLOptions.max_work`` bounds the Newton steps of one :func:`solve_ehl`
 call, every start and fallback included (default :data:`DEFAULT_MAX_WORK`:
 100 for points, 400 for lines, about 2.5 times the most measured to converge).
@@ -248,7 +275,7 @@ Modules
 ``multigrid``      FAS multigrid point-contact solver (Venner & Lubrecht)
 ``solve``          solve_ehl: grid sequence, method choice, multigrid driver
 ``budget``         work budget of a solve
-``checks``         closed-form comparison and a-posteriori checks
+``checks``         closed-form comparison and a-posteriori (resolution) checks
 ``solution``       EHLSolution
 ``coefficients``   film stiffness and damping (ehl_normal_coefficients)
 =================  ============================================================

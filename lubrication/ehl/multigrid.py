@@ -867,9 +867,20 @@ class MultigridEHL:
 
     def _hint(self, lv) -> str:
         """What to try, from the contact's load parameter (measured, L = 10 and 20)."""
+        c = self.c
+        if c.radius_y is not None and max(c.radius_y / c.radius_x, c.radius_x / c.radius_y) > 4.0:
+            return (f"M = {c.moes_M:.4g} on an elongated contact (R_y/R_x = {c.radius_y / c.radius_x:.3g}): the "
+                    "multigrid's line relaxation and transfers assume square cells, and finer grids do not help "
+                    "(measured: paper B's ball, k = 11, M = 1001, stagnates on 129 x 33 and 257 x 1425 and diverges "
+                    "on 513 x 2849); use [solver] method = 'auto' (the Newton methods solve it on 33 x 17 ... "
+                    "129 x 33)")
         if self.c.moes_M >= 1000:
-            return ("heavy loads need finer grids (measured: M = 3000, L = 10 stagnates on 257 x 257 and "
-                    "converges on 513 x 513)")
+            nx = lv.shape[0]
+            need = 513 if self.c.moes_M > 2000 else 257
+            grid = f"[grid] nx >= {max(need, 2 * (nx - 1) + 1)}" if nx < 513 else "a finer [grid] nx"
+            return (f"M = {self.c.moes_M:.4g} is a very heavily loaded (or slow) contact, which needs a finer grid "
+                    "(measured: M = 2000, L = 10 converges from 257 x 257, M = 3000 stagnates on 257 x 257 and "
+                    f"converges on 513 x 513): use {grid} (EHLGrid.nx)")
         return (f"M = {self.c.moes_M:.4g} is not a heavy load; light loads at high L stop on fine grids "
                 "(measured: M = 10-50, L = 20 stagnate or diverge on 257 x 257 and 513 x 513, M = 10-20 "
                 "converge on 129 x 129): try a coarser grid, or solver.method = 'auto'")
@@ -879,7 +890,8 @@ class MultigridEHL:
         err = ConvergenceError(
             f"EHL multigrid {what} at M = {self.c.moes_M:.4g}, L = {self.c.moes_L:.4g} on {lv.shape[0]} x "
             f"{lv.shape[1]} nodes, cycle {cycle}: relative residual {res:.2e} (tolerance {self.o.rtol:.0e}){detail}; "
-            f"{self._hint(lv)}, see EHLOptions.multigrid")
+            f"{self._hint(lv)}; from Python the cycle and tolerance settings are EHLOptions.multigrid "
+            "(MultigridOptions)")
         reason = "iteration limit" if what.startswith("did not converge") else what  # diverged, stagnated
         err.stop = dict(reason=reason, detail=str(err))
         return err

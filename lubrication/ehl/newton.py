@@ -12,7 +12,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError
-from .budget import _spend
+from .budget import _BUDGET, _spend
 from .contact import EHLContact
 from .problem import _Problem
 from .solution import EHLSolution
@@ -92,7 +92,7 @@ def _lu_factor(J, P: _Problem):
             return sla.lu_factor(J, check_finite=False)
         except sla.LinAlgWarning as exc:
             raise _stopped("singular Jacobian", f"EHL Newton: singular Jacobian at M = {P.c.moes_M:.4g}, "
-                                   f"L = {P.c.moes_L:.4g} ({exc})") from None
+                                   f"L = {P.c.moes_L:.4g} ({_nodes(P)}; {exc}){_heavy(P, '; ')}") from None
 
 
 class _Linear:
@@ -113,7 +113,8 @@ class _Linear:
                 self.ilu = spla.spilu(Pm, drop_tol=1e-6, fill_factor=20)
             except RuntimeError as exc:  # SuperLU: "Factor is exactly singular", as the dense branch above
                 raise _stopped("singular Jacobian", f"EHL Newton: singular preconditioner (ILU) at M = "
-                               f"{P.c.moes_M:.4g}, L = {P.c.moes_L:.4g} ({exc})") from None
+                               f"{P.c.moes_M:.4g}, L = {P.c.moes_L:.4g} ({_nodes(P)}; {exc})"
+                               f"{_heavy(P, '; ')}") from None
             full = np.zeros(P.N)
 
             def mv(v):
@@ -297,8 +298,9 @@ def _active_set_newton(P: _Problem, p, h00, W):
     else:
         err = ConvergenceError(
             f"EHL solve did not converge in {options.max_iter} Newton iterations at M = {contact.moes_M:.4g}, "
-            f"L = {contact.moes_L:.4g} ({P.N} nodes): last |dp|/p_Hertz = {history[-1][0]:.2e}, load error "
-            f"{history[-1][2]:.2e}; {_iteration_limit_hint(P, history, rejected, hn)} (solver.max_iter)")
+            f"L = {contact.moes_L:.4g} ({_nodes(P)}): last |dp|/p_Hertz = {history[-1][0]:.2e}, load error "
+            f"{history[-1][2]:.2e}; {_iteration_limit_hint(P, history, rejected, hn)} ([solver] max_iter, "
+            "EHLOptions.max_iter)")
         err.stop = dict(reason="iteration limit", detail=str(err))
         raise err
     return p, h00, history, gm
@@ -338,14 +340,85 @@ def _iteration_limit_hint(P: _Problem, history, rejected, hn):
                      "last six steps)")
     if np.min(hn) <= o.h_floor * P.hscale * 1.0001:
         parts.append("the film reached the floor")
-    nx = P.shape[0]
-    if c.is_line and c.load is not None and c.moes_M > _resolved_line_M(nx):
-        finer = nx
-        while c.moes_M > _resolved_line_M(finer):
-            finer = 2 * (finer - 1) + 1
-        parts.append(f"M = {c.moes_M:.4g} is beyond what {nx} nodes resolve (about M <= "
-                     f"{_resolved_line_M(nx):.0f}): use grid.nx >= {finer}")
+    heavy = _heavy(P)
+    if heavy:
+        parts.append(heavy)
     return "; ".join(parts)
+
+
+# Moes M up to which the Newton methods converge on a circular contact of nx x nx nodes (measured, L = 10,
+# the package docstring: M = 200 on 33 x 33, 500 on 65 x 65, 1000 on 129 x 129; M = 500 on 33 x 33, 1000 on
+# 65 x 65 and 2000 on 129 x 129 fail).  The FAS multigrid converges at M = 1000 from 129 x 129 and M = 2000
+# from 257 x 257, and on 513 x 513 is within 10 % of the closed form at M = 2000 (measured -4 %; 257 x 257:
+# -8 % at M = 1000, -18 % at M = 2000; tests/test_ehl_limits.py)
+def _converged_point_M(nx):
+    return 8.0 * (nx - 1)
+
+
+# elongated point contacts (R_y/R_x > 4): the largest M measured to converge (paper B's ball / inner race,
+# cases/ehl_ball_inner_race.toml, k = 11, M = 1001, L = 25: 33 x 17, 65 x 33, 129 x 33 converge)
+ELONGATED_POINT_M = 1001.0
+
+
+def _requested_nx():
+    """grid.nx of the solve_ehl call being served (None outside one)."""
+    budget = _BUDGET.get()
+    return None if budget is None else budget.get("nx")
+
+
+def _nodes(P: _Problem) -> str:
+    """'N nodes' of the grid level P, naming the grid asked for when P is a coarser level of the nested
+    start (an error there is not about the user's grid)."""
+    text = f"{P.N} nodes" if P.c.is_line else f"{P.shape[0]} x {P.shape[1]} nodes"
+    req = _requested_nx()
+    if req is not None and P.shape[0] < req:
+        text += f", a coarser level of the nested start for the grid.nx = {req} asked for"
+    return text
+
+
+def _heavy(P: _Problem, sep: str = "") -> str:
+    """Where Moes' load parameter M is beyond what the grid level P resolves (lines) or what the Newton
+    methods converge on (points), the sentence that says so and what to change (case-file keys, the
+    EHLOptions field from Python); '' otherwise."""
+    c = P.c
+    if c.load is None:
+        return ""
+    nx = P.shape[0]
+    M = c.moes_M
+    req = _requested_nx()
+    nested = req is not None and nx < req
+    if c.is_line:
+        if M <= _resolved_line_M(nx):
+            return ""
+        finer = nx
+        while M > _resolved_line_M(finer):
+            finer = 2 * (finer - 1) + 1
+        text = (f"M = {M:.4g} is a very heavily loaded (or slow) contact, beyond what {nx} nodes resolve (about "
+                f"M <= {_resolved_line_M(nx):.0f})")
+        if nested:
+            return sep + text + f" (a level the nested start passes through; grid.nx >= {finer} resolves M)"
+        return sep + text + f": use grid.nx >= {finer} ([grid] nx, EHLGrid.nx)"
+    if max(c.radius_y / c.radius_x, c.radius_x / c.radius_y) > 4.0:
+        # elongated contacts: measured to converge up to paper B's ball (k = 11, M = 1001: 33 x 17 ... 129 x 33);
+        # the multigrid's line relaxation assumes square cells (multigrid.py), so it is no way out
+        if M <= ELONGATED_POINT_M:
+            return ""
+        return (sep + f"M = {M:.4g} is a very heavily loaded (or slow) contact, beyond what was measured to converge "
+                f"for elongated contacts (M = {ELONGATED_POINT_M:.0f}; at M = 1e6, 1 rpm, paper B's ball fails on "
+                "65 x 33 and 129 x 65 alike, and the multigrid does not take elongated cells): lower the load or raise "
+                "the speed ([operating] or [bearing])")
+    if M <= _converged_point_M(nx):
+        return ""
+    text = (f"M = {M:.4g} is a very heavily loaded (or slow) contact: the Newton methods converge up to about "
+            f"M = {_converged_point_M(nx):.0f} on {nx} x {nx} nodes (measured, circular contacts)")
+    if nested:
+        return sep + text + " (a level the nested start passes through)"
+    if M > 3000.0:
+        return (sep + text + "; no grid was measured to converge beyond M = 3000 (the multigrid on 513 x 513): lower "
+                "the load or raise the speed")
+    mg = 513 if M >= 1000 else 257
+    return (sep + text + f"; use [solver] method = 'multigrid' with [grid] nx >= {mg} (EHLOptions.method; "
+            "measured: M = 2000 converges there, 4 % off the closed form on 513 x 513)")
 
 
 class _FBLinear:
@@ -623,7 +696,10 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None, rtol=None, max_damped=None
             if stalls >= options.max_stalls:
                 err = ConvergenceError(
                     f"EHL Newton line search stalled {stalls} times at M = {contact.moes_M:.4g}, "
-                    f"L = {contact.moes_L:.4g} ({P.N} nodes; merit {theta0:.2e}; EHLOptions.max_stalls)")
+                    f"L = {contact.moes_L:.4g} ({_nodes(P)}; merit {theta0:.2e}; from Python the stall limit is "
+                    f"EHLOptions.max_stalls); " + (_heavy(P) or "try [solver] method = 'active_set' "
+                    "(EHLOptions.method; measured: paper B's inner contact at 178 N, 30 m/s, which stalls so, "
+                    "converges with it)"))
                 err.iterate = (np.maximum(p + omega * dp, 0.0), h00 + omega * dh)
                 err.stop = dict(reason="line search stalled", detail=str(err))
                 raise err
@@ -631,7 +707,8 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None, rtol=None, max_damped=None
         if max_damped is not None and damped > max_damped:
             err = ConvergenceError(
                 f"EHL Newton needed more than {max_damped} damped steps at M = {contact.moes_M:.4g}, "
-                f"L = {contact.moes_L:.4g} ({P.N} nodes; EHLOptions.max_damped)")
+                f"L = {contact.moes_L:.4g} ({_nodes(P)}; from Python the limit is EHLOptions.max_damped)"
+                f"{_heavy(P, '; ')}")
             err.iterate = (np.maximum(p, 0.0), h00)
             err.stop = dict(reason="damped-step budget", detail=str(err))
             raise err
@@ -651,8 +728,9 @@ def _fb_newton(P: _Problem, p, h00, W, max_iter=None, rtol=None, max_damped=None
     else:
         err = ConvergenceError(
             f"EHL solve did not converge in {max_iter} Newton iterations at M = {contact.moes_M:.4g}, "
-            f"L = {contact.moes_L:.4g}: last |dp|/p_Hertz = {history[-1][0]:.2e}, load error {history[-1][2]:.2e} "
-            f"({stalls} line-search stalls; solver.max_iter)"
+            f"L = {contact.moes_L:.4g} ({_nodes(P)}): last |dp|/p_Hertz = {history[-1][0]:.2e}, load error "
+            f"{history[-1][2]:.2e} ({stalls} line-search stalls; [solver] max_iter, EHLOptions.max_iter)"
+            f"{_heavy(P, '; ')}"
         )
         err.iterate = (np.maximum(p, 0.0), h00)
         err.stop = dict(reason="iteration limit", detail=str(err))

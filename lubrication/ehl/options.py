@@ -108,6 +108,9 @@ class EHLOptions:
     # a-posteriori checks (closed-form film, coarser level; :func:`check_solution`): False logs a
     # WARNING and lists it in info["warnings"], True raises ConvergenceError instead (tests)
     strict: bool = False
+    # the resolution check's solves (solve.py, _resolution_levels): the one-level-coarser grid, and for line
+    # contacts where that differs the one-level-finer one; False: the closed form and the inlet are checked only
+    check_resolution: bool = True
     # work budget of one solve_ehl call, in Newton steps on the requested grid (a step on a coarser
     # level counts its share of the nodes), every start and fallback included; None: the default of
     # the contact kind, DEFAULT_MAX_WORK (math.inf: unbounded)
