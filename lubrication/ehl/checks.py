@@ -1,6 +1,6 @@
 """A-posteriori checks of an EHL solution against closed-form film formulas and its own grid.
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging
@@ -67,7 +67,7 @@ def check_solution(sol: EHLSolution) -> list[str]:
 
     Each failed check is one line naming the figures and the grid needed; they are logged (WARNING)
     and listed in ``sol.info["warnings"]``, or, with ``EHLOptions(strict=True)``, raised as
-    :class:`~lubrication.errors.ConvergenceError`.  Returns the list (empty: nothing to report).
+    :class:`~lubedyn.lubrication.errors.ConvergenceError`.  Returns the list (empty: nothing to report).
     """
     c, P, info = sol.contact, sol.problem, sol.info
     nx = int(P.shape[0])

@@ -1,6 +1,6 @@
 """solve_ehl: the grid sequence (coarse to fine), the choice of method, the multigrid driver.
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging
@@ -129,7 +129,7 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
     if not contact.is_line and grid.nx > options.max_point_grid:
         raise InputError(
             f"grid.nx = {grid.nx} for a point contact: point contacts are solved up to {options.max_point_grid} "
-            f"nodes per side by the Newton methods (lubrication.ehl.EHLOptions.max_point_grid: the largest grid measured to converge, "
+            f"nodes per side by the Newton methods (lubedyn.lubrication.ehl.EHLOptions.max_point_grid: the largest grid measured to converge, "
             f"M = 100, L = 10; a Newton step costs about 5 s of one core on 257 x 257 and the sparse-LU "
             f"preconditioner's fill grows faster than the grid); use nx <= {options.max_point_grid}, or "
             f"solver.method = 'multigrid'"
@@ -325,7 +325,7 @@ def multigrid_grid(contact: EHLContact, grid: EHLGrid, coarsest_cells: int = 16)
 
 
 def _solve_multigrid(contact: EHLContact, grid: EHLGrid, options: EHLOptions, initial=None) -> EHLSolution:
-    """``method="multigrid"``: FAS multigrid (:mod:`lubrication.ehl.multigrid`) on the
+    """``method="multigrid"``: FAS multigrid (:mod:`lubedyn.lubrication.ehl.multigrid`) on the
     nodes of :class:`_Problem` (same grid, kernel, film and outputs as the Newton
     methods).  Steady point contacts, given load or approach."""
     from .multigrid import MultigridEHL, MultigridOptions
