@@ -14,13 +14,13 @@ package                   what                                        folder
 
 The main API, loaded on first use (importing ``lubedyn`` imports nothing heavy):
 
-- cases: :func:`load_case` (a TOML file, ``smoke``, ``--set``-style ``overrides``), :func:`load_case_text`,
-  :class:`CaseError`, :data:`CASES_DIR` and :func:`bundled_cases` (the bundled cases);
-- runs: :func:`run` (any scene, by ``case.scene``) and each scene's own ``run``: :func:`run_film`,
-  :func:`run_ehl`, :func:`run_map`, :func:`run_dynamics`, :func:`run_static`, :func:`run_tapered`; each
+- cases: ``load_case`` (a TOML file, ``smoke``, ``--set``-style ``overrides``), ``load_case_text``,
+  ``CaseError``, ``CASES_DIR`` and ``bundled_cases`` (the bundled cases), of :mod:`lubedyn.config`;
+- runs: :func:`run` (any scene, by ``case.scene``) and each scene's own ``run``: ``run_film``, ``run_ehl``,
+  ``run_map``, ``run_dynamics``, ``run_static``, ``run_tapered`` (``lubedyn.<scene>_scene.run``); each
   returns the scene's result (``summary``, ``files``) and writes its outputs into ``out_dir`` when given;
-- films: :class:`Film` and :func:`solve` (of :mod:`lubedyn.lubrication`); maps: :class:`FilmMap`;
-- the sub-packages :mod:`lubedyn.lubrication`, :mod:`lubedyn.dynamics`, :mod:`lubedyn.cases`.
+- films: ``Film`` and ``solve`` of :mod:`lubedyn.lubrication`; maps: ``FilmMap`` of :mod:`lubedyn.maps`;
+- the sub-packages :mod:`lubedyn.lubrication`, :mod:`lubedyn.dynamics` and ``lubedyn.cases``.
 
 >>> import lubedyn
 >>> case = lubedyn.load_case(lubedyn.CASES_DIR / "inclined_slider.toml", smoke=True)
@@ -28,6 +28,7 @@ The main API, loaded on first use (importing ``lubedyn`` imports nothing heavy):
 >>> round(result.summary["Load per unit width [N/m]"])   # N/m
 63549
 
+The modules of the coupling layer:
 
 =====================  ==========================================================
 module                 responsibility
@@ -102,8 +103,7 @@ _LAZY = {
 }
 _SUBPACKAGES = ("lubrication", "dynamics", "cases")
 
-__all__ = ["CASES_DIR", "CaseError", "Film", "FilmMap", "bundled_cases", "load_case", "load_case_text", "run",
-           "run_dynamics", "run_ehl", "run_film", "run_map", "run_static", "run_tapered", "solve"]
+# no ``__all__``: the names above live in their own modules, where the API reference documents them
 
 
 def run(case, out_dir=None, *, name: str | None = None, source: str = "", smoke: bool = False):
