@@ -194,7 +194,7 @@ def fitted_order(sizes, errors) -> float | None:
 
 # ---------------------------------------------------------------- output
 def _default(obj):
-    from coupling.outputs import json_default
+    from lubedyn.outputs import json_default
 
     return json_default(obj)
 

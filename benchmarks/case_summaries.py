@@ -6,13 +6,18 @@ change, record again after it, compare.
 ::
 
     python benchmarks/case_summaries.py record OUT.json [--smoke|--full] [--only NAME ...]
-                                             [--root CHECKOUT] [--timeout S]
+                                             [--root CHECKOUT] [--python PYTHON] [--timeout S]
     python benchmarks/case_summaries.py compare A.json B.json [--rtol R] [--ignore TEXT ...]
 
 ``record`` runs each ``cases/*.toml`` of the checkout ``--root`` (default: the checkout holding
-this script) with ``python -m coupling.cli run CASE [--smoke] --out TMP``, one subprocess per case,
-the checkout first on ``sys.path`` (so that its code, not an installed copy, runs), each into a
-fresh temporary folder (so no map cache of an earlier run is reused).  Per case it keeps:
+this script) with ``PYTHON -m lubedyn.cli run CASE [--smoke] --out TMP``, one subprocess per case,
+each into a fresh temporary folder (so no map cache of an earlier run is reused), and checks first
+that the code the runs import is the checkout's.  A checkout of the one-namespace layout (issue 37:
+``pyproject.toml`` maps ``lubedyn`` onto ``coupling/``) is importable only installed, so ``--python``
+(default: this interpreter) must have it installed (``pip install -e CHECKOUT``); a checkout of the
+earlier layout (top-level ``coupling``, ``lubrication``, ``dynamics``) runs as ``python -m coupling.cli``
+with the checkout first on ``sys.path``, from any interpreter with the dependencies, so that a
+recording of an older commit can be compared with one of the current code.  Per case it keeps:
 
 - ``summary``: every value of ``summary.json`` except the excluded keys below;
 - ``arrays``: for each array of the outputs, its dtype, shape, the sha256 of its bytes and a few
@@ -207,19 +212,43 @@ def bundled_cases(root: Path) -> list[Path]:
     return sorted((root / "cases").glob("*.toml"))
 
 
+def namespace_layout(root: Path) -> bool:
+    """Whether the checkout ``root`` installs one namespace, ``lubedyn`` (issue 37), rather than the top-level
+    packages ``coupling``, ``lubrication`` and ``dynamics`` of the earlier layout."""
+    import tomllib
+
+    pyproject = Path(root) / "pyproject.toml"
+    if not pyproject.is_file():
+        return False
+    setuptools = tomllib.loads(pyproject.read_text(encoding="utf-8")).get("tool", {}).get("setuptools", {})
+    return "lubedyn" in setuptools.get("package-dir", {})
+
+
+def packages(root: Path) -> tuple[str, ...]:
+    """The CLI module, then the packages whose code the runs of ``root`` import."""
+    if namespace_layout(root):
+        return ("lubedyn.cli", "lubedyn", "lubedyn.lubrication", "lubedyn.dynamics")
+    return ("coupling.cli", "coupling", "lubrication", "dynamics")
+
+
 def _env(root: Path) -> dict:
     env = dict(os.environ)
-    env["PYTHONPATH"] = str(root) + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    if not namespace_layout(root):  # the earlier layout: the checkout first on sys.path
+        env["PYTHONPATH"] = str(root) + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
     env["MPLBACKEND"] = "Agg"
     return env
 
 
 def _code_paths(root: Path, python: str) -> dict:
     """Where the packages imported by the runs live (must be under ``root``)."""
-    code = ("import json, coupling, lubrication, dynamics; "
-            "print(json.dumps({m.__name__: m.__file__ for m in (coupling, lubrication, dynamics)}))")
-    done = subprocess.run([python, "-c", code], cwd=root, env=_env(root), capture_output=True, text=True,
-                          check=True)
+    names = packages(root)[1:]
+    code = (f"import importlib, json; mods = [importlib.import_module(n) for n in {names!r}]; "
+            "print(json.dumps({m.__name__: m.__file__ for m in mods}))")
+    done = subprocess.run([python, "-c", code], cwd=root, env=_env(root), capture_output=True, text=True)
+    if done.returncode != 0:
+        last = done.stderr.strip().splitlines()[-1] if done.stderr.strip() else f"exit {done.returncode}"
+        raise SystemExit(f"case_summaries: error: {python} cannot import {', '.join(names)}: {last}"
+                         + ("; install the checkout into it (pip install -e ROOT)" if namespace_layout(root) else ""))
     return json.loads(done.stdout)
 
 
@@ -239,7 +268,7 @@ def run_case(case: Path, root: Path, *, smoke: bool, python: str, timeout: float
     """Run one case in a subprocess into a temporary folder and :func:`collect` its results."""
     with tempfile.TemporaryDirectory(prefix=f"case-summaries-{case.stem}-") as tmp:
         out = Path(tmp) / "out"
-        cmd = [python, "-m", "coupling.cli", "run", str(case), "--out", str(out)] + (["--smoke"] if smoke else [])
+        cmd = [python, "-m", packages(root)[0], "run", str(case), "--out", str(out)] + (["--smoke"] if smoke else [])
         t0 = time.perf_counter()
         try:
             done = subprocess.run(cmd, cwd=root, env=_env(root), capture_output=True, text=True, timeout=timeout)
@@ -269,7 +298,9 @@ def record(path: Path, *, smoke: bool, only=(), root: Path = ROOT, timeout: floa
     code_paths = _code_paths(root, python)
     outside = {m: p for m, p in code_paths.items() if not Path(p).resolve().is_relative_to(root)}
     if outside:
-        raise SystemExit(f"case_summaries: error: the runs would import {outside}, not the code of {root}")
+        raise SystemExit(f"case_summaries: error: the runs would import {outside}, not the code of {root}"
+                         + ("; install the checkout into the interpreter (pip install -e ROOT), or name one that "
+                            "has it (--python)" if namespace_layout(root) else ""))
     out = {"format": FORMAT, "version": 1, "resolution": "smoke" if smoke else "full",
            "excluded summary keys": sorted(EXCLUDED_SUMMARY_KEYS),
            "excluded metadata keys": sorted(EXCLUDED_METADATA_KEYS | EXCLUDED_SUMMARY_KEYS),
@@ -431,6 +462,9 @@ def main(argv=None) -> int:
     res.add_argument("--full", dest="smoke", action="store_false", help="the cases' full resolution")
     r.add_argument("--only", nargs="+", default=(), metavar="NAME", help="only these bundled cases")
     r.add_argument("--root", type=Path, default=ROOT, help="checkout whose code and cases run (default: %(default)s)")
+    r.add_argument("--python", default=sys.executable,
+                   help="interpreter that runs the cases (default: this one); for a checkout of the one-namespace "
+                        "layout it must have the checkout installed")
     r.add_argument("--timeout", type=float, default=3600.0, help="seconds per case (default %(default)s)")
     c = sub.add_parser("compare", help="compare two recordings: exit 0 identical, 1 different")
     c.add_argument("a", type=Path)
@@ -439,7 +473,8 @@ def main(argv=None) -> int:
     c.add_argument("--ignore", nargs="+", default=(), metavar="TEXT", help="skip keys containing TEXT")
     args = p.parse_args(argv)
     if args.command == "record":
-        rec = record(args.out, smoke=args.smoke, only=args.only, root=args.root, timeout=args.timeout)
+        rec = record(args.out, smoke=args.smoke, only=args.only, root=args.root, timeout=args.timeout,
+                     python=args.python)
         failed = [n for n, c in rec["cases"].items() if c["exit code"] != 0]
         if failed:
             print(f"non-zero exit: {', '.join(failed)} (recorded with their stderr)")

@@ -4,9 +4,11 @@
 
 Each round runs, for each checkout in turn, ``lubedyn run <case>`` in a fresh process with
 ``NUMBA_CACHE_DIR`` pointing to a new empty folder (cold: every kernel compiles), then again with the
-same folder (warm).  The checkouts run with this interpreter and ``PYTHONPATH`` set to their root, so
-both use the same installed packages.  Wall times of the whole process; the run's own summary gives
-the integration and Benettin times.  Writes ``results/cold_start.json`` and ``results/cold_start.png``.
+same folder (warm).  The checkouts run with this interpreter, so both use the same installed packages: a
+checkout of the earlier layout (top-level ``coupling``) with ``PYTHONPATH`` set to its root, one of the
+one-namespace layout (``lubedyn``, issue 37) as installed in this interpreter, which must therefore be
+that checkout's editable install (``case_summaries.packages``).  Wall times of the whole process; the
+run's own summary gives the integration and Benettin times.  Writes ``results/cold_start.json`` and ``results/cold_start.png``.
 """
 from __future__ import annotations
 
@@ -21,14 +23,17 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import RESULTS, ROOT, machine_info, save_figure, write_json  # noqa: E402
+from case_summaries import namespace_layout, packages  # noqa: E402
 
 CASE = "cases/cageless_6206_10krpm_short.toml"
 
 
 def one_run(root: Path, case: str, cache: Path, out: Path) -> dict:
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache), PYTHONPATH=str(root))
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    if not namespace_layout(root):
+        env["PYTHONPATH"] = str(root)
     t0 = time.perf_counter()
-    p = subprocess.run([sys.executable, "-m", "coupling.cli", "run", case, "--out", str(out)], cwd=root, env=env,
+    p = subprocess.run([sys.executable, "-m", packages(root)[0], "run", case, "--out", str(out)], cwd=root, env=env,
                        capture_output=True, text=True)
     wall = time.perf_counter() - t0
     r = {"wall [s]": wall, "returncode": p.returncode}

@@ -11,7 +11,7 @@ Writes ``benchmarks/results/dynamics.json`` and ``dynamics.png`` (``--quick``:
 The scene is ``cases/cageless_6206_10krpm.toml`` (rotor drop at 10,000 rpm
 onto the inner ring, Fr = 2000 N, Fa = 200 N, 14 balls, 6-DOF balls,
 closed-form ball-ball film, one outer-ring slot), built exactly as the CLI
-builds it (:func:`coupling.dynamics_scene.build`), from its quasi-static
+builds it (:func:`lubedyn.dynamics_scene.build`), from its quasi-static
 initial state.
 
 Sections
@@ -73,7 +73,7 @@ Sections
    measured 0.1 s run of the drop (quick: 10 ms, extrapolated).
 6. First-call compile time in fresh processes with empty caches (cold) and
    again (warm): ``NUMBA_CACHE_DIR`` (numba's on-disk cache of every
-   ``cache=True`` function, the bound kernels of :mod:`dynamics.specialise`
+   ``cache=True`` function, the bound kernels of :mod:`lubedyn.dynamics.specialise`
    included) points into a new temporary directory; and ``lubedyn run
    cases/cageless_6206_10krpm_short.toml --smoke`` cold and warm the same way.
 
@@ -100,24 +100,24 @@ from types import SimpleNamespace
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks.dynamics_tools
 
 import _common  # noqa: E402
 
-from coupling.config import load_case  # noqa: E402
-from coupling.dynamics_scene import ball_centres, build  # noqa: E402
-from dynamics.analysis import collision_events  # noqa: E402
-from dynamics.cageless import (  # noqa: E402
+from lubedyn.config import CASES_DIR, load_case  # noqa: E402
+from lubedyn.dynamics_scene import ball_centres, build  # noqa: E402
+from lubedyn.dynamics.analysis import collision_events  # noqa: E402
+from lubedyn.dynamics.cageless import (  # noqa: E402
     D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, forces, forces_many, rhs)
-from dynamics.errors import DynamicsInputError, IntegrationError  # noqa: E402
-from dynamics.integrators import integrate, stability_limit  # noqa: E402
+from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError  # noqa: E402
+from lubedyn.dynamics.integrators import integrate, stability_limit  # noqa: E402
 
 log = logging.getLogger("benchmarks.dynamics")
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = Path(__file__).resolve().parent / "results"
-CASE = ROOT / "cases" / "cageless_6206_10krpm.toml"
-SHORT_CASE = ROOT / "cases" / "cageless_6206_10krpm_short.toml"
-MAP = ROOT / "cases" / "maps" / "ball_ball.npz"
+CASE = CASES_DIR / "cageless_6206_10krpm.toml"
+SHORT_CASE = CASES_DIR / "cageless_6206_10krpm_short.toml"
+MAP = CASES_DIR / "maps" / "ball_ball.npz"
 ATOL_PER_RTOL = 1e-3  # atol = 1e-3 rtol, as the case file (rtol 1e-6, atol 1e-9)
 POS_TOL = 1e-2  # converged: ball position error <= 1 % of the Hertz deflection
 SPEED_TOL = 1e-3  # ... and inner-ring speed error <= 1e-3 of the rotor's initial speed
@@ -381,7 +381,7 @@ def jacobian_spectrum(model, y) -> dict:
     """Eigenvalues of the central-difference Jacobian of the rhs at ``y`` and the largest step for which
     the linearised system is stable under each method (|R(h lambda)| <= 1 for every eigenvalue with
     Re lambda <= 0; eigenvalues with Re lambda > 0 are reported and left out)."""
-    from dynamics.integrators import STABILITY_POLYNOMIALS
+    from lubedyn.dynamics.integrators import STABILITY_POLYNOMIALS
 
     args = model.args()
     n = y.size
@@ -529,7 +529,7 @@ def answers(model, y0, window, rtol=1e-6, sample=2e-6, repeats=1):
 def bench_fidelity(setup, cfg, repeats):
     base, W = setup.model, cfg["fidelity_window"]
     out = {"window [s]": W, "sample interval [s]": 2e-6, "integrator": "dopri5, atol = 1e-3 rtol",
-           "collision": "a maximal run of 2-us samples with a pair's normal force above 1 N (dynamics.analysis)",
+           "collision": "a maximal run of 2-us samples with a pair's normal force above 1 N (lubedyn.dynamics.analysis)",
            "load average": load()}
     steady = {}
     for label, kw in (("6dof, Fa = 0", {"model.dof": "6dof", "operating.axial_load": 0.0}),
@@ -543,7 +543,7 @@ def bench_fidelity(setup, cfg, repeats):
                  steady[label]["collisions above 1 N [-]"])
     out["steady 10,000 rpm"] = steady
     films = {}
-    from coupling.maps import FilmMap
+    from lubedyn.maps import FilmMap
 
     fmap = FilmMap.load(MAP)
     arrays = fmap.dynamics_film_map() if hasattr(fmap, "dynamics_film_map") else fmap.kernel_arrays("Force [N]")
@@ -567,7 +567,8 @@ def bench_fidelity(setup, cfg, repeats):
         m, y0 = (base, setup.y0) if not kw else variant(base, kw)
         costs[label] = {"states [-]": int(y0.size), "one rhs call [us]": setup_rhs_cost(m, y0) * 1e6}
     out["rhs cost at the initial state (2000 calls from Python)"] = costs
-    out["map"] = {"file": str(MAP.relative_to(ROOT)), "kind": getattr(fmap, "kind", None) or fmap.provenance.get("kind"),
+    out["map"] = {"file": f"cases/{MAP.relative_to(CASES_DIR).as_posix()}",
+                  "kind": getattr(fmap, "kind", None) or fmap.provenance.get("kind"),
                   "method": getattr(fmap, "method", None)}
     return out
 
@@ -641,7 +642,7 @@ def bench_equal_accuracy(setup, cfg, ref, ref_t, repeats):
     (interpolated log-log, :func:`_common.time_to_error`)."""
     from scipy.integrate import solve_ivp
 
-    from dynamics.integrators import kernel_for
+    from lubedyn.dynamics.integrators import kernel_for
 
     model, y0 = setup.model, setup.y0
     args = model.args()
@@ -868,10 +869,10 @@ _FIRST = r"""
 import json, sys, time
 t0 = time.perf_counter()
 import numpy as np
-from coupling.config import load_case
-from coupling.dynamics_scene import build
-from dynamics.cageless import rhs
-from dynamics.integrators import integrate
+from lubedyn.config import load_case
+from lubedyn.dynamics_scene import build
+from lubedyn.dynamics.cageless import rhs
+from lubedyn.dynamics.integrators import integrate
 t1 = time.perf_counter()
 case = load_case(sys.argv[1])
 s = build(case, sys.argv[1])
@@ -1098,7 +1099,7 @@ def main(argv=None):
     repeats = args.repeats or cfg["repeats"]
     t_start = time.perf_counter()
     data = {"machine": _common.machine_info(extra_packages=("numba",)), "quick": args.quick, "repeats": repeats,
-            "case": str(CASE.relative_to(ROOT)), "sizes": cfg}
+            "case": f"cases/{CASE.name}", "sizes": cfg}
     setup = drop_setup()
     model, y0 = setup.model, setup.y0
     # first calls (compile or load from cache), reported, never timed as work

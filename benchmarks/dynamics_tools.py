@@ -12,13 +12,13 @@ import sys
 import numpy as np
 from numba import njit
 
-from dynamics.integrators import ACCEPTED, H_NEXT, _check_positive, kernel_for, stability_limit
+from lubedyn.dynamics.integrators import ACCEPTED, H_NEXT, _check_positive, kernel_for, stability_limit
 
 _FIRST_CALL_SCRIPT = """
 import sys, time, importlib
 import numpy as np
 t0 = time.perf_counter()
-from dynamics import integrators as I
+from lubedyn.dynamics import integrators as I
 rhs = getattr(importlib.import_module(sys.argv[1]), sys.argv[2])
 y0 = np.array([float(v) for v in sys.argv[4].split(",")])
 args = tuple(float(v) for v in sys.argv[5].split(",") if v)

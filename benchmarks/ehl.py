@@ -52,13 +52,12 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import _common  # noqa: E402
 
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl  # noqa: E402
-from lubrication.ehl.multigrid import MultigridOptions  # noqa: E402
-from lubrication.laws.film import moes_line_central, nijenbanning_central  # noqa: E402
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl  # noqa: E402
+from lubedyn.lubrication.ehl.multigrid import MultigridOptions  # noqa: E402
+from lubedyn.lubrication.laws.film import moes_line_central, nijenbanning_central  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
 # points: a failing solve stops after 40 Newton steps (default 80) to bound the run time

@@ -20,14 +20,13 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
 sys.path.insert(0, str(HERE))
 
 from _common import RESULTS, machine_info, save_figure, write_json  # noqa: E402
 
 
 def moes_table():
-    from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
+    from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
 
     grids = [("uniform", dict(nx=n)) for n in (257, 513, 1025, 2049)]
     grids += [("graded", dict(nx=n, refine=r, refine_width=0.5)) for n, r in ((257, 4.0), (257, 8.0), (513, 4.0))]
@@ -53,8 +52,8 @@ def moes_table():
 
 
 def knee_sweep(race="cone", speed=7.0, refine=6.0, ratio=1.03, w0=15e3, w1=45e3):
-    from coupling.film_points import ehl
-    from lubrication.ehl import solve_ehl
+    from lubedyn.film_points import ehl
+    from lubedyn.lubrication.ehl import solve_ehl
 
     par = ehl._roller_params(race)
     par["coefficients"] = "linearised"

@@ -1,10 +1,10 @@
 """Interpolation kernels used only by the benchmarks: per-query cost loops and the per-cell variant.
 
-``benchmarks/maps.py --query-only`` times the map kernels of :mod:`dynamics.interp` with the value
+``benchmarks/maps.py --query-only`` times the map kernels of :mod:`lubedyn.dynamics.interp` with the value
 loops ``sum1/2/3`` (multilinear and pchip) and ``hsum1/2/3`` (hermite), and times against them a
 variant of the hermite method kept here because the library does not use it:
 
-**hermite-cells**: the tensor cubic Hermite interpolant of :mod:`dynamics.interp` method 2, stored
+**hermite-cells**: the tensor cubic Hermite interpolant of :mod:`lubedyn.dynamics.interp` method 2, stored
 per cell as the 4**ndim coefficients of its polynomial in d_k = t_k - t_k,i
 (:func:`hermite_cells_data`, kernels ``hermite1/2/3_cells[_grad]`` with the signatures of
 ``hermite*``).  Equal to method 2 to rounding (1e-14 of the value range); nested Horner, no
@@ -22,14 +22,16 @@ import math
 import numpy as np
 from numba import njit
 
-from dynamics.interp import (_FMA, _INLINE, _JIT, _cell, _dtdx_at, _finish, _refuse, hermite1, hermite2, hermite3,
-                             hermite3_grad, interp1, interp2, interp3, interp3_grad)
+from lubedyn.dynamics.interp import (
+    _FMA, _INLINE, _JIT, _cell, _dtdx_at, _finish, _refuse, hermite1, hermite2, hermite3, hermite3_grad, interp1,
+    interp2, interp3, interp3_grad,
+)
 
 HERMITE_CELLS = 3
 
 
 def evaluate_cells(axes, logs, cells, logv, points, mode=0, counter=None, grad=False):
-    """:func:`dynamics.interp.evaluate` for the per-cell array of :func:`hermite_cells_data`."""
+    """:func:`lubedyn.dynamics.interp.evaluate` for the per-cell array of :func:`hermite_cells_data`."""
     points = np.ascontiguousarray(np.atleast_2d(points), dtype=np.float64)
     ndim = len(axes)
     if cells.shape != tuple(a.size - 1 for a in axes) + (4**ndim,):

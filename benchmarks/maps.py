@@ -1,6 +1,6 @@
 """Film maps: speed against accuracy.
 
-1. Cost of one interpolation query inside a numba loop (``dynamics.interp``):
+1. Cost of one interpolation query inside a numba loop (``lubedyn.dynamics.interp``):
    1, 2, 3 axes; multilinear, sequential monotone cubic (pchip), cubic
    Hermite on precomputed PCHIP node slopes (hermite) and the same interpolant
    stored as per-cell polynomial coefficients (hermite-cells); value only and value
@@ -13,7 +13,7 @@
    - the analytic rigid isoviscous sphere-sphere squeeze film
      F = 6 pi eta R_eff^2 v D^2/(h (h + D)^2) (exact reference, cheap), nodes
      per axis doubled;
-   - the real ``ball_ball`` kind (``coupling.film_points``) at three grid
+   - the real ``ball_ball`` kind (``lubedyn.film_points``) at three grid
      resolutions, errors against direct solves at random off-grid points
      (median and maximum relative error), build time on the usable cores.
 3. Build time of the default ball-to-ball map on 2 cores (and the time per
@@ -32,10 +32,10 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package
 from benchmarks import _common, interp_cells  # noqa: E402
-from coupling import maps  # noqa: E402
-from dynamics import interp  # noqa: E402
+from lubedyn import maps  # noqa: E402
+from lubedyn.dynamics import interp  # noqa: E402
 
 GAP, SPEED = "Central gap [m]", "Approach speed [m/s]"
 HERMITE_CELLS = interp_cells.HERMITE_CELLS

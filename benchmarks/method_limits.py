@@ -27,7 +27,7 @@ Sweeps (stress axis, reference, tolerance for "right")
 -------------------------------------------------------
 1. EHL line contact, FEM Newton (``solve_ehl``, default method): Moes M in
    (20, 100, 300, 1000), L = 10, 129 / 257 / 513 nodes; central film against
-   Moes' formula, tolerance 10 % (``lubrication.ehl.FORMULA_TOLERANCE``).
+   Moes' formula, tolerance 10 % (``lubedyn.lubrication.ehl.FORMULA_TOLERANCE``).
 2. EHL circular contact, FAS multigrid: M in (20, 100, 1000), L = 10,
    129^2 / 257^2; central film against Nijenbanning-Venner-Moes, 10 %.
 3. Journal bearing (cases/journal_finite.toml: L/D = 1, P2, Reynolds
@@ -74,7 +74,6 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import _common  # noqa: E402
 
@@ -104,7 +103,7 @@ def _run(fn):
     """``fn()`` with the library's warnings captured; returns (seconds, result or None,
     exception or None, warning lines)."""
     cap = _Capture()
-    loggers = [logging.getLogger(n) for n in ("lubrication", "coupling", "dynamics")]
+    loggers = [logging.getLogger("lubedyn")]  # the library's loggers: lubedyn.*
     for lg in loggers:
         lg.addHandler(cap)
     t0 = time.perf_counter()
@@ -126,7 +125,7 @@ def _refused(exc) -> dict:
     stop = getattr(exc, "stop", None)
     reason = stop.get("reason") if isinstance(stop, dict) else getattr(exc, "stop_reason", None)
     if reason is None and hasattr(exc, "status"):  # IntegrationError: the kernel's status
-        from dynamics.integrators import STATUS_MESSAGES
+        from lubedyn.dynamics.integrators import STATUS_MESSAGES
 
         reason = STATUS_MESSAGES.get(exc.status)
     if reason is None and type(exc).__name__.endswith("InputError"):
@@ -152,8 +151,8 @@ def _H(c, h):
 
 
 def ehl_line(Ms, grids):
-    from lubrication.ehl import EHLContact, EHLGrid, solve_ehl
-    from lubrication.laws.film import moes_line_central
+    from lubedyn.lubrication.ehl import EHLContact, EHLGrid, solve_ehl
+    from lubedyn.lubrication.laws.film import moes_line_central
 
     rows = []
     for M in Ms:
@@ -177,8 +176,8 @@ def ehl_line(Ms, grids):
 
 
 def ehl_point_multigrid(Ms, grids):
-    from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
-    from lubrication.laws.film import nijenbanning_central
+    from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
+    from lubedyn.lubrication.laws.film import nijenbanning_central
 
     options = EHLOptions(method="multigrid")
     # compile (or load from the cache) the multigrid's numba kernels outside the timed points
@@ -207,8 +206,8 @@ def ehl_point_multigrid(Ms, grids):
 
 # ---------------------------------------------------------------- 3: journal
 def journal(eccentricities, meshes, reference_mesh):
-    from coupling import film_scene
-    from coupling.config import CASES_DIR, load_case
+    from lubedyn import film_scene
+    from lubedyn.config import CASES_DIR, load_case
 
     case_file = CASES_DIR / "journal_finite.toml"
 
@@ -254,9 +253,9 @@ def _geometric_axis(half, n, ratio):
 
 
 def linear_solve(ratios, half_cells):
-    from lubrication import Lubricant, SpherePlane
-    from lubrication import mesh as lmesh
-    from lubrication.reynolds import DIRECT_SOLVER_MAX_DOFS, Film, SolverOptions
+    from lubedyn.lubrication import Lubricant, SpherePlane
+    from lubedyn.lubrication import mesh as lmesh
+    from lubedyn.lubrication.reynolds import DIRECT_SOLVER_MAX_DOFS, Film, SolverOptions
 
     rows = []
     for n in half_cells:
@@ -303,7 +302,7 @@ def _oscillator_rhs():
 
 
 def rk4_oscillator(h_omegas, periods=20):
-    from dynamics.integrators import STABILITY_POLYNOMIALS, integrate, stability_limit
+    from lubedyn.dynamics.integrators import STABILITY_POLYNOMIALS, integrate, stability_limit
 
     rhs = _oscillator_rhs()
     omega = 1e5
@@ -341,7 +340,7 @@ def rk4_oscillator(h_omegas, periods=20):
 
 
 def adaptive_oscillator(rtols, periods=10):
-    from dynamics.integrators import integrate
+    from lubedyn.dynamics.integrators import integrate
 
     rhs = _oscillator_rhs()
     omega = 1.0
@@ -505,8 +504,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(message)s")
     log.setLevel(logging.INFO)
-    for name in ("lubrication", "coupling", "dynamics"):  # their warnings are captured per point, not printed
-        logging.getLogger(name).propagate = False
+    logging.getLogger("lubedyn").propagate = False  # the library's warnings are captured per point, not printed
     stem = "method_limits_quick" if args.quick else "method_limits"
     if args.replot:
         import json

@@ -1,6 +1,6 @@
 """Paper B's Figs. 6-8 from several dynamics runs: phase portraits x, y, z of ball ``analysis.ball``
 (one row per direction, one column per run) with the ideal-state orbit, and a table of the settling
-and spin-up times (:func:`coupling.paper_b_figures.compare_runs`).
+and spin-up times (:func:`lubedyn.paper_b_figures.compare_runs`).
 
 ::
 
@@ -14,12 +14,9 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from coupling.paper_b_figures import compare_runs  # noqa: E402
-from lubrication.errors import InputError  # noqa: E402
+from lubedyn.lubrication.errors import InputError
+from lubedyn.paper_b_figures import compare_runs
 
 
 def main(argv=None) -> int:

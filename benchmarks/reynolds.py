@@ -54,9 +54,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import _common  # noqa: E402
 import _ross  # noqa: E402
 
-from lubrication import InclinedSlider, JournalBearing, Lubricant, SpherePlane  # noqa: E402
-from lubrication import mesh as lmesh  # noqa: E402
-from lubrication.reynolds import Cavitation, Film, SolverOptions, solve  # noqa: E402
+from lubedyn.lubrication import InclinedSlider, JournalBearing, Lubricant, SpherePlane  # noqa: E402
+from lubedyn.lubrication import mesh as lmesh  # noqa: E402
+from lubedyn.lubrication.reynolds import Cavitation, Film, SolverOptions, solve  # noqa: E402
 
 log = logging.getLogger("benchmarks.reynolds")
 
@@ -275,7 +275,7 @@ def bench_journal_cold(clock, sizes, repeats, cavitation, reference, uncertainty
 # ------------------------------------------------------------------ 2. big P1 solve
 def _phases(film):
     """Time the stages of one solve through the solver's internals (if they exist)."""
-    from lubrication import reynolds as rey
+    from lubedyn.lubrication import reynolds as rey
 
     t = {}
     t0 = time.perf_counter()

@@ -30,7 +30,6 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
 sys.path.insert(0, str(HERE))
 
 RAW = HERE / "results" / "roller_sweeps"
@@ -43,11 +42,11 @@ OUTS = {"hc": "Central film thickness [m]", "hmin": "Minimum film thickness [m]"
 
 def _point(task):
     race, u, w, density, resolution, coefficients, refine = task
-    from coupling.film_points import ehl
+    from lubedyn.film_points import ehl
 
     p = ehl._roller_params(race)
     p.update(density_law=density, resolution=resolution)
-    if refine != 1.0:  # a graded line grid (lubrication.ehl.EHLGrid.refine; the kinds' zone scaled with the film)
+    if refine != 1.0:  # a graded line grid (lubedyn.lubrication.ehl.EHLGrid.refine; the kinds' zone scaled with the film)
         p["grid_refine"] = refine
     if coefficients:
         p["coefficients"] = coefficients
@@ -83,7 +82,7 @@ def sweep(tag, races, speeds, loads, density, resolution, coefficients, workers=
 
 def table(d, race, u):
     """Per-load arrays of one (race, speed) sweep (failed points left out)."""
-    from coupling.film_points import ehl
+    from lubedyn.film_points import ehl
 
     sig_nodes = np.asarray(ehl.normalised_slip(np.geomspace(1e-5, 0.1, 37)))
     rs = sorted((r for r in d["results"] if r["race"] == race and abs(r["u"] - u) < 1e-9 and r["ok"]), key=lambda r: r["w"])

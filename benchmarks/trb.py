@@ -17,6 +17,7 @@ asserted in tests.  ``python benchmarks/trb.py [--duration 20ms] [--quick]`` (qu
 from __future__ import annotations
 
 import argparse
+import importlib.resources
 import importlib.util
 import math
 import sys
@@ -32,7 +33,7 @@ _common = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(_common)
 RESULTS, ROOT, machine_info, write_json = _common.RESULTS, _common.ROOT, _common.machine_info, _common.write_json
 
-CASE = ROOT / "cases" / "trb_fig5_2400rpm.toml"
+CASE = Path(importlib.resources.files("lubedyn.cases")) / "trb_fig5_2400rpm.toml"
 OPTIONS = {
     "default (limited G 1 GPa, film cage, flange paper, 10 slices)": [],
     "traction paper (eq. 12)": ["model.traction=paper"],
@@ -49,7 +50,7 @@ OPTIONS = {
 
 
 def _case(duration, *overrides):
-    from coupling.config import load_case
+    from lubedyn.config import load_case
 
     half = 0.5 * duration
     return load_case(CASE, overrides=[f"integrator.duration={duration}", f"analysis.window=[{half}, {duration}]",
@@ -65,7 +66,7 @@ def _means(summary):
 
 
 def _run(duration, *overrides):
-    from coupling import tapered_scene as S
+    from lubedyn import tapered_scene as S
 
     t0 = time.perf_counter()
     s = S.run(_case(duration, *overrides)).summary
@@ -74,8 +75,8 @@ def _run(duration, *overrides):
 
 
 def rhs_costs():
-    from coupling import tapered_scene as S
-    from dynamics.tapered import kernels as K
+    from lubedyn import tapered_scene as S
+    from lubedyn.dynamics.tapered import kernels as K
 
     out = {}
     for name, over in OPTIONS.items():
@@ -95,8 +96,8 @@ def slice_convergence(counts=(5, 10, 20, 40, 80), duration=0.005) -> dict:
     """Slice convergence (issue 23 sec. 3): the loaded-zone mean skew and tilt over the second half of 5 ms
     of Fig. 5's point (RK4 auto, traction table) against the slice count, the differences between
     successive counts and the observed order log2(d_n / d_2n)."""
-    from coupling import tapered_scene as S
-    from coupling.config import load_case
+    from lubedyn import tapered_scene as S
+    from lubedyn.config import load_case
 
     rows = {}
     for n in counts:
@@ -112,7 +113,7 @@ def slice_convergence(counts=(5, 10, 20, 40, 80), duration=0.005) -> dict:
         d = [b - a for a, b in zip(v, v[1:])]
         orders[key] = {"differences": d, "observed orders": [math.log2(abs(a / b)) if b else None for a, b in zip(d, d[1:])],
                        "relative change from the finest": [abs(x / v[-1] - 1) for x in v]}
-    out = {"machine": machine_info(), "case": str(CASE.relative_to(ROOT)), "simulated time [s]": duration,
+    out = {"machine": machine_info(), "case": f"cases/{CASE.name}", "simulated time [s]": duration,
            "slices": rows, "convergence": orders}
     write_json(RESULTS / "trb_slices.json", out)
     return out
@@ -131,8 +132,8 @@ def target() -> dict:
     tests/test_trb_scene.py) with the limited traction by quadrature and by table, and with the roller EHL
     maps' traction ("map"); the order quadrature, table, map, quadrature, table, map after a warm-up run;
     the map once more at half its step (its step error); the means over the paper's window."""
-    from coupling import tapered_scene as S
-    from coupling.config import load_case
+    from lubedyn import tapered_scene as S
+    from lubedyn.config import load_case
 
     def once(over):
         case = load_case(CASE, overrides=["integrator.duration=0.18", "output.write=[]", *over])
@@ -151,7 +152,7 @@ def target() -> dict:
     keys = ("Skew, loaded zone, mean [rad]", "Tilt, loaded zone, mean [rad]", "Roller slip, loaded zone, mean [-]",
             "Cage speed, mean [rpm]")
     m, mh = runs["map #1"], runs["map, half step"]
-    out = {"machine": machine_info(), "case": str(CASE.relative_to(ROOT)), "simulated time [s]": 0.18,
+    out = {"machine": machine_info(), "case": f"cases/{CASE.name}", "simulated time [s]": 0.18,
            "runs": runs, "best integration time [s]": best, "speed-up of the table [-]": best["quadrature"] / best["table"],
            "speed-up of the map over the table [-]": best["table"] / best["map"],
            "relative difference of the means (table vs quadrature)": {
@@ -178,10 +179,10 @@ def main(argv=None) -> dict:
     if a.slices:
         return slice_convergence()
     T = 0.005 if a.quick else a.duration
-    from coupling import tapered_scene as S
+    from lubedyn import tapered_scene as S
 
     est = S.build(_case(T)).stable_step()
-    out = {"machine": machine_info(), "case": str(CASE.relative_to(ROOT)), "simulated time [s]": T,
+    out = {"machine": machine_info(), "case": f"cases/{CASE.name}", "simulated time [s]": T,
            "RK4 stable step estimate [s]": est, "rhs cost": rhs_costs()}
     ref = _run(T, "integrator.method=dopri5", "integrator.rtol=1e-9", "integrator.atol=1e-14")
     out["reference (DOPRI5 rtol 1e-9)"] = ref

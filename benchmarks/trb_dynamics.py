@@ -30,8 +30,8 @@ def main() -> dict:
     for p in ROOT.glob("dynamics/**/*.nbi"):
         p.unlink()
     t0 = time.perf_counter()
-    from dynamics.integrators import integrate
-    from dynamics.tapered import kernels as K
+    from lubedyn.dynamics.integrators import integrate
+    from lubedyn.dynamics.tapered import kernels as K
     from test_trb_dynamics import RPM, _rk4_load_error, bearing
     t_import = time.perf_counter() - t0
     out = {"machine": machine_info(), "import [s]": t_import, "cases": []}

@@ -1,4 +1,34 @@
-"""coupling: what joins films and dynamics -- case files, scenes, the CLI, run outputs.
+"""lubedyn: lubricant films, film maps and rolling-bearing dynamics; this package is the coupling layer,
+what joins films and dynamics -- case files, scenes, the CLI, run outputs.
+
+One installed namespace over three layers (``pyproject.toml`` maps each onto its folder of the checkout):
+
+========================  ==========================================  ================
+package                   what                                        folder
+========================  ==========================================  ================
+``lubedyn``               the coupling layer (modules below)          ``coupling/``
+``lubedyn.lubrication``   lubricant films by finite elements          ``lubrication/``
+``lubedyn.dynamics``      compiled rolling-bearing dynamics           ``dynamics/``
+``lubedyn.cases``         the bundled case files and film maps        ``cases/``
+========================  ==========================================  ================
+
+The main API, loaded on first use (importing ``lubedyn`` imports nothing heavy):
+
+- cases: ``load_case`` (a TOML file, ``smoke``, ``--set``-style ``overrides``), ``load_case_text``,
+  ``CaseError``, ``CASES_DIR`` and ``bundled_cases`` (the bundled cases), of :mod:`lubedyn.config`;
+- runs: :func:`run` (any scene, by ``case.scene``) and each scene's own ``run``: ``run_film``, ``run_ehl``,
+  ``run_map``, ``run_dynamics``, ``run_static``, ``run_tapered`` (``lubedyn.<scene>_scene.run``); each
+  returns the scene's result (``summary``, ``files``) and writes its outputs into ``out_dir`` when given;
+- films: ``Film`` and ``solve`` of :mod:`lubedyn.lubrication`; maps: ``FilmMap`` of :mod:`lubedyn.maps`;
+- the sub-packages :mod:`lubedyn.lubrication`, :mod:`lubedyn.dynamics` and ``lubedyn.cases``.
+
+>>> import lubedyn
+>>> case = lubedyn.load_case(lubedyn.CASES_DIR / "inclined_slider.toml", smoke=True)
+>>> result = lubedyn.run(case)                 # nothing written: no out_dir
+>>> round(result.summary["Load per unit width [N/m]"])   # N/m
+63549
+
+The modules of the coupling layer:
 
 =====================  ==========================================================
 module                 responsibility
@@ -25,7 +55,7 @@ module                 responsibility
                        integrate -> collisions, Lyapunov exponents, spectrum,
                        time series, ``.pvd`` of balls, rings and films, PNGs
 ``static_scene``       static scene: paper A's tapered roller bearing at quasi-static
-                       equilibrium (``dynamics.tapered.quasistatic``) -> loads,
+                       equilibrium (``lubedyn.dynamics.tapered.quasistatic``) -> loads,
                        ``bearing.vtu``
 ``tapered_scene``      tapered scene: paper A's bearing in time -> tilt, skew,
                        slip, cage whirl, ``bearing.pvd``
@@ -52,21 +82,57 @@ module                 responsibility
                        writable, 130 interrupted, 141 stdout closed
 =====================  ==========================================================
 
-``coupling`` imports ``lubrication`` and ``dynamics``; never the other way round.
+``lubedyn`` (the coupling layer) imports ``lubedyn.lubrication`` and ``lubedyn.dynamics``; never the
+other way round.
 """
 from __future__ import annotations
 
+import importlib
+
+# name -> (module, attribute), imported on first use (PEP 562): importing ``lubedyn`` (and so starting the
+# CLI, whose SIGINT handling begins in ``cli.main``) stays free of numpy, scikit-fem, numba and
+# ``importlib.metadata`` (40 ms)
+_LAZY = {
+    **{name: (".config", name) for name in ("CASES_DIR", "CaseError", "bundled_cases", "load_case",
+                                            "load_case_text")},
+    **{f"run_{scene}": (f".{scene}_scene", "run") for scene in ("film", "ehl", "map", "dynamics", "static",
+                                                                "tapered")},
+    "Film": (".lubrication", "Film"),
+    "solve": (".lubrication", "solve"),
+    "FilmMap": (".maps", "FilmMap"),
+}
+_SUBPACKAGES = ("lubrication", "dynamics", "cases")
+
+# no ``__all__``: the names above live in their own modules, where the API reference documents them
+
+
+def run(case, out_dir=None, *, name: str | None = None, source: str = "", smoke: bool = False):
+    """Run a validated case (:func:`load_case`) with its scene's ``run`` (``lubedyn.<scene>_scene.run``,
+    what ``lubedyn run`` calls) and return the scene's result; with ``out_dir`` the outputs are written
+    there.  ``name`` (default: the scene) and ``source`` (the case file) label the summary, ``smoke`` marks
+    it as a smoke run."""
+    module = importlib.import_module(f".{case.scene}_scene", __name__)
+    return module.run(case, out_dir, name=name or case.scene, source=source, smoke=smoke)
+
 
 def __getattr__(name: str):
-    """``__version__`` looked up on first use: importing ``coupling`` (and so starting the CLI, whose
-    SIGINT handling begins in ``cli.main``) stays free of ``importlib.metadata`` (40 ms)."""
-    if name != "__version__":
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    from importlib.metadata import PackageNotFoundError, version
+    if name in _LAZY:
+        module, attribute = _LAZY[name]
+        value = getattr(importlib.import_module(module, __name__), attribute)
+    elif name in _SUBPACKAGES:
+        value = importlib.import_module(f".{name}", __name__)
+    elif name == "__version__":
+        from importlib.metadata import PackageNotFoundError, version
 
-    try:
-        value = version("lubedyn")
-    except PackageNotFoundError:  # pragma: no cover - running from a source tree
-        value = "0+unknown"
-    globals()["__version__"] = value
+        try:
+            value = version("lubedyn")
+        except PackageNotFoundError:  # pragma: no cover - not installed
+            value = "0+unknown"
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
     return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY) | set(_SUBPACKAGES) | {"__version__"})

@@ -2,12 +2,12 @@
 
 Every summary value that has a physical bound declares it here, once, in :data:`BOUNDS`: a pattern
 on the summary key, the bound (a number, or a multiple of one of the scene's own scales) and where the
-bound comes from.  :func:`coupling.outputs.run_summary`, the one place every scene's summary passes
+bound comes from.  :func:`lubedyn.outputs.run_summary`, the one place every scene's summary passes
 through, calls :func:`enforce` before anything is written:
 
 - inside every bound: nothing happens;
 - outside one, with ``[validity] strict = true`` (the default): :class:`ImplausibleResult` (a
-  :class:`~lubrication.errors.ConvergenceError`: ``lubedyn run`` prints one line and exits 1, and the
+  :class:`~lubedyn.lubrication.errors.ConvergenceError`: ``lubedyn run`` prints one line and exits 1, and the
   previous run's folder is left as it was) naming the output, its value and the bound;
 - with ``[validity] strict = false``: one WARNING line per output, listed under ``"Warnings"`` in
   summary.json (and so in a study's table), and the numbers are written.
@@ -26,7 +26,7 @@ Scales are given by the scene (``scales=`` of :func:`enforce`), in SI:
 - ``applied_load``: the load the case prescribes [N] (EHL point contact with a given load);
 - ``applied_load_per_length``: the same per unit length [N/m] (EHL line contact).
 
->>> from coupling.bounds import violations
+>>> from lubedyn.bounds import violations
 >>> violations({"Traction coefficient [-]": 3.8e20, "Load [N]": 5.0})[0].split(" (")[0]
 'Traction coefficient [-] = 3.8e+20 is outside its bound |value| <= 1'
 >>> violations({"Traction coefficient [-]": 0.05, "Cavitated area fraction [-]": 0.3})
@@ -39,7 +39,7 @@ import math
 import re
 from dataclasses import dataclass
 
-from lubrication.errors import ConvergenceError
+from lubedyn.lubrication.errors import ConvergenceError
 
 log = logging.getLogger(__name__)
 

@@ -13,7 +13,7 @@
 ``--dry-run`` validates and builds the mesh and film, prints the plan and the
 resolved case, and writes nothing.  ``study`` runs a base case over axes of ``--set`` values
 and ensemble members, each run a normal run folder under ``DIR/runs/``, and writes
-``study.csv``, ``study.json`` and ``study.png`` (:mod:`coupling.study`; ``--out`` defaults
+``study.csv``, ``study.json`` and ``study.png`` (:mod:`lubedyn.study`; ``--out`` defaults
 to ``runs/<study stem>``); a run that fails is recorded and the others go on, and the exit
 code is then 1.
 
@@ -41,7 +41,7 @@ import sys
 import threading
 from pathlib import Path
 
-from lubrication.errors import close_matches, did_you_mean
+from lubedyn.lubrication.errors import close_matches, did_you_mean
 
 EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_OUTPUT, EXIT_INTERRUPTED, EXIT_PIPE = 0, 1, 2, 3, 130, 141
 log = logging.getLogger("lubedyn")
@@ -119,7 +119,7 @@ def _in_smoke(exc, raw: dict) -> Exception:
 def _check_smoke(raw: dict, overrides, exc) -> Exception:
     """``exc`` raised by the ``--smoke`` variant of a case: if the case without its ``[smoke]`` table
     validates and builds, the error lives in ``[smoke]`` and is re-worded to say so."""
-    from lubrication.errors import InputError
+    from lubedyn.lubrication.errors import InputError
 
     from .config import validate_raw
 
@@ -137,7 +137,7 @@ def load_case_file(case: str, *, smoke: bool = False, overrides=()):
     """(path, raw TOML mapping, validated case) of ``case`` (a path or a bundled case's name) with the
     ``[smoke]`` table (``smoke``) and the ``--set`` ``overrides`` merged, as ``lubedyn run`` loads it;
     an error that only the ``[smoke]`` variant has is worded to say so.  Raises InputError."""
-    from lubrication.errors import InputError
+    from lubedyn.lubrication.errors import InputError
 
     from .config import CaseError, read_toml, validate_raw
 
@@ -161,8 +161,8 @@ def _load(args):
 
 def _out_dir(args, path: Path) -> Path:
     """The output folder: ``--out`` or ``runs/<case stem>``; refuses an empty ``--out`` (input error)
-    and, before any work, a folder that cannot be made (:class:`coupling.outputs.OutputError`)."""
-    from lubrication.errors import InputError
+    and, before any work, a folder that cannot be made (:class:`lubedyn.outputs.OutputError`)."""
+    from lubedyn.lubrication.errors import InputError
 
     from .outputs import OutputError
 
@@ -184,7 +184,7 @@ def _out_dir(args, path: Path) -> Path:
 def _scene(case):
     """(scene module, builder) of a validated case.
 
-    A scene is a module ``coupling.<scene>_scene`` with ``build(case)`` (validates
+    A scene is a module ``lubedyn.<scene>_scene`` with ``build(case)`` (validates
     what the schema cannot: geometry, positive gaps ...; raises InputError),
     ``describe(case, built) -> str``, ``run(case, out_dir, *, name, source, smoke)``
     returning an object with ``summary`` (dict) and ``files`` (paths), and
@@ -192,7 +192,7 @@ def _scene(case):
     """
     import importlib
 
-    module = importlib.import_module(f"coupling.{case.scene}_scene")
+    module = importlib.import_module(f"lubedyn.{case.scene}_scene")
     return module, module.build
 
 
@@ -200,7 +200,7 @@ def run_loaded(path: Path, raw: dict, case, out, *, smoke: bool = False, overrid
     """Run a case loaded by :func:`load_case_file` into the folder ``out`` with its scene's ``run``
     (the call of ``lubedyn run``); returns the scene's result.  An InputError that only the
     ``[smoke]`` variant's build has is worded to say so."""
-    from lubrication.errors import InputError
+    from lubedyn.lubrication.errors import InputError
 
     scene, build = _scene(case)
     try:
@@ -216,7 +216,7 @@ def run_loaded(path: Path, raw: dict, case, out, *, smoke: bool = False, overrid
 
 
 def cmd_run(args) -> int:
-    from lubrication.errors import InputError
+    from lubedyn.lubrication.errors import InputError
 
     from .config import resolved_toml
 
@@ -256,10 +256,10 @@ def cmd_run(args) -> int:
 
 
 def cmd_study(args) -> int:
-    """``lubedyn study``: run a study (:mod:`coupling.study`) and write its tables; exit 1 when a run failed.
+    """``lubedyn study``: run a study (:mod:`lubedyn.study`) and write its tables; exit 1 when a run failed.
     Runs that finished with warnings are counted on the final line (each one is logged, and tabulated
     as ``ok-with-warnings``) but do not change the exit code: their results exist, flagged."""
-    from lubrication.errors import InputError
+    from lubedyn.lubrication.errors import InputError
 
     from .study import read_study, run_study
 
@@ -271,7 +271,7 @@ def cmd_study(args) -> int:
     path = Path(args.study)
     study = read_study(path)
     out = _out_dir(args, path)
-    progress = logging.getLogger("coupling.study")  # "run 3/16 done (...)" on stderr without -v
+    progress = logging.getLogger("lubedyn.study")  # "run 3/16 done (...)" on stderr without -v
     saved = progress.level
     if progress.getEffectiveLevel() > logging.INFO:
         progress.setLevel(logging.INFO)
@@ -291,7 +291,7 @@ def cmd_study(args) -> int:
 
 
 def cmd_validate(args) -> int:
-    from lubrication.errors import InputError
+    from lubedyn.lubrication.errors import InputError
 
     from .config import validate_raw
 
@@ -407,9 +407,9 @@ def _logging_to_stderr(verbosity: int):
     root.setLevel(level)
     for lg in quiet.values():
         lg.setLevel(logging.DEBUG if verbosity >= 2 else logging.ERROR)
-    # "compiling kernels (first run only)" (coupling.compilation, and dynamics.specialise for the second
+    # "compiling kernels (first run only)" (lubedyn.compilation, and lubedyn.dynamics.specialise for the second
     # process's share, INFO) on a terminal even without -v
-    compiling = [logging.getLogger(name) for name in ("coupling.compilation", "dynamics.specialise")]
+    compiling = [logging.getLogger(name) for name in ("lubedyn.compilation", "lubedyn.dynamics.specialise")]
     saved_compiling = [lg.level for lg in compiling]
     if sys.stderr.isatty():
         for lg in compiling:
@@ -465,7 +465,7 @@ def _exit_interrupted() -> int:
     _exiting = True
     _error_line("lubedyn: interrupted")
     if _program:
-        outputs = sys.modules.get("coupling.outputs")
+        outputs = sys.modules.get("lubedyn.outputs")
         if outputs is not None:
             outputs.discard_staging()
         for stream in (sys.stdout, sys.stderr):
@@ -514,7 +514,7 @@ def _quiet_stdout() -> None:
 def main(argv=None) -> int:
     """Entry point of the ``lubedyn`` console script; returns the exit code.
 
-    With ``argv`` None (the program: the console script, ``python -m coupling.cli``) an interrupt
+    With ``argv`` None (the program: the console script, ``python -m lubedyn.cli``) an interrupt
     ends the process at once (:func:`_exit_interrupted`); called with a list, it raises
     KeyboardInterrupt through the command and returns 130."""
     global _program, _main_pid, _exiting
@@ -540,7 +540,7 @@ def main(argv=None) -> int:
                 raise
             if _interrupted(exc):
                 return _exit_interrupted()
-            from lubrication.errors import ConvergenceError, InputError
+            from lubedyn.lubrication.errors import ConvergenceError, InputError
 
             from .outputs import OutputError
 

@@ -6,9 +6,9 @@ then the dynamics scene spends tens of seconds in the compiler before its
 progress bar starts (rhs, DOPRI5 kernel, forces, Benettin kernel).
 :func:`report_compilation` listens to numba's ``"numba:compile"`` event, which
 fires only when a kernel is really compiled (a cache hit does not fire it), and
-logs on the logger ``coupling.compilation``: one INFO line as each top-level
+logs on the logger ``lubedyn.compilation``: one INFO line as each top-level
 kernel starts to compile (``compiling kernels (first run only): 1 rhs
-(dynamics.cageless) ...``) and one at the end with the count and the time.  A
+(lubedyn.dynamics.cageless) ...``) and one at the end with the count and the time.  A
 warm run logs nothing.  The CLI shows these INFO lines on a terminal even
 without ``-v``.
 """
@@ -22,12 +22,12 @@ log = logging.getLogger(__name__)
 
 
 def kernel_name(dispatcher) -> str:
-    """A readable name of a numba dispatcher: ``rhs (dynamics.cageless.kernels)``; a kernel source bound
-    by :mod:`dynamics.specialise` is named by its source, ``dopri5 kernel (dynamics.integrators)``."""
+    """A readable name of a numba dispatcher: ``rhs (lubedyn.dynamics.cageless.kernels)``; a kernel source bound
+    by :mod:`lubedyn.dynamics.specialise` is named by its source, ``dopri5 kernel (lubedyn.dynamics.integrators)``."""
     py = getattr(dispatcher, "py_func", None)
     module = getattr(py, "__module__", "") or ""
     name = getattr(py, "__qualname__", repr(dispatcher))
-    from dynamics.specialise import kernel_label
+    from lubedyn.dynamics.specialise import kernel_label
 
     name = kernel_label(name)
     return f"{name} ({module})" if module else name

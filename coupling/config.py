@@ -5,7 +5,7 @@ module is the *only* place where raw user input is read: it merges the
 ``[smoke]`` table (``--smoke``) and ``--set key=value`` overrides into the raw
 mapping, checks the scene kind, validates the result with pydantic (unknown
 keys forbidden, with close matches), converts every quantity to SI once
-(:mod:`coupling.units`) and turns any mistake into a one-line
+(:mod:`lubedyn.units`) and turns any mistake into a one-line
 :class:`CaseError` naming the dotted key, the value and what is allowed.  A bare number is SI,
 and every length is checked against the lengths of its own scene (:func:`check_scale`: a film thin
 against its length, :data:`THIN_FILM`), so that ``clearance = 50`` meant in um is refused with
@@ -33,7 +33,7 @@ string with units)::
     [solver]     rtol, max_iter, linear_solver = auto | direct | amg, amg_tol
     [output]     write = ["vtu", "png"], film_coefficients = false
     [validity]   max_pressure, min_film, max_reynolds: warn when a result leaves the model's range
-    [limits]     memory = "40 GiB", map_points (every scene: :mod:`coupling.limits`)
+    [limits]     memory = "40 GiB", map_points (every scene: :mod:`lubedyn.limits`)
     [smoke]      a partial case merged over this one by ``--smoke``
 
 Boundary names: interval ``left right``; rectangle ``left right bottom top``;
@@ -41,8 +41,8 @@ journal (periodic in theta) ``bottom top``; disk ``edge``.  A boundary not
 listed in ``pressures`` is held at ``ambient``; one listed in ``sealed`` has
 no flow through it.
 
-The EHL scene's layout is in :mod:`coupling.ehl_case`, the map and dynamics scenes' in
-:mod:`coupling.map_scene` and :mod:`coupling.dynamics_scene`.
+The EHL scene's layout is in :mod:`lubedyn.ehl_case`, the map and dynamics scenes' in
+:mod:`lubedyn.map_scene` and :mod:`lubedyn.dynamics_scene`.
 
 >>> case = load_case_text('scene = "film"\\n[gap]\\ntype = "sphere_plane"\\nradius = "5 mm"\\n'
 ...                       'h0 = "2 um"\\n[mesh]\\nradius = "1 mm"\\n[lubricant]\\nviscosity = "0.1 Pa s"')
@@ -52,6 +52,7 @@ The EHL scene's layout is in :mod:`coupling.ehl_case`, the map and dynamics scen
 from __future__ import annotations
 
 import copy
+import importlib.resources
 import logging
 import math
 import re
@@ -66,8 +67,8 @@ from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr
                       model_validator)
 from pydantic_core import PydanticCustomError
 
-from lubrication.errors import InputError, did_you_mean
-from lubrication.laws.lubricant import DowsonHigginson
+from lubedyn.lubrication.errors import InputError, did_you_mean
+from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 
 from .parameters import SETS as PARAMETER_SETS
 from .parameters import apply_parameter_set, parameter_set
@@ -77,9 +78,11 @@ SCENES = ("film", "ehl", "map", "dynamics", "static", "tapered")
 PLANNED_SCENES: tuple[str, ...] = ()
 # scenes whose case model lives in their own module
 # (attribute ``CaseModel``), imported only when a case of that scene is read
-SCENE_MODULES = {"ehl": "coupling.ehl_case", "map": "coupling.map_scene", "dynamics": "coupling.dynamics_scene",
-                 "static": "coupling.static_scene", "tapered": "coupling.tapered_scene"}
-CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
+SCENE_MODULES = {"ehl": "lubedyn.ehl_case", "map": "lubedyn.map_scene", "dynamics": "lubedyn.dynamics_scene",
+                 "static": "lubedyn.static_scene", "tapered": "lubedyn.tapered_scene"}
+# the bundled cases and maps: package data of ``lubedyn.cases`` (the checkout's ``cases/`` in an editable
+# install, ``site-packages/lubedyn/cases`` in a wheel's), a real folder either way
+CASES_DIR = Path(importlib.resources.files("lubedyn.cases"))
 log = logging.getLogger(__name__)
 
 
@@ -164,7 +167,7 @@ def rule(key: str, value, text: str) -> PydanticCustomError:
 
 class _Model(BaseModel):
     model_config = ConfigDict(extra="forbid", validate_default=True)
-    _parameter_set: str | None = PrivateAttr(default=None)  # the set a case named (coupling.parameters)
+    _parameter_set: str | None = PrivateAttr(default=None)  # the set a case named (lubedyn.parameters)
 
 
 # ---------------------------------------------------------------------------
@@ -222,7 +225,7 @@ def _is_bare(value) -> bool:
 
 def _hint(raw_value, dimension: str, passes) -> str | None:
     """The unit rewrite of ``raw_value`` (a number or a string with units, or a list of them) that
-    makes ``passes(si)`` hold (:func:`coupling.units.unit_hint`); a list's largest entry decides."""
+    makes ``passes(si)`` hold (:func:`lubedyn.units.unit_hint`); a list's largest entry decides."""
     if not isinstance(raw_value, list):
         return unit_hint(raw_value, dimension, passes)
     forms = [written(v, dimension) for v in raw_value]
@@ -307,7 +310,7 @@ def _bare_text(dimension: str, suggestion: str | None) -> str:
 def bare_hint(raw: dict | None, key: str, dimension: str, passes) -> str:
     """``'; bare numbers are SI (m): write "50 um"'`` for a rule on ``key`` (dotted from the case's root)
     that was written as a bare number, in the unit whose SI value satisfies ``passes(si)``
-    (:func:`coupling.units.unit_hint`); ``""`` when it was written with units (or is unknown): the
+    (:func:`lubedyn.units.unit_hint`); ``""`` when it was written with units (or is unknown): the
     hint of the schema's older rules (a step on its pad ...), whose wording it keeps."""
     value = _raw_at(raw, key)
     if raw is None or not _is_bare(value):
@@ -459,7 +462,7 @@ GapModel = Annotated[
     Field(discriminator="type"),
 ]
 SLIDERS = ("inclined_slider", "step_slider", "pocketed_slider")
-JOURNAL_MIN_NX = 3  # fewest cells around a periodic journal mesh (lubrication.mesh.PERIODIC_MIN_CELLS)
+JOURNAL_MIN_NX = 3  # fewest cells around a periodic journal mesh (lubedyn.lubrication.mesh.PERIODIC_MIN_CELLS)
 ROUND = ("sphere_plane", "sphere_sphere", "ellipsoid_plane")
 # each gap's film thicknesses and the lengths they spread over (thin-film check, THIN_FILM)
 FILM_LENGTHS = {
@@ -575,7 +578,7 @@ class DensityModel(_Model):
 
 
 class HerschelBulkleyModel(_Model):
-    """Herschel-Bulkley (grease) Poiseuille flow (EHL scenes only; :class:`lubrication.laws.lubricant.
+    """Herschel-Bulkley (grease) Poiseuille flow (EHL scenes only; :class:`lubedyn.lubrication.laws.lubricant.
     HerschelBulkleyFlow`): yield_stress tau_y, exponent n in (0, 2], creep eps in [0, 1) (0: the exact law).
     The [lubricant.viscosity] law is then the consistency phi(p): eta0 = phi0, its SI number in Pa s^n
     written as Pa s (paper A Table 2), alpha of phi = phi0 exp(alpha p)."""
@@ -587,7 +590,7 @@ class HerschelBulkleyModel(_Model):
 
 class LubricantModel(_Model):
     """viscosity, density; eyring_stress tau0 (EHL scenes only): Reynolds-Eyring shear thinning of the
-    Poiseuille flow (:mod:`lubrication.laws.lubricant`), omitted = Newtonian; herschel_bulkley (EHL
+    Poiseuille flow (:mod:`lubedyn.lubrication.laws.lubricant`), omitted = Newtonian; herschel_bulkley (EHL
     scenes only): [lubricant.herschel_bulkley] yield_stress, exponent, creep, Herschel-Bulkley (grease)
     Poiseuille flow with the viscosity law as the consistency phi(p); at most one of the two."""
 
@@ -644,7 +647,7 @@ EHL_MAX_PRESSURE = 4e9  # Pa: validity.max_pressure of EHL scenes
 
 class BoundsModel(_Model):
     """``[validity]`` of every scene: ``strict`` (default true): an output outside its physical bound
-    (:data:`coupling.bounds.BOUNDS`: a traction coefficient above 1, a fraction outside [0, 1], a film
+    (:data:`lubedyn.bounds.BOUNDS`: a traction coefficient above 1, a fraction outside [0, 1], a film
     thicker than a tenth of the radius ...) ends the run with a one-line error (exit 1) and writes
     nothing; ``strict = false`` writes it with a WARNING listed under "Warnings" in summary.json."""
 
@@ -671,7 +674,7 @@ class ValidityModel(BoundsModel):
 
 
 class LimitsModel(_Model):
-    """Size limits checked before a run allocates anything (:mod:`coupling.limits`).
+    """Size limits checked before a run allocates anything (:mod:`lubedyn.limits`).
 
     ``memory``: the most memory a run may need by its estimate, e.g. ``"40 GiB"`` (omitted: the
     environment variable ``LUBEDYN_MEMORY_LIMIT``, else 80 % of the memory available);
@@ -1106,7 +1109,7 @@ def read_toml(path) -> dict:
 
 def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
     """Merge the smoke table (if ``smoke``) and the overrides, fill in the values of the case's
-    parameter set (``parameters = "Zhang2024"``: :func:`coupling.parameters.apply_parameter_set`; the
+    parameter set (``parameters = "Zhang2024"``: :func:`lubedyn.parameters.apply_parameter_set`; the
     file and the overrides win), then validate.
 
     Overrides of the ``[smoke]`` table itself (``--set smoke.mesh.nx=8``) are applied to it before
@@ -1142,7 +1145,7 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
             sets = [n for n in PARAMETER_SETS if scene in parameter_set(n).SCENES]
             if sets:
                 text += (f"; or name a paper's values: parameters = {sets[0]!r} (sets for scene = {scene!r}: "
-                         f"{', '.join(map(repr, sets))}; coupling.parameters)")
+                         f"{', '.join(map(repr, sets))}; lubedyn.parameters)")
         raise CaseError(text) from None
     case._parameter_set = set_name
     return case

@@ -1,7 +1,7 @@
 """Lyapunov analysis of a dynamics run: the end of the transient, co-rotating coordinates, Wolf's and
 Rosenstein's largest exponents per direction of one ball, Benettin's spectrum of the whole bearing.
 
-Part of the dynamics scene (:mod:`coupling.dynamics_scene`, which calls :func:`_lyapunov_per_direction`
+Part of the dynamics scene (:mod:`lubedyn.dynamics_scene`, which calls :func:`_lyapunov_per_direction`
 and :func:`_benettin` after a run and writes what they return into ``summary.json``)."""
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-log = logging.getLogger("coupling.dynamics_scene")
+log = logging.getLogger("lubedyn.dynamics_scene")
 
 
 LYAPUNOV_SAMPLES = 8000  # Rosenstein's neighbour search and divergence average: decimate to at most this
@@ -123,7 +123,7 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, r
       means over 10 blocks of evolution steps), ``convergence [-]`` (relative change of the running
       estimate over the last half), ``replacements [-]``, ``poor-angle fraction [-]`` and
       ``verdict``: "not resolved" when the uncertainty exceeds half the exponent or the running
-      estimate changed by more than 20 % over the last half (:attr:`dynamics.lyapunov.WolfResult.resolved`),
+      estimate changed by more than 20 % over the last half (:attr:`lubedyn.dynamics.lyapunov.WolfResult.resolved`),
       else "positive" (beyond two uncertainties) or "not positive".  Settings: embedding dimension
       ``LYAPUNOV_DIM``, delay at the first zero of the autocorrelation, evolution time = the delay,
       scale_max 0.1 of the coordinate's range, scale_min the larger of 1e-4 of the range and
@@ -172,8 +172,8 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, r
 
 def _wolf_direction(key, series, size, scale_min, start) -> dict:
     """Summary entries of Wolf's exponent of one coordinate (see :func:`_lyapunov_per_direction`)."""
-    from dynamics.errors import DynamicsInputError
-    from dynamics.lyapunov import WOLF_SCALE_MIN, largest_lyapunov_wolf, wolf_shortfall
+    from lubedyn.dynamics.errors import DynamicsInputError
+    from lubedyn.dynamics.lyapunov import WOLF_SCALE_MIN, largest_lyapunov_wolf, wolf_shortfall
 
     out = {f"{key} [bits/s]": None, f"{key} verdict": "not computed"}  # the verdict key is always there
     if isinstance(series, str):
@@ -216,8 +216,8 @@ def _wolf_direction(key, series, size, scale_min, start) -> dict:
 
 def _rosenstein_directions(j, t, keep, centres, shaft_speed) -> dict:
     """Rosenstein's largest exponent of ball ``j``'s inertial x, y, z after the window start."""
-    from dynamics.errors import DynamicsInputError
-    from dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution, rosenstein_shortfall
+    from lubedyn.dynamics.errors import DynamicsInputError
+    from lubedyn.dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution, rosenstein_shortfall
 
     out = {}
     # Rosenstein's neighbour search is O(n^2): decimate to at most LYAPUNOV_SAMPLES samples
@@ -247,7 +247,7 @@ def _rosenstein_directions(j, t, keep, centres, shaft_speed) -> dict:
             continue
         out[f"{key} [1/s]"] = float(res.exponent)
         out[f"{key} [1/rev]"] = float(per_shaft_revolution(res.exponent, shaft_speed))
-        # spread over neighbouring fit windows / level resolution (dynamics.lyapunov), and whether the
+        # spread over neighbouring fit windows / level resolution (lubedyn.dynamics.lyapunov), and whether the
         # exponent is positive beyond it
         out[f"{key} uncertainty [1/s]"] = float(res.uncertainty)
         out[f"{key} verdict"] = res.verdict
@@ -292,13 +292,13 @@ def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict
     relative change of the largest one over the second half of the window as
     a convergence measure.  Each exponent's verdict is :func:`whole_system_verdicts`': "positive" only
     beyond two uncertainties and with its running estimate settled (moved at most 20 % over the second
-    half, :data:`dynamics.lyapunov.SETTLED`), else "not converged (moved X % over the second half)"; and
+    half, :data:`lubedyn.dynamics.lyapunov.SETTLED`), else "not converged (moved X % over the second half)"; and
     "not converged (... still spinning up)" for every exponent of a record that ends inside the spin-up
     (:func:`spin_up_end`, the rule by which the per-direction exponents are not computed).
     ``progress(fraction)`` is called as the spectrum advances (100 kernel
-    calls, bit-identical to one: :func:`dynamics.lyapunov.lyapunov_spectrum`'s ``n_chunks``)."""
-    from dynamics.cageless import rhs
-    from dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
+    calls, bit-identical to one: :func:`lubedyn.dynamics.lyapunov.lyapunov_spectrum`'s ``n_chunks``)."""
+    from lubedyn.dynamics.cageless import rhs
+    from lubedyn.dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
 
     k = case.analysis.lyapunov_exponents
     i0 = int(np.searchsorted(t, benettin_start(float(case.analysis.transient), start, float(t[-1]))))
@@ -318,7 +318,7 @@ def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/s]"] = float(lam)
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/rev]"] = float(per_shaft_revolution(lam,
                                                                                                        shaft_speed))
-        # batch means over 10 blocks of the averaging time (dynamics.lyapunov.batch_means_uncertainty)
+        # batch means over 10 blocks of the averaging time (lubedyn.dynamics.lyapunov.batch_means_uncertainty)
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) uncertainty [1/s]"] = (
             float(u) if np.isfinite(u) else None)
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) verdict"] = verdict
@@ -340,8 +340,8 @@ def record_spin_up(case, model, t, Y) -> str:
 
 
 def whole_system_verdicts(spectrum, spin_up: str = "") -> list[str]:
-    """Verdicts of the whole-system exponents of ``spectrum`` (a :class:`dynamics.lyapunov.LyapunovSpectrum`):
-    each exponent's own (:func:`dynamics.lyapunov.verdict`: "positive" beyond two uncertainties once its
+    """Verdicts of the whole-system exponents of ``spectrum`` (a :class:`lubedyn.dynamics.lyapunov.LyapunovSpectrum`):
+    each exponent's own (:func:`lubedyn.dynamics.lyapunov.verdict`: "positive" beyond two uncertainties once its
     running estimate has settled, "not positive", or "not converged (moved X % over the second half)"),
     except that a record ending inside the spin-up (``spin_up``: the reason :func:`record_spin_up` gives)
     makes every one "not converged (<reason>)": finite-time exponents of the transient say nothing about

@@ -5,13 +5,13 @@ Tables 1, 2 and 4), its functional slots, the operating scenario (rotor drop
 or steady inner-ring speed), the fidelity of each interaction (degrees of
 freedom of the balls, Hertz constants exact or Hamrock-Brewe, the ball-ball
 film: none / closed form / tabulated map), the integrator and the analyses.
-``run(case, out_dir)`` builds :class:`dynamics.cageless.CagelessBearing`,
+``run(case, out_dir)`` builds :class:`lubedyn.dynamics.cageless.CagelessBearing`,
 integrates from its quasi-static initial state with
-:func:`dynamics.integrators.integrate` (a progress bar of simulated time on
+:func:`lubedyn.dynamics.integrators.integrate` (a progress bar of simulated time on
 a terminal) and writes
 
 - ``timeseries.npz``: every state entry and the contact diagnostics at every
-  sample, names with units (:func:`coupling.outputs.read_timeseries`);
+  sample, names with units (:func:`lubedyn.outputs.read_timeseries`);
 - ``collisions.csv``: one line per ball-ball collision (pair, time of the
   force peak, position, force components, duration);
 - ``bearing.pvd`` + ``frames/*.vtp``: balls, rings, slots and the ball-ball
@@ -40,7 +40,7 @@ time-series reading (Wolf's algorithm, bits/s, see
 :func:`_lyapunov_per_direction`) beside the whole-system spectrum.
 
 Everything is computed before anything is written; the files are staged and
-moved into place together (:func:`coupling.outputs.staged`).
+moved into place together (:func:`lubedyn.outputs.staged`).
 """
 from __future__ import annotations
 
@@ -55,9 +55,9 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
-from lubrication.errors import ConvergenceError, InputError
-from lubrication.laws import bearing as bearings
+from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
+from lubedyn.lubrication.errors import ConvergenceError, InputError
+from lubedyn.lubrication.laws import bearing as bearings
 
 from . import outputs
 from .dynamics_lyapunov import _benettin, _lyapunov_per_direction
@@ -77,7 +77,7 @@ PositiveTime = Q("time", gt=0)
 # ---------------------------------------------------------------------------- case model
 class BearingTable(_Model):
     """Geometry, materials and masses.  No paper data as defaults: a case names its parameter set
-    (``parameters = "Zhang2024"``, :mod:`coupling.parameters`) or gives every value."""
+    (``parameters = "Zhang2024"``, :mod:`lubedyn.parameters`) or gives every value."""
 
     n_balls: PositiveInt
     ball_diameter: PositiveLength
@@ -133,7 +133,7 @@ class BearingTable(_Model):
 
 
 class SlotsTable(_Model):
-    """Local functional slots (paper B: :mod:`coupling.parameters.zhang2024`).  ``azimuths = []``: no slot."""
+    """Local functional slots (paper B: :mod:`lubedyn.parameters.zhang2024`).  ``azimuths = []``: no slot."""
 
     race: Literal["outer", "inner"]
     azimuths: list[Q("angle")]
@@ -144,7 +144,7 @@ class SlotsTable(_Model):
 
 
 class InitialTable(_Model):
-    """Where a run starts, for ensembles (:class:`dynamics.cageless.groups.Initial`): ``azimuths`` (one angle
+    """Where a run starts, for ensembles (:class:`lubedyn.dynamics.cageless.groups.Initial`): ``azimuths`` (one angle
     per ball; empty: evenly spaced from ``first_ball_azimuth``), a seeded random ``jitter`` of each ball's
     azimuth (uniform in +-jitter) and a ``kick`` of the inner ring's velocity in a random x-y direction.
     The same ``seed`` gives the same run bit for bit."""
@@ -215,7 +215,7 @@ class FilmsTable(_Model):
 
 class IntegratorTable(_Model):
     """``rtol`` and ``atol``: DOPRI5's tolerances, refused where its error control means nothing
-    (:data:`dynamics.integrators.RTOL_MAX` = 1e-3, ``ATOL_MAX`` = 1e-8: the measurement is there)."""
+    (:data:`lubedyn.dynamics.integrators.RTOL_MAX` = 1e-3, ``ATOL_MAX`` = 1e-8: the measurement is there)."""
 
     method: Literal["dopri5", "rk4"] = "dopri5"
     rtol: Q("dimensionless", gt=0, le=RTOL_MAX, why=RTOL_WHY) = 1e-6
@@ -273,7 +273,7 @@ class DynamicsCase(_Model):
     analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)
     limits: LimitsModel = Field(default_factory=LimitsModel)
-    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: coupling.bounds
+    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: lubedyn.bounds
     smoke: dict[str, Any] | None = None
 
     @model_validator(mode="after")
@@ -324,7 +324,7 @@ CaseModel = DynamicsCase
 class DynamicsSetup:
     """What a case builds: the bearing model, its initial state and output times."""
 
-    model: Any  # dynamics.cageless.CagelessBearing
+    model: Any  # lubedyn.dynamics.cageless.CagelessBearing
     y0: np.ndarray
     t_out: np.ndarray
     map_path: Path | None = None
@@ -356,9 +356,9 @@ def _film_map(case: DynamicsCase, source: str | None):
 
 def model_groups(case: DynamicsCase, **built) -> dict:
     """The case's tables as the model's frozen groups (keyword arguments of
-    :class:`dynamics.cageless.CagelessBearing`).  ``built``: values loaded from files, by case key
+    :class:`lubedyn.dynamics.cageless.CagelessBearing`).  ``built``: values loaded from files, by case key
     (``{"films.map": arrays}``), in place of the file names the case gives."""
-    from dynamics.cageless import CagelessBearing
+    from lubedyn.dynamics.cageless import CagelessBearing
 
     out = {}
     for table, attr in CagelessBearing.GROUPS.items():  # one to one, same field names
@@ -378,8 +378,8 @@ def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = F
     """Bearing model, quasi-static initial state and output times (raises InputError).  With
     ``precompile``, the kernels the run will call (integrator, forces, Benettin) start compiling in a
     second process if numba's cache lacks them (a first run), while this one compiles the model."""
-    from dynamics.cageless import CagelessBearing
-    from dynamics.errors import DynamicsInputError
+    from lubedyn.dynamics.cageless import CagelessBearing
+    from lubedyn.dynamics.errors import DynamicsInputError
 
     built = {}
     map_path, info = None, {}
@@ -404,7 +404,7 @@ def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = F
     try:
         model = CagelessBearing(**model_groups(case, **built))
         if precompile:
-            from dynamics.specialise import compile_in_background
+            from lubedyn.dynamics.specialise import compile_in_background
 
             compile_in_background(kernel_jobs(case, model))
         y0 = model.initial_state()
@@ -420,11 +420,11 @@ def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = F
 def kernel_jobs(case: DynamicsCase, model) -> list:
     """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (integrator, forces
     at the samples, Benettin): :func:`build` has those numba's cache lacks compiled in a second process
-    while it compiles the model, since they do not contain the model's code (:mod:`dynamics.specialise`)."""
-    from dynamics.cageless import rhs
-    from dynamics.cageless.kernels import forces_example, forces_many_example
-    from dynamics.integrators import kernel_example
-    from dynamics.lyapunov import spectrum_kernel_example
+    while it compiles the model, since they do not contain the model's code (:mod:`lubedyn.dynamics.specialise`)."""
+    from lubedyn.dynamics.cageless import rhs
+    from lubedyn.dynamics.cageless.kernels import forces_example, forces_many_example
+    from lubedyn.dynamics.integrators import kernel_example
+    from lubedyn.dynamics.lyapunov import spectrum_kernel_example
 
     args = model.args()
     # forces first: the quasi-static start calls it right after the model has compiled
@@ -437,7 +437,7 @@ def kernel_jobs(case: DynamicsCase, model) -> list:
 def values_per_sample(model) -> int:
     """Numbers a run keeps per output sample: the state, every ball's contact diagnostics, the ring's,
     and the ball centres and contact mid-points of the analysis (3 each per ball)."""
-    from dynamics.cageless import DIAG_NAMES, N_RING_DIAG
+    from lubedyn.dynamics.cageless import DIAG_NAMES, N_RING_DIAG
 
     return len(model.state_layout()) + model.n_balls * (len(DIAG_NAMES) + 6) + N_RING_DIAG
 
@@ -457,7 +457,7 @@ def sample_count(case: DynamicsCase) -> int:
 
 def check_size(case: DynamicsCase, model) -> None:
     """Refuse a run whose samples cannot fit the memory limit, or whose fixed RK4 steps exceed
-    ``integrator.max_steps`` (:mod:`coupling.limits`)."""
+    ``integrator.max_steps`` (:mod:`lubedyn.limits`)."""
     from . import limits
 
     ig = case.integrator
@@ -526,7 +526,7 @@ def ball_centres(setup: DynamicsSetup, Y: np.ndarray) -> np.ndarray:
 def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str = "",
         smoke: bool = False) -> DynamicsRun:
     """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold
-    cache are reported as they compile (:func:`coupling.compilation.report_compilation`)."""
+    cache are reported as they compile (:func:`lubedyn.compilation.report_compilation`)."""
     from .compilation import report_compilation
 
     with report_compilation():
@@ -534,11 +534,11 @@ def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str
 
 
 def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) -> DynamicsRun:
-    from dynamics.analysis import collision_events, collision_summary
-    from dynamics.cageless import (
+    from lubedyn.dynamics.analysis import collision_events, collision_summary
+    from lubedyn.dynamics.cageless import (
         D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, D_QO, D_SPIN, forces_many, rhs)
-    from dynamics.errors import DynamicsInputError, IntegrationError
-    from dynamics.integrators import integrate
+    from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError
+    from lubedyn.dynamics.integrators import integrate
 
     t0 = time.perf_counter()
     setup = build(case, source or None, precompile=True)
@@ -730,7 +730,7 @@ def headline(summary: dict) -> list[str]:
 
 def bearing_frequencies(ring_hz: float, model, extra=None) -> dict:
     """Kinematic bearing frequencies [Hz] at an inner-ring speed (outer ring fixed, zero contact angle)."""
-    from dynamics.spectra import bearing_frequencies as bf
+    from lubedyn.dynamics.spectra import bearing_frequencies as bf
 
     return bf(ring_hz, model.bearing.ball_diameter, model.bearing.pitch_diameter, model.n_balls, 0.0, extra=extra)
 
@@ -788,7 +788,7 @@ class _Scene3D:
     def frame(self, y, diag_row, D_BBN, D_H):
         import pyvista as pv
 
-        from lubrication.laws.contact import point_contact
+        from lubedyn.lubrication.laws.contact import point_contact
 
         m = self.setup.model
         pts, tris, body, pres = [], [], [], []
@@ -891,7 +891,7 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     keep = t >= case.analysis.transient
     acc = np.gradient(Y[keep, 5], t[keep])  # inner ring vertical acceleration
     if keep.sum() > 16:
-        from dynamics.spectra import amplitude_spectrum
+        from lubedyn.dynamics.spectra import amplitude_spectrum
 
         f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
         # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
@@ -917,7 +917,7 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
 
 def _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs,
            complete=None) -> list:
-    from dynamics.cageless import D_BBN, D_H, DIAG_NAMES, RING_DIAG_NAMES
+    from lubedyn.dynamics.cageless import D_BBN, D_H, DIAG_NAMES, RING_DIAG_NAMES
 
     write = case.output.write
     t_write = time.perf_counter()

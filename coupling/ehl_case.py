@@ -17,7 +17,7 @@ Layout (x the entrainment direction; the contact comes from exactly one of
                  diametral_clearance (balls), effective_length (rollers),
                  contact_angle, inner_speed, outer_speed, radial_load,
                  axial_load, stribeck_constant, load_distribution =
-                 stribeck | quasi_static (balls): see :mod:`lubrication.laws.bearing`
+                 stribeck | quasi_static (balls): see :mod:`lubedyn.lubrication.laws.bearing`
     [dimensionless]  M, L, eta0 (Moes' parameters; EHLContact.from_moes)
     [grid]       nx (2^k + 1), ny, x_min, x_max, y_max (in Hertz semi-axes)
     [traction]   model = newtonian | limiting_shear | eyring, limiting_shear_stress,
@@ -28,7 +28,7 @@ Layout (x the entrainment direction; the contact comes from exactly one of
     [limits]     memory, map_points
     [smoke]      a partial case merged over this one by ``--smoke``
 
-Read through :func:`coupling.config.load_case` (``CaseModel`` below); built by :mod:`coupling.ehl_scene`.
+Read through :func:`lubedyn.config.load_case` (``CaseModel`` below); built by :mod:`lubedyn.ehl_scene`.
 """
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, ValidationInfo, model_validator
 
-from lubrication.laws.bearing import STRIBECK
+from lubedyn.lubrication.laws.bearing import STRIBECK
 
 from .config import (EHL_MAX_PRESSURE, THIN_FILM, Length, LimitsModel, LubricantModel, PositiveInt, PositiveLength,
                      Q, Scaled, ValidityModel, Velocity, _Model, _root_rule, _show, bare_hint, check_scale,
@@ -47,7 +47,7 @@ SMALL_CONTACT = THIN_FILM
 """The largest Hertz contact semi-axis over the radius of curvature along it (b/R_x, and a/R_y of a
 point contact), and a line contact's half-width over its length, that a case may give.  Hertz's theory
 (and the EHL solver's parabolic gap on elastic half-spaces) is the leading order in b/R, as Reynolds'
-equation is in h/L (:data:`coupling.config.THIN_FILM`, the same 0.1); a hardened steel contact reaches
+equation is in h/L (:data:`lubedyn.config.THIN_FILM`, the same 0.1); a hardened steel contact reaches
 b/R = 0.1 only near 6-7 GPa, above the 4 GPa of validity.max_pressure, so a larger ratio is a slipped
 unit (a modulus of 207 Pa for 207 GPa) or a load far beyond any film."""
 SMALL_CONTACT_WHY = ("Hertz's half-space contact and the EHL film's parabolic gap need a contact much smaller "
@@ -154,7 +154,7 @@ class MaterialsModel(_Model):
 
     @property
     def e_star(self) -> float:
-        from lubrication.laws.contact import reduced_modulus
+        from lubedyn.lubrication.laws.contact import reduced_modulus
 
         return reduced_modulus(self.modulus1, self.poisson1, self.modulus2, self.poisson2)
 
@@ -227,9 +227,9 @@ class GridModel(_Model):
 class TractionModel(_Model):
     """Shear law for friction: limiting_shear (|tau| <= tau_L0 + gamma p, the default) | eyring |
     newtonian.  The default follows measured EHL traction (Bair & Winer 1979: a limiting shear stress
-    proportional to pressure, gamma 0.04-0.1 for mineral oils; :class:`lubrication.ehl.Traction`); a
+    proportional to pressure, gamma 0.04-0.1 for mineral oils; :class:`lubedyn.lubrication.ehl.Traction`); a
     Newtonian shear at the Hertz zone's piezoviscous viscosity gives coefficients far above 1, which the
-    run refuses (:mod:`coupling.bounds`)."""
+    run refuses (:mod:`lubedyn.bounds`)."""
 
     model: Literal["newtonian", "limiting_shear", "eyring"] = "limiting_shear"
     limiting_shear_stress: Q("pressure", gt=0) = 5e6
@@ -238,13 +238,13 @@ class TractionModel(_Model):
 
 
 class EHLSolverModel(_Model):
-    """EHL solver (:mod:`lubrication.ehl`).  ``method``: ``auto`` (FEM with
+    """EHL solver (:mod:`lubedyn.lubrication.ehl`).  ``method``: ``auto`` (FEM with
     Fischer-Burmeister Newton for points, active-set Newton for lines),
     ``fischer_burmeister``, ``active_set``, or ``multigrid`` (FAS multigrid of
-    :mod:`lubrication.ehl.multigrid`: steady point contacts, grids nx = 16 2^k + 1,
+    :mod:`lubedyn.lubrication.ehl.multigrid`: steady point contacts, grids nx = 16 2^k + 1,
     finite differences; 257 x 257 in 2-3 s).  Newton: relative tolerance,
     iteration limit, step limit (in Hertz pressures); the multigrid method has
-    its own tolerances (:class:`lubrication.ehl.multigrid.MultigridOptions`)."""
+    its own tolerances (:class:`lubedyn.lubrication.ehl.multigrid.MultigridOptions`)."""
 
     method: Literal["auto", "fischer_burmeister", "active_set", "multigrid"] = "auto"
     rtol: Q("dimensionless", gt=0, lt=1) = 1e-7
@@ -257,7 +257,7 @@ class EHLOutputModel(_Model):
 
 
 class BearingModel(_Model):
-    """The bearing the contact is taken from (:mod:`lubrication.laws.bearing`): the
+    """The bearing the contact is taken from (:mod:`lubedyn.lubrication.laws.bearing`): the
     most loaded element on ``race``.  Balls: groove radii, optional diametral
     clearance; the contact angle follows from the axial load unless given.
     Rollers: line contact of ``effective_length`` at ``contact_angle``."""
@@ -339,7 +339,7 @@ class BearingModel(_Model):
     def _ball_geometry(self, raw=None):
         """The ball inside the pitch circle, grooves that conform (:data:`GROOVE_MAX_CONFORMITY`) and a
         clearance that leaves the free contact angle below 90 deg (cos beta0 = 1 - P_d / (2 B D) > 0),
-        checked only once the grooves are wider than the ball (else :mod:`lubrication.laws.bearing`
+        checked only once the grooves are wider than the ball (else :mod:`lubedyn.lubrication.laws.bearing`
         names the groove radius), so that each message names the key that is wrong."""
         D = self.element_diameter
         self._element_scales(raw)
@@ -350,7 +350,7 @@ class BearingModel(_Model):
                                     blame=[r.key], why="bearing grooves conform closely to the ball, "
                                     "r/D = 0.505-0.58"))
         if not min(self.inner_groove_radius, self.outer_groove_radius) > 0.5 * D:
-            return  # the groove radius is what is wrong: lubrication.laws.bearing names it ("must be > D/2")
+            return  # the groove radius is what is wrong: lubedyn.lubrication.laws.bearing names it ("must be > D/2")
         bd = self.inner_groove_radius + self.outer_groove_radius - D
         if not self.diametral_clearance < 2.0 * bd:
             raise rule("diametral_clearance", self.diametral_clearance, f"must be < 2 B D = {2 * bd:g} m, where "
@@ -363,7 +363,7 @@ class DimensionlessModel(_Model):
     """Moes' load and material parameters; the pressure-viscosity coefficient
     and the load follow at the scales R_x (contact.radius_x, default 10 mm),
     E* ([materials], default 100 GPa), eta0 and u_m (operating.mean_speed,
-    default 1 m/s): :meth:`lubrication.ehl.EHLContact.from_moes`."""
+    default 1 m/s): :meth:`lubedyn.lubrication.ehl.EHLContact.from_moes`."""
 
     M: Q("dimensionless", gt=0)
     L: Q("dimensionless", ge=0)
@@ -459,7 +459,7 @@ class EHLCase(_Model):
         bearing cannot be solved (the scene's build names why)."""
         c, op = self.contact, self.operating
         if self.mode == "bearing":
-            from lubrication.errors import InputError
+            from lubedyn.lubrication.errors import InputError
 
             from .ehl_scene import race_contact
 
@@ -482,7 +482,7 @@ class EHLCase(_Model):
         radii of curvature and a line contact's half-width small against its length (SMALL_CONTACT).
         Blamed: a bare modulus that a unit puts right (a bare 207 is 207 Pa: "207 GPa"), else a short
         line's length, else the load."""
-        from lubrication.laws.contact import line_contact, point_contact, reduced_modulus
+        from lubedyn.lubrication.laws.contact import line_contact, point_contact, reduced_modulus
 
         c, op, mat = self.contact, self.operating, self.materials
         rx, _ = c.reduced_radii()

@@ -1,22 +1,22 @@
-"""EHL scene: validated case -> :class:`~lubrication.ehl.EHLContact` -> solve -> outputs.
+"""EHL scene: validated case -> :class:`~lubedyn.lubrication.ehl.EHLContact` -> solve -> outputs.
 
-``build(case)`` turns an :class:`~coupling.ehl_case.EHLCase` (SI) into the
-contact, grid and options of :func:`lubrication.ehl.solve_ehl`; the contact
+``build(case)`` turns an :class:`~lubedyn.ehl_case.EHLCase` (SI) into the
+contact, grid and options of :func:`lubedyn.lubrication.ehl.solve_ehl`; the contact
 comes from the reduced or body radii and the operating point, from a
-bearing (:mod:`lubrication.laws.bearing`: the most loaded element's contact with one
+bearing (:mod:`lubedyn.lubrication.laws.bearing`: the most loaded element's contact with one
 race), or from Moes' M and L.  ``run(case, out_dir)`` solves and writes
 
-- ``summary.json``: :meth:`~lubrication.ehl.EHLSolution.summary` (film
+- ``summary.json``: :meth:`~lubedyn.lubrication.ehl.EHLSolution.summary` (film
   thickness, pressure, load, friction, Moes M and L, Newton iterations) plus
   the inputs in SI (reduced radii and modulus, speeds, load), the Hertz
   contact (pressure, semi-axes), Hamrock-Dowson U, G, W and the closed-form
-  film thickness of :mod:`lubrication.laws.film` for comparison
+  film thickness of :mod:`lubedyn.lubrication.laws.film` for comparison
   (Hamrock-Dowson for points; Dowson-Toyoda, Pan-Hamrock and Moes for
   lines), the bearing data when there is a ``[bearing]``, solver information
   and timings, ``"Stop reason"`` (why the solver stopped, with its figures)
   and ``"Warnings"`` (the solver's a-posteriori checks,
-  :func:`lubrication.ehl.check_solution`, and the validity ranges of
-  :mod:`coupling.validity`; absent when there is none);
+  :func:`lubedyn.lubrication.ehl.check_solution`, and the validity ranges of
+  :mod:`lubedyn.validity`; absent when there is none);
 - ``case.resolved.toml``: the case as run, in SI with every default;
 - ``ehl.vtu`` (``EHLSolution.save``: "Pressure [Pa]", "Film thickness [m]",
   "Elastic deflection [m]") and ``profiles.png`` (centre-line pressure and
@@ -24,7 +24,7 @@ race), or from Moes' M and L.  ``run(case, out_dir)`` solves and writes
 
 The solve happens before anything is written; the files are made in a
 staging folder and moved into place only when all are complete
-(:func:`coupling.outputs.staged`), so a failed run leaves an existing output
+(:func:`lubedyn.outputs.staged`), so a failed run leaves an existing output
 folder as it was.
 """
 from __future__ import annotations
@@ -34,11 +34,11 @@ import math
 import time
 from dataclasses import dataclass, field
 
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, multigrid_grid, solve_ehl
-from lubrication.errors import InputError
-from lubrication.laws import bearing as bearings
-from lubrication.laws import contact as hertz
-from lubrication.laws import film as film_formulas
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, multigrid_grid, solve_ehl
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws import bearing as bearings
+from lubedyn.lubrication.laws import contact as hertz
+from lubedyn.lubrication.laws import film as film_formulas
 
 from . import limits, outputs, validity
 from .config import resolved_toml
@@ -136,7 +136,7 @@ def build(case: EHLCase) -> EHLSetup:
                          f"nx <= {MAX_LINE_GRID}")
     elif not contact.is_line and limit is not None and g.nx > limit:  # found by validate, not only by run
         raise InputError(f"grid.nx = {g.nx} is too fine for a point contact: the EHL solver converges for point "
-                         f"contacts up to {limit} nodes per side (lubrication.ehl.EHLOptions.max_point_grid); "
+                         f"contacts up to {limit} nodes per side (lubedyn.lubrication.ehl.EHLOptions.max_point_grid); "
                          f"solver.method = 'multigrid' solves finer point-contact grids")
     return EHLSetup(contact, grid, options, race, length)
 
@@ -272,7 +272,7 @@ def film_reynolds_number(contact: EHLContact, solution) -> float:
 
 
 def bound_scales(setup: EHLSetup, solution) -> dict:
-    """The scales the outputs' physical bounds refer to (:mod:`coupling.bounds`): the dry contact's
+    """The scales the outputs' physical bounds refer to (:mod:`lubedyn.bounds`): the dry contact's
     Hertz pressure under the load (given, or the film's with a prescribed approach), the reduced
     radius along x and the applied load (given loads only)."""
     c = setup.contact
@@ -299,8 +299,8 @@ class EHLRun:
 def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smoke: bool = False) -> EHLRun:
     """Build, solve and (if ``out_dir``) write the outputs of an EHL case.
 
-    Raises :class:`~lubrication.errors.InputError` for a case that cannot be
-    built and :class:`~lubrication.errors.ConvergenceError` for a failed
+    Raises :class:`~lubedyn.lubrication.errors.InputError` for a case that cannot be
+    built and :class:`~lubedyn.lubrication.errors.ConvergenceError` for a failed
     solve; in both cases nothing is written.
     """
     t0 = time.perf_counter()
@@ -311,7 +311,7 @@ def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smo
     scene_summary = summarise(case, setup, solution)
     reynolds = film_reynolds_number(setup.contact, solution)
     scene_summary["Film Reynolds number [-]"] = reynolds
-    # the solver's a-posteriori checks (lubrication.ehl.check_solution: closed-form film, coarser
+    # the solver's a-posteriori checks (lubedyn.lubrication.ehl.check_solution: closed-form film, coarser
     # level) were logged by the solve; they join the validity warnings in summary.json
     checks = list(solution.info.get("warnings", []))
     found = validity.warnings_for(

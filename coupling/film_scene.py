@@ -1,6 +1,6 @@
-"""Film scene: validated case -> mesh and :class:`~lubrication.Film` -> solve -> outputs.
+"""Film scene: validated case -> mesh and :class:`~lubedyn.lubrication.Film` -> solve -> outputs.
 
-``build_film(case)`` turns a :class:`~coupling.config.FilmCase` (SI) into
+``build_film(case)`` turns a :class:`~lubedyn.config.FilmCase` (SI) into
 lubrication objects; ``run(case, out_dir)`` solves and writes
 
 - ``summary.json``: flat mapping, names carry units (``"Load [N]"``); 1-D
@@ -29,9 +29,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-import lubrication as lub
-from lubrication import mesh as meshes
-from lubrication.errors import InputError
+import lubedyn.lubrication as lub
+from lubedyn.lubrication import mesh as meshes
+from lubedyn.lubrication.errors import InputError
 
 from . import limits, outputs, validity
 from .config import CASES_DIR as CASES
@@ -156,7 +156,7 @@ def film_dofs(case: FilmCase) -> int:
     the meshes of :func:`build_mesh`, except that a slider's step or pocket edges count one node
     each (:func:`grid_with_breakpoints` usually moves a node there instead of adding one).
 
-    >>> from coupling.config import load_case
+    >>> from lubedyn.config import load_case
     >>> film_dofs(load_case(CASES / "journal_finite.toml", smoke=True))  # 32 x 8 cells, P2, periodic in x
     1088
     """
@@ -186,7 +186,7 @@ def _mesh_keys(m, refine: int = 1) -> str:
 
 
 def check_size(case: FilmCase) -> int:
-    """Refuse a film whose estimated memory exceeds the limit (:mod:`coupling.limits`); its DOFs."""
+    """Refuse a film whose estimated memory exceeds the limit (:mod:`lubedyn.limits`); its DOFs."""
     dofs = film_dofs(case)
     m = case.mesh
     subject = _mesh_keys(m)
@@ -196,7 +196,7 @@ def check_size(case: FilmCase) -> int:
 
 
 def build_film(case: FilmCase) -> lub.Film:
-    """The :class:`~lubrication.Film` of a validated case (no solve)."""
+    """The :class:`~lubedyn.lubrication.Film` of a validated case (no solve)."""
     check_size(case)  # before any array of the mesh's size exists
     gap = build_gap(case)
     mesh = build_mesh(case)
@@ -243,7 +243,7 @@ def describe(case: FilmCase, film: lub.Film) -> str:
 
 def summarise(case: FilmCase, solution, coefficients=None) -> dict:
     """Flat mapping of the scene's scalar results (names carry units; 1-D
-    films per unit width, named by :meth:`~lubrication.FilmSolution.summary`)."""
+    films per unit width, named by :meth:`~lubedyn.lubrication.FilmSolution.summary`)."""
     film = solution.film
     # a sealed boundary has no flow by its condition
     open_boundaries = [name for name in sorted((film.mesh.boundaries or {}).keys()) if name not in case.boundary.sealed]
@@ -288,7 +288,7 @@ def film_reynolds_number(case: FilmCase, solution) -> float:
 
 def resolution_warnings(case: FilmCase, solution) -> list[str]:
     """The film's minimum-gap resolution guard
-    (:meth:`~lubrication.FilmSolution.resolution_warning`), naming the case's mesh keys that
+    (:meth:`~lubedyn.lubrication.FilmSolution.resolution_warning`), naming the case's mesh keys that
     would resolve the zone (every direction refined by the factor, rounded up; a disk by
     whole refinements); [] when resolved."""
     text = solution.resolution_warning()
@@ -298,7 +298,7 @@ def resolution_warnings(case: FilmCase, solution) -> list[str]:
 
 
 def bound_scales(case: FilmCase, film, solution) -> dict:
-    """The scales the outputs' physical bounds refer to (:mod:`coupling.bounds`).
+    """The scales the outputs' physical bounds refer to (:mod:`lubedyn.bounds`).
 
     ``viscous_pressure``: for an iso-viscous, Newtonian film, the largest boundary pressure plus
     6 eta0 U L / h_min^2 (wedge and step films: a slider's largest pressure is below 0.2 times it) plus
@@ -344,8 +344,8 @@ class FilmRun:
 def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", smoke: bool = False) -> FilmRun:
     """Build, solve and (if ``out_dir``) write the outputs of a film case.
 
-    Raises :class:`~lubrication.errors.InputError` for a case that cannot be
-    built and :class:`~lubrication.errors.ConvergenceError` for a failed
+    Raises :class:`~lubedyn.lubrication.errors.InputError` for a case that cannot be
+    built and :class:`~lubedyn.lubrication.errors.ConvergenceError` for a failed
     solve; in both cases nothing is written.
     """
     t0 = time.perf_counter()
@@ -379,4 +379,4 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
     return result
 
 
-build = build_film  # the scene protocol of coupling.cli
+build = build_film  # the scene protocol of lubedyn.cli

@@ -1,5 +1,5 @@
 """Guide-land film map of paper A's cage (issue 22): the project's Reynolds FEM journal with Reynolds
-(Swift-Stieber) cavitation, tabulated for :func:`lubrication.laws.cage.guide_land_map_force`.
+(Swift-Stieber) cavitation, tabulated for :func:`lubedyn.lubrication.laws.cage.guide_land_map_force`.
 
 The cavitated finite journal is positively homogeneous in the Reynolds right-hand side g = A sin(theta)
 - e' cos(theta) (line-of-centres frame, A = e (u_m/r - psi'), e' the radial speed), so one table over
@@ -16,8 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lubrication import Cavitation, Film, JournalBearing, Lubricant
-from lubrication import mesh as meshes
+from lubedyn.lubrication import Cavitation, Film, JournalBearing, Lubricant
+from lubedyn.lubrication import mesh as meshes
 
 
 @dataclass(frozen=True)

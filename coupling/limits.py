@@ -2,7 +2,7 @@
 
 Every scene's ``build`` (run, ``--dry-run`` and ``lubedyn validate``) estimates
 what the case will need from its sizes alone (degrees of freedom, samples,
-map points, grid nodes) and raises :class:`~lubrication.errors.InputError`
+map points, grid nodes) and raises :class:`~lubedyn.lubrication.errors.InputError`
 (exit 2) with one line naming the key, the estimate and the limit when it
 cannot fit.  The estimates are simple and conservative within a factor of a
 few; each is checked against a measured run in ``tests/test_limits.py``.
@@ -26,7 +26,7 @@ import math
 import os
 import re
 
-from lubrication.errors import InputError
+from lubedyn.lubrication.errors import InputError
 
 SAFETY_FRACTION = 0.8
 ENV_MEMORY = "LUBEDYN_MEMORY_LIMIT"

@@ -1,11 +1,11 @@
-"""Map scene: a point kind's film solves swept over its axes -> :class:`~coupling.maps.FilmMap` -> outputs.
+"""Map scene: a point kind's film solves swept over its axes -> :class:`~lubedyn.maps.FilmMap` -> outputs.
 
 Case layout (``scene = "map"``; quantities as numbers in SI or strings with
 units, checked against the unit in the axis name)::
 
     scene = "map"
     description = "one line shown by `lubedyn cases`"
-    kind = "ball_ball"          # a kind of coupling.film_points.KINDS
+    kind = "ball_ball"          # a kind of lubedyn.film_points.KINDS
     [axes.<key>]                # key: the axis name without unit, lower case, "_" for spaces
                                 # ("Central gap [m]" -> central_gap); overrides the kind's default
     lo = "0.05 um"; hi = "50 um"; n = 19; scale = "log" | "linear"
@@ -14,7 +14,7 @@ units, checked against the unit in the axis name)::
                                 # "<number> <unit>" is converted to SI; other strings as they are)
     resolution = "default"
     [build]
-    method = "hermite" | "pchip" | "linear"   # interpolation (dynamics.interp)
+    method = "hermite" | "pchip" | "linear"   # interpolation (lubedyn.dynamics.interp)
     workers = 0                 # local processes; 0: every usable core; capped at the points of a pass
     scheduler = ""              # Dask scheduler address ("tcp://host:8786"): solve there instead
     cache_dir = ""              # solved points and built maps; "" -> <out>/.map-cache
@@ -27,7 +27,7 @@ units, checked against the unit in the axis name)::
     map_file = ""               # "" -> <kind>.npz
     field_frames = 6            # .pvd frames: nodes of the first axis (evenly picked) ...
     field_at = {}               # ... with the other axes at their middle node unless given here
-    [limits]                    # memory = "40 GiB", map_points = 1000000 (coupling.limits)
+    [limits]                    # memory = "40 GiB", map_points = 1000000 (lubedyn.limits)
     [smoke]                     # partial case merged by --smoke
 
 Outputs of ``run``: ``<kind>.npz`` (:meth:`FilmMap.save`), ``map.png`` (each
@@ -37,7 +37,7 @@ open ``fields.pvd`` in ParaView; the "time" of each frame is the first axis'
 value), ``summary.json`` (accuracy report, fit errors, build information; under "Warnings" the map's
 accuracy warning when an output's error exceeds ``build.accuracy_tolerance``, also logged),
 ``case.resolved.toml``.  Everything is written through a staging folder
-(:func:`coupling.outputs.staged`): a failed build leaves the output folder
+(:func:`lubedyn.outputs.staged`): a failed build leaves the output folder
 as it was (solved points stay in the cache, so the next run resumes).
 """
 from __future__ import annotations
@@ -53,8 +53,8 @@ import numpy as np
 from pydantic import Field, model_validator
 from pydantic_core import PydanticCustomError
 
-from lubrication.errors import InputError, did_you_mean
-from lubrication.laws.lubricant import DowsonHigginson
+from lubedyn.lubrication.errors import InputError, did_you_mean
+from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 
 from . import maps, outputs, validity
 from .config import BoundsModel, LimitsModel, LubricantModel, _Model, resolved_toml
@@ -96,7 +96,7 @@ class BuildModel(_Model):
     scheduler: str = ""
     cache_dir: str = ""
     accuracy_points: Annotated[int, Field(strict=True, ge=0)] = 20
-    # stored in the map, which warns again when it is loaded (coupling.maps.ACCURACY_TOLERANCE: why 3 %)
+    # stored in the map, which warns again when it is loaded (lubedyn.maps.ACCURACY_TOLERANCE: why 3 %)
     accuracy_tolerance: Annotated[float, Field(gt=0)] = maps.ACCURACY_TOLERANCE  # largest error without a warning
     seed: Annotated[int, Field(strict=True, ge=0)] = 0
     on_failure: Literal["raise", "fill"] = "raise"
@@ -122,7 +122,7 @@ class CaseModel(_Model):
     build: BuildModel = Field(default_factory=BuildModel)
     output: MapOutputModel = Field(default_factory=MapOutputModel)
     limits: LimitsModel = Field(default_factory=LimitsModel)
-    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: coupling.bounds
+    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: lubedyn.bounds
     smoke: dict[str, Any] | None = None
 
     @model_validator(mode="after")
@@ -218,7 +218,7 @@ def _lubricant_params(lub, kind_name, defaults, params) -> dict:
             raise _rule("lubricant.herschel_bulkley", lub.herschel_bulkley.model_dump(),
                         f"is not used by kind {kind_name!r} (only the roller kinds take a grease; the others are "
                         "Newtonian or Eyring)")
-        # a grease on a roller kind (coupling.film_points.base._lubricant): the viscosity law is the consistency
+        # a grease on a roller kind (lubedyn.film_points.base._lubricant): the viscosity law is the consistency
         # phi(p) = phi0 exp(alpha p), as in the EHL scenes' [lubricant.herschel_bulkley]
         hb = lub.herschel_bulkley
         out.update({"rheology": "herschel_bulkley", "hb_consistency": visc.eta0, "hb_yield_stress": hb.yield_stress,
@@ -273,7 +273,7 @@ WARN_HOURS = 1.0  # a build estimated to take longer is announced with a warning
 
 def check_size(case: CaseModel, axes) -> None:
     """Refuse a map with more points than ``limits.map_points`` or more memory than the limit; warn
-    when the estimated build time exceeds WARN_HOURS (:mod:`coupling.limits`)."""
+    when the estimated build time exceeds WARN_HOURS (:mod:`lubedyn.limits`)."""
     from . import limits
 
     points = int(np.prod([a.n for a in axes], dtype=float))
@@ -438,8 +438,8 @@ class MapRun:
 def run(case: CaseModel, out_dir=None, *, name: str = "map", source: str = "", smoke: bool = False) -> MapRun:
     """Build the map of a case and (if ``out_dir``) write its outputs.
 
-    Raises :class:`~lubrication.errors.InputError` for a case that cannot be
-    built, :class:`~lubrication.errors.ConvergenceError` when points fail (with
+    Raises :class:`~lubedyn.lubrication.errors.InputError` for a case that cannot be
+    built, :class:`~lubedyn.lubrication.errors.ConvergenceError` when points fail (with
     ``on_failure = "raise"``); then nothing is written but the point cache.
     """
     t0 = time.perf_counter()
@@ -493,7 +493,7 @@ def _write_fields(case, setup, stage, summary):
         log.warning("kind %s has no film field: no fields.pvd", setup.kind.name)
         summary["Field frames [-]"] = 0
         return
-    from lubrication.solution import write_vtu
+    from lubedyn.lubrication.solution import write_vtu
 
     frames = []
     for k, point in enumerate(field_points(case, setup)):

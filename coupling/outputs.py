@@ -34,7 +34,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from lubrication.errors import LubedynError
+from lubedyn.lubrication.errors import LubedynError
 
 log = logging.getLogger(__name__)
 
@@ -333,11 +333,11 @@ def write_run(out_dir, resolved: str, summary: dict, write, fields=None, figure=
 def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float,
                 scales: dict | None = None) -> dict:
     """The summary every scene writes: identity, the scene's own results, the values its paper does not
-    give (``"Assumed values"``: :func:`coupling.parameters.assumed_values`), timing.
+    give (``"Assumed values"``: :func:`lubedyn.parameters.assumed_values`), timing.
 
     Every scene's results pass through here before anything is written: each value is checked against
-    its physical bound (:func:`coupling.bounds.enforce`, with the scene's ``scales``), which raises
-    :class:`coupling.bounds.ImplausibleResult` or, under ``[validity] strict = false``, adds a warning."""
+    its physical bound (:func:`lubedyn.bounds.enforce`, with the scene's ``scales``), which raises
+    :class:`lubedyn.bounds.ImplausibleResult` or, under ``[validity] strict = false``, adds a warning."""
     import time
 
     from . import __version__

@@ -11,7 +11,7 @@ Numbers and their uncertainty
 Each study runs 0.34 s.  A point's number is its mean over the paper's window (0.1-0.18 s, what the paper
 averages); beside it the mean over the converged window (0.26-0.34 s).  The uncertainty of a mean is the
 converged window's *window-to-window change* (its mean minus the mean over 0.18-0.26 s,
-:func:`coupling.tapered_scene.converged_summary`): how much the number still moves from one 80 ms window
+:func:`lubedyn.tapered_scene.converged_summary`): how much the number still moves from one 80 ms window
 to the next.
 
 Verdict rules (stated once, applied by code)
@@ -25,7 +25,7 @@ Verdict rules (stated once, applied by code)
 - **Level** (a number the paper prints): *reproduced* within a factor 1.3 (either way) and with the
   paper's sign; otherwise *not reproduced*, with the ratio.  The paper's numbers are reported
   comparisons, never tolerances the model was tuned to.
-- **Periodic**: the roller-pass periodicity measure (:func:`coupling.tapered_scene.periodicity`) at least
+- **Periodic**: the roller-pass periodicity measure (:func:`lubedyn.tapered_scene.periodicity`) at least
   :data:`PERIODIC` (0.95).
 - **Zone comparison** ("larger in the unloaded zone"): the zones' values, each with its uncertainty where
   there is one; *reproduced* when the claimed order holds by more than a tenth of the larger.

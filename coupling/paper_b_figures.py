@@ -2,7 +2,7 @@
 
 Paper B (Zhang et al., *Symmetry* 16 (2024) 741, sections 3.1-3.3 and 4.2)
 studies a cage-less 6206 ball bearing whose rotor drops onto the inner ring.
-This module turns a run of :mod:`coupling.dynamics_scene` (its time series as
+This module turns a run of :mod:`lubedyn.dynamics_scene` (its time series as
 a name -> array mapping, the names of ``timeseries.npz``) into numbers a user
 can compare with the paper, and into the figures:
 
@@ -98,7 +98,7 @@ PNG_FILES = ("angular_displacement.png", "collision_map.png", "poincare.png")
 def run_columns(model, Y, diag, ring) -> dict:
     """The columns of ``timeseries.npz`` (views of the arrays, no copies) from a run's state,
     ball diagnostics (m, Z, k) and ring diagnostics."""
-    from dynamics.cageless import DIAG_NAMES, RING_DIAG_NAMES
+    from lubedyn.dynamics.cageless import DIAG_NAMES, RING_DIAG_NAMES
 
     columns = {n: Y[:, i] for i, n in enumerate(model.state_names())}
     for j in range(model.n_balls):
@@ -286,13 +286,13 @@ def settling_times(t, series, ball: int, scenario: str = "drop") -> dict:
 # ---------------------------------------------------------------------------- angular displacement (Fig. 4)
 def angular_displacement(t, quaternion, body_rate) -> np.ndarray:
     """Angular displacement (m, 3) [rad] about the inertial x, y, z axes: the inertial angular
-    velocity w = R(q) w_body (``q`` scalar first, body to inertial, :mod:`dynamics.rotations`)
+    velocity w = R(q) w_body (``q`` scalar first, body to inertial, :mod:`lubedyn.dynamics.rotations`)
     integrated by the trapezoidal rule from 0 at the first sample.  Unlike the rotation vector of q,
     it does not wrap at pi: a ball spinning at 2,000 rad/s turns 40 rad in 20 ms."""
     from scipy.integrate import cumulative_trapezoid
     from scipy.spatial.transform import Rotation
 
-    from dynamics.rotations import to_scipy
+    from lubedyn.dynamics.rotations import to_scipy
 
     q = np.asarray(quaternion, dtype=float)
     q = q / np.linalg.norm(q, axis=1, keepdims=True)
@@ -320,7 +320,7 @@ def axial_rates(t, series) -> np.ndarray:
     velocity R(q) w_body (planar: its spin speed), the rate of its z angular displacement."""
     from scipy.spatial.transform import Rotation
 
-    from dynamics.rotations import to_scipy
+    from lubedyn.dynamics.rotations import to_scipy
 
     out = np.zeros((len(t), n_balls(series)))
     for j in range(out.shape[1]):
@@ -440,9 +440,9 @@ def ring_acceleration(t, series):
 
 def dominant_frequency(t, signal, band):
     """(frequency [Hz], amplitude) of the largest line of the Hann-windowed amplitude spectrum
-    (:func:`dynamics.spectra.amplitude_spectrum`) within ``band`` = (low, high) [Hz]; (None, None)
+    (:func:`lubedyn.dynamics.spectra.amplitude_spectrum`) within ``band`` = (low, high) [Hz]; (None, None)
     when the band holds no bin."""
-    from dynamics.spectra import amplitude_spectrum
+    from lubedyn.dynamics.spectra import amplitude_spectrum
 
     t = np.asarray(t, dtype=float)
     f, amp = amplitude_spectrum(signal, 1.0 / float(t[1] - t[0]))
@@ -661,7 +661,7 @@ def read_run(folder) -> RunData:
     """A dynamics run folder: ``timeseries.npz``, ``summary.json`` and ``case.resolved.toml``."""
     import tomllib
 
-    from lubrication.errors import InputError
+    from lubedyn.lubrication.errors import InputError
 
     from .outputs import read_timeseries
 
@@ -716,7 +716,7 @@ def compare_runs(run_dirs, out_png) -> Path:
 
     runs = [read_run(d) for d in run_dirs]
     if not runs:
-        from lubrication.errors import InputError
+        from lubedyn.lubrication.errors import InputError
 
         raise InputError("compare_runs needs at least one run folder")
     n = len(runs)

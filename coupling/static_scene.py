@@ -5,7 +5,7 @@ A's Table 1 and the parameter module's assumed values)::
 
     scene = "static"
     parameters = "Wu2018"
-    [bearing]                  # any field of lubrication.laws.tapered.TaperedRollerGeometry
+    [bearing]                  # any field of lubedyn.lubrication.laws.tapered.TaperedRollerGeometry
     reconciliation = "common_apex"   # or "literal" (Table 1 as printed: the roller ends slide ~14 %)
     profile = "straight"       # or "logarithmic" (crowned; crown_load sets the design load)
     [operating]
@@ -19,15 +19,15 @@ A's Table 1 and the parameter module's assumed values)::
     tol = 1e-10
     max_iterations = 400
 
-``build(case)`` makes the geometry (:class:`lubrication.laws.tapered.TaperedRollerGeometry`) and
-``run`` solves :func:`dynamics.tapered.quasistatic.solve` and writes
+``build(case)`` makes the geometry (:class:`lubedyn.lubrication.laws.tapered.TaperedRollerGeometry`) and
+``run`` solves :func:`lubedyn.dynamics.tapered.quasistatic.solve` and writes
 
 - ``summary.json``: per-roller loads on cup, cone and flange (most loaded, least, and every roller),
   contact angles, approaches, the cone's displacement, ideal kinematics (cage speed, roller spin,
   entrainment speed) from the model's own geometry, the derived geometry (roller axis angle, half
   taper, pitch radius), the solver's stop reason, iterations and force-balance error, and (as every
   scene's summary) ``"Assumed values"``: every value of the case that paper A does not give (source
-  ``assumed`` in :mod:`coupling.parameters.wu2018`) with its reason;
+  ``assumed`` in :mod:`lubedyn.parameters.wu2018`) with its reason;
 - ``case.resolved.toml``; ``loads.png`` (per-roller cup, cone and flange loads against azimuth, and
   the slice loads of the most loaded roller) when ``output.write`` lists ``"png"``;
 - ``bearing.vtu`` (``"vtu"``) for ParaView: the cup and cone raceway surfaces over the rollers' length
@@ -36,7 +36,7 @@ A's Table 1 and the parameter module's assumed values)::
   point data ``"Cup load [N]"``, ``"Cone load [N]"``, ``"Flange load [N]"`` (each roller's, 0 on the
   rings).  Colour by ``Cup load [N]`` to see the load zone; the displacements are to scale (um).
 
-Nothing is written when the solve fails (a :class:`~lubrication.errors.ConvergenceError` names why).
+Nothing is written when the solve fails (a :class:`~lubedyn.lubrication.errors.ConvergenceError` names why).
 """
 from __future__ import annotations
 
@@ -49,7 +49,7 @@ from typing import Any, Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from lubrication.errors import InputError
+from lubedyn.lubrication.errors import InputError
 
 from . import outputs
 from .config import BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
@@ -142,7 +142,7 @@ class StaticCase(_Model):
     solver: SolverTable = Field(default_factory=SolverTable)
     output: OutputTable = Field(default_factory=OutputTable)
     limits: LimitsModel = Field(default_factory=LimitsModel)
-    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: coupling.bounds
+    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: lubedyn.bounds
     smoke: dict[str, Any] | None = None
 
 
@@ -151,7 +151,7 @@ CaseModel = StaticCase
 
 def build(case: StaticCase):
     """The geometry of the case's bearing; an impossible geometry is an InputError naming the key."""
-    from lubrication.laws.tapered import TaperedRollerGeometry
+    from lubedyn.lubrication.laws.tapered import TaperedRollerGeometry
 
     b = case.bearing
     fields = {k: getattr(b, k) for k in BearingTable.model_fields if k != "type"}
@@ -254,7 +254,7 @@ def headline(s: dict) -> list[str]:
 
 def run(case: StaticCase, out_dir=None, *, name: str = "static", source: str = "", smoke: bool = False) -> StaticRun:
     """Build, solve and (if ``out_dir``) write; nothing is written when the build or the solve fails."""
-    from dynamics.tapered.quasistatic import solve
+    from lubedyn.dynamics.tapered.quasistatic import solve
 
     t0 = time.perf_counter()
     geometry = build(case)

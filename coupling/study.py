@@ -20,8 +20,8 @@ A study file (TOML; ``lubedyn study STUDY.toml --out DIR``)::
     "Load per unit width [N/m]" = { axis = "motion.velocity_lower", at = ["5 m/s"], values = [63550] }
 
 Every run of the study is a normal run folder, ``DIR/runs/<point>/m<member>/``, written by the scene's
-``run`` exactly as ``lubedyn run BASE --set ... --out FOLDER`` writes it (:func:`coupling.cli.load_case_file`
-and :func:`coupling.cli.run_loaded`); the overrides of a run are, in order: ``output.write=[]``
+``run`` exactly as ``lubedyn run BASE --set ... --out FOLDER`` writes it (:func:`lubedyn.cli.load_case_file`
+and :func:`lubedyn.cli.run_loaded`); the overrides of a run are, in order: ``output.write=[]``
 (``skip_outputs``), ``set``, the point's axis values, the member index.  Before anything runs, every
 run's case is validated (an error names the axis, set entry or member key and its value) and the first
 one is built.  A run folder is reused when its ``summary.json`` and ``case.resolved.toml`` are those of
@@ -31,7 +31,7 @@ missing, and a half-written folder is redone.  A run that fails is recorded with
 study goes on; failed runs are tried again by the next study.  Reuse looks at the resolved case
 only: after changing lubedyn itself, remove ``DIR/runs`` to recompute.
 
-Runs go to local worker processes (those of :mod:`coupling.maps.sweep`: they ignore SIGINT, die with
+Runs go to local worker processes (those of :mod:`lubedyn.maps.sweep`: they ignore SIGINT, die with
 the parent, one BLAS thread each) or, with ``scheduler``, to a Dask cluster, whose workers must see
 ``DIR`` at the same path.  Each run is one process's work with one BLAS thread, so the table is
 bit-identical whatever the backend and worker count.
@@ -43,7 +43,7 @@ numeric output and how many members failed or warned, the failed and the warned 
 and timing) and ``study.png`` (per output a panel against the first axis: the median over members,
 the min-max band, one line per combination of the other axes; ``[paper]`` values as markers; points
 with a warned member circled in orange, points with a failed member crossed in red, points with no
-finished member absent), written together through a staging folder (:func:`coupling.outputs.staged`).
+finished member absent), written together through a staging folder (:func:`lubedyn.outputs.staged`).
 
 Every run carries its health into the tables, because a study is where results are compared and a
 warning left in one run folder's ``summary.json`` is a warning nobody reads: the ``status`` of a run
@@ -78,7 +78,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import Field, ValidationError, model_validator
 
-from lubrication.errors import InputError, LubedynError, close_matches, did_you_mean
+from lubedyn.lubrication.errors import InputError, LubedynError, close_matches, did_you_mean
 
 from . import outputs
 from .cli import _case_path, _check_smoke, _scene, load_case_file, run_loaded
@@ -589,7 +589,7 @@ def _execute(specs: list, todo: list, workers: int, scheduler, accept, scheduler
 
 
 def _execute_dask(specs: list, todo: list, scheduler, accept, key: str) -> str:
-    """Run on a Dask cluster (:func:`coupling.maps.sweep.run_on_dask`): ``scheduler`` is an address, a
+    """Run on a Dask cluster (:func:`lubedyn.maps.sweep.run_on_dask`): ``scheduler`` is an address, a
     Client or a cluster (``key``: where it was given, for messages)."""
     from .maps.sweep import run_on_dask
 

@@ -1,11 +1,11 @@
 """Tapered-roller dynamics scene (``scene = "tapered"``): paper A's bearing in time (issue 23).
 
 A case (usually ``parameters = "Wu2018"``: Table 1 and the parameter module's assumed values; each table
-maps one to one onto a group of :class:`dynamics.tapered.model.TaperedBearing`, field by field)::
+maps one to one onto a group of :class:`lubedyn.dynamics.tapered.model.TaperedBearing`, field by field)::
 
     scene = "tapered"
     parameters = "Wu2018"
-    [operating]                 # dynamics.tapered.groups.Operating
+    [operating]                 # lubedyn.dynamics.tapered.groups.Operating
     speed = "2400 rpm"          # cone; cup fixed
     radial_load = "20 kN"       # along +y
     axial = "locked"            # "locked" (at axial_displacement: > 0 a preload) or "force" (free under axial_load)
@@ -26,8 +26,8 @@ maps one to one onto a group of :class:`dynamics.tapered.model.TaperedBearing`, 
     [analysis]
     window = ["100 ms", "180 ms"]   # paper A's averaging window
 
-``run`` starts from the quasi-static equilibrium (:func:`dynamics.tapered.quasistatic.solve`) with the
-cage and rollers at their ideal speeds, integrates :func:`dynamics.tapered.kernels.rhs` and writes
+``run`` starts from the quasi-static equilibrium (:func:`lubedyn.dynamics.tapered.quasistatic.solve`) with the
+cage and rollers at their ideal speeds, integrates :func:`lubedyn.dynamics.tapered.kernels.rhs` and writes
 ``summary.json`` (for the paper's window and for the record's last cage revolution: per zone -- loaded,
 unloaded, all -- the mean, amplitude and largest magnitude of tilt, skew, slip and radial displacement;
 cage speed and slip, whirl radius, a periodicity measure; the quasi-static loads beside the largest
@@ -63,8 +63,8 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import BeforeValidator, Field, model_validator
 
-from dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
-from lubrication.errors import ConvergenceError, InputError
+from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
+from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 from . import outputs
 from .config import BoundsModel, LimitsModel, PositiveInt, Q, _Model, resolved_toml, rule
@@ -79,7 +79,7 @@ FIELD_FILES = (("timeseries.npz", "timeseries"), ("bearing.pvd", "pvd"), ("rolle
 
 
 class OperatingTable(_Model):
-    """:class:`dynamics.tapered.groups.Operating`."""
+    """:class:`lubedyn.dynamics.tapered.groups.Operating`."""
 
     speed: Q("angular velocity", ge=0) = 0.0
     radial_load: Q("force", ge=0) = 0.0
@@ -101,7 +101,7 @@ class OperatingTable(_Model):
 
 
 class ModelTable(_Model):
-    """:class:`dynamics.tapered.groups.Fidelity` (the fidelity options of issue 22)."""
+    """:class:`lubedyn.dynamics.tapered.groups.Fidelity` (the fidelity options of issue 22)."""
 
     slices: PositiveInt = 20
     traction: Literal["none", "paper", "limited", "map"] = "limited"
@@ -118,8 +118,8 @@ class ModelTable(_Model):
 
 
 class LubricantTable(_Model):
-    """:class:`dynamics.tapered.groups.Lubricant`.  ``grease``: a grease of paper A's Table 2 at
-    ``temperature_c`` [C] (15-70; interpolated by :func:`lubrication.laws.grease.grease_at`), "custom"
+    """:class:`lubedyn.dynamics.tapered.groups.Lubricant`.  ``grease``: a grease of paper A's Table 2 at
+    ``temperature_c`` [C] (15-70; interpolated by :func:`lubedyn.lubrication.laws.grease.grease_at`), "custom"
     (``yield_stress``, ``consistency``, ``exponent`` given) or "none" (a Newtonian oil only)."""
 
     grease: Literal["none", "custom", "polyurea", "lithium", "calcium"] = "none"
@@ -151,8 +151,8 @@ class LubricantTable(_Model):
         return self
 
     def group_values(self) -> dict:
-        """The fields of :class:`dynamics.tapered.groups.Lubricant`."""
-        from lubrication.laws.grease import grease_at
+        """The fields of :class:`lubedyn.dynamics.tapered.groups.Lubricant`."""
+        from lubedyn.lubrication.laws.grease import grease_at
 
         out = {k: getattr(self, k) for k in ("reading", "base_oil_viscosity", "pressure_viscosity", "shear_rate",
                                              "limiting_stress", "limiting_slope", "yield_rate", "shear_modulus")}
@@ -165,7 +165,7 @@ class LubricantTable(_Model):
 
 
 class CageTable(_Model):
-    """:class:`dynamics.tapered.groups.Cage` (read when ``model.pocket`` != "none")."""
+    """:class:`lubedyn.dynamics.tapered.groups.Cage` (read when ``model.pocket`` != "none")."""
 
     mass: Q("mass", gt=0) | None = None
     boundary_friction: Q("dimensionless", ge=0) = 0.1
@@ -180,7 +180,7 @@ class CageTable(_Model):
 
 
 class FlangeTable(_Model):
-    """:class:`dynamics.tapered.groups.Flange` (read when ``model.flange_friction`` != "none")."""
+    """:class:`lubedyn.dynamics.tapered.groups.Flange` (read when ``model.flange_friction`` != "none")."""
 
     asperity_friction: Q("dimensionless", ge=0) = 0.2
     asperity_b: Q("dimensionless", ge=0) | None = None
@@ -190,7 +190,7 @@ class FlangeTable(_Model):
 
 
 class InitialTable(_Model):
-    """:class:`dynamics.tapered.groups.Initial`: offsets (y, z) of the cone's and the cage's centres."""
+    """:class:`lubedyn.dynamics.tapered.groups.Initial`: offsets (y, z) of the cone's and the cage's centres."""
 
     cone_offset: Annotated[list[Q("length")], Field(min_length=2, max_length=2)] = Field(
         default_factory=lambda: [0.0, 0.0])
@@ -220,7 +220,7 @@ class IntegratorTable(_Model):
     default) or "dopri5" (adaptive, ``rtol``/``atol``).  benchmarks/trb.py (20 ms): RK4 at the stable-step
     estimate is 4.8 x faster than DOPRI5 at rtol 1e-6, its mean skew and tilt within 2.5e-5 and 9.8e-5 of
     DOPRI5 at rtol 1e-9; at half of it 2.6 x, within 1.5e-6 and 5.9e-6.  ``rtol`` <= 1e-3 and ``atol`` <=
-    1e-8: beyond them DOPRI5's error control means nothing (measured: :data:`dynamics.integrators.RTOL_MAX`)."""
+    1e-8: beyond them DOPRI5's error control means nothing (measured: :data:`lubedyn.dynamics.integrators.RTOL_MAX`)."""
 
     method: Literal["dopri5", "rk4"] = "rk4"
     dt: StepOrAuto = "auto"
@@ -286,7 +286,7 @@ class TaperedCase(_Model):
     analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)
     limits: LimitsModel = Field(default_factory=LimitsModel)
-    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: coupling.bounds
+    validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: lubedyn.bounds
     smoke: dict[str, Any] | None = None
 
 
@@ -294,11 +294,11 @@ CaseModel = TaperedCase
 
 
 def build(case: TaperedCase):
-    """The :class:`dynamics.tapered.model.TaperedBearing` of a case: each table one group, field by field
+    """The :class:`lubedyn.dynamics.tapered.model.TaperedBearing` of a case: each table one group, field by field
     (the lubricant's grease resolved from Table 2); a bad value is a one-line error naming the key."""
-    from dynamics.errors import DynamicsInputError
-    from dynamics.tapered import groups as G
-    from dynamics.tapered.model import TaperedBearing
+    from lubedyn.dynamics.errors import DynamicsInputError
+    from lubedyn.dynamics.tapered import groups as G
+    from lubedyn.dynamics.tapered.model import TaperedBearing
 
     from .static_scene import build as build_geometry
 
@@ -383,7 +383,7 @@ def record(model, Y, y0, qs, fraction):
     rollers' "Radial displacement [m]" and "Axial displacement [m]" of their centres from the start (paper
     A's Fig. 5b) and "Loaded zone [-]" (True where a roller's cone load exceeds ``fraction`` of the
     quasi-static start's largest cone load)."""
-    from dynamics.tapered import layout as L
+    from lubedyn.dynamics.tapered import layout as L
 
     D = model.diagnostics(Y, y0)
     Z = model.n_rollers
@@ -496,7 +496,7 @@ def converged_summary(model, t, D, width: float, tolerance: float) -> dict | Non
 
 def summarise(case, model, t, Y, D, qs) -> dict:
     """The scene's summary (module docstring): the paper's window and the last cage revolution."""
-    from dynamics.tapered import layout as L
+    from lubedyn.dynamics.tapered import layout as L
 
     kin = model.ideal()
     ideal = float(kin["cage speed [rad/s]"])
@@ -620,9 +620,9 @@ def headline(s: dict) -> list[str]:
 def kernel_jobs(case: TaperedCase) -> list:
     """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (the integrator, the
     forces at the samples): they do not contain the model's code, so a first run compiles them in a second
-    process while it compiles the model (:func:`dynamics.specialise.compile_in_background`)."""
-    from dynamics.integrators import kernel_example
-    from dynamics.tapered import kernels as K
+    process while it compiles the model (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
+    from lubedyn.dynamics.integrators import kernel_example
+    from lubedyn.dynamics.tapered import kernels as K
 
     # only the argument types count here: (P, U, RHO) are C-contiguous float64 vectors for every case
     # (TaperedBearing.args; tests/test_specialise.py checks the jobs' signatures against a run's), and the
@@ -633,7 +633,7 @@ def kernel_jobs(case: TaperedCase) -> list:
 
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:
     """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold cache are
-    reported as they compile (:func:`coupling.compilation.report_compilation`)."""
+    reported as they compile (:func:`lubedyn.compilation.report_compilation`)."""
     from .compilation import report_compilation
 
     with report_compilation():
@@ -641,14 +641,14 @@ def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str =
 
 
 def _run(case: TaperedCase, out_dir, *, name: str, source: str, smoke: bool) -> TaperedRun:
-    from dynamics.errors import DynamicsInputError, IntegrationError
-    from dynamics.integrators import integrate
-    from dynamics.tapered import kernels as K
+    from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError
+    from lubedyn.dynamics.integrators import integrate
+    from lubedyn.dynamics.tapered import kernels as K
 
     t0 = time.perf_counter()
     model = build(case)
-    # a first run compiles the integrator kernel in a second process meanwhile (dynamics.specialise)
-    from dynamics.specialise import compile_in_background
+    # a first run compiles the integrator kernel in a second process meanwhile (lubedyn.dynamics.specialise)
+    from lubedyn.dynamics.specialise import compile_in_background
 
     compile_in_background(kernel_jobs(case))
     qs = model.quasi_static()
@@ -765,8 +765,8 @@ def frame_mesh(model, y, fields: dict, n_around: int = 16, n_along: int = 7):
     import pyvista as pv
     from scipy.spatial.transform import Rotation
 
-    from dynamics.rotations import to_scipy
-    from dynamics.tapered import layout as L
+    from lubedyn.dynamics.rotations import to_scipy
+    from lubedyn.dynamics.tapered import layout as L
 
     from .static_scene import body_grid, raceway_surface
 

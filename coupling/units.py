@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 import re
 
-from lubrication.errors import did_you_mean
+from lubedyn.lubrication.errors import did_you_mean
 
 # dimension exponents: (length, mass, time, angle, temperature)
 _DIMS = ("m", "kg", "s", "rad", "K")

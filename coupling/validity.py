@@ -3,12 +3,12 @@
 The film and EHL scenes call :func:`warnings_for` after the solve with the
 result's largest pressure, smallest film and film Reynolds number; each
 threshold comes from the case's ``[validity]`` table
-(:class:`coupling.config.ValidityModel`, with its documented defaults).
+(:class:`lubedyn.config.ValidityModel`, with its documented defaults).
 Every warning is logged (WARNING) as one line and listed under
 ``"Warnings"`` in summary.json (the key is absent when there is none); the
 run itself is not refused.
 
->>> from coupling.config import ValidityModel
+>>> from lubedyn.config import ValidityModel
 >>> v = ValidityModel(max_pressure="3 GPa")
 >>> found = warnings_for(v, max_pressure=9.4e12, min_film=1e-6, reynolds=10.0, model="the rigid film")
 >>> [text.split(":")[0] for text in found]

@@ -1,6 +1,7 @@
 """Sphinx configuration of the lubedyn documentation (see docs/README.md for why Sphinx, and how to build).
 
-Build: ``pip install -e ".[docs]" && sphinx-build -b html docs docs/_build/html`` (the examples gallery
+Build: ``pip install -e ".[docs]" && sphinx-build -b html docs docs/_build/html`` (the API reference documents
+the installed ``lubedyn``, so the checkout must be installed) (the examples gallery
 executes every ``examples/*.py`` at smoke size, ``LUBEDYN_SMOKE=1``; ``-D plot_gallery=0`` skips that).
 """
 from __future__ import annotations
@@ -11,7 +12,8 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-sys.path.insert(0, str(ROOT))           # the checkout's packages, before any installed copy
+# the library is the installed ``lubedyn`` (the checkout installed editable: ``pip install -e .``); the
+# checkout's root is not put on sys.path, where its folders would be importable under their own names
 sys.path.insert(0, str(HERE / "_ext"))  # case_reference, methods_atlas
 os.environ.setdefault("LUBEDYN_SMOKE", "1")  # the gallery runs the examples at smoke size (seconds each)
 os.environ.setdefault("MPLBACKEND", "Agg")
@@ -78,7 +80,7 @@ html_static_path = []
 html_theme_options = {"description": "lubricant films, film maps and rolling-bearing dynamics",
                       "fixed_sidebar": True, "page_width": "1180px", "sidebar_width": "240px"}
 # config.cache: sphinx_gallery_conf is not picklable.  ref.python: "more than one target found" for short
-# type names in dataclass fields (``Gap`` is both lubrication.Gap and lubrication.gaps.Gap, the same class
+# type names in dataclass fields (``Gap`` is both lubedyn.lubrication.Gap and lubedyn.lubrication.gaps.Gap, the same class
 # re-exported); the link goes to one of them, which is right.
 suppress_warnings = ["config.cache", "ref.python"]
 

@@ -1,4 +1,4 @@
-"""dynamics: compiled (numba) rigid-body dynamics of rolling bearings.
+"""lubedyn.dynamics: compiled (numba) rigid-body dynamics of rolling bearings.
 
 ===============  ==============================================================
 module           responsibility
@@ -8,7 +8,7 @@ module           responsibility
 ``rotations``    unit quaternions, Euler's equations (numba)
 ``contacts``     kernels: Hertz force with Hunt-Crossley damping, traction
                  curve, ball-ball film + Hertz series law, Thornton collision
-                 phases, film-rupture friction (set-up laws: lubrication.laws)
+                 phases, film-rupture friction (set-up laws: lubedyn.lubrication.laws)
 ``cageless``     cage-less 6206 ball bearing of paper B: ``CagelessBearing``,
                  ``rhs``, ``forces``, ``forces_many``
 ``tapered``      tapered roller bearing of paper A: quasi-static rigid-ring
@@ -23,7 +23,7 @@ module           responsibility
 ===============  ==============================================================
 
 ``dynamics`` imports from ``lubrication`` only the laws written once for both
-layers (:mod:`lubrication.laws`) and the error tree (:mod:`lubrication.errors`),
-never a film solver, and never ``coupling``: it sees films only as plain
+layers (:mod:`lubedyn.lubrication.laws`) and the error tree (:mod:`lubedyn.lubrication.errors`),
+never a film solver, and never the coupling layer (``lubedyn`` itself): it sees films only as plain
 arrays (map axes and values) and closed forms.
 """

@@ -2,7 +2,7 @@ r"""Contact kernels of the ball bearing: Hertz force with contact damping,
 traction, and the ball-ball collision through the oil film.
 
 Set-up functions (plain Python, run once) compute constants; the ``@njit``
-kernels are called by the bearing right-hand side (:mod:`dynamics.cageless`).
+kernels are called by the bearing right-hand side (:mod:`lubedyn.dynamics.cageless`).
 Symbols: E* reduced modulus ``1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2``; R_a >= R_b
 the relative principal radii of the two surfaces (``1/R = 1/R_1 + 1/R_2`` per
 direction, concave radii negative); delta the elastic approach [m].
@@ -11,8 +11,8 @@ Hertz point contact (``Q = K delta^1.5``)
 -----------------------------------------
 The set-up laws (reduced modulus, relative radii, the exact and Hamrock-Brewe
 ellipse, K_hertz = Q/delta^1.5, springs in series, the Hunt-Crossley alpha)
-are written once in :mod:`lubrication.laws.contact` and the race radii in
-:mod:`lubrication.laws.bearing`; this module imports nothing else from
+are written once in :mod:`lubedyn.lubrication.laws.contact` and the race radii in
+:mod:`lubedyn.lubrication.laws.bearing`; this module imports nothing else from
 :mod:`lubrication`.
 
 Contact damping (Hunt & Crossley 1975)
@@ -31,7 +31,7 @@ slide-to-roll ratio SRR = |v_s|/u_e (initial slope mu_lim/s0, limiting value
 mu_lim, as the Newtonian-then-limiting-shear EHL traction curves), regularised
 at vanishing entrainment by the sliding speed v_reg (then a smoothed Coulomb
 law).  The EHL-map traction is a slot (option ``traction = "map"``) that
-:mod:`dynamics.cageless` reserves.
+:mod:`lubedyn.dynamics.cageless` reserves.
 
 Ball-ball collision (paper B, sec. 2.2, eqs. 8-23, rebuilt)
 -----------------------------------------------------------
@@ -64,7 +64,7 @@ physical equivalents used here are:
   unloading through the ruptured film) or 0.  When the film cannot carry
   the load at h >= 0 (F_film(0, v) <= F_solid(-g)), the film is ruptured:
   solid contact.  The map option replaces F_film by the tabulated Reynolds
-  squeeze force of :mod:`coupling.film_points` (kind ``ball_ball``: axes
+  squeeze force of :mod:`lubedyn.film_points` (kind ``ball_ball``: axes
   central gap, squeeze number or approach speed, entrainment speed; see
   :func:`_film_map`).
 * Locked film (map option, polar axes).  The tabulated film is the rigid
@@ -93,7 +93,7 @@ physical equivalents used here are:
   they leave no state of a collision outside the map's axes.
 * Friction (eqs. 16-23, the film-rupture friction): the tangential force on
   the sliding surfaces is mu F_n tanh(|v_s|/v_reg) against the sliding
-  velocity (:func:`lubrication.laws.collision.ball_ball_friction_coefficient`).
+  velocity (:func:`lubedyn.lubrication.laws.collision.ball_ball_friction_coefficient`).
   Law ``exponential_share`` (default): mu = mu_b f_a + mu_f (1 - f_a), f_a =
   exp(-h/h_r) the asperity share of the load: mu_f (a limiting EHL shear
   coefficient) when the film is intact, the boundary coefficient mu_b when
@@ -101,7 +101,7 @@ physical equivalents used here are:
   Newtonian shear of eq. 17 limited by mu_f, mixed with mu_b by the
   asperities' share Q_a/F_n of eq. 19 (the film ratio h/h_r and the Hertz
   area of the load) as eq. 20
-  (:func:`lubrication.laws.collision.film_rupture_friction_coefficient`).
+  (:func:`lubedyn.lubrication.laws.collision.film_rupture_friction_coefficient`).
 """
 from __future__ import annotations
 
@@ -109,11 +109,12 @@ import math
 
 from numba import njit
 
-from lubrication.laws.collision import (BB_ALPHA, BB_HCUT, BB_MAP_H0, BB_MAP_HTOP, BB_MAP_X1LO, BB_MAP_X1TOP, BB_R,
-                                        BB_SQF, BB_TAU, BB_VREG, PHASE_FILM, PHASE_PLASTIC, PHASE_RECOVERY,
-                                        PHASE_SEPARATED, ball_ball_friction_coefficient, squeeze_film_closed_form,
-                                        thornton_force)
-from lubrication.laws.jit import INLINE, JIT
+from lubedyn.lubrication.laws.collision import (
+    BB_ALPHA, BB_HCUT, BB_MAP_H0, BB_MAP_HTOP, BB_MAP_X1LO, BB_MAP_X1TOP, BB_R, BB_SQF, BB_TAU, BB_VREG, PHASE_FILM,
+    PHASE_PLASTIC, PHASE_RECOVERY, PHASE_SEPARATED, ball_ball_friction_coefficient, squeeze_film_closed_form,
+    thornton_force,
+)
+from lubedyn.lubrication.laws.jit import INLINE, JIT
 
 from .interp import hermite3_grad, interp3_grad
 
@@ -125,7 +126,7 @@ FILM_KINDS = {"none": FILM_NONE, "closed_form": FILM_CLOSED_FORM, "map": FILM_MA
 # map options (int64 array ``map_opts``): log flags of the three axes and the values, interp method, mode,
 # kind of the second axis (MAP_AXIS_APPROACH: approach speed v [m/s]; MAP_AXIS_SQUEEZE: squeeze number
 # Lambda = 3 alpha eta0 R_eff v/h^2 [-]; MAP_AXIS_POLAR: the polar axes of the ball_ball kind of
-# coupling.film_points, pressure number rho = sqrt(Lambda^2 + E^2) [-] and squeeze angle theta =
+# lubedyn.film_points, pressure number rho = sqrt(Lambda^2 + E^2) [-] and squeeze angle theta =
 # atan2(Lambda, E) [rad] on the second and third axes, E = 3 alpha eta0 |u_e| sqrt(2 R_eff h)/h^2)
 MO_LOG0, MO_LOG1, MO_LOG2, MO_LOGV, MO_METHOD, MO_MODE, MO_AXIS1 = range(7)
 MO_SIZE = 7
@@ -232,7 +233,7 @@ def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
 @njit(**JIT)
 def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     """Tabulated squeeze force over (gap, approach speed or squeeze number,
-    entrainment speed), read with :mod:`dynamics.interp` (``vals`` of shape
+    entrainment speed), read with :mod:`lubedyn.dynamics.interp` (``vals`` of shape
     (n0, n1, n2) for the linear and pchip methods, (8, n0, n1, n2) from
     ``hermite_data`` for the hermite method: the reader is chosen by the
     array's dimension, at compile time; a two-axis table is given a constant
@@ -249,7 +250,7 @@ def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     theta): a separating film (v < 0) with entrainment carries the tabulated
     load down to the axis' first angle (-80 deg, 2.6e-3 of the squeeze force
     of the same rho), none below; below the first rho node the isoviscous
-    scaling F ~ rho holds (:mod:`coupling.film_points`, "Polar axes")."""
+    scaling F ~ rho holds (:mod:`lubedyn.film_points`, "Polar axes")."""
     if opts[MO_AXIS1] == MAP_AXIS_POLAR:
         return _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter)
     if v <= 0.0 or h >= p[BB_HCUT]:
@@ -429,7 +430,7 @@ def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax
     return F, h, x, phase, share
 
 
-@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
+@njit(**INLINE)  # small leaf of the bearing rhs (see lubedyn.dynamics.cageless)
 def plastic_memory_rate(delta_e, delta_e_dot, delta_max, F, p):
     """d(delta_max)/dt: follows the solid approach (rate ``delta_e_dot``) while
     it grows beyond the memory, decays with tau_mem once the pair carries no load."""

@@ -1,19 +1,19 @@
-"""Exceptions of the dynamics layer, in lubedyn's one error tree (:mod:`lubrication.errors`).
+"""Exceptions of the dynamics layer, in lubedyn's one error tree (:mod:`lubedyn.lubrication.errors`).
 
-``DynamicsInputError`` (an :class:`~lubrication.errors.InputError`) marks bad
+``DynamicsInputError`` (an :class:`~lubedyn.lubrication.errors.InputError`) marks bad
 input to a dynamics routine (wrong shape, a non-positive tolerance, a fixed
 step beyond the stability limit): one line that
 names the key, the value and what is allowed.  ``IntegrationError`` marks an
 integration that failed (step budget exhausted, step-size underflow, a
 non-finite state); it carries the status code, the time reached and the last
 good output sample so that a caller can save what was computed.  Both derive
-from :class:`~lubrication.errors.LubedynError` and builtin classes
+from :class:`~lubedyn.lubrication.errors.LubedynError` and builtin classes
 (``ValueError`` / ``RuntimeError``): the laws both layers share raise
 ``InputError``, and one ``except InputError`` catches a user mistake from either.
 """
 from __future__ import annotations
 
-from lubrication.errors import InputError, LubedynError
+from lubedyn.lubrication.errors import InputError, LubedynError
 
 
 class DynamicsError(LubedynError):

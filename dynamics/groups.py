@@ -1,11 +1,11 @@
 """Frozen groups of a bearing model's data, one per case-file table.
 
-A bearing model (:class:`dynamics.cageless.CagelessBearing`, and the next bearings) holds its data
+A bearing model (:class:`lubedyn.dynamics.cageless.CagelessBearing`, and the next bearings) holds its data
 as a few frozen dataclasses, each the SI twin of one table of a dynamics case file
 (``[bearing]``, ``[operating]``, ``[model]``, ``[films]``, ``[slots]``): the case's tables become
 groups one to one (:meth:`Group.build`), and each group checks its own values.  A group's
 error names the case key (``"operating.radial_load = -1 ..."``) and carries it as
-:attr:`~dynamics.errors.DynamicsInputError.key`, so a message reads the same from Python and from a
+:attr:`~lubedyn.dynamics.errors.DynamicsInputError.key`, so a message reads the same from Python and from a
 case file and nothing has to translate it.
 """
 from __future__ import annotations
@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass, fields, replace
 from typing import Any, ClassVar, Mapping
 
-from lubrication.errors import did_you_mean
+from lubedyn.lubrication.errors import did_you_mean
 
 from .errors import DynamicsInputError
 

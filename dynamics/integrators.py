@@ -50,7 +50,7 @@ The one-call forms above (:class:`OneShot`) allocate ``Y`` and ``work``
 Caching
 -------
 :func:`specialise` binds a right-hand side to a kernel source through a numba function pointer
-(:mod:`dynamics.specialise`): the kernel is compiled once per argument types, for any right-hand
+(:mod:`lubedyn.dynamics.specialise`): the kernel is compiled once per argument types, for any right-hand
 side, and numba caches it across processes; the right-hand side is compiled once for the signature
 the kernel calls it with.  The generic kernels ``rk4``/``dopri5``/``ros2`` take the right-hand side as
 a plain argument (numba then specialises on its identity and cannot cache them across processes).
@@ -740,7 +740,7 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
 def chunk_bounds(count: int, n_chunks: int) -> np.ndarray:
     """Boundaries 0 = b_0 < b_1 < ... = ``count`` of at most ``n_chunks`` nearly equal runs of ``count``
     items (output intervals of :func:`integrate`, orthonormalisation intervals of
-    :func:`dynamics.lyapunov.lyapunov_spectrum`): where a chunked run returns to Python."""
+    :func:`lubedyn.dynamics.lyapunov.lyapunov_spectrum`): where a chunked run returns to Python."""
     n = max(1, min(int(n_chunks), int(count)))
     return np.unique(np.linspace(0, count, n + 1).round().astype(np.int64))
 
@@ -835,10 +835,10 @@ dopri5 = OneShot("dopri5", _dopri5_generic, 1)
 ros2 = OneShot("ros2", _ros2_generic, 2)
 
 
-# binding to a right-hand side (dynamics.specialise): how each kernel calls its callables
+# binding to a right-hand side (lubedyn.dynamics.specialise): how each kernel calls its callables
 def rhs_signature(types):
     """``rhs(t, y, args, dydt)`` as the kernels call it (y and dydt fresh C-contiguous arrays), from the
-    numba ``types`` of the kernel's arguments (:func:`dynamics.specialise.register_kernel`)."""
+    numba ``types`` of the kernel's arguments (:func:`lubedyn.dynamics.specialise.register_kernel`)."""
     vec = _nt.float64[::1]
     return _nt.void(_nt.float64, vec, types["args"], vec)
 
@@ -960,7 +960,7 @@ class IntegrationResult:
 
 
 def resumable_kernel(method, rhs, jac=None):
-    """The resumable kernel of ``method`` bound to ``rhs`` (cached across processes, :mod:`dynamics.specialise`):
+    """The resumable kernel of ``method`` bound to ``rhs`` (cached across processes, :mod:`lubedyn.dynamics.specialise`):
     ``kernel(t_out, args, params, Y, work, i_stop)`` (see :func:`new_run`, :func:`make_params`)."""
     if method not in METHODS:
         raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {METHODS}")
@@ -972,7 +972,7 @@ def resumable_kernel(method, rhs, jac=None):
 
 def kernel_example(method, rhs, args, jac=None):
     """``(kernel, example arguments)`` of :func:`integrate`'s kernel for ``rhs`` and ``args``, for
-    :func:`dynamics.specialise.compile_in_background` (the arguments have the types of its calls)."""
+    :func:`lubedyn.dynamics.specialise.compile_in_background` (the arguments have the types of its calls)."""
     Y, work = new_run(np.zeros(1), np.zeros(2))
     return resumable_kernel(method, rhs, jac), (np.zeros(2), args, make_params(), Y, work, 1)
 

@@ -2,7 +2,7 @@
 multilinear or monotone cubic (PCHIP), in log space per axis and for the values.
 
 The kernels take plain arrays and scalars so that any ``@njit`` function (the
-bearing right-hand side) can call them; :meth:`coupling.maps.FilmMap.kernel_arrays`
+bearing right-hand side) can call them; :meth:`lubedyn.maps.FilmMap.kernel_arrays`
 prepares the arrays from a map.  Everything here is independent of
 ``lubrication`` and ``coupling``.
 
@@ -21,7 +21,7 @@ axis).  A **signed** output -- the squeeze force over an approach-speed axis
 that crosses zero, a traction coefficient over a slide-to-roll axis through 0 --
 is interpolated as it is (``logv = 0``) on a linear axis; its sign changes are
 then represented exactly where the data change sign, and PCHIP keeps it monotone
-where the data are.  :class:`coupling.maps.FilmMap` picks ``logv`` per output
+where the data are.  :class:`lubedyn.maps.FilmMap` picks ``logv`` per output
 this way (log only when every value is > 0).
 
 Methods (``method``)
@@ -82,7 +82,7 @@ derivative of the interpolant at the boundary (useful as a stiffness; it is not
 the zero derivative of the clamped function).  A NaN coordinate gives NaN in
 both modes; mode 0 counts it in ``counter[0]`` like a query outside (it has no
 place on the axes), so a run that clamps reports it, and mode 1's caller
-raises (:meth:`coupling.maps.FilmMap.__call__` names the NaN coordinate).
+raises (:meth:`lubedyn.maps.FilmMap.__call__` names the NaN coordinate).
 
 Signatures (``ax*``: float64 1-D, ``values``: float64 of ndim 1, 2, 3, C order,
 shape (n0[, n1[, n2]]); ``log*``, ``logv``, ``method``, ``mode``: int;
@@ -113,9 +113,9 @@ import math
 import numpy as np
 from numba import njit
 
-from lubrication.laws.jit import JIT
+from lubedyn.lubrication.laws.jit import JIT
 
-_JIT = dict(JIT, nogil=True)  # lubedyn's options (lubrication.laws.jit), releasing the GIL for threaded map queries
+_JIT = dict(JIT, nogil=True)  # lubedyn's options (lubedyn.lubrication.laws.jit), releasing the GIL for threaded map queries
 _INLINE = dict(_JIT, inline="always")
 _FMA = dict(_JIT, fastmath={"contract"})  # a*b + c -> one fused multiply-add (one rounding fewer)
 

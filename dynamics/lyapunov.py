@@ -404,7 +404,7 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
     Parameters
     ----------
     rhs : numba dispatcher
-        ``rhs(t, y, args, dydt)`` (contract of :mod:`dynamics.integrators`).
+        ``rhs(t, y, args, dydt)`` (contract of :mod:`lubedyn.dynamics.integrators`).
     y0 : array_like (n,)
         Initial state (preferably already on the attractor; see ``t_transient``).
     dt : float
@@ -520,7 +520,7 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
 
 def spectrum_kernel_example(rhs, args, jvp=None):
     """``(kernel, example arguments)`` of :func:`lyapunov_spectrum`'s kernel for ``rhs`` and ``args``, for
-    :func:`dynamics.specialise.compile_in_background` (the arguments have the types of its call)."""
+    :func:`lubedyn.dynamics.specialise.compile_in_background` (the arguments have the types of its call)."""
     kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
     return kernel, (np.zeros(1), np.zeros((1, 1)), np.ones(1), np.ones(1), args, 0.0, 1.0, 1, 0, 1, 0, jvp is None,
                     np.zeros(1), np.zeros(1), np.zeros((1, 1)))

@@ -33,7 +33,7 @@ import math
 import numpy as np
 from numba import njit
 
-from lubrication.laws.jit import JIT as _JIT
+from lubedyn.lubrication.laws.jit import JIT as _JIT
 
 
 @njit(**_JIT)

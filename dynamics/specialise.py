@@ -75,7 +75,7 @@ class Bound:
 
     def __init__(self, impl, callables):
         if impl not in _KERNELS:
-            raise KeyError(f"{impl.__name__} is not a registered kernel (dynamics.specialise.register_kernel)")
+            raise KeyError(f"{impl.__name__} is not a registered kernel (lubedyn.dynamics.specialise.register_kernel)")
         self.impl = impl
         self.dispatcher, self._builders = _KERNELS[impl]
         self.callables = dict(callables)
@@ -201,7 +201,7 @@ def compile_in_background(jobs) -> int:
         return 0
     try:
         payload = pickle.dumps(todo)
-        proc = subprocess.Popen([sys.executable, "-m", "dynamics.specialise"], stdin=subprocess.PIPE,
+        proc = subprocess.Popen([sys.executable, "-m", "lubedyn.dynamics.specialise"], stdin=subprocess.PIPE,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         proc.stdin.write(payload)
         proc.stdin.close()
@@ -236,10 +236,10 @@ def _wait_for_background(impl, signature):
 
 
 def _child_main() -> int:
-    """``python -m dynamics.specialise``: compile the pickled ``[(module, kernel source, signature)]``."""
+    """``python -m lubedyn.dynamics.specialise``: compile the pickled ``[(module, kernel source, signature)]``."""
     import importlib
 
-    from dynamics import specialise  # this file runs as __main__: the registry is the imported module's
+    from lubedyn.dynamics import specialise  # this file runs as __main__: the registry is the imported module's
 
     jobs = pickle.loads(sys.stdin.buffer.read())
     status = 0

@@ -4,8 +4,8 @@
 Cavitation models compared on one bearing.
 
 An infinitely long journal bearing (R = 50 mm, c = 50 um, eccentricity 0.6, oil 0.02 Pa s, journal surface
-speed 10 m/s) solved with each of the four cavitation models of :class:`lubrication.Cavitation`, each against
-its own closed form (:mod:`lubrication.closed_form`):
+speed 10 m/s) solved with each of the four cavitation models of :class:`lubedyn.lubrication.Cavitation`, each against
+its own closed form (:mod:`lubedyn.lubrication.closed_form`):
 
 - ``"none"`` (full Sommerfeld): negative pressures, the load perpendicular to the line of centres;
 - ``"half_sommerfeld"`` (Guembel): the same pressures clipped at zero, not mass conserving;
@@ -24,9 +24,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lubrication import Cavitation, Film, JournalBearing, Lubricant
-from lubrication import closed_form as cf
-from lubrication import mesh as meshes
+from lubedyn.lubrication import Cavitation, Film, JournalBearing, Lubricant
+from lubedyn.lubrication import closed_form as cf
+from lubedyn.lubrication import mesh as meshes
 
 from _common import SMOKE, png
 

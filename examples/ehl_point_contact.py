@@ -18,7 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, closed_form_central_film, solve_ehl
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, closed_form_central_film, solve_ehl
 
 from _common import SMOKE, png
 

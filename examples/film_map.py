@@ -7,7 +7,7 @@ angle theta), a small grid solved in this process.
 
 Checks shown: the map's own accuracy report (random off-grid points solved directly), a query at an
 off-grid point against a direct solve of the kind there, and the pure-squeeze line (theta = 90 deg)
-against the rigid Barus squeeze closed form of lubrication.laws.collision (Dowson-Higginson density
+against the rigid Barus squeeze closed form of lubedyn.lubrication.laws.collision (Dowson-Higginson density
 adds about 1 %).  The shipped map is cases/maps/ball_ball.npz (cases/map_ball_ball.toml).
 Measured: 8 x 8 nodes (13 s), map 0.4195 N against the direct 0.4199 N (-0.09 %), accuracy median
 0.15 %, pure squeeze within 0.53 % of the closed form; 4 x 4 (smoke) -1.2 %, 0.11 %, 0.70 %.
@@ -22,9 +22,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from coupling import maps
-from coupling.film_points.ball_ball import polar_speeds
-from lubrication.laws.collision import barus_squeeze_film
+from lubedyn import maps
+from lubedyn.film_points.ball_ball import polar_speeds
+from lubedyn.lubrication.laws.collision import barus_squeeze_film
 
 from _common import SMOKE, png
 

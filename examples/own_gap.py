@@ -5,7 +5,7 @@ Your own gap function: a parallel slider with a Rayleigh step written as a Pytho
 
 ``FunctionGap(func)`` takes any ``h(x)`` (``x`` has shape (dim, ...)); here a step from h_in to h_out
 at 0.7183 of the length (Rayleigh's optimum proportions for a step ratio 1.866) over a 2-D pad.  With
-a wide pad the load per unit width tends to Rayleigh's closed form (lubrication.closed_form
+a wide pad the load per unit width tends to Rayleigh's closed form (lubedyn.lubrication.closed_form
 .rayleigh_step_load); the 1-D run is compared with it exactly, the 2-D one shows the side leakage.
 """
 import matplotlib
@@ -14,9 +14,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lubrication import Film, FunctionGap, Lubricant
-from lubrication import closed_form as cf
-from lubrication import mesh as meshes
+from lubedyn.lubrication import Film, FunctionGap, Lubricant
+from lubedyn.lubrication import closed_form as cf
+from lubedyn.lubrication import mesh as meshes
 
 from _common import SMOKE, png
 

@@ -20,9 +20,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pyvista as pv
 
-from coupling import cli
-from coupling.config import CASES_DIR
-from coupling.outputs import read_timeseries
+from lubedyn import cli
+from lubedyn.config import CASES_DIR
+from lubedyn.outputs import read_timeseries
 
 from _common import png
 

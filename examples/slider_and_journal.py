@@ -13,9 +13,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lubrication import Cavitation, Film, InclinedSlider, JournalBearing, Lubricant
-from lubrication import closed_form as cf
-from lubrication import mesh as meshes
+from lubedyn.lubrication import Cavitation, Film, InclinedSlider, JournalBearing, Lubricant
+from lubedyn.lubrication import closed_form as cf
+from lubedyn.lubrication import mesh as meshes
 
 from _common import SMOKE, png
 

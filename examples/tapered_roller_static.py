@@ -4,9 +4,9 @@
 Paper A's tapered roller bearing at quasi-static equilibrium from Python: the load distribution
 under a radial load with the axial motion locked, against Stribeck's estimate of the most loaded roller.
 
-``coupling.parameters.wu2018.tapered_geometry()`` builds the geometry of Table 1 with the parameter
+``lubedyn.parameters.wu2018.tapered_geometry()`` builds the geometry of Table 1 with the parameter
 module's assumed values (common-apex reading, crowned rollers; pass overrides, e.g.
-``reconciliation="literal"``); ``dynamics.tapered.quasistatic.solve`` finds the equilibrium.
+``reconciliation="literal"``); ``lubedyn.dynamics.tapered.quasistatic.solve`` finds the equilibrium.
 """
 import math
 
@@ -16,8 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from coupling.parameters.wu2018 import tapered_geometry
-from dynamics.tapered.quasistatic import solve
+from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.dynamics.tapered.quasistatic import solve
 
 from _common import SMOKE, png
 

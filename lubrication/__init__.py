@@ -1,4 +1,4 @@
-"""lubrication: lubricant films by finite elements (scikit-fem).
+"""lubedyn.lubrication: lubricant films by finite elements (scikit-fem).
 
 =================  ==========================================================
 module             responsibility
@@ -27,13 +27,13 @@ module             responsibility
                    elasticity + load balance, Newton or FAS multigrid
 =================  ==========================================================
 
-Nothing here imports ``dynamics``; ``coupling`` joins the two.
+Nothing here imports ``lubedyn.dynamics``; ``lubedyn`` itself (the coupling layer) joins the two.
 """
 import importlib
 
 from .errors import ConvergenceError, InputError, LubedynError
 
-# The solvers load on first use (PEP 562), so that ``import lubrication.laws`` -- the ground floor that
+# The solvers load on first use (PEP 562), so that ``import lubedyn.lubrication.laws`` -- the ground floor that
 # :mod:`dynamics` imports -- does not import scikit-fem.
 _LAZY = {
     **dict.fromkeys(("CylinderPlane", "EllipsoidPlane", "FunctionGap", "Gap", "InclinedSlider", "JournalBearing",

@@ -1,6 +1,6 @@
 r"""Closed-form and semi-analytic film results, used to verify the Reynolds solver.
 
-Every function is independent of :mod:`lubrication.reynolds` (no finite
+Every function is independent of :mod:`lubedyn.lubrication.reynolds` (no finite
 elements): closed forms from the literature, or one-dimensional integrals and
 ODEs evaluated with scipy to an accuracy far below the solver's discretisation
 error.  SI units throughout; loads of 1-D (infinitely wide/long) films are per
@@ -9,7 +9,7 @@ unit width [N/m].
 Velocity conventions
 --------------------
 The Reynolds equation is written with the *mean* surface velocity
-u_m = (U_lower + U_upper)/2 (see :mod:`lubrication.reynolds`)::
+u_m = (U_lower + U_upper)/2 (see :mod:`lubedyn.lubrication.reynolds`)::
 
     d/dx (h^3/(12 eta) dp/dx) = u_m dh/dx + dh/dt.
 
@@ -26,7 +26,7 @@ with phi measured from the *largest* gap in the direction of rotation.
 ``W_r`` is the film force component that opposes the displacement, ``W_t`` the
 component along the displacement direction turned by +90 deg in the direction
 of rotation.  :func:`short_journal_forces` works in the solver's fixed frame
-instead (see :class:`lubrication.gaps.JournalBearing`).
+instead (see :class:`lubedyn.lubrication.gaps.JournalBearing`).
 
 References
 ----------
@@ -272,7 +272,7 @@ def short_journal_load(radius, clearance, length, eccentricity_ratio, eta, surfa
 def short_journal_forces(radius, clearance, length, eta, surface_speed, e_x, e_y, v_x=0.0, v_y=0.0):
     r"""Half-Sommerfeld short-bearing force [N] on the journal in the solver's fixed frame.
 
-    Frame of :class:`lubrication.gaps.JournalBearing`: theta from +x towards
+    Frame of :class:`lubedyn.lubrication.gaps.JournalBearing`: theta from +x towards
     +y, the journal turning in +theta with surface speed U = omega R
     (u_m = U/2), h = c - e_x cos(theta) - e_y sin(theta), centre velocity
     (v_x, v_y) so that dh/dt = -v_x cos(theta) - v_y sin(theta).  The short

@@ -99,7 +99,7 @@ class ElasticKernel:
     spacing : tuple
         Cell sizes ``(dx,)`` or ``(dx, dy)`` [m].
     e_star : float
-        Reduced modulus E* [Pa] (see :func:`lubrication.laws.contact.reduced_modulus`).
+        Reduced modulus E* [Pa] (see :func:`lubedyn.lubrication.laws.contact.reduced_modulus`).
     """
 
     shape: tuple

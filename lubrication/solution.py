@@ -22,7 +22,7 @@ force, flow and coefficient name says so: ``"Load per unit width [N/m]"``,
 
 Periodic meshes: ``mesh.t`` numbers vertices topologically (the seam is one
 vertex) while ``mesh.p`` holds per-element copies; output takes vertex
-coordinates from the element mapping (:func:`lubrication.mesh.element_vertices`)
+coordinates from the element mapping (:func:`lubedyn.lubrication.mesh.element_vertices`)
 and values from the vertex degrees of freedom (first in ``element_dofs``).
 """
 from __future__ import annotations
@@ -108,7 +108,7 @@ MIN_GAP_ELEMENTS = {"P1": 12, "P2": 2.2}
 
 @dataclass
 class FilmSolution:
-    """Result of :func:`lubrication.reynolds.solve` (see module docstring)."""
+    """Result of :func:`lubedyn.lubrication.reynolds.solve` (see module docstring)."""
 
     film: object
     problem: object
@@ -301,7 +301,7 @@ class FilmSolution:
     @property
     def warnings(self) -> list[str]:
         """One-line warnings about this solution (empty: none), each logged (WARNING, logger
-        ``lubrication.solution``) once by :func:`lubrication.reynolds.solve` when it returned the
+        ``lubedyn.lubrication.solution``) once by :func:`lubedyn.lubrication.reynolds.solve` when it returned the
         solution; today the JFO fluid fraction below 0 (:meth:`fluid_fraction_warning`).  Also in
         ``info["warnings"]``; the film scene lists them under "Warnings" in summary.json."""
         return list(self.info.get("warnings", ()))
@@ -309,7 +309,7 @@ class FilmSolution:
     def report_warnings(self) -> "FilmSolution":
         """Check the solution (:meth:`fluid_fraction_warning`), keep what it finds in
         ``info["warnings"]`` (:attr:`warnings`) and log each line at WARNING; returns ``self``.
-        :func:`lubrication.reynolds.solve` calls it on the solution it returns."""
+        :func:`lubedyn.lubrication.reynolds.solve` calls it on the solution it returns."""
         found = [text for text in (self.fluid_fraction_warning(),) if text]
         self.info["warnings"] = found
         for text in found:
@@ -344,7 +344,7 @@ class FilmSolution:
         return self.basis.doflocs[:, int(np.argmax(self.pressure_dofs))]
 
     def coefficients(self):
-        """``(names, K, C)``: see :func:`lubrication.reynolds.film_coefficients`."""
+        """``(names, K, C)``: see :func:`lubedyn.lubrication.reynolds.film_coefficients`."""
         from .reynolds import film_coefficients
 
         return film_coefficients(self)

@@ -18,8 +18,8 @@ import os
 import numpy as np
 import pytest
 
-from lubrication import Cavitation, Film, JournalBearing, Lubricant
-from lubrication import mesh as meshes
+from lubedyn.lubrication import Cavitation, Film, JournalBearing, Lubricant
+from lubedyn.lubrication import mesh as meshes
 
 
 @pytest.fixture
@@ -35,7 +35,7 @@ def long_journal_film():
 
     The journal is displaced along -x (``e_x = -eps c``), so that
     h = c (1 + eps cos theta): theta = 0 is the largest gap and theta equals
-    the classical angle phi of :mod:`lubrication.closed_form`.  The journal
+    the classical angle phi of :mod:`lubedyn.lubrication.closed_form`.  The journal
     is the upper surface, turning towards +theta with surface speed U
     (``velocity_upper = (U, 0)``, bearing fixed, so u_m = U/2).  With the
     displacement d = -x and n = d turned +90 deg in the direction of rotation

@@ -1,7 +1,7 @@
 """Round-off perturbation of the film and EHL residuals: what another BLAS or CPU could do.
 
-Every residual the Reynolds (``lubrication.reynolds._Problem.assemble``) and EHL
-(``lubrication.ehl.problem._Problem.assemble``) solvers assemble gets a seeded perturbation of ``ulps``
+Every residual the Reynolds (``lubedyn.lubrication.reynolds._Problem.assemble``) and EHL
+(``lubedyn.lubrication.ehl.problem._Problem.assemble``) solvers assemble gets a seeded perturbation of ``ulps``
 units of round-off (machine epsilon) of the size of its own terms, |J| |p| + |R| of the last
 Jacobian assembly of that problem (the sum that round-off is relative to; |R| alone shrinks to
 nothing at convergence).  Used by tests/test_roundoff.py, and by the audit mode of
@@ -17,8 +17,8 @@ EPS = np.finfo(float).eps
 def perturb_residuals(setattr_, ulps: float, seed: int) -> None:
     """Install the perturbation with ``setattr_(obj, name, value)`` (``monkeypatch.setattr`` for
     one test, ``setattr`` for a whole session)."""
-    from lubrication import reynolds
-    from lubrication.ehl import problem as ehl
+    from lubedyn.lubrication import reynolds
+    from lubedyn.lubrication.ehl import problem as ehl
 
     rng = np.random.default_rng(seed)
 

@@ -1,10 +1,10 @@
-"""Collision events from sampled pair forces (dynamics.analysis)."""
+"""Collision events from sampled pair forces (lubedyn.dynamics.analysis)."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from dynamics.analysis import collision_events, collision_summary, slip_ratio
+from lubedyn.dynamics.analysis import collision_events, collision_summary, slip_ratio
 
 
 def _pulses(t, pulses, Z=3):

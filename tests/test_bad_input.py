@@ -5,11 +5,11 @@ The CLI-level messages and exit codes are pinned in test_cli.py.
 import numpy as np
 import pytest
 
-from lubrication import (
+from lubedyn.lubrication import (
     Cavitation, ConvergenceError, Film, InclinedSlider, InputError, JournalBearing, Lubricant,
-    SolverOptions, SpherePlane, FunctionGap, Barus,
+    SolverOptions, SpherePlane, FunctionGap, Barus, PocketedSlider,
 )
-from lubrication import mesh
+from lubedyn.lubrication import mesh
 
 LUB = Lubricant.newtonian(0.01)
 
@@ -59,7 +59,7 @@ def test_unknown_options_suggest_close_matches():
 
 def test_too_few_iterations_raise_convergence_error():
     """The Fowell pocket needs 5 active-set iterations at U = 1 m/s; allow 2."""
-    gap = __import__("lubrication").PocketedSlider(1.05e-6, 1.0e-6, 0.01, 0.002, 0.005, 1e-6)
+    gap = PocketedSlider(1.05e-6, 1.0e-6, 0.01, 0.002, 0.005, 1e-6)
     film = Film(mesh.interval(0, 0.01, 100), gap, LUB, velocity_lower=(1.0,),
                 dirichlet={"left": 1e5, "right": 1e5}, cavitation=Cavitation("jfo"),
                 options=SolverOptions(max_iter=2))
@@ -98,7 +98,7 @@ def test_pressure_divergence_is_reported_for_barus_pole():
 
 
 # --------------------------------------------------------------------------- bearing and slot geometry
-from coupling.config import CASES_DIR, CaseError, load_case  # noqa: E402
+from lubedyn.config import CASES_DIR, CaseError, load_case  # noqa: E402
 
 DROP = CASES_DIR / "cageless_6206_10krpm_short.toml"
 EHL_BALL = CASES_DIR / "ehl_ball_inner_race.toml"
@@ -132,7 +132,7 @@ EHL_BALL = CASES_DIR / "ehl_ball_inner_race.toml"
 ])
 def test_bearing_geometry_names_the_wrong_key(case, override, message):
     if case == EHL_BALL and override.startswith("bearing.inner_groove"):
-        from coupling import ehl_scene  # the bearing's contact names it (tests/test_cli.py, exit 2)
+        from lubedyn import ehl_scene  # the bearing's contact names it (tests/test_cli.py, exit 2)
 
         with pytest.raises(InputError, match=r"bearing.inner_groove_radius = 0.004 m must be > D/2"):
             ehl_scene.build(load_case(case, overrides=[override]))
@@ -153,7 +153,7 @@ def test_no_range_message_is_reversed():
 
     overrides = [f"bearing.{k}='{v} mm'" for k in ("inner_groove_radius", "outer_groove_radius")
                  for v in (1, 4, 4.76)] + [f"bearing.diametral_clearance='{v} mm'" for v in (-1, 1, 2, 5)]
-    from coupling import dynamics_scene, ehl_scene
+    from lubedyn import dynamics_scene, ehl_scene
 
     checked = 0
     for case, scene in ((DROP, dynamics_scene), (EHL_BALL, ehl_scene)):

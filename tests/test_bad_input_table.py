@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from coupling import cli
-from coupling.config import CASES_DIR
+from lubedyn import cli
+from lubedyn.config import CASES_DIR
 
 J, S, P = "journal_finite", "inclined_slider", "fowell_pocket"
 D, M = "cageless_6206_10krpm_short", "map_ball_ball"

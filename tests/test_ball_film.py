@@ -1,4 +1,4 @@
-"""Ball-ball film of paper B (kind ``ball_ball`` of coupling.film_points) against closed forms and an ODE.
+"""Ball-ball film of paper B (kind ``ball_ball`` of lubedyn.film_points) against closed forms and an ODE.
 
 - rigid isoviscous squeeze film: force and peak pressure against the exact
   finite-domain solution F = 6 pi eta v R_eff^2/h0 (1 - h0/h_a)^2,
@@ -21,10 +21,10 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-import lubrication as lub
-from coupling import film_points as fp
-from lubrication.laws import collision
-from lubrication.closed_form import sphere_plane_squeeze_force
+import lubedyn.lubrication as lub
+from lubedyn import film_points as fp
+from lubedyn.lubrication.laws import collision
+from lubedyn.lubrication.closed_form import sphere_plane_squeeze_force
 
 H0 = 1e-6
 

@@ -1,4 +1,4 @@
-"""Bearing kinematics and load sharing (lubrication.laws.bearing) against what they must satisfy.
+"""Bearing kinematics and load sharing (lubedyn.lubrication.laws.bearing) against what they must satisfy.
 
 The 6206 of paper B: D = 9.525 mm, d_m = 46.005 mm, r_i = 4.905 mm,
 r_o = 4.953 mm, Z = 14, E* = 113.6 GPa.
@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from lubrication.laws import bearing
-from lubrication.laws.contact import reduced_modulus
+from lubedyn.lubrication.laws import bearing
+from lubedyn.lubrication.laws.contact import reduced_modulus
 
 D, DM, Z = 9.525e-3, 46.005e-3, 14
 RI, RO = 4.905e-3, 4.953e-3  # groove radii [m]
@@ -65,7 +65,7 @@ def test_rolling_speed_is_the_same_at_both_races(omega_inner, omega_outer):
 
 
 def test_bad_bearing_geometry():
-    from lubrication.errors import InputError
+    from lubedyn.lubrication.errors import InputError
 
     with pytest.raises(InputError, match="conformity r/D > 0.5"):
         bearing.conformity(D, 0.45 * D, "inner_groove_radius")

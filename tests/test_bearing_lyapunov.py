@@ -12,9 +12,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dynamics.cageless import rhs
-from dynamics.lyapunov import lyapunov_spectrum
-from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
+from lubedyn.dynamics.cageless import rhs
+from lubedyn.dynamics.lyapunov import lyapunov_spectrum
+from lubedyn.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
 
 @pytest.fixture(scope="module")

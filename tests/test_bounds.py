@@ -1,5 +1,5 @@
 """No impossible number leaves a run: every output with a physical bound is checked against it
-(:mod:`coupling.bounds`), before anything is written.
+(:mod:`lubedyn.bounds`), before anything is written.
 
 The issue's case: paper A's roller/inner-race line contact at a slide-to-roll ratio of 0.05 wrote a
 traction coefficient of 3.8e20 with exit 0 (a Newtonian shear at the Hertz zone's piezoviscous
@@ -12,8 +12,8 @@ import math
 
 import pytest
 
-from coupling import bounds, cli, film_scene
-from coupling.config import CASES_DIR, load_case
+from lubedyn import bounds, cli, film_scene
+from lubedyn.config import CASES_DIR, load_case
 
 BOUND_LINE = "is outside its bound"
 
@@ -52,7 +52,7 @@ def test_not_strict_writes_the_number_with_a_warning(capsys, tmp_path):
     s = summary_of(tmp_path)
     assert s["Traction coefficient [-]"] > 1e19
     assert [w for w in s["Warnings"] if w.startswith("Traction coefficient [-] = 3.8e+20 " + BOUND_LINE)]
-    assert "lubedyn: WARNING: coupling.bounds: Traction coefficient [-]" in err
+    assert "lubedyn: WARNING: lubedyn.bounds: Traction coefficient [-]" in err
 
 
 @pytest.mark.parametrize("case, srr", [("ehl_roller_slice", 0.05), ("ehl_roller_slice", 5.0),

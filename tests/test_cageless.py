@@ -1,7 +1,7 @@
-"""The cage-less 6206 ball bearing (dynamics.cageless), issue 5 section 5:
+"""The cage-less 6206 ball bearing (lubedyn.dynamics.cageless), issue 5 section 5:
 quasi-static load distribution from a damped settling run against Jones' rigid-ring
-model (lubrication.laws.bearing) and Stribeck's 4.37 Fr/(Z cos a); Hertz deflection against
-load (lubrication.laws.contact); ball-train speed against epicyclic kinematics in the
+model (lubedyn.lubrication.laws.bearing) and Stribeck's 4.37 Fr/(Z cos a); Hertz deflection against
+load (lubedyn.lubrication.laws.contact); ball-train speed against epicyclic kinematics in the
 no-slip limit; energy and angular momentum in a frictionless undamped run; the
 rotor-drop friction law; bad input."""
 import math
@@ -9,12 +9,12 @@ import math
 import numpy as np
 import pytest
 
-from lubrication.laws import bearing as cb
-from dynamics import cageless as cg
-from dynamics.errors import DynamicsInputError
-from dynamics.integrators import integrate
-from lubrication.laws import contact as hertz
-from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
+from lubedyn.lubrication.laws import bearing as cb
+from lubedyn.dynamics import cageless as cg
+from lubedyn.dynamics.errors import DynamicsInputError
+from lubedyn.dynamics.integrators import integrate
+from lubedyn.lubrication.laws import contact as hertz
+from lubedyn.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
 FR = 2000.0
 
@@ -62,7 +62,7 @@ def test_settled_load_distribution(settled):
 
 def test_hertz_deflection_against_load(settled):
     """Each loaded contact: the overlap measured from the ball and groove-centre
-    positions is the Hertz approach of lubrication.laws.contact at that load (0.1 %)."""
+    positions is the Hertz approach of lubedyn.lubrication.laws.contact at that load (0.1 %)."""
     model, res, diag = settled
     y = res.y[-1]
     d = diag[-1]
@@ -195,7 +195,7 @@ def test_kernel_compiled_matches_python(dof):
 
 
 def _slot_weight_reference(psi, z, azimuths, R_race, P):
-    """numpy reference of the slot weight (module docstring of dynamics.cageless): the largest
+    """numpy reference of the slot weight (module docstring of lubedyn.dynamics.cageless): the largest
     w_s(s) w_z(z) over the slots, w(x) = (1 - tanh((|x| - half)/blend))/2, s = R_race wrap(psi - az),
     exactly 0 for |s| > L_s/2 + 10 blend (and the largest w_s alone)."""
     half_l, half_w, blend = 0.5 * P[cg.P_SL], 0.5 * P[cg.P_SW], P[cg.P_SBLEND]

@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-# loaded from its file, not by putting benchmarks/ on sys.path: benchmarks/dynamics.py would shadow the
-# dynamics package for every test run later in the same worker
+# loaded from its file, not by putting benchmarks/ on sys.path: its modules (dynamics.py, maps.py ...) would
+# be importable by their short names for every test run later in the same worker
 _spec = importlib.util.spec_from_file_location(
     "case_summaries", Path(__file__).resolve().parents[1] / "benchmarks" / "case_summaries.py")
 case_summaries = importlib.util.module_from_spec(_spec)

@@ -1,7 +1,7 @@
 """Every bundled case is a test.
 
 Each ``cases/*.toml`` runs through the CLI's own code path
-(``coupling.cli.main(["run", CASE, "--smoke", "--out", DIR])``) at its smoke
+(``lubedyn.cli.main(["run", CASE, "--smoke", "--out", DIR])``) at its smoke
 resolution, and one to three *physical* scalars of its ``summary.json`` are
 checked against an independent value: a closed form written here, a
 reference solved here by other means (ODE shooting, root finding), or a
@@ -22,8 +22,8 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
-from coupling import cli
-from coupling.config import CASES_DIR
+from lubedyn import cli
+from lubedyn.config import CASES_DIR
 
 CASES = sorted(CASES_DIR.glob("*.toml"))
 
@@ -208,7 +208,7 @@ def check_sphere_plane_squeeze(s, c):
 # ---------------------------------------------------------------------------
 # EHL contacts: the bearing data are recomputed here from the resolved case
 # (Harris & Kotzalas, see coupling/bearing.py), the film against the
-# closed forms of lubrication.laws.film evaluated with groups computed here.
+# closed forms of lubedyn.lubrication.laws.film evaluated with groups computed here.
 
 
 def _hamrock_dowson_groups(eta0, alpha, e_star, radius_x, mean_speed, load, line):
@@ -228,9 +228,9 @@ def check_ehl_ball_inner_race(s, c):
     (default grid -2.2 %), required within 3 %; Hamrock-Dowson (quoted within
     about 20 % of their own solutions) h_c measured +5.8 %, h_min -1.2 %
     (default grid +5.3 %, +16 %), required within 25 %."""
-    from lubrication.laws import contact as hertz
-    from lubrication.laws.contact import reduced_modulus
-    from lubrication.laws.film import hamrock_dowson_central, hamrock_dowson_minimum
+    from lubedyn.lubrication.laws import contact as hertz
+    from lubedyn.lubrication.laws.contact import reduced_modulus
+    from lubedyn.lubrication.laws.film import hamrock_dowson_central, hamrock_dowson_minimum
 
     b, m, v = c["bearing"], c["materials"], c["lubricant"]["viscosity"]
     assert b["diametral_clearance"] == 0.0 and b["load_distribution"] == "stribeck" and b["outer_speed"] == 0.0
@@ -274,9 +274,9 @@ def check_ehl_roller_slice(s, c):
     measured +14.9 % (required within 25 %), Moes (1992) measured +9.1 %
     (required within 15 %; default grid +9.2 %).  Pan-Hamrock (+51 %) is
     not asserted: G = 10500 lies outside its fit (G <= 5000)."""
-    from lubrication.laws import contact as hertz
-    from lubrication.laws.contact import reduced_modulus
-    from lubrication.laws.film import dowson_toyoda_central, moes_line_central
+    from lubedyn.lubrication.laws import contact as hertz
+    from lubedyn.lubrication.laws.contact import reduced_modulus
+    from lubedyn.lubrication.laws.film import dowson_toyoda_central, moes_line_central
 
     b, m, v = c["bearing"], c["materials"], c["lubricant"]["viscosity"]
     assert b["type"] == "roller" and b["axial_load"] == 0.0 and b["outer_speed"] == 0.0 and c["contact"]["line"]
@@ -305,7 +305,7 @@ def check_ehl_roller_slice(s, c):
 def check_map_ball_ball(s, c):
     """Largest F (corner h0 = 50 um, Lambda = 0.9) vs rigid Barus squeeze closed form: +0.84 % smoke
     (Dowson-Higginson compressibility), within 2 %; h_min = h0 exactly; largest v = Lambda h0^2/(3 alpha eta0 R_eff)."""
-    from coupling.film_points import squeeze_force_barus
+    from lubedyn.film_points import squeeze_force_barus
 
     p = c["params"]
     h_hi, lam_hi = 5e-5, 0.9
@@ -321,8 +321,8 @@ def _check_map_ehl_ball(s, c):
     traction on the log slide-to-roll axis (1e-3..0.1) positive, and at most the limiting-shear
     coefficient of the lightest load's Hertz area, gamma + tau_L0 pi a b/Q (plus 50 % for the
     Newtonian shear outside it)."""
-    from lubrication.laws import contact as hertz
-    from lubrication.laws.film import hamrock_dowson_central
+    from lubedyn.lubrication.laws import contact as hertz
+    from lubedyn.lubrication.laws.film import hamrock_dowson_central
 
     p = c["params"]
     U, G, W = _hamrock_dowson_groups(p["eta0"], p["alpha"], p["e_star"], p["radius_x"], 30.0, 200.0, line=False)
@@ -347,7 +347,7 @@ def _check_map_ehl_roller(s, c):
     log SRR axis (1e-5..0.1) and below 0.1."""
     from test_roller_maps import _rigid_barus_film  # tests/ is on sys.path (rootdir conftest, prepend import mode)
 
-    from lubrication.laws.film import moes_line_central
+    from lubedyn.lubrication.laws.film import moes_line_central
 
     p = c["params"]
     assert rel(s["Largest value of Central film thickness [m]"],
@@ -369,7 +369,7 @@ def _jones_largest_load(Fr, Fa, Z, D, dm, f_i, f_o, e_star, without_first=False)
     carries nothing."""
     from scipy.optimize import root
 
-    from lubrication.laws.bearing import deflection_constant
+    from lubedyn.lubrication.laws.bearing import deflection_constant
 
     Kn = deflection_constant(D, dm, f_i * D, f_o * D, 0.0, e_star)
     BD = (f_i + f_o - 1.0) * D
@@ -405,7 +405,7 @@ def _check_cageless_drop(s, c):
     expected = omega0 - op["rotor_friction"] * op["radial_load"] * op["rotor_contact_radius"] * t / b["rotor_inertia"]
     assert s["Rotor speed at end [rpm]"] * 2 * math.pi / 60 == pytest.approx(expected, rel=1e-9)
     assert s["Inner ring speed at end [rpm]"] > 0.0  # dragged up by the rotor
-    from lubrication.laws.contact import reduced_modulus
+    from lubedyn.lubrication.laws.contact import reduced_modulus
 
     D = b["ball_diameter"]
     args = (op["radial_load"], op["axial_load"], b["n_balls"], D, b["pitch_diameter"],
@@ -433,7 +433,7 @@ def check_cageless_6206_steady(s, c):
     assert dq == pytest.approx(f_c, rel=0.01)
     assert abs(s["Ball-train slip at end [-]"]) < 0.005
     assert s["Ball-train speed at end [rad/s]"] == pytest.approx(w_c, rel=0.005)
-    from lubrication.laws.contact import reduced_modulus
+    from lubedyn.lubrication.laws.contact import reduced_modulus
 
     args = (op["radial_load"], op["axial_load"], b["n_balls"], D, dm, b["inner_groove_radius"] / D,
             b["outer_groove_radius"] / D,
@@ -491,7 +491,7 @@ def check_trb_static_preload(s, case):
 
 
 def _trb_window(s):
-    from coupling.tapered_scene import main_window
+    from lubedyn.tapered_scene import main_window
 
     return main_window(s)[2]
 
@@ -622,7 +622,7 @@ def test_every_case_has_a_description_and_a_check():
 
 def test_resolved_case_round_trips(tmp_path):
     """case.resolved.toml is itself a valid case that validates to the same model."""
-    from coupling.config import load_case, resolved_toml
+    from lubedyn.config import load_case, resolved_toml
 
     original = load_case(CASES_DIR / "journal_finite.toml", smoke=True)
     (tmp_path / "resolved.toml").write_text(resolved_toml(original))
@@ -634,7 +634,7 @@ def test_resolved_case_round_trips(tmp_path):
 
 @pytest.mark.parametrize("name", ["ehl_ball_inner_race", "ehl_roller_slice"])
 def test_resolved_ehl_case_round_trips(tmp_path, name):
-    from coupling.config import load_case, resolved_toml
+    from lubedyn.config import load_case, resolved_toml
 
     original = load_case(CASES_DIR / f"{name}.toml", smoke=True)
     (tmp_path / "resolved.toml").write_text(resolved_toml(original))

@@ -2,9 +2,9 @@
 
 - ``"jfo"`` (mass conserving): the pocketed slider of Fowell et al. (2007)
   against the 1-D semi-analytic JFO solution of
-  :func:`lubrication.closed_form.jfo_slider`;
+  :func:`lubedyn.lubrication.closed_form.jfo_slider`;
 - ``"reynolds"`` (Swift-Stieber): the infinitely long journal against
-  :func:`lubrication.closed_form.long_journal_reynolds`, and the rigid
+  :func:`lubedyn.lubrication.closed_form.long_journal_reynolds`, and the rigid
   isoviscous rolling cylinder (Martin 1916).
 
 Velocity convention of the solver: u_m = (U_lower + U_upper)/2.
@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 import skfem
 
-from lubrication import Cavitation, CylinderPlane, Film, Lubricant, PocketedSlider
-from lubrication import closed_form as cf
-from lubrication import mesh as meshes
+from lubedyn.lubrication import Cavitation, CylinderPlane, Film, Lubricant, PocketedSlider
+from lubedyn.lubrication import closed_form as cf
+from lubedyn.lubrication import mesh as meshes
 
 # --------------------------------------------------------------------------
 # 9. Fowell et al. (2007) pocketed slider, JFO
@@ -110,7 +110,7 @@ def test_fowell_pocket_cavitation_and_convergence():
 
 
 def test_fowell_pocket_jfo_p2_is_inaccurate_and_warns(caplog):
-    """Pins a known limitation (module docstring of lubrication.reynolds): JFO
+    """Pins a known limitation (module docstring of lubedyn.lubrication.reynolds): JFO
     with P2 elements.  The complementarity is nodal and P2 vertex functions go
     negative, so the rupture moves.  U = 1 m/s, 100 elements, measured:
 
@@ -125,7 +125,7 @@ def test_fowell_pocket_jfo_p2_is_inaccurate_and_warns(caplog):
     ref = fowell(1.0)
     errors, rupture = {}, {}
     for element in ("P1", "P2"):
-        with caplog.at_level("WARNING", logger="lubrication.reynolds"):
+        with caplog.at_level("WARNING", logger="lubedyn.lubrication.reynolds"):
             caplog.clear()
             sol = fowell_fem(1.0, 100, element)
         warned = any("JFO cavitation with P2 elements is inaccurate" in r.getMessage() for r in caplog.records)

@@ -18,7 +18,8 @@ import numpy as np
 import pytest
 from numba import njit
 
-from dynamics import integrators as I
+from lubedyn.config import CASES_DIR
+from lubedyn.dynamics import integrators as I
 
 ROOT = Path(__file__).resolve().parents[1]
 TIMINGS = ("Wall time [s]", "Integration wall time [s]", "Simulated time per wall second [s/s]", "Build time [s]",
@@ -63,8 +64,8 @@ def test_progress_bar_does_not_change_the_result():
 @pytest.fixture(scope="module")
 def bearing():
     """The main job's bearing (10 krpm rotor drop, 205 states) and 0.3 ms of it sampled every 2 us."""
-    from coupling import dynamics_scene as ds
-    from coupling.config import CASES_DIR, load_case
+    from lubedyn import dynamics_scene as ds
+    from lubedyn.config import load_case
 
     case = load_case(CASES_DIR / "cageless_6206_10krpm_short.toml", smoke=True)
     setup = ds.build(case)
@@ -73,7 +74,7 @@ def bearing():
 
 @pytest.mark.parametrize("method", ["dopri5", "rk4"])
 def test_bearing_chunked_runs_are_bit_identical(bearing, method):
-    from dynamics.cageless import rhs
+    from lubedyn.dynamics.cageless import rhs
 
     model, y0, t_out = bearing
     kw = {"dt": 2e-7} if method == "rk4" else {"rtol": 1e-6, "atol": 1e-9}
@@ -87,17 +88,16 @@ def test_bearing_chunked_runs_are_bit_identical(bearing, method):
 
 def _run_cli(out, terminal):
     """The CLI on a short drop with stderr on a pseudo-terminal (isatty() true) or on a pipe."""
-    argv = [sys.executable, "-m", "coupling.cli", "run", str(ROOT / "cases" / "cageless_6206_10krpm_short.toml"),
+    argv = [sys.executable, "-m", "lubedyn.cli", "run", str(CASES_DIR / "cageless_6206_10krpm_short.toml"),
             "--smoke", "--set", "integrator.duration='0.4 ms'", "--set", "analysis.lyapunov_exponents=0",
             "--set", "analysis.lyapunov=false", "--set", "output.write=[]", "--out", str(out)]
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
     if not terminal:
-        proc = subprocess.run(argv, cwd=ROOT, env=env, capture_output=True, text=True, timeout=600)
+        proc = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True, timeout=600)
         return proc.returncode, proc.stderr
     master, slave = pty.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))  # a 100-column terminal
     try:
-        proc = subprocess.Popen(argv, cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=slave)
+        proc = subprocess.Popen(argv, cwd=ROOT, stdout=subprocess.PIPE, stderr=slave)
         os.close(slave)
         chunks = []
         while True:  # drain the terminal so that the child never blocks on a full pty buffer
@@ -133,12 +133,12 @@ def test_cli_summary_is_the_same_on_a_terminal_and_on_a_pipe(tmp_path):
 
 
 def test_background_result_hands_progress_and_errors_to_the_waiting_thread():
-    """The whole-system spectrum runs in a thread (coupling.dynamics_scene._BackgroundResult): with a label
+    """The whole-system spectrum runs in a thread (lubedyn.dynamics_scene._BackgroundResult): with a label
     the function gets ``progress=``, whose last fraction the waiting thread reads (its bar, on a terminal,
     only displays it), the result is the function's own, and its exception reaches the caller."""
     import threading
 
-    from coupling.dynamics_scene import _BackgroundResult
+    from lubedyn.dynamics_scene import _BackgroundResult
 
     go = threading.Event()
 

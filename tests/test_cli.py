@@ -1,7 +1,7 @@
 """The ``lubedyn`` command line: exit codes, one-line messages, files written.
 
-Most tests call ``coupling.cli.main(argv)`` in-process (fast) and capture
-stdout/stderr; one runs ``python -m coupling.cli`` as a real process.
+Most tests call ``lubedyn.cli.main(argv)`` in-process (fast) and capture
+stdout/stderr; one runs ``python -m lubedyn.cli`` as a real process.
 """
 from __future__ import annotations
 
@@ -15,9 +15,9 @@ from pathlib import Path
 
 import pytest
 
-from coupling import cli
-from coupling.config import CASES_DIR
-from coupling.units import UnitError, parse_quantity
+from lubedyn import cli
+from lubedyn.config import CASES_DIR
+from lubedyn.units import UnitError, parse_quantity
 
 SLIDER = CASES_DIR / "inclined_slider.toml"
 JOURNAL = CASES_DIR / "journal_finite.toml"
@@ -45,7 +45,7 @@ def write_case(tmp_path, text: str, name="case.toml") -> Path:
 
 
 # ---------------------------------------------------------------------------
-# quantities at the boundary (coupling.units)
+# quantities at the boundary (lubedyn.units)
 
 
 @pytest.mark.parametrize("text, dimension, si", [
@@ -180,7 +180,7 @@ def test_failing_run_keeps_existing_outputs(tmp_path, capsys):
 def test_failure_while_writing_keeps_existing_outputs(tmp_path, capsys, monkeypatch):
     """Outputs are staged and moved into place only when all are written; a failure to write exits 3
     with one line naming the folder and the cause."""
-    import lubrication.solution
+    import lubedyn.lubrication.solution
 
     out = tmp_path / "out"
     assert run(capsys, "run", POCKET, "--smoke", "--out", out)[0] == 0
@@ -189,7 +189,7 @@ def test_failure_while_writing_keeps_existing_outputs(tmp_path, capsys, monkeypa
     def broken_plot(self, ax=None):
         raise OSError("disk full (simulated)")
 
-    monkeypatch.setattr(lubrication.solution.FilmSolution, "plot_pressure", broken_plot)
+    monkeypatch.setattr(lubedyn.lubrication.solution.FilmSolution, "plot_pressure", broken_plot)
     code, _, err = run(capsys, "run", POCKET, "--smoke", "--set", "motion.velocity_lower=2 m/s", "--out", out)
     assert code == 3
     assert_one_line_error(err, f"cannot write {out}: disk full (simulated)")
@@ -276,7 +276,7 @@ def test_verbose_logs_to_stderr(tmp_path, capsys):
 def test_console_entry_point_as_a_process(tmp_path):
     """A real process: exit code 2 and a single stderr line, no traceback."""
     case = write_case(tmp_path, SLIDER.read_text().replace('h_out = "10 um"', 'h_out = "10 Pa"'))
-    proc = subprocess.run([sys.executable, "-m", "coupling.cli", "run", str(case)], capture_output=True, text=True,
+    proc = subprocess.run([sys.executable, "-m", "lubedyn.cli", "run", str(case)], capture_output=True, text=True,
                           timeout=120)
     assert proc.returncode == 2
     assert_one_line_error(proc.stderr, "gap.h_out = '10 Pa' has units of pressure, expected length")

@@ -2,7 +2,7 @@
 items 4, 5 and 6): exit codes, one-line messages, an output folder that holds one run.
 
 Real processes where a signal is involved (SIGINT to the process group as a terminal sends it,
-SIGKILL of the parent of a map build's workers); ``coupling.cli.main`` in-process otherwise.
+SIGKILL of the parent of a map build's workers); ``lubedyn.cli.main`` in-process otherwise.
 """
 from __future__ import annotations
 
@@ -18,8 +18,8 @@ from pathlib import Path
 
 import pytest
 
-from coupling import cli, outputs
-from coupling.config import CASES_DIR
+from lubedyn import cli, outputs
+from lubedyn.config import CASES_DIR
 
 SLIDER = CASES_DIR / "inclined_slider.toml"
 POCKET = CASES_DIR / "fowell_pocket.toml"
@@ -83,9 +83,9 @@ def _close_children():
 
 
 def cli_process(*argv, **kwargs):
-    """``python -m coupling.cli ARGV`` from this source tree, in its own process group."""
-    env = {**os.environ, "PYTHONPATH": str(WORKTREE)}
-    return _tracked(subprocess.Popen([sys.executable, "-m", "coupling.cli", *map(str, argv)], cwd=WORKTREE, env=env,
+    """``python -m lubedyn.cli ARGV`` (the installed lubedyn: this checkout, installed editable), in its own
+    process group."""
+    return _tracked(subprocess.Popen([sys.executable, "-m", "lubedyn.cli", *map(str, argv)], cwd=WORKTREE,
                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                      start_new_session=True, **kwargs))
 
@@ -268,8 +268,7 @@ def test_run_killed_while_writing_leaves_nothing_after_the_next_run(tmp_path, ca
     before = {k: v for k, v in tree(out).items()}
     script = textwrap.dedent(f"""
         import os, signal, sys
-        sys.path.insert(0, {str(WORKTREE)!r})
-        from coupling import cli, outputs
+        from lubedyn import cli, outputs
         real = outputs.write_json
         def killed(path, mapping):
             if path.name == "summary.json" and path.parent.name.startswith(".staging-"):
@@ -318,7 +317,7 @@ def test_manifest_replaces_folders_and_never_leaves_the_output_folder(tmp_path, 
     (out / ".map-cache").mkdir()
     (out / ".map-cache" / "p.json").write_text("{}")
     (out / "old_result.csv").write_text("from a lubedyn without manifests")
-    with caplog.at_level("WARNING", logger="coupling.outputs"):
+    with caplog.at_level("WARNING", logger="lubedyn.outputs"):
         with outputs.staged(out) as stage:
             (stage / "frames").mkdir()
             for k in range(3):
@@ -438,7 +437,7 @@ def test_ctrl_c_at_any_moment_of_a_dynamics_run(tmp_path):
     """SIGINT at a sweep of moments of a dynamics run (while scipy, numba kernels, VTK load, during the
     integration): each ends with exit 130, the one line 'lubedyn: interrupted', no traceback and no
     staging folder.  (Before: tracebacks while importing, ImportError exit 1.)  The sweep starts at
-    0.3 s: the interpreter's own start and the import of ``coupling.cli`` (measured 40 ms together,
+    0.3 s: the interpreter's own start and the import of ``lubedyn.cli`` (measured 40 ms together,
     margin for a loaded machine) come before ``main`` can handle anything."""
     out = tmp_path / "out"
     seen = []
@@ -493,9 +492,9 @@ def map_process(tmp_path, delay, program=True):
     case.write_text(MAP_CASE.format(delay=delay, log_dir=logs))
     script = textwrap.dedent(f"""
         import sys
-        sys.path[:0] = [{str(WORKTREE)!r}, {str(TESTS)!r}]
+        sys.path.insert(0, {str(TESTS)!r})
         import test_maps  # registers test_squeeze
-        from coupling import cli
+        from lubedyn import cli
         argv = ["run", {str(case)!r}, "--out", {str(tmp_path / 'out')!r}]
         if {program!r}:
             sys.argv[1:] = argv
@@ -576,8 +575,7 @@ def test_die_with_parent_on_linux_and_elsewhere(platform):
         pytest.skip("prctl is Linux only")
     script = textwrap.dedent(f"""
         import multiprocessing, os, sys, time
-        sys.path.insert(0, {str(WORKTREE)!r})
-        from coupling import maps
+        from lubedyn import maps
 
         def child(parent):
             sys.platform = {platform!r}

@@ -1,4 +1,4 @@
-"""Contact kernels of dynamics.contacts against independent references: the analytic circular Hertz
+"""Contact kernels of lubedyn.dynamics.contacts against independent references: the analytic circular Hertz
 contact, Thornton's closed-form restitution of elastic-plastic spheres, Hunt and
 Crossley's small-damping restitution, the analytic rigid squeeze-film approach,
 and a scipy brentq reference of the film/solid series law."""
@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from dynamics import contacts as C
-from lubrication.errors import InputError
-from lubrication.laws import collision as LC
-from lubrication.laws.traction import traction_coefficient
-from dynamics import interp
-from lubrication.laws.contact import hunt_crossley_alpha, reduced_modulus
+from lubedyn.dynamics import contacts as C
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws import collision as LC
+from lubedyn.lubrication.laws.traction import traction_coefficient
+from lubedyn.dynamics import interp
+from lubedyn.lubrication.laws.contact import hunt_crossley_alpha, reduced_modulus
 
 D, DM, RI, RO = 9.525e-3, 46.005e-3, 4.905e-3, 4.953e-3  # paper B, Table 4
 ES_RACE = reduced_modulus(207e9, 0.29, 208e9, 0.3)
@@ -175,9 +175,9 @@ def test_rigid_squeeze_film_approach_is_analytic():
                                                 (interp.PCHIP, "squeeze_number")])
 def test_map_option_reproduces_tabulated_closed_form(method, speed_axis):
     """The map slot: a force table of the closed form over (gap, approach speed) or
-    (gap, squeeze number, entrainment speed), read through dynamics.interp, gives the
+    (gap, squeeze number, entrainment speed), read through lubedyn.dynamics.interp, gives the
     same series force within the table's interpolation error."""
-    from dynamics.cageless import MAP_SPEED_AXES, _map_arrays
+    from lubedyn.dynamics.cageless import MAP_SPEED_AXES, _map_arrays
 
     R = 0.5 * D
     alpha = 1.85e-8

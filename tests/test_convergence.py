@@ -21,8 +21,8 @@ import numpy as np
 import pytest
 import skfem
 
-from lubrication import Film, FunctionGap, Lubricant
-from lubrication import mesh as meshes
+from lubedyn.lubrication import Film, FunctionGap, Lubricant
+from lubedyn.lubrication import mesh as meshes
 
 ETA = 1.0
 UM = np.array([1.0, 0.5])
@@ -83,7 +83,7 @@ def test_manufactured_solution_l2_order(cell, element, expected):
 def squeeze_load_error(refinements, order):
     """Reynolds' sphere-plane squeeze film on a disk of radius a, ambient at
     r = a: F = 6 pi eta R^2 (-v)/h0 (1 - h0/h_e)^2, h_e = h0 + a^2/(2R)."""
-    from lubrication import SpherePlane
+    from lubedyn.lubrication import SpherePlane
 
     radius, h0, a, eta, v = 10e-3, 10e-6, 1e-3, 0.01, -1e-3
     h_edge = h0 + a * a / (2 * radius)

@@ -51,7 +51,7 @@ def test_docs_build_with_warnings_as_errors(tmp_path):
 
 
 def _rows_by_table(case_reference, scene):
-    from coupling.config import case_model
+    from lubedyn.config import case_model
 
     found: dict[str, dict] = {}
     for row in case_reference.rows(case_model(scene)):
@@ -77,7 +77,7 @@ def _check_keys(data: dict, table: str, tables: dict, where: str):
 def test_case_reference_lists_every_key_of_every_bundled_case(case_reference):
     """Independent of the reference's own walk: each bundled case, validated and dumped with every default
     filled in (what ``case.resolved.toml`` holds), has each of its keys in the reference of its scene."""
-    from coupling.config import bundled_cases, load_case
+    from lubedyn.config import bundled_cases, load_case
 
     scenes = set()
     for path in bundled_cases():
@@ -91,20 +91,20 @@ def test_case_reference_lists_every_key_of_every_bundled_case(case_reference):
 def test_case_reference_lists_every_field_of_every_case_model(case_reference):
     """Every field of every pydantic model class of the case schema (found as subclasses of the models'
     base class, not by the reference's walk) is a key of some table of the reference."""
-    from coupling import config
-    from coupling.config import SCENES, case_model
+    from lubedyn import config
+    from lubedyn.config import SCENES, case_model
 
     for scene in SCENES:
         case_model(scene)  # imports the scene's module, so that its models exist
     keys = {(r.key) for scene in SCENES for r in case_reference.rows(case_model(scene))}
-    study_models = {m for m in _subclasses(config._Model) if m.__module__ == "coupling.study"}
+    study_models = {m for m in _subclasses(config._Model) if m.__module__ == "lubedyn.study"}
     for model in _subclasses(config._Model) - study_models:
         for name in model.model_fields:
             assert name in keys, f"{model.__module__}.{model.__name__}.{name} missing from the case reference"
 
 
 def test_case_reference_lists_each_map_kind_axis_and_parameter(case_reference):
-    from coupling import maps
+    from lubedyn import maps
 
     text = "\n".join(case_reference.map_kinds_rst())
     for name, kind in maps.kinds().items():
@@ -117,7 +117,7 @@ def test_case_reference_lists_each_map_kind_axis_and_parameter(case_reference):
 
 def test_case_reference_shows_units_ranges_and_defaults(case_reference):
     """A few rows read against the models' source: a bounded quantity, an integer constraint, a choice."""
-    from coupling.config import case_model
+    from lubedyn.config import case_model
 
     rows = {(r.table, r.key): r for r in case_reference.rows(case_model("film"))}
     rtol = rows[("solver", "rtol")]

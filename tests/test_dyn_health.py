@@ -12,15 +12,16 @@ their own numbers.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
-from coupling.config import CASES_DIR, CaseError, load_case
-from dynamics import integrators as I
-from dynamics import lyapunov as L
-from dynamics.errors import DynamicsInputError
+from lubedyn.config import CASES_DIR, CaseError, load_case
+from lubedyn.dynamics import integrators as I
+from lubedyn.dynamics import lyapunov as L
+from lubedyn.dynamics.errors import DynamicsInputError
 from test_lyapunov import LORENZ, harmonic, lorenz, lorenz_jvp  # tests/ is on sys.path (rootdir conftest)
 
 DYNAMICS, TAPERED = "cageless_6206_10krpm_short", "trb_fig5_2400rpm"
@@ -47,7 +48,7 @@ def test_tolerances_the_error_control_cannot_honour_are_refused_in_one_line(case
 def test_no_bundled_case_uses_a_refused_tolerance():
     """Every bundled dynamics and tapered case validates, full and smoke, inside the limits; no study
     sweeps a tolerance."""
-    from dynamics.integrators import ATOL_MAX, RTOL_MAX
+    from lubedyn.dynamics.integrators import ATOL_MAX, RTOL_MAX
 
     n = 0
     for path in sorted(CASES_DIR.glob("*.toml")):
@@ -58,7 +59,7 @@ def test_no_bundled_case_uses_a_refused_tolerance():
                 assert ig.rtol <= RTOL_MAX and ig.atol <= ATOL_MAX, path.name
             n += 1
     assert n >= 5
-    studies = CASES_DIR.parent / "studies"
+    studies = Path(__file__).resolve().parents[1] / "studies"
     for path in studies.glob("*.toml"):
         assert "rtol" not in path.read_text() and "atol" not in path.read_text(), path.name
 
@@ -78,8 +79,8 @@ def test_the_refused_rtol_is_where_dopri5s_error_stops_following_the_tolerance()
     tight-tolerance multiple of rtol (measured 1,180 rtol against 593 at 1e-6); at 3e-3 the accepted steps
     are past DOPRI5's stability limit on the imaginary axis (mean h omega 1.05 > 0.997) and after 10,000
     periods the error is 2.3e4 x the amplitude, yet the run ends "normally"."""
-    from dynamics.integrators import ATOL_MAX, RTOL_MAX
-    from coupling.tapered_scene import IntegratorTable
+    from lubedyn.dynamics.integrators import ATOL_MAX, RTOL_MAX
+    from lubedyn.tapered_scene import IntegratorTable
 
     assert (RTOL_MAX, ATOL_MAX) == (1e-3, 1e-8)
     assert IntegratorTable(duration=0.01).rtol <= RTOL_MAX  # the tapered scene's default is inside too
@@ -146,9 +147,9 @@ def test_the_whole_system_verdict_follows_the_per_direction_spin_up_rule():
     """A drop whose inner ring is not within 1 % of the rotor speed at the end of the record: the
     per-direction analysis says "not computed: ... still spinning up" and the whole-system verdicts of a
     spectrum that would otherwise be "positive" say "not converged (... still spinning up)", by the same
-    rule (:func:`coupling.dynamics_lyapunov.spin_up_end`); once the ring has caught up they are the
+    rule (:func:`lubedyn.dynamics_lyapunov.spin_up_end`); once the ring has caught up they are the
     spectrum's own."""
-    from coupling.dynamics_lyapunov import (_lyapunov_per_direction, record_spin_up, spin_up_end,
+    from lubedyn.dynamics_lyapunov import (_lyapunov_per_direction, record_spin_up, spin_up_end,
                                             whole_system_verdicts)
 
     t = np.linspace(0.0, 1e-3, 501)

@@ -4,7 +4,7 @@ Dimensionless groups (Moes): U = eta0 u_m/(E' R_x), G = alpha E', M = W (2U)^-3/
 (point, W = w/(E' R_x^2)) or M = W (2U)^-1/2 (line, W = w/(E' R_x)), L = G (2U)^1/4,
 H = h/R_x (2U)^-1/2.  u_m is the mean (entrainment) speed.
 
-References (closed forms in :mod:`lubrication.laws.film`, independent of the solver):
+References (closed forms in :mod:`lubedyn.lubrication.laws.film`, independent of the solver):
 - Moes (1992) line contact, quoted accuracy a few per cent.
 - Nijenbanning, Venner & Moes (1994) circular contact (D = 1), within ~5 %.
 - Hamrock & Dowson (1977) central film, quoted within ~20 % of their own solutions.
@@ -13,11 +13,11 @@ import dataclasses
 import numpy as np
 import pytest
 
-from lubrication import ConvergenceError
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, solve_ehl
-from lubrication.laws.film import hamrock_dowson_central
-from lubrication.laws.film import moes_line_central as moes_line
-from lubrication.laws.film import nijenbanning_central as nvm_circular
+from lubedyn.lubrication import ConvergenceError
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, Traction, solve_ehl
+from lubedyn.lubrication.laws.film import hamrock_dowson_central
+from lubedyn.lubrication.laws.film import moes_line_central as moes_line
+from lubedyn.lubrication.laws.film import nijenbanning_central as nvm_circular
 
 
 def H(sol, c, value):

@@ -1,7 +1,7 @@
 """The EHL resolution check for every density, viscosity and flow law and every grid kind, and the EHL
 error messages that named the wrong grid or what a case file cannot set (issue 36, items 2 and 6).
 
-Before, :func:`lubrication.ehl.check_solution` compared the central film with a closed form only for
+Before, :func:`lubedyn.lubrication.ehl.check_solution` compared the central film with a closed form only for
 Barus, incompressible, Newtonian films, and line contacts recorded no coarser level: the Moes line
 contact M = 1000, L = 10 with a Dowson-Higginson density on 257 nodes is +49 % off (h_c 2.372e-7 m
 against 1.589e-7 m on 2049 nodes) and nothing said so.  Now every Newton solve is compared with the same
@@ -17,9 +17,9 @@ import logging
 
 import pytest
 
-from lubrication import ConvergenceError
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
-from lubrication.laws.lubricant import DowsonHigginson, HerschelBulkleyFlow, Roelands
+from lubedyn.lubrication import ConvergenceError
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
+from lubedyn.lubrication.laws.lubricant import DowsonHigginson, HerschelBulkleyFlow, Roelands
 
 
 def _line(M, L, **lubricant):
@@ -37,7 +37,7 @@ def test_dowson_higginson_line_m1000_on_257_nodes_warns_and_names_the_grid(caplo
     themselves 13 % off by the pair's estimate (measured +7.7 %), so it asks for 1025.  Failed before:
     no warning (info["warnings"] == [])."""
     c = _dh_line(1000, 10)
-    with caplog.at_level(logging.WARNING, logger="lubrication.ehl"):
+    with caplog.at_level(logging.WARNING, logger="lubedyn.lubrication.ehl"):
         s = solve_ehl(c, EHLGrid(nx=257))
     # reference: h_c = 1.5888e-7 m on 2049 nodes (1.5952e-7 on 4097), measured with this solver
     assert s.central_film_thickness / 1.5888e-7 - 1 > 0.4  # the error the check must see (measured +49 %)

@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from lubrication import Barus, Film, InputError, Lubricant
-from lubrication.ehl import EHLContact, EHLGrid, multigrid_grid, solve_ehl
-from lubrication.laws.lubricant import Incompressible, eyring_flow_factor
+from lubedyn.lubrication import Barus, Film, InputError, Lubricant
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, multigrid_grid, solve_ehl
+from lubedyn.lubrication.laws.lubricant import Incompressible, eyring_flow_factor
 
 from test_ehl import _complementarity
 
@@ -69,7 +69,7 @@ def test_large_eyring_stress_is_newtonian():
 
 
 def _roller(eyring: bool):
-    from coupling import film_points as fp
+    from lubedyn import film_points as fp
 
     params = fp.ehl_roller_race_default_params()
     params["resolution"] = "default"
@@ -81,7 +81,7 @@ def _roller(eyring: bool):
 def _roller_solves(params, load, speed, factors):
     """Solves of one roller point: the default start, then from the converged state at each of
     ``factors`` times the load."""
-    from coupling import film_points as fp
+    from lubedyn import film_points as fp
 
     length = params["length"]
     c, g, o = fp._ehl_setup(params, load / length, speed)
@@ -113,7 +113,7 @@ def test_eyring_roller_contact_has_one_solution(load, speed):
     exit constriction; Newtonian 0.90-0.95 depending on the branch).  Not every start converges
     with Eyring flow (measured: from 0.944 times the load at 10 kN, 8.84 m/s the Newton iteration
     stalls; from the Newtonian state at 15 kN it overflows); those raise ConvergenceError, and the
-    map's points fall back to other starts (coupling.film_points.ehl_load_response)."""
+    map's points fall back to other starts (lubedyn.film_points.ehl_load_response)."""
     sols = _roller_solves(_roller(eyring=True), load, speed, [0.8, 1.06, 1.25])
     ref = sols[0]
     for s in sols[1:]:
@@ -129,7 +129,7 @@ def test_eyring_normal_coefficients_by_two_methods():
     """Roller with Eyring flow, 10 kN, 8.84 m/s, 257 nodes: K and C from the linearised
     equations (exact Jacobian, cavitated set frozen) against load steps (two more steady solves,
     K = -dQ/dh00 and C by implicit differentiation)."""
-    from coupling import film_points as fp
+    from lubedyn import film_points as fp
 
     params = _roller(eyring=True)
     lin = fp.ehl_load_response(params, 10e3, 8.84)
@@ -139,8 +139,8 @@ def test_eyring_normal_coefficients_by_two_methods():
 
 
 def test_eyring_is_refused_where_it_is_not_implemented():
-    from lubrication import mesh
-    from lubrication import InclinedSlider
+    from lubedyn.lubrication import mesh
+    from lubedyn.lubrication import InclinedSlider
 
     lub = Lubricant(Barus(0.05, 2e-8), Incompressible(870.0), eyring_stress=5e6)
     with pytest.raises(InputError, match="eyring_stress = 5000000.0: the Reynolds film solver is Newtonian"):
@@ -155,16 +155,16 @@ def test_eyring_is_refused_where_it_is_not_implemented():
 def test_case_files_take_eyring_stress_for_ehl_scenes_only(capsys):
     """``[lubricant] eyring_stress`` in a case file: an EHL scene builds an Eyring lubricant; a film
     scene is refused in one line naming the key and the value (exit 2)."""
-    from coupling import cli
-    from coupling.config import CASES_DIR
+    from lubedyn import cli
+    from lubedyn.config import CASES_DIR
 
     code = cli.main(["run", str(CASES_DIR / "inclined_slider.toml"), "--set", "lubricant.eyring_stress=5 MPa",
                      "--dry-run"])
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1 and "lubricant.eyring_stress" in err and "5e+06" in err, err
 
-    from coupling.config import load_case
-    from coupling.ehl_scene import build_lubricant
+    from lubedyn.config import load_case
+    from lubedyn.ehl_scene import build_lubricant
 
     case = load_case(CASES_DIR / "ehl_roller_slice.toml", overrides=["lubricant.eyring_stress=5 MPa"])
     assert build_lubricant(case).eyring_stress == pytest.approx(5e6)

@@ -1,7 +1,7 @@
 """Graded line grids of the EHL solver (``EHLGrid(refine > 1)``): elastic matrix, assembly, nesting, and
 what the grading buys and where it stops (issue 22, the roller maps' knee).
 
-Independent references: the Toeplitz/FFT kernel of a uniform grid (:class:`lubrication.elastic.ElasticKernel`),
+Independent references: the Toeplitz/FFT kernel of a uniform grid (:class:`lubedyn.lubrication.elastic.ElasticKernel`),
 the Hertz line contact's deflection (u + x^2/(2R) constant inside the contact, Johnson 1985, section 5.6),
 scikit-fem's generic ``asm`` (:meth:`_Problem.assemble_skfem`), and the uniform solver on fine grids."""
 import dataclasses
@@ -9,10 +9,10 @@ import dataclasses
 import numpy as np
 import pytest
 
-from lubrication.elastic import ElasticKernel, line_influence_matrix
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
-from lubrication.ehl.problem import _Problem
-from lubrication.errors import InputError
+from lubedyn.lubrication.elastic import ElasticKernel, line_influence_matrix
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
+from lubedyn.lubrication.ehl.problem import _Problem
+from lubedyn.lubrication.errors import InputError
 
 
 def test_influence_matrix_on_uniform_nodes_is_the_toeplitz_kernel():
@@ -134,8 +134,8 @@ def test_pseudo_transient_newton_converges_where_plain_newton_does_not(load):
     fails (measured: iteration limit), the pseudo-transient one converges (25 and 47 iterations, 0.5 s), and
     what it reaches is a root of the plain residual: the plain second-order Newton iteration started there
     (its cavitated set rebuilt from empty, measured 22-28 iterations) comes back to the same film.""" 
-    from lubrication import ConvergenceError
-    from coupling.film_points import ehl
+    from lubedyn.lubrication import ConvergenceError
+    from lubedyn.film_points import ehl
 
     par = dict(ehl._roller_params("cone"), density_law="dowson_higginson", grid_refine=6.0)
     contact, grid, options = ehl._ehl_setup(par, load, 7.0)
@@ -144,7 +144,7 @@ def test_pseudo_transient_newton_converges_where_plain_newton_does_not(load):
         solve_ehl(contact, grid, options)
     sol = solve_ehl(contact, grid, dataclasses.replace(options, pseudo_transient=0.1))
     assert sol.load == pytest.approx(load, rel=1e-9)
-    from lubrication.ehl.newton import _active_set_newton
+    from lubedyn.lubrication.ehl.newton import _active_set_newton
 
     P = sol.problem
     assert P.o.pseudo_transient == 0.1

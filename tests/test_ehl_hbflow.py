@@ -9,7 +9,7 @@ Checked against:
 - the Newtonian solver (tau_y = 0, n = 1: the same state to round-off);
 - paper A's cone contact (R = 9.395 mm, E' = 225 GPa) with Table 2's greases at 30 C: a measured
   comparison of the central film with the base-oil (0.1 Pa s) EHL film and with
-  lubrication.laws.grease.grease_line_film, and where the iteration stops converging.
+  lubedyn.lubrication.laws.grease.grease_line_film, and where the iteration stops converging.
 """
 from __future__ import annotations
 
@@ -19,11 +19,11 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from lubrication import ConvergenceError, InputError
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, multigrid_grid, solve_ehl
-from lubrication.laws import grease as G
-from lubrication.laws.lubricant import (Barus, DowsonHigginson, HerschelBulkleyFlow, Incompressible, Lubricant,
-                                        herschel_bulkley_flow_factor)
+from lubedyn.lubrication import ConvergenceError, InputError
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, multigrid_grid, solve_ehl
+from lubedyn.lubrication.laws import grease as G
+from lubedyn.lubrication.laws.lubricant import (Barus, DowsonHigginson, HerschelBulkleyFlow, Incompressible, Lubricant,
+                                                herschel_bulkley_flow_factor)
 
 from test_ehl import _complementarity
 from test_ehl_point import _check_jacobian, _smooth_state
@@ -151,7 +151,7 @@ def _paper_contact(name, load, speed, creep=0.0):
 
 
 def _grease(name):
-    from coupling.parameters.wu2018 import GREASE_TABLE
+    from lubedyn.parameters.wu2018 import GREASE_TABLE
 
     return G.grease_at(GREASE_TABLE[name], 30.0, ALPHA, name)
 
@@ -229,7 +229,7 @@ def test_bad_input_is_one_line():
     c = dataclasses.replace(c, lubricant=dataclasses.replace(c.lubricant, herschel_bulkley=HerschelBulkleyFlow(1.0, 1.0)))
     with pytest.raises(InputError, match=r"solver.method = 'multigrid' is Newtonian"):
         multigrid_grid(c, EHLGrid(nx=65))
-    from lubrication import Film, InclinedSlider, mesh
+    from lubedyn.lubrication import Film, InclinedSlider, mesh
 
     with pytest.raises(InputError, match=r"herschel_bulkley = .*the Reynolds film solver is Newtonian"):
         Film(mesh.interval(0, 0.01, 20), InclinedSlider(2e-6, 1e-6, 0.01), c.lubricant, velocity_lower=(1.0,))
@@ -249,9 +249,9 @@ def test_case_file_takes_herschel_bulkley(tmp_path):
     case's own smoke run: 6.193 um)."""
     import json
 
-    from coupling import cli
-    from coupling.config import CASES_DIR, load_case
-    from coupling.ehl_scene import build_lubricant
+    from lubedyn import cli
+    from lubedyn.config import CASES_DIR, load_case
+    from lubedyn.ehl_scene import build_lubricant
 
     sets = ["lubricant.viscosity.eta0=8.44 Pa s", "lubricant.herschel_bulkley.yield_stress=351.8 Pa",
             "lubricant.herschel_bulkley.exponent=0.7196"]

@@ -1,6 +1,6 @@
 """Where the EHL methods stop being right, and what they say there (issue 20, items 1, 2, 6, 7).
 
-A-posteriori checks (:func:`lubrication.ehl.check_solution`): a converged EHL solution is compared
+A-posteriori checks (:func:`lubedyn.lubrication.ehl.check_solution`): a converged EHL solution is compared
 with the closed-form central film (Moes' line formula, Nijenbanning-Venner-Moes for circles) and
 with the one-level-coarser solution (nested iteration, or the multigrid's FMG level).  Thresholds
 (``FORMULA_TOLERANCE`` = 10 %, ``COARSE_TOLERANCE`` = 13 % estimated error) come from this sweep
@@ -28,12 +28,12 @@ import logging
 import numpy as np
 import pytest
 
-from coupling import ehl_scene
-from coupling.config import load_case
-from lubrication import ConvergenceError
-from lubrication.ehl import (EHLContact, EHLGrid, EHLOptions, check_solution, closed_form_central_film,
-                             solve_ehl)
-from lubrication.laws.film import moes_line_central
+from lubedyn import ehl_scene
+from lubedyn.config import load_case
+from lubedyn.lubrication import ConvergenceError
+from lubedyn.lubrication.ehl import (EHLContact, EHLGrid, EHLOptions, check_solution, closed_form_central_film,
+                                     solve_ehl)
+from lubedyn.lubrication.laws.film import moes_line_central
 
 
 def _line(M, L):
@@ -45,7 +45,7 @@ def test_line_m1000_on_257_nodes_warns_and_names_the_grid(caplog):
     'tolerance met') to h_c +86 % off Moes' formula.  Before the check nothing said so; now a
     WARNING names the deviation and 513 nodes, and the solution's info carries it."""
     c = _line(1000, 10)
-    with caplog.at_level(logging.WARNING, logger="lubrication.ehl"):
+    with caplog.at_level(logging.WARNING, logger="lubedyn.lubrication.ehl"):
         s = solve_ehl(c, EHLGrid(nx=257))
     dev = s.info["checks"]["closed_form"]["deviation"]
     assert dev == pytest.approx(0.857, abs=0.02)  # measured +0.857
@@ -171,7 +171,7 @@ def test_errors_carry_their_stop_reason():
     """Every EHL error names why it stopped: the line contact M = 1000 on 129 nodes reaches the film
     floor ('film collapsed', the measured clear stop of issue 20 item 1); a multigrid cut at 3 cycles
     ('iteration limit')."""
-    from lubrication.ehl.multigrid import MultigridOptions
+    from lubedyn.lubrication.ehl.multigrid import MultigridOptions
 
     with pytest.raises(ConvergenceError, match="film-thickness floor") as floor:
         solve_ehl(_line(1000, 10), EHLGrid(nx=129))
@@ -195,7 +195,7 @@ def test_hint_names_the_test_that_refused_a_converged_step():
     """Issue 20 item 7 (the Eyring line contact at M = 7.3 of issue 12): when the Newton step met
     rtol but the state was refused, the hint says which test refused it with its figures, and names
     no grid at a load the grid resolves (M = 7.3 on 257 nodes; resolved up to M = 298)."""
-    from lubrication.ehl.newton import _iteration_limit_hint
+    from lubedyn.lubrication.ehl.newton import _iteration_limit_hint
 
     s = solve_ehl(_line(7.3, 10), EHLGrid(nx=257))
     history = [(1e-8, 1e-9, 0.0, n) for n in (20, 20, 21, 20, 21, 20)]
@@ -212,8 +212,8 @@ def test_multigrid_light_load_high_L_stops_with_a_hint_from_the_state():
     cycle 7; 129 x 129 converges).  Before, its iterate overflowed the viscosity with a numpy
     RuntimeWarning (an error in this suite) and the message advised finer grids for heavier loads;
     now the error names the light load and the coarser grid that works."""
-    from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
-    from lubrication.errors import ConvergenceError
+    from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl
+    from lubedyn.lubrication.errors import ConvergenceError
 
     c = EHLContact.from_moes(10, 20)
     with pytest.raises(ConvergenceError, match="M = 10 is not a heavy load.*try a coarser grid"):
@@ -225,7 +225,7 @@ def test_a_singular_ilu_preconditioner_is_a_convergence_error(monkeypatch):
     """SuperLU's "Factor is exactly singular" (met on paper A's roller at 1 kN/m, 8 m/s with a 320 b
     inlet) escaped as a RuntimeError past the Newton fallbacks; it is now a ConvergenceError with the
     stop reason of the dense branch, so the fallback chain (and the CLI's exit 1) handle it."""
-    import lubrication.ehl.newton as newton
+    import lubedyn.lubrication.ehl.newton as newton
 
     def singular(*args, **kwargs):
         raise RuntimeError("Factor is exactly singular")
@@ -240,7 +240,7 @@ def test_a_starved_line_inlet_is_named():
     with the inlet at -20 Hertz half-widths the film is 13 % thinner than with -80 (7.93 against 9.04 um,
     and 9.11 at -320: measured); the inlet check names it (pressure ratio 1.4e-2 a tenth of the inlet
     from its boundary) and asks for -80; strict mode refuses it; -80 passes (ratio 5.5e-4)."""
-    from coupling.film_points.ehl import _ehl_setup, ehl_roller_race_default_params
+    from lubedyn.film_points.ehl import _ehl_setup, ehl_roller_race_default_params
 
     params = ehl_roller_race_default_params()
     c, g, o = _ehl_setup(params, 2e4, 25.0)

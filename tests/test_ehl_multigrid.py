@@ -1,10 +1,10 @@
-"""FAS multigrid EHL point-contact solver (lubrication.ehl.multigrid, ehl.method = "multigrid").
+"""FAS multigrid EHL point-contact solver (lubedyn.lubrication.ehl.multigrid, ehl.method = "multigrid").
 
 Independent references:
 - numpy references of the discrete Reynolds operator and a dense solve of the
   band systems (kernels compiled and as ``.py_func``); scipy's sparse solve of
   the 5-point Poisson problem for the line relaxation;
-- the second method: the FEM Fischer-Burmeister Newton of lubrication.ehl on
+- the second method: the FEM Fischer-Burmeister Newton of lubedyn.lubrication.ehl on
   the same nodes (different discretisation: P1 + SUPG against finite
   differences), whose difference must shrink under refinement;
 - dry Hertz contact (Johnson 1985): pressure ellipse and approach, 1 %;
@@ -18,11 +18,11 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from lubrication import ConvergenceError
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, ehl_normal_coefficients, solve_ehl
-from lubrication.ehl.multigrid import MultigridOptions, band_solve, line_relax, reynolds_operator
-from lubrication.errors import InputError
-from lubrication.laws.film import nijenbanning_central
+from lubedyn.lubrication import ConvergenceError
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, ehl_normal_coefficients, solve_ehl
+from lubedyn.lubrication.ehl.multigrid import MultigridOptions, band_solve, line_relax, reynolds_operator
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws.film import nijenbanning_central
 
 MG = EHLOptions(method="multigrid")
 
@@ -102,7 +102,7 @@ def test_line_band_solver_equals_the_general_one(diag):
     pivoting (diag -5) and with frequent pivoting (-0.5, 0: diagonals no
     larger than the off-diagonals), and on rows cut to the diagonal (the
     cavitated rows of the line relaxation)."""
-    from lubrication.ehl.multigrid import _band_solve_line
+    from lubedyn.lubrication.ehl.multigrid import _band_solve_line
 
     rng = np.random.default_rng(7)
     for n in (1, 2, 4, 15, 255):
@@ -159,8 +159,8 @@ def test_level_films_equal_the_elastic_kernel():
     """The multigrid's own deflection products (FFT padded to fast lengths on
     fine grids, a dense product on the coarsest) against ElasticKernel.deflect
     (DC-FFT padded to 2n) and its dense direct sum."""
-    from lubrication.ehl.problem import _Problem
-    from lubrication.ehl.multigrid import MultigridEHL
+    from lubedyn.lubrication.ehl.problem import _Problem
+    from lubedyn.lubrication.ehl.multigrid import MultigridEHL
 
     c = EHLContact.from_moes(100, 10, radius_y=0.02)
     g = EHLGrid(nx=65, ny=97)
@@ -182,7 +182,7 @@ def test_grid_without_the_mesh_equals_the_basis(line, radius_y):
     """_Problem's dof locations, grid index and boundary dofs, computed from the
     node axes alone (the mesh and basis are built on first use), against those
     of the scikit-fem P1 basis and its boundary facets."""
-    from lubrication.ehl.problem import _Problem
+    from lubedyn.lubrication.ehl.problem import _Problem
 
     kw = dict(radius_y=radius_y) if radius_y else {}
     c = EHLContact.from_moes(100, 10, line=line, **kw)
@@ -208,9 +208,9 @@ def test_coarsest_grid_kernels_against_the_numpy_path(visc, dens):
     line_relax; a law the kernels do not know keeps the numpy path."""
     import dataclasses
 
-    from lubrication.ehl.multigrid import MultigridEHL, _law_codes, coefficients_kernel, dense_relaxations
-    from lubrication.ehl.problem import _Problem
-    from lubrication.laws import lubricant as L
+    from lubedyn.lubrication.ehl.multigrid import MultigridEHL, _law_codes, coefficients_kernel, dense_relaxations
+    from lubedyn.lubrication.ehl.problem import _Problem
+    from lubedyn.lubrication.laws import lubricant as L
 
     v = dict(barus=L.Barus(0.04, 2e-8), roelands=L.Roelands(0.04, alpha=2e-8), constant=L.ConstantViscosity(0.04))
     d = dict(incompressible=L.Incompressible(870.0), dowson_higginson=L.DowsonHigginson(870.0))
@@ -259,7 +259,7 @@ def test_deflection_by_row_transforms_equals_rfftn():
     rfftn/irfftn on the padded array."""
     import scipy.fft
 
-    from lubrication.ehl.multigrid import _deflect
+    from lubedyn.lubrication.ehl.multigrid import _deflect
 
     rng = np.random.default_rng(2)
     for shape in ((17, 17), (33, 49), (65, 65)):
@@ -274,7 +274,7 @@ def test_deflection_by_row_transforms_equals_rfftn():
 def test_uniform_weights_equal_the_assembled_ones(line):
     """The multigrid's nodal weights (cell area times adjacent cells / 4)
     against the FEM's assembled int phi_i dA."""
-    from lubrication.ehl.problem import _Problem
+    from lubedyn.lubrication.ehl.problem import _Problem
 
     c = EHLContact.from_moes(100, 10, line=line)
     assembled = _Problem(c, EHLGrid(nx=33), EHLOptions()).weights
@@ -330,7 +330,7 @@ def test_roelands_compressible_contact_extrapolates_to_the_fem_newton():
     against 2.4000e-7 m (0.05 %)."""
     import dataclasses
 
-    from lubrication.laws.lubricant import DowsonHigginson, Lubricant, Roelands
+    from lubedyn.lubrication.laws.lubricant import DowsonHigginson, Lubricant, Roelands
 
     c0 = EHLContact.from_moes(100, 10)
     lub = Lubricant(Roelands(c0.lubricant.viscosity.eta0, alpha=c0.lubricant.viscosity.alpha), DowsonHigginson(850.0))
@@ -466,7 +466,7 @@ def test_scene_summary_names_the_multigrid_stop(tmp_path, capsys):
     cycles, with its figures, in summary.json (M = 20, L = 10, 65 x 65)."""
     import json
 
-    from coupling import cli
+    from lubedyn import cli
 
     case = tmp_path / "mg.toml"
     case.write_text('scene = "ehl"\n[dimensionless]\nM = 20\nL = 10\n[grid]\nnx = 65\n[solver]\nmethod = "multigrid"\n')

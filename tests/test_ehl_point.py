@@ -3,7 +3,7 @@ isoviscous limits and Hamrock-Dowson inputs.
 
 Independent references:
 - Nijenbanning, Venner & Moes (1994) circular-contact central film, quoted
-  within ~5 % of their numerical solutions (:mod:`lubrication.laws.film`).
+  within ~5 % of their numerical solutions (:mod:`lubedyn.lubrication.laws.film`).
 - Dry Hertz contact stiffness dW/d(delta) = 1.5 W/delta (Johnson 1985), which
   the EHL contact stiffness approaches at heavy load.
 - Martin (1916) rigid isoviscous line contact: w' = 4.896 eta u_m R/h0 with
@@ -21,12 +21,12 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from lubrication import ConvergenceError
-from lubrication.ehl import EHLContact, EHLGrid, EHLOptions, ehl_normal_coefficients, solve_ehl
-from lubrication.errors import InputError
-from lubrication.laws.film import nijenbanning_central
-from lubrication.laws.contact import point_contact
-from lubrication.laws.lubricant import Barus, Incompressible, Lubricant
+from lubedyn.lubrication import ConvergenceError
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, ehl_normal_coefficients, solve_ehl
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws.film import nijenbanning_central
+from lubedyn.lubrication.laws.contact import point_contact
+from lubedyn.lubrication.laws.lubricant import Barus, Incompressible, Lubricant
 
 
 def H(c, h):
@@ -210,7 +210,7 @@ def test_hamrock_dowson_inputs_give_the_moes_contact():
 @pytest.mark.parametrize("k", [1.5, 3.0, 8.0])
 def test_hamrock_dowson_ellipticity(k):
     """The radius ratio chosen for ellipticity k gives a Hertz ellipse with a/b = k
-    (exact elliptic integrals, solved forward by lubrication.laws.contact), and
+    (exact elliptic integrals, solved forward by lubedyn.lubrication.laws.contact), and
     Hamrock-Brewe's k = 1.0339 (R_y/R_x)^0.636 in the approximate route."""
     c = EHLContact.from_hamrock_dowson(1e-6, 1e-11, 5000, k)
     assert point_contact(c.load, c.radius_y, c.radius_x, c.e_star).ellipticity == pytest.approx(k, rel=1e-9)
@@ -231,8 +231,8 @@ def test_unknown_solver_options_are_refused():
 
 
 def _smooth_state(c, n):
-    from lubrication.ehl.newton import _film_guess
-    from lubrication.ehl.problem import _Problem
+    from lubedyn.lubrication.ehl.newton import _film_guess
+    from lubedyn.lubrication.ehl.problem import _Problem
 
     P = _Problem(c, EHLGrid(nx=n), EHLOptions())
     # a smooth, strictly positive interior pressure: no kink of p+ = max(p, 0)
@@ -266,7 +266,7 @@ def test_newton_jacobian_is_exact(density):
     residual: columns of A + D K and D 1 = dR/dh00.  Before tau was
     differentiated the h00 column was off by 3e-6 and the Dowson-Higginson
     p columns by 1e-3; measured now 2e-7 (finite-difference error)."""
-    from lubrication.laws.lubricant import DowsonHigginson
+    from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 
     dens = DowsonHigginson(850.0) if density == "dowson_higginson" else None
     P, p, h00 = _smooth_state(EHLContact.from_moes(100, 10, density=dens), 17)
@@ -294,7 +294,7 @@ def test_eyring_jacobian_is_exact(line):
     x = h |grad p|/(2 tau0): the grad p grad p^T diffusion, dPhi/dh, and the SUPG
     parameter's dependence on grad p through Pe ~ 1/Phi) against central
     differences of the residual, as in :func:`test_newton_jacobian_is_exact`."""
-    from lubrication.laws.lubricant import DowsonHigginson
+    from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 
     c = EHLContact.from_moes(100, 10, line=line, density=DowsonHigginson(850.0))
     P, p, h00 = _eyring_state(c, 65 if line else 17)
@@ -308,11 +308,11 @@ def test_eyring_jacobian_is_exact(line):
 @pytest.mark.parametrize("line", [False, True])
 @pytest.mark.parametrize("eyring", [False, True])
 def test_vectorised_assembly_equals_scikit_fem(line, eyring):
-    """The vectorised assembly (lubrication.ehl.assembly) against scikit-fem's
+    """The vectorised assembly (lubedyn.lubrication.ehl.assembly) against scikit-fem's
     ``asm`` of the same forms (``_Problem.assemble_skfem``), with squeeze
     and a compressible lubricant so that every term is present; and with the
     Reynolds-Eyring flow factor (its tensor diffusion and SUPG terms)."""
-    from lubrication.laws.lubricant import DowsonHigginson
+    from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 
     c = EHLContact.from_moes(100, 10, line=line, density=DowsonHigginson(850.0), squeeze_velocity=-1e-4)
     P, p, h00 = (_eyring_state if eyring else _smooth_state)(c, 65 if line else 17)
@@ -344,8 +344,8 @@ def test_compressible_heavy_elliptic_contact_converges():
     branch it converges in 6 Newton steps (13 with the former inexact
     Jacobian).  Central film against Hamrock-Dowson (their quoted ~20 %;
     measured +8.3 %)."""
-    from lubrication.laws.film import hamrock_dowson_central
-    from lubrication.laws.lubricant import DowsonHigginson
+    from lubedyn.lubrication.laws.film import hamrock_dowson_central
+    from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 
     lub = Lubricant(Barus(0.05, 1.85e-8), DowsonHigginson(992.0, 6e-10, 1.7e-9))
     c = EHLContact(0.0037886720384655756, 0.16393026315789527, 113641042533.04236, lub, 30.0, load=800.0)

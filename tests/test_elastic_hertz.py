@@ -9,9 +9,9 @@ fits (their stated accuracy: a few per cent) and against the circular limit.
 import numpy as np
 import pytest
 
-from lubrication.elastic import ElasticKernel, rectangle_influence
-from lubrication.laws.contact import reduced_modulus
-from lubrication.laws.contact import line_contact, point_contact
+from lubedyn.lubrication.elastic import ElasticKernel, rectangle_influence
+from lubedyn.lubrication.laws.contact import reduced_modulus
+from lubedyn.lubrication.laws.contact import line_contact, point_contact
 
 E_STAR = reduced_modulus(207e9, 0.29, 208e9, 0.3)
 

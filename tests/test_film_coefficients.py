@@ -19,9 +19,9 @@ towards v.  With T = [u; v] (rows), K_uv = T K_xy T^T and likewise C.
 import numpy as np
 import pytest
 
-from lubrication import Cavitation, Film, FunctionGap, JournalBearing, Lubricant, SpherePlane
-from lubrication import closed_form as cf
-from lubrication import mesh as meshes
+from lubedyn.lubrication import Cavitation, Film, FunctionGap, JournalBearing, Lubricant, SpherePlane
+from lubedyn.lubrication import closed_form as cf
+from lubedyn.lubrication import mesh as meshes
 
 R, C, ETA, U = 0.05, 50e-6, 0.02, 10.0  # radius, clearance [m], viscosity [Pa s], omega R [m/s]
 EPS = [0.2, 0.4, 0.6, 0.8]

@@ -1,7 +1,7 @@
 """Issue 36 (items 2, 6, 8; map and film parts): what the library finds wrong with a result or an input
 reaches the user from Python as well as from the CLI, once, in one line.
 
-- a film map whose accuracy report exceeds its tolerance (coupling.maps.ACCURACY_TOLERANCE, 3 %, or the
+- a film map whose accuracy report exceeds its tolerance (lubedyn.maps.ACCURACY_TOLERANCE, 3 %, or the
   build's ``accuracy_tolerance``) logs one WARNING when built and when loaded, naming the map, the output,
   the worst error, where, and the tolerance; the map scene lists it under "Warnings" in summary.json;
 - a JFO film with a negative fluid fraction, solved from Python, logs its WARNING and lists it in
@@ -20,14 +20,14 @@ import math
 import numpy as np
 import pytest
 
-from coupling import cli, maps
-from coupling.config import CASES_DIR
-from coupling.maps import FilmMap, build_map
-from lubrication import mesh as meshes
-from lubrication.errors import InputError
+from lubedyn import cli, maps
+from lubedyn.config import CASES_DIR
+from lubedyn.maps import FilmMap, build_map
+from lubedyn.lubrication import mesh as meshes
+from lubedyn.lubrication.errors import InputError
 
 
-class _Axis:  # the AxisDef protocol of coupling.film_points (duck-typed by coupling.maps)
+class _Axis:  # the AxisDef protocol of lubedyn.film_points (duck-typed by lubedyn.maps)
     def __init__(self, name, lo, hi, n, scale):
         self.name, self.lo, self.hi, self.n, self.scale = name, lo, hi, n, scale
 
@@ -129,7 +129,7 @@ def test_map_scene_lists_the_accuracy_warning_in_its_summary(tmp_path, capsys):
 
 def test_jfo_negative_fluid_fraction_is_logged_from_python(caplog):
     """The journal of tests/test_film_stop_reasons.py with JFO cavitation, its centre moving along -x at
-    0.2 m/s on 64 x 16 P1, "converges" with a fluid fraction down to -0.27: lubrication.solve logs the
+    0.2 m/s on 64 x 16 P1, "converges" with a fluid fraction down to -0.27: lubedyn.lubrication.solve logs the
     line (WARNING) and the solution lists it; the film without the motion (theta >= 0.106) logs nothing.
     The film scene reuses the solution's line: logged once, listed in its summary."""
     from test_film_stop_reasons import journal_jfo
@@ -143,8 +143,8 @@ def test_jfo_negative_fluid_fraction_is_logged_from_python(caplog):
     good = journal_jfo(64, 16, 0.0).solve()
     assert good.warnings == [] and _warnings(caplog) == []
 
-    from coupling import film_scene
-    from coupling.config import load_case
+    from lubedyn import film_scene
+    from lubedyn.config import load_case
 
     case = load_case(CASES_DIR / "journal_finite.toml", overrides=[
         "cavitation.model=jfo", "mesh.element=P1", "boundary.pressures.bottom=1e5", "boundary.pressures.top=1e5",
@@ -184,7 +184,7 @@ def test_periodic_film_mesh_gives_scikit_fem_nothing_to_log(cell, caplog, tmp_pa
     array for array."""
     import skfem
 
-    from lubrication import Cavitation, Film, JournalBearing, Lubricant
+    from lubedyn.lubrication import Cavitation, Film, JournalBearing, Lubricant
 
     caplog.set_level(logging.WARNING, logger="skfem")
     xs, ys = np.linspace(0.0, 2 * np.pi * 0.025, 121), np.linspace(-0.025, 0.025, 21)

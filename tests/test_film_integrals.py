@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from lubrication import Film, InclinedSlider, Lubricant
-from lubrication import mesh
+from lubedyn.lubrication import Film, InclinedSlider, Lubricant
+from lubedyn.lubrication import mesh
 
 L, H_IN, H_OUT, U, ETA = 0.01, 3e-6, 1e-6, 1.5, 0.02
 GAP = InclinedSlider(H_IN, H_OUT, L)

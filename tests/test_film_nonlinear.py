@@ -18,11 +18,11 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
-from lubrication import (
+from lubedyn.lubrication import (
     Barus, ConvergenceError, DowsonHigginson, Film, InclinedSlider, Incompressible,
     Lubricant, ConstantViscosity, Roelands, SolverOptions,
 )
-from lubrication import mesh
+from lubedyn.lubrication import mesh
 
 L, H_IN, H_OUT, U = 0.02, 2.0e-6, 1.0e-6, 2.0
 ETA0 = 0.01

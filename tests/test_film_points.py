@@ -1,4 +1,4 @@
-"""Point kinds of film maps (coupling.film_points): registry, paper data, contact laws, EHL kinds.
+"""Point kinds of film maps (lubedyn.film_points): registry, paper data, contact laws, EHL kinds.
 
 - the registry: four kinds with the contract's fields; evaluate functions
   are module level (they pickle for process pools) and a kind evaluated
@@ -6,7 +6,7 @@
 - default parameters against the numbers derived in the cases (reduced
   modulus, contact angle, reduced radii of paper B's 6206; paper A's roller);
 - contact laws (plain-float functions the dynamics port to numba):
-  Hertz ball-ball against lubrication.laws.contact (exact elliptic-integral code at
+  Hertz ball-ball against lubedyn.lubrication.laws.contact (exact elliptic-integral code at
   the circular limit) and Johnson's formulas; the series law against a
   two-spring force balance solved by brentq; first yield against Hertz p0 =
   1.6 Y; Thornton's model against his closed-form coefficient of
@@ -30,11 +30,11 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
-from coupling import film_points as fp
-from lubrication.laws import collision
-from lubrication.laws import film as ff
-from lubrication.laws import contact as hertz
-from lubrication.closed_form import sphere_plane_squeeze_force
+from lubedyn import film_points as fp
+from lubedyn.lubrication.laws import collision
+from lubedyn.lubrication.laws import film as ff
+from lubedyn.lubrication.laws import contact as hertz
+from lubedyn.lubrication.closed_form import sphere_plane_squeeze_force
 
 E_STAR_B = 1.0 / ((1 - 0.29**2) / 207e9 + (1 - 0.3**2) / 208e9)  # paper B ball/ring, 113.64 GPa
 
@@ -103,7 +103,7 @@ def _thornton(delta, delta_max, Reff, e_star, p_y):
 
 
 def test_hertz_ball_ball_matches_elliptic_hertz_code_and_johnson():
-    """Q(delta) = (4/3) E* sqrt(R) delta^1.5 against lubrication.laws.contact.point_contact (exact
+    """Q(delta) = (4/3) E* sqrt(R) delta^1.5 against lubedyn.lubrication.laws.contact.point_contact (exact
     elliptic integrals, circular limit) for two paper B balls (R_eff = 2.381 mm, E* of two
     207 GPa/0.29 balls): the approach of 100 N maps back to 100 N; K = 1.5 Q/delta and
     against a central difference; Johnson's a = (3 Q R/(4 E*))^(1/3) = 0.1165 mm and
@@ -245,7 +245,7 @@ def test_ball_ball_isoviscous_film_is_homogeneous_in_approach_and_entrainment_sp
 
 
 def test_ball_ball_polar_axes_self_similar_onset_and_squeeze_limit():
-    """Polar axes of the ball_ball kind (coupling.film_points, "Polar axes"; smoke mesh, paper B's oil):
+    """Polar axes of the ball_ball kind (lubedyn.film_points, "Polar axes"; smoke mesh, paper B's oil):
     (1) scaling r by sqrt(2 R_eff h0), h by h0 and p by 1/alpha makes F/h0, K, C h0 and p_max functions of
     (rho, theta) only: equal at h0 = 0.05 and 50 um (measured to 1e-9); (2) the separation onset
     theta_on = -atan(sqrt(h_a/h0 - 1)) (maximum principle: the source is >= 0 on the whole disk below it):
@@ -282,7 +282,7 @@ def test_ball_inner_race_film_stiffness_and_traction():
     (measured -3.4 %); film stiffness -dF/dh00 (the kind's default: central secants of steady
     solves at +-10 % load and +-v_s squeeze velocity) within 5 % of Hertz 1.5 Q/delta (the film
     adds compliance; measured -2.1 %), within 3 % of a one-sided load step of 1e-3 (measured
-    0.10 %) and within 1 % of the linearised tangent of lubrication.ehl (measured 0.46 %: at this
+    0.10 %) and within 1 % of the linearised tangent of lubedyn.lubrication.ehl (measured 0.46 %: at this
     load the discrete F(h00) is smooth over the secant's step); damping positive and within 2 % of
     both (measured 0.26 % and 0.60 %); traction zero at SRR = 0, odd, and at SRR = 0.05 within 10 % of the
     limiting-shear traction of a Hertz pressure under a uniform film h_c (measured -6 %)."""

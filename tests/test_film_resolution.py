@@ -15,9 +15,9 @@ import logging
 import numpy as np
 import pytest
 
-from coupling import film_scene
-from coupling.config import CASES_DIR, load_case
-from lubrication.solution import MIN_GAP_ELEMENTS
+from lubedyn import film_scene
+from lubedyn.config import CASES_DIR, load_case
+from lubedyn.lubrication.solution import MIN_GAP_ELEMENTS
 
 JOURNAL = CASES_DIR / "journal_finite.toml"
 
@@ -35,7 +35,7 @@ def test_journal_at_eps_0999_warns_with_the_mesh_needed(caplog):
     """eps 0.999: the zone h < 2 h_min is 5.1 deg wide; 0.43 elements across it on 64x16 (load
     22 % below 128x32's), 1.66 on 128x32 (0.85 % below 256x64's: still warned, the threshold for
     P2 is 2.2).  The warning names the refinement and the mesh keys."""
-    with caplog.at_level(logging.WARNING, logger="coupling.validity"):
+    with caplog.at_level(logging.WARNING, logger="lubedyn.validity"):
         coarse, fine = journal(0.999, 64, 16), journal(0.999, 128, 32)
     assert load(coarse) == pytest.approx(3.557e6, rel=1e-3) and load(fine) == pytest.approx(4.553e6, rel=1e-3)
     assert load(coarse) / load(fine) < 0.85  # measured 0.78

@@ -15,8 +15,9 @@ import re
 import numpy as np
 import pytest
 
-from lubrication import Cavitation, ConvergenceError, Film, InclinedSlider, JournalBearing, Lubricant, SolverOptions
-from lubrication import mesh as meshes
+from lubedyn.lubrication import (Cavitation, ConvergenceError, Film, InclinedSlider, JournalBearing, Lubricant,
+                                 SolverOptions)
+from lubedyn.lubrication import mesh as meshes
 
 R, C, L = 0.025, 50e-6, 0.05
 
@@ -63,7 +64,7 @@ def test_jfo_without_supply_names_the_supply():
 def test_still_converging_asks_for_more_iterations():
     """A Fowell-type pocket needs 5 active-set iterations; with 2 the error says how far the
     residual got and names solver.max_iter, not cycling (two iterations cannot show a cycle)."""
-    from lubrication import PocketedSlider
+    from lubedyn.lubrication import PocketedSlider
 
     film = Film(meshes.interval(0, 0.01, 100), PocketedSlider(1.05e-6, 1.0e-6, 0.01, 0.002, 0.005, 1e-6),
                 Lubricant.newtonian(0.01), velocity_lower=(1.0,), dirichlet={"left": 1e5, "right": 1e5},
@@ -83,8 +84,8 @@ def test_linear_film_records_its_stop_reason():
 
 def test_film_scene_summary_has_the_stop_reason(tmp_path):
     """summary.json of a film scene carries "Stop reason" (a string)."""
-    from coupling import film_scene
-    from coupling.config import CASES_DIR, load_case
+    from lubedyn import film_scene
+    from lubedyn.config import CASES_DIR, load_case
 
     case = load_case(CASES_DIR / "journal_finite.toml", smoke=True)
     run = film_scene.run(case, tmp_path, name="journal", smoke=True)
@@ -105,8 +106,8 @@ def test_jfo_negative_fluid_fraction_is_warned(tmp_path):
     good = journal_jfo(64, 16, 0.0).solve()
     assert good.fluid_fraction.min() == pytest.approx(0.106, abs=0.005) and good.fluid_fraction_warning() is None
 
-    from coupling import film_scene
-    from coupling.config import CASES_DIR, load_case
+    from lubedyn import film_scene
+    from lubedyn.config import CASES_DIR, load_case
 
     case = load_case(CASES_DIR / "journal_finite.toml", overrides=[
         "cavitation.model=jfo", "mesh.element=P1", "boundary.pressures.bottom=1e5", "boundary.pressures.top=1e5",
@@ -121,7 +122,7 @@ def test_barus_pole_names_the_viscosity_not_the_boundary_conditions():
     iterate); with residuals perturbed by 1-10 round-off units (tests/roundoff.py) the pressure
     itself diverges one iteration earlier (viscosity 7e8 Pa s at 2.5e7 Pa).  The old message of
     the first path blamed "boundary conditions and the gap"; both now name the viscosity."""
-    from lubrication import Barus
+    from lubedyn.lubrication import Barus
 
     film = Film(meshes.interval(0, 0.02, 40), InclinedSlider(20e-7, 10e-7, 0.02), Lubricant(Barus(0.01, 1e-6)),
                 velocity_lower=(2.0,), options=SolverOptions(max_iter=30))
@@ -143,7 +144,7 @@ def test_barus_pole_names_the_viscosity_not_the_boundary_conditions():
 ])
 def test_diagnosis_reads_the_history(case, expected):
     """The failure classifier on synthetic histories of 20 iterations (one per criterion)."""
-    from lubrication.reynolds import _diagnose, _Problem
+    from lubedyn.lubrication.reynolds import _diagnose, _Problem
 
     film = Film(meshes.interval(0, 0.02, 10), InclinedSlider(20e-6, 10e-6, 0.02), Lubricant.newtonian(0.01),
                 velocity_lower=(1.0,), cavitation=Cavitation("reynolds"))

@@ -1,4 +1,4 @@
-"""Verification of dynamics.integrators: convergence orders, stability polynomials,
+"""Verification of lubedyn.dynamics.integrators: convergence orders, stability polynomials,
 energy against the analytic amplification factor, scipy DOP853, status codes, cache."""
 import math
 import os
@@ -12,8 +12,8 @@ import pytest
 from numba import njit
 from scipy.integrate import solve_ivp
 
-from dynamics import integrators as I
-from dynamics.errors import DynamicsInputError, IntegrationError
+from lubedyn.dynamics import integrators as I
+from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from benchmarks import dynamics_tools  # noqa: E402
@@ -302,7 +302,7 @@ def test_bound_kernel_hits_numba_cache_in_a_new_process(tmp_path):
         import numpy as np, sys
         sys.path.insert(0, sys.argv[1])
         from test_integrators import linear
-        from dynamics import integrators as I
+        from lubedyn.dynamics import integrators as I
         k = I.kernel_for("rk4", linear)
         Y, st = k(np.array([1.0]), np.array([0.0, 1.0]), 0.5, (np.array([[-1.0]]),))
         print(len(k.stats.cache_hits), len(k.stats.cache_misses), Y[-1, 0])

@@ -1,4 +1,4 @@
-"""dynamics.interp: numba interpolation kernels of film maps.
+"""lubedyn.dynamics.interp: numba interpolation kernels of film maps.
 
 Independent references: exact multilinear functions, scipy's
 RegularGridInterpolator (linear and pchip) and PchipInterpolator, measured
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from scipy.interpolate import PchipInterpolator, RegularGridInterpolator
 
-from dynamics import interp
-from dynamics.interp import prepare_axis, prepare_values
+from lubedyn.dynamics import interp
+from lubedyn.dynamics.interp import prepare_axis, prepare_values
 
 rng = np.random.default_rng(1234)
 

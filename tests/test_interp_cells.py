@@ -1,5 +1,5 @@
 """The per-cell Hermite kernels kept as a benchmark (benchmarks/interp_cells.py): the interpolant of
-dynamics.interp's method 2 in another basis, checked against scipy's PCHIP, exact multilinear
+lubedyn.dynamics.interp's method 2 in another basis, checked against scipy's PCHIP, exact multilinear
 reproduction and method 2 itself, with the clamp/NaN conventions and no reference counting."""
 import re
 import sys
@@ -11,8 +11,8 @@ from scipy.interpolate import PchipInterpolator
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from benchmarks import interp_cells as ic  # noqa: E402
-from dynamics import interp  # noqa: E402
-from dynamics.interp import prepare_axis, prepare_values  # noqa: E402
+from lubedyn.dynamics import interp  # noqa: E402
+from lubedyn.dynamics.interp import prepare_axis, prepare_values  # noqa: E402
 
 rng = np.random.default_rng(1234)
 

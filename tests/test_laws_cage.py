@@ -1,5 +1,5 @@
-"""Cage laws of paper A (lubrication.laws.cage) against independent values: Martin's rigid cylinder
-(semi-analytic quadrature, lubrication.closed_form) and the project's Reynolds FEM for the pocket
+"""Cage laws of paper A (lubedyn.lubrication.laws.cage) against independent values: Martin's rigid cylinder
+(semi-analytic quadrature, lubedyn.lubrication.closed_form) and the project's Reynolds FEM for the pocket
 film's load, squeeze and traction; the short journal bearing by scipy quad (closed_form) and the FEM
 journal at the guide land's own width/diameter for the land; the boundary state's continuity."""
 from __future__ import annotations
@@ -9,10 +9,10 @@ import math
 import numpy as np
 import pytest
 
-from lubrication import Cavitation, CylinderPlane, Film, JournalBearing, Lubricant
-from lubrication import mesh as meshes
-from lubrication import closed_form as cf
-from lubrication.laws import cage as L
+from lubedyn.lubrication import Cavitation, CylinderPlane, Film, JournalBearing, Lubricant
+from lubedyn.lubrication import mesh as meshes
+from lubedyn.lubrication import closed_form as cf
+from lubedyn.lubrication.laws import cage as L
 
 R_ROLLER, L_SLICE, ETA = 10.65e-3, 42.06e-3 / 20, 0.1  # paper A's mean roller radius, a 20th of l_e
 
@@ -218,7 +218,7 @@ def test_guide_land_options_against_the_reynolds_fem(eps, short_diff, paper_rati
     within 0.011 deg (Ocvirk's neglected terms ~ (b/2r)^2 = 6e-4 growing with eps); eq. 44's
     cylinder-over-plane law (equivalent radius 38 m, no side leakage) is 1.3e4 to 200 times the FEM
     (eps 0.1 to 0.95)."""
-    from coupling.guide_land import journal_film_force
+    from lubedyn.guide_land import journal_film_force
 
     fx, fy, _ = journal_film_force(R_LAND, C_LAND, B_LAND, ETA, eps, U_LAND, 0.0, n_theta=512)
     F = np.array([fx, fy])
@@ -249,7 +249,7 @@ def test_guide_land_fem_map_against_the_fem():
     (bilinear in beta: measured 4.5e-3, 1.4e-2, 1.8e-4, 3.8e-3 for (e', e psi')/(c omega) = (0.3, 0),
     (-0.5, 0.2), (0, 0.4), (0.1, -0.3) at eps 0.5, 0.7, 0.6, 0.45; the short bearing there: 6.6e-4,
     2.9e-4, 8.6e-4, 5.5e-4)."""
-    from coupling.guide_land import build_guide_land_map, journal_film_force
+    from lubedyn.guide_land import build_guide_land_map, journal_film_force
 
     M = build_guide_land_map(R_LAND, C_LAND, B_LAND, [0.4, 0.5, 0.6, 0.7, 0.8],
                              np.linspace(-math.pi / 2, math.pi / 2, 17), n_theta=128)

@@ -1,4 +1,4 @@
-"""The contact laws written once (lubrication.laws.contact) against their published sources and an
+"""The contact laws written once (lubedyn.lubrication.laws.contact) against their published sources and an
 independent evaluation: Johnson (1985) for the circle and the line, a quadrature of Boussinesq's
 integral for the approach of the elliptical contact, Hamrock & Brewe's (1983) stated accuracy for
 their fits, and the definitions of the contact stiffness and of springs in series."""
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from lubrication.errors import InputError
-from lubrication.laws import contact as L
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws import contact as L
 
 E_STAR = L.reduced_modulus(207e9, 0.29, 208e9, 0.3)
 

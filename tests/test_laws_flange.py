@@ -1,4 +1,4 @@
-"""Flange / roller-end contact (lubrication.laws.flange) against independent values: the relative radii of
+"""Flange / roller-end contact (lubedyn.lubrication.laws.flange) against independent values: the relative radii of
 a sphere on a cone (Meusnier), the exact Hertz solution against Harris' form of it (eq. 21 of paper A,
 q = (2 2^(1/2)/3) E' delta^(3/2)/(n_delta^(3/2) (sum rho)^(1/2))) with the elliptic integrals by
 quadrature here, friction limits and continuity of eqs. 22-23, and the rib film ratio lambda at paper
@@ -9,12 +9,12 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from coupling import parameters as P
-from coupling.parameters.wu2018 import GREASE_TABLE
-from lubrication.errors import InputError
-from lubrication.laws import contact as C
-from lubrication.laws import flange as FL
-from lubrication.laws import grease as G
+from lubedyn import parameters as P
+from lubedyn.parameters.wu2018 import GREASE_TABLE
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws import contact as C
+from lubedyn.lubrication.laws import flange as FL
+from lubedyn.lubrication.laws import grease as G
 
 SI = lambda name: P.si("Wu2018", name)  # noqa: E731
 RS, RF = SI("roller_end_sphere_radius"), SI("rib_contact_radius")

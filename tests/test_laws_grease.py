@@ -1,4 +1,4 @@
-"""Grease laws (lubrication.laws.grease) against independent values: the apparent-viscosity table of
+"""Grease laws (lubedyn.lubrication.laws.grease) against independent values: the apparent-viscosity table of
 paper_A_notes.md 3.4 (recomputed here from Table 2's raw rows), the ranking reversal of notes 2.3, Table 2
 itself at its temperatures, the Herschel-Bulkley law's oddness and its Newtonian limit, and the film of a
 Newtonian "grease" against the project's Dowson-Toyoda and Moes line films and the notes' 5.4 um."""
@@ -6,10 +6,10 @@ import math
 
 import pytest
 
-from coupling.parameters.wu2018 import GREASE_TABLE
-from lubrication.errors import InputError
-from lubrication.laws import film as F
-from lubrication.laws import grease as G
+from lubedyn.parameters.wu2018 import GREASE_TABLE
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws import film as F
+from lubedyn.lubrication.laws import grease as G
 
 ALPHA = 4.662e-8  # Table 1, polyurea at 30 C
 # paper_A_notes.md 3.4: apparent viscosity [Pa s] at 30 C, as printed (2 significant figures)
@@ -103,7 +103,7 @@ def _u_w_g(eta, u, w, R, Ep):
 
 def test_newtonian_grease_film_is_dowson_toyoda_and_moes():
     """tau_y = 0, n = 1, phi0 = 0.1 Pa s: every reading that uses the grease gives the Newtonian line film
-    of lubrication.laws.film to round-off (Dowson-Toyoda and Moes); at paper A's most loaded cone contact
+    of lubedyn.lubrication.laws.film to round-off (Dowson-Toyoda and Moes); at paper A's most loaded cone contact
     (2.4 krpm: u_m 11.03 m/s, 115 kN/m, R' 9.41 mm, E' 225 GPa) Dowson-Toyoda gives the notes' 5.4 um
     (3.3, printed to 0.1 um) and Moes lies within 6 % of it (measured 5.3 %)."""
     u, w, R, Ep = 11.03, 115e3, 9.41e-3, 225e9

@@ -1,4 +1,4 @@
-"""Lubricant laws (lubrication.laws.lubricant) against their published forms: Barus (1893), Roelands
+"""Lubricant laws (lubedyn.lubrication.laws.lubricant) against their published forms: Barus (1893), Roelands
 (1966) with p0 = 1.96e8 Pa and its low-pressure slope alpha = z (ln eta0 + 9.67)/p0, Dowson &
 Higginson's (1966) density with its 1 + a/b = 1.353 limit; each derivative against a difference."""
 import math
@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from lubrication.errors import InputError
-from lubrication.laws.lubricant import Barus, ConstantViscosity, DowsonHigginson, Roelands
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws.lubricant import Barus, ConstantViscosity, DowsonHigginson, Roelands
 
 ETA0, ALPHA = 0.050, 1.85e-8  # paper B's oil (Table 1)
 

@@ -1,4 +1,4 @@
-"""Paper A's raceway and flange traction (lubrication.laws.traction) against independent values: eq. 12
+"""Paper A's raceway and flange traction (lubedyn.lubrication.laws.traction) against independent values: eq. 12
 against a scipy quadrature of the gap integral it stands for and its wide-strip Couette limit, the
 limited Herschel-Bulkley law against closed forms in its Newtonian/Barus limits (modified Bessel and
 Struve functions, elementary integrals) and against adaptive quadrature with the limit active, its bound,
@@ -9,8 +9,8 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import iv, modstruve
 
-from lubrication.laws import grease as G
-from lubrication.laws import traction as T
+from lubedyn.lubrication.laws import grease as G
+from lubedyn.lubrication.laws import traction as T
 
 ALPHA = 4.662e-8
 

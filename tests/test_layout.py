@@ -1,7 +1,11 @@
 """The architecture rules of DESIGN.md that a scan can check (issue 13): every law constant has one home
-(lubrication/laws), and dynamics imports from lubrication only the laws and the error tree."""
+(lubrication/laws), and dynamics imports from lubrication only the laws and the error tree; and the layout of
+the one installed namespace (issue 37): the folders lubrication/, dynamics/, coupling/ and cases/ are
+lubedyn.lubrication, lubedyn.dynamics, lubedyn itself and lubedyn.cases, and nothing names them otherwise."""
 import ast
+import re
 import sys
+import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -18,40 +22,137 @@ def test_every_law_constant_has_one_home():
         assert len({s.split(":")[0] for s in sites}) <= 1, (key, sites)
 
 
+# the installed namespace (pyproject.toml, [tool.setuptools] package-dir): package -> folder of the checkout
+PACKAGE_DIR = {"lubedyn": "coupling", "lubedyn.lubrication": "lubrication", "lubedyn.dynamics": "dynamics",
+               "lubedyn.cases": "cases"}
+OLD_NAMES = ("lubrication", "dynamics", "coupling")  # the folders' names, never installed nor imported
+
+
+def _module_name(path: Path) -> str:
+    """The installed name of a source file of the checkout (``dynamics/cageless/model.py`` ->
+    ``lubedyn.dynamics.cageless.model``)."""
+    rel = path.relative_to(ROOT).with_suffix("")
+    for package, folder in sorted(PACKAGE_DIR.items(), key=lambda kv: -len(kv[1])):
+        if rel.parts[0] == folder:
+            parts = rel.parts[1:]
+            if parts and parts[-1] == "__init__":
+                parts = parts[:-1]
+            return ".".join((package, *parts))
+    raise ValueError(path)
+
+
 def _imports(path):
+    """The absolute names of the modules ``path`` imports (relative imports resolved against its installed
+    name, so that ``from .. import x`` in ``dynamics/`` counts as an import of the coupling layer)."""
+    name = _module_name(path)
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     tree = ast.parse(path.read_text())
     for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-            yield node.module
+        if isinstance(node, ast.ImportFrom):
+            if node.level == 0:
+                base = node.module
+            else:
+                parts = package.split(".")
+                base = ".".join(parts[:len(parts) - node.level + 1] + ([node.module] if node.module else []))
+            if node.module:
+                yield base
+            else:  # ``from .. import lubrication``: the names are modules
+                yield from (f"{base}.{a.name}" for a in node.names)
         elif isinstance(node, ast.Import):
             yield from (a.name for a in node.names)
 
 
+def _layer(module: str) -> str | None:
+    """lubrication, dynamics, cases or coupling (the rest of ``lubedyn``); None outside lubedyn."""
+    if module != "lubedyn" and not module.startswith("lubedyn."):
+        return None
+    for layer in ("lubrication", "dynamics", "cases"):
+        if module == f"lubedyn.{layer}" or module.startswith(f"lubedyn.{layer}."):
+            return layer
+    return "coupling"
+
+
+def _law_or_error(module: str) -> bool:
+    return module == "lubedyn.lubrication.errors" or module == "lubedyn.lubrication.laws" or module.startswith(
+        "lubedyn.lubrication.laws.")
+
+
 def test_dynamics_imports_only_the_laws_and_errors_of_lubrication():
-    """dynamics never imports a film solver, nor coupling (DESIGN.md, Layout)."""
+    """dynamics never imports a film solver, nor the coupling layer (DESIGN.md, Layout)."""
     bad = []
     for path in sorted((ROOT / "dynamics").rglob("*.py")):
         for module in _imports(path):
-            top = module.split(".")[0]
-            if top == "coupling" or (top == "lubrication" and not (
-                    module.startswith("lubrication.laws") or module == "lubrication.errors")):
+            layer = _layer(module)
+            if layer == "coupling" or (layer == "lubrication" and not _law_or_error(module)):
                 bad.append(f"{path.relative_to(ROOT)}: {module}")
+    assert bad == []
+
+
+def test_lubrication_imports_neither_dynamics_nor_coupling():
+    bad = [f"{path.relative_to(ROOT)}: {module}" for path in sorted((ROOT / "lubrication").rglob("*.py"))
+           for module in _imports(path) if _layer(module) in ("dynamics", "coupling", "cases")]
     assert bad == []
 
 
 def test_the_laws_import_no_solver():
     """lubrication/laws is the ground floor: it imports nothing of lubedyn but itself and the errors."""
+    bad = [f"{path.name}: {module}" for path in sorted((ROOT / "lubrication" / "laws").rglob("*.py"))
+           for module in _imports(path) if _layer(module) is not None and not _law_or_error(module)]
+    assert bad == []
+
+
+def test_the_relative_import_resolver():
+    """The resolver above on known lines: a relative import out of dynamics/ is one of the coupling layer."""
+    assert _module_name(ROOT / "dynamics" / "cageless" / "model.py") == "lubedyn.dynamics.cageless.model"
+    assert _module_name(ROOT / "coupling" / "__init__.py") == "lubedyn"
+    assert "lubedyn.dynamics.errors" in set(_imports(ROOT / "dynamics" / "specialise.py"))
+    assert "lubedyn.lubrication" in set(_imports(ROOT / "coupling" / "maps" / "provenance.py"))  # from .. import
+
+
+# ---------------------------------------------------------------------------
+# one namespace (issue 37)
+
+
+def test_pyproject_installs_one_namespace_with_every_package():
+    """The installed packages are lubedyn and its sub-packages, each folder with an ``__init__.py`` listed
+    under its installed name, and nothing under the folders' own names."""
+    setuptools = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    assert setuptools["package-dir"] == PACKAGE_DIR
+    folders = {_module_name(p) for folder in PACKAGE_DIR.values() for p in (ROOT / folder).rglob("__init__.py")}
+    assert set(setuptools["packages"]) == folders
+    assert not [p for p in setuptools["packages"] if p.split(".")[0] != "lubedyn"]
+    scripts = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["scripts"]
+    assert scripts == {"lubedyn": "lubedyn.cli:main"}
+
+
+def _sources():
+    for folder in (*PACKAGE_DIR.values(), "tests", "benchmarks", "examples", "docs"):
+        yield from sorted(p for p in (ROOT / folder).rglob("*.py") if "_build" not in p.parts)
+
+
+# the before/after tool runs older commits too, whose CLI is ``python -m coupling.cli``
+EARLIER_LAYOUT = {("benchmarks/case_summaries.py", "coupling.cli")}
+
+
+def test_no_code_names_the_folders_as_modules():
+    """No import of ``lubrication``, ``dynamics`` or ``coupling`` as top-level modules in the library, the
+    tests, benchmarks, examples and docs, and no string that names a module under them (``"coupling.study"``
+    as a logger, ``importlib.import_module("dynamics.x")``, ``python -m coupling.cli``)."""
     bad = []
-    for path in sorted((ROOT / "lubrication" / "laws").rglob("*.py")):
+    module_string = re.compile(rf"^(?:-m )?(?:{'|'.join(OLD_NAMES)})\.[a-z_]+(?:\.[a-z_]+)*$")
+    for path in _sources():
+        if path == Path(__file__).resolve():  # this file names them, to check them
+            continue
         tree = ast.parse(path.read_text())
         for node in ast.walk(tree):
-            if isinstance(node, ast.ImportFrom):
-                if node.level == 1 or (node.level == 2 and node.module == "errors"):
-                    continue
-                if node.level == 0 and node.module and node.module.split(".")[0] in ("lubrication", "dynamics",
-                                                                                       "coupling"):
-                    if not (node.module.startswith("lubrication.laws") or node.module == "lubrication.errors"):
-                        bad.append(f"{path.name}: {node.module}")
-                elif node.level >= 2:
-                    bad.append(f"{path.name}: {'.' * node.level}{node.module}")
+            names = []
+            if isinstance(node, ast.ImportFrom) and node.level == 0:
+                names = [node.module]
+            elif isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            elif isinstance(node, ast.Constant) and isinstance(node.value, str) and module_string.match(node.value):
+                names = [node.value]
+            bad += [f"{path.relative_to(ROOT)}:{node.lineno}: {n}" for n in names
+                    if n.removeprefix("-m ").split(".")[0] in OLD_NAMES
+                    and (path.relative_to(ROOT).as_posix(), n) not in EARLIER_LAYOUT]
     assert bad == []

@@ -1,4 +1,4 @@
-"""Verification of dynamics.lyapunov against Lorenz and Henon reference values.
+"""Verification of lubedyn.dynamics.lyapunov against Lorenz and Henon reference values.
 
 References: Lorenz (sigma 10, rho 28, beta 8/3) lambda = 0.9056, 0, -14.5723
 (Sprott, *Chaos and Time-Series Analysis*, 2003, table A.1; the sum
@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 from numba import njit
 
-from dynamics import integrators as I
-from dynamics import lyapunov as L
-from dynamics.errors import DynamicsInputError
+from lubedyn.dynamics import integrators as I
+from lubedyn.dynamics import lyapunov as L
+from lubedyn.dynamics.errors import DynamicsInputError
 
 LORENZ = (10.0, 28.0, 8.0 / 3.0)
 LORENZ_L1 = 0.9056
@@ -215,7 +215,7 @@ def test_bad_input():
 @njit(cache=True)
 def oscillator_with_memory(t, y, args, dydt):
     """x'' = -x (exponents 0, 0) and a memory m of the recent maximum of x with
-    the switching rate of dynamics.contacts.plastic_memory_rate: m follows x
+    the switching rate of lubedyn.dynamics.contacts.plastic_memory_rate: m follows x
     while x >= m and rises, else decays with time constant tau."""
     tau = args[0]
     dydt[0] = y[1]
@@ -316,7 +316,7 @@ def test_scene_summary_writes_uncertainty_and_verdict_next_to_each_exponent(lore
     and the verdict is "not positive": the number alone would have been a silent wrong answer."""
     from types import SimpleNamespace
 
-    from coupling.dynamics_lyapunov import _lyapunov_per_direction
+    from lubedyn.dynamics_lyapunov import _lyapunov_per_direction
 
     t = np.arange(10000) * 0.01
     centres = np.zeros((t.size, 2, 3))

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import test_maps  # noqa: F401  (registers the analytic kinds)
-from coupling import cli
-from coupling.maps import FilmMap, random_points
+from lubedyn import cli
+from lubedyn.maps import FilmMap, random_points
 from test_maps import squeeze_exact, squeeze_params
 
 CASE = """
@@ -107,7 +107,7 @@ def test_map_scenes_take_the_typed_lubricant_table():
     """[lubricant] (the film and EHL scenes' typed table, units checked) sets a kind's oil parameters exactly
     as the untyped params keys do; giving both, a z for Roelands or a wrong unit is a one-line error
     naming the key."""
-    from coupling.config import CASES_DIR, CaseError, load_case_text
+    from lubedyn.config import CASES_DIR, CaseError, load_case_text
 
     base = (CASES_DIR / "map_ehl_ball_inner_race.toml").read_text()
     table = ('\n[lubricant]\nviscosity = { law = "barus", eta0 = "50 mPa s", alpha = "1.85e-8 m^2/N" }\n'

@@ -1,4 +1,4 @@
-"""coupling.maps: FilmMap, power-law fits, accuracy reports, storage, and map builds (local processes,
+"""lubedyn.maps: FilmMap, power-law fits, accuracy reports, storage, and map builds (local processes,
 Dask, cache, resume, failures) on analytic point kinds defined here.
 
 Analytic kind ``test_squeeze``: rigid isoviscous sphere-sphere squeeze film on a disk of radius a
@@ -18,12 +18,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from coupling import maps
-from coupling.maps import FilmMap, MapAxis, build_map
-from lubrication.errors import ConvergenceError, InputError
+from lubedyn import maps
+from lubedyn.config import CASES_DIR
+from lubedyn.maps import FilmMap, MapAxis, build_map
+from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 
-class Axis:  # the AxisDef protocol of coupling.film_points (duck-typed by coupling.maps)
+class Axis:  # the AxisDef protocol of lubedyn.film_points (duck-typed by lubedyn.maps)
     def __init__(self, name, lo, hi, n, scale):
         self.name, self.lo, self.hi, self.n, self.scale = name, lo, hi, n, scale
 
@@ -216,11 +217,11 @@ def test_save_load_round_trip_and_format_check(tmp_path):
 
 def _front_map(sheared: bool):
     """A map of mu(w, s) = s/(1 + (s/s_t)^6)^(1/6) (Newtonian below s_t, limited above) with s_t = 0.1 w^-35, the
-    steepness of the roller traction's Newtonian-to-limited front (coupling.film_points,
+    steepness of the roller traction's Newtonian-to-limited front (lubedyn.film_points,
     ROLLER_TRACTION_SHEAR: the front crosses the slip axis), on 5 load nodes (ratio 1.07) x 37 slip nodes
     1e-5..0.1; with ``sheared``
     also the transition slip (saturated as the kinds do) and the traction at the normalised slip."""
-    from coupling.film_points import ROLLER_TRACTION_SHEAR as spec, normalised_slip, saturated_transition
+    from lubedyn.film_points import ROLLER_TRACTION_SHEAR as spec, normalised_slip, saturated_transition
 
     w = np.geomspace(1.0, 1.3, 5)
     s = np.geomspace(1e-5, 0.1, 37)
@@ -332,7 +333,7 @@ def test_fill_option_marks_failed_points(tmp_path):
     F = fmap.values["Force [N]"]
     assert np.array_equal(F[3:, :], np.repeat(F[2:3, :], 2, axis=0))
     # the map scene's summary says why the build ended, with the points' own errors
-    from coupling.map_scene import _build_stop_reason
+    from lubedyn.map_scene import _build_stop_reason
 
     reason = _build_stop_reason(fmap.provenance)
     assert reason.startswith("4 of 10 points failed and were filled") and f"2 x {filled[0]['error']}" in reason
@@ -353,7 +354,7 @@ def test_killed_build_resumes(tmp_path):
 import sys
 sys.path.insert(0, {str(Path(__file__).parent)!r})
 import test_maps
-from coupling import maps
+from lubedyn import maps
 maps.build_map("test_squeeze", {params!r}, workers=1, cache_dir={str(tmp_path / 'cache')!r}, progress=False)
 """
     proc = subprocess.Popen([sys.executable, "-c", script])
@@ -393,7 +394,7 @@ def test_three_axes_build_and_unknown_keys():
 # shipped maps (cases/maps/*.npz)
 
 SHIPPED = [pytest.param(p, id=p.stem, marks=[pytest.mark.slow] if p.stem.startswith("ehl_") else [])
-           for p in sorted((Path(__file__).resolve().parents[1] / "cases" / "maps").glob("*.npz"))]
+           for p in sorted((CASES_DIR / "maps").glob("*.npz"))]
 
 
 @pytest.mark.parametrize("path", SHIPPED)
@@ -464,7 +465,7 @@ def test_dask_worker_processes_give_the_same_real_map(tmp_path):
 # ---------------------------------------------------------------------------
 # the shipped maps' accuracy (issue 4, section 5) and the polar ball-ball map
 
-SHIPPED_MAPS = Path(__file__).resolve().parents[1] / "cases" / "maps"
+SHIPPED_MAPS = CASES_DIR / "maps"
 
 
 # (map, output) pairs that miss the target, with the measured cause (strict xfail).  None since 28 Nov 2026:
@@ -498,7 +499,7 @@ def _accuracy_cases():
 @pytest.mark.parametrize("path, name", _accuracy_cases())
 def test_shipped_map_accuracy_report_meets_the_target(path, name):
     """Every output of every shipped map: interpolation error against direct solves at random off-grid
-    points (coupling.maps.accuracy_report, stored in the map) median < 1 %, max < 3 % (the issue's target),
+    points (lubedyn.maps.accuracy_report, stored in the map) median < 1 %, max < 3 % (the issue's target),
     on at least 15 points, none failed.  Strict xfail: the pairs of KNOWN_MISSES (EHL solution jitter)."""
     rep = FilmMap.load(path).accuracy
     assert not rep.get("failed points"), rep.get("failed points")
@@ -515,9 +516,9 @@ def _old_cone_points():
 
 def test_shipped_ball_ball_map_at_the_cone_of_the_cartesian_axes():
     """The points where the Cartesian map failed (the cone at v = u_e = 0), read from the shipped polar
-    map through coupling.film_points.polar_numbers, against direct Reynolds solves with the map's own
+    map through lubedyn.film_points.polar_numbers, against direct Reynolds solves with the map's own
     parameters: F, K, C within 3 %."""
-    from coupling import film_points as fp
+    from lubedyn import film_points as fp
 
     fmap = FilmMap.load(SHIPPED_MAPS / "ball_ball.npz")
     params = fmap.provenance["params"]
@@ -534,7 +535,7 @@ def test_cartesian_resample_for_the_bearing_kernel():
     """The polar ball-ball map resampled on (gap, squeeze number, entrainment speed) nodes (what the bearing
     kernel reads until it reads polar axes): at nodes with and without entrainment it matches direct solves
     within 3 %; at Lambda = u_e = 0 the force is 0 (no film load at rest)."""
-    from coupling import film_points as fp
+    from lubedyn import film_points as fp
 
     fmap = FilmMap.load(SHIPPED_MAPS / "ball_ball.npz")
     params = fmap.provenance["params"]

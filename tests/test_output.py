@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 import pyvista as pv
 
-from coupling import film_scene
-from coupling.config import CASES_DIR, load_case
+from lubedyn import film_scene
+from lubedyn.config import CASES_DIR, load_case
 
 NAMES = ("Pressure [Pa]", "Film thickness [m]", "Fluid fraction [-]")
 
@@ -128,7 +128,7 @@ def test_pvd_collection_reads_back_in_pyvista(tmp_path):
     """pyvista's own PVD reader (an independent parser) sees the times and the data."""
     import pyvista as pv
 
-    from coupling.outputs import write_pvd
+    from lubedyn.outputs import write_pvd
 
     entries = []
     for k, t in enumerate((0.0, 2.5e-4, 1e-3)):
@@ -149,7 +149,7 @@ def test_frames_read_back_as_written_and_unwritable_frames_name_the_path(tmp_pat
     """``write_frame`` (zlib level 1 through VTK's writer): pyvista and meshio (two independent readers)
     read back the points, cells and arrays of a PolyData and an UnstructuredGrid (meshio: the latter) exactly; a frame that
     cannot be written is an OutputError naming its path."""
-    from coupling.outputs import OutputError, write_frame
+    from lubedyn.outputs import OutputError, write_frame
 
     poly = pv.Sphere(radius=2.0, theta_resolution=24, phi_resolution=12)
     poly.point_data["Film pressure [Pa]"] = np.linspace(0.0, 3e8, poly.n_points)
@@ -176,7 +176,7 @@ def test_frames_read_back_as_written_and_unwritable_frames_name_the_path(tmp_pat
 
 
 def test_timeseries_roundtrip_and_refuses_ragged_columns(tmp_path):
-    from coupling.outputs import read_timeseries, write_timeseries
+    from lubedyn.outputs import read_timeseries, write_timeseries
 
     t = np.linspace(0, 1e-3, 5)
     path = write_timeseries(tmp_path / "ts.npz", t, {"Ball 1 x [m]": np.sin(t)}, {"Case": "demo"})
@@ -194,7 +194,7 @@ def test_timeseries_round_trip_plain_and_compressed(tmp_path):
     data that compresses (a smooth signal)."""
     import numpy as np
 
-    from coupling.outputs import read_timeseries, write_timeseries
+    from lubedyn.outputs import read_timeseries, write_timeseries
 
     t = np.linspace(0.0, 1.0, 2001)
     cols = {"Smooth [m]": np.round(np.sin(t), 3), "Flag [-]": (t > 0.5).astype(float)}

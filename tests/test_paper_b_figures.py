@@ -12,9 +12,9 @@ import math
 import numpy as np
 import pytest
 
-from coupling import paper_b_figures as pb
-from dynamics.analysis import Collision
-from dynamics.spectra import bearing_frequencies
+from lubedyn import paper_b_figures as pb
+from lubedyn.dynamics.analysis import Collision
+from lubedyn.dynamics.spectra import bearing_frequencies
 
 Z, R0, W = 14, 23.0e-3, 400.0  # balls, pitch radius [m], orbital speed [rad/s]
 
@@ -234,7 +234,7 @@ def test_figures_have_labelled_axes():
 
 
 def _write_run(folder, t, series, rpm, summary_extra=None):
-    from coupling.outputs import write_timeseries
+    from lubedyn.outputs import write_timeseries
 
     folder.mkdir()
     write_timeseries(folder / "timeseries.npz", t, {k: v for k, v in series.items() if k != "Time [s]"})
@@ -286,8 +286,8 @@ def test_script_draws_the_comparison(tmp_path):
 
 # ---------------------------------------------------------------------------- through the scene
 def test_smoke_run_writes_the_figures_and_the_summary(tmp_path):
-    from coupling import cli
-    from coupling.dynamics_scene import FIELD_FILES
+    from lubedyn import cli
+    from lubedyn.dynamics_scene import FIELD_FILES
 
     assert {f for f, _ in FIELD_FILES} >= set(pb.PNG_FILES)
     assert cli.main(["run", "cageless_6206_10krpm_short", "--smoke", "--out", str(tmp_path)]) == 0

@@ -1,4 +1,4 @@
-"""Parameter sets (coupling.parameters): each paper's values against the independent transcription of
+"""Parameter sets (lubedyn.parameters): each paper's values against the independent transcription of
 its tables in tests/data/seed_parameters.toml (a copy of shared/reference/seed_parameters.toml), every value cited, and the case-file
 merge (the set fills, the file and --set overrides win, errors are one line)."""
 import math
@@ -7,11 +7,11 @@ from pathlib import Path
 
 import pytest
 
-from coupling import parameters as P
-from coupling.config import CaseError, load_case, load_case_text, resolved_toml
+from lubedyn import parameters as P
+from lubedyn.config import CASES_DIR as CASES
+from lubedyn.config import CaseError, load_case, load_case_text, resolved_toml
 
 SEED = Path(__file__).resolve().parent / "data" / "seed_parameters.toml"  # the papers' tables, transcribed
-CASES = Path(__file__).resolve().parents[1] / "cases"
 
 
 @pytest.mark.parametrize("name", list(P.SETS))
@@ -98,9 +98,9 @@ def test_a_case_takes_the_set_and_overrides_it():
 
 
 def test_the_python_twin_of_a_case_is_the_same_bearing():
-    """coupling.parameters.zhang2024.cageless_bearing() and a case naming Zhang2024 build the same model."""
-    from coupling.dynamics_scene import build
-    from coupling.parameters.zhang2024 import cageless_bearing
+    """lubedyn.parameters.zhang2024.cageless_bearing() and a case naming Zhang2024 build the same model."""
+    from lubedyn.dynamics_scene import build
+    from lubedyn.parameters.zhang2024 import cageless_bearing
 
     case = load_case(CASES / "cageless_6206_steady.toml")
     from_case = build(case).model
@@ -128,7 +128,7 @@ def test_bad_parameter_sets_are_one_line(text, match):
 def test_assumed_values_are_those_the_case_keeps():
     """A case naming a set lists, under "Assumed values", exactly the keys the set marks assumed and the
     case does not change: paper A's base oil in the roller EHL case, gone when the case gives its own."""
-    from coupling.parameters import assumed_values
+    from lubedyn.parameters import assumed_values
 
     case = load_case(CASES / "ehl_roller_slice.toml")
     wu = P.parameter_set("Wu2018")

@@ -9,9 +9,9 @@ the tolerances used, which are set by the solver tolerance (rtol 1e-10).
 import numpy as np
 import pytest
 
-from lubrication import Barus, Cavitation, DowsonHigginson, Film, JournalBearing, Lubricant, SpherePlane
-from lubrication import mesh
-from lubrication.gaps import ShiftedGap
+from lubedyn.lubrication import Barus, Cavitation, DowsonHigginson, Film, JournalBearing, Lubricant, SpherePlane
+from lubedyn.lubrication import mesh
+from lubedyn.lubrication.gaps import ShiftedGap
 
 
 def _fd(film, names, step_q, step_v):

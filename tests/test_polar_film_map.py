@@ -1,9 +1,9 @@
 """The bearing kernel's reader of the polar ball-ball film map
-(dynamics.contacts._film_map with MAP_AXIS_POLAR) against the map itself.
+(lubedyn.dynamics.contacts._film_map with MAP_AXIS_POLAR) against the map itself.
 
-Independent references: coupling.maps.FilmMap evaluates the shipped map in
+Independent references: lubedyn.maps.FilmMap evaluates the shipped map in
 Python on its own axes (gap, pressure number rho, squeeze angle theta), with
-rho and theta from coupling.film_points.polar_numbers; the kernel converts
+rho and theta from lubedyn.film_points.polar_numbers; the kernel converts
 (gap, approach speed, entrainment speed) itself and returns dF/dh by the chain
 rule, which is checked against a central difference of its own force.
 """
@@ -14,11 +14,11 @@ import math
 import numpy as np
 import pytest
 
-from coupling import film_points as fp
-from coupling.config import CASES_DIR
-from coupling.maps import FilmMap
-from dynamics import contacts as C
-from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
+from lubedyn import film_points as fp
+from lubedyn.config import CASES_DIR
+from lubedyn.maps import FilmMap
+from lubedyn.dynamics import contacts as C
+from lubedyn.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -64,7 +64,7 @@ def test_map_ends_in_the_parameters_change_no_bit(polar):
     exponentials a film read); a vector without them (as ``ball_ball_parameters`` returns it) makes the
     kernels compute them from the axes: the collision's force, film, approach, phase and share are the
     same to the bit, across the lock, the map's gap range, above it and in separation."""
-    from lubrication.laws import collision as LC
+    from lubedyn.lubrication.laws import collision as LC
 
     fmap, params, bbp, (ax0, ax1, ax2, vals, opts, counter) = polar
     ends = bbp[LC.BB_MAP_H0:LC.BB_MAP_X1TOP + 1]
@@ -104,7 +104,7 @@ def test_above_the_last_gap_node_the_reader_matches_a_reynolds_solve(polar):
 def test_locked_gap_is_where_the_pressure_number_reaches_the_lock(polar, v, ue):
     """h_L solves rho(h) = rho_lock: against the closed forms of the pure cases (pure squeeze h =
     sqrt(sqf |v|/rho), pure entrainment h = (2 (sqf u_e)^2/(R rho^2))^(1/3)) and, for mixed ones, against
-    coupling.film_points.polar_numbers (the map builder's own definition of rho); the entrainment
+    lubedyn.film_points.polar_numbers (the map builder's own definition of rho); the entrainment
     regularisation u_reg shifts h_L as u_e -> sqrt(u_e^2 + u_reg^2)."""
     fmap, params, bbp, _ = polar
     sqf, R = bbp[C.BB_SQF], bbp[C.BB_R]
@@ -126,8 +126,8 @@ def test_a_locked_film_hands_the_load_to_the_solids(polar):
     Hertz force of the approach h_L - g through a film of thickness h_L (Hertz written here from E* and
     R_eff, elastic approaches only), continuous with the film branch at the lock, and never a clamped
     query."""
-    from lubrication.laws.collision import PHASE_FILM
-    from lubrication.laws.contact import reduced_modulus
+    from lubedyn.lubrication.laws.collision import PHASE_FILM
+    from lubedyn.lubrication.laws.contact import reduced_modulus
 
     fmap, params, bbp, (ax0, ax1, ax2, vals, opts, _) = polar
     K = 4.0 / 3.0 * reduced_modulus(207e9, 0.29, 207e9, 0.29) * math.sqrt(bbp[C.BB_R])  # paper B's balls

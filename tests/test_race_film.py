@@ -2,7 +2,7 @@
 (``films.race = "closed_form"``).
 
 (1) The film thickness is Hamrock-Dowson's, recomputed here through an
-independent path (lubrication.laws.contact ellipse, lubrication.laws.film).
+independent path (lubedyn.lubrication.laws.contact ellipse, lubedyn.lubrication.laws.film).
 (2) A film of constant thickness on every contact is equivalent, for the
 loads, to a negative clearance: the balls are free radially, so only the sum
 of the inner and outer approaches matters and a film h_i + h_o acts as a
@@ -14,10 +14,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dynamics.cageless import D_QI, D_QO, forces
-from lubrication.laws import contact as hertz
-from lubrication.laws.film import hamrock_dowson_central
-from coupling.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
+from lubedyn.dynamics.cageless import D_QI, D_QO, forces
+from lubedyn.lubrication.laws import contact as hertz
+from lubedyn.lubrication.laws.film import hamrock_dowson_central
+from lubedyn.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
 
 
 def test_film_thickness_is_hamrock_dowson():

@@ -1,6 +1,6 @@
 """The Reynolds solver against closed-form and semi-analytic film solutions.
 
-Every reference comes from :mod:`lubrication.closed_form` (literature
+Every reference comes from :mod:`lubedyn.lubrication.closed_form` (literature
 formulas, or scipy quadratures/ODE solves independent of the finite elements).
 Velocity convention of the solver: u_m = (U_lower + U_upper)/2; each test
 states which surface moves.  Tolerances are set from the discretisation error
@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 from scipy import optimize
 
-from lubrication import (
+from lubedyn.lubrication import (
     Film, FunctionGap, InclinedSlider, Lubricant, SpherePlane, SphereSphere, StepSlider,
 )
-from lubrication import closed_form as cf
-from lubrication import mesh as meshes
+from lubedyn.lubrication import closed_form as cf
+from lubedyn.lubrication import mesh as meshes
 
 ETA = 0.05  # Pa s
 LUB = Lubricant.newtonian(ETA)

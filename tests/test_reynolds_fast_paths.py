@@ -1,7 +1,7 @@
 """The Reynolds solver's fast paths against scikit-fem's generic ones (issue 18, the 1M-DOF solve).
 
 Each replacement must give what scikit-fem gives: the boundary vertices without building the
-facets (``lubrication.mesh.boundary_vertices``), the Dirichlet dofs of ``_Problem``, the basis
+facets (``lubedyn.lubrication.mesh.boundary_vertices``), the Dirichlet dofs of ``_Problem``, the basis
 built with one inverse Jacobian (``make_basis``), and the diffusion matrix and load vectors
 assembled without ``asm`` (``assemble_diffusion``, ``assemble_flux_load``,
 ``assemble_source_load``) -- the last three bit for bit, on line, triangle, quad, curved and
@@ -14,11 +14,11 @@ import pytest
 import skfem
 from skfem import asm
 
-from lubrication import InclinedSlider, Lubricant
-from lubrication import mesh as lmesh
-from lubrication.reynolds import Film, _Problem, _diffusion, _flux_load, _source_load, make_basis
-from lubrication.reynolds.forms import (_ELEMENTS, _cell_kind, assemble_diffusion, assemble_flux_load,
-                                        assemble_source_load)
+from lubedyn.lubrication import InclinedSlider, Lubricant
+from lubedyn.lubrication import mesh as lmesh
+from lubedyn.lubrication.reynolds import Film, _Problem, _diffusion, _flux_load, _source_load, make_basis
+from lubedyn.lubrication.reynolds.forms import (_ELEMENTS, _cell_kind, assemble_diffusion, assemble_flux_load,
+                                                assemble_source_load)
 
 
 def _graded_quads():

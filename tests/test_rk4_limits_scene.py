@@ -1,7 +1,7 @@
 """Issue 20, item 3 through the dynamics scene: RK4 is checked along the run, not only at t0.
 
 The 10 krpm drop (smoke) starts with the balls at rest on the races, where the linearised race
-traction is a real eigenvalue of about -1.5e6 1/s (``dynamics.integrators`` module docstring), five
+traction is a real eigenvalue of about -1.5e6 1/s (``lubedyn.dynamics.integrators`` module docstring), five
 times the contact rate ``model.omega_max(y0)`` = 2.74e5 rad/s that the t0 check sees.  At
 ``integrator.dt = 2 us`` the t0 check passes (dt omega_max = 0.55) but RK4 is beyond its real-axis
 limit for the traction (h lambda ~ 3 > 2.785): before issue 20 the run completed with the ball slips
@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import json
 
-from coupling import cli
-from coupling.config import CASES_DIR
+from lubedyn import cli
+from lubedyn.config import CASES_DIR
 
 SHORT = CASES_DIR / "cageless_6206_10krpm_short.toml"
 COMMON = ["--smoke", "--set", "integrator.method=rk4", "--set", "integrator.duration='0.1 ms'",

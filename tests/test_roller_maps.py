@@ -14,16 +14,16 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from coupling import film_points as fp
-from coupling.film_points import ehl as E
-from lubrication.ehl import solve_ehl
-from lubrication.errors import ConvergenceError, InputError
+from lubedyn import film_points as fp
+from lubedyn.film_points import ehl as E
+from lubedyn.lubrication.ehl import solve_ehl
+from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 
 def test_reduced_radii_are_the_models_geometry_and_match_the_notes():
     """R_x of the cone and cup kinds is tapered_geometry().reduced_radius (the model's own); paper A's
     notes (3.2) give 9.41 / 11.93 mm, rounded: within 0.3 % (measured 0.16 % / 0.20 %)."""
-    from coupling.parameters.wu2018 import tapered_geometry
+    from lubedyn.parameters.wu2018 import tapered_geometry
 
     g = tapered_geometry()
     for race, notes in (("cone", 9.41e-3), ("cup", 11.93e-3)):
@@ -113,7 +113,7 @@ def test_traction_axis_reaches_the_steady_slips_and_is_odd():
 def _strip(n, length, h, eta, u, load, p=0.0, model="limiting_shear"):
     """A uniform strip [0, length] (constant film, viscosity, pressure) as a couette_profile: quadrature points
     at the cell midpoints of n cells."""
-    from lubrication.ehl import Traction
+    from lubedyn.lubrication.ehl import Traction
 
     dx = length / n
     x = (np.arange(n) + 0.5) * dx
@@ -126,10 +126,10 @@ def test_maxwell_traction_against_its_closed_forms():
     """maxwell_traction on a uniform strip against the Maxwell fluid's exact stress (constant coefficients,
     from tau = 0 at the inlet): tau(x) = eta D (1 - exp(-G x/(u eta))), D = s u/h, integrated by quad
     (midpoint sum of 20000 cells: measured 2e-7, the midpoint rule's (L/n)^2 term); its elastic limit (eta -> inf) against
-    lubrication.laws.traction.elastic_strip_slope (Johnson & Tevaarwerk: 2 G b^2 v_s/(u h) over [-b, b]);
+    lubedyn.lubrication.laws.traction.elastic_strip_slope (Johnson & Tevaarwerk: 2 G b^2 v_s/(u h) over [-b, b]);
     its viscous limit (G = inf) eta D L; the cap tau_L = tau_L0 + gamma p reached at x_c = tau_L u/(G D):
     tau_L (L - x_c/2)."""
-    from lubrication.laws.traction import elastic_strip_slope
+    from lubedyn.lubrication.laws.traction import elastic_strip_slope
 
     b, h, u, load, G, s = 1e-4, 5e-6, 10.0, 1e5, 1e9, 1e-3
     D = s * u / h
@@ -159,8 +159,8 @@ def test_rigid_limit_is_the_solvers_traction_and_heavy_loads_shear_elastically()
     2 G b^2 s/(h_c w) (elastic_strip_slope: every element strained from x = -b; measured 0.41 of it: the
     inlet is viscous) and above a quarter of it; at SRR 0.1 every point is capped and the traction is the
     rigid law's (measured equal to 1e-13)."""
-    from lubrication.laws.contact import line_contact
-    from lubrication.laws.traction import elastic_strip_slope
+    from lubedyn.lubrication.laws.contact import line_contact
+    from lubedyn.lubrication.laws.traction import elastic_strip_slope
 
     params = dict(fp.ehl_roller_cone_default_params(), resolution="smoke")
     assert params["film_shear_modulus"] == 1e9
@@ -216,13 +216,13 @@ def test_grease_map_nodes_are_direct_grease_solves(grease):
     (0.85-0.91 times) -- the ranking reversal of notes 2.3.  At 135 kN/m, 10 m/s the film is the EHL solver's pinned grease film
     (tests/test_ehl_hbflow.py, 257 nodes on [-20, 3] b: 8.7125 / 4.0897 um; measured here 8.787 / 4.082 um,
     the kind's longer inlet and 129 nodes) within 2 %, and 1-2 times the apparent-viscosity formula's film
-    (lubrication.laws.grease.grease_line_film, "apparent"; 1.28 / 1.45 there).  The traction is not checked
+    (lubedyn.lubrication.laws.grease.grease_line_film, "apparent"; 1.28 / 1.45 there).  The traction is not checked
     for a direction: the grease's Couette stress phi(p) D^n + tau_y exceeds the oil's at equal D, but its
     different film changes D and the elastic strain.  Away from these axes the grease solve is less robust
     (polyurea at 50 kN/m, smoke: 12.5 m/s fails, 15 m/s converges to an 87 um film, 12.9 um on 257 nodes)."""
-    from coupling.maps import build_map
-    from coupling.parameters.wu2018 import GREASE_TABLE
-    from lubrication.laws import grease as G
+    from lubedyn.maps import build_map
+    from lubedyn.parameters.wu2018 import GREASE_TABLE
+    from lubedyn.lubrication.laws import grease as G
 
     params = dict(resolution="smoke", **fp.roller_grease_params(grease, 30.0))
     if grease == "polyurea":
@@ -256,7 +256,7 @@ def test_lithium_grease_map_fails_with_one_line_naming_the_parameter():
     points of paper A's range): a map build stops with one line naming params.rheology and the grease's
     parameters instead of filling a map with anything (each (load, speed) fails once per process, not once
     per slide-to-roll node)."""
-    from coupling.maps import build_map
+    from lubedyn.maps import build_map
 
     params = dict(resolution="smoke", **fp.roller_grease_params("lithium", 30.0))
     axes = dict(GREASE_AXES, line_load={"lo": 5e4, "hi": 5e4 * 1.01, "n": 2})
@@ -278,7 +278,7 @@ def test_lithium_grease_map_fails_with_one_line_naming_the_parameter():
 def test_map_case_lubricant_table_takes_a_grease(tmp_path):
     """A roller map case's [lubricant] with [lubricant.herschel_bulkley] (the EHL scenes' syntax: eta0 is the
     consistency phi0) resolves into the kind's grease parameters; a kind without them refuses it in one line."""
-    from coupling.config import CASES_DIR, CaseError, load_case
+    from lubedyn.config import CASES_DIR, CaseError, load_case
 
     lub = ["lubricant.viscosity.law=barus", "lubricant.viscosity.eta0=8.44 Pa s", "lubricant.viscosity.alpha=4.662e-8 m^2/N",
            "lubricant.herschel_bulkley.yield_stress=351.8 Pa", "lubricant.herschel_bulkley.exponent=0.7196"]

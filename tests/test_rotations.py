@@ -1,11 +1,11 @@
-"""Quaternion kernels of dynamics.rotations against scipy.spatial.transform.Rotation
+"""Quaternion kernels of lubedyn.dynamics.rotations against scipy.spatial.transform.Rotation
 (an independent implementation), and rigid-body invariants."""
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from dynamics import rotations as R
+from lubedyn.dynamics import rotations as R
 
 RNG = np.random.default_rng(7)
 ROTS = Rotation.random(12, random_state=11)

@@ -19,7 +19,7 @@ ulps (the tests' tolerance is 1e-9: a margin of 300 on the result and of 100 on 
 import numpy as np
 import pytest
 
-from lubrication.ehl import EHLContact, EHLGrid, solve_ehl
+from lubedyn.lubrication.ehl import EHLContact, EHLGrid, solve_ehl
 
 from roundoff import perturb_residuals
 from test_ehl import _complementarity
@@ -77,8 +77,8 @@ def test_film_newton_converges_at_its_roundoff_floor(roundoff):
     5e-12 |p|).  Now the full Newton step (2e-11 |p| at 30 units, 7e-11 at 100: below rtol 1e-10)
     ends it, at the unperturbed solution to 1e-9."""
     import numpy as np
-    from lubrication import Cavitation, CylinderPlane, Film, Lubricant, SolverOptions
-    from lubrication import mesh as meshes
+    from lubedyn.lubrication import Cavitation, CylinderPlane, Film, Lubricant, SolverOptions
+    from lubedyn.lubrication import mesh as meshes
 
     R_cyl, h0, eta, u = 10e-3, 1e-6, 0.05, 2.0
     b = np.sqrt(2.0 * R_cyl * h0)
@@ -101,9 +101,9 @@ def test_fine_linear_film_converges_at_its_roundoff_floor():
     3.3e-10; 5.7e-7 on 1e3 cells, whose h^2 scaling would give 6e-11 here: the rest is round-off
     and the linear solver)."""
     import numpy as np
-    from lubrication import Film, InclinedSlider, Lubricant
-    from lubrication import mesh
-    from lubrication.closed_form import inclined_slider_pressure
+    from lubedyn.lubrication import Film, InclinedSlider, Lubricant
+    from lubedyn.lubrication import mesh
+    from lubedyn.lubrication.closed_form import inclined_slider_pressure
 
     L, eta, U = 0.01, 0.01, 1.0
     film = Film(mesh.interval(0, L, 100_000), InclinedSlider(2e-6, 1e-6, L), Lubricant.newtonian(eta),

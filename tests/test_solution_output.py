@@ -19,10 +19,10 @@ import pytest
 import skfem
 from scipy.integrate import quad
 
-from lubrication import Cavitation, Film, InclinedSlider, JournalBearing, Lubricant, SpherePlane
-from lubrication import closed_form as cf
-from lubrication import mesh as meshes
-from lubrication.reynolds import _Problem, interpolate, make_basis
+from lubedyn.lubrication import Cavitation, Film, InclinedSlider, JournalBearing, Lubricant, SpherePlane
+from lubedyn.lubrication import closed_form as cf
+from lubedyn.lubrication import mesh as meshes
+from lubedyn.lubrication.reynolds import _Problem, interpolate, make_basis
 
 R, C, L, ETA, OMEGA = 0.025, 50e-6, 0.025, 0.02, 300.0
 

@@ -3,7 +3,7 @@ same answers as the plain path.
 
 - ``linear_solver="amg"`` (pyamg Ruge-Stuben + CG at ``amg_tol`` = 1e-10)
   against SuperLU;
-- :func:`lubrication.reynolds.solve_nested` (coarse-to-fine start) against a
+- :func:`lubedyn.lubrication.reynolds.solve_nested` (coarse-to-fine start) against a
   plain solve, and the iteration counts it removes: the active set moves the
   cavitation boundary about one node column per iteration, so plain
   iteration counts grow with the mesh.
@@ -13,10 +13,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from lubrication import Cavitation, ConvergenceError, CylinderPlane, Film, InclinedSlider, InputError, Lubricant
-from lubrication import SolverOptions, SpherePlane
-from lubrication import mesh as meshes
-from lubrication.reynolds import WARM_START_MIN_DOFS, solve_nested
+from lubedyn.lubrication import Cavitation, ConvergenceError, CylinderPlane, Film, InclinedSlider, InputError, Lubricant
+from lubedyn.lubrication import SolverOptions, SpherePlane
+from lubedyn.lubrication import mesh as meshes
+from lubedyn.lubrication.reynolds import WARM_START_MIN_DOFS, solve_nested
 
 
 def test_amg_matches_direct_solver():
@@ -140,15 +140,15 @@ def test_auto_linear_solver_leaves_a_stalled_amg(monkeypatch, caplog, ratio, sta
     iterations, a margin of 2.6x) and agrees with SuperLU to 1e-8 (measured 1e-11)."""
     import logging
 
-    from lubrication import reynolds
-    from lubrication.reynolds import problem
+    from lubedyn.lubrication import reynolds
+    from lubedyn.lubrication.reynolds import problem
 
     monkeypatch.setattr(problem, "DIRECT_SOLVER_MAX_DOFS", 1000)  # where the assembly looks it up
     xs = _geometric_axis(1e-3, 30, ratio)
     film = Film(meshes.rectangle(xs, xs), SpherePlane(10e-3, 1e-6), Lubricant.newtonian(0.01), squeeze=-1e-3,
                 element="P2")
     direct = film.with_(options=SolverOptions(linear_solver="direct")).solve()
-    with caplog.at_level(logging.INFO, logger="lubrication.reynolds"):
+    with caplog.at_level(logging.INFO, logger="lubedyn.lubrication.reynolds"):
         auto = film.solve()
     stall_lines = [r.getMessage() for r in caplog.records if r.getMessage().startswith("linear solver auto")]
     used = auto.info["linear_solver"]
@@ -166,7 +166,7 @@ def test_auto_linear_solver_leaves_a_stalled_amg(monkeypatch, caplog, ratio, sta
 
 def test_amg_probe_budget():
     """The probe budget is the iterations a mean factor of 0.5 needs to reach amg_tol."""
-    from lubrication.reynolds import AMG_STALL_FACTOR, amg_probe_iterations
+    from lubedyn.lubrication.reynolds import AMG_STALL_FACTOR, amg_probe_iterations
 
     assert AMG_STALL_FACTOR == 0.5
     assert amg_probe_iterations(1e-10) == 34 and amg_probe_iterations(1e-6) == 20

@@ -1,4 +1,4 @@
-"""Kernels bound to their callables through numba function pointers (dynamics.specialise, issue 18):
+"""Kernels bound to their callables through numba function pointers (lubedyn.dynamics.specialise, issue 18):
 the same bits as the kernel with the right-hand side linked in, one compiled kernel for every
 right-hand side of the same argument types, cached across processes without any file of ours, a
 clear error for a callable of the wrong kind, and compilation in a second process."""
@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 from numba import njit
 
-from dynamics import integrators as I
-from dynamics import lyapunov as L
-from dynamics import specialise as S
+from lubedyn.config import CASES_DIR
+from lubedyn.dynamics import integrators as I
+from lubedyn.dynamics import lyapunov as L
+from lubedyn.dynamics import specialise as S
 
-ROOT = Path(__file__).resolve().parents[1]
 
 
 @njit(cache=True)
@@ -73,7 +73,7 @@ def test_a_callable_returning_a_value_is_refused_by_name():
         dydt[0] = -y[0]
         return 1.0
 
-    from dynamics.errors import DynamicsInputError
+    from lubedyn.dynamics.errors import DynamicsInputError
 
     with pytest.raises(DynamicsInputError, match=r"rhs = .*returns returns float64; the kernel _dopri5_impl needs none"):
         I.integrate(returns, [1.0], [0.0, 1.0], ())
@@ -88,7 +88,7 @@ def test_no_file_is_written_outside_numbas_cache(tmp_path):
         import sys
         import numpy as np
         from numba import njit
-        from dynamics.integrators import integrate
+        from lubedyn.dynamics.integrators import integrate
 
         @njit(cache=False)
         def decay(t, y, args, dydt):
@@ -97,7 +97,7 @@ def test_no_file_is_written_outside_numbas_cache(tmp_path):
         res = integrate(decay, np.array([1.0]), np.array([0.0, 1.0]), (), rtol=1e-10, atol=1e-12)
         sys.stdout.write(repr(float(res.y[-1, 0])))
     """))
-    env = dict(os.environ, HOME=str(tmp_path / "home"), XDG_CACHE_HOME=str(tmp_path / "xdg"), PYTHONPATH=str(ROOT),
+    env = dict(os.environ, HOME=str(tmp_path / "home"), XDG_CACHE_HOME=str(tmp_path / "xdg"),
                NUMBA_CACHE_DIR=str(tmp_path / "numba"))
     out = subprocess.run([sys.executable, str(script)], env=env, cwd=tmp_path, capture_output=True, text=True,
                          check=True).stdout
@@ -116,7 +116,7 @@ def test_background_compilation_fills_the_cache_the_caller_then_loads(tmp_path):
         import numpy as np
         sys.path.insert(0, sys.argv[1])
         from test_specialise import duffing, ARGS
-        from dynamics import integrators as I, lyapunov as L, specialise as S
+        from lubedyn.dynamics import integrators as I, lyapunov as L, specialise as S
         y0, t = np.array([1.0, 0.0]), np.linspace(0.0, 2.0, 21)
         rk = I.resumable_kernel("rk4", duffing)
         Y, work = I.new_run(y0, t)
@@ -133,7 +133,7 @@ def test_background_compilation_fills_the_cache_the_caller_then_loads(tmp_path):
         print(started, again, len(rk.stats.cache_hits), len(rk.stats.cache_misses), len(ben.stats.cache_hits),
               len(ben.stats.cache_misses), repr(float(Y[-1, 0])), repr(float(ls[0])))
     """)
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(ROOT), LUBEDYN_BACKGROUND_COMPILE="1")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), LUBEDYN_BACKGROUND_COMPILE="1")
     out = subprocess.run([sys.executable, "-c", script, str(Path(__file__).parent)], env=env, capture_output=True,
                          text=True, check=True).stdout.split()
     assert out[:6] == ["2", "0", "1", "0", "1", "0"]
@@ -150,11 +150,11 @@ def test_forces_many_equals_forces_row_by_row():
     """The cage-less bearing's forces_many (the model's body through a function pointer) gives the
     bits of forces() at each state, and forces' state derivative is the bits of rhs, which calls the
     body directly (compiled into it, not through a pointer)."""
-    from coupling.cli import load_case_file
-    from coupling.dynamics_scene import build
-    from dynamics.cageless import forces, forces_many, rhs
+    from lubedyn.cli import load_case_file
+    from lubedyn.dynamics_scene import build
+    from lubedyn.dynamics.cageless import forces, forces_many, rhs
 
-    path, _, case = load_case_file(str(ROOT / "cases/cageless_6206_10krpm_short.toml"),
+    path, _, case = load_case_file(str(CASES_DIR / "cageless_6206_10krpm_short.toml"),
                                    smoke=True)
     setup = build(case, str(path))
     y0 = setup.y0
@@ -174,10 +174,10 @@ def test_the_dynamics_scenes_background_jobs_are_the_kernels_its_run_compiles():
     """The kernels a cage-less run has compiled in a second process on a cold cache are the ones its
     run calls: after a smoke run of the main job, every job's signature is among the compiled ones
     (a mismatch would compile them twice on a first run, silently)."""
-    from coupling import dynamics_scene as ds
-    from coupling.cli import load_case_file
+    from lubedyn import dynamics_scene as ds
+    from lubedyn.cli import load_case_file
 
-    path, _, case = load_case_file(str(ROOT / "cases/cageless_6206_10krpm_short.toml"), smoke=True)
+    path, _, case = load_case_file(str(CASES_DIR / "cageless_6206_10krpm_short.toml"), smoke=True)
     assert case.analysis.lyapunov_exponents
     run = ds.run(case, None, source=str(path), smoke=True)
     assert run.summary["Lyapunov exponent 1, whole system (Benettin) [1/s]"] is not None
@@ -190,10 +190,10 @@ def test_the_dynamics_scenes_background_jobs_are_the_kernels_its_run_compiles():
 def test_the_tapered_scenes_background_job_is_the_kernel_its_run_compiles():
     """As for the cage-less scene: after a smoke run of the Fig. 5 tapered case, the integrator kernel
     the run compiled in a second process on a cold cache has the signature its run calls."""
-    from coupling import tapered_scene as ts
-    from coupling.cli import load_case_file
+    from lubedyn import tapered_scene as ts
+    from lubedyn.cli import load_case_file
 
-    path, _, case = load_case_file(str(ROOT / "cases/trb_fig5_2400rpm.toml"), smoke=True)
+    path, _, case = load_case_file(str(CASES_DIR / "trb_fig5_2400rpm.toml"), smoke=True)
     run = ts.run(case, None, source=str(path), smoke=True)
     assert run.summary["Accepted steps [-]"] > 0
     jobs = ts.kernel_jobs(case)
@@ -205,11 +205,11 @@ def test_the_tapered_scenes_background_job_is_the_kernel_its_run_compiles():
 def test_tapered_forces_many_equals_contact_forces_row_by_row():
     """The tapered bearing's forces_many (contact_forces through a function pointer) gives the bits of
     contact_forces at each sampled state of a smoke run."""
-    from coupling import tapered_scene as ts
-    from coupling.cli import load_case_file
-    from dynamics.tapered import kernels as K
+    from lubedyn import tapered_scene as ts
+    from lubedyn.cli import load_case_file
+    from lubedyn.dynamics.tapered import kernels as K
 
-    path, _, case = load_case_file(str(ROOT / "cases/trb_fig5_2400rpm.toml"), smoke=True)
+    path, _, case = load_case_file(str(CASES_DIR / "trb_fig5_2400rpm.toml"), smoke=True)
     run = ts.run(case, None, source=str(path), smoke=True)
     model = ts.build(case)
     P, U, RHO = args = model.args(model.quasi_static())

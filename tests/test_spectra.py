@@ -1,12 +1,12 @@
-"""Verification of dynamics.spectra: synthetic tones, published bearing defect multipliers,
+"""Verification of lubedyn.dynamics.spectra: synthetic tones, published bearing defect multipliers,
 and the characteristic frequencies re-derived from no-slip epicyclic kinematics."""
 import math
 
 import numpy as np
 import pytest
 
-from dynamics import spectra as S
-from dynamics.errors import DynamicsInputError
+from lubedyn.dynamics import spectra as S
+from lubedyn.dynamics.errors import DynamicsInputError
 
 FS = 4096.0
 T = 4.0  # bin width 0.25 Hz

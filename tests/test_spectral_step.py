@@ -1,9 +1,9 @@
-"""RK4's step from the right-hand side's own spectrum (dynamics.integrators.spectral_step), and the
+"""RK4's step from the right-hand side's own spectrum (lubedyn.dynamics.integrators.spectral_step), and the
 tapered bearing's "auto" step that now takes it into account (issue 23: the auto step was not
 conservative under paper A's reading of phi).
 
 References: the closed-form stability limits of RK4 on a linear oscillator and a linear decay
-(dynamics.integrators.stability_limit, from the stability polynomial), and the integrator's own growth
+(lubedyn.dynamics.integrators.stability_limit, from the stability polynomial), and the integrator's own growth
 guard on the run that failed (studies/trb_plastic_viscosity_paper_reading.toml, phi = 38.44)."""
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 from numba import njit
 
-from dynamics.errors import IntegrationError
-from dynamics.integrators import integrate, spectral_step, stability_limit
+from lubedyn.dynamics.errors import IntegrationError
+from lubedyn.dynamics.integrators import integrate, spectral_step, stability_limit
 
 
 @njit(cache=True)
@@ -48,9 +48,9 @@ def test_paper_reading_auto_step_is_stable_where_the_closed_form_was_not():
     model).  RK4 at the old "auto" step (0.8 x 18.8 us) stops within 10 ms (the growth guard, naming a
     stable step below 9 us, or the state turning non-finite first); at the new one (0.8 x 8.25 us) the same 10 ms complete with the guard's
     largest |h lambda| below the limit."""
-    from coupling import tapered_scene as ts
-    from coupling.config import CASES_DIR, load_case
-    from dynamics.tapered import kernels as K
+    from lubedyn import tapered_scene as ts
+    from lubedyn.config import CASES_DIR, load_case
+    from lubedyn.dynamics.tapered import kernels as K
 
     over = ["lubricant.reading=paper", "lubricant.yield_stress=351.8 Pa", "lubricant.consistency=38.44",
             "lubricant.exponent=0.7196", "lubricant.grease=custom"]

@@ -6,8 +6,8 @@ from __future__ import annotations
 import json
 import pytest
 
-from coupling import cli
-from coupling.config import CASES_DIR
+from lubedyn import cli
+from lubedyn.config import CASES_DIR
 
 
 def _run(capsys, tmp_path, case, *sets):
@@ -59,11 +59,11 @@ def test_bearing_vtu_for_paraview(capsys, tmp_path):
 
 
 def test_the_python_twin_is_the_cases_bearing():
-    """coupling.parameters.wu2018.tapered_geometry() and a static case naming Wu2018 build the same
+    """lubedyn.parameters.wu2018.tapered_geometry() and a static case naming Wu2018 build the same
     geometry (one table, SCENES["static"], maps the parameters onto both)."""
-    from coupling.config import load_case
-    from coupling.parameters.wu2018 import tapered_geometry
-    from coupling.static_scene import build
+    from lubedyn.config import load_case
+    from lubedyn.parameters.wu2018 import tapered_geometry
+    from lubedyn.static_scene import build
 
     import dataclasses
 

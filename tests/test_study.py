@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from coupling import cli
-from coupling.study import StudyError, plan_study, points, read_study, slug
+from lubedyn import cli
+from lubedyn.study import StudyError, plan_study, points, read_study, slug
 
 ROOT = Path(__file__).resolve().parents[1]
 LOAD = "Load per unit width [N/m]"

@@ -9,7 +9,8 @@ import io
 import json
 from pathlib import Path
 
-from coupling import cli
+from lubedyn import cli
+from lubedyn.config import CASES_DIR
 
 STUDY = Path(__file__).resolve().parents[1] / "studies" / "cageless_drop_speeds.toml"
 
@@ -28,7 +29,7 @@ def test_paper_b_study_at_smoke_size(tmp_path, capsys):
     # member 3 of 15,000 rpm again, by hand: the same numbers
     row = next(r for r in rows if r["operating.speed"] == "15000 rpm" and r["member"] == "3")
     again = tmp_path / "again"
-    code = cli.main(["run", str(STUDY.parents[1] / "cases" / "cageless_6206_10krpm.toml"), "--smoke",
+    code = cli.main(["run", str(CASES_DIR / "cageless_6206_10krpm.toml"), "--smoke",
                      "--set", "output.write=[]", "--set", "initial.jitter='0.5 deg'", "--set", "initial.kick='1 mm/s'",
                      "--set", "operating.speed='15000 rpm'", "--set", "initial.seed=3", "--out", str(again)])
     assert code == 0
@@ -47,7 +48,7 @@ def test_slot_sensitivity_study_plans_and_report_groups_its_pairs(tmp_path):
     under one assumption only gives exactly that verdict."""
     import importlib.util
 
-    from coupling.study import plan_study, read_study
+    from lubedyn.study import plan_study, read_study
 
     path = STUDY.parent / "cageless_slot_sensitivity.toml"
     plan = plan_study(read_study(path), path, smoke=True)

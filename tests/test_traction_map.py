@@ -1,7 +1,7 @@
 """Race traction from the EHL maps inside the bearing kernel.
 
 (1) The packed kernel arrays read back the same traction coefficient as the
-maps' own Python interpolation (coupling.maps.FilmMap), race by race: this
+maps' own Python interpolation (lubedyn.maps.FilmMap), race by race: this
 pins the packing and the race order.  (2) A steady run with map traction
 keeps the balls at the epicyclic ball-train speed (no-slip kinematics, an
 independent formula) and reports the queries clamped outside the map."""
@@ -12,10 +12,11 @@ import json
 import numpy as np
 import pytest
 
-from coupling import cli
-from coupling.config import CASES_DIR
-from coupling.maps import FilmMap
-from dynamics.cageless import _traction_arrays, _traction_from_map
+from lubedyn import cli
+from lubedyn.config import CASES_DIR
+from lubedyn.maps import FilmMap
+from lubedyn.dynamics import cageless
+from lubedyn.dynamics.cageless import _traction_arrays, _traction_from_map
 
 MAPS = [FilmMap.load(CASES_DIR / "maps" / f"ehl_ball_{race}_race.npz") for race in ("inner", "outer")]
 OUT = "Traction coefficient [-]"
@@ -35,7 +36,7 @@ def test_packed_arrays_read_the_maps(race, kernel):
         assert counter[0] == 0
 
 
-@pytest.mark.skipif(getattr(__import__("dynamics.cageless").cageless, "TRACTION_MAP_BELOW_AXIS", None) != "linear",
+@pytest.mark.skipif(getattr(cageless, "TRACTION_MAP_BELOW_AXIS", None) != "linear",
                     reason="the maps' slide-to-roll axis starts at 1e-3; a kernel that clamps below it makes the "
                            "traction a step at zero slip (the run crawls): needs the linear regularisation of "
                            "dynamics/cageless.py (TRACTION_MAP_BELOW_AXIS)")

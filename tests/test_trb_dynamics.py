@@ -1,4 +1,4 @@
-"""The tapered roller bearing's compiled right-hand side (dynamics.tapered.kernels, issue 23) against
+"""The tapered roller bearing's compiled right-hand side (lubedyn.dynamics.tapered.kernels, issue 23) against
 independent values: the quasi-static solver's equilibrium (a separate 2-D implementation), the
 torque-free motion of an axisymmetric body (analytic precession, conserved energy and angular momentum),
 the return to equilibrium after a perturbation, the geometry's ideal kinematics, RK4's stability bound
@@ -10,13 +10,13 @@ import math
 import numpy as np
 import pytest
 
-from coupling.parameters.wu2018 import tapered_geometry
-from dynamics.integrators import integrate
-from coupling.parameters.wu2018 import VALUES
-from dynamics.errors import DynamicsInputError
-from dynamics.tapered import groups as G
-from dynamics.tapered import kernels as K
-from dynamics.tapered.model import TaperedBearing
+from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.dynamics.integrators import integrate
+from lubedyn.parameters.wu2018 import VALUES
+from lubedyn.dynamics.errors import DynamicsInputError
+from lubedyn.dynamics.tapered import groups as G
+from lubedyn.dynamics.tapered import kernels as K
+from lubedyn.dynamics.tapered.model import TaperedBearing
 
 RPM = math.pi / 30
 
@@ -89,7 +89,7 @@ def test_a_free_roller_conserves_energy_and_angular_momentum():
     at (I_x - I_y)/I_y omega_x (torque-free axisymmetric body, analytic; 3.9e3 rad/s: 12 precession
     periods in 20 ms); its kinetic energy and its inertial angular momentum R(q) I omega hold to 1e-9
     (measured 2e-12 and 3e-12 at DOPRI5 rtol 1e-11), and its centre moves uniformly."""
-    from dynamics.tapered.model import _matrices
+    from lubedyn.dynamics.tapered.model import _matrices
 
     tb = bearing(contacts=False)
     P, U, RHO = tb.args()
@@ -128,7 +128,7 @@ def test_at_speed_the_rollers_keep_the_ideal_kinematics():
     y0 = tb.start_state()
     kin = g.kinematics(w)
     res = integrate(K.rhs, y0, np.linspace(0.0, 1e-3, 3), tb.args(), method="dopri5", rtol=1e-7, atol=1e-12)
-    from dynamics.rotations import quat_rotate
+    from lubedyn.dynamics.rotations import quat_rotate
 
     for j in range(tb.n_rollers):
         b = K.N_CONE + j * K.NB
@@ -154,7 +154,7 @@ def test_the_cage_starts_under_the_land_drag_and_the_pocket_couples():
     omega_s rho_m past each crossbeam at the clearance (the two sides' traction make a couple rho_m f
     cos(alpha_r) each), I_x of the cage ring: computed here from the closed forms (1.628 and 0.693 N m;
     264.7 rad/s^2), against the kernel to 1e-5 (measured 4e-7); the Martin loads of the two sides cancel."""
-    from lubrication.laws.cage import cylinder_plane_traction
+    from lubedyn.lubrication.laws.cage import cylinder_plane_traction
 
     w = 2400 * math.pi / 30
     tb = _with_cage(w)
@@ -294,7 +294,7 @@ def test_the_rib_sliding_speed_is_the_notes_estimate():
     D = tb.diagnostics(y0[None, :], y0, args)
     assert D["Flange sliding speed [m/s]"][0] == pytest.approx(np.full(tb.n_rollers, slide), rel=1e-4)
     assert args[0][K.P_LAMBDA] > 3.0
-    from lubrication.laws.flange import rib_hertz
+    from lubedyn.lubrication.laws.flange import rib_hertz
 
     g = tb.geometry
     q = D["Flange load [N]"][0, 0]
@@ -365,7 +365,7 @@ def test_frictionless_undamped_bearing_conserves_energy_and_axial_angular_moment
     E = 0.5 * mc * np.sum(Y[:, 3:6] ** 2, axis=1)
     from scipy.spatial.transform import Rotation
 
-    from dynamics.rotations import to_scipy
+    from lubedyn.dynamics.rotations import to_scipy
 
     for j in range(tb.n_rollers):
         b = K.N_CONE + j * K.NB
@@ -402,7 +402,7 @@ def test_at_speed_the_start_is_a_steady_orbit_with_the_gyroscopic_moment():
     omega_c/omega_R = 0.107 the other two raise it by 22.0 % (a closed-form fact, pinned)."""
     from scipy.spatial.transform import Rotation
 
-    from dynamics.rotations import to_scipy
+    from lubedyn.dynamics.rotations import to_scipy
 
     w = 2400 * RPM
     tb = bearing(speed=w, traction="none")
@@ -475,10 +475,10 @@ def test_the_traction_table_holds_the_limited_law():
     (measured 1.3e-4, below the Gauss rule's own 3e-4 against adaptive quadrature; median 2e-8); the
     viscous part alone median 3e-6 (its largest errors, 2e-3, sit below 10 nm/s where the elastic shear
     carries the traction).  No point falls outside the table."""
-    from coupling import tapered_scene as S
-    from coupling.config import load_case
-    from dynamics.tapered import layout as L
-    from lubrication.laws.traction import elastic_limited, elastic_strip_slope
+    from lubedyn import tapered_scene as S
+    from lubedyn.config import load_case
+    from lubedyn.dynamics.tapered import layout as L
+    from lubedyn.lubrication.laws.traction import elastic_limited, elastic_strip_slope
 
     model = S.build(load_case("cases/trb_fig5_2400rpm.toml", overrides=["model.traction_evaluation=table"]))
     P, _, _ = model.args()
@@ -504,8 +504,8 @@ def test_the_traction_table_holds_the_limited_law():
 def test_a_run_with_the_traction_table_follows_the_quadrature_run():
     """Fig. 5's case at smoke size over 1 ms: the loaded rollers' mean skew and slip with the table within
     1e-4 (relative) of the run with the Gauss rule at every slice (measured 1.0e-6 and 7e-7)."""
-    from coupling import tapered_scene as S
-    from coupling.config import load_case
+    from lubedyn import tapered_scene as S
+    from lubedyn.config import load_case
 
     out = {}
     for how in ("quadrature", "table"):

@@ -1,4 +1,4 @@
-"""Tapered roller bearing geometry (lubrication.laws.tapered) and slice law (lubrication.laws.slices)
+"""Tapered roller bearing geometry (lubedyn.lubrication.laws.tapered) and slice law (lubedyn.lubrication.laws.slices)
 against independent values: Table 1 of paper A, the numbers of shared/reference/paper_A_notes.md,
 Palmgren's line law, ISO/TS 16281's constant and closed forms written here."""
 import math
@@ -6,9 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from coupling.parameters.wu2018 import tapered_geometry
-from lubrication.errors import InputError
-from lubrication.laws import slices as sl
+from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws import slices as sl
 
 L_E, D_L, D_S, R_P = 42.06e-3, 24.76e-3, 17.85e-3, 0.5 * (99.52e-3 + 78.48e-3)
 RHO_M = 0.25 * (D_L + D_S)

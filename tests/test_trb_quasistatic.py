@@ -1,4 +1,4 @@
-"""Quasi-static tapered roller bearing (dynamics.tapered) against independent references written here:
+"""Quasi-static tapered roller bearing (lubedyn.dynamics.tapered) against independent references written here:
 the force triangle of the contact angles (pure axial load), a linearised laminae equilibrium in the
 manner of ISO/TS 16281 solved with scipy (radial load, preload), closed-form roller mass and cage
 speed (centrifugal load), and the convergence of the bearing load with the number of slices."""
@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, fsolve
 
-from coupling.parameters.wu2018 import tapered_geometry
-from dynamics.tapered import solve
-from lubrication.errors import ConvergenceError, InputError
-from lubrication.laws import contact
+from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.dynamics.tapered import solve
+from lubedyn.lubrication.errors import ConvergenceError, InputError
+from lubedyn.lubrication.laws import contact
 
 Z, L_E, RPM = 17, 42.06e-3, math.pi / 30.0
 
@@ -225,8 +225,8 @@ def test_low_speed_with_few_slices_converges():
     was not a descent direction was only shortened, never damped).  Now each converges, balances its
     forces, and the largest cup load grows with speed (the centrifugal load) and lies within 0.5 % of the
     10-slice solution's (the slice count's own effect, 0.12 % here)."""
-    from coupling import tapered_scene as ts
-    from coupling.config import CASES_DIR, load_case
+    from lubedyn import tapered_scene as ts
+    from lubedyn.config import CASES_DIR, load_case
 
     def largest(rpm, slices):
         m = ts.build(load_case(CASES_DIR / "trb_fig5_2400rpm.toml",
@@ -246,8 +246,8 @@ def test_where_the_solver_stops_at_low_speed():
     unloaded rollers are held by 0.8 N of centrifugal load, their near-singular blocks cap every
     Levenberg-Marquardt step; the solve ends at the iteration limit with a one-line ConvergenceError naming
     the residual (10 slices converge there)."""
-    from coupling import tapered_scene as ts
-    from coupling.config import CASES_DIR, load_case
+    from lubedyn import tapered_scene as ts
+    from lubedyn.config import CASES_DIR, load_case
 
     m = ts.build(load_case(CASES_DIR / "trb_fig5_2400rpm.toml", overrides=["operating.speed=300 rpm", "model.slices=5"]))
     with pytest.raises(ConvergenceError) as err:

@@ -1,4 +1,4 @@
-"""The tapered scene's analysis and outputs (coupling.tapered_scene, issue 23 sec. 2) against
+"""The tapered scene's analysis and outputs (lubedyn.tapered_scene, issue 23 sec. 2) against
 independent values: the periodicity measure on signals built to be periodic or not, the loaded-zone
 marker against the quasi-static solution, the dynamic loads settling on the quasi-static ones, the
 ParaView frame's rollers where their states put them, and the written files."""
@@ -9,9 +9,9 @@ import math
 import numpy as np
 import pytest
 
-from coupling import tapered_scene as S
-from coupling.config import load_case
-from coupling.outputs import read_timeseries
+from lubedyn import tapered_scene as S
+from lubedyn.config import load_case
+from lubedyn.outputs import read_timeseries
 
 CASE = "cases/trb_fig5_2400rpm.toml"
 
@@ -71,7 +71,7 @@ def smoke_run(tmp_path_factory):
 
 def test_loaded_zone_and_loads_against_the_quasi_static_start(smoke_run):
     """At the start the loaded-zone marker is the quasi-static solution's: the rollers whose cone load
-    exceeds 1 % of the largest (independently solved, dynamics.tapered.quasistatic); the slice loads sum
+    exceeds 1 % of the largest (independently solved, lubedyn.dynamics.tapered.quasistatic); the slice loads sum
     to the roller's cup load; and every written file is there with the PNGs and frames."""
     run, out = smoke_run
     case = _case()
@@ -94,8 +94,8 @@ def test_frame_rollers_sit_where_their_states_put_them(smoke_run):
     loads."""
     from scipy.spatial.transform import Rotation
 
-    from dynamics.rotations import to_scipy
-    from dynamics.tapered import layout as L
+    from lubedyn.dynamics.rotations import to_scipy
+    from lubedyn.dynamics.tapered import layout as L
 
     run, _ = smoke_run
     model = S.build(_case())
@@ -174,8 +174,8 @@ def test_trend_signs_that_hold_from_3_ms_to_the_papers_window(limiting_slope):
 
 def _torques(y, P, U, RHO):
     """Roller 0's contact torque about its mass centre [N m] (inertial frame) at state y."""
-    from dynamics.tapered import kernels as K
-    from dynamics.tapered import layout as L
+    from lubedyn.dynamics.tapered import kernels as K
+    from lubedyn.dynamics.tapered import layout as L
 
     Z, ns = int(P[L.P_Z]), int(P[L.P_NS])
     F, T = np.zeros((Z, 3)), np.zeros((Z, 3))
@@ -198,9 +198,9 @@ def test_under_an_axial_force_the_skewed_rollers_traction_screws_the_cone_in():
     The same traction, at the two raceways on either side of the roller, is a couple about the roller's
     tilt axis opposite to the rib's normal moment: why the runs' mean tilt has the sign opposite to paper
     A's (whose eq. 12 traction is far weaker), while the quasi-static tilt (the rib's alone) has its sign."""
-    from dynamics.tapered import kernels as K
-    from dynamics.tapered import layout as L
-    from dynamics.tapered.quasistatic import solve
+    from lubedyn.dynamics.tapered import kernels as K
+    from lubedyn.dynamics.tapered import layout as L
+    from lubedyn.dynamics.tapered.quasistatic import solve
 
     def creep(*overrides):
         case = load_case("cases/trb_grease_fa15kN.toml", smoke=True, overrides=["integrator.duration=10 ms", *overrides])

@@ -12,13 +12,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from coupling.parameters.wu2018 import tapered_geometry
-from dynamics.errors import DynamicsInputError
-from dynamics.integrators import integrate
-from dynamics.tapered import groups as G
-from dynamics.tapered import kernels as K
-from dynamics.tapered.quasistatic import solve
-from lubrication.errors import InputError
+from lubedyn.config import CASES_DIR
+from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.dynamics.errors import DynamicsInputError
+from lubedyn.dynamics.integrators import integrate
+from lubedyn.dynamics.tapered import groups as G
+from lubedyn.dynamics.tapered import kernels as K
+from lubedyn.dynamics.tapered.quasistatic import solve
+from lubedyn.lubrication.errors import InputError
 
 from test_trb_dynamics import bearing
 
@@ -178,10 +179,10 @@ def test_bad_tilt_keys_name_the_case_key(changes, key):
 
 
 def test_a_bad_cone_tilt_in_a_case_file_is_a_one_line_error_naming_the_key():
-    from coupling.config import load_case
+    from lubedyn.config import load_case
 
     with pytest.raises(InputError) as info:
-        load_case(Path(__file__).parent.parent / "cases" / "trb_fig5_tilt.toml", overrides=["operating.cone_tilt=wobbly"])
+        load_case(CASES_DIR / "trb_fig5_tilt.toml", overrides=["operating.cone_tilt=wobbly"])
     msg = str(info.value)
     assert "operating.cone_tilt" in msg and "wobbly" in msg and "locked" in msg and "\n" not in msg.strip()
     with pytest.raises(InputError, match="cone_tilt"):
@@ -196,11 +197,11 @@ def test_the_locked_cone_reproduces_the_model_before_the_option():
     trajectory equal those recorded at commit 1b36d80 before the tilt existed
     (tests/data/trb_locked_reference.npz).  Bit for bit on the machine that wrote it (IEEE arithmetic
     without fastmath); asserted to 1e-12 relative so that another machine's libm cannot fail it."""
-    from coupling import tapered_scene as S
-    from coupling.config import load_case
+    from lubedyn import tapered_scene as S
+    from lubedyn.config import load_case
 
     ref = np.load(DATA / "trb_locked_reference.npz")
-    case = load_case(Path(__file__).parent.parent / "cases" / "trb_fig5_2400rpm.toml",
+    case = load_case(CASES_DIR / "trb_fig5_2400rpm.toml",
                      overrides=["model.slices=5", "integrator.duration=1 ms", "integrator.sample_interval=100 us",
                                 "output.write=[]", "model.traction_evaluation=quadrature",
                                 "integrator.dt=2.2204974146810178e-06"])

@@ -1,22 +1,22 @@
 """Raceway traction "map" of the tapered bearing (issue 23, section 1; issue 22, fidelity options): the
 roller EHL maps (cases/maps/ehl_roller_cup.npz, ehl_roller_cone.npz) read by the compiled kernel at the
-run's entrainment speed (dynamics.tapered.model.TaperedBearing.map_traction_tables,
-dynamics.tapered.kernels.map_traction_coefficient).
+run's entrainment speed (lubedyn.dynamics.tapered.model.TaperedBearing.map_traction_tables,
+lubedyn.dynamics.tapered.kernels.map_traction_coefficient).
 
-Independent references: the maps' own Python reader (coupling.maps.FilmMap: a 3-D Hermite query and its
+Independent references: the maps' own Python reader (lubedyn.maps.FilmMap: a 3-D Hermite query and its
 sheared coordinate, a different code path from the kernel's 2-D restriction), a direct EHL line-contact
-solve (coupling.film_points.evaluate_ehl_line) at a point between the maps' nodes, and the maps' linear
+solve (lubedyn.film_points.evaluate_ehl_line) at a point between the maps' nodes, and the maps' linear
 low-slip branch."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from coupling import tapered_scene as ts
-from coupling.config import CASES_DIR, load_case
-from dynamics.tapered import kernels as K
-from dynamics.tapered import layout as L
-from lubrication.errors import InputError
+from lubedyn import tapered_scene as ts
+from lubedyn.config import CASES_DIR, load_case
+from lubedyn.dynamics.tapered import kernels as K
+from lubedyn.dynamics.tapered import layout as L
+from lubedyn.lubrication.errors import InputError
 
 CASE = CASES_DIR / "trb_fig5_traction_map.toml"
 TRACTION = "Traction coefficient [-]"
@@ -80,7 +80,7 @@ def test_kernel_traction_against_a_direct_ehl_solve(model, P, race, load):
     slip between the SRR nodes, against the EHL line contact solved directly with the map's own
     parameters: within 3 %, the maps' accuracy target (their measured misses, up to 8.5 %, lie in the
     28-58 kN/m transition band, cases/maps/README.md; these loads are above it)."""
-    from coupling.film_points import evaluate_ehl_line
+    from lubedyn.film_points import evaluate_ehl_line
 
     fmap = model.traction_maps[race]
     ue, s = float(P[L.P_UE]), 3.3e-3
@@ -92,13 +92,13 @@ def test_kernel_traction_against_a_direct_ehl_solve(model, P, race, load):
 
 def test_stable_step_follows_the_maps_low_slip_slope(model):
     """RK4's step estimate of the "map" traction: the larger decay rate of a roller's rolling speed and
-    spin (:func:`dynamics.tapered.model.sliding_decay_rate`) with k = (mu/s) Q/u_e from the maps' own
+    spin (:func:`lubedyn.dynamics.tapered.model.sliding_decay_rate`) with k = (mu/s) Q/u_e from the maps' own
     reader at the axis' first slip node and the start's largest cup load; checked against the right-hand
     side's own spectrum at the start (finite-difference Jacobian, an independent estimate): measured 6.89
     against 7.00 us, asserted within 5 %.  The closed form's earlier trace, (k_cup + k_cone)(1/m +
     rho_m^2/I_x), was 1.5 times the eigenvalue (4.6 us).  The maps' slope lies below the strip law's
     elastic slope at this point (the "limited" step is shorter)."""
-    from dynamics.tapered.model import sliding_decay_rate
+    from lubedyn.dynamics.tapered.model import sliding_decay_rate
 
     qs = model.quasi_static()
     g = model.geometry
@@ -117,7 +117,7 @@ def test_stable_step_follows_the_maps_low_slip_slope(model):
 def test_sliding_decay_rate_is_the_eigenvalue_of_the_roller_sliding_system():
     """The closed form against numpy's eigenvalues of the 2 x 2 matrix, for equal and unequal slopes and a
     solid roller (I_x = m rho^2 / 2: 4 k/m for equal slopes, 2/3 of the trace)."""
-    from dynamics.tapered.model import sliding_decay_rate
+    from lubedyn.dynamics.tapered.model import sliding_decay_rate
 
     m, rho = 0.05, 0.01
     for k1, k2, ix in ((300.0, 300.0, 0.5 * m * rho**2), (100.0, 900.0, 0.4 * m * rho**2), (1e3, 1.0, 1e-6)):

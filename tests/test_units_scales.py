@@ -3,8 +3,8 @@ every length is checked against the scales of its own scene.
 
 Before, ``clearance = 50`` (meant um) was a 50 m clearance that validated and ran; ``--set
 gap.h_out=10`` on a 20 mm slider too.  Now a film thicker than a tenth of the length it spreads over
-(:data:`coupling.config.THIN_FILM`), a film domain beyond its body, an EHL contact as wide as its
-radius (:data:`coupling.ehl_case.SMALL_CONTACT`) or a bearing whose lengths do not fit together is
+(:data:`lubedyn.config.THIN_FILM`), a film domain beyond its body, an EHL contact as wide as its
+radius (:data:`lubedyn.ehl_case.SMALL_CONTACT`) or a bearing whose lengths do not fit together is
 one line (exit 2) naming the key, its value, what it was compared with and, for a bare number, the
 unit it was probably meant in.  A case file with a UTF-8 byte-order mark loads; a unit written
 without quotes gets a hint.  Validation only: nothing here solves.
@@ -16,8 +16,8 @@ import typing
 
 import pytest
 
-from coupling import cli
-from coupling.config import CASES_DIR, CaseError, FilmCase, GapModel, load_case, load_case_text, read_toml
+from lubedyn import cli
+from lubedyn.config import CASES_DIR, CaseError, FilmCase, GapModel, load_case, load_case_text, read_toml
 
 EHL_DIRECT = """scene = "ehl"
 [contact]
@@ -144,7 +144,7 @@ def test_ehl_approach_is_a_thin_film(tmp_path):
 def test_every_gap_type_has_its_thin_film_lengths_and_bundled_films_are_far_inside():
     """One table (FILM_LENGTHS) drives the thin-film check of every gap type; the bundled film cases
     sit at least ten times inside it (largest: 2e-3, the journal's c/R)."""
-    from coupling.config import FILM_LENGTHS, THIN_FILM
+    from lubedyn.config import FILM_LENGTHS, THIN_FILM
 
     gaps = typing.get_args(typing.get_args(GapModel)[0])
     types = {typing.get_args(m.model_fields["type"].annotation)[0] for m in gaps}
@@ -170,7 +170,7 @@ def test_case_file_with_a_byte_order_mark_loads(tmp_path, caplog):
     column 1)" before): it is skipped, at DEBUG."""
     path = tmp_path / "bom.toml"
     path.write_bytes(b"\xef\xbb\xbf" + (CASES_DIR / "inclined_slider.toml").read_bytes())
-    with caplog.at_level(logging.DEBUG, logger="coupling.config"):
+    with caplog.at_level(logging.DEBUG, logger="lubedyn.config"):
         case = load_case(path)
     assert case.gap.h_out == 1e-5
     assert any("byte-order mark" in r.getMessage() for r in caplog.records)

@@ -2,7 +2,7 @@
 
 Each warning is one logged line (WARNING, on stderr through the CLI) and an
 entry of the list under "Warnings" in summary.json (absent when there is none); the thresholds are the
-documented options of ``[validity]`` (coupling.config.ValidityModel).  The
+documented options of ``[validity]`` (lubedyn.config.ValidityModel).  The
 bundled film and EHL cases at their smoke resolution give none.
 """
 from __future__ import annotations
@@ -11,8 +11,8 @@ import json
 
 import pytest
 
-from coupling import cli, ehl_scene, film_scene
-from coupling.config import CASES_DIR, load_case
+from lubedyn import cli, ehl_scene, film_scene
+from lubedyn.config import CASES_DIR, load_case
 
 PRESSURE = "is above validity.max_pressure"
 FILM = "is below validity.min_film"
@@ -27,7 +27,7 @@ def run_cli(capsys, tmp_path, case, *sets):
     _, err = capsys.readouterr()
     assert code == 0, err
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
-    return summary, [line for line in err.splitlines() if line.startswith("lubedyn: WARNING: coupling.validity: ")]
+    return summary, [line for line in err.splitlines() if line.startswith("lubedyn: WARNING: lubedyn.validity: ")]
 
 
 def test_journal_at_1e9_rpm_is_warned(capsys, tmp_path):
@@ -38,7 +38,7 @@ def test_journal_at_1e9_rpm_is_warned(capsys, tmp_path):
         "does not hold there (the solids deform, the viscosity law is extrapolated)",
         "Film Reynolds number rho U h / eta = 1.05e+07 is above validity.max_reynolds = 1e+03: the flow is no "
         "longer laminar and inertia-free, which the Reynolds equation assumes"]
-    assert lines == [f"lubedyn: WARNING: coupling.validity: {w}" for w in summary["Warnings"]]
+    assert lines == [f"lubedyn: WARNING: lubedyn.validity: {w}" for w in summary["Warnings"]]
     # Re = rho0 U h_max / eta0 with U = omega R and h_max = c (1 + eps)
     omega = 1e9 * 2 * 3.141592653589793 / 60
     assert summary["Film Reynolds number [-]"] == pytest.approx(1000 * omega * 0.025 * 50e-6 * 1.6 / 0.02, rel=1e-3)
@@ -69,7 +69,7 @@ def test_ehl_thresholds_are_options(caplog):
     pressure limit and a 1 um roughness put it outside both."""
     case = load_case(CASES_DIR / "ehl_ball_inner_race.toml", smoke=True,
                      overrides=["validity.max_pressure='1 GPa'", "validity.min_film='1 um'"])
-    with caplog.at_level("WARNING", logger="coupling.validity"):
+    with caplog.at_level("WARNING", logger="lubedyn.validity"):
         s = ehl_scene.run(case).summary
     assert [w.split(":")[0] for w in s["Warnings"]] == [
         "Maximum pressure 1.9e+09 Pa is above validity.max_pressure = 1e+09 Pa",
@@ -88,7 +88,7 @@ def test_bundled_cases_give_no_validity_warning(path, caplog):
     largest pressure 1.9 GPa (EHL ball, limit 4 GPa)."""
     case = load_case(path, smoke=True)
     scene = film_scene if case.scene == "film" else ehl_scene
-    with caplog.at_level("WARNING", logger="coupling.validity"):
+    with caplog.at_level("WARNING", logger="lubedyn.validity"):
         s = scene.run(case).summary
     assert "Warnings" not in s and not caplog.records
     assert s["Film Reynolds number [-]"] < 0.1 * case.validity.max_reynolds

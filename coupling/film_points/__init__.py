@@ -1,11 +1,11 @@
 r"""Point kinds of film maps: what one map point solves, and the contact laws around it.
 
 A *point kind* (:class:`PointKind`, registry :data:`KINDS`) tells the map
-machinery (:mod:`coupling.maps`) the default axes of a map, the names of its
+machinery (:mod:`lubedyn.maps`) the default axes of a map, the names of its
 outputs and a module-level ``evaluate(params, point) -> {output: float}`` that
 solves one film.  ``params`` is a plain dict of SI floats and strings
 (``default_params()`` of each kind); ``point`` maps axis names to values.  A
-point that cannot be solved raises :class:`~lubrication.errors.ConvergenceError`
+point that cannot be solved raises :class:`~lubedyn.lubrication.errors.ConvergenceError`
 naming the point.
 
 =========================  ===================================================
@@ -48,7 +48,7 @@ curve v = h0^2/(3 alpha eta0 R_eff) (3.8e-4 m/s at h0 = 0.05 um, 0.15 m/s at
 1 um, 15 m/s at 10 um for paper B's oil), which no rectangular (h0, v) grid
 avoids.  Beyond Lambda ~ 1 the film pressure is high enough to deform the
 balls: that is the EHL squeeze regime, where the paper puts the film
-stiffness in series with Hertz (:func:`lubrication.laws.collision.series_stiffness`).
+stiffness in series with Hertz (:func:`lubedyn.lubrication.laws.collision.series_stiffness`).
 :func:`squeeze_number` and :func:`approach_speed` convert.
 
 Polar axes (the map's coordinates).  Entrainment has its own number,
@@ -104,7 +104,7 @@ Entrainment from the bearing kinematics: neighbouring balls spin the same way
 (both roll on the inner race), so at the gap their surfaces move in
 *opposite* directions, each at the ball's surface speed about its own centre
 (11.5 m/s at paper B's 10,000 rpm: the race entrainment speed of
-:func:`lubrication.laws.bearing.entrainment_speed`).  The mean (entraining) velocity
+:func:`lubedyn.lubrication.laws.bearing.entrainment_speed`).  The mean (entraining) velocity
 u_e = (u_1 + u_2)/2 is zero for equal spins and equals R (omega_A -
 omega_B)/2 for unequal ones (a 1 % spin difference: 0.058 m/s); the sliding
 speed u_2 - u_1 ~ 2 x 11.5 m/s is large but, for a rigid Newtonian film, does
@@ -123,7 +123,7 @@ difference between a ball in the loaded zone and a slowed one gives 0.01 to
 R_eff): 0.14 m/s at 1 um, 14 m/s at 10 um, and u_e up to 0.9 h0^1.5/(3 alpha
 eta0 sqrt(2 R_eff)): 0.053 m/s at 0.05 um, 1.5 m/s at 0.5 um.
 
-Solver: :func:`lubrication.reynolds.solve` (P2 triangles on a polar disk whose
+Solver: :func:`lubedyn.lubrication.reynolds.solve` (P2 triangles on a polar disk whose
 ring radii are r_k = r_d sinh(b k/n)/sinh(b), b = 4, so that the ring spacing
 follows the pressure) with Reynolds (Swift-Stieber) cavitation at
 ``cavitation_pressure`` when the film may cavitate (separation or entrainment;
@@ -134,7 +134,7 @@ for a pure approach the pressure is positive and the film full); ``p = 0``
 parabolic gap, as in the classical formulas; the part beyond r = R carries
 (isoviscous) (h0/H)(1 - H/h_a)^2/(1 - h0/h_a)^2 of the force, H = h0 + R,
 i.e. 0.9 % at h0 = 50 um and nothing below 4.8 um.  K = -dF/dh0 and C = dF/dv = -dF/d(dh0/dt) from
-:func:`lubrication.reynolds.film_coefficients` (mode ``h0``).  The Newton
+:func:`lubedyn.lubrication.reynolds.film_coefficients` (mode ``h0``).  The Newton
 iteration starts from the closed-form piezoviscous squeeze pressure (below),
 which makes 3-6 iterations.
 
@@ -145,7 +145,7 @@ dh/dt, r h^3 p' = -6 eta v r^2 and dh = r dr/R_eff::
     p(r) = 3 eta v R_eff (1/h^2 - 1/h_a^2)
     F    = 2 pi R_eff int_{h0}^{h_a} p dh = 6 pi eta v R_eff^2 / h0 (1 - h0/h_a)^2
 
-(:func:`lubrication.closed_form.sphere_plane_squeeze_force`); with h_a/h0 =
+(:func:`lubedyn.lubrication.closed_form.sphere_plane_squeeze_force`); with h_a/h0 =
 1000 the truncation lowers F by 0.2 % against the infinite film.  Barus
 viscosity, incompressible: the reduced pressure q = (1 - exp(-alpha p))/alpha
 obeys the isoviscous equation, so p = -ln(1 - alpha q_iso)/alpha and, with
@@ -167,7 +167,7 @@ points) in about 110 s on one core.
 
 EHL contacts (kinds ``ehl_*``)
 ------------------------------
-:func:`lubrication.ehl.solve_ehl` with the load given (load balance),
+:func:`lubedyn.lubrication.ehl.solve_ehl` with the load given (load balance),
 Barus + Dowson-Higginson oil of paper B (Table 1) or paper A's grease as its
 base oil, traction from the limiting-shear law (tau_L0 = 5 MPa, slope 0.08:
 mineral-oil values, the papers give none for the race contacts).  Axes: load
@@ -258,38 +258,38 @@ was rebuilt:
   stiffness in series with the same Hertz term, eq. 15), and C_v = C_f the
   film damping.  Rebuilt from the physics: the film and the elastic bodies
   carry the same force and their compressions add, so compliances add:
-  :func:`lubrication.laws.collision.series_stiffness` ``K = K_film K_H/(K_film + K_H)``; the damping of
+  :func:`lubedyn.lubrication.laws.collision.series_stiffness` ``K = K_film K_H/(K_film + K_H)``; the damping of
   a dashpot in series with a spring is not a plain damping, but the paper
   takes C_v = C_f (film damping alone) and so do we
-  (:func:`lubrication.laws.collision.series_film_hertz`).
+  (:func:`lubedyn.lubrication.laws.collision.series_film_hertz`).
 - eqs. (9)/(13)/(14): Hertz stiffness of the ball-ball contact.  For two
   equal balls the contact is circular (kappa = 1, J1 = J2 = pi/2 in the
   paper's elliptic integrals) and Hertz gives (Johnson 1985, eq. 4.23)
   Q = (4/3) E* sqrt(R_eff) delta^(3/2), K_H = dQ/d delta = 2 E* sqrt(R_eff
-  delta) = 1.5 Q/delta (:func:`lubrication.laws.collision.hertz_force`).
+  delta) = 1.5 Q/delta (:func:`lubedyn.lubrication.laws.collision.hertz_force`).
 - eqs. (10)-(12), the collision phases: elastic (Hertz) loading; elastic-
   plastic loading beyond first yield (the paper's "yield stress" sigma and
   a force linear in delta, eq. 11); recovery (eq. 12: a Hertz law in
   delta - delta_sigma, a residual indentation).  That is Thornton's (1997,
-  J. Appl. Mech. 64, 383) model, implemented as :func:`lubrication.laws.collision.thornton_force` with
+  J. Appl. Mech. 64, 383) model, implemented as :func:`lubedyn.lubrication.laws.collision.thornton_force` with
   first yield at p0 = 1.6 Y (Johnson 1985, sec. 6.2, nu = 0.3)
-  (:func:`lubrication.laws.collision.yield_onset`).
+  (:func:`lubedyn.lubrication.laws.collision.yield_onset`).
 - eq. (17), the film friction coefficient, printed "mu = 3 eta U h e^(alpha
   p)(alpha p - 1) + 1 alpha^2 p^3": Newtonian Barus shear eta0 exp(alpha p)
   U/h integrated over a Hertzian pressure p0 sqrt(1 - r^2/a^2) and divided
   by the load gives mu = 3 eta0 U [e^(alpha p0)(alpha p0 - 1) + 1]/(h alpha^2
-  p0^3) (:func:`lubrication.laws.collision.barus_hertz_friction_coefficient`): the printed formula with
+  p0^3) (:func:`lubedyn.lubrication.laws.collision.barus_hertz_friction_coefficient`): the printed formula with
   p = p0.
 - eqs. (19)-(21), film rupture: the friction coefficient is the fluid value
   weighted by the film's share of the load plus the boundary value mu_b
-  weighted by the asperity share (:func:`lubrication.laws.collision.mixed_friction_coefficient`).  The
+  weighted by the asperity share (:func:`lubedyn.lubrication.laws.collision.mixed_friction_coefficient`).  The
   paper's fit of the asperity load share against the film parameter
   lambda ("17 e^(-2.84 lambda) + 1.44e-4 (lambda - 2)^1.1 ... 4 lambda^7.8")
   cannot be rebuilt from the extraction; the share is an input here.
 
-The contact and film laws these kinds use are written once in :mod:`lubrication.laws` (Hertz,
+The contact and film laws these kinds use are written once in :mod:`lubedyn.lubrication.laws` (Hertz,
 Thornton, the squeeze films, the friction laws); the papers' values come from
-:mod:`coupling.parameters`.  Modules: ``base`` (registry types, paper values, lubricant), ``ball_ball``
+:mod:`lubedyn.parameters`.  Modules: ``base`` (registry types, paper values, lubricant), ``ball_ball``
 (the ball-ball film kind), ``ehl`` (the four EHL race kinds); the registry :data:`KINDS` is here.
 """
 from __future__ import annotations

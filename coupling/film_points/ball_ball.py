@@ -1,7 +1,7 @@
 """Kind ``ball_ball``: the oil film between two neighbouring balls (rigid Reynolds FEM squeeze film
 with entrainment, polar axes).
 
-Part of :mod:`coupling.film_points` (the package docstring gives the physics and sources)."""
+Part of :mod:`lubedyn.film_points` (the package docstring gives the physics and sources)."""
 from __future__ import annotations
 
 import math
@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lubrication.errors import ConvergenceError, InputError, unknown_choice
+from lubedyn.lubrication.errors import ConvergenceError, InputError, unknown_choice
 
 from .base import BALL_RADIUS, OIL_ALPHA, OIL_ETA0, OIL_RHO0, AxisDef, _get, _lubricant
 
@@ -207,7 +207,7 @@ def polar_disk(radius: float, rings: int, sectors: int, grading: float = RING_GR
 
 @dataclass(frozen=True)
 class _Start:
-    """Starting pressure for :func:`lubrication.reynolds.solve` (what it reads of ``initial``)."""
+    """Starting pressure for :func:`lubedyn.lubrication.reynolds.solve` (what it reads of ``initial``)."""
 
     pressure_dofs: np.ndarray
     fluid_fraction_dofs: np.ndarray
@@ -226,7 +226,7 @@ def _reduced_pressure_inverse(viscosity, q):
 
 
 def _ball_ball_setup(params, point):
-    import lubrication as lub
+    import lubedyn.lubrication as lub
 
     h0, v, ue = _point_speeds(params, point)
     res = _get(params, "resolution", "default")
@@ -250,7 +250,7 @@ def _ball_ball_setup(params, point):
         options=lub.SolverOptions(rtol=1e-10, max_iter=60, warm_start_levels=0),
     )
     # start: the closed-form squeeze pressure of the lubricant's reduced pressure
-    from lubrication.reynolds import make_basis
+    from lubedyn.lubrication.reynolds import make_basis
 
     h = h0 + np.sum(make_basis(mesh, element).doflocs ** 2, axis=0) / (2.0 * Reff)
     ha = h0 * ratio
@@ -269,7 +269,7 @@ def solve_ball_ball(params, point):
     Raises :class:`ConvergenceError` naming the point if the Reynolds solve
     fails or the piezoviscous film has no solution (beyond the pole).
     """
-    import lubrication as lub
+    import lubedyn.lubrication as lub
 
     film, h0, v, ue, p_start = _ball_ball_setup(params, point)
     if np.any(np.isnan(p_start)):
@@ -303,7 +303,7 @@ def evaluate_ball_ball(params: dict, point: dict) -> dict:
     "Maximum pressure [Pa]", "Approach speed [m/s]", "Friction per sliding
     speed [N s/m]" (int eta(p)/h dA over the full film).
     """
-    from lubrication.reynolds import film_coefficients, interpolate
+    from lubedyn.lubrication.reynolds import film_coefficients, interpolate
 
     sol, h0, v, ue = solve_ball_ball(params, point)
     _, K, C = film_coefficients(sol)

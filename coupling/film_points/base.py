@@ -1,6 +1,6 @@
 """The film-point registry (AxisDef, PointKind) and the papers' values the kinds start from.
 
-Part of :mod:`coupling.film_points` (the package docstring gives the physics and sources)."""
+Part of :mod:`lubedyn.film_points` (the package docstring gives the physics and sources)."""
 from __future__ import annotations
 
 import math
@@ -9,7 +9,7 @@ from typing import Callable
 
 import numpy as np
 
-from lubrication.errors import InputError, unknown_choice
+from lubedyn.lubrication.errors import InputError, unknown_choice
 
 from ..parameters import printed, si
 
@@ -69,13 +69,13 @@ class PointKind:
     # (the traction coefficient, odd in the slide-to-roll ratio: the dynamics extend it by sign and
     # linearly below the axis and read it with logv = 0)
     signed: tuple = ()
-    # outputs tabulated on a sheared coordinate ({output: spec}, see coupling.maps.FilmMap, "sheared"):
+    # outputs tabulated on a sheared coordinate ({output: spec}, see lubedyn.maps.FilmMap, "sheared"):
     # the map returns them from a tabulated shift and a tabulated function of the normalised coordinate
     sheared: dict = _field(default_factory=dict, hash=False, compare=False)
 
 
 # ---------------------------------------------------------------- paper data
-# The kinds' default parameters come from the papers' parameter sets (coupling.parameters): paper B
+# The kinds' default parameters come from the papers' parameter sets (lubedyn.parameters): paper B
 # (Zhang2024: Tables 1, 2, 4) for the ball kinds, paper A (Wu2018: Table 1, figure 5) for the roller.
 BALL_RADIUS = si("Zhang2024", "ball_radius")
 BALL_DIAMETER = si("Zhang2024", "ball_diameter")
@@ -104,7 +104,7 @@ SHAFT_SPEED_A = printed("Wu2018", "inner_speed", "rpm") * 2 * math.pi / 60  # ra
 
 
 def _reduced_modulus(E1, nu1, E2, nu2):
-    from lubrication.laws.contact import reduced_modulus
+    from lubedyn.lubrication.laws.contact import reduced_modulus
 
     return reduced_modulus(E1, nu1, E2, nu2)
 
@@ -113,7 +113,7 @@ VISCOSITY_LAWS = ("barus", "roelands", "constant")
 DENSITY_LAWS = ("dowson_higginson", "incompressible")
 # Poiseuille flow of the roller kinds' film ("rheology"): Reynolds-Eyring (the base oil, tau0 = eyring_stress)
 # or Herschel-Bulkley (a grease: consistency phi0 = hb_consistency [Pa s^n] with the Barus alpha, yield stress
-# hb_yield_stress [Pa], exponent hb_exponent, creep hb_creep; lubrication.laws.lubricant.HerschelBulkleyFlow)
+# hb_yield_stress [Pa], exponent hb_exponent, creep hb_creep; lubedyn.lubrication.laws.lubricant.HerschelBulkleyFlow)
 RHEOLOGIES = ("eyring", "herschel_bulkley")
 
 
@@ -127,7 +127,7 @@ def _get(params, key, default=None):
 
 
 def _lubricant(params):
-    import lubrication as lub
+    import lubedyn.lubrication as lub
 
     law = _get(params, "viscosity_law", "barus")
     eta0 = float(_get(params, "eta0"))

@@ -1,7 +1,7 @@
 """Kinds ``ehl_ball_inner_race``, ``ehl_ball_outer_race``, ``ehl_roller_cone``, ``ehl_roller_cup``: isothermal EHL contacts of
 a rolling element with its race (load response, film stiffness and damping, traction).
 
-Part of :mod:`coupling.film_points` (the package docstring gives the physics and sources)."""
+Part of :mod:`lubedyn.film_points` (the package docstring gives the physics and sources)."""
 from __future__ import annotations
 
 import logging
@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from lubrication.errors import ConvergenceError, InputError, unknown_choice
+from lubedyn.lubrication.errors import ConvergenceError, InputError, unknown_choice
 
 from .base import (AxisDef, BALL_DIAMETER, BALL_MODULUS, BALL_POISSON, GREASE_ALPHA, INNER_GROOVE_RADIUS, N_BALLS,
                    OIL_ALPHA, OIL_ETA0, OIL_RHO0, OUTER_GROOVE_RADIUS, PAPER_B_AXIAL_LOAD, PITCH_DIAMETER_6206,
@@ -45,16 +45,16 @@ EHL_OUTPUTS = (
 
 
 def _ball_race_geometry(race: str, contact_angle: float) -> tuple:
-    """(R_x, R_y) [m] of a 6206 ball on its ``race`` at ``contact_angle`` [rad] (lubrication.laws.bearing)."""
-    from lubrication.laws import bearing
+    """(R_x, R_y) [m] of a 6206 ball on its ``race`` at ``contact_angle`` [rad] (lubedyn.lubrication.laws.bearing)."""
+    from lubedyn.lubrication.laws import bearing
 
     groove = INNER_GROOVE_RADIUS if race == "inner" else OUTER_GROOVE_RADIUS
     return bearing.race_radii(BALL_DIAMETER, PITCH_DIAMETER_6206, groove, race, contact_angle)
 
 
 def _paper_b_contact_angle() -> float:
-    """Contact angle [rad] of the 6206 (zero clearance) under paper B's axial load 200 N (lubrication.laws.bearing)."""
-    from lubrication.laws import bearing
+    """Contact angle [rad] of the 6206 (zero clearance) under paper B's axial load 200 N (lubedyn.lubrication.laws.bearing)."""
+    from lubedyn.lubrication.laws import bearing
 
     r_i, r_o = INNER_GROOVE_RADIUS, OUTER_GROOVE_RADIUS
     e_star = _reduced_modulus(BALL_MODULUS, BALL_POISSON, RING_MODULUS, RING_POISSON)
@@ -125,7 +125,7 @@ def ehl_roller_race_default_params() -> dict:
     kN, 8.84 m/s: 5.177 -> 5.114 um; the inlet is Newtonian) and h_min/h_c
     becomes 0.76 (Newtonian: 0.90-0.95, branch-dependent).
     """
-    from lubrication.laws import bearing
+    from lubedyn.lubrication.laws import bearing
 
     rx = bearing.race_radius_x(ROLLER_MEAN_DIAMETER, ROLLER_PITCH_DIAMETER, ROLLER_INNER_CONTACT_ANGLE, "inner")
     return {
@@ -163,7 +163,7 @@ ROLLER_RACES = ("cone", "cup")
 
 def roller_race_radius(race: str) -> float:
     """Reduced radius R_x [m] of paper A's mid-slice roller/``race`` line contact from the model's own
-    geometry (:func:`coupling.parameters.wu2018.tapered_geometry`, ``reduced_radius``: roller rho_m/cos(phi)
+    geometry (:func:`lubedyn.parameters.wu2018.tapered_geometry`, ``reduced_radius``: roller rho_m/cos(phi)
     against the race's cone r_c/cos(alpha), concave for the cup): cone 9.395 mm, cup 11.906 mm."""
     from ..parameters.wu2018 import tapered_geometry
 
@@ -199,7 +199,7 @@ def _roller_params(race: str) -> dict:
         "film_shear_modulus": ROLLER_FILM_SHEAR_MODULUS,
         # Poiseuille flow: "eyring" (the base oil above) or "herschel_bulkley" (a grease: hb_consistency phi0
         # [Pa s^n] with the Barus alpha, hb_yield_stress [Pa], hb_exponent, hb_creep; eta0 and eyring_stress
-        # are then unused; coupling.film_points.base._lubricant, roller_grease_params)
+        # are then unused; lubedyn.film_points.base._lubricant, roller_grease_params)
         "rheology": "eyring",
         "hb_consistency": 0.0, "hb_yield_stress": 0.0, "hb_exponent": 1.0, "hb_creep": 0.0,
         "race": race,
@@ -208,7 +208,7 @@ def _roller_params(race: str) -> dict:
         "inlet_film_lengths": ROLLER_INLET_FILM_LENGTHS,
         "outlet_film_lengths": ROLLER_OUTLET_FILM_LENGTHS,
         # graded line grid (_graded_fields; 1: uniform) and the Newton's pseudo-transient continuation
-        # (lubrication.ehl EHLOptions.pseudo_transient; 0: off)
+        # (lubedyn.lubrication.ehl EHLOptions.pseudo_transient; 0: off)
         "grid_refine": 1.0,
         "pseudo_transient": 0.0,
     })
@@ -217,12 +217,12 @@ def _roller_params(race: str) -> dict:
 
 def roller_grease_params(name: str, temperature_c: float = 30.0) -> dict:
     """The parameters that make a roller kind's film a grease of paper A's Table 2 (``name`` polyurea, lithium
-    or calcium at ``temperature_c`` [C], 15-70, lubrication.laws.grease.grease_at): rheology =
+    or calcium at ``temperature_c`` [C], 15-70, lubedyn.lubrication.laws.grease.grease_at): rheology =
     "herschel_bulkley", hb_consistency phi0 [Pa s^n], hb_yield_stress tau_y [Pa], hb_exponent n (the Barus
     alpha stays the kind's, Table 1's 4.662e-8 m^2/N, which the paper gives for polyurea at 30 C only).
     Merge them into the params of a build (``build_map("ehl_roller_cone", {**roller_grease_params(...)})``)
     or write them in a map case's [params]; they are recorded in the map's provenance."""
-    from lubrication.laws.grease import grease_at
+    from lubedyn.lubrication.laws.grease import grease_at
 
     from ..parameters.wu2018 import GREASE_TABLE
 
@@ -249,17 +249,17 @@ def _film_scaled_domain(params, contact, lengths=None, base=None):
     ROLLER_INLET_FILM_LENGTHS)."""
     import math
 
-    from lubrication.laws.contact import line_contact
-    from lubrication.laws.film import moes_line_central
+    from lubedyn.lubrication.laws.contact import line_contact
+    from lubedyn.lubrication.laws.film import moes_line_central
 
     if contact.lubricant.herschel_bulkley is not None:
         # a grease: Moes' M and L would read the consistency phi0 as Pa s (8-49 Pa s^n: films and domains ~10
         # times too long; calcium then failed on every point); take the Newtonian film of its apparent
-        # viscosity at the rolling shear rate (lubrication.ehl's own start for the grease)
+        # viscosity at the rolling shear rate (lubedyn.lubrication.ehl's own start for the grease)
         import dataclasses
 
-        from lubrication.ehl.newton import _hb_apparent_start
-        from lubrication.laws.lubricant import Barus
+        from lubedyn.lubrication.ehl.newton import _hb_apparent_start
+        from lubedyn.lubrication.laws.lubricant import Barus
 
         lub = contact.lubricant
         eta_app, _ = _hb_apparent_start(contact)
@@ -297,7 +297,7 @@ def _graded_fields(params, contact) -> dict:
 
 
 def _ehl_setup(params, load, speed):
-    from lubrication.ehl import EHLContact, EHLOptions, Traction
+    from lubedyn.lubrication.ehl import EHLContact, EHLOptions, Traction
 
     line = _get(params, "contact") == "line"
     res = _get(params, "resolution", "default")
@@ -311,7 +311,7 @@ def _ehl_setup(params, load, speed):
         float(params["radius_x"]), None if line else float(params["radius_y"]), float(params["e_star"]),
         _lubricant(params), float(speed), load=float(load), traction=traction)
     if line and float(params.get("inlet_film_lengths", 0.0)) > 0:
-        from lubrication.ehl import EHLGrid
+        from lubedyn.lubrication.ehl import EHLGrid
 
         # fixed node count on a domain that grows smoothly with the film (_film_scaled_domain)
         x_lo, x_hi = _film_scaled_domain(params, contact)
@@ -329,7 +329,7 @@ def _ehl_grid(nodes, line: bool, x_min: float, x_max: float, y_max: float):
     is then moved to start x_max - (nx - 1) dx_ref, so that the nodes sit at the same x/b as on the
     reference domain (the inlet is extended by whole cells: x_min = -18.5 instead of -20 would put
     every node elsewhere).  The reference domain itself gives the table's grid."""
-    from lubrication.ehl import EHLGrid
+    from lubedyn.lubrication.ehl import EHLGrid
 
     ref = EHL_REFERENCE_DOMAIN["line" if line else "point"]
     nx_ref = nodes if line else nodes[0]
@@ -358,7 +358,7 @@ def _ehl_secant_coefficients(contact, grid, options, sol, step):
     K = -2 step Q / (h00(Q(1 + step)) - h00(Q(1 - step))); at the load Q with a squeeze
     velocity dh00/dt = +-v_s, v_s = ``step`` u_e h_c / b, by implicit differentiation of
     Q(h00, dh00/dt) at fixed Q: C = -K (h00(+v_s) - h00(-v_s)) / (2 v_s).  Each solve
-    (lubrication.ehl.solve_ehl, load balance) starts from the steady state ``sol``.
+    (lubedyn.lubrication.ehl.solve_ehl, load balance) starts from the steady state ``sol``.
     Why a finite secant and not the tangent: the discrete load F(h00) is only piecewise
     smooth -- each time a node of the outlet (cavitation) boundary changes side, dF/dh00
     jumps.  Measured on paper B's inner contact at 54 N (49 x 25 nodes, x in [-9, 1.5]),
@@ -373,7 +373,7 @@ def _ehl_secant_coefficients(contact, grid, options, sol, step):
     """
     import dataclasses
 
-    from lubrication.ehl import ehl_normal_coefficients, solve_ehl
+    from lubedyn.lubrication.ehl import ehl_normal_coefficients, solve_ehl
 
     w = float(contact.load)
     fields = {f.name for f in dataclasses.fields(options)}
@@ -430,7 +430,7 @@ def _short_inlet_start(contact, grid, options, x_min):
     (multilinear, zero upstream of the short inlet)."""
     import dataclasses
 
-    from lubrication import ehl
+    from lubedyn.lubrication import ehl
 
     if grid.graded:  # the same nodes count on the shorter domain (only a start)
         short = dataclasses.replace(grid, x_min=x_min)
@@ -477,7 +477,7 @@ def _continuation_start(params, contact, grid, options):
     solution both converge.  Raises ConvergenceError naming the step that failed."""
     import dataclasses
 
-    from lubrication.ehl import EHLGrid, solve_ehl
+    from lubedyn.lubrication.ehl import EHLGrid, solve_ehl
 
     errors = []
     for path in CONTINUATION_PATHS:
@@ -522,7 +522,7 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
         Film stiffness  K = -dF/dh00        (h00 the rigid-body separation, -h00 the approach)
         Film damping    C = -dF/d(dh00/dt)  (at fixed h00)
 
-    - ``"linearised"`` (default): :func:`lubrication.ehl.ehl_normal_coefficients`
+    - ``"linearised"`` (default): :func:`lubedyn.lubrication.ehl.ehl_normal_coefficients`
       of the EHL module (one extra linear solve about the steady state, the
       cavitated set frozen);
     - ``"load_steps"``: two more steady solves, load (1 + 1e-3) Q and the load
@@ -541,7 +541,7 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
     """
     import dataclasses
 
-    from lubrication.ehl import solve_ehl
+    from lubedyn.lubrication.ehl import solve_ehl
 
     key = _ehl_key(params, load, speed)
     if key in _EHL_CACHE:
@@ -611,7 +611,7 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
         attempts.append((dataclasses.replace(grid, y_max=grid.y_max + 0.5), slow))
     hb = contact.lubricant.herschel_bulkley
     if hb is not None:
-        # a grease (rheology = "herschel_bulkley"): the solver's own Newtonian starts (lubrication.ehl.solve,
+        # a grease (rheology = "herschel_bulkley"): the solver's own Newtonian starts (lubedyn.lubrication.ehl.solve,
         # _solve_hb: four apparent viscosities), then the same with a damped step.  The oil's continuations
         # are left out: each of their solves from scratch is itself those four starts, and a grease the
         # solver cannot reach (Table 2's lithium, n = 0.31) would take minutes per point before failing
@@ -640,13 +640,13 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
                 sol = solve_ehl(contact, grid, options, initial=start)
             if method == "secant" and contact.moes_M < float(_get(params, "secant_min_moes_M", 0.0)):
                 # light, hydrodynamic loads: the tangent (see _roller_params, "secant_min_moes_M")
-                from lubrication.ehl import ehl_normal_coefficients
+                from lubedyn.lubrication.ehl import ehl_normal_coefficients
 
                 K, C, _ = ehl_normal_coefficients(contact, grid, options, steady=sol)
             elif method == "secant":
                 K, C = _ehl_secant_coefficients(contact, grid, options, sol, float(_get(params, "secant_step", 0.05)))
             elif method == "linearised":
-                from lubrication.ehl import ehl_normal_coefficients
+                from lubedyn.lubrication.ehl import ehl_normal_coefficients
 
                 K, C, _ = ehl_normal_coefficients(contact, grid, options, steady=sol)
             else:
@@ -735,7 +735,7 @@ LINE_RENAMES = {"Film stiffness [N/m]": "Film stiffness per length [N/m^2]",
 # "Central deflection [m]" u(0) = h_c - h00 (> 0 at every point): the approach -h00 of the per-length
 # kinds changes sign at 50-100 kN/m (-180 um at 0.7 kN/m, 28 m/s; +12 um at 300 kN/m, 8 m/s), where a
 # relative interpolation error means nothing; a consumer takes approach = u(0) - h_c.  (u is the strip
-# kernel's deflection, lubrication.elastic, referenced as there: a line contact's approach is defined
+# kernel's deflection, lubedyn.lubrication.elastic, referenced as there: a line contact's approach is defined
 # only up to a constant.)
 EHL_LINE_OUTPUTS = tuple(LINE_RENAMES.get(name, name) for name in EHL_OUTPUTS)
 
@@ -775,7 +775,7 @@ def evaluate_ehl_line(params: dict, point: dict) -> dict:
     flat above, and s_t falls by ~35 e-folds per e-fold of load in the hydrodynamic-to-EHL transition (cone,
     17.7 m/s: 4.6e-2 at 30 kN/m, 1.7e-6 at 40 kN/m) -- on the (load, speed, slide-to-roll) grid a front
     that crosses 1e-4..1e-3 between load nodes (the map missed by 665-877 %).  In sigma = s/c the front
-    stays at sigma ~ 1 at every node.  A map of these kinds (``PointKind.sheared``, coupling.maps.FilmMap
+    stays at sigma ~ 1 at every node.  A map of these kinds (``PointKind.sheared``, lubedyn.maps.FilmMap
     "sheared") therefore returns "Traction coefficient [-]" at (w, u, s) as G interpolated at
     (w, u, T^-1(s / c(w, u))), c interpolated; its own table of "Traction coefficient [-]" is kept for
     plots only.  A caller with a kernel of its own takes the kernel arrays of G and c and does the same.
@@ -792,7 +792,7 @@ def evaluate_ehl_line(params: dict, point: dict) -> dict:
     1.596e-4, smooth in load on 257 nodes (interpolated along load sweeps at the map's node ratio 1.072: worst
     2-8 % against 50-140 % for the rigid law).  It also gives the heavy loads the finite initial slope of
     measured traction curves (2 G b^2/(u h) per metre when the whole strip shears elastically:
-    lubrication.laws.traction.elastic_strip_slope), where the rigid Barus law was limited from SRR 1e-7 on."""
+    lubedyn.lubrication.laws.traction.elastic_strip_slope), where the rigid Barus law was limited from SRR 1e-7 on."""
     import math
 
     if float(params.get("length", 1.0)) != 1.0:

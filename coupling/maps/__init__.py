@@ -1,6 +1,6 @@
 """Film maps: many film solves tabulated on axes, fitted, stored, handed to dynamics.
 
-A map tabulates the outputs of a *point kind* (:mod:`coupling.film_points`:
+A map tabulates the outputs of a *point kind* (:mod:`lubedyn.film_points`:
 ``evaluate(params, point) -> {output: float}``, default axes, default
 parameters) on the tensor grid of its axes.  :func:`build_map` runs the solves
 (local processes by default, a Dask cluster when a scheduler is given, a
@@ -20,9 +20,9 @@ once, keeping every point already solved.
     (interpolation against direct solves at random off-grid points),
     :meth:`FilmMap.save` / :meth:`FilmMap.load` (one ``.npz``: arrays plus a
     JSON header with a format version), :meth:`FilmMap.kernel_arrays` (plain
-    arrays for :mod:`dynamics.interp`).
+    arrays for :mod:`lubedyn.dynamics.interp`).
 
-Interpolation (:mod:`dynamics.interp`): cubic Hermite on PCHIP node slopes
+Interpolation (:mod:`lubedyn.dynamics.interp`): cubic Hermite on PCHIP node slopes
 (``hermite``, default: C1, third order, the cheapest cubic query), sequential
 monotone cubic (``pchip``) or multilinear (``linear``), in log space on ``log`` axes; the values are
 interpolated in log space when every value of the output is > 0 and the kind does not declare it
@@ -41,8 +41,8 @@ Coordinates matter more than nodes: a map is only as accurate as its function is
 coordinates.  The ball-ball film is tabulated on polar axes (gap, pressure number, squeeze angle) because
 on (gap, squeeze number, entrainment speed) it has a cone at zero approach and entrainment speed, and the
 EHL traction on a log slide-to-roll axis from 1e-3 because through SRR = 0 it is a step
-(:mod:`coupling.film_points`).  :meth:`FilmMap.dynamics_film_map` hands a polar ball-ball map to the
-bearing kernel (polar arrays when :mod:`dynamics.contacts` reads them, else resampled on the Cartesian
+(:mod:`lubedyn.film_points`).  :meth:`FilmMap.dynamics_film_map` hands a polar ball-ball map to the
+bearing kernel (polar arrays when :mod:`lubedyn.dynamics.contacts` reads them, else resampled on the Cartesian
 nodes it reads, :func:`cartesian_resample`).
 
 Accuracy tolerance: a map whose accuracy report shows a relative error above its tolerance (the
@@ -54,7 +54,7 @@ the tolerance (:meth:`FilmMap.accuracy_warning`); the map scene lists it under "
 Failed points: a point whose solve raises is recorded (its message kept) and
 not cached, so a later build retries it.  With ``on_failure = "raise"`` (the
 default) the build, after solving and persisting every other point, raises
-:class:`~lubrication.errors.ConvergenceError` naming the failed points; with
+:class:`~lubedyn.lubrication.errors.ConvergenceError` naming the failed points; with
 ``on_failure = "fill"`` each failed node takes the value of the nearest solved
 node (in index space), and the map lists it under
 ``provenance["filled points"]``.

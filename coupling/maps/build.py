@@ -1,6 +1,6 @@
 """build_map and its accuracy report.
 
-Part of :mod:`coupling.maps` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.maps` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 import logging
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lubrication.errors import ConvergenceError, InputError, unknown_choice
+from lubedyn.lubrication.errors import ConvergenceError, InputError, unknown_choice
 
 from .filmmap import FilmMap
 from .provenance import _canonical, code_fingerprint, sha256_text, versions
@@ -66,7 +66,7 @@ def build_map(kind, params: dict | None = None, axes=None, *, method: str = "her
     accuracy_points : number of random off-grid points solved directly for the accuracy report
     on_failure : "raise" or "fill" (see the module docstring)
     accuracy_tolerance : the largest relative error of the accuracy report without a warning
-        (:data:`~coupling.maps.ACCURACY_TOLERANCE`, 3 %); stored in the report (``"tolerance"``), so that
+        (:data:`~lubedyn.maps.ACCURACY_TOLERANCE`, 3 %); stored in the report (``"tolerance"``), so that
         the map warns again when loaded (:meth:`FilmMap.load`).  Not an input of the map's hash: a cached
         map is judged against the tolerance of the build that loads it.
     warn : log :meth:`FilmMap.accuracy_warning` (WARNING) when the report is above the tolerance (the map

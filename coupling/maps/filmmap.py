@@ -1,6 +1,6 @@
 """FilmMap: a tabulated film (axes, outputs, provenance) with its interpolation, files and plots.
 
-Part of :mod:`coupling.maps` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.maps` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -14,8 +14,8 @@ import zipfile
 
 import numpy as np
 
-from dynamics import interp
-from lubrication.errors import InputError, unknown_choice
+from lubedyn.dynamics import interp
+from lubedyn.lubrication.errors import InputError, unknown_choice
 
 from .. import outputs
 from .fit import PowerLawFit, fit_power_law, local_floor, relative_error
@@ -31,11 +31,11 @@ EXPECTED_FILE = "expected a film map .npz written by `lubedyn run` of a map case
 
 
 class KernelArrays(NamedTuple):
-    """What :mod:`dynamics.interp` needs for one output (see its docstring).
+    """What :mod:`lubedyn.dynamics.interp` needs for one output (see its docstring).
 
     ``method`` 0 (linear) or 1 (pchip): ``interp3(*axes, *logs, values, logv, method, x0, x1, x2, mode,
     counter)``; ``method`` 2 (hermite): ``values`` is the node-derivative array of
-    :func:`dynamics.interp.hermite_data`, shape (2**ndim, n0, ...): ``hermite3(*axes, *logs, values, logv,
+    :func:`lubedyn.dynamics.interp.hermite_data`, shape (2**ndim, n0, ...): ``hermite3(*axes, *logs, values, logv,
     x0, x1, x2, mode, counter)`` (likewise 1 and 2 axes)."""
 
     axes: tuple      # prepared node coordinates (log applied on log axes), float64
@@ -63,7 +63,7 @@ class FilmMap:
         ln T(x) = a sinh(b ln(x/centre)) (denser near x = centre, where T = 1): the
         kind tabulates G at a node (..., x_k, ...) as the output at x_k' = T(x_k) c(node), so that along
         axis k it is a function of the normalised coordinate x_k'/c, in which a front at x_k' ~ c stays put
-        from node to node (the roller kinds' traction, :mod:`coupling.film_points`).  The output's own
+        from node to node (the roller kinds' traction, :mod:`lubedyn.film_points`).  The output's own
         table (at x_k) is kept for plots but not interpolated (:meth:`kernel_arrays` refuses it).
     """
 
@@ -133,7 +133,7 @@ class FilmMap:
 
     # -- kernel
     def kernel_arrays(self, output: str) -> KernelArrays:
-        """Plain arrays of ``output`` for :mod:`dynamics.interp` (``interp2(*ka.axes, *ka.logs, ka.values,
+        """Plain arrays of ``output`` for :mod:`lubedyn.dynamics.interp` (``interp2(*ka.axes, *ka.logs, ka.values,
         ka.logv, ka.method, x0, x1, mode, counter)``)."""
         output = self._output(output)
         if output in self.sheared:
@@ -214,17 +214,17 @@ class FilmMap:
         return [a.name for a in self.axes][1:] == [POLAR_AXES[0], POLAR_AXES[1]]
 
     def dynamics_film_map(self, output: str = "Force [N]"):
-        """Kernel arrays of ``output`` for :class:`dynamics.cageless.CagelessBearing` (``film = "map"``).
+        """Kernel arrays of ``output`` for :class:`lubedyn.dynamics.cageless.CagelessBearing` (``film = "map"``).
 
         A map on (gap, squeeze number or approach speed, entrainment speed): its kernel arrays.  A polar
-        ball_ball map (:mod:`coupling.film_points`, "Polar axes"): ``(*kernel_arrays, "polar")`` when the
-        bearing kernel reads polar axes (``dynamics.contacts.MAP_AXIS_POLAR``); otherwise the map resampled
+        ball_ball map (:mod:`lubedyn.film_points`, "Polar axes"): ``(*kernel_arrays, "polar")`` when the
+        bearing kernel reads polar axes (``lubedyn.dynamics.contacts.MAP_AXIS_POLAR``); otherwise the map resampled
         on the (gap, squeeze number, entrainment speed) nodes that kernel reads (:func:`cartesian_resample`;
         transitional: that grid has the cone at zero approach speed that the polar axes remove)."""
         output = self._output(output)
         if not self.is_polar():
             return self.kernel_arrays(output)
-        from dynamics import contacts
+        from lubedyn.dynamics import contacts
 
         if hasattr(contacts, "MAP_AXIS_POLAR"):
             return tuple(self.kernel_arrays(output)) + ("polar",)
@@ -270,7 +270,7 @@ class FilmMap:
     @property
     def accuracy_tolerance(self) -> float:
         """The largest relative error the accuracy report may show without a warning: the build's
-        (``accuracy["tolerance"]``), else :data:`~coupling.maps.ACCURACY_TOLERANCE` (maps built before the
+        (``accuracy["tolerance"]``), else :data:`~lubedyn.maps.ACCURACY_TOLERANCE` (maps built before the
         tolerance was stored)."""
         return float(self.accuracy.get("tolerance", ACCURACY_TOLERANCE))
 
@@ -321,7 +321,7 @@ class FilmMap:
         """Read a file written by :meth:`save`; checks the format name and version.
 
         ``key``: the case key that named the file (``"films.map"``), for the messages.  A file that is not
-        a film map raises one-line :class:`~lubrication.errors.InputError` saying what it is and what is
+        a film map raises one-line :class:`~lubedyn.lubrication.errors.InputError` saying what it is and what is
         expected.  ``check``: log :meth:`accuracy_warning` (WARNING) when the map's accuracy report is
         above its tolerance."""
         path = Path(path)
@@ -445,7 +445,7 @@ def cartesian_resample(fmap: "FilmMap", output: str = "Force [N]", squeeze=CARTE
                        entrainment=CARTESIAN_ENTRAINMENT, gaps: int = 19) -> "FilmMap":
     """A polar ball_ball map's ``output`` on (gap, squeeze number, entrainment speed) nodes (approach side).
 
-    Each node (h0, Lambda, u_e) is turned into (rho, theta) (:func:`coupling.film_points.polar_numbers`)
+    Each node (h0, Lambda, u_e) is turned into (rho, theta) (:func:`lubedyn.film_points.polar_numbers`)
     and read from the polar map: rho above the axis is clamped, rho below its first node scales the
     output by rho/rho_lo (isoviscous limit: F, K ~ rho), rho = 0 gives 0."""
     from .. import film_points as fp

@@ -1,6 +1,6 @@
 """Power-law fits of map outputs and their relative errors.
 
-Part of :mod:`coupling.maps` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.maps` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 from dataclasses import dataclass

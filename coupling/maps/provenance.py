@@ -1,6 +1,6 @@
 """Hashes and versions that identify what a map was built from.
 
-Part of :mod:`coupling.maps` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.maps` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -39,7 +39,7 @@ def sha256_text(text: str) -> str:
 
 
 def code_fingerprint(kind) -> dict:
-    """sha256 of the kind's source file and of ``lubrication/**/*.py`` (the solver and the laws), and the
+    """sha256 of the kind's source file and of ``lubedyn.lubrication``'s ``**/*.py`` (the solver and the laws), and the
     lubedyn version."""
     from .. import __version__
 
@@ -49,7 +49,7 @@ def code_fingerprint(kind) -> dict:
         out[f"kind source {src.name}"] = hashlib.sha256(src.read_bytes()).hexdigest()
     except (TypeError, OSError):
         out["kind source"] = "unavailable"
-    import lubrication
+    from .. import lubrication
 
     digest = hashlib.sha256()
     root = Path(lubrication.__file__).parent

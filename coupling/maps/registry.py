@@ -1,6 +1,6 @@
 """The registry of map kinds, the file format constants and the map axes.
 
-Part of :mod:`coupling.maps` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.maps` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from lubrication.errors import InputError, did_you_mean, unknown_choice
+from lubedyn.lubrication.errors import InputError, did_you_mean, unknown_choice
 
 FORMAT = "lubedyn film map"
 FORMAT_VERSION = 1
@@ -38,7 +38,7 @@ def register_kind(kind) -> None:
 
 
 def kinds() -> dict:
-    """Every known point kind: :data:`coupling.film_points.KINDS` plus the registered ones."""
+    """Every known point kind: :data:`lubedyn.film_points.KINDS` plus the registered ones."""
     out = {}
     try:
         from ..film_points import KINDS

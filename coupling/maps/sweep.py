@@ -1,6 +1,6 @@
 """Solving the points of a map: local worker processes or a Dask cluster, a point store, interruption.
 
-Part of :mod:`coupling.maps` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.maps` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 import concurrent.futures as cf
@@ -11,7 +11,7 @@ import os
 import time
 from pathlib import Path
 
-from lubrication.errors import InputError
+from lubedyn.lubrication.errors import InputError
 
 from .. import outputs
 from .filmmap import _json_default
@@ -106,7 +106,7 @@ def _init_worker(parent_pid: int):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})  # blocked by the parent while forking
     _die_with_parent(parent_pid)
     _limit_threads()
-    # the workers are the parallelism: no second process compiling kernels beside each (dynamics.specialise)
+    # the workers are the parallelism: no second process compiling kernels beside each (lubedyn.dynamics.specialise)
     os.environ["LUBEDYN_BACKGROUND_COMPILE"] = "0"
 
 
@@ -249,7 +249,7 @@ def run_on_dask(scheduler, key: str, calls: list, accept, error=InputError) -> s
     ``scheduler``: an address, a Client or a cluster (``key``: the setting that named it, for messages;
     ``error``: the one-line error class).  A client this function opens is closed at the end; an
     interrupt or an error cancels the calls the cluster has not done yet.  Used by map sweeps and by
-    studies (:mod:`coupling.study`)."""
+    studies (:mod:`lubedyn.study`)."""
     try:
         from distributed import Client, as_completed
     except ImportError:

@@ -15,7 +15,7 @@ does not give (the file and ``--set`` overrides win).  A set is a module with
   comes from, and a note saying what was assumed or how a garbled value was read;
 - ``SCENES``: ``{scene: {"table.key": name}}``, where each case schema takes each value.
 
-Library defaults carry no paper data; the film-point kinds of :mod:`coupling.film_points` read
+Library defaults carry no paper data; the film-point kinds of :mod:`lubedyn.film_points` read
 their paper values from here with :func:`si`.
 
 =============  =====================================================================================
@@ -32,7 +32,7 @@ import importlib
 from dataclasses import dataclass
 from types import ModuleType
 
-from lubrication.errors import InputError, unknown_choice
+from lubedyn.lubrication.errors import InputError, unknown_choice
 
 SETS = {"Zhang2024": ".zhang2024", "Wu2018": ".wu2018"}
 
@@ -42,7 +42,7 @@ class Parameter:
     """One value of a paper.
 
     ``value``: as a case file writes it (``"9.525 mm"``, ``14``, ``["270 deg"]``); ``dimension``: the
-    quantity's dimension (:data:`coupling.units.DIMENSIONS`, ``"dimensionless"`` for plain numbers,
+    quantity's dimension (:data:`lubedyn.units.DIMENSIONS`, ``"dimensionless"`` for plain numbers,
     ``"text"`` for a word, ``"angles"`` for a list of angles); ``source``: where in the paper
     (``"Table 4"``), or ``"assumed"``; ``note``: what was assumed, or how a printed value was read."""
 
@@ -53,7 +53,7 @@ class Parameter:
 
     def si(self) -> float:
         """The value in SI units (numbers as they are)."""
-        from coupling.units import parse_quantity
+        from lubedyn.units import parse_quantity
 
         if self.dimension in ("dimensionless", "text", "angles", "count"):
             return self.value

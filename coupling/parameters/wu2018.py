@@ -7,15 +7,15 @@ the choices made here, are those of ``shared/reference/paper_A_notes.md`` (secti
 roller end diameters are printed swapped (the large end is 24.76 mm); the pitch diameter is the
 sum of the two raceway radii; what the paper does not give is ``source="assumed"`` with a reason.
 The bearing's geometry (reconciliation of Table 1's non-common-apex values, rib, crown, cage and
-guide-land placement) is :class:`lubrication.laws.tapered.TaperedRollerGeometry`, built from these
-values; its quasi-static equilibrium is :mod:`dynamics.tapered.quasistatic`.  Default
+guide-land placement) is :class:`lubedyn.lubrication.laws.tapered.TaperedRollerGeometry`, built from these
+values; its quasi-static equilibrium is :mod:`lubedyn.dynamics.tapered.quasistatic`.  Default
 reconciliation ``"common_apex"``: pitch radius, mean roller diameter, l_e and the roller axis angle
 (the mean of the printed contact angles) are kept and the taper comes from a common apex, so the
 raceway angles become 11.19 / 8.81 deg; ``"literal"`` keeps 15 / 5 deg and the roller's own 4.70 deg
 taper (0.30 deg misfit per raceway, ends sliding +13.6 / -14.2 % on the cone).  The roller EHL
 cases use the raceway, roller and grease values.
 """
-from lubrication.laws.tapered import TaperedRollerGeometry
+from lubedyn.lubrication.laws.tapered import TaperedRollerGeometry
 
 from . import Parameter as P
 
@@ -229,7 +229,7 @@ SCENES["tapered"] = {
 
 
 def tapered_geometry(**overrides):
-    """:class:`lubrication.laws.tapered.TaperedRollerGeometry` of Table 1 with this module's assumed
+    """:class:`lubedyn.lubrication.laws.tapered.TaperedRollerGeometry` of Table 1 with this module's assumed
     rib, cage-land gap, density, profile and crown load (the ``static`` scene's ``[bearing]`` table of
     :data:`SCENES`, so a case and this Python twin build the same bearing); ``overrides`` replace any
     field."""

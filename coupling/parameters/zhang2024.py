@@ -85,13 +85,13 @@ SCENES = {
 
 
 def cageless_bearing(**overrides):
-    """Paper B's bearing as a :class:`dynamics.cageless.CagelessBearing`: the SI values of :data:`VALUES`
+    """Paper B's bearing as a :class:`lubedyn.dynamics.cageless.CagelessBearing`: the SI values of :data:`VALUES`
     placed in the model's groups by the case keys of :data:`SCENES` (``"bearing.n_balls"`` -> the
     ``bearing`` group), the Python-side twin of a dynamics case that says ``parameters = "Zhang2024"``.
-    ``overrides`` as :meth:`~dynamics.cageless.CagelessBearing.replace` takes them: by group
+    ``overrides`` as :meth:`~lubedyn.dynamics.cageless.CagelessBearing.replace` takes them: by group
     (``operating={"speed": 1e3}``) or by case key (``**{"model.dof": "planar"}``)."""
-    from coupling.units import parse_quantity
-    from dynamics.cageless import CagelessBearing
+    from lubedyn.units import parse_quantity
+    from lubedyn.dynamics.cageless import CagelessBearing
 
     groups = {"bearing": {}, "operating": {}, "films": {}, "slots": {}}
     for key, name in SCENES["dynamics"].items():

@@ -1,13 +1,13 @@
 """Sphinx extension: the case-file reference, generated from the pydantic case models at build time.
 
-``.. case-reference::`` (no argument: every scene of :data:`coupling.config.SCENES`; or one scene name)
-walks the scene's case model (:func:`coupling.config.case_model`) and writes one table per TOML table:
+``.. case-reference::`` (no argument: every scene of :data:`lubedyn.config.SCENES`; or one scene name)
+walks the scene's case model (:func:`lubedyn.config.case_model`) and writes one table per TOML table:
 every key with its type or SI unit (quantities accept a number in SI or a string with units), its range
-(the :class:`coupling.config.Bounds` of a quantity, or pydantic's ``ge``/``le`` constraints), its default
+(the :class:`lubedyn.config.Bounds` of a quantity, or pydantic's ``ge``/``le`` constraints), its default
 and the values allowed.  A model's docstring and the comment on a field's line in the source are shown
 beside it.  Tagged unions (``[gap] type = ...``) get one table per member; ``[axes]`` and ``[params]`` of
 the map scene list each map kind's axes and parameters from the kind registry
-(:func:`coupling.maps.kinds`).  Nothing is written by hand, so the reference cannot drift from the code;
+(:func:`lubedyn.maps.kinds`).  Nothing is written by hand, so the reference cannot drift from the code;
 ``tests/test_docs.py`` checks that every key of every bundled case, resolved, is listed.
 
 :func:`rows` is the walk itself (used by the directive and the test).
@@ -103,8 +103,8 @@ def _fmt(value) -> str:
 
 def _describe(annotation, metadata) -> tuple[str, str, str]:
     """(type or unit, range, allowed values) of a leaf annotation."""
-    from coupling.config import Bounds, Dimension
-    from coupling.units import si_unit
+    from lubedyn.config import Bounds, Dimension
+    from lubedyn.units import si_unit
 
     base, meta, _ = _split(annotation)
     meta = list(metadata) + meta
@@ -216,7 +216,7 @@ def _literal(text: str) -> str:
 
 def scene_rst(scene: str) -> list[str]:
     """The reference of one scene as reStructuredText lines."""
-    from coupling.config import case_model
+    from lubedyn.config import case_model
 
     model = case_model(scene)
     all_rows = rows(model)
@@ -264,7 +264,7 @@ def scene_rst(scene: str) -> list[str]:
 
 def map_kinds_rst() -> list[str]:
     """Each map kind's axes (``[axes.<key>]``) and parameters (``[params]``) with their defaults."""
-    from coupling import maps
+    from lubedyn import maps
 
     lines = ["Map kinds: their axes (``[axes.<key>]`` overrides ``lo``, ``hi``, ``n``, ``scale``, ``nodes``) "
              "and parameters (``[params]``), with the defaults of the registry.", ""]
@@ -286,7 +286,7 @@ class CaseReference(Directive):
     optional_arguments = 1
 
     def run(self):
-        from coupling.config import SCENES
+        from lubedyn.config import SCENES
 
         scenes = [self.arguments[0]] if self.arguments else list(SCENES)
         lines = []

@@ -12,7 +12,7 @@ has centre c_j, velocity v_j and angular velocity w_j.
 
 Degrees of freedom (option ``dof``)
     ``"6dof"``: per ball position (3), unit quaternion (4, scalar first, body
-    -> inertial, :mod:`dynamics.rotations`), velocity (3) and body-frame
+    -> inertial, :mod:`lubedyn.dynamics.rotations`), velocity (3) and body-frame
     angular velocity (3) with Euler's equations (the gyroscopic term
     w x J w vanishes for a sphere but is kept general).  13 states/ball.
     ``"planar"``: the ball stays in the mid-plane z = 0: orbital angle phi,
@@ -41,9 +41,9 @@ the force on the ball is -Q n at the contact point p = c + (D/2) n (the
 reaction +Q n acts on the inner ring); the contact angle reported is the
 angle of the load line, atan(n_z/n_r) at the outer race and atan(-n_z/n_r)
 at the inner race (equal for a ball loaded only by the two races).
-K is the exact Hertz constant of :mod:`dynamics.contacts` at the zero-angle
+K is the exact Hertz constant of :mod:`lubedyn.dynamics.contacts` at the zero-angle
 curvature (its change with the angle through gamma is < 0.1 %).  Traction:
-the closed-form curve mu(SRR) of :func:`lubrication.laws.traction.traction_coefficient`
+the closed-form curve mu(SRR) of :func:`lubedyn.lubrication.laws.traction.traction_coefficient`
 against the tangential sliding velocity v_s = (v + w x (D/2) n) - v_race(p);
 entrainment u_e = |((v_ball + v_race)/2 - v_p)_t| with v_p the velocity of the
 contact point (it moves with the ball's orbit).  Spin and rolling-resistance
@@ -67,7 +67,7 @@ Functional slots (paper B, Table 4: width W = 3.5 mm across the groove, length L
 
 Ball-ball contact between neighbours j, j+1 (no cage; the train keeps its
 order since Z D < pi d_m): the film + Hertz series law with collision phases
-and film-rupture friction of :func:`dynamics.contacts.ball_ball_normal`.
+and film-rupture friction of :func:`lubedyn.dynamics.contacts.ball_ball_normal`.
 
 Inner ring and rotor (option ``scenario``)
     ``"steady"``: omega fixed (driven inner ring), Omega unused.

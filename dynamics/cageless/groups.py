@@ -1,6 +1,6 @@
 """The cage-less bearing's data as frozen groups, one per table of a dynamics case (SI units).
 
-Part of :mod:`dynamics.cageless`.  :class:`~dynamics.cageless.CagelessBearing` holds one of each:
+Part of :mod:`lubedyn.dynamics.cageless`.  :class:`~lubedyn.dynamics.cageless.CagelessBearing` holds one of each:
 
 =============  ===========  ===============================================================
 group          case table   what
@@ -14,7 +14,7 @@ group          case table   what
 =============  ===========  ===============================================================
 
 Paper data are not defaults here: paper B's values come from its parameter set
-(:mod:`coupling.parameters.zhang2024`); the defaults are model options and numerical settings.
+(:mod:`lubedyn.parameters.zhang2024`); the defaults are model options and numerical settings.
 Each group checks its own values; checks that need two groups live in the model.
 """
 from __future__ import annotations
@@ -23,8 +23,8 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from lubrication.laws import contact as laws_contact
-from lubrication.laws.collision import FRICTION_LAWS
+from lubedyn.lubrication.laws import contact as laws_contact
+from lubedyn.lubrication.laws.collision import FRICTION_LAWS
 
 from ..contacts import FILM_KINDS
 from ..groups import Group
@@ -215,7 +215,7 @@ class Fidelity(Group):
             raise self.fail("yield_stress", "must be > 0 [Pa] (or None: elastic)")
         if self.traction == "map" and self.traction_maps is None:
             raise self.fail("traction_maps", "are needed with model.traction = 'map': (inner, outer) kernel "
-                            "arrays of the EHL race maps (coupling.maps.FilmMap.kernel_arrays('Traction "
+                            "arrays of the EHL race maps (lubedyn.maps.FilmMap.kernel_arrays('Traction "
                             "coefficient [-]'))")
 
 
@@ -258,7 +258,7 @@ class Films(Group):
         self.non_negative("viscosity", "pressure_viscosity", "friction_film", "friction_boundary")
         if self.ball_ball == "map" and self.map is None:
             raise self.fail("map", "is needed with films.ball_ball = 'map': (axes, logs, values, logv, method) of a "
-                            "ball_ball force map (coupling.maps.FilmMap.kernel_arrays('Force [N]'))")
+                            "ball_ball force map (lubedyn.maps.FilmMap.kernel_arrays('Force [N]'))")
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -1,13 +1,13 @@
 """Energy and angular momentum of a state (checks of the right-hand side).
 
-Part of :mod:`dynamics.cageless` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.dynamics.cageless` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
-from lubrication.laws.collision import BB_K
+from lubedyn.lubrication.laws.collision import BB_K
 
 from .layout import P_FX, P_FY, P_FZ, P_KI, P_KO, P_RI, P_RIC, P_RO, P_ROC
 from .model import CagelessBearing

@@ -1,6 +1,6 @@
 """The compiled right-hand side of the cage-less bearing: ball-race and ball-ball contacts, slots, rings.
 
-Part of :mod:`dynamics.cageless` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.dynamics.cageless` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 import math
@@ -8,9 +8,9 @@ import math
 from numba import njit, types
 import numpy as np
 
-from lubrication.laws.collision import BB_HCUT, BB_VREG, hertz_force
-from lubrication.laws.jit import INLINE, JIT
-from lubrication.laws.traction import traction_coefficient
+from lubedyn.lubrication.laws.collision import BB_HCUT, BB_VREG, hertz_force
+from lubedyn.lubrication.laws.jit import INLINE, JIT
+from lubedyn.lubrication.laws.traction import traction_coefficient
 
 from .. import contacts as C
 from ..contacts import FILM_NONE, ball_ball_friction_coefficient, ball_ball_normal, plastic_memory_rate
@@ -28,7 +28,7 @@ def _traction_from_map(tmap, race, Q, ue, vs, counter):
     """Traction coefficient of the EHL map of ``race`` (load, entrainment speed, slide-to-roll ratio).
 
     Below the map's first slide-to-roll node the coefficient is linear in the SRR
-    (coupling.film_points, "Traction axis").  ``tmap`` is None in a model without
+    (lubedyn.film_points, "Traction axis").  ``tmap`` is None in a model without
     traction maps: numba prunes the ``is None`` branch by type, so such a model never
     compiles the map readers (about a third of the cold compile of ``rhs``)."""
     if tmap is None:
@@ -289,7 +289,7 @@ def _ball_races(j, cpos, cvel, cw, y, P, slots, diag, tmap, use_map, counter, wa
 @njit(**INLINE)
 def _rotate3(w, x, y, z, v0, v1, v2):
     """R(q) v for the unit quaternion (w, x, y, z), scalars (the arithmetic of
-    :func:`dynamics.rotations.quat_rotate`; pass (w, -x, -y, -z) for R^T v)."""
+    :func:`lubedyn.dynamics.rotations.quat_rotate`; pass (w, -x, -y, -z) for R^T v)."""
     tx = 2.0 * (y * v2 - z * v1)
     ty = 2.0 * (z * v0 - x * v2)
     tz = 2.0 * (x * v1 - y * v0)
@@ -443,7 +443,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
             for k in range(3):
                 dydt[b + k] = y[b + 7 + k]
                 dydt[b + 7 + k] = Fb[j, k] / mb
-            # dq/dt = q * (0, w_b) / 2 - k (|q|^2 - 1) q (dynamics.rotations.quat_derivative)
+            # dq/dt = q * (0, w_b) / 2 - k (|q|^2 - 1) q (lubedyn.dynamics.rotations.quat_derivative)
             qw, qx, qy, qz = y[b + 3], y[b + 4], y[b + 5], y[b + 6]
             ox, oy, oz = y[b + 10], y[b + 11], y[b + 12]
             dq0 = 0.5 * (-qx * ox - qy * oy - qz * oz)
@@ -460,7 +460,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
             dydt[b + 4] = dq1
             dydt[b + 5] = dq2
             dydt[b + 6] = dq3
-            # Euler's equations for a sphere (J1 = J2 = J3 = Jb; dynamics.rotations.euler_rate)
+            # Euler's equations for a sphere (J1 = J2 = J3 = Jb; lubedyn.dynamics.rotations.euler_rate)
             inv = 1.0 / math.sqrt(qw ** 2 + qx ** 2 + qy ** 2 + qz ** 2)
             tb0, tb1, tb2 = _rotate3(qw * inv, -(qx * inv), -(qy * inv), -(qz * inv), Tb[j, 0], Tb[j, 1], Tb[j, 2])
             dydt[b + 10] = (tb0 - (Jb - Jb) * oy * oz) / Jb
@@ -541,7 +541,7 @@ def _forces_many_impl(evaluate, t, Y, args):
     return D, R
 
 
-# the right-hand side's body reached through a function pointer (dynamics.specialise): compiled once,
+# the right-hand side's body reached through a function pointer (lubedyn.dynamics.specialise): compiled once,
 # not linked and re-optimised a second time into these kernels (forces_many: 4.5-5.8 s of a cold run
 # when it was, forces 1 s)
 def _evaluate_signature(types_):
@@ -559,17 +559,17 @@ def forces(t, y, args):
 
     Columns of ``diag`` are named by :data:`DIAG_NAMES`; the ball-ball columns
     of row j belong to the pair (j, j+1 mod Z) and give the force on ball j+1.  The model's body is
-    reached through a function pointer (:mod:`dynamics.specialise`), compiled once with ``rhs``."""
+    reached through a function pointer (:mod:`lubedyn.dynamics.specialise`), compiled once with ``rhs``."""
     return specialise(_forces_impl, evaluate=_evaluate)(float(t), np.ascontiguousarray(y, dtype=np.float64), args)
 
 
 def forces_example(args):
-    """``(kernel, example arguments)`` of :func:`forces` (:func:`dynamics.specialise.compile_in_background`)."""
+    """``(kernel, example arguments)`` of :func:`forces` (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
     return specialise(_forces_impl, evaluate=_evaluate), (0.0, np.zeros(1), args)
 
 
 def forces_many_example(args):
-    """``(kernel, example arguments)`` of :func:`forces_many` (:func:`dynamics.specialise.compile_in_background`)."""
+    """``(kernel, example arguments)`` of :func:`forces_many` (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
     return specialise(_forces_many_impl, evaluate=_evaluate), (np.zeros(1), np.zeros((1, 1)), args)
 
 

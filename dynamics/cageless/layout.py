@@ -1,6 +1,6 @@
 """The cage-less bearing's state layout, option codes and the indices of its packed parameters and diagnostics.
 
-Part of :mod:`dynamics.cageless` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.dynamics.cageless` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 from .. import contacts as C
@@ -12,7 +12,7 @@ TRACTIONS = {"closed_form": 0, "map": 1}
 RACE_FILMS = {"none": 0, "closed_form": 1}
 MAP_SPEED_AXES = {"approach_speed": C.MAP_AXIS_APPROACH, "squeeze_number": C.MAP_AXIS_SQUEEZE,
                   "polar": C.MAP_AXIS_POLAR}
-# traction maps start at a slide-to-roll ratio > 0 (coupling.film_points, "Traction axis"): below the
+# traction maps start at a slide-to-roll ratio > 0 (lubedyn.film_points, "Traction axis"): below the
 # first node the kernel takes mu linear in the SRR (tests/test_traction_map.py checks this flag)
 TRACTION_MAP_BELOW_AXIS = "linear"
 N_RING = 9

@@ -1,6 +1,6 @@
 """CagelessBearing: the model's data, its packing into numba arguments, the quasi-static start.
 
-Part of :mod:`dynamics.cageless` (the package docstring gives the overview)."""
+Part of :mod:`lubedyn.dynamics.cageless` (the package docstring gives the overview)."""
 from __future__ import annotations
 
 import logging
@@ -11,11 +11,11 @@ import math
 
 import numpy as np
 
-from lubrication.errors import did_you_mean
-from lubrication.laws import bearing as laws_bearing
-from lubrication.laws import contact as laws_contact
-from lubrication.laws.collision import ball_ball_parameters
-from lubrication.laws.film import hamrock_dowson_central
+from lubedyn.lubrication.errors import did_you_mean
+from lubedyn.lubrication.laws import bearing as laws_bearing
+from lubedyn.lubrication.laws import contact as laws_contact
+from lubedyn.lubrication.laws.collision import ball_ball_parameters
+from lubedyn.lubrication.laws.film import hamrock_dowson_central
 
 from .. import contacts as C
 from ..contacts import FILM_KINDS, with_map_ends
@@ -35,17 +35,17 @@ logger = logging.getLogger(__name__)
 # ----------------------------------------------------------------------------- model builder
 def _map_arrays(film_map, axis1_kind):
     """(ax0, ax1, ax2, vals, opts) for the map kernel from a force map's kernel arrays
-    ``(axes, logs, values, logv, method)`` (:class:`coupling.maps.KernelArrays`); a two-axis map (gap,
+    ``(axes, logs, values, logv, method)`` (:class:`lubedyn.maps.KernelArrays`); a two-axis map (gap,
     speed) gets a constant third axis.  ``vals``: (8, n0, n1, n2) hermite data, or (n0, n1, n2) values
     of the linear and pchip methods (the kernels choose the reader by this dimension at compile time)."""
-    if len(film_map) == 6:  # (axes, logs, values, logv, method, axis kind name): coupling.maps.FilmMap.dynamics_film_map
+    if len(film_map) == 6:  # (axes, logs, values, logv, method, axis kind name): lubedyn.maps.FilmMap.dynamics_film_map
         axis1_kind = MAP_SPEED_AXES[film_map[5]]
         film_map = tuple(film_map[:5])
     try:
         axes, logs, values, logv, method = film_map
     except (TypeError, ValueError):
         raise DynamicsInputError("films.map must be (axes, logs, values, logv, method) of a force map "
-                                 "(coupling.maps.FilmMap.kernel_arrays('Force [N]'))") from None
+                                 "(lubedyn.maps.FilmMap.kernel_arrays('Force [N]'))") from None
     axes = [np.ascontiguousarray(a, dtype=np.float64) for a in axes]
     logs = [int(v) for v in logs]
     vals = np.asarray(values, dtype=np.float64)
@@ -77,14 +77,14 @@ def _map_arrays(film_map, axis1_kind):
 
 def _traction_arrays(maps):
     """``(ax0 (2, n0), ax1 (2, n1), ax2 (2, n2), vals (2, k, n0, n1, n2), opts)`` from the kernel arrays
-    (:class:`coupling.maps.KernelArrays` of "Traction coefficient [-]") of the inner and the outer race
+    (:class:`lubedyn.maps.KernelArrays` of "Traction coefficient [-]") of the inner and the outer race
     EHL maps, both over (load [N], entrainment speed [m/s], slide-to-roll ratio [-]) with the same
     node counts and method."""
     try:
         (ai, li, vi, lvi, mi), (ao, lo, vo, lvo, mo) = maps
     except (TypeError, ValueError):
         raise DynamicsInputError("model.traction_maps must be (inner, outer) kernel arrays of EHL maps "
-                                 "(coupling.maps.FilmMap.kernel_arrays('Traction coefficient [-]'))") from None
+                                 "(lubedyn.maps.FilmMap.kernel_arrays('Traction coefficient [-]'))") from None
     if len(ai) != 3 or len(ao) != 3:
         raise DynamicsInputError("traction maps need 3 axes (load, entrainment speed, slide-to-roll ratio)")
     shapes = [tuple(a.size for a in ai), tuple(a.size for a in ao)]
@@ -106,13 +106,13 @@ def _traction_arrays(maps):
 @dataclass(frozen=True, kw_only=True)
 class CagelessBearing:
     """Cage-less deep-groove ball bearing (SI units), held as six frozen groups, one per table of a
-    dynamics case (:mod:`dynamics.cageless.groups`): ``bearing`` (geometry, materials, masses),
+    dynamics case (:mod:`lubedyn.dynamics.cageless.groups`): ``bearing`` (geometry, materials, masses),
     ``operating`` (loads, speed, scenario), ``fidelity`` (the case's ``[model]``: degrees of freedom,
     Hertz constants, damping, traction), ``films`` (the oil, the ball-ball and race films), ``slots``
     and ``initial`` (the starting arrangement and its seeded perturbation).
 
     The groups carry no paper data as defaults: paper B's come from its parameter set,
-    ``coupling.parameters.zhang2024.cageless_bearing()`` (Tables 1, 2, 4 and the values it had to
+    ``lubedyn.parameters.zhang2024.cageless_bearing()`` (Tables 1, 2, 4 and the values it had to
     assume).  Each group checks its own values; :meth:`__post_init__` checks what needs two groups.
     Every error names the case key (``"slots.width = ..."``).
     """
@@ -185,7 +185,7 @@ class CagelessBearing:
 
     def race_film_reference_load(self) -> float:
         """Reference load [N] of the race films: Stribeck's most loaded ball c F_r / Z, c = 4.37
-        (:data:`lubrication.laws.bearing.STRIBECK`), or the axial share F_a / Z when larger; at least 1 N."""
+        (:data:`lubedyn.lubrication.laws.bearing.STRIBECK`), or the axial share F_a / Z when larger; at least 1 N."""
         return max(laws_bearing.STRIBECK["point"] * self.operating.radial_load / self.bearing.n_balls, self.operating.axial_load / self.bearing.n_balls,
                    1.0)
 
@@ -193,10 +193,10 @@ class CagelessBearing:
         """(c_i, c_o) of the race films h_c = c u_e^0.67 [m with u_e in m/s].
 
         Hamrock & Dowson (1977) central film of an elliptic contact
-        (:func:`lubrication.laws.film.hamrock_dowson_central`),
+        (:func:`lubedyn.lubrication.laws.film.hamrock_dowson_central`),
         U = eta0 u_e / (E' R_x), G = alpha E', W = Q / (E' R_x^2), E' = 2 E*,
         k = a/b from the exact ellipse (m = 1 - (b/a)^2 of
-        :func:`lubrication.laws.contact.ellipticity_parameter`), evaluated at
+        :func:`lubedyn.lubrication.laws.contact.ellipticity_parameter`), evaluated at
         :meth:`race_film_reference_load` (the film depends on the load only as
         Q^-0.067: a tenfold load changes it by 14 %).  Isothermal, fully
         flooded, smooth surfaces; the film adds h_c to the solids' approach."""

@@ -21,7 +21,7 @@ module           responsibility
 ===============  ==============================================================
 
 The geometry, kinematics and the slice law are laws written once
-(:mod:`lubrication.laws.tapered`, :mod:`lubrication.laws.slices`).
+(:mod:`lubedyn.lubrication.laws.tapered`, :mod:`lubedyn.lubrication.laws.slices`).
 """
 from .quasistatic import QuasiStaticResult, solve
 

@@ -1,7 +1,7 @@
 """The tapered roller bearing's data as frozen groups, one per table of a dynamics case (SI units).
 
-Part of :mod:`dynamics.tapered`.  :class:`~dynamics.tapered.model.TaperedBearing` holds the geometry
-(:class:`lubrication.laws.tapered.TaperedRollerGeometry`, a law) and one of each:
+Part of :mod:`lubedyn.dynamics.tapered`.  :class:`~lubedyn.dynamics.tapered.model.TaperedBearing` holds the geometry
+(:class:`lubedyn.lubrication.laws.tapered.TaperedRollerGeometry`, a law) and one of each:
 
 =============  ============  ===============================================================
 group          case table    what
@@ -15,8 +15,8 @@ group          case table    what
 =============  ============  ===============================================================
 
 Paper data are not defaults here: paper A's values (and what it had to assume) come from
-:mod:`coupling.parameters.wu2018`; the defaults are model options and numerical settings.  Each group
-checks its own values and raises :class:`dynamics.errors.DynamicsInputError` naming the case key;
+:mod:`lubedyn.parameters.wu2018`; the defaults are model options and numerical settings.  Each group
+checks its own values and raises :class:`lubedyn.dynamics.errors.DynamicsInputError` naming the case key;
 checks that need two groups live in the model.
 """
 from __future__ import annotations
@@ -25,9 +25,9 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from lubrication.laws.cage import POCKET_SWITCHES
-from lubrication.laws.flange import RIB_FILMS
-from lubrication.laws.grease import READINGS, Grease
+from lubedyn.lubrication.laws.cage import POCKET_SWITCHES
+from lubedyn.lubrication.laws.flange import RIB_FILMS
+from lubedyn.lubrication.laws.grease import READINGS, Grease
 
 from ..groups import Group
 from .layout import AXIAL_MODES, CONE_TILTS, FLANGE_FRICTIONS, LANDS, POCKETS, TRACTIONS
@@ -79,10 +79,10 @@ class Fidelity(Group):
     """Numerical and modelling choices: ``slices`` per roller and raceway; ``contacts`` False: free
     bodies (a test of the equations of motion); ``traction`` "none", "paper" (eq. 12), "limited" (the
     limited Herschel-Bulkley strip law, an extension) or "map" (the roller EHL maps' film traction at the
-    run's entrainment speed: :meth:`dynamics.tapered.model.TaperedBearing.map_traction_tables`); ``flange_friction`` "none", "paper" (eqs. 22-23 as
+    run's entrainment speed: :meth:`lubedyn.dynamics.tapered.model.TaperedBearing.map_traction_tables`); ``flange_friction`` "none", "paper" (eqs. 22-23 as
     printed) or "load_share" (the grease term weighted by the fluid share); ``pocket`` "none" (no cage),
     "contact" (contact only: the roller touches a crossbeam beyond the pocket clearance, line contact,
-    friction mu_bd) or "film" (:func:`lubrication.laws.cage.pocket_force`); ``guide_land`` "none",
+    friction mu_bd) or "film" (:func:`lubedyn.lubrication.laws.cage.pocket_force`); ``guide_land`` "none",
     "contact" (contact only beyond the land clearance) or "film"; ``damping_alpha`` alpha_e [s/m] of
     eq. 11 (slices, flange, contact-only pocket and land); ``cone_mass`` [kg] (paper A gives none);
     ``quaternion_stabilisation`` [1/s]; ``friction_speed`` v_reg [m/s] of the regularised Coulomb
@@ -91,7 +91,7 @@ class Fidelity(Group):
     False: the cage's axial position held); ``traction_evaluation`` of the limited raceway traction:
     "quadrature" (the strip law's Gauss rule at every slice and evaluation) or "table" (the same law
     tabulated once per raceway over sliding speed and line load, read by cubic Hermite interpolation:
-    :meth:`dynamics.tapered.model.TaperedBearing.traction_tables`; the default: over 0.18 s of Fig. 5's
+    :meth:`lubedyn.dynamics.tapered.model.TaperedBearing.traction_tables`; the default: over 0.18 s of Fig. 5's
     point the loaded-zone mean skew agrees with "quadrature" to 1.1e-6 and the tilt to 7e-8, relative,
     and the run is 2.2 x faster: 23.5 s against 50.7 s on one idle core, benchmarks/results/trb_target.json)."""
 
@@ -132,7 +132,7 @@ class Lubricant(Group):
     """The grease of paper A's Table 2 (``yield_stress`` tau_y [Pa], ``consistency`` phi0 [Pa s^n],
     ``exponent`` n; None: no grease, only a Newtonian oil), its ``pressure_viscosity`` alpha [1/Pa], and
     the ``reading`` of phi that films and eq. 12 take as their Newtonian viscosity (notes 2.3;
-    :meth:`lubrication.laws.grease.Grease.viscosity`): "base_oil" (``base_oil_viscosity`` [Pa s]),
+    :meth:`lubedyn.lubrication.laws.grease.Grease.viscosity`): "base_oil" (``base_oil_viscosity`` [Pa s]),
     "apparent" (tau_y/D + phi D^(n-1) at ``shear_rate`` [1/s]) or "paper" (phi0's number as Pa s).
     The limited laws (raceway "limited", flange grease traction) use the grease with the limiting shear
     stress ``limiting_stress`` tau_L0 [Pa] (inf: none), ``limiting_slope`` gamma_L and the yield
@@ -181,7 +181,7 @@ class Lubricant(Group):
                 raise self.fail("exponent", "must lie in (0, 2]")
 
     def grease(self) -> Grease | None:
-        """The :class:`lubrication.laws.grease.Grease` (None without one)."""
+        """The :class:`lubedyn.lubrication.laws.grease.Grease` (None without one)."""
         if self.consistency is None:
             return None
         return Grease(self.yield_stress, self.consistency, self.exponent, self.pressure_viscosity)
@@ -231,7 +231,7 @@ class Cage(Group):
 @dataclass(frozen=True, kw_only=True)
 class Flange(Group):
     """Eq. 23 at the rib: ``asperity_friction`` s0/p0, ``asperity_b`` B, ``asperity_c`` C, composite
-    ``roughness`` sigma [m]; ``rib_film`` the film formula (:data:`lubrication.laws.flange.RIB_FILMS`)
+    ``roughness`` sigma [m]; ``rib_film`` the film formula (:data:`lubedyn.lubrication.laws.flange.RIB_FILMS`)
     evaluated once at the start's flange load and the ideal rib entrainment speed."""
 
     TABLE: ClassVar[str] = "flange"

@@ -1,13 +1,13 @@
 r"""Compiled right-hand side of the tapered roller bearing (issue 23): cone, 17 rollers and the cage.
 
-State (:mod:`dynamics.tapered.layout`; :class:`dynamics.tapered.model.TaperedBearing` names every entry)::
+State (:mod:`lubedyn.dynamics.tapered.layout`; :class:`lubedyn.dynamics.tapered.model.TaperedBearing` names every entry)::
 
     [cone x, y, z, vx, vy, vz]                                  (6; the cone's spin is prescribed)
     [roller j: c (3), q (4), v (3), omega_body (3)] x Z          (13 per roller)
     [cage: c (3), q (4), v (3), omega_body (3)]                  (13; present unless pocket = "none")
     [cone tilt: theta_y, theta_z, theta_y', theta_z']             (4; present with cone_tilt = "free")
 
-c is the roller's mass centre, q the unit quaternion (scalar first, :mod:`dynamics.rotations`) that maps
+c is the roller's mass centre, q the unit quaternion (scalar first, :mod:`lubedyn.dynamics.rotations`) that maps
 the roller's body frame (x along its axis, towards the large end) to the inertial frame (x the bearing
 axis, the cup fixed), omega_body the angular velocity in the body frame.  The cone translates (its axial
 DOF held at a displacement, or free under an axial force) and turns at the prescribed speed
@@ -24,29 +24,29 @@ they are what the contacts must supply to keep the bodies on their orbits)::
 paper A's eqs. 47-51 in their body frame; eq. 50's third row is read with omega_x omega_y (notes 2.8),
 which is what Euler's equations give.
 
-Contacts of roller j (laws written once in :mod:`lubrication.laws`):
+Contacts of roller j (laws written once in :mod:`lubedyn.lubrication.laws`):
 
 * cup and cone raceways, per slice k (u_k along the axis from the roller's mid-point, radius rho_k with
-  the crown): :func:`lubrication.laws.slices.slice_contact_3d` gives the interference delta, the rim
+  the crown): :func:`lubedyn.lubrication.laws.slices.slice_contact_3d` gives the interference delta, the rim
   point P and the raceway normal n (towards the roller); the approach rate is d(delta)/dt =
-  -(v_roller(P) - v_race(P)).n; the slice force (:func:`lubrication.laws.slices.slice_force`, Palmgren
+  -(v_roller(P) - v_race(P)).n; the slice force (:func:`lubedyn.lubrication.laws.slices.slice_force`, Palmgren
   k_w with eq. 11's damping alpha_e) acts on the roller along +n at P and on the cone along -n;
 * flange (rib on the cone): the roller's large-end sphere (radius r_s, centre at u_s) against the rib
   line of the meridional plane (:func:`slice_contact_3d` with rho = 0 gives the centre's distance),
   delta_f = r_s - n.(S - X), Hunt-Crossley Hertz force K_f delta_f^1.5 (1 + alpha_e d(delta_f)/dt)
-  (:func:`lubrication.laws.collision.hertz_force`) at P = S - r_s n.
+  (:func:`lubedyn.lubrication.laws.collision.hertz_force`) at P = S - r_s n.
 
 * raceway traction (option ``traction``): against the tangential part of the sliding velocity at each
   loaded slice (rolling direction and the axial sliding a skewed roller makes, one vector), with the
   Hertz half-width b = sqrt(8 w R'/(pi E')) of the slice's line load w and the Dowson-Toyoda film at the
   ideal entrainment speed: "paper" eq. 12 (linear in the sliding speed,
-  :func:`lubrication.laws.traction.paper_raceway_traction`), "limited" the Herschel-Bulkley strip law
+  :func:`lubedyn.lubrication.laws.traction.paper_raceway_traction`), "limited" the Herschel-Bulkley strip law
   with Barus consistency and a limiting shear stress (an extension,
-  :func:`lubrication.laws.traction.limited_strip_traction`) in series with the film's elastic shear
-  (Johnson-Tevaarwerk's slope 2 G b^2/(u_e h), :func:`lubrication.laws.traction.elastic_limited`), "map"
+  :func:`lubedyn.lubrication.laws.traction.limited_strip_traction`) in series with the film's elastic shear
+  (Johnson-Tevaarwerk's slope 2 G b^2/(u_e h), :func:`lubedyn.lubrication.laws.traction.elastic_limited`), "map"
   the roller EHL maps' film traction coefficient at the slice's line load and slide-to-roll ratio v_s/u_e
   times the slice load (:func:`map_traction_coefficient`), "none";
-* flange friction (option ``flange_friction``, eqs. 22-23, :func:`lubrication.laws.flange.flange_friction`):
+* flange friction (option ``flange_friction``, eqs. 22-23, :func:`lubedyn.lubrication.laws.flange.flange_friction`):
   mu_a q exp(-B lambda^C) + w f_grease against the roller end's sliding on the rib, f_grease eq. 27's
   limited Herschel-Bulkley traction over the Hertz ellipse (semi-axes and p0 scale as q^(1/3) from the
   exact point law at 1 N), w = 1 ("paper") or the fluid share ("load_share"); the rib film h and
@@ -57,18 +57,18 @@ Contacts of roller j (laws written once in :mod:`lubrication.laws`):
   pocket per roller.  Roller j's mid-point M, seen in the cage frame, is off its pocket's mid-plane by
   s = t_j.(M - c_cage) (t_j the pocket's circumferential unit vector); the gaps to the leading and
   trailing crossbeams are Delta - s and Delta + s (Delta the pocket clearance), each a whole-roller line
-  contact of :func:`lubrication.laws.cage.pocket_force` (film state, boundary state below the critical
+  contact of :func:`lubedyn.lubrication.laws.cage.pocket_force` (film state, boundary state below the critical
   film, the continuous switch by default; friction against the roller surface's sliding past the beam)
   at the roller's side, M -+ rho_m t_j.  The cage rides on the cone's guide land:
-  :func:`lubrication.laws.cage.guide_land_short_bearing` (film force in the radial plane),
-  :func:`lubrication.laws.cage.guide_land_torque` (Couette drag), and below the critical film a
+  :func:`lubedyn.lubrication.laws.cage.guide_land_short_bearing` (film force in the radial plane),
+  :func:`lubedyn.lubrication.laws.cage.guide_land_torque` (Couette drag), and below the critical film a
   contact k_h (h_crit - h) with boundary friction pushing the land back towards the cage's centre; the
   land's reaction acts on the cone.  These are the "film" levels of the options ``pocket`` and
   ``guide_land``.  The "contact" levels (issue 23's "contact only" fidelity, the cheapest that holds the
   cage; a pocket or land film law replaces them through the same option code): a roller touches a
   crossbeam when its mid-point is off the pocket's mid-plane by more than the pocket clearance Delta
   (0.27 mm), a line contact of the whole roller (Palmgren's law with E' of steel on the cage's polyamide,
-  :func:`lubrication.laws.slices.line_constant`, eq. 11's damping) with friction mu_bd tanh(v_s/v_reg)
+  :func:`lubedyn.lubrication.laws.slices.line_constant`, eq. 11's damping) with friction mu_bd tanh(v_s/v_reg)
   against the sliding; the land touches the cage's bore when their centres are more than the radial
   clearance (0.25 mm) apart, a line contact of the land's width, with friction torque mu_bd q r.
 
@@ -105,20 +105,20 @@ import numpy as np
 from numba import njit
 from numba import types as nbtypes
 
-from lubrication.laws.cage import guide_land_short_bearing, guide_land_torque, pocket_force, side_beam_force
-from lubrication.laws.collision import hertz_force
-from lubrication.laws.film import dowson_toyoda_central
-from lubrication.laws.jit import INLINE, JIT
-from lubrication.laws.flange import flange_friction
-from lubrication.laws.slices import slice_contact_3d, slice_force
-from lubrication.laws.traction import (elastic_limited, elastic_strip_slope, limited_ellipse_traction,
+from lubedyn.lubrication.laws.cage import guide_land_short_bearing, guide_land_torque, pocket_force, side_beam_force
+from lubedyn.lubrication.laws.collision import hertz_force
+from lubedyn.lubrication.laws.film import dowson_toyoda_central
+from lubedyn.lubrication.laws.jit import INLINE, JIT
+from lubedyn.lubrication.laws.flange import flange_friction
+from lubedyn.lubrication.laws.slices import slice_contact_3d, slice_force
+from lubedyn.lubrication.laws.traction import (elastic_limited, elastic_strip_slope, limited_ellipse_traction,
                                       limited_strip_traction, paper_raceway_traction)
 
 from ..interp import _dot, _hvalue, _locate, _pair2
 from ..integrators import put
 from ..specialise import register_kernel, specialise
 from ..rotations import euler_rate, quat_derivative, quat_from_rotvec, quat_rotate, quat_rotate_inverse, quat_to_matrix
-from .layout import *  # noqa: F401,F403  (indices and option codes: dynamics.tapered.layout)
+from .layout import *  # noqa: F401,F403  (indices and option codes: lubedyn.dynamics.tapered.layout)
 from .layout import (AXIAL_FORCE, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
                      N_CONE, N_FRICTION, NB, POCKET_CONTACT, POCKET_FILM, TRACTION_LIMITED, TRACTION_MAP,
                      TRACTION_PAPER)
@@ -133,7 +133,7 @@ from .layout import (P_ALPHA, P_ALPHAG, P_AXIAL, P_BLAND, P_CAGE, P_CH, P_CLAND,
 from .layout import P_ICONET, P_ICONEX, P_LANDX, P_LOADX, P_MY, P_MZ, P_TILT, P_TILTAT
 from .layout import P_TMA, P_TMB, P_TMCEN, P_TMNW, P_TMNX, P_TMOFF0, P_TMSHI, P_TMSLO
 
-_dowson_toyoda = njit(**INLINE)(dowson_toyoda_central)   # the law of lubrication.laws.film, compiled here
+_dowson_toyoda = njit(**INLINE)(dowson_toyoda_central)   # the law of lubedyn.lubrication.laws.film, compiled here
 
 
 @njit(**JIT)
@@ -223,7 +223,7 @@ def _load_cone(Fc, Tc, tilted, q0, q1, q2, f0, f1, f2):
 @njit(**INLINE)
 def _traction_per_speed(load, radius, P):
     """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N]: pi eps eta
-    sqrt(R'/(2 h0)) times the slice width (:func:`lubrication.laws.traction.paper_raceway_traction`)."""
+    sqrt(R'/(2 h0)) times the slice width (:func:`lubedyn.lubrication.laws.traction.paper_raceway_traction`)."""
     w, b, p0, h0 = _slice_film(load, radius, P)
     return paper_raceway_traction(1.0, P[P_ETA], radius, h0, b) * P[P_WIDTH]
 
@@ -232,7 +232,7 @@ def _traction_per_speed(load, radius, P):
 def strip_viscous_traction(w, radius, vs, P):
     """The limited Herschel-Bulkley traction per unit length [N/m] of a raceway strip of reduced radius
     ``radius`` [m] carrying the line load ``w`` [N/m] and sliding at ``vs`` [m/s]
-    (:func:`lubrication.laws.traction.limited_strip_traction` over the Hertz strip of :func:`_slice_film`,
+    (:func:`lubedyn.lubrication.laws.traction.limited_strip_traction` over the Hertz strip of :func:`_slice_film`,
     Gauss rule), before the film's elastic shear: the function the traction tables hold."""
     b, p0, h0 = _strip_film(w, radius, P)
     return limited_strip_traction(vs, h0, b, p0, _rheo(P))
@@ -256,7 +256,7 @@ def _table_viscous(race, w, vs, P, counter):
     off = int(P[P_TTOFF0 + race])
     n0 = int(P[P_TTN0])
     n1 = int(P[P_TTN1])
-    # dynamics.interp.hermite2's operations in the same order, inlined (its call with array views cost
+    # lubedyn.dynamics.interp.hermite2's operations in the same order, inlined (its call with array views cost
     # about as much as the interpolation); without its fused multiply-adds, so equal to round-off only: a
     # 10 ms run of Fig. 5's point moves by 1.5e-8 relative at most
     av, aw = P[off:off + n0], P[off + n0:off + n0 + n1]
@@ -273,13 +273,13 @@ def _table_viscous(race, w, vs, P, counter):
 def map_traction_coefficient(race, w, s, P, counter):
     """Traction coefficient [-] of raceway ``race`` (0 cup, 1 cone) at line load ``w`` [N/m] and
     slide-to-roll ratio ``s`` >= 0 from the roller EHL map's tables at the run's entrainment speed
-    (:meth:`dynamics.tapered.model.TaperedBearing.map_traction_tables`), read as the map reads its sheared
-    traction (:class:`coupling.maps.FilmMap`, "sheared"): the transition slip s_t(w) (cubic Hermite in
+    (:meth:`lubedyn.dynamics.tapered.model.TaperedBearing.map_traction_tables`), read as the map reads its sheared
+    traction (:class:`lubedyn.maps.FilmMap`, "sheared"): the transition slip s_t(w) (cubic Hermite in
     log w of log s_t), the normalised slip sigma = s/s_t, the map's coordinate x = centre exp(asinh(ln
     sigma / a)/b) (clamped to the axis), and G(w, x) (cubic Hermite in log w, log x of log G).  Worked in
     the logarithms throughout (ln x = ln centre + asinh((ln s - ln s_t)/a)/b; one cell search and one set of
     Hermite weights in log w for both tables): the map's values to round-off with two transcendental
-    functions fewer than the generic readers (dynamics.interp.hermite1/hermite2) would take.  Below the
+    functions fewer than the generic readers (lubedyn.dynamics.interp.hermite1/hermite2) would take.  Below the
     slide-to-roll axis' first node the traction is linear in s (the maps' convention: the film's shear is
     linear there); above its last node it is held; a load outside the axis is clamped (counted in
     ``counter[0]``)."""
@@ -313,7 +313,7 @@ def _slice_traction(load, race, vs, P, counter):
     ``vs`` >= 0 [m/s] (the force opposes the roller's sliding): eq. 12 ("paper"), the limited
     Herschel-Bulkley strip law ("limited", :func:`strip_viscous_traction`, from the raceway's table when
     the model has tables and (v_s, w) lies inside) in series with the film's elastic shear
-    (:func:`lubrication.laws.traction.elastic_limited`, shear modulus G), or the roller EHL map's
+    (:func:`lubedyn.lubrication.laws.traction.elastic_limited`, shear modulus G), or the roller EHL map's
     traction coefficient times the slice load ("map", :func:`map_traction_coefficient`, at the slide-to-roll
     ratio v_s/u_e of the run's ideal entrainment speed)."""
     radius = P[P_RXO] if race == 0 else P[P_RXI]
@@ -340,8 +340,8 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     is locked, which keeps the locked path's cost), loads[j] =
     (cup, cone, flange, pocket) sums of the normal forces' magnitudes [N]; Fg, Tg the force [N] and the
     torque about its centre [N m] on the cage; SL[j, race, k] the slice loads [N] (race 0 cup, 1 cone);
-    FR[j] the friction diagnostics (:data:`dynamics.tapered.layout.FRICTION_NAMES`); CG the cage's
-    (:data:`dynamics.tapered.layout.CAGE_NAMES`)."""
+    FR[j] the friction diagnostics (:data:`lubedyn.dynamics.tapered.layout.FRICTION_NAMES`); CG the cage's
+    (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`)."""
     Z = int(P[P_Z])
     ns = int(P[P_NS])
     F[:, :] = 0.0
@@ -356,7 +356,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     CG[:] = 0.0
     if P[P_CONTACTS] == 0.0:
         return
-    counter = np.zeros(1, dtype=np.int64)      # queries outside a traction table (dynamics.interp)
+    counter = np.zeros(1, dtype=np.int64)      # queries outside a traction table (lubedyn.dynamics.interp)
     dx, dy, dz = y[0], y[1], y[2]
     vcx, vcy, vcz = y[3], y[4], y[5]
     om = P[P_OMEGA]
@@ -386,7 +386,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     wc = np.zeros(3)
     if P[P_CAGE] != 0.0:
         qn = math.sqrt(y[bc + 3] ** 2 + y[bc + 4] ** 2 + y[bc + 5] ** 2 + y[bc + 6] ** 2)
-        for i in range(4):  # a loop, not qc[:] = ...: see dynamics.integrators.put
+        for i in range(4):  # a loop, not qc[:] = ...: see lubedyn.dynamics.integrators.put
             qc[i] = y[bc + 3 + i] / qn
         quat_rotate(qc, y[bc + 10:bc + 13], wc)
     for j in range(Z):
@@ -563,7 +563,7 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
     """Roller j's ends against its pocket's side beams (eqs. 39-40): the pocket's centre C_j and axis a_j
     (the roller's nominal axis) ride with the cage; the roller's mid-point M is off C_j along a_j by
     s = a_j.(M - C_j), so the large end's gap is Delta' - s and the small end's Delta' + s.  Film pocket:
-    :func:`lubrication.laws.cage.side_beam_force` (squeeze of the end's strip across the beam's thickness,
+    :func:`lubedyn.lubrication.laws.cage.side_beam_force` (squeeze of the end's strip across the beam's thickness,
     boundary state below the critical film); contact-only pocket: a line contact (the pocket's constant,
     eq. 11's damping) once the gap closes.  The force acts along a_j at the end face's centre, on the roller
     and (opposite) on the cage."""
@@ -774,13 +774,13 @@ def _contact_signature(types):
     return nbtypes.void(v, P, U, RHO, m, m, v, v, m, v, v, nbtypes.float64[:, :, ::1], m, v)
 
 
-# contact_forces reached through a function pointer (dynamics.specialise): compiled once, not linked and
+# contact_forces reached through a function pointer (lubedyn.dynamics.specialise): compiled once, not linked and
 # re-optimised a second time into this loop
 register_kernel(_forces_many_impl, contact=_contact_signature)
 
 
 def forces_many_example(args):
-    """``(kernel, example arguments)`` of :func:`forces_many` (:func:`dynamics.specialise.compile_in_background`)."""
+    """``(kernel, example arguments)`` of :func:`forces_many` (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
     return specialise(_forces_many_impl, contact=contact_forces), (np.zeros((1, 1)), args)
 
 

@@ -1,7 +1,7 @@
 """The tapered roller bearing's state layout, option codes and the indices of its packed parameters and
 diagnostics.
 
-Part of :mod:`dynamics.tapered` (:mod:`dynamics.tapered.kernels` gives the equations).  State::
+Part of :mod:`lubedyn.dynamics.tapered` (:mod:`lubedyn.dynamics.tapered.kernels` gives the equations).  State::
 
     [cone x, y, z, vx, vy, vz]                                  N_CONE = 6 (the cone's spin is prescribed)
     [roller j: c (3), q (4), v (3), omega_body (3)] x Z          NB = 13 per roller
@@ -12,7 +12,7 @@ c the mass centre, q the unit quaternion (scalar first) from the body frame (x a
 to the inertial frame (x the bearing axis, the cup fixed), omega_body the body-frame angular velocity.
 The cone's tilt (option ``operating.cone_tilt = "free"``) is appended after the last body, so the locked
 layout (and every index above) is the same with and without it: theta = (0, theta_y, theta_z) the small
-rotation vector of the cone about its reference point (:mod:`dynamics.tapered.kernels`).
+rotation vector of the cone about its reference point (:mod:`lubedyn.dynamics.tapered.kernels`).
 """
 from __future__ import annotations
 
@@ -27,7 +27,7 @@ CONE_TILTS = {"locked": 0, "free": 1}    # "locked": the shaft's other support c
 TRACTIONS = {"none": 0, "paper": 1, "limited": 2, "map": 3}
 TRACTION_NONE, TRACTION_PAPER, TRACTION_LIMITED, TRACTION_MAP = 0.0, 1.0, 2.0, 3.0
 FLANGE_FRICTIONS = {"none": 0, "paper": 1, "load_share": 2}     # eqs. 22-23 as printed / fluid load share
-POCKETS = {"none": 0, "contact": 1, "film": 2}                  # "film": lubrication.laws.cage.pocket_force
+POCKETS = {"none": 0, "contact": 1, "film": 2}                  # "film": lubedyn.lubrication.laws.cage.pocket_force
 POCKET_NONE, POCKET_CONTACT, POCKET_FILM = 0.0, 1.0, 2.0
 LANDS = {"none": 0, "contact": 1, "film": 2}                    # "film": short bearing + Couette drag + boundary
 LAND_NONE, LAND_CONTACT, LAND_FILM = 0.0, 1.0, 2.0
@@ -59,7 +59,7 @@ LAND_NONE, LAND_CONTACT, LAND_FILM = 0.0, 1.0, 2.0
  # the roller EHL maps' traction at the run's entrainment speed (TaperedBearing.map_traction_tables,
  # traction "map"), appended after P_SIZE: node counts along line load and the maps' slide-to-roll
  # coordinate, the offset of each raceway's block (cup, cone), the normalised-slip map (a, b, centre of
- # coupling.film_points.normalised_slip) and the slide-to-roll axis' ends; a block is [log w nodes (nw),
+ # lubedyn.film_points.normalised_slip) and the slide-to-roll axis' ends; a block is [log w nodes (nw),
  # log x nodes (nx), Hermite data of log s_t (2 x nw), Hermite data of log G (4 x nw x nx)]
  P_TMNW, P_TMNX, P_TMOFF0, P_TMOFF1, P_TMA, P_TMB, P_TMCEN, P_TMSLO, P_TMSHI) = range(106)
 P_SIZE = 106

@@ -1,10 +1,10 @@
 """The tapered roller bearing as a compiled right-hand side: parameters, the start state from the
 quasi-static equilibrium, the state's names and the diagnostics of a trajectory.
 
-:class:`TaperedBearing` holds the geometry (:class:`lubrication.laws.tapered.TaperedRollerGeometry`) and
-the frozen groups of :mod:`dynamics.tapered.groups`; it packs them into the arrays of
-:func:`dynamics.tapered.kernels.rhs` (``args()``), places the cone and the rollers where
-:func:`dynamics.tapered.quasistatic.solve` finds them in equilibrium, the rollers orbiting at the ideal
+:class:`TaperedBearing` holds the geometry (:class:`lubedyn.lubrication.laws.tapered.TaperedRollerGeometry`) and
+the frozen groups of :mod:`lubedyn.dynamics.tapered.groups`; it packs them into the arrays of
+:func:`lubedyn.dynamics.tapered.kernels.rhs` (``args()``), places the cone and the rollers where
+:func:`lubedyn.dynamics.tapered.quasistatic.solve` finds them in equilibrium, the rollers orbiting at the ideal
 cage speed and spinning at their ideal speed, the cage concentric at the ideal cage speed
 (``start_state``), so a run does not begin with an impact, and reads a trajectory back
 (:meth:`TaperedBearing.diagnostics`: loads per slice and contact, tilt, skew, slip, speeds).
@@ -18,10 +18,10 @@ from typing import ClassVar
 
 import numpy as np
 
-from lubrication.laws import flange as laws_flange
-from lubrication.laws import slices as sl
-from lubrication.laws.cage import POCKET_SWITCHES
-from lubrication.laws.tapered import TaperedRollerGeometry
+from lubedyn.lubrication.laws import flange as laws_flange
+from lubedyn.lubrication.laws import slices as sl
+from lubedyn.lubrication.laws.cage import POCKET_SWITCHES
+from lubedyn.lubrication.laws.tapered import TaperedRollerGeometry
 
 from ..errors import DynamicsInputError
 from ..groups import fail
@@ -47,10 +47,10 @@ def sliding_decay_rate(k1: float, k2: float, m: float, ix: float, rho: float) ->
 @dataclass(frozen=True, kw_only=True)
 class TaperedBearing:
     """Paper A's tapered roller bearing (SI units): the ``geometry`` law and six frozen groups
-    (:mod:`dynamics.tapered.groups`): ``operating``, ``fidelity`` (the case's ``[model]``),
+    (:mod:`lubedyn.dynamics.tapered.groups`): ``operating``, ``fidelity`` (the case's ``[model]``),
     ``lubricant``, ``cage`` (needed with ``fidelity.pocket`` != "none"), ``flange`` (needed with
     ``fidelity.flange_friction`` != "none") and ``initial``.  Paper A's values come from
-    :mod:`coupling.parameters.wu2018` (``tapered_bearing()``); every error names the case key."""
+    :mod:`lubedyn.parameters.wu2018` (``tapered_bearing()``); every error names the case key."""
 
     geometry: TaperedRollerGeometry
     operating: Operating
@@ -60,7 +60,7 @@ class TaperedBearing:
     flange: Flange | None = None
     initial: Initial = Initial()
     #: raceway traction "map": the roller EHL maps (cup, cone), objects with a film map's interface
-    #: (:class:`coupling.maps.FilmMap`: ``axes``, ``sheared`` and ``map(output, *coords)``), read at the
+    #: (:class:`lubedyn.maps.FilmMap`: ``axes``, ``sheared`` and ``map(output, *coords)``), read at the
     #: run's entrainment speed by :meth:`map_traction_tables`
     traction_maps: tuple = ()
 
@@ -183,7 +183,7 @@ class TaperedBearing:
         return float(np.linalg.norm(roller - rib)), float(np.linalg.norm(0.5 * (roller + rib)))
 
     def args(self, qs: QuasiStaticResult | None = None):
-        """``(P, U, RHO)`` of :func:`dynamics.tapered.kernels.rhs` (indices: :mod:`dynamics.tapered.layout`)."""
+        """``(P, U, RHO)`` of :func:`lubedyn.dynamics.tapered.kernels.rhs` (indices: :mod:`lubedyn.dynamics.tapered.layout`)."""
         g, op, fi, lu = self.geometry, self.operating, self.fidelity, self.lubricant
         u, _ = g.slices(fi.slices)
         rho = np.asarray(g.roller_radius(u), dtype=float)
@@ -270,13 +270,13 @@ class TaperedBearing:
     def traction_tables(self, P: np.ndarray) -> np.ndarray:
         """``P`` with the limited traction's tables appended (``model.traction_evaluation = "table"``).
 
-        Per raceway, :func:`dynamics.tapered.kernels.strip_viscous_traction` (the limited
+        Per raceway, :func:`lubedyn.dynamics.tapered.kernels.strip_viscous_traction` (the limited
         Herschel-Bulkley strip law over the slice's Hertz strip, before the elastic shear) on a grid of
         :data:`TABLE_NODES` nodes, log-spaced in the sliding speed over :data:`TABLE_SPEEDS` and in the
         line load over :data:`TABLE_LOAD_DECADES` decades up to the load whose Hertz peak pressure is
         :data:`TABLE_PEAK_PRESSURE` (w = 2 pi R' p0^2/E'), in log-log space with PCHIP node derivatives
-        (:func:`dynamics.interp.hermite_data`).  The kernel reads them with
-        :func:`dynamics.interp.hermite2` and evaluates the law itself outside them.  The law's film, Hertz
+        (:func:`lubedyn.dynamics.interp.hermite_data`).  The kernel reads them with
+        :func:`lubedyn.dynamics.interp.hermite2` and evaluates the law itself outside them.  The law's film, Hertz
         strip and rheology are fixed for a run, so the traction per length depends on (v_s, w) only.
         Accuracy: tests/test_trb_dynamics.py measures it against the law at random points (the
         traction with its elastic shear within the strip quadrature's own error, 3e-4)."""
@@ -305,9 +305,9 @@ class TaperedBearing:
 
     def map_traction_tables(self, P: np.ndarray) -> np.ndarray:
         """``P`` with the roller EHL maps' traction at the run's ideal entrainment speed u_e appended
-        (raceway traction "map", read by :func:`dynamics.tapered.kernels.map_traction_coefficient`).
+        (raceway traction "map", read by :func:`lubedyn.dynamics.tapered.kernels.map_traction_coefficient`).
 
-        Per raceway (cup, cone: :attr:`traction_maps`) the map's sheared traction (coupling.maps.FilmMap,
+        Per raceway (cup, cone: :attr:`traction_maps`) the map's sheared traction (lubedyn.maps.FilmMap,
         "sheared": the transition slip s_t(w, u) and the traction G(w, u, x) at the normalised slip's
         coordinate x, cubic Hermite in log w, log u, log x of the log values) restricted to u = u_e: the
         map's own node data (values and derivatives at its w and x nodes) combined with the cubic Hermite
@@ -315,7 +315,7 @@ class TaperedBearing:
         bicubic Hermite of those data, so the kernel reads the map's own interpolant, to round-off
         (tests/test_trb_traction_map.py), at the cost of a 2-D instead of a 3-D query.  The map's traction
         is the film's (a Maxwell fluid capped by limiting shear, in the map's own lubricant:
-        coupling.film_points.ehl, ``evaluate_ehl_line``), so the kernel adds no elastic shear of its own.
+        lubedyn.film_points.ehl, ``evaluate_ehl_line``), so the kernel adds no elastic shear of its own.
         u_e outside the maps' speed axis is refused (one line naming operating.speed)."""
         from ..interp import _hvalue, _locate_call
 
@@ -538,7 +538,7 @@ class TaperedBearing:
             for race in (0, 1):
                 k.append(K.map_traction_coefficient(race, w, s0, P, counter) / s0 * load / ue)
         else:
-            from lubrication.laws.film import dowson_toyoda_central
+            from lubedyn.lubrication.laws.film import dowson_toyoda_central
 
             ep = g.e_prime
             for race in ("cup", "cone"):
@@ -567,7 +567,7 @@ class TaperedBearing:
 
     def spectral_step(self, y0: np.ndarray, args=None) -> float:
         """RK4's largest stable step [s] at the state ``y0`` from the right-hand side's own spectrum
-        (:func:`dynamics.integrators.spectral_step`: finite-difference Jacobian, about 0.04 s for 240
+        (:func:`lubedyn.dynamics.integrators.spectral_step`: finite-difference Jacobian, about 0.04 s for 240
         states)."""
         from ..integrators import spectral_step
 

@@ -13,12 +13,12 @@ and rib about that point (e_t = (0, -sin psi, cos psi) the tangential axis).  It
 rotation about the roller's radial axis, which moves the roller across the cone by theta x, and looks to
 it like a skew) changes the interferences at second order only: at 4e-4 rad the compiled kernel's
 exact 3-D evaluation of this equilibrium is off by about 1e-4 of the tilt and 1e-3 of x_F F_r in the
-cone's moment (the dynamic start removes it, :meth:`dynamics.tapered.model.TaperedBearing.start_state`).
+cone's moment (the dynamic start removes it, :meth:`lubedyn.dynamics.tapered.model.TaperedBearing.start_state`).
 The external moment is that of the radial load at the axial position ``load_offset`` x_F, x_F F_r about
 z (its point moves with the tilt by theta x x_F e_x: work M . theta), plus an applied (M_y, M_z); the
 cone's moment balance is checked a posteriori from the contact points (as the force balance).
 
-Contacts (laws in :mod:`lubrication.laws.slices` and :mod:`lubrication.laws.tapered`):
+Contacts (laws in :mod:`lubedyn.lubrication.laws.slices` and :mod:`lubedyn.lubrication.laws.tapered`):
 
 - cup and cone: n_s slices each, delta_k = rho_k sqrt(1 - (n.e)^2) - n.(S_k - X),
   q_k = k_w delta_k^(10/9), k_w = K_L/n_s with Palmgren's K_L (paper A eq. 11 without damping);
@@ -41,7 +41,7 @@ Hessian vanishes, and a roller that loses every contact has a singular block: it
 zero).  Stop: every residual below ``tol`` x the largest contact force (rotations scaled by l_e/2),
 checked a posteriori by the bearing's force balance; otherwise :class:`ConvergenceError`.
 
-Geometry matters (see :mod:`lubrication.laws.tapered`).  With the default common-apex reading the
+Geometry matters (see :mod:`lubedyn.lubrication.laws.tapered`).  With the default common-apex reading the
 rollers carry line loads and every case converges in 7-50 iterations.  The literal reading of
 Table 1 is edge-loaded: its rollers touch the raceways at the small end only and tilt into the
 0.22 mm large-end gap, so under an axial load they find equilibrium on one or two end slices
@@ -57,9 +57,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lubrication.errors import ConvergenceError, InputError
-from lubrication.laws import slices as sl
-from lubrication.laws.tapered import TaperedRollerGeometry
+from lubedyn.lubrication.errors import ConvergenceError, InputError
+from lubedyn.lubrication.laws import slices as sl
+from lubedyn.lubrication.laws.tapered import TaperedRollerGeometry
 
 log = logging.getLogger(__name__)
 

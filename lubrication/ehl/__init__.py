@@ -8,16 +8,16 @@ Equations (SI, gauge pressure p, x the entrainment direction)::
     int p dA = W                                                    (load balance)
     p >= 0, R(p) >= 0, p R(p) = 0                                   (outlet cavitation)
 
-u_m = (u_1 + u_2)/2 along +x, eta(p) and rho(p) from :mod:`lubrication.laws.lubricant`.
+u_m = (u_1 + u_2)/2 along +x, eta(p) and rho(p) from :mod:`lubedyn.lubrication.laws.lubricant`.
 Line contacts drop y (loads per unit length, the strip kernel of
-:mod:`lubrication.elastic`).
+:mod:`lubedyn.lubrication.elastic`).
 
 Discretisation
 --------------
 P1 finite elements (scikit-fem) on a uniform tensor grid whose nodes are the
 cell centres of the FFT deflection grid (pressure constant on each node's dual
 cell).  The Reynolds residual is the Galerkin form of
-:mod:`lubrication.reynolds` plus SUPG stabilisation of the transport term::
+:mod:`lubedyn.lubrication.reynolds` plus SUPG stabilisation of the transport term::
 
     + int tau (u_m . grad v) (u_m . grad(rho h) + rho dh00/dt)
     tau = l/(2|u_m|) (coth Pe - 1/Pe),  Pe = |u_m| l rho h/(2 k),  k = rho h^3/(12 eta)
@@ -29,7 +29,7 @@ where k -> 0 and the Galerkin transport alone would oscillate.
 Reynolds-Eyring flow (``Lubricant(eyring_stress=tau0)``): k becomes
 k Phi(x), x = h |grad p|/(2 tau0), Phi = 3 (x cosh x - sinh x)/x^3 (the
 Poiseuille flow of the sinh law in pure rolling,
-:func:`lubrication.laws.lubricant.eyring_flow_factor`); the flux then depends on
+:func:`lubedyn.lubrication.laws.lubricant.eyring_flow_factor`); the flux then depends on
 grad p nonlinearly, and the Jacobian carries its tensor part
 k Phi'/x (h/(2 tau0))^2 grad p grad p^T, dPhi/dh, and the SUPG parameter's
 dependence on grad p (Pe ~ 1/Phi).  The pressure still does not depend on
@@ -40,27 +40,27 @@ Herschel-Bulkley (grease) flow (``Lubricant(herschel_bulkley=HerschelBulkleyFlow
 the viscosity law then being the consistency phi(p) = phi0 exp(alpha p) [Pa s^n]): k becomes
 k Phi_HB(T_w, phi), T_w = h |grad p|/2, Phi_HB = 3 (T_w/phi)^(m-1) F(tau_y/T_w), m = 1/n,
 F(xi) = (1 - xi)^(m+1) [(1 - xi)/(m+2) + xi/(m+1)] (0 where T_w <= tau_y: a plug across the film),
-the slit flow of the Herschel-Bulkley law derived in :mod:`lubrication.laws.lubricant`
+the slit flow of the Herschel-Bulkley law derived in :mod:`lubedyn.lubrication.laws.lubricant`
 (Buckingham-Reiner for n = 1), plus an optional creep eps (default 0).  The Jacobian has the same
 tensor and SUPG terms as Eyring flow and, since k ~ phi^(-1/n), dk/dp = ... (1/n) phi'/phi.  Same
 pure-rolling superposition as Eyring (Couette rho h u_m + the pressure flow).  Line contacts use
 Fischer-Burmeister (the active set kept cycling with plugs at the cavitation boundary), and with no
 ``initial`` the solve starts from the Newtonian contact with the apparent viscosity tau_y/D +
-phi0 D^(n-1) at D = u_m/h_c (then 0.5, 0.25, 0.125 times it; :func:`lubrication.ehl.solve._solve_hb`);
+phi0 D^(n-1) at D = u_m/h_c (then 0.5, 0.25, 0.125 times it; :func:`lubedyn.lubrication.ehl.solve._solve_hb`);
 the Hertz start stalls.  Measured on paper A's cone (R 9.395 mm, E' 225 GPa, 30 C, 257 nodes on
 [-20, 3] b): calcium converges over 50-135 kN/m x 10-20 m/s, polyurea on 5 of 7 points (not
 135 kN/m, 20 m/s nor 50 kN/m, 20 m/s: there the Newtonian starts fail), lithium (n = 0.31) nowhere;
 calcium at 135 kN/m, 10 m/s has two discrete solutions (h_min 5.7 % apart) as the Newtonian roller
 does (tests/test_ehl_hbflow.py).  Reported M and L read phi0 as Pa s.
 
-Assembly is vectorised on the uniform grid (:mod:`lubrication.ehl.assembly`:
+Assembly is vectorised on the uniform grid (:mod:`lubedyn.lubrication.ehl.assembly`:
 one template product and one scatter per matrix; equal to scikit-fem's
 ``asm`` of the same forms to round-off, :meth:`_Problem.assemble_skfem`).
 
 Graded line grids (``EHLGrid(refine=r > 1, refine_zone, refine_width)``, line contacts only): the
 nodes are equidistant in a smooth node density, r times denser on the zone (``EHLGrid.x_nodes``;
 the coarser levels of the grid sequence are every second node).  The deflection is then the dense
-influence matrix of the nodes' own cells (:func:`lubrication.elastic.line_influence_matrix`, the
+influence matrix of the nodes' own cells (:func:`lubedyn.lubrication.elastic.line_influence_matrix`, the
 Toeplitz kernel on a uniform grid), the assembly takes one template per element
 (``assembly.ElementForms``) and SUPG the element's own length.  Measured (tests/test_ehl_graded.py,
 benchmarks/ehl_graded.py): on Moes M = 20, L = 10 the outlet spike of graded 257 nodes (refine 4 on
@@ -151,7 +151,7 @@ search's residual or merit is noise, omega was halved at random and a solve
 at |dp| = 1e-15 p_Hertz ran out of iterations on one machine and not on
 another (tests/test_roundoff.py perturbs every residual by 1 - 100
 round-off units and requires the same state).  Otherwise, after ``max_iter`` steps or ``max_stalls`` stalled
-line searches, :class:`~lubrication.errors.ConvergenceError` naming M and L.
+line searches, :class:`~lubedyn.lubrication.errors.ConvergenceError` naming M and L.
 A converged state satisfies the discrete complementarity (tests/test_ehl.py
 checks it in the scikit-fem reference assembly).  Limit, measured on paper
 A's roller (Barus, alpha p_Hertz = 44, L = 56): across the Hertz zone the
@@ -185,7 +185,7 @@ clearly (the film reaches the floor: outlet constriction not resolved).
 
 Multigrid (``EHLOptions(method="multigrid")``, point contacts only)
 -------------------------------------------------------------------
-:mod:`lubrication.ehl.multigrid`: the FAS multigrid of Venner & Lubrecht
+:mod:`lubedyn.lubrication.ehl.multigrid`: the FAS multigrid of Venner & Lubrecht
 (finite differences on the same nodes, second-order upstream wedge, mixed
 Gauss-Seidel / Jacobi-distributive line relaxation with projection P >= 0,
 H00 on the coarsest grid, FFT deflection on every level, FMG start and
@@ -221,7 +221,7 @@ Stop reasons, a-posteriori checks, work budget
 Every solution's ``info`` carries ``stop_reason`` ("tolerance met") and
 ``stop_detail`` (the figures of the test that ended it: the full Newton step,
 load error and multipliers, or the multigrid's error/residual stop); every
-:class:`~lubrication.errors.ConvergenceError` carries ``.stop`` (``reason``:
+:class:`~lubedyn.lubrication.errors.ConvergenceError` carries ``.stop`` (``reason``:
 iteration limit, line search stalled, damped-step budget, singular Jacobian,
 non-finite pressure, film collapsed, work budget, a-posteriori check failed,
 or the multigrid's diverged/stagnated).  The active-set error's hint is computed
@@ -238,7 +238,7 @@ with a Dowson-Higginson density; multigrid M = 1000 on 129 x 129, -35 %):
 :func:`check_solution` compares it with the closed form (Barus, incompressible,
 Newtonian) and, for every density, viscosity and flow law, with the same
 contact on the one-level-coarser grid (the nested or FMG start's level, or
-solved from the solution by :func:`lubrication.ehl.solve._resolution_levels`),
+solved from the solution by :func:`lubedyn.lubrication.ehl.solve._resolution_levels`),
 and, where the coarser level cannot tell (it collapsed, differs by more than
 5 %, or the inlet's piezoviscous rise spans fewer than 6 cells), with the
 one-level-finer grid; it warns (``EHLOptions(strict=True)``: raises),

@@ -1,4 +1,4 @@
-r"""Vectorised P1/Q1 assembly on the uniform EHL grids of :mod:`lubrication.ehl`.
+r"""Vectorised P1/Q1 assembly on the uniform EHL grids of :mod:`lubedyn.lubrication.ehl`.
 
 The EHL grids are uniform tensor grids (line P1 or quadrilateral Q1 elements
 of equal size), so the basis values phi_i(q), gradients grad phi_i(q) and
@@ -113,7 +113,7 @@ class UniformForms:
 
 class ElementForms(UniformForms):
     """:class:`UniformForms` for grids of unequal elements (the graded line grids of
-    :class:`lubrication.ehl.EHLGrid`): the same templates, one per element (E x Q x n^2), so that
+    :class:`lubedyn.lubrication.ehl.EHLGrid`): the same templates, one per element (E x Q x n^2), so that
     ``a_e = sum_q c(e, q) T[e, q]``; the interface is the same.  Checked against ``skfem.asm`` in
     tests/test_ehl_graded.py."""
 

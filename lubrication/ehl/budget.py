@@ -1,6 +1,6 @@
 """The work budget of an EHL solve (units of one Newton iteration on the finest grid).
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import contextvars

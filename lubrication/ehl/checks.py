@@ -1,6 +1,6 @@
 """A-posteriori checks of an EHL solution against closed-form film formulas and its own grid.
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging
@@ -220,7 +220,7 @@ def check_solution(sol: EHLSolution) -> list[str]:
     - its central film against the closed form where one applies (:func:`closed_form_central_film`,
       beyond :data:`FORMULA_TOLERANCE`);
     - its resolution: against the one-level-coarser solution (``info["coarse_level"]``: the nested
-      start's or the FMG start's level, or solved by :func:`lubrication.ehl.solve._resolution_levels`),
+      start's or the FMG start's level, or solved by :func:`lubedyn.lubrication.ehl.solve._resolution_levels`),
       estimated discretisation error |h_c - h_c,coarse|/(3 h_c) beyond :data:`COARSE_TOLERANCE`
       (multigrid: or a coarse film <= 0); for line contacts, where that level did not converge, has
       a collapsed film or differs by more than :data:`FINER_TRIGGER`, against the one-level-finer
@@ -233,7 +233,7 @@ def check_solution(sol: EHLSolution) -> list[str]:
     Each failed check is one line naming the figures and the grid needed (the closed form and the
     resolution check, when both fail, share one line); they are logged (WARNING) and listed in
     ``sol.info["warnings"]``, or, with ``EHLOptions(strict=True)``, raised as
-    :class:`~lubrication.errors.ConvergenceError`.  The figures of every check are in
+    :class:`~lubedyn.lubrication.errors.ConvergenceError`.  The figures of every check are in
     ``sol.info["checks"]``.  Returns the list (empty: nothing to report).
     """
     c, P, info = sol.contact, sol.problem, sol.info

@@ -1,6 +1,6 @@
 """Film stiffness and damping of an EHL contact (linearised normal coefficients).
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging

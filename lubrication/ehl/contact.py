@@ -1,6 +1,6 @@
 """The EHL contact: geometry, materials, lubricant, kinematics and load of a point or line contact, and the traction laws.
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -52,10 +52,10 @@ def _eyring_terms(lub, h, grad_p, eta=None):
     ``phi`` = Phi; ``c2`` = (dPhi/d|grad p|)/|grad p|, so that d(Phi grad p)/d(grad p) = Phi I + c2
     grad p grad p^T; ``dphi_dh`` = dPhi/dh at fixed grad p; ``c2_rel`` = c2/Phi and ``dlnphi_dh`` =
     dPhi/dh / Phi (0 where Phi = 0); ``dlnphi_dlneta`` = d ln Phi/d ln eta at fixed h, grad p.
-    Eyring: Phi(x), x = s |grad p|, s = h/(2 tau0) (:func:`lubrication.laws.lubricant.eyring_flow_factor`),
+    Eyring: Phi(x), x = s |grad p|, s = h/(2 tau0) (:func:`lubedyn.lubrication.laws.lubricant.eyring_flow_factor`),
     c2 = (Phi'/x) s^2, dPhi/dh = (Phi'/x) x^2/h, d ln Phi/d ln eta = 0.
     Herschel-Bulkley: Phi_HB(T_w, eta), T_w = h |grad p|/2, eta the consistency phi(p)
-    (:func:`lubrication.laws.lubricant.herschel_bulkley_flow_factor`) plus the creep eps,
+    (:func:`lubedyn.lubrication.laws.lubricant.herschel_bulkley_flow_factor`) plus the creep eps,
     c2 = Phi_T h/(2 |grad p|), dPhi/dh = Phi_T T_w/h, d ln Phi/d ln eta = (1 - 1/n) Phi_HB/Phi."""
     g2 = sum(np.asarray(grad_p[d]) ** 2 for d in range(len(grad_p)))
     hb = lub.herschel_bulkley
@@ -228,7 +228,7 @@ class EHLContact:
         radius ratio R_y/R_x (entrainment along the minor axis, k >= 1) is
         the one whose Hertz ellipse has a/b = k: exactly (``ellipticity=
         "exact"``), inverting the elliptic-integral relation of
-        :mod:`lubrication.laws.contact`, R_y/R_x = (E(m)/(1 - m) - K(m))/(K(m) - E(m)),
+        :mod:`lubedyn.lubrication.laws.contact`, R_y/R_x = (E(m)/(1 - m) - K(m))/(K(m) - E(m)),
         m = 1 - 1/k^2; or by Hamrock & Brewe's fit k = 1.0339 (R_y/R_x)^0.636
         (``"hamrock_brewe"``).  Returns a Barus lubricant.
 

@@ -2,7 +2,7 @@ r"""Multilevel (FAS multigrid) solver of steady EHL point contacts.
 
 The method of Venner & Lubrecht, *Multilevel Methods in Lubrication*
 (Elsevier 2000, ch. 6-8), with the elastic deflection on every level by the
-FFT (DC-FFT) kernel of :mod:`lubrication.elastic` instead of multilevel
+FFT (DC-FFT) kernel of :mod:`lubedyn.lubrication.elastic` instead of multilevel
 multi-integration (O(N log N) instead of O(N); same influence coefficients).
 
 Equations (dimensionless, X = x/b_x, Y = y/b_x, P = p/p_H, H = h R_x/b_x^2,
@@ -15,11 +15,11 @@ pressure; rho and eta relative to their ambient values)::
     hx hy sum P = w/(p_H b_x^2)                             (= 2 pi/3, circular)
     P >= 0, r >= 0, P r = 0                                 (r = -L(P): outlet cavitation)
 
-k_ij [m/Pa] are the influence coefficients of :class:`~lubrication.elastic.ElasticKernel`
+k_ij [m/Pa] are the influence coefficients of :class:`~lubedyn.lubrication.elastic.ElasticKernel`
 (uniform pressure on node j's cell, deflection at node i), so the film is
-h = h00 + x^2/(2 R_x) + y^2/(2 R_y) + u, the film of :mod:`lubrication.ehl`,
+h = h00 + x^2/(2 R_x) + y^2/(2 R_y) + u, the film of :mod:`lubedyn.lubrication.ehl`,
 divided by b_x^2/R_x; for a circular contact the elastic term is Venner's
-(2/pi^2) int P/r dX'dY'.  The nodes are those of :mod:`lubrication.ehl`
+(2/pi^2) int P/r dX'dY'.  The nodes are those of :mod:`lubedyn.lubrication.ehl`
 (cell centres of the FFT grid); the discretisation is finite differences:
 
 - Poiseuille term: second-order central differences with eps at the
@@ -115,7 +115,7 @@ M <= 200, 6-8 cycles (61-79 work units) instead of 11-12 (106-115).
 Divergence (non-finite values, or ``res`` above 1e3 times its value after
 the FMG start), stagnation (``res`` reduced by less than a factor
 ``stall_factor`` over ``stall_cycles`` cycles) or ``max_cycles`` exceeded
-raise :class:`~lubrication.errors.ConvergenceError` naming M, L, the grid,
+raise :class:`~lubedyn.lubrication.errors.ConvergenceError` naming M, L, the grid,
 the cycle, the residual and, for ``stop="error"``, the estimate that missed
 its limit.  Work units: one relaxation sweep on the target grid = 1, on a
 coarser grid the ratio of node counts.
@@ -431,7 +431,7 @@ def _law_codes(viscosity, density):
 @njit(cache=True, error_model="numpy")
 def coefficients_kernel(P, H, ph, lam, vcode, vpar, dcode, dpar, rho, eps):
     """rho/rho0 and eps = rho H+^3/(eta/eta0 lambda) at p = ph max(P, 0) into ``rho``, ``eps``:
-    the expressions of the laws' ``__call__`` (lubrication.laws.lubricant; Barus, Roelands,
+    the expressions of the laws' ``__call__`` (lubedyn.lubrication.laws.lubricant; Barus, Roelands,
     constant viscosity; Dowson-Higginson, incompressible) node by node, for the coarsest grid
     (:func:`dense_relaxations`): at 17 x 17 2-11 us against numpy's 10-18 us (AMD EPYC,
     medians of 50), equal to 7e-15 (Roelands' pow), 4e-16 otherwise.  Not used on the finer
@@ -696,7 +696,7 @@ class _Level:
 class MultigridEHL:
     """FAS multigrid solve of one steady point contact (see the module docstring).
 
-    Parameters: ``problem`` an :class:`lubrication.ehl._Problem`-like object
+    Parameters: ``problem`` an :class:`lubedyn.lubrication.ehl._Problem`-like object
     of the target grid (Hertz scales ``bx``, ``by``, ``ph``, ``hscale``, node
     axes ``xs``, ``ys`` and the elastic ``kernel``), the contact, and
     :class:`MultigridOptions`.

@@ -1,6 +1,6 @@
 """Newton solvers of the EHL complementarity problem: active set and Fischer-Burmeister, with line search.
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging
@@ -54,7 +54,7 @@ def _film_guess(c: EHLContact) -> float:
 def _hb_apparent_start(c: EHLContact):
     """``(eta_app, h_c)`` of a Herschel-Bulkley contact: the Newtonian (Barus, the grease's alpha) film
     guess :func:`_film_guess` with the apparent viscosity eta_app = tau_y/D + phi0 D^(n-1) at its own
-    rolling shear rate D = u_m/h_c (the fixed point of lubrication.laws.grease.apparent_film, by
+    rolling shear rate D = u_m/h_c (the fixed point of lubedyn.lubrication.laws.grease.apparent_film, by
     damped iteration in logs: h <- sqrt(h h_new))."""
     import dataclasses
 

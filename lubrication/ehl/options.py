@@ -1,6 +1,6 @@
 """Grid and solver options of the EHL solvers.
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -103,7 +103,7 @@ class EHLOptions:
     max_stalls: int = 4  # FB Newton: give up after this many stalled line searches (< 1/64 of the step)
     gmres_forcing: float = 1e-3  # largest GMRES rtol of an inexact Newton step (min with |Phi|)
     precond_refresh: int = 20  # refactorise the sparse preconditioner when GMRES needs this many iterations
-    # method="multigrid": lubrication.ehl.multigrid.MultigridOptions (None: its defaults)
+    # method="multigrid": lubedyn.lubrication.ehl.multigrid.MultigridOptions (None: its defaults)
     multigrid: object = None
     # a-posteriori checks (closed-form film, coarser level; :func:`check_solution`): False logs a
     # WARNING and lists it in info["warnings"], True raises ConvergenceError instead (tests)
@@ -134,6 +134,6 @@ class EHLOptions:
                 raise InputError(f"ehl.multigrid = {self.multigrid!r} must be a MultigridOptions (or None)")
 
 
-# "multigrid": FAS multigrid of lubrication.ehl.multigrid (point contacts only)
+# "multigrid": FAS multigrid of lubedyn.lubrication.ehl.multigrid (point contacts only)
 EHL_METHODS = ("auto", "fischer_burmeister", "active_set", "multigrid")
 FIRST_ORDER_STARTS = ("auto", "every_grid", "coarsest")

@@ -1,6 +1,6 @@
 """The discretised EHL problem: scikit-fem Reynolds forms with SUPG, FFT elastic deflection, load balance.
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 from types import SimpleNamespace
@@ -97,7 +97,7 @@ class _Problem:
         self.flat = np.arange(self.N)
         loc = self.doflocs
         # elastic operator: FFT of the Toeplitz kernel (uniform grids), the dense matrix of the node cells
-        # (graded line grids, :func:`lubrication.elastic.line_influence_matrix`)
+        # (graded line grids, :func:`lubedyn.lubrication.elastic.line_influence_matrix`)
         self.kernel = None if self.graded else ElasticKernel(self.shape, spacing, contact.e_star)
         x = loc[0]
         self.rigid = x**2 / (2 * contact.radius_x)
@@ -116,7 +116,7 @@ class _Problem:
 
     @property
     def mesh(self):
-        """The film mesh (:func:`lubrication.mesh.rectangle` quads or an interval), built on first use."""
+        """The film mesh (:func:`lubedyn.lubrication.mesh.rectangle` quads or an interval), built on first use."""
         if self._mesh is None:
             if self.c.is_line:
                 self._mesh = meshes.interval(self.xs[0], self.xs[-1], self.shape[0] - 1,
@@ -284,7 +284,7 @@ class _Problem:
     def assemble(self, p, h00, jac=True):
         """Residual R(p, h00) of the stabilised Reynolds equation and, with
         ``jac``, its exact derivatives A = dR/dp at fixed film and D = dR/dh
-        (nodal film), vectorised on the uniform grid (:mod:`lubrication.ehl.assembly`;
+        (nodal film), vectorised on the uniform grid (:mod:`lubedyn.lubrication.ehl.assembly`;
         :meth:`assemble_skfem` is the same with scikit-fem forms, for checks)."""
         c, F = self.c, self.forms
         hn = self.film(p, h00)

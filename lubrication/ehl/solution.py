@@ -1,6 +1,6 @@
 """EHLSolution: pressure, film, load, traction and their outputs (VTK, plots).
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field

@@ -1,6 +1,6 @@
 """solve_ehl: the grid sequence (coarse to fine), the choice of method, the multigrid driver.
 
-Part of :mod:`lubrication.ehl` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.ehl` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging
@@ -40,7 +40,7 @@ def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOption
 
     The solution is then checked a posteriori (:func:`_a_posteriori`: the one-level-coarser grid's
     solution and, where that cannot tell, the one-level-finer one;
-    :func:`lubrication.ehl.checks.check_solution`).
+    :func:`lubedyn.lubrication.ehl.checks.check_solution`).
     """
     from threadpoolctl import threadpool_limits
 
@@ -171,7 +171,7 @@ def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True,
     if not contact.is_line and grid.nx > options.max_point_grid:
         raise InputError(
             f"grid.nx = {grid.nx} for a point contact: point contacts are solved up to {options.max_point_grid} "
-            f"nodes per side by the Newton methods (lubrication.ehl.EHLOptions.max_point_grid: the largest grid measured to converge, "
+            f"nodes per side by the Newton methods (lubedyn.lubrication.ehl.EHLOptions.max_point_grid: the largest grid measured to converge, "
             f"M = 100, L = 10; a Newton step costs about 5 s of one core on 257 x 257 and the sparse-LU "
             f"preconditioner's fill grows faster than the grid); use nx <= {options.max_point_grid}, or "
             f"solver.method = 'multigrid'"
@@ -345,7 +345,7 @@ CHECK_WORK = 0.25
 
 def _a_posteriori(sol: EHLSolution, options: EHLOptions):
     """The one-level-coarser (and, where it is needed, one-level-finer) solutions the resolution check
-    compares ``sol`` with (:func:`_resolution_levels`), then :func:`~lubrication.ehl.checks.check_solution`."""
+    compares ``sol`` with (:func:`_resolution_levels`), then :func:`~lubedyn.lubrication.ehl.checks.check_solution`."""
     if options.check_resolution and sol.info.get("method") != "multigrid":
         from threadpoolctl import threadpool_limits
 
@@ -481,7 +481,7 @@ def multigrid_grid(contact: EHLContact, grid: EHLGrid, coarsest_cells: int = 16)
 
 
 def _solve_multigrid(contact: EHLContact, grid: EHLGrid, options: EHLOptions, initial=None) -> EHLSolution:
-    """``method="multigrid"``: FAS multigrid (:mod:`lubrication.ehl.multigrid`) on the
+    """``method="multigrid"``: FAS multigrid (:mod:`lubedyn.lubrication.ehl.multigrid`) on the
     nodes of :class:`_Problem` (same grid, kernel, film and outputs as the Newton
     methods).  Steady point contacts, given load or approach."""
     from .multigrid import MultigridEHL, MultigridOptions

@@ -19,7 +19,7 @@ from a reference the extracted text lost ([17]); its exponents (h0^(6n+2), E'') 
 For any load law f ~ 1/h, |k_e| h = f, so eq. 34's first term is the film load itself; the
 Newtonian f is Martin's rigid-cylinder load, used here with the viscosity the caller chooses (the
 grease's base oil, or its apparent Herschel-Bulkley viscosity at the shear rate u/h:
-:func:`lubrication.laws.grease` readings).  Eq. 34's damping c_e = 6 pi eps phi0 l_e varsigma^(3/2)
+:func:`lubedyn.lubrication.laws.grease` readings).  Eq. 34's damping c_e = 6 pi eps phi0 l_e varsigma^(3/2)
 / (sqrt(2) n_s h0^(3/2)) is exactly the squeeze film of a rigid cylinder approaching a plane with a
 full film (p = 6 eta v R/h^2, integrated: 3 sqrt(2) pi eta v R^(3/2)/h^(3/2) per unit length) with
 eps = 1, varsigma = R, l = l_e/n_s; during separation the film cavitates (half-Sommerfeld) and the
@@ -41,7 +41,7 @@ Eq. 34 writes the load as k_e delta with delta = h0; taken as the magnitude |k_e
 pull the roller onto the beam).  In the Newtonian limit (tau_y = 0, n = 1, phi = eta) q_paper is
 Martin's load exactly; the yield stress drops out of k_e (it is constant in h0), which is the
 paper's Fig. 15 ("little effect").  Squeeze and traction use ``eta`` (the caller's viscosity
-reading; :mod:`lubrication.laws.grease`), as eq. 34 uses phi0 as a viscosity (notes 2.3).
+reading; :mod:`lubedyn.lubrication.laws.grease`), as eq. 34 uses phi0 as a viscosity (notes 2.3).
 
 Martin's coefficient: 4.8950 eta u_m R/h (Reynolds exit condition; Martin 1916; Hamrock, Schmid &
 Jacobson 2004, eq. 17.28), the same as 2.4475 eta (u_1 + u_2) R/h.  The half-Sommerfeld (Guembel)
@@ -89,7 +89,7 @@ width b.  Options:
   Friction torque on the cage: the Couette shear 2 pi eta r^3 b (omega_land - omega_cage) /
   (c sqrt(1 - eps^2)) (the integral of eta r dOmega/h over the full circle).
 * ``map`` (:func:`guide_land_map_force`): a table built by the project's Reynolds FEM journal with
-  Reynolds (Swift-Stieber) cavitation (:func:`coupling.guide_land.build_guide_land_map`).  The
+  Reynolds (Swift-Stieber) cavitation (:func:`lubedyn.guide_land.build_guide_land_map`).  The
   Reynolds right-hand side in the frame of the line of centres is g = A sin(theta) - e' cos(theta)
   with A = e (u_m/r - psi') (whirl psi') and e' the radial speed; the cavitated problem is positively
   homogeneous in (A, e'), so F = eta G r b^3/c^3 Phi(eps, beta)/(1 - eps^2)^2 with G = |(A, e')| and
@@ -118,7 +118,7 @@ from numba import njit
 from .jit import INLINE, JIT
 
 #: Martin's (1916) rigid isoviscous cylinder with the Reynolds exit condition: W h0/(eta u_m R)
-#: (lubrication.closed_form.martin_rigid_cylinder computes it: 4.894968...)
+#: (lubedyn.lubrication.closed_form.martin_rigid_cylinder computes it: 4.894968...)
 MARTIN_COEFFICIENT = 4.894968493913375
 
 #: half-Sommerfeld (Guembel) rigid cylinder over a plane, infinite inlet: W h0/(eta u_m R)
@@ -251,7 +251,7 @@ def guide_land_short_bearing(e_x, e_y, v_x, v_y, radius, clearance, width, eta, 
     (journal centre at (e_x, e_y) relative to the bearing's), the journal centre moving at (v_x, v_y)
     relative to it, and the surfaces' speeds summing to ``surface_speed`` = r (omega_land +
     omega_cage) [m/s]: the frame and the integral of
-    :func:`lubrication.closed_form.short_journal_forces`, by a 32-point Gauss rule on the arc where
+    :func:`lubedyn.lubrication.closed_form.short_journal_forces`, by a 32-point Gauss rule on the arc where
     the pressure is positive.  The force on the cage is the negative."""
     um = 0.5 * surface_speed
     A = um * e_x / radius - v_y

@@ -1,7 +1,7 @@
 r"""Collision laws of two lubricated balls (paper B, sec. 2.2, rebuilt), written once for films and dynamics.
 
 Hertz force with contact damping (Hunt & Crossley 1975): ``Q = K delta^1.5 (1 + alpha d delta/dt)``,
-clipped at 0 (no adhesion); K from :func:`lubrication.laws.contact.hertz_constant`.
+clipped at 0 (no adhesion); K from :func:`lubedyn.lubrication.laws.contact.hertz_constant`.
 
 Collision phases (Thornton 1997, elastic-perfectly plastic spheres, J.
 Appl. Mech. 64:383), the physical content of eqs. 9-12: elastic Hertz
@@ -48,7 +48,7 @@ PHASE_NAMES = ("separated", "film", "elastic", "elastic-plastic", "recovery")
 
 # indices of the ball-ball parameter vector (see ball_ball_parameters); BB_MAP_*: the film map's axis ends
 # [m, m, -, -] (first and last gap node, first and last pressure-number node), filled by
-# dynamics.contacts.with_map_ends for the map the kernels read, NaN until then
+# lubedyn.dynamics.contacts.with_map_ends for the map the kernels read, NaN until then
 (BB_K, BB_R, BB_ESTAR, BB_PY, BB_DY, BB_FY, BB_ALPHA, BB_C0, BB_HR, BB_HCUT, BB_MUF, BB_MUB, BB_VREG, BB_TAU,
  BB_SQF, BB_FLAW, BB_ETA, BB_PVA, BB_SLOPE, BB_MAP_H0, BB_MAP_HTOP, BB_MAP_X1LO, BB_MAP_X1TOP) = range(23)
 BB_SIZE = 23
@@ -284,7 +284,7 @@ def barus_squeeze_film(h0: float, v: float, eta0: float, alpha: float, radius_ef
 # ------------------------------------------------------------------ kernels
 
 
-@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
+@njit(**INLINE)  # small leaf of the bearing rhs (see lubedyn.dynamics.cageless)
 def hertz_force(delta, delta_dot, K, alpha):
     """Hunt-Crossley Hertz force ``K delta^1.5 (1 + alpha delta_dot)``, >= 0; 0 for delta <= 0."""
     if delta <= 0.0:
@@ -352,7 +352,7 @@ def squeeze_film_closed_form(h, v, p):
     return p[BB_C0] * v * (inv - 1.0 / (p[BB_HCUT] + hr)), -p[BB_C0] * v * inv * inv
 
 
-@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
+@njit(**INLINE)  # small leaf of the bearing rhs (see lubedyn.dynamics.cageless)
 def ball_ball_friction_coefficient(h, load, sliding_speed, p):
     """Friction coefficient of a ball pair [-] by the law ``p[BB_FLAW]`` (:data:`FRICTION_LAWS`).
 

@@ -33,7 +33,7 @@ Stiffness: Q = K delta^1.5 with K = Q/delta^1.5 at Q = 1 N (:func:`hertz_constan
 gives K = (4/3) E* sqrt(R).  Two contacts carrying the same load in series (inner and outer race):
 K = (K1^-2/3 + K2^-2/3)^-3/2.  Hunt & Crossley (1975) damping Q = K delta^1.5 (1 + alpha d delta/dt)
 with alpha = 3 (1 - e)/(2 v_impact) for a coefficient of restitution e (:func:`hunt_crossley_alpha`;
-the kernel :func:`hertz_force` is in :mod:`lubrication.laws.collision`).
+the kernel :func:`hertz_force` is in :mod:`lubedyn.lubrication.laws.collision`).
 
 Everything here is plain Python on floats (``math``), run once at set-up; both
 :mod:`lubrication` and :mod:`dynamics` call it.

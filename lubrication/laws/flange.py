@@ -12,7 +12,7 @@ Relative radii (:func:`rib_radii`)::
 
 With r_f = 85.6 mm (assumed, parameter module) R_circ = 169.0 mm, R_gen = 136.2 mm: a mildly elliptical
 contact, as eq. 20's text says (r_e > r_s).  The normal load is the exact Hertz point law of
-:func:`lubrication.laws.contact.point_contact` (eq. 21 is Harris' form of the same theory,
+:func:`lubedyn.lubrication.laws.contact.point_contact` (eq. 21 is Harris' form of the same theory,
 q = (2 2^(1/2)/3) E' delta^(3/2) / (n_delta^(3/2) (sum rho)^(1/2)), checked in the tests).  Entrainment
 and sliding are circumferential, i.e. along R_circ (the *major* axis of the ellipse).
 
@@ -27,7 +27,7 @@ friction (s0/p0) q_f exactly and lambda >> 3 the grease traction only (:func:`fl
 
 Grease traction (eqs. 26-27): eq. 26's Herschel-Bulkley law over the Hertz ellipse, eq. 27 read as
 f = int tau dA (the printed "x" is a typo, notes 2.5), with the limiting shear stress of
-:func:`lubrication.laws.traction.limited_ellipse_traction` (unbounded as printed: tau ~ 5e13 Pa at
+:func:`lubedyn.lubrication.laws.traction.limited_ellipse_traction` (unbounded as printed: tau ~ 5e13 Pa at
 p = 0.43 GPa, D = 5e5 1/s).
 
 The rib film (eq. 24-25).  As printed, eq. 24 is a dimensionless number with no scale (notes 2.6)::
@@ -84,7 +84,7 @@ def rib_radii(sphere_radius: float, rib_contact_radius: float, flange_angle: flo
 
 
 def rib_hertz(load: float, sphere_radius: float, rib_contact_radius: float, flange_angle: float, e_star: float):
-    """Exact Hertz point contact (:class:`lubrication.laws.contact.HertzPoint`) of the rib contact;
+    """Exact Hertz point contact (:class:`lubedyn.lubrication.laws.contact.HertzPoint`) of the rib contact;
     ``a`` lies along the circumference (the larger relative radius)."""
     rx, ry = rib_radii(sphere_radius, rib_contact_radius, flange_angle)
     return point_contact(load, rx, ry, e_star)

@@ -65,7 +65,7 @@ pressure dependence (incompressible: exactly singular where the start has p = 0)
 regularisation ``creep`` eps: the shear rate D_HB(tau) + eps tau/phi, a Newtonian creep of
 viscosity phi/eps in parallel; since q = (2/G^2) int tau D dtau is linear in D, the flow factor is
 exactly Phi_HB + eps (same derivative in T_w; d ln Phi/d ln phi = (1 - m) Phi_HB/(Phi_HB + eps)).
-Papanastasiou's regularisation (:mod:`lubrication.laws.grease`) would not do: for n < 1 the phi D^n
+Papanastasiou's regularisation (:mod:`lubedyn.lubrication.laws.grease`) would not do: for n < 1 the phi D^n
 term still dominates at small D and the conductance still vanishes.
 :func:`herschel_bulkley_flow_factor`.
 
@@ -247,7 +247,7 @@ HB_PHI_CAP = 1e100  # Phi_HB is held there (derivatives 0): n > 1 at vanishing s
 @dataclass(frozen=True)
 class HerschelBulkleyFlow:
     """Herschel-Bulkley Poiseuille flow of a grease (module docstring): ``yield_stress`` tau_y [Pa] >= 0,
-    ``exponent`` n in (0, 2] (the range :class:`lubrication.laws.grease.Grease` accepts).  The
+    ``exponent`` n in (0, 2] (the range :class:`lubedyn.lubrication.laws.grease.Grease` accepts).  The
     consistency phi(p) [Pa s^n] is the lubricant's viscosity law.  ``creep`` eps >= 0 (default 0, the
     exact law): the regularisation Phi = Phi_HB + eps (module docstring), a Newtonian creep of
     viscosity phi/eps in parallel, so that plugs and vanishing pressure gradients keep a small
@@ -323,7 +323,7 @@ class Lubricant:
     (default) is Newtonian.  ``herschel_bulkley``: a :class:`HerschelBulkleyFlow`
     (grease; the viscosity law is then the consistency phi(p) [Pa s^n]), the
     Poiseuille flow times :func:`herschel_bulkley_flow_factor`; at most one of
-    the two.  Only :mod:`lubrication.ehl`'s finite-element solver uses them;
+    the two.  Only :mod:`lubedyn.lubrication.ehl`'s finite-element solver uses them;
     the others refuse them.
     """
 
@@ -355,7 +355,7 @@ class Lubricant:
 
     @classmethod
     def from_grease(cls, grease, density=None) -> "Lubricant":
-        """A Herschel-Bulkley lubricant of a :class:`lubrication.laws.grease.Grease`: viscosity law
+        """A Herschel-Bulkley lubricant of a :class:`lubedyn.lubrication.laws.grease.Grease`: viscosity law
         Barus(phi0, alpha) (the consistency, paper A eq. 26), flow HerschelBulkleyFlow(tau_y, n)."""
         return cls(Barus(grease.consistency, grease.pressure_viscosity), density or Incompressible(),
                    herschel_bulkley=HerschelBulkleyFlow(grease.yield_stress, grease.exponent))

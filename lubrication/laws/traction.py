@@ -19,7 +19,7 @@ times l_e/n_s)::
     f' = pi eps eta R'^(1/2) (v_b - v_r) / (2^(1/2) h0^(1/2))                         (eq. 12)
     eps = (2/pi) [atan z - z/(1 + z^2)],   z = 2^(1/2) b / (R' h0)^(1/2)             (eq. 13)
 
-eta is phi0 in the paper (its number read as Pa s); :class:`lubrication.laws.grease.Grease.viscosity`
+eta is phi0 in the paper (its number read as Pa s); :class:`lubedyn.lubrication.laws.grease.Grease.viscosity`
 gives it under each reading.  Rebuilt from the garbled text: eq. 12 prints ``(3 v_b - v_r(`` and
 ``(3 v_r - v_b(``; read here as (v_b - v_r) and (v_r - v_b), the "3" and "(" being extraction debris
 of the large brackets (as elsewhere in that text), which makes f_b = -f_r and the law linear in the
@@ -79,7 +79,7 @@ _T_NODES, _T_WEIGHTS = 0.25 * math.pi * (_X + 1.0), 0.25 * math.pi * _W   # on [
 _SIN_T = np.sin(_T_NODES)
 
 
-@njit(**INLINE)  # small leaf of the bearing rhs (see dynamics.cageless)
+@njit(**INLINE)  # small leaf of the bearing rhs (see lubedyn.dynamics.cageless)
 def traction_coefficient(slip_speed, entrainment_speed, mu_lim, srr_ref, v_reg):
     """``mu_lim tanh(|v_s| / max(srr_ref |u_e|, v_reg))`` (>= 0)."""
     scale = srr_ref * abs(entrainment_speed)
@@ -113,7 +113,7 @@ def paper_raceway_traction(slip_speed, viscosity, radius, film, half_width):
 
 def rheology(grease, limiting_stress=math.inf, limiting_slope=0.0, yield_rate=0.0):
     """The tuple (tau_y, phi0, n, alpha, tau_L0, gamma_L, D_r) the limited leaves take, from a
-    :class:`lubrication.laws.grease.Grease`; ``limiting_stress`` tau_L0 [Pa] (inf: no limit),
+    :class:`lubedyn.lubrication.laws.grease.Grease`; ``limiting_stress`` tau_L0 [Pa] (inf: no limit),
     ``limiting_slope`` gamma_L = d tau_L/dp, ``yield_rate`` D_r [1/s]."""
     return (float(grease.yield_stress), float(grease.consistency), float(grease.exponent),
             float(grease.pressure_viscosity), float(limiting_stress), float(limiting_slope), float(yield_rate))
@@ -122,7 +122,7 @@ def rheology(grease, limiting_stress=math.inf, limiting_slope=0.0, yield_rate=0.
 @njit(**INLINE)
 def _rate_terms(shear_rate, rheo):
     """(tau_y r(D), |D|^n): the parts of the Herschel-Bulkley stress that do not depend on pressure, so a
-    quadrature over a contact at one shear rate computes them once (:func:`lubrication.laws.grease.hb_stress`'s
+    quadrature over a contact at one shear rate computes them once (:func:`lubedyn.lubrication.laws.grease.hb_stress`'s
     terms)."""
     tau_y, phi0, n, alpha, tau_l0, gamma_l, d_r = rheo
     d = abs(shear_rate)

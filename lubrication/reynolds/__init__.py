@@ -5,7 +5,7 @@ Equation (strong form, film plane x, gauge pressure p, fluid fraction theta)::
     div( rho h^3/(12 eta) grad p ) = div( rho h theta u_m ) + rho theta dh/dt
 
 with u_m = (U_lower + U_upper)/2 the *mean* of the two surface velocities,
-eta(p), rho(p) from :mod:`lubrication.laws.lubricant`, and dh/dt the local
+eta(p), rho(p) from :mod:`lubedyn.lubrication.laws.lubricant`, and dh/dt the local
 (Eulerian) rate of change of the gap, including rigid-mode velocities.  The
 squeeze term is quasi-steady (d(theta)/dt and d(rho)/dt are not carried).
 
@@ -73,7 +73,7 @@ about 40 eps || |J| |p| ||; with residuals perturbed by 30 round-off units,
 tests/roundoff.py, 1.5e-9 ||R_0|| > 10 rtol, while the Newton update was
 2e-11 |p|: the old residual-only test ran out of iterations there).
 Otherwise, after ``max_iter`` iterations,
-:class:`~lubrication.errors.ConvergenceError`.
+:class:`~lubedyn.lubrication.errors.ConvergenceError`.
 
 Stop reasons: a converged solve records in ``info["stop reason"]`` which test
 stopped it ("tolerance met", "Newton step below rtol", "round-off floor",
@@ -88,7 +88,7 @@ pressure-dependent lubricants instead of the boundary conditions.
 
 Linearised film coefficients
 ----------------------------
-For a gap mode q_j (see :mod:`lubrication.gaps`), one extra linear solve with
+For a gap mode q_j (see :mod:`lubedyn.lubrication.gaps`), one extra linear solve with
 the converged Jacobian (same active set) gives dp/dq_j and dp/d(dq_j/dt);
 K_ij = -int (dp/dq_j) dh/dq_i dA and C_ij = -int (dp/d(dq_j/dt)) dh/dq_i dA.
 

@@ -1,6 +1,6 @@
 """Why a film solve stopped: iteration histories, cycles, divergence, the round-off floor.
 
-Part of :mod:`lubrication.reynolds` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.reynolds` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import numpy as np

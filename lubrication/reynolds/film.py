@@ -1,6 +1,6 @@
 """The film to solve: Film (gap, surfaces, lubricant, mesh, boundaries), Cavitation, SolverOptions.
 
-Part of :mod:`lubrication.reynolds` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.reynolds` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging
@@ -82,7 +82,7 @@ class SolverOptions:
     ``warm_start_levels``: coarser meshes solved first by :func:`solve`
     (nested iteration, :func:`solve_nested`).  ``None`` (default): 2 for
     ``"reynolds"``/``"jfo"`` cavitation on tensor meshes
-    (:func:`lubrication.mesh.interval`/:func:`~lubrication.mesh.rectangle`)
+    (:func:`lubedyn.lubrication.mesh.interval`/:func:`~lubedyn.lubrication.mesh.rectangle`)
     with at least :data:`WARM_START_MIN_DOFS` unknowns, falling back to a
     plain solve if a coarse level fails; 0 never; n > 0 always (the mesh must
     be a tensor mesh).
@@ -160,10 +160,10 @@ class Film:
             raise unknown_choice("film.element", self.element, ELEMENT_ORDERS)
         if self.lubricant.eyring_stress is not None:
             raise InputError(f"lubricant.eyring_stress = {self.lubricant.eyring_stress!r}: the Reynolds film solver is "
-                             "Newtonian; only the EHL solver (lubrication.ehl, finite elements) has Eyring flow")
+                             "Newtonian; only the EHL solver (lubedyn.lubrication.ehl, finite elements) has Eyring flow")
         if self.lubricant.herschel_bulkley is not None:
             raise InputError(f"lubricant.herschel_bulkley = {self.lubricant.herschel_bulkley!r}: the Reynolds film "
-                             "solver is Newtonian; only the EHL solver (lubrication.ehl, finite elements) has "
+                             "solver is Newtonian; only the EHL solver (lubedyn.lubrication.ehl, finite elements) has "
                              "Herschel-Bulkley flow")
         modes = self.gap.modes()
         for name in self.mode_velocities:

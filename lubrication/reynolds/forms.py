@@ -1,6 +1,6 @@
 """Weak forms of the Reynolds equation on scikit-fem bases, and field interpolation (shared with EHL).
 
-Part of :mod:`lubrication.reynolds` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.reynolds` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import numpy as np
@@ -177,7 +177,7 @@ def make_basis(mesh, element: str = "P1") -> skfem.CellBasis:
 
 
 def unwrapped_dofs(basis) -> tuple[skfem.Mesh, np.ndarray]:
-    """``(mesh, index)``: the unwrapped mesh of ``basis`` (:func:`lubrication.mesh.unwrapped`)
+    """``(mesh, index)``: the unwrapped mesh of ``basis`` (:func:`lubedyn.lubrication.mesh.unwrapped`)
     and, for a field u of ``basis``, ``u[index]`` is the same field for
     ``basis.elem`` on that mesh.  On non-periodic meshes: the mesh itself and
     the identity."""

@@ -1,6 +1,6 @@
 """_Problem: assembly of the Reynolds residual and Jacobian, cavitation sets, linear solves.
 
-Part of :mod:`lubrication.reynolds` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.reynolds` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging
@@ -95,7 +95,7 @@ class _Problem:
                 if name not in names:
                     raise unknown_choice("film.dirichlet boundary", name, list(names))
                 values[b.get_dofs(names[name]).all()] = float(value)
-        # on a periodic mesh (periodic in x, lubrication.mesh.rectangle) the seam
+        # on a periodic mesh (periodic in x, lubedyn.lubrication.mesh.rectangle) the seam
         # dofs sit at x = x_max: measure x distances modulo the period
         period = float(np.ptp(film.mesh.p[0])) if isinstance(film.mesh, MeshDG) else None
         for point, value in film.pressure_points:
@@ -117,7 +117,7 @@ class _Problem:
     def _boundary_dofs(self):
         """The dofs on every boundary facet (``film.dirichlet is None``).
 
-        P1 (vertex dofs only): the nodal dofs of :func:`lubrication.mesh.boundary_vertices`,
+        P1 (vertex dofs only): the nodal dofs of :func:`lubedyn.lubrication.mesh.boundary_vertices`,
         which finds them without building the mesh's facets (scikit-fem's
         ``boundary_facets`` costs 0.9-1.5 s on a 1000 x 1000 quad mesh, about a sixth of the
         whole solve).  Other elements: scikit-fem's ``get_dofs(boundary_facets())`` (their

@@ -1,6 +1,6 @@
 """solve, solve_nested (nested iteration), film_coefficients: the Reynolds solve drivers.
 
-Part of :mod:`lubrication.reynolds` (the package docstring gives the equations and sources)."""
+Part of :mod:`lubedyn.lubrication.reynolds` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
 
 import logging
@@ -43,7 +43,7 @@ def _auto_warm_start(film: Film) -> int:
 
 
 def solve(film: Film, initial=None) -> "FilmSolution":
-    """Solve ``film``; return a :class:`~lubrication.solution.FilmSolution`.
+    """Solve ``film``; return a :class:`~lubedyn.lubrication.solution.FilmSolution`.
 
     Without ``initial``, ``film.options.warm_start_levels`` may first solve
     coarser meshes (:func:`solve_nested`; by default for Reynolds/JFO
@@ -280,8 +280,8 @@ def _prolong(solution, axes, doflocs) -> _Guess:
 
 
 def _tensor_axes(mesh):
-    """``(xs,)`` or ``(xs, ys)`` if ``mesh`` is what :func:`lubrication.mesh.interval`
-    or :func:`lubrication.mesh.rectangle` builds on those coordinates, else None."""
+    """``(xs,)`` or ``(xs, ys)`` if ``mesh`` is what :func:`lubedyn.lubrication.mesh.interval`
+    or :func:`lubedyn.lubrication.mesh.rectangle` builds on those coordinates, else None."""
     if type(mesh) is skfem.MeshLine1:
         xs = np.unique(mesh.p[0])
         return (xs,) if mesh.t.shape[1] == xs.size - 1 else None
@@ -326,14 +326,14 @@ def solve_nested(film: Film, levels: int = 2) -> "FilmSolution":
     the cavitation boundary about one node column per iteration, so its
     iteration count grows with the mesh; started from the coarse solution it
     needs a few per level.  The mesh must come from
-    :func:`lubrication.mesh.interval` or :func:`lubrication.mesh.rectangle`
+    :func:`lubedyn.lubrication.mesh.interval` or :func:`lubedyn.lubrication.mesh.rectangle`
     (periodic or not); ``InputError`` otherwise.  The answer is that of
     :func:`solve` (same convergence test on the finest mesh).
     ``info["nested"]`` lists (dofs, iterations, seconds) per level, coarsest
     first; ``info["nested_wall_time"]`` is the whole chain.
 
     >>> import numpy as np
-    >>> from lubrication import CylinderPlane, Cavitation, Film, Lubricant, mesh
+    >>> from lubedyn.lubrication import CylinderPlane, Cavitation, Film, Lubricant, mesh
     >>> b = np.sqrt(2 * 10e-3 * 1e-6)
     >>> film = Film(mesh.interval(-30 * b, 3 * b, 400), CylinderPlane(10e-3, 1e-6), Lubricant.newtonian(0.05),
     ...             velocity_lower=(2.0,), velocity_upper=(2.0,), cavitation=Cavitation("reynolds"))
@@ -345,7 +345,7 @@ def solve_nested(film: Film, levels: int = 2) -> "FilmSolution":
     axes = _tensor_axes(film.mesh)
     if axes is None:
         raise InputError(
-            f"solve_nested needs a tensor mesh from lubrication.mesh.interval or mesh.rectangle; "
+            f"solve_nested needs a tensor mesh from lubedyn.lubrication.mesh.interval or mesh.rectangle; "
             f"got a {type(film.mesh).__name__} that is not one"
         )
     t0 = time.perf_counter()

@@ -1,0 +1,1 @@
+"""The bundled case files (``*.toml``) and film maps (``maps/*.npz``): package data of ``lubedyn``."""
