@@ -272,16 +272,23 @@ def summarise(case: FilmCase, solution, coefficients=None) -> dict:
     return out
 
 
-def film_reynolds_number(case: FilmCase, solution) -> float:
-    """rho0 U h_max / eta0: the fastest surface (or squeeze) speed U, the thickest film on the mesh,
-    the lubricant's density and viscosity at ambient pressure (a conservative upper bound: the
-    viscosity laws only rise with pressure)."""
+def surface_speeds(case: FilmCase) -> list[float]:
+    """The speeds [m/s] of the film's surfaces: the lower surface's, and the upper's (a journal's
+    ``speed`` times its radius, or ``velocity_upper``)."""
     mo = case.motion
-    speeds = [float(np.linalg.norm(mo.velocity_lower)), abs(mo.squeeze)]
+    speeds = [float(np.linalg.norm(mo.velocity_lower))]
     if mo.speed is not None:
         speeds.append(abs(mo.speed) * case.gap.radius)
     elif mo.velocity_upper is not None:
         speeds.append(float(np.linalg.norm(mo.velocity_upper)))
+    return speeds
+
+
+def film_reynolds_number(case: FilmCase, solution) -> float:
+    """rho0 U h_max / eta0: the fastest surface (or squeeze) speed U, the thickest film on the mesh,
+    the lubricant's density and viscosity at ambient pressure (a conservative upper bound: the
+    viscosity laws only rise with pressure)."""
+    speeds = surface_speeds(case) + [abs(case.motion.squeeze)]
     h_max = float(np.max(solution.film_thickness))
     return case.lubricant.density.rho0 * max(speeds) * h_max / case.lubricant.viscosity.eta0
 
@@ -311,12 +318,7 @@ def bound_scales(case: FilmCase, film, solution) -> dict:
     if lub.viscosity.law != "constant" or lub.eyring_stress is not None:
         return out
     mo = case.motion
-    speeds = [float(np.linalg.norm(mo.velocity_lower))]
-    if mo.speed is not None:
-        speeds.append(abs(mo.speed) * case.gap.radius)
-    elif mo.velocity_upper is not None:
-        speeds.append(float(np.linalg.norm(mo.velocity_upper)))
-    speeds += [abs(v) for v in mo.mode_velocities.values()]
+    speeds = surface_speeds(case) + [abs(v) for v in mo.mode_velocities.values()]
     squeeze = abs(mo.squeeze or 0.0)
     p = np.asarray(film.mesh.p, dtype=float)
     extent = float(np.max(np.ptp(p, axis=1)))

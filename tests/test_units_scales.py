@@ -19,24 +19,7 @@ import pytest
 from lubedyn import cli
 from lubedyn.config import CASES_DIR, CaseError, FilmCase, GapModel, load_case, load_case_text, read_toml
 
-EHL_DIRECT = """scene = "ehl"
-[contact]
-radius_x = "10 mm"
-radius_y = "10 mm"
-[materials]
-modulus1 = "210 GPa"
-poisson1 = 0.3
-[lubricant.viscosity]
-law = "barus"
-eta0 = "0.04 Pa s"
-alpha = "2e-8 m^2/N"
-[operating]
-mean_speed = "1 m/s"
-load = "20 N"
-[grid]
-nx = 33
-ny = 17
-"""
+from test_cli import EHL_DIRECT  # (the same steel ball on a flat as the CLI tests)
 
 
 def validate(capsys, case, *sets):
