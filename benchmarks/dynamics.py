@@ -11,7 +11,7 @@ Writes ``benchmarks/results/dynamics.json`` and ``dynamics.png`` (``--quick``:
 The scene is ``cases/cageless_6206_10krpm.toml`` (rotor drop at 10,000 rpm
 onto the inner ring, Fr = 2000 N, Fa = 200 N, 14 balls, 6-DOF balls,
 closed-form ball-ball film, one outer-ring slot), built exactly as the CLI
-builds it (:func:`lubedyn.dynamics_scene.build`), from its quasi-static
+builds it (:func:`lubedyn.scenes.dynamics.build`), from its quasi-static
 initial state.
 
 Sections
@@ -105,7 +105,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks.dynam
 import _common  # noqa: E402
 
 from lubedyn.config import CASES_DIR, load_case  # noqa: E402
-from lubedyn.dynamics_scene import ball_centres, build  # noqa: E402
+from lubedyn.scenes.dynamics import ball_centres, build  # noqa: E402
 from lubedyn.dynamics.analysis import collision_events  # noqa: E402
 from lubedyn.dynamics.cageless import (  # noqa: E402
     D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, forces, forces_many, rhs)
@@ -870,7 +870,7 @@ import json, sys, time
 t0 = time.perf_counter()
 import numpy as np
 from lubedyn.config import load_case
-from lubedyn.dynamics_scene import build
+from lubedyn.scenes.dynamics import build
 from lubedyn.dynamics.cageless import rhs
 from lubedyn.dynamics.integrators import integrate
 t1 = time.perf_counter()

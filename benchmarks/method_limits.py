@@ -206,7 +206,7 @@ def ehl_point_multigrid(Ms, grids):
 
 # ---------------------------------------------------------------- 3: journal
 def journal(eccentricities, meshes, reference_mesh):
-    from lubedyn import film_scene
+    from lubedyn.scenes import film as film_scene
     from lubedyn.config import CASES_DIR, load_case
 
     case_file = CASES_DIR / "journal_finite.toml"

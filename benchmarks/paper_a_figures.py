@@ -11,7 +11,7 @@ as the paper's: Fig. 5 the cone orbit, the roller displacements, the cage whirl 
 Figs. 6-9 tilt, skew, roller slip and cage slip of roller 0 against time at 2, 3, 4 and 5 krpm with the
 loaded zone shaded; Figs. 10-13 the same against the preload; Figs. 14-16 the means against the parameter
 over the paper's window and the converged window with the window-to-window change as error bars),
-``claims.md`` (:func:`lubedyn.paper_a_claims.markdown`) and ``studies.json`` (every point's headline
+``claims.md`` (:func:`lubedyn.papers.wu2018.claims.markdown`) and ``studies.json`` (every point's headline
 numbers, for the docs).
 """
 from __future__ import annotations
@@ -28,7 +28,7 @@ import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 
-from lubedyn import paper_a_claims as C  # noqa: E402
+from lubedyn.papers.wu2018 import claims as C  # noqa: E402
 from lubedyn.outputs import read_timeseries  # noqa: E402
 
 OUT = ROOT / "benchmarks" / "results" / "paper_a"

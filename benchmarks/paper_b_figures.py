@@ -1,6 +1,6 @@
 """Paper B's Figs. 6-8 from several dynamics runs: phase portraits x, y, z of ball ``analysis.ball``
 (one row per direction, one column per run) with the ideal-state orbit, and a table of the settling
-and spin-up times (:func:`lubedyn.paper_b_figures.compare_runs`).
+and spin-up times (:func:`lubedyn.papers.zhang2024.figures.compare_runs`).
 
 ::
 
@@ -16,7 +16,7 @@ import argparse
 import sys
 
 from lubedyn.lubrication.errors import InputError
-from lubedyn.paper_b_figures import compare_runs
+from lubedyn.papers.zhang2024.figures import compare_runs
 
 
 def main(argv=None) -> int:

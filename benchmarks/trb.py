@@ -66,7 +66,7 @@ def _means(summary):
 
 
 def _run(duration, *overrides):
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
 
     t0 = time.perf_counter()
     s = S.run(_case(duration, *overrides)).summary
@@ -75,7 +75,7 @@ def _run(duration, *overrides):
 
 
 def rhs_costs():
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
     from lubedyn.dynamics.tapered import kernels as K
 
     out = {}
@@ -96,7 +96,7 @@ def slice_convergence(counts=(5, 10, 20, 40, 80), duration=0.005) -> dict:
     """Slice convergence (issue 23 sec. 3): the loaded-zone mean skew and tilt over the second half of 5 ms
     of Fig. 5's point (RK4 auto, traction table) against the slice count, the differences between
     successive counts and the observed order log2(d_n / d_2n)."""
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
     from lubedyn.config import load_case
 
     rows = {}
@@ -132,7 +132,7 @@ def target() -> dict:
     tests/test_trb_scene.py) with the limited traction by quadrature and by table, and with the roller EHL
     maps' traction ("map"); the order quadrature, table, map, quadrature, table, map after a warm-up run;
     the map once more at half its step (its step error); the means over the paper's window."""
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
     from lubedyn.config import load_case
 
     def once(over):
@@ -179,7 +179,7 @@ def main(argv=None) -> dict:
     if a.slices:
         return slice_convergence()
     T = 0.005 if a.quick else a.duration
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
 
     est = S.build(_case(T)).stable_step()
     out = {"machine": machine_info(), "case": f"cases/{CASE.name}", "simulated time [s]": T,

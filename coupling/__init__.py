@@ -16,11 +16,13 @@ The main API, loaded on first use (importing ``lubedyn`` imports nothing heavy):
 
 - cases: ``load_case`` (a TOML file, ``smoke``, ``--set``-style ``overrides``), ``load_case_text``,
   ``CaseError``, ``CASES_DIR`` and ``bundled_cases`` (the bundled cases), of :mod:`lubedyn.config`;
-- runs: :func:`run` (any scene, by ``case.scene``) and each scene's own ``run``: ``run_film``, ``run_ehl``,
-  ``run_map``, ``run_dynamics``, ``run_static``, ``run_tapered`` (``lubedyn.<scene>_scene.run``); each
-  returns the scene's result (``summary``, ``files``) and writes its outputs into ``out_dir`` when given;
+- runs: :func:`run` (any scene, by ``case.scene``: :mod:`lubedyn.scenes`) and each scene's own ``run``:
+  ``run_film``, ``run_ehl``, ``run_map``, ``run_dynamics``, ``run_static``, ``run_tapered``
+  (``lubedyn.scenes.<scene>.run``); each returns the scene's result (``summary``, ``files``) and writes
+  its outputs into ``out_dir`` when given;
 - films: ``Film`` and ``solve`` of :mod:`lubedyn.lubrication`; maps: ``FilmMap`` of :mod:`lubedyn.maps`;
-- the sub-packages :mod:`lubedyn.lubrication`, :mod:`lubedyn.dynamics` and ``lubedyn.cases``.
+- the sub-packages :mod:`lubedyn.lubrication`, :mod:`lubedyn.dynamics`, :mod:`lubedyn.scenes`,
+  :mod:`lubedyn.papers` and ``lubedyn.cases``.
 
 >>> import lubedyn
 >>> case = lubedyn.load_case(lubedyn.CASES_DIR / "inclined_slider.toml", smoke=True)
@@ -28,44 +30,30 @@ The main API, loaded on first use (importing ``lubedyn`` imports nothing heavy):
 >>> round(result.summary["Load per unit width [N/m]"])   # N/m
 63549
 
-The modules of the coupling layer:
+The rooms of the coupling layer:
 
 =====================  ==========================================================
-module                 responsibility
+module / package       responsibility
 =====================  ==========================================================
 ``units``              quantities at the input boundary: ``"50 um"`` -> 5e-05 m,
                        dimension checks ("has units of pressure, expected length")
 ``config``             case files: TOML -> ``[smoke]`` and ``--set`` merged ->
                        pydantic validation (unknown keys with "did you mean",
                        one-line errors naming key, value and what is allowed) ->
-                       SI model; ``case.resolved.toml``
-``film_scene``         film scene: case -> mesh, gap, lubricant -> ``Film`` ->
-                       solve -> summary (units in names), ``.vtu``, ``.png``
-``ehl_scene``          EHL scene: case -> ``EHLContact`` (radii, from a bearing,
-                       or Moes M, L) -> ``solve_ehl`` -> summary with Hertz and
-                       closed-form film values, ``ehl.vtu``, ``profiles.png``
+                       SI model; bundled cases by name; ``case.resolved.toml``
+``scenes``             one module per scene behind one interface
+                       (:class:`lubedyn.scenes.Scene`) and the one registry
+                       ``SCENES``: ``film``, ``ehl`` (+ ``ehl_case``, its
+                       schema), ``map``, ``dynamics`` (+ ``dynamics_lyapunov``),
+                       ``static``, ``tapered``; ``runner`` (a case -> its
+                       scene), ``study`` (a runner over many cases)
 ``film_points``        point kinds of film maps (ball-ball Reynolds film, EHL
-                       race contacts: axes, outputs, evaluate) and paper B's
-                       contact laws as plain-float reference functions
+                       race and roller contacts: axes, outputs, evaluate)
 ``maps``               FilmMap: sweeps over local processes or Dask, resume,
                        fitted power law, accuracy report, self-describing file
-``map_scene``          map scene: a point kind swept over its axes -> map file,
-                       PNG, ``.pvd`` series of the film fields
-``dynamics_scene``     dynamics scene: the cage-less ball bearing of paper B ->
-                       integrate -> collisions, Lyapunov exponents, spectrum,
-                       time series, ``.pvd`` of balls, rings and films, PNGs
-``static_scene``       static scene: paper A's tapered roller bearing at quasi-static
-                       equilibrium (``lubedyn.dynamics.tapered.quasistatic``) -> loads,
-                       ``bearing.vtu``
-``tapered_scene``      tapered scene: paper A's bearing in time -> tilt, skew,
-                       slip, cage whirl, ``bearing.pvd``
-``dynamics_lyapunov``  (see the dynamics scene) end of the transient,
-                       co-rotating coordinates, Wolf's, Rosenstein's and
-                       Benettin's exponents of a run
-``paper_b_figures``    paper B's figures and the quantities behind them
-``guide_land``         FEM map of the guide-land film of paper A's cage
-``parameters``         each paper's data in one cited module (Zhang2024: paper
-                       B, Wu2018: paper A)
+``papers``             each paper's room: its parameter set, its claims or
+                       figures (``wu2018``: paper A, ``zhang2024``: paper B)
+``bounds``             physical bounds every output is checked against
 ``limits``             size limits: memory and work estimated before anything
                        is allocated
 ``validity``           validity warnings (pressure, film, Reynolds number)
@@ -73,10 +61,6 @@ module                 responsibility
 ``outputs``            atomic writers (temporary file + rename) for run outputs;
                        a run's folder: staging, ``manifest.json``, stale
                        staging folders of killed runs removed
-``study``              studies: a base case over axes of ``--set`` values and
-                       ensemble members, each run a run folder (resumable,
-                       local processes or Dask) -> ``study.csv``, ``.json``,
-                       ``.png``
 ``cli``                ``lubedyn run | validate | study | cases | info``; exit codes
                        0 ok, 1 failed solve, 2 input error, 3 output not
                        writable, 130 interrupted, 141 stdout closed
@@ -95,24 +79,16 @@ import importlib
 _LAZY = {
     **{name: (".config", name) for name in ("CASES_DIR", "CaseError", "bundled_cases", "load_case",
                                             "load_case_text")},
-    **{f"run_{scene}": (f".{scene}_scene", "run") for scene in ("film", "ehl", "map", "dynamics", "static",
+    **{f"run_{scene}": (f".scenes.{scene}", "run") for scene in ("film", "ehl", "map", "dynamics", "static",
                                                                 "tapered")},
     "Film": (".lubrication", "Film"),
     "solve": (".lubrication", "solve"),
     "FilmMap": (".maps", "FilmMap"),
+    "run": (".scenes.runner", "run"),
 }
-_SUBPACKAGES = ("lubrication", "dynamics", "cases")
+_SUBPACKAGES = ("lubrication", "dynamics", "cases", "scenes", "papers")
 
 # no ``__all__``: the names above live in their own modules, where the API reference documents them
-
-
-def run(case, out_dir=None, *, name: str | None = None, source: str = "", smoke: bool = False):
-    """Run a validated case (:func:`load_case`) with its scene's ``run`` (``lubedyn.<scene>_scene.run``,
-    what ``lubedyn run`` calls) and return the scene's result; with ``out_dir`` the outputs are written
-    there.  ``name`` (default: the scene) and ``source`` (the case file) label the summary, ``smoke`` marks
-    it as a smoke run."""
-    module = importlib.import_module(f".{case.scene}_scene", __name__)
-    return module.run(case, out_dir, name=name or case.scene, source=source, smoke=smoke)
 
 
 def __getattr__(name: str):

@@ -13,7 +13,7 @@
 ``--dry-run`` validates and builds the mesh and film, prints the plan and the
 resolved case, and writes nothing.  ``study`` runs a base case over axes of ``--set`` values
 and ensemble members, each run a normal run folder under ``DIR/runs/``, and writes
-``study.csv``, ``study.json`` and ``study.png`` (:mod:`lubedyn.study`; ``--out`` defaults
+``study.csv``, ``study.json`` and ``study.png`` (:mod:`lubedyn.scenes.study`; ``--out`` defaults
 to ``runs/<study stem>``); a run that fails is recorded and the others go on, and the exit
 code is then 1.
 
@@ -67,95 +67,9 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_INPUT, f"lubedyn: error: {message} (see '{self.prog} --help')\n")
 
 
-def _case_path(text: str) -> Path:
-    """The case file of ``text``: a path, or the name of a bundled case (with "did you mean")."""
-    from .config import CASES_DIR, CaseError, bundled_cases
-
-    path = Path(text)
-    if path.is_dir():
-        raise CaseError(f"case file {text!r} is a directory; expected a .toml case file")
-    if not path.exists() and path.suffix == "" and (CASES_DIR / f"{text}.toml").is_file():
-        return CASES_DIR / f"{text}.toml"
-    if path.exists():
-        return path
-    if path.suffix in ("", ".toml") and len(path.parts) == 1:
-        hint = did_you_mean(path.stem, [p.stem for p in bundled_cases()])
-        if hint:
-            raise CaseError(f"case file {text!r} not found, nor a bundled case of that name{hint} "
-                            "('lubedyn cases' lists them)")
-    if path.parent.is_dir():  # a typo in a path: the case files next to it
-        siblings = {p.name: p for p in path.parent.glob("*.toml")}
-        close = close_matches(path.name, siblings)
-        if close:
-            raise CaseError(f"case file {text!r} not found; did you mean "
-                            f"{' or '.join(repr(str(siblings[c])) for c in close)}?")
-    return path
-
-
-def _smoke_keys(table: dict, prefix: str = "") -> list[str]:
-    """Dotted keys of the values of a (nested) ``[smoke]`` table."""
-    keys = []
-    for key, value in table.items():
-        if isinstance(value, dict):
-            keys += _smoke_keys(value, prefix + key + ".")
-        else:
-            keys.append(prefix + key)
-    return keys
-
-
-def _in_smoke(exc, raw: dict) -> Exception:
-    """``exc`` (an error of the ``[smoke]`` variant only) re-worded to say so: ``smoke.KEY ...`` when it
-    names a key that the ``[smoke]`` table sets, else ``in [smoke]: ...``."""
-    from .config import CaseError
-
-    text = _one_line(exc)
-    keys = sorted(_smoke_keys(raw.get("smoke") or {}), key=len, reverse=True)
-    for key in keys:
-        if text.startswith(key) and text[len(key):len(key) + 1] in (" ", ":", ".", "[", ""):
-            return CaseError(f"smoke.{text}")
-    return CaseError(f"in [smoke]: {text}")
-
-
-def _check_smoke(raw: dict, overrides, exc) -> Exception:
-    """``exc`` raised by the ``--smoke`` variant of a case: if the case without its ``[smoke]`` table
-    validates and builds, the error lives in ``[smoke]`` and is re-worded to say so."""
-    from lubedyn.lubrication.errors import InputError
-
-    from .config import validate_raw
-
-    if not isinstance(raw.get("smoke"), dict):
-        return exc
-    try:
-        base = validate_raw(raw, smoke=False, overrides=overrides)
-        _scene(base)[1](base)
-    except InputError:
-        return exc  # the error is not the smoke table's alone
-    return _in_smoke(exc, raw)
-
-
-def load_case_file(case: str, *, smoke: bool = False, overrides=()):
-    """(path, raw TOML mapping, validated case) of ``case`` (a path or a bundled case's name) with the
-    ``[smoke]`` table (``smoke``) and the ``--set`` ``overrides`` merged, as ``lubedyn run`` loads it;
-    an error that only the ``[smoke]`` variant has is worded to say so.  Raises InputError."""
-    from lubedyn.lubrication.errors import InputError
-
-    from .config import CaseError, read_toml, validate_raw
-
-    overrides = list(overrides or ())
-    path = _case_path(case)
-    try:
-        raw = read_toml(path)
-    except OSError as exc:  # e.g. no read permission: an input error, not a failed run
-        raise CaseError(f"case file {str(path)!r} cannot be read: {exc.strerror or exc}") from None
-    try:
-        return path, raw, validate_raw(raw, smoke=smoke, overrides=overrides)
-    except InputError as exc:
-        if smoke:
-            raise _check_smoke(raw, overrides, exc) from None
-        raise
-
-
 def _load(args):
+    from lubedyn.config import load_case_file
+
     return load_case_file(args.case, smoke=args.smoke, overrides=args.set or ())
 
 
@@ -164,7 +78,7 @@ def _out_dir(args, path: Path) -> Path:
     and, before any work, a folder that cannot be made (:class:`lubedyn.outputs.OutputError`)."""
     from lubedyn.lubrication.errors import InputError
 
-    from .outputs import OutputError
+    from lubedyn.outputs import OutputError
 
     if args.out is not None and not args.out.strip():
         raise InputError(f"--out = {args.out!r}: an empty path; give a folder (default runs/{path.stem})")
@@ -181,87 +95,39 @@ def _out_dir(args, path: Path) -> Path:
     return out
 
 
-def _scene(case):
-    """(scene module, builder) of a validated case.
-
-    A scene is a module ``lubedyn.<scene>_scene`` with ``build(case)`` (validates
-    what the schema cannot: geometry, positive gaps ...; raises InputError),
-    ``describe(case, built) -> str``, ``run(case, out_dir, *, name, source, smoke)``
-    returning an object with ``summary`` (dict) and ``files`` (paths), and
-    ``FIELD_FILES``: ((file name, ``output.write`` key), ...) for the dry-run plan.
-    """
-    import importlib
-
-    module = importlib.import_module(f"lubedyn.{case.scene}_scene")
-    return module, module.build
-
-
-def run_loaded(path: Path, raw: dict, case, out, *, smoke: bool = False, overrides=()):
-    """Run a case loaded by :func:`load_case_file` into the folder ``out`` with its scene's ``run``
-    (the call of ``lubedyn run``); returns the scene's result.  An InputError that only the
-    ``[smoke]`` variant's build has is worded to say so."""
-    from lubedyn.lubrication.errors import InputError
-
-    scene, build = _scene(case)
-    try:
-        return scene.run(case, out, name=path.stem, source=str(path), smoke=smoke)
-    except InputError as exc:
-        if not smoke:
-            raise
-        try:  # an error of the smoke variant's build: say that it lives in [smoke]
-            build(case)
-        except InputError:
-            raise _check_smoke(raw, list(overrides or ()), exc) from None
-        raise
-
-
 def cmd_run(args) -> int:
+    from lubedyn import scenes
+    from lubedyn.config import check_smoke, resolved_toml
     from lubedyn.lubrication.errors import InputError
-
-    from .config import resolved_toml
+    from lubedyn.scenes.runner import run_loaded
 
     path, raw, case = _load(args)
-    scene, build = _scene(case)
+    scene = scenes.get(case.scene)
     out = _out_dir(args, path)
     if args.dry_run:
         try:
-            built = build(case)
+            built = scene.build(case)
         except InputError as exc:
-            raise (_check_smoke(raw, args.set or (), exc) if args.smoke else exc) from None
+            raise (check_smoke(raw, args.set or (), exc) if args.smoke else exc) from None
         _say(f"dry run: {scene.describe(case, built)}")
         _say(f"dry run: would write {out}/summary.json, case.resolved.toml"
              + "".join(f", {f}" for f, k in scene.FIELD_FILES if k in case.output.write) + ", manifest.json")
         _say(resolved_toml(case, f"dry run of {path}"))
         return EXIT_OK
     result = run_loaded(path, raw, case, out, smoke=args.smoke, overrides=args.set or ())
-    s = result.summary
-    if hasattr(scene, "headline"):  # the scene chooses what to show
-        for line in scene.headline(s):
-            _say(line)
-        _say(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
-        return EXIT_OK
-    shown = [k for k in s if k.startswith(("Load [", "Load per unit width [", "Load per length [", "Maximum pressure",
-                                           "Hertz pressure", "Central film", "Minimum film", "Attitude angle",
-                                           "Eccentricity ratio"))]
-    for key in shown:
-        if isinstance(s[key], (int, float)):
-            _say(f"{key:<36} {s[key]:.6g}")
-    if "Newton iterations [-]" in s:
-        _say(f"{'Newton iterations [-]':<36} {s.get('Newton iterations [-]')}, "
-             f"{s.get('Degrees of freedom [-]')} dofs, {s['Run time [s]']:.3g} s")
-    else:
-        _say(f"{'Run time [s]':<36} {s['Run time [s]']:.3g}")
+    for line in scene.headline(result.summary):
+        _say(line)
     _say(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
     return EXIT_OK
 
 
 def cmd_study(args) -> int:
-    """``lubedyn study``: run a study (:mod:`lubedyn.study`) and write its tables; exit 1 when a run failed.
+    """``lubedyn study``: run a study (:mod:`lubedyn.scenes.study`) and write its tables; exit 1 when a run failed.
     Runs that finished with warnings are counted on the final line (each one is logged, and tabulated
     as ``ok-with-warnings``) but do not change the exit code: their results exist, flagged."""
     from lubedyn.lubrication.errors import InputError
 
-    from .study import read_study, run_study
+    from lubedyn.scenes.study import read_study, run_study
 
     if args.workers is not None and args.workers < 0:
         raise InputError(f"--workers = {args.workers} must be >= 0 (0: every usable core)")
@@ -271,7 +137,7 @@ def cmd_study(args) -> int:
     path = Path(args.study)
     study = read_study(path)
     out = _out_dir(args, path)
-    progress = logging.getLogger("lubedyn.study")  # "run 3/16 done (...)" on stderr without -v
+    progress = logging.getLogger("lubedyn.scenes.study")  # "run 3/16 done (...)" on stderr without -v
     saved = progress.level
     if progress.getEffectiveLevel() > logging.INFO:
         progress.setLevel(logging.INFO)
@@ -291,22 +157,22 @@ def cmd_study(args) -> int:
 
 
 def cmd_validate(args) -> int:
+    from lubedyn import scenes
+    from lubedyn.config import check_smoke, in_smoke, validate_raw
     from lubedyn.lubrication.errors import InputError
 
-    from .config import validate_raw
-
     path, raw, case = _load(args)
-    scene, build = _scene(case)
+    scene = scenes.get(case.scene)
     try:
-        built = build(case)
+        built = scene.build(case)
     except InputError as exc:
-        raise (_check_smoke(raw, args.set or (), exc) if args.smoke else exc) from None
+        raise (check_smoke(raw, args.set or (), exc) if args.smoke else exc) from None
     if not args.smoke and isinstance(raw.get("smoke"), dict):  # the smoke variant must be valid too
         try:  # the base case is valid: an error here lives in [smoke]
             smoke_case = validate_raw(raw, smoke=True, overrides=args.set or ())
-            _scene(smoke_case)[1](smoke_case)
+            scenes.get(smoke_case.scene).build(smoke_case)
         except InputError as exc:
-            raise _in_smoke(exc, raw) from None
+            raise in_smoke(exc, raw) from None
     _say(f"OK {path}: {scene.describe(case, built)}")
     return EXIT_OK
 
@@ -314,7 +180,7 @@ def cmd_validate(args) -> int:
 def cmd_cases(args) -> int:
     import tomllib
 
-    from .config import bundled_cases
+    from lubedyn.config import bundled_cases
 
     paths = bundled_cases()
     width = max((len(p.stem) for p in paths), default=10)
@@ -542,7 +408,7 @@ def main(argv=None) -> int:
                 return _exit_interrupted()
             from lubedyn.lubrication.errors import ConvergenceError, InputError
 
-            from .outputs import OutputError
+            from lubedyn.outputs import OutputError
 
             if isinstance(exc, InputError):
                 code = EXIT_INPUT

@@ -41,8 +41,8 @@ journal (periodic in theta) ``bottom top``; disk ``edge``.  A boundary not
 listed in ``pressures`` is held at ``ambient``; one listed in ``sealed`` has
 no flow through it.
 
-The EHL scene's layout is in :mod:`lubedyn.ehl_case`, the map and dynamics scenes' in
-:mod:`lubedyn.map_scene` and :mod:`lubedyn.dynamics_scene`.
+The EHL scene's layout is in :mod:`lubedyn.scenes.ehl_case`, the map and dynamics scenes' in
+:mod:`lubedyn.scenes.map` and :mod:`lubedyn.scenes.dynamics`.
 
 >>> case = load_case_text('scene = "film"\\n[gap]\\ntype = "sphere_plane"\\nradius = "5 mm"\\n'
 ...                       'h0 = "2 um"\\n[mesh]\\nradius = "1 mm"\\n[lubricant]\\nviscosity = "0.1 Pa s"')
@@ -67,19 +67,14 @@ from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr
                       model_validator)
 from pydantic_core import PydanticCustomError
 
-from lubedyn.lubrication.errors import InputError, did_you_mean
+from lubedyn import scenes
+from lubedyn.lubrication.errors import InputError, close_matches, did_you_mean
 from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 
-from .parameters import SETS as PARAMETER_SETS
-from .parameters import apply_parameter_set, parameter_set
-from .units import UnitError, parse_quantity, si_unit, unit_hint, written
+from lubedyn.papers import SETS as PARAMETER_SETS
+from lubedyn.papers import apply_parameter_set, parameter_set
+from lubedyn.units import UnitError, parse_quantity, si_unit, unit_hint, written
 
-SCENES = ("film", "ehl", "map", "dynamics", "static", "tapered")
-PLANNED_SCENES: tuple[str, ...] = ()
-# scenes whose case model lives in their own module
-# (attribute ``CaseModel``), imported only when a case of that scene is read
-SCENE_MODULES = {"ehl": "lubedyn.ehl_case", "map": "lubedyn.map_scene", "dynamics": "lubedyn.dynamics_scene",
-                 "static": "lubedyn.static_scene", "tapered": "lubedyn.tapered_scene"}
 # the bundled cases and maps: package data of ``lubedyn.cases`` (the checkout's ``cases/`` in an editable
 # install, ``site-packages/lubedyn/cases`` in a wheel's), a real folder either way
 CASES_DIR = Path(importlib.resources.files("lubedyn.cases"))
@@ -165,9 +160,11 @@ def rule(key: str, value, text: str) -> PydanticCustomError:
     return PydanticCustomError("case_rule", "{text}", {"key": key, "value": value, "text": text})
 
 
-class _Model(BaseModel):
+class CaseTable(BaseModel):
+    """The base of every case-file table and case model: unknown keys are errors, defaults validated."""
+
     model_config = ConfigDict(extra="forbid", validate_default=True)
-    _parameter_set: str | None = PrivateAttr(default=None)  # the set a case named (lubedyn.parameters)
+    _parameter_set: str | None = PrivateAttr(default=None)  # the set a case named (lubedyn.papers)
 
 
 # ---------------------------------------------------------------------------
@@ -291,7 +288,7 @@ def check_scale(raw: dict | None, name: str, ratio, quantities, *, limit: float,
             break
     unit = si_unit(blamed.dimension)
     raw_value = _raw_at(raw, blamed.key) if raw is not None and blamed.given else None
-    shown = f"{blamed.value:g} {unit}" if raw_value is None else f"{_show(raw_value)} ({blamed.value:g} {unit})"
+    shown = f"{blamed.value:g} {unit}" if raw_value is None else f"{show_value(raw_value)} ({blamed.value:g} {unit})"
     others = ", ".join(f"{q.key} = {q.value:g} {si_unit(q.dimension)}" for q in quantities if q is not blamed)
     op = (">" if strict else ">=") if lower else ("<" if strict else "<=")
     text = (f"= {shown} is out of scale: {name} = {r:.4g}" + (f" with {others}" if others else "")
@@ -329,14 +326,14 @@ def thin_film(raw: dict | None, film: Scaled, length: Scaled, name: str | None =
 def raise_scale(failed: tuple[str, str] | None) -> None:
     """Raise a failed scale check as a case rule on its (root-relative) key."""
     if failed is not None:
-        raise _root_rule(failed[0], None, failed[1])
+        raise root_rule(failed[0], None, failed[1])
 
 
 # ---------------------------------------------------------------------------
 # gaps
 
 
-class InclinedSliderGap(_Model):
+class InclinedSliderGap(CaseTable):
     """Plane inclined slider h_in -> h_out over [0, length] (1-D, or 2-D with mesh.y)."""
 
     type: Literal["inclined_slider"]
@@ -345,7 +342,7 @@ class InclinedSliderGap(_Model):
     length: PositiveLength
 
 
-class StepSliderGap(_Model):
+class StepSliderGap(CaseTable):
     """Rayleigh step: h_in on [0, x_step), h_out on [x_step, length]."""
 
     type: Literal["step_slider"]
@@ -362,7 +359,7 @@ class StepSliderGap(_Model):
         return self
 
 
-class PocketedSliderGap(_Model):
+class PocketedSliderGap(CaseTable):
     """Linear slider with a pocket of ``depth`` on [pocket_start, pocket_end]."""
 
     type: Literal["pocketed_slider"]
@@ -387,7 +384,7 @@ class PocketedSliderGap(_Model):
         return self
 
 
-class JournalGap(_Model):
+class JournalGap(CaseTable):
     """Plain journal bearing; eccentricity as ratio + attitude angle or as (x, y)."""
 
     type: Literal["journal"]
@@ -422,14 +419,14 @@ class JournalGap(_Model):
         return self
 
 
-class SpherePlaneGap(_Model):
+class SpherePlaneGap(CaseTable):
     type: Literal["sphere_plane"]
     radius: PositiveLength
     h0: PositiveLength
     exact: bool = False
 
 
-class SphereSphereGap(_Model):
+class SphereSphereGap(CaseTable):
     type: Literal["sphere_sphere"]
     radius1: PositiveLength
     radius2: PositiveLength | None = None
@@ -443,13 +440,13 @@ class SphereSphereGap(_Model):
         return self
 
 
-class CylinderPlaneGap(_Model):
+class CylinderPlaneGap(CaseTable):
     type: Literal["cylinder_plane"]
     radius: PositiveLength
     h0: PositiveLength
 
 
-class EllipsoidPlaneGap(_Model):
+class EllipsoidPlaneGap(CaseTable):
     type: Literal["ellipsoid_plane"]
     radius_x: PositiveLength
     radius_y: PositiveLength
@@ -490,7 +487,7 @@ between balls or on sliders have no such floor: their thickness is set by the lo
 # the other tables
 
 
-class MeshModel(_Model):
+class MeshModel(CaseTable):
     """Domain and discretisation.  ``domain = "auto"``: sliders -> interval
     [0, length] (rectangle when ``y`` is given), journal -> journal (periodic
     in theta, [0, 2 pi R) x [-L/2, L/2]), spheres/ellipsoid -> disk of ``radius``,
@@ -507,7 +504,7 @@ class MeshModel(_Model):
     element: Literal["P1", "P2"] = "P1"
 
 
-class MotionModel(_Model):
+class MotionModel(CaseTable):
     velocity_lower: VelocityVector = [0.0]
     velocity_upper: VelocityVector | None = None
     speed: Q("angular velocity") | None = None
@@ -529,7 +526,7 @@ class MotionModel(_Model):
         return self
 
 
-class ViscosityModel(_Model):
+class ViscosityModel(CaseTable):
     """constant: eta0; barus: eta0, alpha; roelands: eta0 and one of alpha, z."""
 
     law: Literal["constant", "barus", "roelands"] = "constant"
@@ -557,7 +554,7 @@ def _viscosity_shorthand(value):
     return value if isinstance(value, dict) else {"law": "constant", "eta0": value}
 
 
-class DensityModel(_Model):
+class DensityModel(CaseTable):
     """incompressible: rho0; dowson_higginson: rho0 (1 + a p / (1 + b p))."""
 
     law: Literal["incompressible", "dowson_higginson"] = "incompressible"
@@ -577,7 +574,7 @@ class DensityModel(_Model):
         return self
 
 
-class HerschelBulkleyModel(_Model):
+class HerschelBulkleyModel(CaseTable):
     """Herschel-Bulkley (grease) Poiseuille flow (EHL scenes only; :class:`lubedyn.lubrication.laws.lubricant.
     HerschelBulkleyFlow`): yield_stress tau_y, exponent n in (0, 2], creep eps in [0, 1) (0: the exact law).
     The [lubricant.viscosity] law is then the consistency phi(p): eta0 = phi0, its SI number in Pa s^n
@@ -588,7 +585,7 @@ class HerschelBulkleyModel(_Model):
     creep: Q("dimensionless", ge=0, lt=1) = 0.0
 
 
-class LubricantModel(_Model):
+class LubricantModel(CaseTable):
     """viscosity, density; eyring_stress tau0 (EHL scenes only): Reynolds-Eyring shear thinning of the
     Poiseuille flow (:mod:`lubedyn.lubrication.laws.lubricant`), omitted = Newtonian; herschel_bulkley (EHL
     scenes only): [lubricant.herschel_bulkley] yield_stress, exponent, creep, Herschel-Bulkley (grease)
@@ -607,25 +604,25 @@ class LubricantModel(_Model):
         return self
 
 
-class CavitationModel(_Model):
+class CavitationModel(CaseTable):
     model: Literal["none", "half_sommerfeld", "reynolds", "jfo"] = "none"
     pressure: Pressure = 0.0
 
 
-class BoundaryModel(_Model):
+class BoundaryModel(CaseTable):
     ambient: Pressure = 0.0
     pressures: dict[str, Pressure] = {}
     sealed: list[str] = []
 
 
-class SolverModel(_Model):
+class SolverModel(CaseTable):
     rtol: Q("dimensionless", gt=0, lt=1) = 1e-10
     max_iter: PositiveInt = 60
     linear_solver: Literal["auto", "direct", "amg"] = "auto"
     amg_tol: Q("dimensionless", gt=0, lt=1) = 1e-10
 
 
-class OutputModel(_Model):
+class OutputModel(CaseTable):
     write: list[Literal["vtu", "png"]] = ["vtu", "png"]
     film_coefficients: bool = False
 
@@ -633,7 +630,7 @@ class OutputModel(_Model):
 def _memory_size(value):
     if value is None:
         return None
-    from .limits import parse_bytes
+    from lubedyn.limits import parse_bytes
 
     try:
         return parse_bytes(value)
@@ -645,7 +642,7 @@ FILM_MAX_PRESSURE = 3e9  # Pa: validity.max_pressure of film scenes (ValidityMod
 EHL_MAX_PRESSURE = 4e9  # Pa: validity.max_pressure of EHL scenes
 
 
-class BoundsModel(_Model):
+class BoundsModel(CaseTable):
     """``[validity]`` of every scene: ``strict`` (default true): an output outside its physical bound
     (:data:`lubedyn.bounds.BOUNDS`: a traction coefficient above 1, a fraction outside [0, 1], a film
     thicker than a tenth of the radius ...) ends the run with a one-line error (exit 1) and writes
@@ -673,7 +670,7 @@ class ValidityModel(BoundsModel):
     max_reynolds: Q("dimensionless", gt=0) = 1000.0
 
 
-class LimitsModel(_Model):
+class LimitsModel(CaseTable):
     """Size limits checked before a run allocates anything (:mod:`lubedyn.limits`).
 
     ``memory``: the most memory a run may need by its estimate, e.g. ``"40 GiB"`` (omitted: the
@@ -692,7 +689,7 @@ BOUNDARIES = {
 }
 
 
-class FilmCase(_Model):
+class FilmCase(CaseTable):
     """A film scene; after validation every value is SI and every default filled in."""
 
     scene: Literal["film"]
@@ -718,10 +715,10 @@ class FilmCase(_Model):
         raw = context_raw(info)
         self._check_gap_scales(raw)
         if self.lubricant.eyring_stress is not None:
-            raise _root_rule("lubricant.eyring_stress", self.lubricant.eyring_stress, "is for EHL scenes (scene = "
+            raise root_rule("lubricant.eyring_stress", self.lubricant.eyring_stress, "is for EHL scenes (scene = "
                              "'ehl'); the film solver is Newtonian, remove it")
         if self.lubricant.herschel_bulkley is not None:
-            raise _root_rule("lubricant.herschel_bulkley", self.lubricant.herschel_bulkley.model_dump(),
+            raise root_rule("lubricant.herschel_bulkley", self.lubricant.herschel_bulkley.model_dump(),
                              "is for EHL scenes (scene = 'ehl'); the film solver is Newtonian, remove it")
         self._resolve_domain()
         self._check_mesh_scales(raw)
@@ -786,37 +783,37 @@ class FilmCase(_Model):
             else:
                 m.domain = "rectangle" if m.y is not None else "interval"
         if (m.domain == "journal") != (g.type == "journal"):
-            raise _root_rule("mesh.domain", m.domain, f"and gap.type = {g.type!r} do not go together: the journal "
+            raise root_rule("mesh.domain", m.domain, f"and gap.type = {g.type!r} do not go together: the journal "
                              "domain (periodic in theta) is for gap.type = 'journal' only, and a journal needs it")
         if m.domain in ("interval", "rectangle") and m.x is None:
             if g.type in SLIDERS:
                 m.x = [0.0, g.length]
             else:
-                raise _root_rule("mesh.x", None, f"is required for domain = {m.domain!r} with gap.type = {g.type!r} "
+                raise root_rule("mesh.x", None, f"is required for domain = {m.domain!r} with gap.type = {g.type!r} "
                                  "(e.g. x = ['-1 mm', '1 mm'])")
         if m.domain == "rectangle" and m.y is None:
-            raise _root_rule("mesh.y", None, "is required for domain = 'rectangle' (e.g. y = ['-5 mm', '5 mm'])")
+            raise root_rule("mesh.y", None, "is required for domain = 'rectangle' (e.g. y = ['-5 mm', '5 mm'])")
         for key in ("x", "y"):
             ext = getattr(m, key)
             if ext is not None and not ext[1] > ext[0]:
-                raise _root_rule(f"mesh.{key}", ext, "must be [lo, hi] with hi > lo")
+                raise root_rule(f"mesh.{key}", ext, "must be [lo, hi] with hi > lo")
         if m.domain == "journal" and m.nx < JOURNAL_MIN_NX:
             # measured: nx = 1 -> scikit-fem "duplicate index" (an element is its own periodic neighbour),
             # nx = 2 -> the two cells share both seams and the boundaries are lost; nx = 3 solves
-            raise _root_rule("mesh.nx", m.nx, f"must be >= {JOURNAL_MIN_NX} for a journal (periodic in theta: with "
+            raise root_rule("mesh.nx", m.nx, f"must be >= {JOURNAL_MIN_NX} for a journal (periodic in theta: with "
                              "fewer cells around the circumference an element meets itself across the seam)")
         if m.domain == "disk" and m.radius is None:
-            raise _root_rule("mesh.radius", None, "is required for domain = 'disk' (the film's outer radius, e.g. '0.3 mm')")
+            raise root_rule("mesh.radius", None, "is required for domain = 'disk' (the film's outer radius, e.g. '0.3 mm')")
         unused = {"interval": ("y", "radius"), "rectangle": ("radius",), "journal": ("x", "y", "radius"),
                   "disk": ("x", "y")}[m.domain]
         for key in unused:
             if getattr(m, key) is not None:
-                raise _root_rule(f"mesh.{key}", getattr(m, key), f"is not used by domain = {m.domain!r}")
+                raise root_rule(f"mesh.{key}", getattr(m, key), f"is not used by domain = {m.domain!r}")
 
     def _resolve_motion(self):
         mo, dim = self.motion, self.dim
         if mo.speed is not None and self.gap.type != "journal":
-            raise _root_rule("motion.speed", mo.speed, "is for gap.type = 'journal' only; give velocity_lower/velocity_upper")
+            raise root_rule("motion.speed", mo.speed, "is for gap.type = 'journal' only; give velocity_lower/velocity_upper")
         for key in ("velocity_lower", "velocity_upper"):
             vec = getattr(mo, key)
             if vec is None:
@@ -824,7 +821,7 @@ class FilmCase(_Model):
             if len(vec) == 1 and dim == 2:
                 vec = [vec[0], 0.0]
             if len(vec) != dim:
-                raise _root_rule(f"motion.{key}", vec, f"must have {dim} component(s) for a {dim}-D film "
+                raise root_rule(f"motion.{key}", vec, f"must have {dim} component(s) for a {dim}-D film "
                                  f"(domain = {self.mesh.domain!r})")
             setattr(mo, key, vec)
         if mo.velocity_upper is None and mo.speed is None:
@@ -832,7 +829,7 @@ class FilmCase(_Model):
         modes = ("x", "y") if self.gap.type == "journal" else ("h0",)
         for name in mo.mode_velocities:
             if name not in modes:
-                raise _root_rule(f"motion.mode_velocities.{name}", mo.mode_velocities[name],
+                raise root_rule(f"motion.mode_velocities.{name}", mo.mode_velocities[name],
                                  f"is not a mode of gap.type = {self.gap.type!r}; modes: {', '.join(modes)}"
                                  + did_you_mean(name, modes))
 
@@ -841,40 +838,29 @@ class FilmCase(_Model):
         b = self.boundary
         for name, value in b.pressures.items():
             if name not in names:
-                raise _root_rule(f"boundary.pressures.{name}", value, f"names no boundary of domain = "
+                raise root_rule(f"boundary.pressures.{name}", value, f"names no boundary of domain = "
                                  f"{self.mesh.domain!r}; boundaries: {', '.join(names)}" + did_you_mean(name, names))
         for name in b.sealed:
             if name not in names:
-                raise _root_rule("boundary.sealed", name, f"names no boundary of domain = {self.mesh.domain!r}; "
+                raise root_rule("boundary.sealed", name, f"names no boundary of domain = {self.mesh.domain!r}; "
                                  f"boundaries: {', '.join(names)}" + did_you_mean(name, names))
             if name in b.pressures:
-                raise _root_rule("boundary.sealed", name, "is also given a pressure in boundary.pressures")
+                raise root_rule("boundary.sealed", name, "is also given a pressure in boundary.pressures")
         if set(b.sealed) >= set(names):
-            raise _root_rule("boundary.sealed", b.sealed, "seals every boundary: the pressure would be undetermined")
+            raise root_rule("boundary.sealed", b.sealed, "seals every boundary: the pressure would be undetermined")
 
 
-def _root_rule(key, value, text):
+def root_rule(key, value, text):
     return PydanticCustomError("case_rule", "{text}", {"key": key, "value": value, "text": text, "root": True})
 
 
-CASE_MODELS = {"film": FilmCase}
-Case = FilmCase  # and the case models of SCENE_MODULES
-
-
 def case_model(scene: str):
-    """The pydantic model of a scene's case (imports the scene module when needed)."""
-    if scene in CASE_MODELS:
-        return CASE_MODELS[scene]
-    import importlib
-
+    """The pydantic model of a scene's case (``CaseModel`` of its module in :data:`lubedyn.scenes.SCENES`,
+    imported when needed)."""
     try:
-        module = importlib.import_module(SCENE_MODULES[scene])
-    except ModuleNotFoundError as exc:
-        if exc.name != SCENE_MODULES[scene]:
-            raise
-        raise CaseError(f"scene = {scene!r} is not available in this version; "
-                        f"it runs scene = {', '.join(repr(k) for k in SCENES)}") from None
-    return module.CaseModel
+        return scenes.get(scene).CaseModel
+    except InputError as exc:
+        raise CaseError(str(exc)) from None
 
 
 # ---------------------------------------------------------------------------
@@ -932,7 +918,7 @@ def _locate(root, loc):
     return current, "".join(path)
 
 
-def _show(value) -> str:
+def show_value(value) -> str:
     if isinstance(value, float):
         return f"{value:g}"
     if isinstance(value, dict):
@@ -951,10 +937,10 @@ def format_error(error: dict, root=None) -> str:
     model, path = _locate(root, loc)
     if kind == "case_rule":
         key = ctx["key"] if ctx.get("root") or not path else f"{path}.{ctx['key']}"
-        shown = "" if ctx.get("value") is None else f" = {_show(ctx['value'])}"
+        shown = "" if ctx.get("value") is None else f" = {show_value(ctx['value'])}"
         return f"{key}{shown} {ctx['text']}"
     if kind == "quantity":
-        return f"{path} = {_show(value)} {ctx['text']}"
+        return f"{path} = {show_value(value)} {ctx['text']}"
     if kind == "extra_forbidden":
         parent, ppath = _locate(root, loc[:-1])
         allowed = list(parent.model_fields) if isinstance(parent, type) else []
@@ -974,7 +960,7 @@ def format_error(error: dict, root=None) -> str:
         return f"{path} is required{hint}"
     if kind == "literal_error":
         allowed = _expected_list(ctx.get("expected", ""))
-        return f"{path} = {_show(value)} is not allowed; choose one of {', '.join(map(repr, allowed))}" + did_you_mean(value, allowed)
+        return f"{path} = {show_value(value)} is not allowed; choose one of {', '.join(map(repr, allowed))}" + did_you_mean(value, allowed)
     if kind == "union_tag_invalid":
         allowed = _expected_list(ctx.get("expected_tags", ""))
         return (f"{path}.type = {ctx.get('tag')!r} is not allowed; choose one of "
@@ -986,16 +972,16 @@ def format_error(error: dict, root=None) -> str:
     if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
         op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<", "less_than_equal": "<="}[kind]
         bound = next(iter(ctx.values()))
-        return f"{path} = {_show(value)} must be {op} {bound}"
+        return f"{path} = {show_value(value)} must be {op} {bound}"
     if kind in ("model_type", "model_attributes_type", "dict_type"):
-        return f"{path} = {_show(value)} must be a table"
+        return f"{path} = {show_value(value)} must be a table"
     if kind in ("too_short", "too_long"):
-        return f"{path} = {_show(value)} must have {ctx.get('min_length', ctx.get('max_length'))} items"
+        return f"{path} = {show_value(value)} must have {ctx.get('min_length', ctx.get('max_length'))} items"
     nice = {"int_type": "must be an integer", "int_from_float": "must be an integer", "int_parsing": "must be an integer",
             "bool_type": "must be true or false", "bool_parsing": "must be true or false",
             "string_type": "must be a string", "list_type": "must be a list", "float_type": "must be a number",
             "float_parsing": "must be a number"}
-    return f"{path} = {_show(value)} {nice.get(kind, error['msg'])}"
+    return f"{path} = {show_value(value)} {nice.get(kind, error['msg'])}"
 
 
 def format_validation_error(exc: ValidationError, root=None) -> str:
@@ -1045,7 +1031,7 @@ def apply_overrides(raw: dict, overrides) -> dict:
         for i, part in enumerate(parts[:-1]):
             nxt = node.setdefault(part, {})
             if not isinstance(nxt, dict):
-                raise CaseError(f"--set {text!r}: {'.'.join(parts[: i + 1])} = {_show(nxt)} is not a table")
+                raise CaseError(f"--set {text!r}: {'.'.join(parts[: i + 1])} = {show_value(nxt)} is not a table")
             node = nxt
         node[parts[-1]] = value
     return out
@@ -1107,9 +1093,9 @@ def read_toml(path) -> dict:
     return parse_toml(text, str(path))
 
 
-def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
+def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> CaseTable:
     """Merge the smoke table (if ``smoke``) and the overrides, fill in the values of the case's
-    parameter set (``parameters = "Zhang2024"``: :func:`lubedyn.parameters.apply_parameter_set`; the
+    parameter set (``parameters = "Zhang2024"``: :func:`lubedyn.papers.apply_parameter_set`; the
     file and the overrides win), then validate.
 
     Overrides of the ``[smoke]`` table itself (``--set smoke.mesh.nx=8``) are applied to it before
@@ -1123,13 +1109,10 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
     raw = apply_overrides(raw, [o for o in overrides if o not in to_smoke])
     scene = raw.get("scene")
     if scene is None:
-        raise CaseError(f"scene is required; choose one of {', '.join(map(repr, SCENES))}")
-    if scene in PLANNED_SCENES:
-        raise CaseError(f"scene = {scene!r} is not available yet (planned: {', '.join(PLANNED_SCENES)}); "
-                        f"this version runs scene = {', '.join(map(repr, SCENES))}")
-    if scene not in SCENES:
-        raise CaseError(f"scene = {_show(scene)} is not allowed; choose one of {', '.join(map(repr, SCENES))}"
-                        + did_you_mean(scene, SCENES + PLANNED_SCENES))
+        raise CaseError(f"scene is required; choose one of {', '.join(map(repr, scenes.SCENES))}")
+    if scene not in scenes.SCENES:
+        raise CaseError(f"scene = {show_value(scene)} is not allowed; choose one of {', '.join(map(repr, scenes.SCENES))}"
+                        + did_you_mean(scene, list(scenes.SCENES)))
     set_name = raw.get("parameters")
     named_set = set_name is not None
     try:
@@ -1145,22 +1128,103 @@ def validate_raw(raw: dict, *, smoke: bool = False, overrides=()) -> Case:
             sets = [n for n in PARAMETER_SETS if scene in parameter_set(n).SCENES]
             if sets:
                 text += (f"; or name a paper's values: parameters = {sets[0]!r} (sets for scene = {scene!r}: "
-                         f"{', '.join(map(repr, sets))}; lubedyn.parameters)")
+                         f"{', '.join(map(repr, sets))}; lubedyn.papers)")
         raise CaseError(text) from None
     case._parameter_set = set_name
     return case
 
 
-def load_case(path, *, smoke: bool = False, overrides=()) -> Case:
-    """Read, merge and validate a case file; raise :class:`CaseError` on any mistake."""
-    return validate_raw(read_toml(path), smoke=smoke, overrides=overrides)
+def load_case(path, *, smoke: bool = False, overrides=()) -> CaseTable:
+    """Read, merge and validate a case file (a path, or the name of a bundled case: ``"journal_finite"``);
+    raise :class:`CaseError` on any mistake."""
+    return validate_raw(read_toml(case_path(str(path))), smoke=smoke, overrides=overrides)
 
 
-def load_case_text(text: str, **kwargs) -> Case:
+def load_case_text(text: str, **kwargs) -> CaseTable:
     return validate_raw(parse_toml(text), **kwargs)
 
 
-def resolved_toml(case: Case, header: str = "") -> str:
+# ---------------------------------------------------------------------------
+# case files by path or bundled name, as the command line and the study runner load them
+
+
+def case_path(text: str) -> Path:
+    """The case file of ``text``: a path, or the name of a bundled case (with "did you mean")."""
+    path = Path(text)
+    if path.is_dir():
+        raise CaseError(f"case file {text!r} is a directory; expected a .toml case file")
+    if not path.exists() and path.suffix == "" and (CASES_DIR / f"{text}.toml").is_file():
+        return CASES_DIR / f"{text}.toml"
+    if path.exists():
+        return path
+    if path.suffix in ("", ".toml") and len(path.parts) == 1:
+        hint = did_you_mean(path.stem, [p.stem for p in bundled_cases()])
+        if hint:
+            raise CaseError(f"case file {text!r} not found, nor a bundled case of that name{hint} "
+                            "('lubedyn cases' lists them)")
+    if path.parent.is_dir():  # a typo in a path: the case files next to it
+        siblings = {p.name: p for p in path.parent.glob("*.toml")}
+        close = close_matches(path.name, siblings)
+        if close:
+            raise CaseError(f"case file {text!r} not found; did you mean "
+                            f"{' or '.join(repr(str(siblings[c])) for c in close)}?")
+    return path
+
+
+def _smoke_keys(table: dict, prefix: str = "") -> list[str]:
+    """Dotted keys of the values of a (nested) ``[smoke]`` table."""
+    keys = []
+    for key, value in table.items():
+        if isinstance(value, dict):
+            keys += _smoke_keys(value, prefix + key + ".")
+        else:
+            keys.append(prefix + key)
+    return keys
+
+
+def in_smoke(exc, raw: dict) -> Exception:
+    """``exc`` (an error of the ``[smoke]`` variant only) re-worded to say so: ``smoke.KEY ...`` when it
+    names a key that the ``[smoke]`` table sets, else ``in [smoke]: ...``."""
+    text = " ".join(str(exc).split())
+    keys = sorted(_smoke_keys(raw.get("smoke") or {}), key=len, reverse=True)
+    for key in keys:
+        if text.startswith(key) and text[len(key):len(key) + 1] in (" ", ":", ".", "[", ""):
+            return CaseError(f"smoke.{text}")
+    return CaseError(f"in [smoke]: {text}")
+
+
+def check_smoke(raw: dict, overrides, exc) -> Exception:
+    """``exc`` raised by the ``--smoke`` variant of a case: if the case without its ``[smoke]`` table
+    validates and builds, the error lives in ``[smoke]`` and is re-worded to say so."""
+    if not isinstance(raw.get("smoke"), dict):
+        return exc
+    try:
+        base = validate_raw(raw, smoke=False, overrides=overrides)
+        scenes.get(base.scene).build(base)
+    except InputError:
+        return exc  # the error is not the smoke table's alone
+    return in_smoke(exc, raw)
+
+
+def load_case_file(case: str, *, smoke: bool = False, overrides=()):
+    """(path, raw TOML mapping, validated case) of ``case`` (a path or a bundled case's name) with the
+    ``[smoke]`` table (``smoke``) and the ``--set`` ``overrides`` merged, as ``lubedyn run`` loads it;
+    an error that only the ``[smoke]`` variant has is worded to say so.  Raises InputError."""
+    overrides = list(overrides or ())
+    path = case_path(case)
+    try:
+        raw = read_toml(path)
+    except OSError as exc:  # e.g. no read permission: an input error, not a failed run
+        raise CaseError(f"case file {str(path)!r} cannot be read: {exc.strerror or exc}") from None
+    try:
+        return path, raw, validate_raw(raw, smoke=smoke, overrides=overrides)
+    except InputError as exc:
+        if smoke:
+            raise check_smoke(raw, overrides, exc) from None
+        raise
+
+
+def resolved_toml(case: CaseTable, header: str = "") -> str:
     """The case with every default filled in, every quantity in SI, as TOML."""
     import tomli_w
 
@@ -1168,7 +1232,7 @@ def resolved_toml(case: Case, header: str = "") -> str:
     lines = [f"# {line}" if line else "#" for line in header.splitlines()]
     if case._parameter_set:
         lines.append(f"# Values not given by the case file come from parameters = {case._parameter_set!r} "
-                     f"(coupling/parameters/{case._parameter_set.lower()}.py).")
+                     f"(lubedyn.papers.{case._parameter_set.lower()}.parameters).")
     lines.append("# Resolved case: every value in SI (m, s, kg, Pa, Pa s, m/s, rad/s, rad, 1/Pa, kg/m^3),")
     lines.append("# every default filled in. It is itself a valid case file.")
     return "\n".join(lines) + "\n\n" + tomli_w.dumps(data)

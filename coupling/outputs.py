@@ -203,7 +203,7 @@ def _files_below(root: Path) -> list[str]:
 
 
 def _manifest(stage: Path, files) -> dict:
-    from . import __version__
+    from lubedyn import __version__
 
     summary = {}
     try:
@@ -333,17 +333,17 @@ def write_run(out_dir, resolved: str, summary: dict, write, fields=None, figure=
 def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float,
                 scales: dict | None = None) -> dict:
     """The summary every scene writes: identity, the scene's own results, the values its paper does not
-    give (``"Assumed values"``: :func:`lubedyn.parameters.assumed_values`), timing.
+    give (``"Assumed values"``: :func:`lubedyn.papers.assumed_values`), timing.
 
     Every scene's results pass through here before anything is written: each value is checked against
     its physical bound (:func:`lubedyn.bounds.enforce`, with the scene's ``scales``), which raises
     :class:`lubedyn.bounds.ImplausibleResult` or, under ``[validity] strict = false``, adds a warning."""
     import time
 
-    from . import __version__
+    from lubedyn import __version__
 
-    from .bounds import enforce, strict_of
-    from .parameters import assumed_values
+    from lubedyn.bounds import enforce, strict_of
+    from lubedyn.papers import assumed_values
 
     scene_summary = enforce(dict(scene_summary), scales, strict=strict_of(case))
     summary = {"Case": name, "Scene": case.scene, "Description": case.description}
@@ -360,7 +360,7 @@ def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_
 
 def resolved_header(name: str, source, smoke: bool) -> str:
     """First line of ``case.resolved.toml``."""
-    from . import __version__
+    from lubedyn import __version__
 
     return f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
 
@@ -451,3 +451,23 @@ def read_timeseries(path) -> tuple[dict, dict]:
         if meta.get("format") != "lubedyn time series":
             raise ValueError(f"{path}: not a lubedyn time series file")
         return {name: data[name] for name in meta["columns"]}, meta
+
+
+# the summary values a film-type scene (film, ehl, map) shows on the terminal, by name prefix
+HEADLINE_PREFIXES = ("Load [", "Load per unit width [", "Load per length [", "Maximum pressure", "Hertz pressure",
+                     "Central film", "Minimum film", "Attitude angle", "Eccentricity ratio")
+
+
+def headline_lines(summary: dict, prefixes=HEADLINE_PREFIXES) -> list[str]:
+    """The terminal lines of a solve's summary: its numeric values whose names start with one of
+    ``prefixes`` (name padded to 36 characters, 6 significant digits), then the Newton iterations,
+    degrees of freedom and run time when the summary has them, else the run time."""
+    s = summary
+    lines = [f"{key:<36} {s[key]:.6g}" for key in s
+             if key.startswith(prefixes) and isinstance(s[key], (int, float))]
+    if "Newton iterations [-]" in s:
+        lines.append(f"{'Newton iterations [-]':<36} {s.get('Newton iterations [-]')}, "
+                     f"{s.get('Degrees of freedom [-]')} dofs, {s['Run time [s]']:.3g} s")
+    else:
+        lines.append(f"{'Run time [s]':<36} {s['Run time [s]']:.3g}")
+    return lines

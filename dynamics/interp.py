@@ -165,7 +165,7 @@ def _coord(x, log):
 
 
 @njit(**_INLINE)
-def _locate(ax, t):
+def locate(ax, t):
     """(cell i with ax[i] <= t <= ax[i+1], t clamped to the axis, 1 if t was outside)."""
     n = ax.size
     if not t >= ax[0]:  # below the axis, or NaN (the callers return NaN for a NaN coordinate)
@@ -198,8 +198,8 @@ def _coord_call(x, log):
 
 
 @njit(**_JIT)
-def _locate_call(ax, t):
-    return _locate(ax, t)
+def locate_call(ax, t):
+    return locate(ax, t)
 
 
 @njit(**_JIT)
@@ -216,7 +216,7 @@ def _dtdx_call(t, log):
 def _cell(ax, x, log):
     """(cell i, clamped t, 1 if x was outside the axis, True if x is NaN) of a physical coordinate x."""
     t = _coord(x, log)
-    i, c, o = _locate(ax, t)
+    i, c, o = locate(ax, t)
     return i, c, o, t != t
 
 
@@ -409,7 +409,7 @@ def interp1_grad(ax0, log0, values, logv, method, x0, mode, counter):
         if mode == 0:
             counter[0] += 1
         return np.nan, np.nan
-    i, c0, o0 = _locate_call(ax0, t0)
+    i, c0, o0 = locate_call(ax0, t0)
     if o0:
         if mode == 1:
             return np.nan, np.nan
@@ -427,7 +427,7 @@ def interp1(ax0, log0, values, logv, method, x0, mode, counter):
         if mode == 0:
             counter[0] += 1
         return np.nan
-    i, c0, o0 = _locate_call(ax0, t0)
+    i, c0, o0 = locate_call(ax0, t0)
     if o0:
         if mode == 1:
             return np.nan
@@ -485,8 +485,8 @@ def interp2_grad(ax0, ax1, log0, log1, values, logv, method, x0, x1, mode, count
         if mode == 0:
             counter[0] += 1
         return np.nan, np.nan, np.nan
-    i, c0, o0 = _locate_call(ax0, t0)
-    j, c1, o1 = _locate_call(ax1, t1)
+    i, c0, o0 = locate_call(ax0, t0)
+    j, c1, o1 = locate_call(ax1, t1)
     if o0 or o1:
         if mode == 1:
             return np.nan, np.nan, np.nan
@@ -511,8 +511,8 @@ def interp2(ax0, ax1, log0, log1, values, logv, method, x0, x1, mode, counter):
         if mode == 0:
             counter[0] += 1
         return np.nan
-    i, s0, o0 = _locate_call(ax0, t0)
-    j, s1, o1 = _locate_call(ax1, t1)
+    i, s0, o0 = locate_call(ax0, t0)
+    j, s1, o1 = locate_call(ax1, t1)
     if o0 or o1:
         if mode == 1:
             return np.nan
@@ -595,9 +595,9 @@ def interp3_grad(ax0, ax1, ax2, log0, log1, log2, values, logv, method, x0, x1, 
         if mode == 0:
             counter[0] += 1
         return np.nan, np.nan, np.nan, np.nan
-    i, c0, o0 = _locate_call(ax0, t0)
-    j, c1, o1 = _locate_call(ax1, t1)
-    k, c2, o2 = _locate_call(ax2, t2)
+    i, c0, o0 = locate_call(ax0, t0)
+    j, c1, o1 = locate_call(ax1, t1)
+    k, c2, o2 = locate_call(ax2, t2)
     if o0 or o1 or o2:
         if mode == 1:
             return np.nan, np.nan, np.nan, np.nan
@@ -630,9 +630,9 @@ def interp3(ax0, ax1, ax2, log0, log1, log2, values, logv, method, x0, x1, x2, m
         if mode == 0:
             counter[0] += 1
         return np.nan
-    i, s0, o0 = _locate_call(ax0, t0)
-    j, s1, o1 = _locate_call(ax1, t1)
-    k, s2, o2 = _locate_call(ax2, t2)
+    i, s0, o0 = locate_call(ax0, t0)
+    j, s1, o1 = locate_call(ax1, t1)
+    k, s2, o2 = locate_call(ax2, t2)
     if o0 or o1 or o2:
         if mode == 1:
             return np.nan
@@ -773,7 +773,7 @@ def _hbasis(ax, i, t):
 
 
 @njit(**_INLINE)
-def _hvalue(ax, i, t):
+def hermite_value(ax, i, t):
     """Value bases of :func:`_hbasis` only."""
     h = ax[i + 1] - ax[i]
     s = (t - ax[i]) / h
@@ -800,13 +800,13 @@ def _dtdx_at(x, t, outside, log):
 
 
 @njit(**_INLINE)
-def _dot(f0, f1, w):
+def hermite_dot(f0, f1, w):
     """f0[0] w0 + f0[1] w1 + f1[0] w2 + f1[1] w3: corners a = 0, 1 of the value (f0) and derivative (f1) sets."""
     return f0[0] * w[0] + f0[1] * w[1] + f1[0] * w[2] + f1[1] * w[3]
 
 
 @njit(**_INLINE)
-def _pair2(deriv, s, i, j, w):
+def pair2(deriv, s, i, j, w):
     """2-D, contracted over axis 1 for derivative bit 0 = s: (E(a=0), E(a=1)) at nodes i, i+1."""
     return ((deriv[s, i, j] * w[0] + deriv[s, i, j + 1] * w[1])
             + (deriv[s + 2, i, j] * w[2] + deriv[s + 2, i, j + 1] * w[3]),
@@ -895,7 +895,7 @@ def hermite1(ax0, log0, deriv, logv, x0, mode, counter):
     """v at x0; ``deriv`` of shape (2, n0) from :func:`hermite_data`."""
     i, c0, o0, nan0 = _cell(ax0, x0, log0)
     refuse = _refuse(nan0, o0, mode, counter)
-    b = _hvalue(ax0, i, c0)
+    b = hermite_value(ax0, i, c0)
     u = (b[0] * deriv[0, i] + b[1] * deriv[0, i + 1]) + (b[2] * deriv[1, i] + b[3] * deriv[1, i + 1])
     if logv:
         u = math.exp(u)
@@ -910,15 +910,15 @@ def hermite2_grad(ax0, ax1, log0, log1, deriv, logv, x0, x1, mode, counter):
     refuse = _refuse(nan0 or nan1, o0 | o1, mode, counter)
     w0, dw0 = _hbasis(ax0, i, c0)
     w1, dw1 = _hbasis(ax1, j, c1)
-    f0 = _pair2(deriv, 0, i, j, w1)
-    f1 = _pair2(deriv, 1, i, j, w1)
-    g0 = _pair2(deriv, 0, i, j, dw1)
-    g1 = _pair2(deriv, 1, i, j, dw1)
-    v, dvdu = _finish(_dot(f0, f1, w0), logv)
+    f0 = pair2(deriv, 0, i, j, w1)
+    f1 = pair2(deriv, 1, i, j, w1)
+    g0 = pair2(deriv, 0, i, j, dw1)
+    g1 = pair2(deriv, 1, i, j, dw1)
+    v, dvdu = _finish(hermite_dot(f0, f1, w0), logv)
     if refuse:
         return np.nan, np.nan, np.nan
-    return (v, dvdu * _dot(f0, f1, dw0) * _dtdx_at(x0, c0, o0, log0),
-            dvdu * _dot(g0, g1, w0) * _dtdx_at(x1, c1, o1, log1))
+    return (v, dvdu * hermite_dot(f0, f1, dw0) * _dtdx_at(x0, c0, o0, log0),
+            dvdu * hermite_dot(g0, g1, w0) * _dtdx_at(x1, c1, o1, log1))
 
 
 @njit(**_FMA)
@@ -927,8 +927,8 @@ def hermite2(ax0, ax1, log0, log1, deriv, logv, x0, x1, mode, counter):
     i, c0, o0, nan0 = _cell(ax0, x0, log0)
     j, c1, o1, nan1 = _cell(ax1, x1, log1)
     refuse = _refuse(nan0 or nan1, o0 | o1, mode, counter)
-    w1 = _hvalue(ax1, j, c1)
-    u = _dot(_pair2(deriv, 0, i, j, w1), _pair2(deriv, 1, i, j, w1), _hvalue(ax0, i, c0))
+    w1 = hermite_value(ax1, j, c1)
+    u = hermite_dot(pair2(deriv, 0, i, j, w1), pair2(deriv, 1, i, j, w1), hermite_value(ax0, i, c0))
     if logv:
         u = math.exp(u)
     return np.nan if refuse else u
@@ -956,10 +956,10 @@ def hermite3_grad(ax0, ax1, ax2, log0, log1, log2, deriv, logv, x0, x1, x2, mode
     f1 = _pair3(p, q, w1)
     g1 = _pair3(p, q, dw1)
     h1 = _pair3(dp, dq, w1)
-    u0 = _dot(f0, f1, dw0)
-    u1 = _dot(g0, g1, w0)
-    u2 = _dot(h0, h1, w0)
-    v, dvdu = _finish(_dot(f0, f1, w0), logv)
+    u0 = hermite_dot(f0, f1, dw0)
+    u1 = hermite_dot(g0, g1, w0)
+    u2 = hermite_dot(h0, h1, w0)
+    v, dvdu = _finish(hermite_dot(f0, f1, w0), logv)
     if refuse:
         return np.nan, np.nan, np.nan, np.nan
     return (v, dvdu * u0 * _dtdx_at(x0, c0, o0, log0), dvdu * u1 * _dtdx_at(x1, c1, o1, log1),
@@ -973,11 +973,11 @@ def hermite3(ax0, ax1, ax2, log0, log1, log2, deriv, logv, x0, x1, x2, mode, cou
     j, c1, o1, nan1 = _cell(ax1, x1, log1)
     k, c2, o2, nan2 = _cell(ax2, x2, log2)
     refuse = _refuse(nan0 or nan1 or nan2, o0 | o1 | o2, mode, counter)
-    w1 = _hvalue(ax1, j, c1)
-    w2 = _hvalue(ax2, k, c2)
+    w1 = hermite_value(ax1, j, c1)
+    w2 = hermite_value(ax2, k, c2)
     f0 = _pair3(_quad3(deriv, 0, i, j, k, w2), _quad3(deriv, 2, i, j, k, w2), w1)
     f1 = _pair3(_quad3(deriv, 1, i, j, k, w2), _quad3(deriv, 3, i, j, k, w2), w1)
-    u = _dot(f0, f1, _hvalue(ax0, i, c0))
+    u = hermite_dot(f0, f1, hermite_value(ax0, i, c0))
     if logv:
         u = math.exp(u)
     return np.nan if refuse else u

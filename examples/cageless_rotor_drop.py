@@ -6,7 +6,7 @@ The cage-less ball bearing's rotor drop, with its collisions and Lyapunov expone
 Paper B's cage-less 6206 (``cases/cageless_6206_3krpm.toml``: the rotor, spinning at 3,000 rpm, drops onto
 the inner ring, Fr 2000 N, Fa 200 N; the ball-ball oil film read from the FEM map ``cases/maps/ball_ball.npz``)
 run from Python: :func:`lubedyn.config.load_case` reads the bundled case with overrides (the keys of
-``lubedyn run --set``) and :func:`lubedyn.dynamics_scene.run` integrates and analyses it without writing
+``lubedyn run --set``) and :func:`lubedyn.scenes.dynamics.run` integrates and analyses it without writing
 files.  Shown: the rotor's spin-down and the inner ring's spin-up, the ball-ball collisions (force peak
 against time), and the largest Lyapunov exponents with their uncertainties and verdicts (per direction of
 ball 0 by Wolf et al.'s algorithm after the detected end of the spin-up; whole system by Benettin's).
@@ -27,7 +27,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lubedyn import dynamics_scene
+from lubedyn.scenes import dynamics as dynamics_scene
 from lubedyn.config import CASES_DIR, load_case
 
 from _common import SMOKE, png

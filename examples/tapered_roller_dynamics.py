@@ -5,7 +5,7 @@ Paper A's tapered roller bearing in time from Python: Fig. 5's operating point (
 axial locked) with and without the roller-end/rib friction, to see what skews the rollers.
 
 ``lubedyn.config.load_case`` reads a bundled case with overrides (the same keys as ``lubedyn run --set``);
-``lubedyn.tapered_scene.run`` integrates it and returns the summary and every diagnostic
+``lubedyn.scenes.tapered.run`` integrates it and returns the summary and every diagnostic
 (:meth:`lubedyn.dynamics.tapered.model.TaperedBearing.diagnostics`: per roller and sample tilt, skew, slip,
 loads, the loaded-zone marker).  Full size: 10 ms; smoke: 1 ms at 5 slices.
 """
@@ -15,7 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lubedyn import tapered_scene as S
+from lubedyn.scenes import tapered as S
 from lubedyn.config import CASES_DIR, load_case
 
 from _common import SMOKE, png

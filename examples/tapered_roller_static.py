@@ -4,7 +4,7 @@
 Paper A's tapered roller bearing at quasi-static equilibrium from Python: the load distribution
 under a radial load with the axial motion locked, against Stribeck's estimate of the most loaded roller.
 
-``lubedyn.parameters.wu2018.tapered_geometry()`` builds the geometry of Table 1 with the parameter
+``lubedyn.papers.wu2018.parameters.tapered_geometry()`` builds the geometry of Table 1 with the parameter
 module's assumed values (common-apex reading, crowned rollers; pass overrides, e.g.
 ``reconciliation="literal"``); ``lubedyn.dynamics.tapered.quasistatic.solve`` finds the equilibrium.
 """
@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.papers.wu2018.parameters import tapered_geometry
 from lubedyn.dynamics.tapered.quasistatic import solve
 
 from _common import SMOKE, png

@@ -132,7 +132,7 @@ EHL_BALL = CASES_DIR / "ehl_ball_inner_race.toml"
 ])
 def test_bearing_geometry_names_the_wrong_key(case, override, message):
     if case == EHL_BALL and override.startswith("bearing.inner_groove"):
-        from lubedyn import ehl_scene  # the bearing's contact names it (tests/test_cli.py, exit 2)
+        from lubedyn.scenes import ehl as ehl_scene  # the bearing's contact names it (tests/test_cli.py, exit 2)
 
         with pytest.raises(InputError, match=r"bearing.inner_groove_radius = 0.004 m must be > D/2"):
             ehl_scene.build(load_case(case, overrides=[override]))
@@ -153,7 +153,8 @@ def test_no_range_message_is_reversed():
 
     overrides = [f"bearing.{k}='{v} mm'" for k in ("inner_groove_radius", "outer_groove_radius")
                  for v in (1, 4, 4.76)] + [f"bearing.diametral_clearance='{v} mm'" for v in (-1, 1, 2, 5)]
-    from lubedyn import dynamics_scene, ehl_scene
+    from lubedyn.scenes import dynamics as dynamics_scene
+    from lubedyn.scenes import ehl as ehl_scene
 
     checked = 0
     for case, scene in ((DROP, dynamics_scene), (EHL_BALL, ehl_scene)):

@@ -14,7 +14,7 @@ import pytest
 
 from lubedyn.dynamics.cageless import rhs
 from lubedyn.dynamics.lyapunov import lyapunov_spectrum
-from lubedyn.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
+from lubedyn.papers.zhang2024.parameters import cageless_bearing as paper_b  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,9 @@ import math
 
 import pytest
 
-from lubedyn import bounds, cli, film_scene
+from lubedyn import bounds, cli
+
+from lubedyn.scenes import film as film_scene
 from lubedyn.config import CASES_DIR, load_case
 
 BOUND_LINE = "is outside its bound"

@@ -14,7 +14,7 @@ from lubedyn.dynamics import cageless as cg
 from lubedyn.dynamics.errors import DynamicsInputError
 from lubedyn.dynamics.integrators import integrate
 from lubedyn.lubrication.laws import contact as hertz
-from lubedyn.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
+from lubedyn.papers.zhang2024.parameters import cageless_bearing as paper_b  # noqa: E402
 
 FR = 2000.0
 

@@ -491,7 +491,7 @@ def check_trb_static_preload(s, case):
 
 
 def _trb_window(s):
-    from lubedyn.tapered_scene import main_window
+    from lubedyn.scenes.tapered import main_window
 
     return main_window(s)[2]
 

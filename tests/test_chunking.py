@@ -64,7 +64,7 @@ def test_progress_bar_does_not_change_the_result():
 @pytest.fixture(scope="module")
 def bearing():
     """The main job's bearing (10 krpm rotor drop, 205 states) and 0.3 ms of it sampled every 2 us."""
-    from lubedyn import dynamics_scene as ds
+    from lubedyn.scenes import dynamics as ds
     from lubedyn.config import load_case
 
     case = load_case(CASES_DIR / "cageless_6206_10krpm_short.toml", smoke=True)
@@ -133,12 +133,12 @@ def test_cli_summary_is_the_same_on_a_terminal_and_on_a_pipe(tmp_path):
 
 
 def test_background_result_hands_progress_and_errors_to_the_waiting_thread():
-    """The whole-system spectrum runs in a thread (lubedyn.dynamics_scene._BackgroundResult): with a label
+    """The whole-system spectrum runs in a thread (lubedyn.scenes.dynamics._BackgroundResult): with a label
     the function gets ``progress=``, whose last fraction the waiting thread reads (its bar, on a terminal,
     only displays it), the result is the function's own, and its exception reaches the caller."""
     import threading
 
-    from lubedyn.dynamics_scene import _BackgroundResult
+    from lubedyn.scenes.dynamics import _BackgroundResult
 
     go = threading.Event()
 

@@ -97,8 +97,8 @@ def test_case_reference_lists_every_field_of_every_case_model(case_reference):
     for scene in SCENES:
         case_model(scene)  # imports the scene's module, so that its models exist
     keys = {(r.key) for scene in SCENES for r in case_reference.rows(case_model(scene))}
-    study_models = {m for m in _subclasses(config._Model) if m.__module__ == "lubedyn.study"}
-    for model in _subclasses(config._Model) - study_models:
+    study_models = {m for m in _subclasses(config.CaseTable) if m.__module__ == "lubedyn.scenes.study"}
+    for model in _subclasses(config.CaseTable) - study_models:
         for name in model.model_fields:
             assert name in keys, f"{model.__module__}.{model.__name__}.{name} missing from the case reference"
 

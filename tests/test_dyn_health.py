@@ -80,7 +80,7 @@ def test_the_refused_rtol_is_where_dopri5s_error_stops_following_the_tolerance()
     are past DOPRI5's stability limit on the imaginary axis (mean h omega 1.05 > 0.997) and after 10,000
     periods the error is 2.3e4 x the amplitude, yet the run ends "normally"."""
     from lubedyn.dynamics.integrators import ATOL_MAX, RTOL_MAX
-    from lubedyn.tapered_scene import IntegratorTable
+    from lubedyn.scenes.tapered import IntegratorTable
 
     assert (RTOL_MAX, ATOL_MAX) == (1e-3, 1e-8)
     assert IntegratorTable(duration=0.01).rtol <= RTOL_MAX  # the tapered scene's default is inside too
@@ -147,9 +147,9 @@ def test_the_whole_system_verdict_follows_the_per_direction_spin_up_rule():
     """A drop whose inner ring is not within 1 % of the rotor speed at the end of the record: the
     per-direction analysis says "not computed: ... still spinning up" and the whole-system verdicts of a
     spectrum that would otherwise be "positive" say "not converged (... still spinning up)", by the same
-    rule (:func:`lubedyn.dynamics_lyapunov.spin_up_end`); once the ring has caught up they are the
+    rule (:func:`lubedyn.scenes.dynamics_lyapunov.spin_up_end`); once the ring has caught up they are the
     spectrum's own."""
-    from lubedyn.dynamics_lyapunov import (_lyapunov_per_direction, record_spin_up, spin_up_end,
+    from lubedyn.scenes.dynamics_lyapunov import (_lyapunov_per_direction, record_spin_up, spin_up_end,
                                             whole_system_verdicts)
 
     t = np.linspace(0.0, 1e-3, 501)

@@ -90,7 +90,7 @@ def test_co_rotating_coordinates_of_a_circular_orbit_are_zero():
     through; half a revolution is dropped at each end; a record under two revolutions is refused."""
     import numpy as np
 
-    from lubedyn.dynamics_lyapunov import co_rotating
+    from lubedyn.scenes.dynamics_lyapunov import co_rotating
 
     t = np.arange(20001) * 5e-6  # 0.1 s, 411 rad/s: about 6.5 revolutions
     rate, R = 411.0, 0.023
@@ -119,7 +119,7 @@ def test_transient_end_is_spin_up_then_collision_rate():
     spinning up at the end gives the record's end."""
     import numpy as np
 
-    from lubedyn.dynamics_lyapunov import transient_end
+    from lubedyn.scenes.dynamics_lyapunov import transient_end
 
     t = np.linspace(0.0, 0.1, 20001)
     rotor = np.full(t.size, 1000.0)
@@ -142,7 +142,7 @@ def test_per_direction_summary_on_a_synthetic_ball():
 
     from types import SimpleNamespace
 
-    from lubedyn.dynamics_lyapunov import _lyapunov_per_direction
+    from lubedyn.scenes.dynamics_lyapunov import _lyapunov_per_direction
     from lubedyn.dynamics import integrators as I
     from test_lyapunov import LORENZ, lorenz  # tests/ is on sys.path (rootdir conftest, prepend import mode)
 
@@ -195,7 +195,7 @@ def test_case_tables_are_the_model_groups_one_to_one():
     group is a key of its table, and a model error from a case names the case key without translation."""
     import dataclasses
 
-    from lubedyn import dynamics_scene as ds
+    from lubedyn.scenes import dynamics as ds
     from lubedyn.dynamics.cageless import CagelessBearing
 
     for table, attr in CagelessBearing.GROUPS.items():
@@ -219,7 +219,7 @@ def test_benettin_window_starts_after_the_detected_transient_when_the_record_all
     """The whole-system exponents average over the same window as the per-direction ones, unless the
     detected transient takes more than half the record (the 20 ms main job: spin-up and collisions end
     near 15 ms), or nothing was detected."""
-    from lubedyn.dynamics_lyapunov import benettin_start
+    from lubedyn.scenes.dynamics_lyapunov import benettin_start
 
     assert benettin_start(0.02, 0.03, 0.4) == 0.03          # a 0.4 s drop: after the detected 30 ms
     assert benettin_start(0.005, 0.01496, 0.02) == 0.005    # the main job: 10 ms of 15 left -> given

@@ -164,7 +164,7 @@ def test_case_files_take_eyring_stress_for_ehl_scenes_only(capsys):
     assert code == 2 and err.count("\n") == 1 and "lubricant.eyring_stress" in err and "5e+06" in err, err
 
     from lubedyn.config import load_case
-    from lubedyn.ehl_scene import build_lubricant
+    from lubedyn.scenes.ehl import build_lubricant
 
     case = load_case(CASES_DIR / "ehl_roller_slice.toml", overrides=["lubricant.eyring_stress=5 MPa"])
     assert build_lubricant(case).eyring_stress == pytest.approx(5e6)

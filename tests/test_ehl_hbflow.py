@@ -151,7 +151,7 @@ def _paper_contact(name, load, speed, creep=0.0):
 
 
 def _grease(name):
-    from lubedyn.parameters.wu2018 import GREASE_TABLE
+    from lubedyn.papers.wu2018.parameters import GREASE_TABLE
 
     return G.grease_at(GREASE_TABLE[name], 30.0, ALPHA, name)
 
@@ -251,7 +251,7 @@ def test_case_file_takes_herschel_bulkley(tmp_path):
 
     from lubedyn import cli
     from lubedyn.config import CASES_DIR, load_case
-    from lubedyn.ehl_scene import build_lubricant
+    from lubedyn.scenes.ehl import build_lubricant
 
     sets = ["lubricant.viscosity.eta0=8.44 Pa s", "lubricant.herschel_bulkley.yield_stress=351.8 Pa",
             "lubricant.herschel_bulkley.exponent=0.7196"]

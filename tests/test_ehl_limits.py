@@ -28,7 +28,7 @@ import logging
 import numpy as np
 import pytest
 
-from lubedyn import ehl_scene
+from lubedyn.scenes import ehl as ehl_scene
 from lubedyn.config import load_case
 from lubedyn.lubrication import ConvergenceError
 from lubedyn.lubrication.ehl import (EHLContact, EHLGrid, EHLOptions, check_solution, closed_form_central_film,

@@ -143,7 +143,7 @@ def test_jfo_negative_fluid_fraction_is_logged_from_python(caplog):
     good = journal_jfo(64, 16, 0.0).solve()
     assert good.warnings == [] and _warnings(caplog) == []
 
-    from lubedyn import film_scene
+    from lubedyn.scenes import film as film_scene
     from lubedyn.config import load_case
 
     case = load_case(CASES_DIR / "journal_finite.toml", overrides=[

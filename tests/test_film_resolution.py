@@ -15,7 +15,7 @@ import logging
 import numpy as np
 import pytest
 
-from lubedyn import film_scene
+from lubedyn.scenes import film as film_scene
 from lubedyn.config import CASES_DIR, load_case
 from lubedyn.lubrication.solution import MIN_GAP_ELEMENTS
 

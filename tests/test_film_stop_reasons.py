@@ -84,7 +84,7 @@ def test_linear_film_records_its_stop_reason():
 
 def test_film_scene_summary_has_the_stop_reason(tmp_path):
     """summary.json of a film scene carries "Stop reason" (a string)."""
-    from lubedyn import film_scene
+    from lubedyn.scenes import film as film_scene
     from lubedyn.config import CASES_DIR, load_case
 
     case = load_case(CASES_DIR / "journal_finite.toml", smoke=True)
@@ -106,7 +106,7 @@ def test_jfo_negative_fluid_fraction_is_warned(tmp_path):
     good = journal_jfo(64, 16, 0.0).solve()
     assert good.fluid_fraction.min() == pytest.approx(0.106, abs=0.005) and good.fluid_fraction_warning() is None
 
-    from lubedyn import film_scene
+    from lubedyn.scenes import film as film_scene
     from lubedyn.config import CASES_DIR, load_case
 
     case = load_case(CASES_DIR / "journal_finite.toml", overrides=[

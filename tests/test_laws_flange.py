@@ -9,8 +9,8 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from lubedyn import parameters as P
-from lubedyn.parameters.wu2018 import GREASE_TABLE
+from lubedyn import papers as P
+from lubedyn.papers.wu2018.parameters import GREASE_TABLE
 from lubedyn.lubrication.errors import InputError
 from lubedyn.lubrication.laws import contact as C
 from lubedyn.lubrication.laws import flange as FL

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from lubedyn.parameters.wu2018 import GREASE_TABLE
+from lubedyn.papers.wu2018.parameters import GREASE_TABLE
 from lubedyn.lubrication.errors import InputError
 from lubedyn.lubrication.laws import film as F
 from lubedyn.lubrication.laws import grease as G

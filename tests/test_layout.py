@@ -41,9 +41,19 @@ def _module_name(path: Path) -> str:
     raise ValueError(path)
 
 
-def _imports(path):
-    """The absolute names of the modules ``path`` imports (relative imports resolved against its installed
-    name, so that ``from .. import x`` in ``dynamics/`` counts as an import of the coupling layer)."""
+def _module_files() -> dict:
+    """installed module name -> source file, for every module of the namespace."""
+    return {_module_name(p): p for folder in PACKAGE_DIR.values() for p in (ROOT / folder).rglob("*.py")
+            if "__pycache__" not in p.parts}
+
+
+MODULES = _module_files()
+
+
+def _import_nodes(path):
+    """(line, module, names) of every import of ``path`` (at any depth: function-local imports too), the
+    module absolute (relative imports resolved against its installed name, so that ``from .. import x``
+    in ``dynamics/`` counts as an import of the coupling layer)."""
     name = _module_name(path)
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     tree = ast.parse(path.read_text())
@@ -54,12 +64,18 @@ def _imports(path):
             else:
                 parts = package.split(".")
                 base = ".".join(parts[:len(parts) - node.level + 1] + ([node.module] if node.module else []))
-            if node.module:
-                yield base
-            else:  # ``from .. import lubrication``: the names are modules
-                yield from (f"{base}.{a.name}" for a in node.names)
+            yield node.lineno, base, [a.name for a in node.names]
         elif isinstance(node, ast.Import):
-            yield from (a.name for a in node.names)
+            for a in node.names:
+                yield node.lineno, a.name, []
+
+
+def _imports(path):
+    """The absolute names of the modules ``path`` imports: ``from a.b import c`` imports ``a.b``, and
+    ``a.b.c`` too when that is a module of the namespace (``from lubedyn import outputs``)."""
+    for _, base, names in _import_nodes(path):
+        yield base
+        yield from (f"{base}.{n}" for n in names if f"{base}.{n}" in MODULES)
 
 
 def _layer(module: str) -> str | None:
@@ -106,7 +122,84 @@ def test_the_relative_import_resolver():
     assert _module_name(ROOT / "dynamics" / "cageless" / "model.py") == "lubedyn.dynamics.cageless.model"
     assert _module_name(ROOT / "coupling" / "__init__.py") == "lubedyn"
     assert "lubedyn.dynamics.errors" in set(_imports(ROOT / "dynamics" / "specialise.py"))
-    assert "lubedyn.lubrication" in set(_imports(ROOT / "coupling" / "maps" / "provenance.py"))  # from .. import
+    assert "lubedyn.lubrication" in set(_imports(ROOT / "coupling" / "maps" / "provenance.py"))
+    assert "lubedyn.outputs" in set(_imports(ROOT / "coupling" / "scenes" / "study.py"))  # from lubedyn import outputs
+
+
+def _graph() -> dict:
+    """module -> the modules of the namespace it imports (function-local imports included); an import of
+    ``a.b.c`` counts as one of the deepest module it names (``a.b.c`` when that is a module, else ``a.b``)."""
+    graph = {}
+    for module, path in MODULES.items():
+        edges = set()
+        for found in _imports(path):
+            while found and found not in MODULES:
+                found = found.rpartition(".")[0]
+            if found and found != module:
+                edges.add(found)
+        graph[module] = edges
+    return graph
+
+
+def _cycles(graph: dict) -> list[list[str]]:
+    """The strongly connected components with more than one module (Tarjan's algorithm, iterative)."""
+    index, low, on, stack, found, counter = {}, {}, set(), [], [], [0]
+    for root in sorted(graph):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(graph[root])))]
+        index[root] = low[root] = counter[0]; counter[0] += 1; stack.append(root); on.add(root)
+        while work:
+            node, children = work[-1]
+            for child in children:
+                if child not in index:
+                    index[child] = low[child] = counter[0]; counter[0] += 1; stack.append(child); on.add(child)
+                    work.append((child, iter(sorted(graph[child]))))
+                    break
+                if child in on:
+                    low[node] = min(low[node], index[child])
+            else:
+                work.pop()
+                if work:
+                    low[work[-1][0]] = min(low[work[-1][0]], low[node])
+                if low[node] == index[node]:
+                    component = []
+                    while True:
+                        member = stack.pop(); on.discard(member); component.append(member)
+                        if member == node:
+                            break
+                    if len(component) > 1:
+                        found.append(sorted(component))
+    return found
+
+
+def test_no_import_circle():
+    """No module of the namespace imports, directly or through others, a module that imports it back:
+    function-local imports count (they hide a circle, they do not remove it).  A package's ``__init__``
+    importing its own modules is part of the graph like any other import."""
+    assert _cycles(_graph()) == []
+
+
+def test_the_cycle_finder():
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+    assert _cycles({"a": {"b"}, "b": set()}) == []
+
+
+def test_no_private_name_is_imported_across_packages():
+    """``from lubedyn.x import _name`` only inside x's own package: a private name is its package's
+    business; what another package needs is public (named without the underscore, documented)."""
+    bad = []
+    for module, path in MODULES.items():
+        home = module if path.name == "__init__.py" else module.rpartition(".")[0]
+        for line, base, names in _import_nodes(path):
+            if not base or not base.startswith("lubedyn"):
+                continue
+            source = base if base in MODULES else base.rpartition(".")[0]
+            source_package = source if MODULES.get(source, Path()).name == "__init__.py" else source.rpartition(".")[0]
+            for n in names:
+                if n.startswith("_") and not n.startswith("__") and source_package != home:
+                    bad.append(f"{path.relative_to(ROOT)}:{line}: {n} of {base}")
+    assert bad == []
 
 
 # ---------------------------------------------------------------------------

@@ -22,7 +22,8 @@ import pytest
 import lubedyn.lubrication as lub
 from lubedyn import cli, limits
 from lubedyn.config import CASES_DIR, CaseError, load_case
-from lubedyn import film_scene, map_scene
+from lubedyn.scenes import film as film_scene
+from lubedyn.scenes import map as map_scene
 from lubedyn.lubrication import mesh as meshes
 from lubedyn.lubrication.errors import InputError
 
@@ -59,7 +60,7 @@ def test_slider_breakpoints_count_at_most_one_node_each():
 MEASURE = textwrap.dedent("""
     import json
     from lubedyn.config import load_case
-    from lubedyn import film_scene
+    from lubedyn.scenes import film as film_scene
 
     def status(key):  # kB
         return int(next(line for line in open("/proc/self/status") if line.startswith(key)).split()[1])
@@ -90,7 +91,7 @@ def test_film_memory_estimate_is_conservative_within_a_few_times():
 def test_dynamics_values_per_sample_match_a_run():
     """values_per_sample counts exactly the state, diagnostics, ring diagnostics and the 6 analysis
     coordinates per ball that a (0.1 ms) run holds per sample."""
-    from lubedyn import dynamics_scene
+    from lubedyn.scenes import dynamics as dynamics_scene
     from lubedyn.dynamics.cageless import forces_many
 
     case = load_case(CASES_DIR / "cageless_6206_10krpm_short.toml", smoke=True,
@@ -143,7 +144,7 @@ def test_huge_sizes_are_refused_in_one_line(capsys, tmp_path, monkeypatch, case,
 def test_rk4_steps_beyond_max_steps_are_refused():
     case = load_case(CASES_DIR / "cageless_6206_10krpm_short.toml",
                      overrides=["integrator.method='rk4'", "integrator.dt=1e-12"])
-    from lubedyn import dynamics_scene
+    from lubedyn.scenes import dynamics as dynamics_scene
 
     with pytest.raises(InputError, match=r"integrator.dt = 1e-12 s: 2e\+10 fixed RK4 steps .* more than "
                                          r"integrator.max_steps = 50000000"):
@@ -217,7 +218,7 @@ def test_map_workers_are_capped_at_the_points(monkeypatch, caplog):
     monkeypatch.setattr(map_scene.maps, "default_workers", lambda: 2)
     seen, Stop = _capture_build(monkeypatch)
     case = load_case(CASES_DIR / "map_ball_ball.toml", smoke=True, overrides=["build.workers=40"])
-    with caplog.at_level(logging.INFO, logger="lubedyn.map_scene"), pytest.raises(Stop):
+    with caplog.at_level(logging.INFO, logger="lubedyn.scenes.map"), pytest.raises(Stop):
         map_scene.run(case)
     assert seen["workers"] == 24
     infos = [r.getMessage() for r in caplog.records if r.levelno == logging.INFO]
@@ -231,7 +232,7 @@ def test_map_default_workers_stay_at_the_cores(monkeypatch, caplog):
     monkeypatch.setattr(map_scene.maps, "default_workers", lambda: 2)
     seen, Stop = _capture_build(monkeypatch)
     case = load_case(CASES_DIR / "map_ball_ball.toml", smoke=True)
-    with caplog.at_level(logging.INFO, logger="lubedyn.map_scene"), pytest.raises(Stop):
+    with caplog.at_level(logging.INFO, logger="lubedyn.scenes.map"), pytest.raises(Stop):
         map_scene.run(case)
     assert seen["workers"] == 2
     assert not [r for r in caplog.records if r.levelno >= logging.WARNING]
@@ -241,7 +242,7 @@ def test_long_map_builds_are_announced(monkeypatch, caplog):
     """1000 x 12 x 20 ball-ball points at 3.5 s each on 2 processes: about 117 h."""
     monkeypatch.setattr(map_scene.maps, "default_workers", lambda: 2)
     case = load_case(CASES_DIR / "map_ball_ball.toml", overrides=["axes.central_gap.n=1000"])
-    with caplog.at_level(logging.WARNING, logger="lubedyn.map_scene"):
+    with caplog.at_level(logging.WARNING, logger="lubedyn.scenes.map"):
         setup = map_scene.build(case)
     assert setup.points == 240_000
     assert [r.getMessage() for r in caplog.records] == [
@@ -252,7 +253,7 @@ def test_long_map_builds_are_announced(monkeypatch, caplog):
 def test_dopri5_runs_beyond_max_steps_are_refused():
     """A 1e9 s drop sampled every 1e6 s fits in memory (1001 samples) but needs at least 6.7e13 adaptive
     steps (mean step at most 10 x the measured 1.48 us); the bundled 0.1 s runs need 6,700 at that bound."""
-    from lubedyn import dynamics_scene
+    from lubedyn.scenes import dynamics as dynamics_scene
 
     case = load_case(CASES_DIR / "cageless_6206_10krpm_short.toml",
                      overrides=["integrator.duration=1e9", "integrator.sample_interval=1e6"])

@@ -316,7 +316,7 @@ def test_scene_summary_writes_uncertainty_and_verdict_next_to_each_exponent(lore
     and the verdict is "not positive": the number alone would have been a silent wrong answer."""
     from types import SimpleNamespace
 
-    from lubedyn.dynamics_lyapunov import _lyapunov_per_direction
+    from lubedyn.scenes.dynamics_lyapunov import _lyapunov_per_direction
 
     t = np.arange(10000) * 0.01
     centres = np.zeros((t.size, 2, 3))

@@ -333,7 +333,7 @@ def test_fill_option_marks_failed_points(tmp_path):
     F = fmap.values["Force [N]"]
     assert np.array_equal(F[3:, :], np.repeat(F[2:3, :], 2, axis=0))
     # the map scene's summary says why the build ended, with the points' own errors
-    from lubedyn.map_scene import _build_stop_reason
+    from lubedyn.scenes.map import _build_stop_reason
 
     reason = _build_stop_reason(fmap.provenance)
     assert reason.startswith("4 of 10 points failed and were filled") and f"2 x {filled[0]['error']}" in reason

@@ -62,7 +62,7 @@ def test_every_module_has_one_name_after_a_run(tmp_path):
             for m in pkgutil.walk_packages(path, package + "."):
                 importlib.import_module(m.name)
         assert cli.main(["run", "journal_finite", "--smoke", "--out", {str(tmp_path / "film")!r}]) == 0
-        from lubedyn import dynamics_scene
+        from lubedyn.scenes import dynamics as dynamics_scene
         case = lubedyn.load_case(lubedyn.CASES_DIR / "cageless_6206_10krpm_short.toml", smoke=True)
         dynamics_scene.build(case, str(lubedyn.CASES_DIR / "cageless_6206_10krpm_short.toml"))
     """, tmp_path)
@@ -89,7 +89,7 @@ def test_the_api_and_the_subpackages():
     assert lubedyn.lubrication is lubrication and lubedyn.dynamics.__name__ == "lubedyn.dynamics"
     assert lubedyn.cases.__name__ == "lubedyn.cases"
     assert lubedyn.CASES_DIR == CASES_DIR and lubedyn.bundled_cases()
-    assert lubedyn.run_film.__module__ == "lubedyn.film_scene"
+    assert lubedyn.run_film.__module__ == "lubedyn.scenes.film"
     assert {"load_case", "run", "run_dynamics", "Film", "solve", "FilmMap", "lubrication", "dynamics",
             "cases"} <= set(dir(lubedyn))
     with pytest.raises(AttributeError, match="no attribute 'nope'"):

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 import pyvista as pv
 
-from lubedyn import film_scene
+from lubedyn.scenes import film as film_scene
 from lubedyn.config import CASES_DIR, load_case
 
 NAMES = ("Pressure [Pa]", "Film thickness [m]", "Fluid fraction [-]")

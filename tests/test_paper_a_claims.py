@@ -1,4 +1,4 @@
-"""The verdict rules of paper A's checklist (lubedyn.paper_a_claims, issue 24) on numbers built to fall on
+"""The verdict rules of paper A's checklist (lubedyn.papers.wu2018.claims, issue 24) on numbers built to fall on
 each side of each rule, and the checklist read from a study folder written like ``lubedyn study``'s."""
 from __future__ import annotations
 
@@ -6,8 +6,8 @@ import json
 
 import pytest
 
-from lubedyn import paper_a_claims as C
-from lubedyn.paper_a_claims import Value
+from lubedyn.papers.wu2018 import claims as C
+from lubedyn.papers.wu2018.claims import Value
 
 
 def test_trend_needs_the_claimed_sign_in_both_windows_beyond_the_window_to_window_change():

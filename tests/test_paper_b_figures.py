@@ -1,4 +1,4 @@
-"""coupling/paper_b_figures.py (paper B, Figs. 3-8 and 11) on synthetic data with known answers:
+"""coupling/papers/zhang2024/figures.py (paper B, Figs. 3-8 and 11) on synthetic data with known answers:
 the settling time of an exponential decay and the spin-up time of an exponential approach against
 their closed forms, a ball train on a perfect circle (no co-rotating radial motion, a Poincare
 section of one point at the analytic crossing times, settled from the start), known rotations, a
@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from lubedyn import paper_b_figures as pb
+from lubedyn.papers.zhang2024 import figures as pb
 from lubedyn.dynamics.analysis import Collision
 from lubedyn.dynamics.spectra import bearing_frequencies
 
@@ -287,7 +287,7 @@ def test_script_draws_the_comparison(tmp_path):
 # ---------------------------------------------------------------------------- through the scene
 def test_smoke_run_writes_the_figures_and_the_summary(tmp_path):
     from lubedyn import cli
-    from lubedyn.dynamics_scene import FIELD_FILES
+    from lubedyn.scenes.dynamics import FIELD_FILES
 
     assert {f for f, _ in FIELD_FILES} >= set(pb.PNG_FILES)
     assert cli.main(["run", "cageless_6206_10krpm_short", "--smoke", "--out", str(tmp_path)]) == 0

@@ -1,4 +1,4 @@
-"""Parameter sets (lubedyn.parameters): each paper's values against the independent transcription of
+"""Parameter sets (lubedyn.papers): each paper's values against the independent transcription of
 its tables in tests/data/seed_parameters.toml (a copy of shared/reference/seed_parameters.toml), every value cited, and the case-file
 merge (the set fills, the file and --set overrides win, errors are one line)."""
 import math
@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from lubedyn import parameters as P
+from lubedyn import papers as P
 from lubedyn.config import CASES_DIR as CASES
 from lubedyn.config import CaseError, load_case, load_case_text, resolved_toml
 
@@ -92,15 +92,15 @@ def test_a_case_takes_the_set_and_overrides_it():
     assert over.bearing.pitch_diameter == case.bearing.pitch_diameter  # the rest from the set
     # the resolved case names the set, lists every value and is valid without the set
     text = resolved_toml(case)
-    assert "parameters = 'Zhang2024' (coupling/parameters/zhang2024.py)" in text
+    assert "parameters = 'Zhang2024' (coupling/papers/zhang2024/parameters.py)" in text
     again = load_case_text(text)
     assert again.bearing == case.bearing and again.films == case.films and again.slots == case.slots
 
 
 def test_the_python_twin_of_a_case_is_the_same_bearing():
-    """lubedyn.parameters.zhang2024.cageless_bearing() and a case naming Zhang2024 build the same model."""
-    from lubedyn.dynamics_scene import build
-    from lubedyn.parameters.zhang2024 import cageless_bearing
+    """lubedyn.papers.zhang2024.parameters.cageless_bearing() and a case naming Zhang2024 build the same model."""
+    from lubedyn.scenes.dynamics import build
+    from lubedyn.papers.zhang2024.parameters import cageless_bearing
 
     case = load_case(CASES / "cageless_6206_steady.toml")
     from_case = build(case).model
@@ -128,7 +128,7 @@ def test_bad_parameter_sets_are_one_line(text, match):
 def test_assumed_values_are_those_the_case_keeps():
     """A case naming a set lists, under "Assumed values", exactly the keys the set marks assumed and the
     case does not change: paper A's base oil in the roller EHL case, gone when the case gives its own."""
-    from lubedyn.parameters import assumed_values
+    from lubedyn.papers import assumed_values
 
     case = load_case(CASES / "ehl_roller_slice.toml")
     wu = P.parameter_set("Wu2018")

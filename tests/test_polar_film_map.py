@@ -18,7 +18,7 @@ from lubedyn import film_points as fp
 from lubedyn.config import CASES_DIR
 from lubedyn.maps import FilmMap
 from lubedyn.dynamics import contacts as C
-from lubedyn.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
+from lubedyn.papers.zhang2024.parameters import cageless_bearing as paper_b  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -17,7 +17,7 @@ import pytest
 from lubedyn.dynamics.cageless import D_QI, D_QO, forces
 from lubedyn.lubrication.laws import contact as hertz
 from lubedyn.lubrication.laws.film import hamrock_dowson_central
-from lubedyn.parameters.zhang2024 import cageless_bearing as paper_b  # noqa: E402
+from lubedyn.papers.zhang2024.parameters import cageless_bearing as paper_b  # noqa: E402
 
 
 def test_film_thickness_is_hamrock_dowson():

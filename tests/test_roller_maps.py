@@ -23,7 +23,7 @@ from lubedyn.lubrication.errors import ConvergenceError, InputError
 def test_reduced_radii_are_the_models_geometry_and_match_the_notes():
     """R_x of the cone and cup kinds is tapered_geometry().reduced_radius (the model's own); paper A's
     notes (3.2) give 9.41 / 11.93 mm, rounded: within 0.3 % (measured 0.16 % / 0.20 %)."""
-    from lubedyn.parameters.wu2018 import tapered_geometry
+    from lubedyn.papers.wu2018.parameters import tapered_geometry
 
     g = tapered_geometry()
     for race, notes in (("cone", 9.41e-3), ("cup", 11.93e-3)):
@@ -153,7 +153,7 @@ def test_maxwell_traction_against_its_closed_forms():
 
 def test_rigid_limit_is_the_solvers_traction_and_heavy_loads_shear_elastically():
     """G = inf reproduces EHLSolution.traction_coefficient (the rigid limiting-shear law of the ball kinds) to
-    round-off.  With the kinds' G = 1 GPa (paper A's assumed film shear modulus, coupling/parameters/wu2018.py)
+    round-off.  With the kinds' G = 1 GPa (paper A's assumed film shear modulus, coupling/papers/wu2018/parameters.py)
     a heavy load (200 kN/m, 11 m/s, smoke) is linear at low slip: mu(1e-5)/1e-5 = mu(1e-4)/1e-4 (elastic
     and viscous parts are linear in s, no point capped), below the whole-strip elastic bound
     2 G b^2 s/(h_c w) (elastic_strip_slope: every element strained from x = -b; measured 0.41 of it: the
@@ -221,7 +221,7 @@ def test_grease_map_nodes_are_direct_grease_solves(grease):
     different film changes D and the elastic strain.  Away from these axes the grease solve is less robust
     (polyurea at 50 kN/m, smoke: 12.5 m/s fails, 15 m/s converges to an 87 um film, 12.9 um on 257 nodes)."""
     from lubedyn.maps import build_map
-    from lubedyn.parameters.wu2018 import GREASE_TABLE
+    from lubedyn.papers.wu2018.parameters import GREASE_TABLE
     from lubedyn.lubrication.laws import grease as G
 
     params = dict(resolution="smoke", **fp.roller_grease_params(grease, 30.0))

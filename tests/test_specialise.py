@@ -150,8 +150,8 @@ def test_forces_many_equals_forces_row_by_row():
     """The cage-less bearing's forces_many (the model's body through a function pointer) gives the
     bits of forces() at each state, and forces' state derivative is the bits of rhs, which calls the
     body directly (compiled into it, not through a pointer)."""
-    from lubedyn.cli import load_case_file
-    from lubedyn.dynamics_scene import build
+    from lubedyn.config import load_case_file
+    from lubedyn.scenes.dynamics import build
     from lubedyn.dynamics.cageless import forces, forces_many, rhs
 
     path, _, case = load_case_file(str(CASES_DIR / "cageless_6206_10krpm_short.toml"),
@@ -174,8 +174,8 @@ def test_the_dynamics_scenes_background_jobs_are_the_kernels_its_run_compiles():
     """The kernels a cage-less run has compiled in a second process on a cold cache are the ones its
     run calls: after a smoke run of the main job, every job's signature is among the compiled ones
     (a mismatch would compile them twice on a first run, silently)."""
-    from lubedyn import dynamics_scene as ds
-    from lubedyn.cli import load_case_file
+    from lubedyn.scenes import dynamics as ds
+    from lubedyn.config import load_case_file
 
     path, _, case = load_case_file(str(CASES_DIR / "cageless_6206_10krpm_short.toml"), smoke=True)
     assert case.analysis.lyapunov_exponents
@@ -190,8 +190,8 @@ def test_the_dynamics_scenes_background_jobs_are_the_kernels_its_run_compiles():
 def test_the_tapered_scenes_background_job_is_the_kernel_its_run_compiles():
     """As for the cage-less scene: after a smoke run of the Fig. 5 tapered case, the integrator kernel
     the run compiled in a second process on a cold cache has the signature its run calls."""
-    from lubedyn import tapered_scene as ts
-    from lubedyn.cli import load_case_file
+    from lubedyn.scenes import tapered as ts
+    from lubedyn.config import load_case_file
 
     path, _, case = load_case_file(str(CASES_DIR / "trb_fig5_2400rpm.toml"), smoke=True)
     run = ts.run(case, None, source=str(path), smoke=True)
@@ -205,8 +205,8 @@ def test_the_tapered_scenes_background_job_is_the_kernel_its_run_compiles():
 def test_tapered_forces_many_equals_contact_forces_row_by_row():
     """The tapered bearing's forces_many (contact_forces through a function pointer) gives the bits of
     contact_forces at each sampled state of a smoke run."""
-    from lubedyn import tapered_scene as ts
-    from lubedyn.cli import load_case_file
+    from lubedyn.scenes import tapered as ts
+    from lubedyn.config import load_case_file
     from lubedyn.dynamics.tapered import kernels as K
 
     path, _, case = load_case_file(str(CASES_DIR / "trb_fig5_2400rpm.toml"), smoke=True)

@@ -48,7 +48,7 @@ def test_paper_reading_auto_step_is_stable_where_the_closed_form_was_not():
     model).  RK4 at the old "auto" step (0.8 x 18.8 us) stops within 10 ms (the growth guard, naming a
     stable step below 9 us, or the state turning non-finite first); at the new one (0.8 x 8.25 us) the same 10 ms complete with the guard's
     largest |h lambda| below the limit."""
-    from lubedyn import tapered_scene as ts
+    from lubedyn.scenes import tapered as ts
     from lubedyn.config import CASES_DIR, load_case
     from lubedyn.dynamics.tapered import kernels as K
 

@@ -1,4 +1,4 @@
-"""The static scene (``scene = "static"``, coupling/static_scene.py) through the command line: the preload's
+"""The static scene (``scene = "static"``, coupling/scenes/static.py) through the command line: the preload's
 growth, the echo of every assumed value, ParaView output (bad input: rows of tests/test_bad_input_table.py).  The bundled cases' physics checks
 (force triangles, the cone's balance, Stribeck) are in tests/test_cases.py."""
 from __future__ import annotations
@@ -59,11 +59,11 @@ def test_bearing_vtu_for_paraview(capsys, tmp_path):
 
 
 def test_the_python_twin_is_the_cases_bearing():
-    """lubedyn.parameters.wu2018.tapered_geometry() and a static case naming Wu2018 build the same
+    """lubedyn.papers.wu2018.parameters.tapered_geometry() and a static case naming Wu2018 build the same
     geometry (one table, SCENES["static"], maps the parameters onto both)."""
     from lubedyn.config import load_case
-    from lubedyn.parameters.wu2018 import tapered_geometry
-    from lubedyn.static_scene import build
+    from lubedyn.papers.wu2018.parameters import tapered_geometry
+    from lubedyn.scenes.static import build
 
     import dataclasses
 

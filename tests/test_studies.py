@@ -1,5 +1,5 @@
 """Every shipped study (studies/*.toml) plans: its base case, set entries and every point's overrides
-validate (lubedyn.study.plan_study builds each run's case), and paper A's studies run the tapered scene
+validate (lubedyn.scenes.study.plan_study builds each run's case), and paper A's studies run the tapered scene
 with the outputs its summary gives.  Running them is benchmarks' and the README's business."""
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from lubedyn.study import plan_study, read_study
+from lubedyn.scenes.study import plan_study, read_study
 
 STUDIES = sorted((Path(__file__).resolve().parents[1] / "studies").glob("*.toml"))
 
@@ -22,7 +22,7 @@ def test_study_plans(path):
 def test_paper_a_studies_tabulate_keys_the_tapered_summary_writes(tmp_path):
     """The outputs the trb_* studies ask for are keys of a tapered run's summary (a 1 ms smoke run of the
     Fig. 5 case), so no column of their tables is empty by a typo."""
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
     from lubedyn.config import CASES_DIR, load_case
 
     s = S.run(load_case(CASES_DIR / "trb_fig5_2400rpm.toml", smoke=True)).summary

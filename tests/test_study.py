@@ -1,4 +1,4 @@
-"""``lubedyn study``: points, run folders, resume, backends, tables and one-line errors (coupling/study.py).
+"""``lubedyn study``: points, run folders, resume, backends, tables and one-line errors (coupling/scenes/study.py).
 
 Every study here runs the cheap inclined slider (``--smoke``: 10 P2 cells, a linear film solved in
 milliseconds), so the whole file stays fast; the worker-process and Dask runs pay only their start-up.
@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from lubedyn import cli
-from lubedyn.study import StudyError, plan_study, points, read_study, slug
+from lubedyn.scenes.study import StudyError, plan_study, points, read_study, slug
 
 ROOT = Path(__file__).resolve().parents[1]
 LOAD = "Load per unit width [N/m]"

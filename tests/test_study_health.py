@@ -1,4 +1,4 @@
-"""Study tables carry each run's health (coupling/study.py): ``ok``, ``ok-with-warnings`` or ``failed`` per
+"""Study tables carry each run's health (coupling/scenes/study.py): ``ok``, ``ok-with-warnings`` or ``failed`` per
 row of study.csv and study.json with the warnings' texts, a count per point, marks on study.png, and the
 warnings logged again when a resumed study reuses the runs (issue 36, item 3).
 
@@ -16,7 +16,7 @@ import logging
 import pytest
 
 from lubedyn import cli
-from lubedyn.study import aggregates, figure, plan_study, read_study, status, warnings_cell
+from lubedyn.scenes.study import aggregates, figure, plan_study, read_study, status, warnings_cell
 
 LOAD = "Load per unit width [N/m]"
 AXES = """"motion.velocity_lower" = ["2 m/s", "5 m/s", "8 m/s"]
@@ -40,7 +40,7 @@ def run(capsys, *argv):
 
 def warned_records(caplog):
     return [r.getMessage() for r in caplog.records
-            if r.name == "lubedyn.study" and r.levelno == logging.WARNING and "warning" in r.getMessage()]
+            if r.name == "lubedyn.scenes.study" and r.levelno == logging.WARNING and "warning" in r.getMessage()]
 
 
 def test_study_tables_carry_ok_warned_and_failed_and_a_resume_logs_the_warnings_again(tmp_path, capsys, caplog):

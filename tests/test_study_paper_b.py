@@ -48,7 +48,7 @@ def test_slot_sensitivity_study_plans_and_report_groups_its_pairs(tmp_path):
     under one assumption only gives exactly that verdict."""
     import importlib.util
 
-    from lubedyn.study import plan_study, read_study
+    from lubedyn.scenes.study import plan_study, read_study
 
     path = STUDY.parent / "cageless_slot_sensitivity.toml"
     plan = plan_study(read_study(path), path, smoke=True)

@@ -10,9 +10,9 @@ import math
 import numpy as np
 import pytest
 
-from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.papers.wu2018.parameters import tapered_geometry
 from lubedyn.dynamics.integrators import integrate
-from lubedyn.parameters.wu2018 import VALUES
+from lubedyn.papers.wu2018.parameters import VALUES
 from lubedyn.dynamics.errors import DynamicsInputError
 from lubedyn.dynamics.tapered import groups as G
 from lubedyn.dynamics.tapered import kernels as K
@@ -475,7 +475,7 @@ def test_the_traction_table_holds_the_limited_law():
     (measured 1.3e-4, below the Gauss rule's own 3e-4 against adaptive quadrature; median 2e-8); the
     viscous part alone median 3e-6 (its largest errors, 2e-3, sit below 10 nm/s where the elastic shear
     carries the traction).  No point falls outside the table."""
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
     from lubedyn.config import load_case
     from lubedyn.dynamics.tapered import layout as L
     from lubedyn.lubrication.laws.traction import elastic_limited, elastic_strip_slope
@@ -504,7 +504,7 @@ def test_the_traction_table_holds_the_limited_law():
 def test_a_run_with_the_traction_table_follows_the_quadrature_run():
     """Fig. 5's case at smoke size over 1 ms: the loaded rollers' mean skew and slip with the table within
     1e-4 (relative) of the run with the Gauss rule at every slice (measured 1.0e-6 and 7e-7)."""
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
     from lubedyn.config import load_case
 
     out = {}

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.papers.wu2018.parameters import tapered_geometry
 from lubedyn.lubrication.errors import InputError
 from lubedyn.lubrication.laws import slices as sl
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, fsolve
 
-from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.papers.wu2018.parameters import tapered_geometry
 from lubedyn.dynamics.tapered import solve
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 from lubedyn.lubrication.laws import contact
@@ -225,7 +225,7 @@ def test_low_speed_with_few_slices_converges():
     was not a descent direction was only shortened, never damped).  Now each converges, balances its
     forces, and the largest cup load grows with speed (the centrifugal load) and lies within 0.5 % of the
     10-slice solution's (the slice count's own effect, 0.12 % here)."""
-    from lubedyn import tapered_scene as ts
+    from lubedyn.scenes import tapered as ts
     from lubedyn.config import CASES_DIR, load_case
 
     def largest(rpm, slices):
@@ -246,7 +246,7 @@ def test_where_the_solver_stops_at_low_speed():
     unloaded rollers are held by 0.8 N of centrifugal load, their near-singular blocks cap every
     Levenberg-Marquardt step; the solve ends at the iteration limit with a one-line ConvergenceError naming
     the residual (10 slices converge there)."""
-    from lubedyn import tapered_scene as ts
+    from lubedyn.scenes import tapered as ts
     from lubedyn.config import CASES_DIR, load_case
 
     m = ts.build(load_case(CASES_DIR / "trb_fig5_2400rpm.toml", overrides=["operating.speed=300 rpm", "model.slices=5"]))

@@ -1,4 +1,4 @@
-"""The tapered scene's analysis and outputs (lubedyn.tapered_scene, issue 23 sec. 2) against
+"""The tapered scene's analysis and outputs (lubedyn.scenes.tapered, issue 23 sec. 2) against
 independent values: the periodicity measure on signals built to be periodic or not, the loaded-zone
 marker against the quasi-static solution, the dynamic loads settling on the quasi-static ones, the
 ParaView frame's rollers where their states put them, and the written files."""
@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from lubedyn import tapered_scene as S
+from lubedyn.scenes import tapered as S
 from lubedyn.config import load_case
 from lubedyn.outputs import read_timeseries
 

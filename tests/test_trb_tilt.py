@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from lubedyn.config import CASES_DIR
-from lubedyn.parameters.wu2018 import tapered_geometry
+from lubedyn.papers.wu2018.parameters import tapered_geometry
 from lubedyn.dynamics.errors import DynamicsInputError
 from lubedyn.dynamics.integrators import integrate
 from lubedyn.dynamics.tapered import groups as G
@@ -197,7 +197,7 @@ def test_the_locked_cone_reproduces_the_model_before_the_option():
     trajectory equal those recorded at commit 1b36d80 before the tilt existed
     (tests/data/trb_locked_reference.npz).  Bit for bit on the machine that wrote it (IEEE arithmetic
     without fastmath); asserted to 1e-12 relative so that another machine's libm cannot fail it."""
-    from lubedyn import tapered_scene as S
+    from lubedyn.scenes import tapered as S
     from lubedyn.config import load_case
 
     ref = np.load(DATA / "trb_locked_reference.npz")

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from lubedyn import tapered_scene as ts
+from lubedyn.scenes import tapered as ts
 from lubedyn.config import CASES_DIR, load_case
 from lubedyn.dynamics.tapered import kernels as K
 from lubedyn.dynamics.tapered import layout as L

@@ -4,7 +4,7 @@ every length is checked against the scales of its own scene.
 Before, ``clearance = 50`` (meant um) was a 50 m clearance that validated and ran; ``--set
 gap.h_out=10`` on a 20 mm slider too.  Now a film thicker than a tenth of the length it spreads over
 (:data:`lubedyn.config.THIN_FILM`), a film domain beyond its body, an EHL contact as wide as its
-radius (:data:`lubedyn.ehl_case.SMALL_CONTACT`) or a bearing whose lengths do not fit together is
+radius (:data:`lubedyn.scenes.ehl_case.SMALL_CONTACT`) or a bearing whose lengths do not fit together is
 one line (exit 2) naming the key, its value, what it was compared with and, for a bare number, the
 unit it was probably meant in.  A case file with a UTF-8 byte-order mark loads; a unit written
 without quotes gets a hint.  Validation only: nothing here solves.

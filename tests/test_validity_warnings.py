@@ -11,7 +11,11 @@ import json
 
 import pytest
 
-from lubedyn import cli, ehl_scene, film_scene
+from lubedyn import cli
+
+from lubedyn.scenes import ehl as ehl_scene
+
+from lubedyn.scenes import film as film_scene
 from lubedyn.config import CASES_DIR, load_case
 
 PRESSURE = "is above validity.max_pressure"

@@ -289,25 +289,25 @@ was rebuilt:
 
 The contact and film laws these kinds use are written once in :mod:`lubedyn.lubrication.laws` (Hertz,
 Thornton, the squeeze films, the friction laws); the papers' values come from
-:mod:`lubedyn.parameters`.  Modules: ``base`` (registry types, paper values, lubricant), ``ball_ball``
+:mod:`lubedyn.papers`.  Modules: ``base`` (registry types, paper values, lubricant), ``ball_ball``
 (the ball-ball film kind), ``ehl`` (the four EHL race kinds); the registry :data:`KINDS` is here.
 """
 from __future__ import annotations
 
-from .ball_ball import (  # noqa: F401  (the package's API: names used by maps, scenes and tests)
+from lubedyn.film_points.ball_ball import (  # noqa: F401  (the package's API: names used by maps, scenes and tests)
     BALL_BALL_AXES, BALL_BALL_OUTPUTS, BALL_BALL_RESOLUTIONS, PRESSURE_NUMBER, RING_GRADING, SQUEEZE_ANGLE,
     approach_speed, ball_ball_default_params, ball_ball_derived, effective_radius, entrainment_number,
     evaluate_ball_ball, field_ball_ball, polar_disk, polar_numbers, polar_speeds, separation_onset_angle,
     solve_ball_ball, squeeze_force_barus, squeeze_number, _ball_ball_setup,
 )
-from .base import (  # noqa: F401  (the package's API: names used by maps, scenes and tests)
+from lubedyn.film_points.base import (  # noqa: F401  (the package's API: names used by maps, scenes and tests)
     AxisDef, BALL_DIAMETER, BALL_RADIUS, DENSITY_LAWS, GREASE_ALPHA, INNER_GROOVE_RADIUS, N_BALLS,
     OIL_ALPHA, OIL_ETA0, OIL_RHO0, OUTER_GROOVE_RADIUS, PAPER_B_AXIAL_LOAD, PITCH_DIAMETER_6206, PointKind,
     ROLLER_BASE_OIL_ETA0, ROLLER_BASE_OIL_RHO0, ROLLER_EFFECTIVE_LENGTH, ROLLER_EYRING_STRESS,
     ROLLER_INNER_CONTACT_ANGLE, ROLLER_MEAN_DIAMETER, ROLLER_PITCH_DIAMETER, SHAFT_SPEED_A, SHAFT_SPEED_B,
     VISCOSITY_LAWS,
 )
-from .ehl import (  # noqa: F401  (the package's API: names used by maps, scenes and tests)
+from lubedyn.film_points.ehl import (  # noqa: F401  (the package's API: names used by maps, scenes and tests)
     EHL_BALL_AXES, EHL_OUTPUTS, EHL_REFERENCE_DOMAIN, EHL_RESOLUTIONS, EHL_ROLLER_AXES, EHL_SRR_AXIS,
     SRR_MIN, TRACTION, ehl_ball_inner_race_default_params, ehl_ball_outer_race_default_params,
     ehl_load_response, ehl_roller_race_default_params, evaluate_ehl, field_ehl, _ehl_setup,

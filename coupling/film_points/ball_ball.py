@@ -11,7 +11,7 @@ import numpy as np
 
 from lubedyn.lubrication.errors import ConvergenceError, InputError, unknown_choice
 
-from .base import BALL_RADIUS, OIL_ALPHA, OIL_ETA0, OIL_RHO0, AxisDef, _get, _lubricant
+from lubedyn.film_points.base import BALL_RADIUS, OIL_ALPHA, OIL_ETA0, OIL_RHO0, AxisDef, _get, _lubricant
 
 # ====================================================================== ball-ball film
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from lubedyn.lubrication.errors import InputError, unknown_choice
 
-from ..parameters import printed, si
+from lubedyn.papers import printed, si
 
 # ---------------------------------------------------------------- registry
 
@@ -75,7 +75,7 @@ class PointKind:
 
 
 # ---------------------------------------------------------------- paper data
-# The kinds' default parameters come from the papers' parameter sets (lubedyn.parameters): paper B
+# The kinds' default parameters come from the papers' parameter sets (lubedyn.papers): paper B
 # (Zhang2024: Tables 1, 2, 4) for the ball kinds, paper A (Wu2018: Table 1, figure 5) for the roller.
 BALL_RADIUS = si("Zhang2024", "ball_radius")
 BALL_DIAMETER = si("Zhang2024", "ball_diameter")

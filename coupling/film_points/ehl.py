@@ -11,7 +11,7 @@ import numpy as np
 
 from lubedyn.lubrication.errors import ConvergenceError, InputError, unknown_choice
 
-from .base import (AxisDef, BALL_DIAMETER, BALL_MODULUS, BALL_POISSON, GREASE_ALPHA, INNER_GROOVE_RADIUS, N_BALLS,
+from lubedyn.film_points.base import (AxisDef, BALL_DIAMETER, BALL_MODULUS, BALL_POISSON, GREASE_ALPHA, INNER_GROOVE_RADIUS, N_BALLS,
                    OIL_ALPHA, OIL_ETA0, OIL_RHO0, OUTER_GROOVE_RADIUS, PAPER_B_AXIAL_LOAD, PITCH_DIAMETER_6206,
                    RING_MODULUS, RING_POISSON, ROLLER_BASE_OIL_ETA0, ROLLER_BASE_OIL_RHO0, ROLLER_EFFECTIVE_LENGTH,
                    ROLLER_EYRING_STRESS, ROLLER_FILM_SHEAR_MODULUS, ROLLER_INNER_CONTACT_ANGLE, ROLLER_MEAN_DIAMETER, ROLLER_MODULUS,
@@ -163,9 +163,9 @@ ROLLER_RACES = ("cone", "cup")
 
 def roller_race_radius(race: str) -> float:
     """Reduced radius R_x [m] of paper A's mid-slice roller/``race`` line contact from the model's own
-    geometry (:func:`lubedyn.parameters.wu2018.tapered_geometry`, ``reduced_radius``: roller rho_m/cos(phi)
+    geometry (:func:`lubedyn.papers.wu2018.parameters.tapered_geometry`, ``reduced_radius``: roller rho_m/cos(phi)
     against the race's cone r_c/cos(alpha), concave for the cup): cone 9.395 mm, cup 11.906 mm."""
-    from ..parameters.wu2018 import tapered_geometry
+    from lubedyn.papers.wu2018.parameters import tapered_geometry
 
     if race not in ROLLER_RACES:
         raise unknown_choice("race", race, ROLLER_RACES)
@@ -224,7 +224,7 @@ def roller_grease_params(name: str, temperature_c: float = 30.0) -> dict:
     or write them in a map case's [params]; they are recorded in the map's provenance."""
     from lubedyn.lubrication.laws.grease import grease_at
 
-    from ..parameters.wu2018 import GREASE_TABLE
+    from lubedyn.papers.wu2018.parameters import GREASE_TABLE
 
     if name not in GREASE_TABLE:
         raise unknown_choice("grease", name, sorted(GREASE_TABLE))
@@ -258,11 +258,11 @@ def _film_scaled_domain(params, contact, lengths=None, base=None):
         # viscosity at the rolling shear rate (lubedyn.lubrication.ehl's own start for the grease)
         import dataclasses
 
-        from lubedyn.lubrication.ehl.newton import _hb_apparent_start
+        from lubedyn.lubrication.ehl.newton import hb_apparent_start
         from lubedyn.lubrication.laws.lubricant import Barus
 
         lub = contact.lubricant
-        eta_app, _ = _hb_apparent_start(contact)
+        eta_app, _ = hb_apparent_start(contact)
         contact = dataclasses.replace(contact, lubricant=dataclasses.replace(
             lub, viscosity=Barus(eta_app, lub.viscosity.pressure_viscosity), herschel_bulkley=None))
     R = contact.radius_x

@@ -73,24 +73,24 @@ Modules: ``registry`` (kinds, file format, axes), ``fit`` (power-law fits), ``fi
 """
 from __future__ import annotations
 
-from .build import (  # noqa: F401  (the package's API)
+from lubedyn.maps.build import (  # noqa: F401  (the package's API)
     _fill_nearest, accuracy_report, build_map, random_points,
 )
-from .filmmap import (  # noqa: F401  (the package's API)
+from lubedyn.maps.filmmap import (  # noqa: F401  (the package's API)
     CARTESIAN_ENTRAINMENT, CARTESIAN_SQUEEZE, FilmMap, KernelArrays, POLAR_AXES, _json_default,
     cartesian_resample,
 )
-from .fit import (  # noqa: F401  (the package's API)
+from lubedyn.maps.fit import (  # noqa: F401  (the package's API)
     PowerLawFit, _significant, fit_power_law, local_floor, relative_error,
 )
-from .provenance import (  # noqa: F401  (the package's API)
+from lubedyn.maps.provenance import (  # noqa: F401  (the package's API)
     _canonical, code_fingerprint, point_hash, sha256_text, versions,
 )
-from .registry import (  # noqa: F401  (the package's API)
+from lubedyn.maps.registry import (  # noqa: F401  (the package's API)
     ACCURACY_TOLERANCE, FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR, _show_point, _unknown_key, axis_key,
     axis_unit, get_kind, kinds, register_kind, resolve_axes,
 )
-from .sweep import (  # noqa: F401  (the package's API)
-    _PointStore, _chunks, _die_with_parent, _init_worker, _limit_threads, _sigint_blocked, _solve_chunk,
-    _solve_dask, _solve_point, _stop_pool, default_workers, solve_points,
+from lubedyn.maps.sweep import (  # noqa: F401  (the package's API)
+    _PointStore, _chunks, _die_with_parent, init_worker, _limit_threads, sigint_blocked, _solve_chunk,
+    _solve_dask, _solve_point, stop_pool, default_workers, solve_points,
 )

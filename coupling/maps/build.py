@@ -11,10 +11,10 @@ import numpy as np
 
 from lubedyn.lubrication.errors import ConvergenceError, InputError, unknown_choice
 
-from .filmmap import FilmMap
-from .provenance import _canonical, code_fingerprint, sha256_text, versions
-from .registry import ACCURACY_TOLERANCE, METHODS, _show_point, _unknown_key, get_kind, resolve_axes
-from .sweep import _PointStore, solve_points
+from lubedyn.maps.filmmap import FilmMap
+from lubedyn.maps.provenance import _canonical, code_fingerprint, sha256_text, versions
+from lubedyn.maps.registry import ACCURACY_TOLERANCE, METHODS, _show_point, _unknown_key, get_kind, resolve_axes
+from lubedyn.maps.sweep import _PointStore, solve_points
 
 log = logging.getLogger(__name__)
 

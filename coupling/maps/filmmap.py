@@ -17,9 +17,9 @@ import numpy as np
 from lubedyn.dynamics import interp
 from lubedyn.lubrication.errors import InputError, unknown_choice
 
-from .. import outputs
-from .fit import PowerLawFit, fit_power_law, local_floor, relative_error
-from .registry import ACCURACY_TOLERANCE, FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR
+from lubedyn import outputs
+from lubedyn.maps.fit import PowerLawFit, fit_power_law, local_floor, relative_error
+from lubedyn.maps.registry import ACCURACY_TOLERANCE, FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR
 
 log = logging.getLogger(__name__)
 
@@ -448,7 +448,7 @@ def cartesian_resample(fmap: "FilmMap", output: str = "Force [N]", squeeze=CARTE
     Each node (h0, Lambda, u_e) is turned into (rho, theta) (:func:`lubedyn.film_points.polar_numbers`)
     and read from the polar map: rho above the axis is clamped, rho below its first node scales the
     output by rho/rho_lo (isoviscous limit: F, K ~ rho), rho = 0 gives 0."""
-    from .. import film_points as fp
+    from lubedyn import film_points as fp
 
     params = fmap.provenance.get("params") or fp.ball_ball_default_params()
     g = fmap.axes[0]

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from .registry import ZERO_FLOOR
+from lubedyn.maps.registry import ZERO_FLOOR
 
 # ---------------------------------------------------------------------------
 # power-law fit

@@ -13,9 +13,9 @@ from pathlib import Path
 
 from lubedyn.lubrication.errors import InputError
 
-from .. import outputs
-from .filmmap import _json_default
-from .provenance import code_fingerprint, point_hash
+from lubedyn import outputs
+from lubedyn.maps.filmmap import _json_default
+from lubedyn.maps.provenance import code_fingerprint, point_hash
 
 log = logging.getLogger(__name__)
 
@@ -96,7 +96,7 @@ def _die_with_parent(parent_pid: int) -> str:
     return "watchdog thread"
 
 
-def _init_worker(parent_pid: int):
+def init_worker(parent_pid: int):
     """Pool initializer: ignore SIGINT (the parent handles Ctrl-C and stops the workers), die with the
     parent, one BLAS thread, no background compilation of kernels."""
     import signal
@@ -111,7 +111,7 @@ def _init_worker(parent_pid: int):
 
 
 @contextlib.contextmanager
-def _sigint_blocked():
+def sigint_blocked():
     """Block SIGINT in this thread while workers are forked (they inherit the mask and set SIG_IGN
     before unblocking), so that a Ctrl-C at that moment reaches the parent only."""
     import signal
@@ -127,7 +127,7 @@ def _sigint_blocked():
             signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
 
 
-def _stop_pool(pool, timeout: float = 3.0):
+def stop_pool(pool, timeout: float = 3.0):
     """Cancel every pending chunk and end the workers now (an interrupt or an error): the points
     they finished are already stored."""
     processes = list((getattr(pool, "_processes", None) or {}).values())
@@ -222,11 +222,11 @@ def solve_points(kind, params: dict, points: list, *, workers=None, scheduler=No
 
             info["backend"] = f"local processes ({workers})"
             ctx = multiprocessing.get_context("fork") if hasattr(os, "fork") else None
-            pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
+            pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=init_worker,
                                           initargs=(os.getpid(),))
             root = str(store.root) if store.root is not None else None
             try:
-                with _sigint_blocked():
+                with sigint_blocked():
                     futures = {pool.submit(_solve_chunk, kind.evaluate, params, [points[i] for i in chunk],
                                            root, [keys[i] for i in chunk]): chunk
                                for chunk in _chunks(points, todo)}
@@ -234,7 +234,7 @@ def solve_points(kind, params: dict, points: list, *, workers=None, scheduler=No
                     for i, r in zip(futures[fut], fut.result()):
                         accept(i, *r, stored=root is not None)
             except BaseException:  # Ctrl-C or an error: do not wait for the queued points
-                _stop_pool(pool)
+                stop_pool(pool)
                 raise
             pool.shutdown(wait=True)
     finally:
@@ -249,7 +249,7 @@ def run_on_dask(scheduler, key: str, calls: list, accept, error=InputError) -> s
     ``scheduler``: an address, a Client or a cluster (``key``: the setting that named it, for messages;
     ``error``: the one-line error class).  A client this function opens is closed at the end; an
     interrupt or an error cancels the calls the cluster has not done yet.  Used by map sweeps and by
-    studies (:mod:`lubedyn.study`)."""
+    studies (:mod:`lubedyn.scenes.study`)."""
     try:
         from distributed import Client, as_completed
     except ImportError:

@@ -14,7 +14,7 @@ group          case table   what
 =============  ===========  ===============================================================
 
 Paper data are not defaults here: paper B's values come from its parameter set
-(:mod:`lubedyn.parameters.zhang2024`); the defaults are model options and numerical settings.
+(:mod:`lubedyn.papers.zhang2024.parameters`); the defaults are model options and numerical settings.
 Each group checks its own values; checks that need two groups live in the model.
 """
 from __future__ import annotations

@@ -112,7 +112,7 @@ class CagelessBearing:
     and ``initial`` (the starting arrangement and its seeded perturbation).
 
     The groups carry no paper data as defaults: paper B's come from its parameter set,
-    ``lubedyn.parameters.zhang2024.cageless_bearing()`` (Tables 1, 2, 4 and the values it had to
+    ``lubedyn.papers.zhang2024.parameters.cageless_bearing()`` (Tables 1, 2, 4 and the values it had to
     assume).  Each group checks its own values; :meth:`__post_init__` checks what needs two groups.
     Every error names the case key (``"slots.width = ..."``).
     """

@@ -15,7 +15,7 @@ group          case table    what
 =============  ============  ===============================================================
 
 Paper data are not defaults here: paper A's values (and what it had to assume) come from
-:mod:`lubedyn.parameters.wu2018`; the defaults are model options and numerical settings.  Each group
+:mod:`lubedyn.papers.wu2018.parameters`; the defaults are model options and numerical settings.  Each group
 checks its own values and raises :class:`lubedyn.dynamics.errors.DynamicsInputError` naming the case key;
 checks that need two groups live in the model.
 """

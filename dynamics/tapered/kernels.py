@@ -114,7 +114,7 @@ from lubedyn.lubrication.laws.slices import slice_contact_3d, slice_force
 from lubedyn.lubrication.laws.traction import (elastic_limited, elastic_strip_slope, limited_ellipse_traction,
                                       limited_strip_traction, paper_raceway_traction)
 
-from ..interp import _dot, _hvalue, _locate, _pair2
+from ..interp import hermite_dot, hermite_value, locate, pair2
 from ..integrators import put
 from ..specialise import register_kernel, specialise
 from ..rotations import euler_rate, quat_derivative, quat_from_rotvec, quat_rotate, quat_rotate_inverse, quat_to_matrix
@@ -260,13 +260,13 @@ def _table_viscous(race, w, vs, P, counter):
     # about as much as the interpolation); without its fused multiply-adds, so equal to round-off only: a
     # 10 ms run of Fig. 5's point moves by 1.5e-8 relative at most
     av, aw = P[off:off + n0], P[off + n0:off + n0 + n1]
-    i, c0, o0 = _locate(av, math.log(vs))
-    j, c1, o1 = _locate(aw, math.log(w))
+    i, c0, o0 = locate(av, math.log(vs))
+    j, c1, o1 = locate(aw, math.log(w))
     if o0 != 0 or o1 != 0:
         return -1.0
     D = P[off + n0 + n1:off + n0 + n1 + 4 * n0 * n1].reshape((4, n0, n1))
-    w1 = _hvalue(aw, j, c1)
-    return math.exp(_dot(_pair2(D, 0, i, j, w1), _pair2(D, 1, i, j, w1), _hvalue(av, i, c0)))
+    w1 = hermite_value(aw, j, c1)
+    return math.exp(hermite_dot(pair2(D, 0, i, j, w1), pair2(D, 1, i, j, w1), hermite_value(av, i, c0)))
 
 
 @njit(**JIT)
@@ -297,14 +297,14 @@ def map_traction_coefficient(race, w, s, P, counter):
         s = lo
     elif s > P[P_TMSHI]:
         s = P[P_TMSHI]
-    i, tw, out = _locate(aw, math.log(w))
+    i, tw, out = locate(aw, math.log(w))
     counter[0] += out
-    bw = _hvalue(aw, i, tw)
+    bw = hermite_value(aw, i, tw)
     ln_st = (bw[0] * P[c0 + i] + bw[1] * P[c0 + i + 1]) + (bw[2] * P[c0 + nw + i] + bw[3] * P[c0 + nw + i + 1])
-    j, tx, _ = _locate(ax, math.log(P[P_TMCEN]) + math.asinh((math.log(s) - ln_st) / P[P_TMA]) / P[P_TMB])
-    wx = _hvalue(ax, j, tx)
+    j, tx, _ = locate(ax, math.log(P[P_TMCEN]) + math.asinh((math.log(s) - ln_st) / P[P_TMA]) / P[P_TMB])
+    wx = hermite_value(ax, j, tx)
     G = P[g0:g0 + 4 * nw * nx].reshape((4, nw, nx))
-    return scale * math.exp(_dot(_pair2(G, 0, i, j, wx), _pair2(G, 1, i, j, wx), bw))
+    return scale * math.exp(hermite_dot(pair2(G, 0, i, j, wx), pair2(G, 1, i, j, wx), bw))
 
 
 @njit(**INLINE)

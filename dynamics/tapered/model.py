@@ -50,7 +50,7 @@ class TaperedBearing:
     (:mod:`lubedyn.dynamics.tapered.groups`): ``operating``, ``fidelity`` (the case's ``[model]``),
     ``lubricant``, ``cage`` (needed with ``fidelity.pocket`` != "none"), ``flange`` (needed with
     ``fidelity.flange_friction`` != "none") and ``initial``.  Paper A's values come from
-    :mod:`lubedyn.parameters.wu2018` (``tapered_bearing()``); every error names the case key."""
+    :mod:`lubedyn.papers.wu2018.parameters` (``tapered_bearing()``); every error names the case key."""
 
     geometry: TaperedRollerGeometry
     operating: Operating
@@ -317,7 +317,7 @@ class TaperedBearing:
         is the film's (a Maxwell fluid capped by limiting shear, in the map's own lubricant:
         lubedyn.film_points.ehl, ``evaluate_ehl_line``), so the kernel adds no elastic shear of its own.
         u_e outside the maps' speed axis is refused (one line naming operating.speed)."""
-        from ..interp import _hvalue, _locate_call
+        from ..interp import hermite_value, locate_call
 
         ue = float(P[L.P_UE])
         spec, shape = None, None
@@ -342,8 +342,8 @@ class TaperedBearing:
                     raise fail("model.traction", "map", f"needs the {race} map's traction on log axes, log values")
             # u_e's cell and cubic Hermite weights (value, derivative data of the two nodes) in t = log u
             au = shift.axes[1]
-            j, t, _ = _locate_call(au, math.log(ue))
-            wu = _hvalue(au, j, t)
+            j, t, _ = locate_call(au, math.log(ue))
+            wu = hermite_value(au, j, t)
 
             def restrict(deriv, bits):
                 """Node data of the plane u = u_e: index s = s0 + 2 s1 + 4 s2 (bit k: d/d axis k); keep the

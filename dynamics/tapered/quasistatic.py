@@ -101,7 +101,7 @@ class QuasiStaticResult:
     moment_balance_error: float = 0.0
 
 
-class _Model:
+class CaseTable:
     """Assembles the energy, residual and Gauss-Newton Hessian of the bearing (plain numpy)."""
 
     def __init__(self, g: TaperedRollerGeometry, n_slices, centrifugal, gyro_moment, tilt=False):
@@ -331,7 +331,7 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
         beta = g.roller_axis_angle
         ws = -kin["roller spin relative to cage [rad/s]"]
         mg = wc * math.sin(beta) * (ix * (ws + wc * math.cos(beta)) - iy * wc * math.cos(beta))
-    model = _Model(g, n_slices, fc, -mg, tilt)
+    model = CaseTable(g, n_slices, fc, -mg, tilt)
     n = model.nc + 3 * model.Z
     free = np.ones(n, bool)
     q = np.zeros(n)

@@ -42,7 +42,7 @@ def _film_guess(c: EHLContact) -> float:
 
     U, G, W = c.U, max(c.G, 1e-3), c.W
     if c.lubricant.herschel_bulkley is not None:
-        return _hb_apparent_start(c)[1]
+        return hb_apparent_start(c)[1]
     if c.is_line:
         H = dowson_toyoda_central(U, G, W)
         return max(H, 8 * U / W) * c.radius_x
@@ -51,7 +51,7 @@ def _film_guess(c: EHLContact) -> float:
     return float(nijenbanning_central(c.moes_M, max(c.moes_L, 1e-6)) * np.sqrt(2 * U) * shape) * c.radius_x
 
 
-def _hb_apparent_start(c: EHLContact):
+def hb_apparent_start(c: EHLContact):
     """``(eta_app, h_c)`` of a Herschel-Bulkley contact: the Newtonian (Barus, the grease's alpha) film
     guess :func:`_film_guess` with the apparent viscosity eta_app = tau_y/D + phi0 D^(n-1) at its own
     rolling shear rate D = u_m/h_c (the fixed point of lubedyn.lubrication.laws.grease.apparent_film, by

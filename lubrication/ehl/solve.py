@@ -110,7 +110,7 @@ HB_START_FACTORS = (1.0, 0.5, 0.25, 0.125)  # Newtonian starts: eta_app times th
 
 def _solve_hb(contact, grid, options):
     """A Herschel-Bulkley contact from a Newtonian start: the Newtonian contact (Barus, the grease's
-    alpha) with the apparent viscosity eta_app of :func:`_hb_apparent_start` is solved first, its state
+    alpha) with the apparent viscosity eta_app of :func:`hb_apparent_start` is solved first, its state
     starts the Herschel-Bulkley iteration (measured: the Hertz start stalls for polyurea and calcium at
     135 kN/m, 10 m/s on paper A's cone; the Newtonian start converges in 5-6 steps).  Where that
     Newtonian contact, or the Herschel-Bulkley iteration from it, fails, the next start is the
@@ -120,9 +120,9 @@ def _solve_hb(contact, grid, options):
     import dataclasses
 
     from ..laws.lubricant import Barus
-    from .newton import _hb_apparent_start
+    from .newton import hb_apparent_start
 
-    eta_app, _ = _hb_apparent_start(contact)
+    eta_app, _ = hb_apparent_start(contact)
     lub = contact.lubricant
     hint = (f"Herschel-Bulkley lubricant {lub.herschel_bulkley!r}, consistency phi0 = {lub.viscosity.eta0:g} Pa s^n "
             f"(M and L read phi0 as Pa s), apparent viscosity {eta_app:.4g} Pa s")

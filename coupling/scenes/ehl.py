@@ -1,6 +1,6 @@
 """EHL scene: validated case -> :class:`~lubedyn.lubrication.ehl.EHLContact` -> solve -> outputs.
 
-``build(case)`` turns an :class:`~lubedyn.ehl_case.EHLCase` (SI) into the
+``build(case)`` turns an :class:`~lubedyn.scenes.ehl_case.EHLCase` (SI) into the
 contact, grid and options of :func:`lubedyn.lubrication.ehl.solve_ehl`; the contact
 comes from the reduced or body radii and the operating point, from a
 bearing (:mod:`lubedyn.lubrication.laws.bearing`: the most loaded element's contact with one
@@ -40,12 +40,13 @@ from lubedyn.lubrication.laws import bearing as bearings
 from lubedyn.lubrication.laws import contact as hertz
 from lubedyn.lubrication.laws import film as film_formulas
 
-from . import limits, outputs, validity
-from .config import resolved_toml
-from .ehl_case import EHLCase
+from lubedyn import limits, outputs, validity
+from lubedyn.config import resolved_toml
+from lubedyn.scenes.ehl_case import EHLCase, race_contact
 
 log = logging.getLogger(__name__)
 
+CaseModel = EHLCase  # the schema (lubedyn.scenes.ehl_case)
 FIELD_FILES = (("ehl.vtu", "vtu"), ("profiles.png", "png"))
 
 DEFAULT_E_STAR = 1.0e11  # Pa, the modulus scale of a [dimensionless] case without [materials]
@@ -72,24 +73,9 @@ class EHLSetup:
 
 
 def build_lubricant(case: EHLCase):
-    from .film_scene import build_lubricant as film_lubricant
+    from lubedyn.scenes.film import build_lubricant as film_lubricant
 
     return film_lubricant(case)
-
-
-def race_contact(case: EHLCase, e_star: float) -> bearings.RaceContact:
-    """The most loaded element's contact of the case's ``[bearing]``."""
-    b = case.bearing
-    common = dict(race=b.race, pitch_diameter=b.pitch_diameter, radial_load=b.radial_load, axial_load=b.axial_load,
-                  inner_speed=b.inner_speed, outer_speed=b.outer_speed, stribeck_constant=b.stribeck_constant)
-    if b.type == "ball":
-        return bearings.ball_race_contact(
-            ball_diameter=b.element_diameter, inner_groove_radius=b.inner_groove_radius,
-            outer_groove_radius=b.outer_groove_radius, n_balls=b.n_elements, e_star=e_star,
-            contact_angle=b.contact_angle, clearance=b.diametral_clearance, load_distribution=b.load_distribution,
-            **common)
-    return bearings.roller_race_contact(roller_diameter=b.element_diameter, effective_length=b.effective_length,
-                                        n_rollers=b.n_elements, contact_angle=b.contact_angle, **common)
 
 
 def build(case: EHLCase) -> EHLSetup:
@@ -334,3 +320,9 @@ def run(case: EHLCase, out_dir=None, *, name: str = "ehl", source: str = "", smo
     result.files = outputs.write_run(out_dir, resolved_toml(case, header), summary, case.output.write,
                                      fields=("ehl.vtu", solution.save), figure=("profiles.png", figure))
     return result
+
+
+def headline(summary: dict) -> list[str]:
+    """The lines ``lubedyn run`` prints (:func:`lubedyn.outputs.headline_lines`: loads, pressures, films,
+    then the solve's iterations and time)."""
+    return outputs.headline_lines(summary)

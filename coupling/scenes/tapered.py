@@ -66,10 +66,10 @@ from pydantic import BeforeValidator, Field, model_validator
 from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 
-from . import outputs
-from .config import BoundsModel, LimitsModel, PositiveInt, Q, _Model, resolved_toml, rule
-from .parameters.wu2018 import GREASE_TABLE as GREASES
-from .static_scene import BearingTable
+from lubedyn import outputs
+from lubedyn.config import BoundsModel, LimitsModel, PositiveInt, Q, CaseTable, resolved_toml, rule
+from lubedyn.papers.wu2018.parameters import GREASE_TABLE as GREASES
+from lubedyn.scenes.static import BearingTable
 
 log = logging.getLogger(__name__)
 
@@ -78,7 +78,7 @@ FIELD_FILES = (("timeseries.npz", "timeseries"), ("bearing.pvd", "pvd"), ("rolle
                ("cone_orbit.png", "png"), ("slice_loads.png", "png"))
 
 
-class OperatingTable(_Model):
+class OperatingTable(CaseTable):
     """:class:`lubedyn.dynamics.tapered.groups.Operating`."""
 
     speed: Q("angular velocity", ge=0) = 0.0
@@ -100,7 +100,7 @@ class OperatingTable(_Model):
         return self
 
 
-class ModelTable(_Model):
+class ModelTable(CaseTable):
     """:class:`lubedyn.dynamics.tapered.groups.Fidelity` (the fidelity options of issue 22)."""
 
     slices: PositiveInt = 20
@@ -117,7 +117,7 @@ class ModelTable(_Model):
     traction_evaluation: Literal["quadrature", "table"] = "table"
 
 
-class LubricantTable(_Model):
+class LubricantTable(CaseTable):
     """:class:`lubedyn.dynamics.tapered.groups.Lubricant`.  ``grease``: a grease of paper A's Table 2 at
     ``temperature_c`` [C] (15-70; interpolated by :func:`lubedyn.lubrication.laws.grease.grease_at`), "custom"
     (``yield_stress``, ``consistency``, ``exponent`` given) or "none" (a Newtonian oil only)."""
@@ -164,7 +164,7 @@ class LubricantTable(_Model):
         return out
 
 
-class CageTable(_Model):
+class CageTable(CaseTable):
     """:class:`lubedyn.dynamics.tapered.groups.Cage` (read when ``model.pocket`` != "none")."""
 
     mass: Q("mass", gt=0) | None = None
@@ -179,7 +179,7 @@ class CageTable(_Model):
     side_beam_thickness: Q("length", ge=0) = 0.0
 
 
-class FlangeTable(_Model):
+class FlangeTable(CaseTable):
     """:class:`lubedyn.dynamics.tapered.groups.Flange` (read when ``model.flange_friction`` != "none")."""
 
     asperity_friction: Q("dimensionless", ge=0) = 0.2
@@ -189,7 +189,7 @@ class FlangeTable(_Model):
     rib_film: Literal["hamrock_dowson", "paper_eq24"] = "hamrock_dowson"
 
 
-class InitialTable(_Model):
+class InitialTable(CaseTable):
     """:class:`lubedyn.dynamics.tapered.groups.Initial`: offsets (y, z) of the cone's and the cage's centres."""
 
     cone_offset: Annotated[list[Q("length")], Field(min_length=2, max_length=2)] = Field(
@@ -215,7 +215,7 @@ def _step_or_auto(value):
 StepOrAuto = Annotated[Any, BeforeValidator(_step_or_auto)]
 
 
-class IntegratorTable(_Model):
+class IntegratorTable(CaseTable):
     """``method``: "rk4" (fixed step ``dt``; "auto": 0.8 x :meth:`TaperedBearing.stable_step`, the
     default) or "dopri5" (adaptive, ``rtol``/``atol``).  benchmarks/trb.py (20 ms): RK4 at the stable-step
     estimate is 4.8 x faster than DOPRI5 at rtol 1e-6, its mean skew and tilt within 2.5e-5 and 9.8e-5 of
@@ -244,7 +244,7 @@ class IntegratorTable(_Model):
         return self
 
 
-class AnalysisTable(_Model):
+class AnalysisTable(CaseTable):
     """``window`` [s]: the averaging window of the summary (paper A's 0.1-0.18 s), clipped to the record;
     beside it the summary always reports the record's last cage revolution, and, when the record is at
     least twice ``converged_window`` [s] long, the "Converged window": the record's last
@@ -268,11 +268,11 @@ class AnalysisTable(_Model):
         return self
 
 
-class OutputTable(_Model):
+class OutputTable(CaseTable):
     write: list[Literal["timeseries", "png", "pvd"]] = Field(default_factory=lambda: ["timeseries", "png", "pvd"])
 
 
-class TaperedCase(_Model):
+class TaperedCase(CaseTable):
     scene: Literal["tapered"]
     description: str = ""
     bearing: BearingTable
@@ -300,7 +300,7 @@ def build(case: TaperedCase):
     from lubedyn.dynamics.tapered import groups as G
     from lubedyn.dynamics.tapered.model import TaperedBearing
 
-    from .static_scene import build as build_geometry
+    from lubedyn.scenes.static import build as build_geometry
 
     g = build_geometry(case)
     m = case.model
@@ -339,8 +339,8 @@ ROLLER_TRACTION_MAPS = ("maps/ehl_roller_cup.npz", "maps/ehl_roller_cone.npz")
 
 def roller_traction_maps() -> tuple:
     """The shipped roller EHL maps (cup, cone) of :data:`ROLLER_TRACTION_MAPS`, loaded once per process."""
-    from .config import CASES_DIR
-    from .maps import FilmMap
+    from lubedyn.config import CASES_DIR
+    from lubedyn.maps import FilmMap
 
     global _ROLLER_MAPS
     if _ROLLER_MAPS is None:
@@ -634,7 +634,7 @@ def kernel_jobs(case: TaperedCase) -> list:
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:
     """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold cache are
     reported as they compile (:func:`lubedyn.compilation.report_compilation`)."""
-    from .compilation import report_compilation
+    from lubedyn.compilation import report_compilation
 
     with report_compilation():
         return _run(case, out_dir, name=name, source=source, smoke=smoke)
@@ -768,7 +768,7 @@ def frame_mesh(model, y, fields: dict, n_around: int = 16, n_along: int = 7):
     from lubedyn.dynamics.rotations import to_scipy
     from lubedyn.dynamics.tapered import layout as L
 
-    from .static_scene import body_grid, raceway_surface
+    from lubedyn.scenes.static import body_grid, raceway_surface
 
     g = model.geometry
     l = g.effective_length

@@ -17,7 +17,7 @@ cases use the raceway, roller and grease values.
 """
 from lubedyn.lubrication.laws.tapered import TaperedRollerGeometry
 
-from . import Parameter as P
+from lubedyn.papers import Parameter as P
 
 NAME = "Wu2018"
 CITATION = ("Z.-H. Wu, Y.-Q. Xu, S.-E. Deng, Shock and Vibration 2018, 7183042 "

@@ -34,7 +34,7 @@ from types import ModuleType
 
 from lubedyn.lubrication.errors import InputError, unknown_choice
 
-SETS = {"Zhang2024": ".zhang2024", "Wu2018": ".wu2018"}
+SETS = {"Zhang2024": ".zhang2024.parameters", "Wu2018": ".wu2018.parameters"}
 
 
 @dataclass(frozen=True)

@@ -28,7 +28,7 @@ Layout (x the entrainment direction; the contact comes from exactly one of
     [limits]     memory, map_points
     [smoke]      a partial case merged over this one by ``--smoke``
 
-Read through :func:`lubedyn.config.load_case` (``CaseModel`` below); built by :mod:`lubedyn.ehl_scene`.
+Read through :func:`lubedyn.config.load_case` (``CaseModel`` below); built by :mod:`lubedyn.scenes.ehl`.
 """
 from __future__ import annotations
 
@@ -37,10 +37,11 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, ValidationInfo, model_validator
 
+from lubedyn.lubrication.laws import bearing as bearings
 from lubedyn.lubrication.laws.bearing import STRIBECK
 
-from .config import (EHL_MAX_PRESSURE, THIN_FILM, Length, LimitsModel, LubricantModel, PositiveInt, PositiveLength,
-                     Q, Scaled, ValidityModel, Velocity, _Model, _root_rule, _show, bare_hint, check_scale,
+from lubedyn.config import (EHL_MAX_PRESSURE, THIN_FILM, Length, LimitsModel, LubricantModel, PositiveInt, PositiveLength,
+                     Q, Scaled, ValidityModel, Velocity, CaseTable, root_rule, show_value, bare_hint, check_scale,
                      context_raw, raise_scale, rule, thin_film)
 
 SMALL_CONTACT = THIN_FILM
@@ -68,7 +69,7 @@ def _two_power_plus_one(n: int, smallest: int) -> bool:
     return n >= smallest and (n - 1) & (n - 2) == 0
 
 
-class ContactModel(_Model):
+class ContactModel(CaseTable):
     """Contact geometry; x is the entrainment (rolling) direction.  One of:
     the reduced radii (``radius_x`` and ``radius_y``, or ``line = true``);
     the principal radii of the two bodies (``body1_radius_x`` ...: convex > 0,
@@ -127,7 +128,7 @@ class ContactModel(_Model):
                     raise rule(f"body1_radius_{axis}", None, f"is required: give body1_radius_{axis} and/or "
                                f"body2_radius_{axis}{hint}")
                 if not curvature > 0.0:
-                    raise rule(f"body1_radius_{axis}", r1, f"and body2_radius_{axis} = {_show(r2) if r2 is not None else 'flat'} "
+                    raise rule(f"body1_radius_{axis}", r1, f"and body2_radius_{axis} = {show_value(r2) if r2 is not None else 'flat'} "
                                f"give 1/R_{axis} = {curvature:.4g} 1/m; it must be > 0 (the surfaces conform or separate)")
         if self.line:
             for key in ("radius_y", "body1_radius_y", "body2_radius_y"):
@@ -138,7 +139,7 @@ class ContactModel(_Model):
         return self
 
 
-class MaterialsModel(_Model):
+class MaterialsModel(CaseTable):
     """Elastic bodies; 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.  Body 2 defaults to body 1."""
 
     modulus1: Q("pressure", gt=0)
@@ -159,7 +160,7 @@ class MaterialsModel(_Model):
         return reduced_modulus(self.modulus1, self.poisson1, self.modulus2, self.poisson2)
 
 
-class OperatingModel(_Model):
+class OperatingModel(CaseTable):
     """Speeds along +x: ``mean_speed`` u_m (with ``slide_to_roll`` = (u2 - u1)/u_m),
     or the surface speeds ``velocity1``, ``velocity2``.  Load: ``load`` [N]
     (a line contact with ``contact.length``: N on that length),
@@ -187,7 +188,7 @@ class OperatingModel(_Model):
                 missing = "velocity1" if self.velocity1 is None else "velocity2"
                 raise rule(missing, None, "is required with the other surface velocity (or give mean_speed)")
             if not self.velocity1 + self.velocity2 > 0.0:
-                raise rule("velocity1", self.velocity1, f"and velocity2 = {_show(self.velocity2)} give a mean "
+                raise rule("velocity1", self.velocity1, f"and velocity2 = {show_value(self.velocity2)} give a mean "
                            "(entrainment) speed <= 0 m/s; it must be > 0 (entrainment along +x)")
         given = [k for k in self.LOADS if getattr(self, k) is not None]
         if len(given) > 1:
@@ -203,7 +204,7 @@ class OperatingModel(_Model):
         return self.mean_speed, self.slide_to_roll or 0.0
 
 
-class GridModel(_Model):
+class GridModel(CaseTable):
     """Uniform grid: ``nx`` nodes on x in [x_min, x_max] Hertz semi-axes along x,
     ``ny`` (default: about square cells) on |y| <= y_max semi-axes across
     (points only).  nx and ny are 2^k + 1: finer grids are reached by nested
@@ -224,7 +225,7 @@ class GridModel(_Model):
         return self
 
 
-class TractionModel(_Model):
+class TractionModel(CaseTable):
     """Shear law for friction: limiting_shear (|tau| <= tau_L0 + gamma p, the default) | eyring |
     newtonian.  The default follows measured EHL traction (Bair & Winer 1979: a limiting shear stress
     proportional to pressure, gamma 0.04-0.1 for mineral oils; :class:`lubedyn.lubrication.ehl.Traction`); a
@@ -237,7 +238,7 @@ class TractionModel(_Model):
     eyring_stress: Q("pressure", gt=0) = 5e6
 
 
-class EHLSolverModel(_Model):
+class EHLSolverModel(CaseTable):
     """EHL solver (:mod:`lubedyn.lubrication.ehl`).  ``method``: ``auto`` (FEM with
     Fischer-Burmeister Newton for points, active-set Newton for lines),
     ``fischer_burmeister``, ``active_set``, or ``multigrid`` (FAS multigrid of
@@ -252,11 +253,11 @@ class EHLSolverModel(_Model):
     max_step: Q("dimensionless", gt=0) = 2.0
 
 
-class EHLOutputModel(_Model):
+class EHLOutputModel(CaseTable):
     write: list[Literal["vtu", "png"]] = ["vtu", "png"]
 
 
-class BearingModel(_Model):
+class BearingModel(CaseTable):
     """The bearing the contact is taken from (:mod:`lubedyn.lubrication.laws.bearing`): the
     most loaded element on ``race``.  Balls: groove radii, optional diametral
     clearance; the contact angle follows from the axial load unless given.
@@ -306,7 +307,7 @@ class BearingModel(_Model):
             if self.stribeck_constant is None:
                 self.stribeck_constant = STRIBECK["line"]
         if self.inner_speed == self.outer_speed:
-            raise rule("inner_speed", self.inner_speed, f"equals outer_speed = {_show(self.outer_speed)} rad/s: the "
+            raise rule("inner_speed", self.inner_speed, f"equals outer_speed = {show_value(self.outer_speed)} rad/s: the "
                        "rings do not turn relative to each other and nothing entrains the lubricant")
         if self.radial_load == 0.0 and self.axial_load == 0.0:
             raise rule("radial_load", 0.0, "and axial_load are both 0: no element is loaded")
@@ -359,7 +360,7 @@ class BearingModel(_Model):
                                                                     lambda si: si < 2.0 * bd))
 
 
-class DimensionlessModel(_Model):
+class DimensionlessModel(CaseTable):
     """Moes' load and material parameters; the pressure-viscosity coefficient
     and the load follow at the scales R_x (contact.radius_x, default 10 mm),
     E* ([materials], default 100 GPa), eta0 and u_m (operating.mean_speed,
@@ -370,7 +371,7 @@ class DimensionlessModel(_Model):
     eta0: Q("dynamic viscosity", gt=0) = 0.04
 
 
-class EHLCase(_Model):
+class EHLCase(CaseTable):
     """An EHL scene; after validation every value is SI and every default filled in."""
 
     scene: Literal["ehl"]
@@ -402,40 +403,40 @@ class EHLCase(_Model):
     def _resolve(self, info: ValidationInfo):
         c, op = self.contact, self.operating
         if self.bearing is not None and self.dimensionless is not None:
-            raise _root_rule("dimensionless", {}, "cannot be combined with [bearing]; give one")
+            raise root_rule("dimensionless", {}, "cannot be combined with [bearing]; give one")
         if self.mode == "dimensionless":
             self._resolve_dimensionless()
         elif self.mode == "bearing":
             for key in c.given:
-                raise _root_rule(f"contact.{key}", getattr(c, key), "is not used with [bearing] (the contact follows "
+                raise root_rule(f"contact.{key}", getattr(c, key), "is not used with [bearing] (the contact follows "
                                  "from the bearing; remove it or the [bearing] table)")
             if c.line != (self.bearing.type == "roller"):
                 if c.line:
-                    raise _root_rule("contact.line", True, "does not match bearing.type = 'ball' (a point contact)")
+                    raise root_rule("contact.line", True, "does not match bearing.type = 'ball' (a point contact)")
                 c.line = True
             for key in ("mean_speed", "velocity1", "velocity2") + OperatingModel.LOADS:
                 if getattr(op, key) is not None:
-                    raise _root_rule(f"operating.{key}", getattr(op, key), "is not used with [bearing] (speed and "
+                    raise root_rule(f"operating.{key}", getattr(op, key), "is not used with [bearing] (speed and "
                                      "load follow from the bearing's speeds and loads)")
             self._require_physics()
         else:
             if c.radius_x is None and not c.by_bodies:
-                raise _root_rule("contact.radius_x", None, "is required (length), or give body radii "
+                raise root_rule("contact.radius_x", None, "is required (length), or give body radii "
                                  "(body1_radius_x ...), a [bearing] or a [dimensionless] table")
             if not c.line and not c.by_bodies and c.radius_y is None:
-                raise _root_rule("contact.radius_y", None, "is required for a point contact (length), or set "
+                raise root_rule("contact.radius_y", None, "is required for a point contact (length), or set "
                                  "contact.line = true")
             if op.mean_speed is None and op.velocity1 is None:
-                raise _root_rule("operating.mean_speed", None, "is required (velocity, e.g. '2 m/s'), or give "
+                raise root_rule("operating.mean_speed", None, "is required (velocity, e.g. '2 m/s'), or give "
                                  "operating.velocity1 and operating.velocity2")
             if all(getattr(op, key) is None for key in OperatingModel.LOADS):
-                raise _root_rule("operating.load", None, "is required (force), or give "
+                raise root_rule("operating.load", None, "is required (force), or give "
                                  + ("load_per_length or approach" if c.line else "approach"))
             if not c.line and op.load_per_length is not None:
-                raise _root_rule("operating.load_per_length", op.load_per_length, "is for line contacts "
+                raise root_rule("operating.load_per_length", op.load_per_length, "is for line contacts "
                                  "(contact.line = true); give operating.load [N]")
             if c.line and op.load is not None and c.length is None:
-                raise _root_rule("operating.load", op.load, "of a line contact needs contact.length (or give "
+                raise root_rule("operating.load", op.load, "of a line contact needs contact.length (or give "
                                  "operating.load_per_length [N/m])")
             self._require_physics()
         if op.mean_speed is not None and op.slide_to_roll is None:
@@ -444,7 +445,7 @@ class EHLCase(_Model):
         if c.line:
             for key in ("ny", "y_max"):
                 if getattr(g, key) is not None:
-                    raise _root_rule(f"grid.{key}", getattr(g, key), "is not used by a line contact")
+                    raise root_rule(f"grid.{key}", getattr(g, key), "is not used by a line contact")
         elif g.y_max is None:
             g.y_max = 3.0
         if self.validity.max_pressure is None:
@@ -460,8 +461,6 @@ class EHLCase(_Model):
         c, op = self.contact, self.operating
         if self.mode == "bearing":
             from lubedyn.lubrication.errors import InputError
-
-            from .ehl_scene import race_contact
 
             try:
                 race = race_contact(self, e_star)
@@ -545,24 +544,24 @@ class EHLCase(_Model):
 
     def _require_physics(self):
         if self.materials is None:
-            raise _root_rule("materials", None, "is required: [materials] modulus1, poisson1 (and modulus2, "
+            raise root_rule("materials", None, "is required: [materials] modulus1, poisson1 (and modulus2, "
                              "poisson2 when the second body differs)")
         if self.lubricant is None:
-            raise _root_rule("lubricant", None, "is required: [lubricant.viscosity] law, eta0, alpha ... "
+            raise root_rule("lubricant", None, "is required: [lubricant.viscosity] law, eta0, alpha ... "
                              "(or [lubricant] viscosity = '0.05 Pa s')")
 
     def _resolve_dimensionless(self):
         c, op = self.contact, self.operating
         if self.lubricant is not None:
-            raise _root_rule("lubricant", {}, "is not used with [dimensionless] (alpha follows from L; "
+            raise root_rule("lubricant", {}, "is not used with [dimensionless] (alpha follows from L; "
                              "give dimensionless.eta0; the density is incompressible)")
         for key in ("length",) + ContactModel.BODY:
             if getattr(c, key) is not None:
-                raise _root_rule(f"contact.{key}", getattr(c, key), "is not used with [dimensionless] (give "
+                raise root_rule(f"contact.{key}", getattr(c, key), "is not used with [dimensionless] (give "
                                  "contact.radius_x, and radius_y for an elliptical contact)")
         for key in ("velocity1", "velocity2") + OperatingModel.LOADS:
             if getattr(op, key) is not None:
-                raise _root_rule(f"operating.{key}", getattr(op, key), "is not used with [dimensionless] (the load "
+                raise root_rule(f"operating.{key}", getattr(op, key), "is not used with [dimensionless] (the load "
                                  "follows from M; give operating.mean_speed)")
         if c.radius_x is None:
             c.radius_x = 0.01
@@ -573,3 +572,18 @@ class EHLCase(_Model):
 
 
 CaseModel = EHLCase
+
+
+def race_contact(case: EHLCase, e_star: float) -> bearings.RaceContact:
+    """The most loaded element's contact of the case's ``[bearing]``."""
+    b = case.bearing
+    common = dict(race=b.race, pitch_diameter=b.pitch_diameter, radial_load=b.radial_load, axial_load=b.axial_load,
+                  inner_speed=b.inner_speed, outer_speed=b.outer_speed, stribeck_constant=b.stribeck_constant)
+    if b.type == "ball":
+        return bearings.ball_race_contact(
+            ball_diameter=b.element_diameter, inner_groove_radius=b.inner_groove_radius,
+            outer_groove_radius=b.outer_groove_radius, n_balls=b.n_elements, e_star=e_star,
+            contact_angle=b.contact_angle, clearance=b.diametral_clearance, load_distribution=b.load_distribution,
+            **common)
+    return bearings.roller_race_contact(roller_diameter=b.element_diameter, effective_length=b.effective_length,
+                                        n_rollers=b.n_elements, contact_angle=b.contact_angle, **common)

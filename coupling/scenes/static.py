@@ -27,7 +27,7 @@ A's Table 1 and the parameter module's assumed values)::
   entrainment speed) from the model's own geometry, the derived geometry (roller axis angle, half
   taper, pitch radius), the solver's stop reason, iterations and force-balance error, and (as every
   scene's summary) ``"Assumed values"``: every value of the case that paper A does not give (source
-  ``assumed`` in :mod:`lubedyn.parameters.wu2018`) with its reason;
+  ``assumed`` in :mod:`lubedyn.papers.wu2018.parameters`) with its reason;
 - ``case.resolved.toml``; ``loads.png`` (per-roller cup, cone and flange loads against azimuth, and
   the slice loads of the most loaded roller) when ``output.write`` lists ``"png"``;
 - ``bearing.vtu`` (``"vtu"``) for ParaView: the cup and cone raceway surfaces over the rollers' length
@@ -51,8 +51,8 @@ from pydantic import Field, model_validator
 
 from lubedyn.lubrication.errors import InputError
 
-from . import outputs
-from .config import BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
+from lubedyn import outputs
+from lubedyn.config import BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, CaseTable, resolved_toml, rule
 
 log = logging.getLogger(__name__)
 
@@ -63,7 +63,7 @@ Length = Q("length", ge=0)
 Force = Q("force", ge=0)
 
 
-class BearingTable(_Model):
+class BearingTable(CaseTable):
     """The tapered roller bearing (paper A, Table 1, with ``parameters = "Wu2018"``)."""
 
     type: Literal["tapered_roller"] = "tapered_roller"
@@ -101,7 +101,7 @@ class BearingTable(_Model):
         return self
 
 
-class OperatingTable(_Model):
+class OperatingTable(CaseTable):
     """Loads on the cone (cup fixed) and its speed."""
 
     radial_load: Force = 0.0
@@ -117,21 +117,21 @@ class OperatingTable(_Model):
         return self
 
 
-class ModelTable(_Model):
+class ModelTable(CaseTable):
     slices: PositiveInt = 20
     gyroscopic: bool = True
 
 
-class SolverTable(_Model):
+class SolverTable(CaseTable):
     tol: Q("dimensionless", gt=0, lt=1e-2) = 1e-10
     max_iterations: PositiveInt = 400
 
 
-class OutputTable(_Model):
+class OutputTable(CaseTable):
     write: list[Literal["vtu", "png"]] = Field(default_factory=lambda: ["vtu", "png"])
 
 
-class StaticCase(_Model):
+class StaticCase(CaseTable):
     """A static scene; after validation every value is SI and every default filled in."""
 
     scene: Literal["static"]

@@ -11,7 +11,7 @@ Numbers and their uncertainty
 Each study runs 0.34 s.  A point's number is its mean over the paper's window (0.1-0.18 s, what the paper
 averages); beside it the mean over the converged window (0.26-0.34 s).  The uncertainty of a mean is the
 converged window's *window-to-window change* (its mean minus the mean over 0.18-0.26 s,
-:func:`lubedyn.tapered_scene.converged_summary`): how much the number still moves from one 80 ms window
+:func:`lubedyn.scenes.tapered.converged_summary`): how much the number still moves from one 80 ms window
 to the next.
 
 Verdict rules (stated once, applied by code)
@@ -25,7 +25,7 @@ Verdict rules (stated once, applied by code)
 - **Level** (a number the paper prints): *reproduced* within a factor 1.3 (either way) and with the
   paper's sign; otherwise *not reproduced*, with the ratio.  The paper's numbers are reported
   comparisons, never tolerances the model was tuned to.
-- **Periodic**: the roller-pass periodicity measure (:func:`lubedyn.tapered_scene.periodicity`) at least
+- **Periodic**: the roller-pass periodicity measure (:func:`lubedyn.scenes.tapered.periodicity`) at least
   :data:`PERIODIC` (0.95).
 - **Zone comparison** ("larger in the unloaded zone"): the zones' values, each with its uncertainty where
   there is one; *reproduced* when the claimed order holds by more than a tenth of the larger.
@@ -148,7 +148,7 @@ def window_value(s: dict, stat: str, zone: str | None, what: str = "mean") -> Va
     unc = None
     c = s.get(CONVERGED)
     if isinstance(c, dict) and what == "mean":
-        from .tapered_scene import HEADLINE
+        from lubedyn.scenes.tapered import HEADLINE
 
         key = next((name for name, st, z in HEADLINE if st == stat and z == zone), None)
         ch = c.get("Window-to-window change", {}).get(key)
@@ -214,7 +214,7 @@ def _join(verdicts: list[str]) -> str:
 
 def _roller_series(folder: Path, name: str) -> tuple[np.ndarray, np.ndarray] | None:
     """(t, x[:, rollers]) of a per-roller time-series column ("Tilt [rad]" -> "Roller j tilt [rad]")."""
-    from .outputs import read_timeseries
+    from lubedyn.outputs import read_timeseries
 
     f = Path(folder) / "timeseries.npz"
     if not f.is_file():
@@ -244,7 +244,7 @@ def _oscillation(t, x, lo, hi) -> float:
 def _whirl(folder: Path, lo=0.1, hi=0.18) -> dict | None:
     """The cage centre's whirl over the window from the time series: radius mean, its coefficient of
     variation, and the turns the centre makes about the cone's centre."""
-    from .outputs import read_timeseries
+    from lubedyn.outputs import read_timeseries
 
     f = Path(folder) / "timeseries.npz"
     if not f.is_file():

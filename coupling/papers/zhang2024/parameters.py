@@ -7,7 +7,7 @@ of an active magnetic bearing: the rotor drops onto the inner ring and drags it 
 Tables 1 (lubricant, materials), 2 (bearing) and 4 (groove geometry, slot).  What the paper does
 not give is marked ``source="assumed"`` with the reason.
 """
-from . import Parameter as P
+from lubedyn.papers import Parameter as P
 
 NAME = "Zhang2024"
 CITATION = ("J. Zhang, Y. Wang, L. Guan, Y. Zhang, S. Yang, Symmetry 16 (2024) 741 "

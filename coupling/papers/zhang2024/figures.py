@@ -2,7 +2,7 @@
 
 Paper B (Zhang et al., *Symmetry* 16 (2024) 741, sections 3.1-3.3 and 4.2)
 studies a cage-less 6206 ball bearing whose rotor drops onto the inner ring.
-This module turns a run of :mod:`lubedyn.dynamics_scene` (its time series as
+This module turns a run of :mod:`lubedyn.scenes.dynamics` (its time series as
 a name -> array mapping, the names of ``timeseries.npz``) into numbers a user
 can compare with the paper, and into the figures:
 
@@ -663,7 +663,7 @@ def read_run(folder) -> RunData:
 
     from lubedyn.lubrication.errors import InputError
 
-    from .outputs import read_timeseries
+    from lubedyn.outputs import read_timeseries
 
     folder = Path(folder)
     missing = [n for n in ("timeseries.npz", "summary.json", "case.resolved.toml") if not (folder / n).is_file()]
@@ -712,7 +712,7 @@ def compare_runs(run_dirs, out_png) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .outputs import save_figure
+    from lubedyn.outputs import save_figure
 
     runs = [read_run(d) for d in run_dirs]
     if not runs:

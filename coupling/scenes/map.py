@@ -56,9 +56,9 @@ from pydantic_core import PydanticCustomError
 from lubedyn.lubrication.errors import InputError, did_you_mean
 from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 
-from . import maps, outputs, validity
-from .config import BoundsModel, LimitsModel, LubricantModel, _Model, resolved_toml
-from .units import DIMENSIONS, UnitError, parse_quantity, parse_units
+from lubedyn import maps, outputs, validity
+from lubedyn.config import BoundsModel, LimitsModel, LubricantModel, CaseTable, resolved_toml
+from lubedyn.units import DIMENSIONS, UnitError, parse_quantity, parse_units
 
 log = logging.getLogger(__name__)
 
@@ -80,7 +80,7 @@ def _dimension(unit: str) -> str:
     raise InputError(f"axis unit {unit!r} has no named dimension")
 
 
-class AxisModel(_Model):
+class AxisModel(CaseTable):
     """Override of one axis of the kind (any subset of the keys)."""
 
     lo: Any = None
@@ -90,7 +90,7 @@ class AxisModel(_Model):
     nodes: list[Any] | None = None  # explicit nodes (replace lo, hi, n), e.g. refined near a kink
 
 
-class BuildModel(_Model):
+class BuildModel(CaseTable):
     method: Literal["hermite", "pchip", "linear"] = "hermite"
     workers: Annotated[int, Field(strict=True, ge=0)] = 0
     scheduler: str = ""
@@ -102,14 +102,14 @@ class BuildModel(_Model):
     on_failure: Literal["raise", "fill"] = "raise"
 
 
-class MapOutputModel(_Model):
+class MapOutputModel(CaseTable):
     write: list[Literal["map", "png", "pvd"]] = ["map", "png", "pvd"]
     map_file: str = ""
     field_frames: Annotated[int, Field(strict=True, ge=1)] = 6
     field_at: dict[str, Any] = {}
 
 
-class CaseModel(_Model):
+class CaseModel(CaseTable):
     """A map scene; after validation every axis bound and numeric parameter is SI and ``params`` holds
     every parameter of the kind (its defaults with the case's overrides)."""
 
@@ -274,7 +274,7 @@ WARN_HOURS = 1.0  # a build estimated to take longer is announced with a warning
 def check_size(case: CaseModel, axes) -> None:
     """Refuse a map with more points than ``limits.map_points`` or more memory than the limit; warn
     when the estimated build time exceeds WARN_HOURS (:mod:`lubedyn.limits`)."""
-    from . import limits
+    from lubedyn import limits
 
     points = int(np.prod([a.n for a in axes], dtype=float))
     largest = max(axes, key=lambda a: a.n)
@@ -508,3 +508,9 @@ def _write_fields(case, setup, stage, summary):
     write_pvd(stage / "fields.pvd", frames)
     summary["Field frames [-]"] = len(frames)
     summary["Field series axis"] = setup.axes[0].name
+
+
+def headline(summary: dict) -> list[str]:
+    """The lines ``lubedyn run`` prints (:func:`lubedyn.outputs.headline_lines`: loads, pressures, films,
+    then the solve's iterations and time)."""
+    return outputs.headline_lines(summary)

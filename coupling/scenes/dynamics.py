@@ -59,9 +59,9 @@ from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 from lubedyn.lubrication.laws import bearing as bearings
 
-from . import outputs
-from .dynamics_lyapunov import _benettin, _lyapunov_per_direction
-from .config import CASES_DIR, BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, _Model, resolved_toml, rule
+from lubedyn import outputs
+from lubedyn.scenes.dynamics_lyapunov import _benettin, _lyapunov_per_direction
+from lubedyn.config import CASES_DIR, BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, CaseTable, resolved_toml, rule
 
 log = logging.getLogger(__name__)
 
@@ -75,9 +75,9 @@ PositiveTime = Q("time", gt=0)
 
 
 # ---------------------------------------------------------------------------- case model
-class BearingTable(_Model):
+class BearingTable(CaseTable):
     """Geometry, materials and masses.  No paper data as defaults: a case names its parameter set
-    (``parameters = "Zhang2024"``, :mod:`lubedyn.parameters`) or gives every value."""
+    (``parameters = "Zhang2024"``, :mod:`lubedyn.papers`) or gives every value."""
 
     n_balls: PositiveInt
     ball_diameter: PositiveLength
@@ -132,8 +132,8 @@ class BearingTable(_Model):
         return 0.5 * (self.pitch_diameter + (self.ball_diameter if race == "outer" else -self.ball_diameter))
 
 
-class SlotsTable(_Model):
-    """Local functional slots (paper B: :mod:`lubedyn.parameters.zhang2024`).  ``azimuths = []``: no slot."""
+class SlotsTable(CaseTable):
+    """Local functional slots (paper B: :mod:`lubedyn.papers.zhang2024.parameters`).  ``azimuths = []``: no slot."""
 
     race: Literal["outer", "inner"]
     azimuths: list[Q("angle")]
@@ -143,7 +143,7 @@ class SlotsTable(_Model):
     edge_radius: PositiveLength = 2e-4
 
 
-class InitialTable(_Model):
+class InitialTable(CaseTable):
     """Where a run starts, for ensembles (:class:`lubedyn.dynamics.cageless.groups.Initial`): ``azimuths`` (one angle
     per ball; empty: evenly spaced from ``first_ball_azimuth``), a seeded random ``jitter`` of each ball's
     azimuth (uniform in +-jitter) and a ``kick`` of the inner ring's velocity in a random x-y direction.
@@ -156,7 +156,7 @@ class InitialTable(_Model):
     seed: Annotated[int, Field(strict=True, ge=0)] = 0
 
 
-class OperatingTable(_Model):
+class OperatingTable(CaseTable):
     """``scenario``: "drop" (the rotor spinning at ``speed`` lands on the inner
     ring and drags it up to speed by friction), "steady" (inner ring driven at
     ``speed``) or "free" (no rotor)."""
@@ -171,7 +171,7 @@ class OperatingTable(_Model):
     rotor_contact_radius: PositiveLength = 15e-3
 
 
-class ModelTable(_Model):
+class ModelTable(CaseTable):
     """Fidelity of the bearing model."""
 
     dof: Literal["6dof", "planar"] = "6dof"
@@ -189,7 +189,7 @@ class ModelTable(_Model):
                                      min_length=2, max_length=2)
 
 
-class FilmsTable(_Model):
+class FilmsTable(CaseTable):
     """The oil film between neighbouring balls: "none", "closed_form" (rigid
     isoviscous squeeze film in series with Hertz) or "map" (a FilmMap file of
     kind ball_ball, path relative to the case file or to cases/)."""
@@ -213,7 +213,7 @@ class FilmsTable(_Model):
         return self
 
 
-class IntegratorTable(_Model):
+class IntegratorTable(CaseTable):
     """``rtol`` and ``atol``: DOPRI5's tolerances, refused where its error control means nothing
     (:data:`lubedyn.dynamics.integrators.RTOL_MAX` = 1e-3, ``ATOL_MAX`` = 1e-8: the measurement is there)."""
 
@@ -234,7 +234,7 @@ class IntegratorTable(_Model):
         return self
 
 
-class AnalysisTable(_Model):
+class AnalysisTable(CaseTable):
     lyapunov: bool = True  # largest exponent per direction of ball `ball` (Wolf et al. in bits/s; Rosenstein)
     lyapunov_exponents: Annotated[int, Field(strict=True, ge=0, le=20)] = 3  # whole system, Benettin; 0: off
     ball: Annotated[int, Field(strict=True, ge=0)] = 0
@@ -254,11 +254,11 @@ class AnalysisTable(_Model):
         return self
 
 
-class OutputTable(_Model):
+class OutputTable(CaseTable):
     write: list[Literal["timeseries", "pvd", "png"]] = Field(default_factory=lambda: ["timeseries", "pvd", "png"])
 
 
-class DynamicsCase(_Model):
+class DynamicsCase(CaseTable):
     """A dynamics scene; after validation every value is SI and every default filled in."""
 
     scene: Literal["dynamics"]
@@ -345,7 +345,7 @@ def _map_path(case: DynamicsCase, source: str | None, name: str | None = None, k
 
 
 def _film_map(case: DynamicsCase, source: str | None):
-    from .maps import FilmMap
+    from lubedyn.maps import FilmMap
 
     path = _map_path(case, source)
     fmap = FilmMap.load(path, key="films.map")
@@ -389,7 +389,7 @@ def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = F
             "Force [N]")
         info = {"Ball-ball film map": str(map_path), "Ball-ball film map hash": fmap.input_hash}
     if case.model.traction == "map":
-        from .maps import FilmMap
+        from lubedyn.maps import FilmMap
 
         arrays = []
         for race, name in zip(("inner", "outer"), case.model.traction_maps):
@@ -458,7 +458,7 @@ def sample_count(case: DynamicsCase) -> int:
 def check_size(case: DynamicsCase, model) -> None:
     """Refuse a run whose samples cannot fit the memory limit, or whose fixed RK4 steps exceed
     ``integrator.max_steps`` (:mod:`lubedyn.limits`)."""
-    from . import limits
+    from lubedyn import limits
 
     ig = case.integrator
     n = ig.duration / ig.sample_interval + 1
@@ -527,7 +527,7 @@ def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str
         smoke: bool = False) -> DynamicsRun:
     """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold
     cache are reported as they compile (:func:`lubedyn.compilation.report_compilation`)."""
-    from .compilation import report_compilation
+    from lubedyn.compilation import report_compilation
 
     with report_compilation():
         return _run(case, out_dir, name=name, source=source, smoke=smoke)
@@ -637,7 +637,7 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
     summary["Mean inner ring speed in the analysed window [rpm]"] = ring_hz * 60.0
     summary.update(freqs)
     # paper B's figures 3-5 and 11: settling and spin-up times, zones, collisions by quadrant, vibration band
-    from . import paper_b_figures
+    from lubedyn.papers.zhang2024 import figures as paper_b_figures
 
     summary.update(paper_b_figures.summary_entries(case, t, paper_b_figures.run_columns(model, Y, diag, ring),
                                                    events, freqs))
@@ -848,7 +848,7 @@ class _Scene3D:
 def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     import matplotlib.pyplot as plt
 
-    from . import paper_b_figures
+    from lubedyn.papers.zhang2024 import figures as paper_b_figures
 
     figs = {}
     j = case.analysis.ball

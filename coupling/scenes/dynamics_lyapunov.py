@@ -1,7 +1,7 @@
 """Lyapunov analysis of a dynamics run: the end of the transient, co-rotating coordinates, Wolf's and
 Rosenstein's largest exponents per direction of one ball, Benettin's spectrum of the whole bearing.
 
-Part of the dynamics scene (:mod:`lubedyn.dynamics_scene`, which calls :func:`_lyapunov_per_direction`
+Part of the dynamics scene (:mod:`lubedyn.scenes.dynamics`, which calls :func:`_lyapunov_per_direction`
 and :func:`_benettin` after a run and writes what they return into ``summary.json``)."""
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-log = logging.getLogger("lubedyn.dynamics_scene")
+log = logging.getLogger("lubedyn.scenes.dynamics")
 
 
 LYAPUNOV_SAMPLES = 8000  # Rosenstein's neighbour search and divergence average: decimate to at most this

@@ -33,12 +33,13 @@ import lubedyn.lubrication as lub
 from lubedyn.lubrication import mesh as meshes
 from lubedyn.lubrication.errors import InputError
 
-from . import limits, outputs, validity
-from .config import CASES_DIR as CASES
-from .config import FilmCase, resolved_toml
+from lubedyn import limits, outputs, validity
+from lubedyn.config import CASES_DIR as CASES
+from lubedyn.config import FilmCase, resolved_toml
 
 log = logging.getLogger(__name__)
 
+CaseModel = FilmCase  # the schema (lubedyn.config, where the other scenes' base models live)
 FIELD_FILES = (("film.vtu", "vtu"), ("pressure.png", "png"))
 
 
@@ -382,3 +383,9 @@ def run(case: FilmCase, out_dir=None, *, name: str = "film", source: str = "", s
 
 
 build = build_film  # the scene protocol of lubedyn.cli
+
+
+def headline(summary: dict) -> list[str]:
+    """The lines ``lubedyn run`` prints (:func:`lubedyn.outputs.headline_lines`: loads, pressures, films,
+    then the solve's iterations and time)."""
+    return outputs.headline_lines(summary)

@@ -20,8 +20,8 @@ A study file (TOML; ``lubedyn study STUDY.toml --out DIR``)::
     "Load per unit width [N/m]" = { axis = "motion.velocity_lower", at = ["5 m/s"], values = [63550] }
 
 Every run of the study is a normal run folder, ``DIR/runs/<point>/m<member>/``, written by the scene's
-``run`` exactly as ``lubedyn run BASE --set ... --out FOLDER`` writes it (:func:`lubedyn.cli.load_case_file`
-and :func:`lubedyn.cli.run_loaded`); the overrides of a run are, in order: ``output.write=[]``
+``run`` exactly as ``lubedyn run BASE --set ... --out FOLDER`` writes it (:func:`lubedyn.config.load_case_file`
+and :func:`lubedyn.scenes.runner.run_loaded`); the overrides of a run are, in order: ``output.write=[]``
 (``skip_outputs``), ``set``, the point's axis values, the member index.  Before anything runs, every
 run's case is validated (an error names the axis, set entry or member key and its value) and the first
 one is built.  A run folder is reused when its ``summary.json`` and ``case.resolved.toml`` are those of
@@ -80,10 +80,11 @@ from pydantic import Field, ValidationError, model_validator
 
 from lubedyn.lubrication.errors import InputError, LubedynError, close_matches, did_you_mean
 
-from . import outputs
-from .cli import _case_path, _check_smoke, _scene, load_case_file, run_loaded
-from .config import CASES_DIR, PositiveInt, _Model, format_validation_error, parse_override, resolved_toml, rule
-from .maps.sweep import _init_worker, _sigint_blocked, _stop_pool, default_workers
+from lubedyn import outputs, scenes
+from lubedyn.config import (CASES_DIR, CaseTable, PositiveInt, case_path, check_smoke, format_validation_error,
+                            load_case_file, parse_override, resolved_toml, rule)
+from lubedyn.scenes.runner import run_loaded
+from lubedyn.maps.sweep import init_worker, sigint_blocked, stop_pool, default_workers
 
 log = logging.getLogger(__name__)
 
@@ -101,7 +102,7 @@ class StudyError(InputError):
 # the study file
 
 
-class PaperSeries(_Model):
+class PaperSeries(CaseTable):
     """Published values of one output: ``values[i]`` at the value ``at[i]`` of the first axis."""
 
     axis: str
@@ -116,7 +117,7 @@ class PaperSeries(_Model):
         return self
 
 
-class StudyTable(_Model):
+class StudyTable(CaseTable):
     """The ``[study]`` table: how the points combine and run, and what is tabulated."""
 
     combine: Literal["grid", "zip"] = "grid"
@@ -130,7 +131,7 @@ class StudyTable(_Model):
     outputs: Annotated[list[str], Field(min_length=1)]
 
 
-class StudyFile(_Model):
+class StudyFile(CaseTable):
     """A study file: the base case, the axes, the ``[study]`` table and optional ``[paper]`` values."""
 
     description: str = ""
@@ -369,17 +370,17 @@ def _base_path(study: StudyFile, study_dir: Path) -> Path:
     local = study_dir / text
     try:
         if local.exists() or Path(text).suffix or len(Path(text).parts) > 1:
-            return _case_path(str(local)).resolve()
+            return case_path(str(local)).resolve()
         if (CASES_DIR / f"{text}.toml").is_file():
             return CASES_DIR / f"{text}.toml"
-        return _case_path(text).resolve()
+        return case_path(text).resolve()
     except InputError as exc:
         raise StudyError(f"base = {text!r}: {_one_line(exc)}") from None
 
 
 def _smoke_keys(base: Path) -> set:
     """The dotted keys the base case's ``[smoke]`` table sets (``"integrator.duration"``)."""
-    from .config import read_toml
+    from lubedyn.config import read_toml
 
     def walk(node, prefix):
         for k, v in node.items():
@@ -397,7 +398,7 @@ def _common(study: StudyFile, base: Path | None = None, smoke: bool = False) -> 
     """The overrides of every run: ``output.write=[]`` (skip_outputs), then ``set``.  With ``smoke``, an
     entry of ``set`` that the base case's ``[smoke]`` table also sets is left out (logged): a smoke
     study checks the study at the case's smoke size, whatever length the full study asks for."""
-    from .config import parse_override
+    from lubedyn.config import parse_override
 
     kept = list(study.study.set)
     if smoke and base is not None:
@@ -464,7 +465,7 @@ def _build_first(loaded, overrides, smoke: bool, label: str):
     import inspect
 
     path, raw, case = loaded
-    build = _scene(case)[1]
+    build = scenes.get(case.scene).build
     try:
         if "source" in inspect.signature(build).parameters:
             build(case, source=str(path))
@@ -472,7 +473,7 @@ def _build_first(loaded, overrides, smoke: bool, label: str):
             build(case)
     except InputError as exc:
         if smoke:
-            exc = _check_smoke(raw, overrides, exc)
+            exc = check_smoke(raw, overrides, exc)
         raise StudyError(f"{label}: {_one_line(exc)}") from None
 
 
@@ -574,15 +575,15 @@ def _execute(specs: list, todo: list, workers: int, scheduler, accept, scheduler
     import multiprocessing
 
     ctx = multiprocessing.get_context("fork") if hasattr(os, "fork") else None
-    pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
+    pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=init_worker,
                                   initargs=(os.getpid(),))
     try:
-        with _sigint_blocked():
+        with sigint_blocked():
             futures = {pool.submit(run_one, specs[i]): i for i in todo}
         for fut in cf.as_completed(futures):
             accept(futures[fut], *fut.result())
     except BaseException:  # Ctrl-C or an error: cancel the pending runs, end the workers now
-        _stop_pool(pool)
+        stop_pool(pool)
         raise
     pool.shutdown(wait=True)
     return f"local processes ({workers})"
@@ -591,7 +592,7 @@ def _execute(specs: list, todo: list, workers: int, scheduler, accept, scheduler
 def _execute_dask(specs: list, todo: list, scheduler, accept, key: str) -> str:
     """Run on a Dask cluster (:func:`lubedyn.maps.sweep.run_on_dask`): ``scheduler`` is an address, a
     Client or a cluster (``key``: where it was given, for messages)."""
-    from .maps.sweep import run_on_dask
+    from lubedyn.maps.sweep import run_on_dask
 
     return run_on_dask(scheduler, key, [(run_one, specs[i]) for i in todo],
                        lambda k, result: accept(todo[k], *result), error=StudyError)
@@ -755,7 +756,7 @@ def aggregates(study: StudyFile, plan: Plan, results: list) -> list[dict]:
 def _machine() -> dict:
     import platform
 
-    from . import __version__
+    from lubedyn import __version__
 
     usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     return {"host": platform.node(), "platform": platform.platform(), "python": platform.python_version(),
