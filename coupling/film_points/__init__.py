@@ -24,7 +24,7 @@ kind                       film
 ``ehl_roller_cup``         the same on the cup (outer race)
 =========================  ===================================================
 
-The roller kinds (issue 22, section 4) replace ``ehl_roller_race`` (the whole 42.06 mm roller at
+The roller kinds replace ``ehl_roller_race`` (the whole 42.06 mm roller at
 5-20 kN, 3-15 m/s; :func:`ehl_roller_race_default_params` stays as the point set the solver-limit
 tests pin).  Their domain grows with the film (``inlet_film_lengths``, :func:`_film_scaled_domain`)
 and a point the solver's own start cannot reach is continued along :data:`CONTINUATION_PATHS`

@@ -149,7 +149,7 @@ def ehl_roller_race_default_params() -> dict:
     }
 
 
-# Roller kinds of paper A on a line-load axis (issue 22, section 4): film-scaled domain.  The Hertz
+# Roller kinds of paper A on a line-load axis: film-scaled domain.  The Hertz
 # domain [-20, 3] b of the earlier map starves light loads (tests/test_ehl_limits.py: -13 % at 20 kN/m,
 # 25 m/s; 3-10 times too thin at 1 kN/m): there the film is hydrodynamic and its pressure spans
 # sqrt(2 R h), 10-160 b.  The kinds' domain is x in [-hypot(20, k_in r), hypot(3, k_out r)] b with
@@ -771,7 +771,7 @@ def evaluate_ehl_line(params: dict, point: dict) -> dict:
       axis coordinate s onto the normalised slip sigma (:func:`normalised_slip`: 1e-5..0.1 onto 1e-6..1e6,
       denser at sigma = 1), odd in s.
 
-    Traction (issue 22, section 4): limiting shear makes mu(s) Newtonian (mu = a s) up to s_t and nearly
+    Traction: limiting shear makes mu(s) Newtonian (mu = a s) up to s_t and nearly
     flat above, and s_t falls by ~35 e-folds per e-fold of load in the hydrodynamic-to-EHL transition (cone,
     17.7 m/s: 4.6e-2 at 30 kN/m, 1.7e-6 at 40 kN/m) -- on the (load, speed, slide-to-roll) grid a front
     that crosses 1e-4..1e-3 between load nodes (the map missed by 665-877 %).  In sigma = s/c the front
@@ -864,7 +864,7 @@ def maxwell_traction(profile: dict, srr: float, shear_modulus: float = math.inf)
     ``newtonian``), from tau = 0 at the inlet; mu = sum tau dx / load.  G = inf is the rigid law of
     ``EHLSolution.traction_coefficient`` (tau = min(tau_v, tau_L)) to round-off.
 
-    Why (issue 22, the roller maps): with the rigid law the low-slip traction of a contact in the
+    Why: with the rigid law the low-slip traction of a contact in the
     hydrodynamic-to-EHL transition is eta(p_max)-weighted -- half of int eta/h dx sits at the one or two
     quadrature points of the pressure spike (cone, 17.7 m/s, 31-33 kN/m, 257 nodes), so it jumps with the
     spike's discrete height (mu(1e-4) 2.98e-4 on 257, 5.79e-4 on 513, 7.12e-4 on 1025 nodes at 31.6 kN/m;
@@ -993,7 +993,7 @@ EHL_ROLLER_AXES = (
     EHL_SRR_AXIS,
 )
 
-# Paper A's roller kinds (issue 22, section 4; notes 3.2): line load 1-200 kN/m (centrifugal-only rollers
+# Paper A's roller kinds (its Table 1 bearing at its operating ranges): line load 1-200 kN/m (centrifugal-only rollers
 # 2.1 kN/m at 2 krpm up to 135 kN/m at 40 um preload, plus slice peaks), entrainment 8-25 m/s, SRR 1e-5..0.1.
 # Axes with margin: 0.7-300 kN/m, 7-28 m/s.  Slide-to-roll: log from ROLLER_SRR_MIN = 1e-5 (the steady
 # slips of 0.005-0.02 % lie on the axis, not on an extrapolation); odd in the SRR; below 1e-5 the

@@ -219,7 +219,7 @@ def summarise(case: StaticCase, geometry, res) -> dict:
         warnings.append(
             f"no roller touches the cone raceway: the {res.axial_load:.4g} N axial load is carried by the flange "
             f"alone (with bearing.reconciliation = {case.bearing.reconciliation!r} the rollers tilt into their "
-            "large-end gap, paper_A_notes 2.1): a near-mechanism of the rigid-ring model, not a bearing in service")
+            "large-end gap): a near-mechanism of the rigid-ring model, not a bearing in service")
     for text in warnings:
         log.warning("%s", text)
     if warnings:

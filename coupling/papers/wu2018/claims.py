@@ -1,7 +1,7 @@
-"""Paper A's claims checked against the project's studies (issue 24).
+"""Paper A's claims checked against the project's studies.
 
 Paper A (Wu, Xu & Deng, *Shock and Vibration* 2018, 7183042) makes its claims figure by figure
-(``shared/reference/paper_A_notes.md`` section 4 lists them) and sums them up in four conclusions.  This
+(its Figs. 5-16, listed with what each claims in ``docs/paper_a.md``) and sums them up in four conclusions.  This
 module reads the results of ``lubedyn study`` for the studies of ``studies/trb_*.toml`` (each point's
 ``summary.json``; the time series where a study keeps them) and returns every claim as a :class:`Claim`:
 the paper's statement and number, the project's number with its uncertainty, a verdict and the reason.
@@ -356,7 +356,7 @@ def _speed(st: Study | None) -> list[Claim]:
     v, what = level(abs(ru[-1].paper), 0.10)
     out.append(Claim("8", "roller slip at 5 krpm", "about 10 %", f"{100 * abs(ru[-1].paper):.2g} % (unloaded zone)", v,
                      what + "; the paper's slip is eq. 52 against its own ideal speeds; ours against the model "
-                     "geometry's (notes 2.9)"))
+                     "geometry's"))
     # Fig. 9: cage slip
     cg = [window_value(s, "Cage slip [-]", None) for s in S]
     v, what = trend(cg[0], cg[-1], +1, magnitude=True)
@@ -482,7 +482,7 @@ def _temperature(st: Study | None) -> list[Claim]:
 
 
 def claims(folder) -> list[Claim]:
-    """Every claim of paper A (notes sec. 4) checked against the studies under ``folder`` (each study in
+    """Every claim of paper A (its figures and conclusions) checked against the studies under ``folder`` (each study in
     ``folder/<study name>``, as ``lubedyn study studies/<name>.toml --out folder/<name>`` writes)."""
     folder = Path(folder)
     st = {name: Study.load(folder / name) for name in MAIN_STUDIES}
