@@ -275,7 +275,7 @@ def bench_journal_cold(clock, sizes, repeats, cavitation, reference, uncertainty
 # ------------------------------------------------------------------ 2. big P1 solve
 def _phases(film):
     """Time the stages of one solve through the solver's internals (if they exist)."""
-    from lubedyn.lubrication import reynolds as rey
+    from lubedyn.lubrication.reynolds import problem as rey
 
     t = {}
     t0 = time.perf_counter()

@@ -16,8 +16,9 @@ module             responsibility
 ``mesh``           1-D, rectangle (periodic in x), disk (straight or curved)
                    meshes with named boundaries; unwrapping of periodic ones
 ``reynolds``       the generalised Reynolds equation: forms, Newton and
-                   complementarity (Reynolds, JFO) solvers, film K and C
-``solution``       ``FilmSolution``: loads, moments, friction, flow, VTK, plots
+                   complementarity (Reynolds, JFO) solvers, film K and C,
+                   ``FilmSolution`` (loads, moments, friction, flow, VTK,
+                   plots)
 ``closed_form``    analytic film results used for verification
 ``elastic``        half-space deflection by FFT of exact influence
                    coefficients (point and line contacts)
@@ -25,6 +26,8 @@ module             responsibility
                    options, problem, assembly, newton, multigrid, solve,
                    budget, checks, solution, coefficients): Reynolds FEM + FFT
                    elasticity + load balance, Newton or FAS multigrid
+``vtu``            ``write_vtu``: the atomic ``.vtu`` writer of film and EHL
+                   results
 =================  ==========================================================
 
 Nothing here imports ``lubedyn.dynamics``; ``lubedyn`` itself (the coupling layer) joins the two.
@@ -41,8 +44,8 @@ _LAZY = {
     **dict.fromkeys(("Barus", "ConstantViscosity", "DowsonHigginson", "HerschelBulkleyFlow", "Incompressible",
                      "Lubricant", "Roelands"),
                     ".laws.lubricant"),
-    **dict.fromkeys(("Cavitation", "Film", "SolverOptions", "film_coefficients", "solve", "solve_nested"), ".reynolds"),
-    "FilmSolution": ".solution",
+    **dict.fromkeys(("Cavitation", "Film", "FilmSolution", "SolverOptions", "film_coefficients", "solve",
+                     "solve_nested"), ".reynolds"),
 }
 
 

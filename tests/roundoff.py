@@ -1,6 +1,6 @@
 """Round-off perturbation of the film and EHL residuals: what another BLAS or CPU could do.
 
-Every residual the Reynolds (``lubedyn.lubrication.reynolds._Problem.assemble``) and EHL
+Every residual the Reynolds (``lubedyn.lubrication.reynolds.problem._Problem.assemble``) and EHL
 (``lubedyn.lubrication.ehl.problem._Problem.assemble``) solvers assemble gets a seeded perturbation of ``ulps``
 units of round-off (machine epsilon) of the size of its own terms, |J| |p| + |R| of the last
 Jacobian assembly of that problem (the sum that round-off is relative to; |R| alone shrinks to
@@ -17,7 +17,7 @@ EPS = np.finfo(float).eps
 def perturb_residuals(setattr_, ulps: float, seed: int) -> None:
     """Install the perturbation with ``setattr_(obj, name, value)`` (``monkeypatch.setattr`` for
     one test, ``setattr`` for a whole session)."""
-    from lubedyn.lubrication import reynolds
+    from lubedyn.lubrication.reynolds import problem as reynolds
     from lubedyn.lubrication.ehl import problem as ehl
 
     rng = np.random.default_rng(seed)

@@ -180,7 +180,7 @@ def test_failing_run_keeps_existing_outputs(tmp_path, capsys):
 def test_failure_while_writing_keeps_existing_outputs(tmp_path, capsys, monkeypatch):
     """Outputs are staged and moved into place only when all are written; a failure to write exits 3
     with one line naming the folder and the cause."""
-    import lubedyn.lubrication.solution
+    import lubedyn.lubrication.reynolds.solution
 
     out = tmp_path / "out"
     assert run(capsys, "run", POCKET, "--smoke", "--out", out)[0] == 0
@@ -189,7 +189,7 @@ def test_failure_while_writing_keeps_existing_outputs(tmp_path, capsys, monkeypa
     def broken_plot(self, ax=None):
         raise OSError("disk full (simulated)")
 
-    monkeypatch.setattr(lubedyn.lubrication.solution.FilmSolution, "plot_pressure", broken_plot)
+    monkeypatch.setattr(lubedyn.lubrication.reynolds.solution.FilmSolution, "plot_pressure", broken_plot)
     code, _, err = run(capsys, "run", POCKET, "--smoke", "--set", "motion.velocity_lower=2 m/s", "--out", out)
     assert code == 3
     assert_one_line_error(err, f"cannot write {out}: disk full (simulated)")

@@ -17,7 +17,7 @@ import pytest
 
 from lubedyn.scenes import film as film_scene
 from lubedyn.config import CASES_DIR, load_case
-from lubedyn.lubrication.solution import MIN_GAP_ELEMENTS
+from lubedyn.lubrication.reynolds.solution import MIN_GAP_ELEMENTS
 
 JOURNAL = CASES_DIR / "journal_finite.toml"
 

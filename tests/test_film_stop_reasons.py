@@ -144,7 +144,8 @@ def test_barus_pole_names_the_viscosity_not_the_boundary_conditions():
 ])
 def test_diagnosis_reads_the_history(case, expected):
     """The failure classifier on synthetic histories of 20 iterations (one per criterion)."""
-    from lubedyn.lubrication.reynolds import _diagnose, _Problem
+    from lubedyn.lubrication.reynolds.diagnosis import _diagnose
+    from lubedyn.lubrication.reynolds.problem import _Problem
 
     film = Film(meshes.interval(0, 0.02, 10), InclinedSlider(20e-6, 10e-6, 0.02), Lubricant.newtonian(0.01),
                 velocity_lower=(1.0,), cavitation=Cavitation("reynolds"))

@@ -116,7 +116,7 @@ def test_long_journal_full_sommerfeld(long_journal_film, eps):
     elements.  Measured: pressure error 6.7e-7 (eps 0.3) and 1.6e-5 (eps 0.7)
     of p_max, load error 4e-7 and 3.7e-6, |F_x| < 1e-12 W.  This test also
     pins the gauge node on the periodic seam (it failed, with a pressure
-    offset of p(dtheta), before the seam fix in reynolds._Problem._dirichlet).
+    offset of p(dtheta), before the seam fix in reynolds.problem._Problem._dirichlet).
     """
     width = 1e-3
     sol = long_journal_film(R, C, eps, ETA, U_J, 64, width=width).solve()

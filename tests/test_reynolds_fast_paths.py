@@ -16,9 +16,10 @@ from skfem import asm
 
 from lubedyn.lubrication import InclinedSlider, Lubricant
 from lubedyn.lubrication import mesh as lmesh
-from lubedyn.lubrication.reynolds import Film, _Problem, _diffusion, _flux_load, _source_load, make_basis
-from lubedyn.lubrication.reynolds.forms import (_ELEMENTS, _cell_kind, assemble_diffusion, assemble_flux_load,
-                                                assemble_source_load)
+from lubedyn.lubrication.reynolds import Film, make_basis
+from lubedyn.lubrication.reynolds.forms import (ELEMENTS, assemble_diffusion, assemble_flux_load, assemble_source_load,
+                                                cell_kind, diffusion_form, flux_load_form, source_load_form)
+from lubedyn.lubrication.reynolds.problem import _Problem
 
 
 def _graded_quads():
@@ -95,7 +96,7 @@ def test_dirichlet_dofs_match_scikit_fem(name, element):
 def test_basis_matches_scikit_fem(name, element):
     m = _skewed(MESHES[name]())
     fast = make_basis(m, element)
-    elem = _ELEMENTS[(_cell_kind(m), element)]()
+    elem = ELEMENTS[(cell_kind(m), element)]()
     reference = skfem.Basis(m, elem, intorder=4 if element == "P2" else 3)
     assert fast.mapping is m.mapping()  # the caching proxy is gone after the build
     assert np.array_equal(fast.dx, reference.dx)
@@ -116,12 +117,12 @@ def test_assembly_matches_asm_bit_for_bit(name, element):
     a = rng.uniform(0.5, 2.0, shape)
     f = rng.standard_normal((dim,) + shape)
     g = rng.standard_normal(shape)
-    K, K_ref = assemble_diffusion(b, a), asm(_diffusion, b, a=a).tocsr()
+    K, K_ref = assemble_diffusion(b, a), asm(diffusion_form, b, a=a).tocsr()
     assert K.shape == K_ref.shape
     assert np.array_equal(K.indptr, K_ref.indptr) and np.array_equal(K.indices, K_ref.indices)
     assert np.array_equal(K.data, K_ref.data)
-    assert np.array_equal(assemble_flux_load(b, f), asm(_flux_load, b, f=f))
-    assert np.array_equal(assemble_source_load(b, g), asm(_source_load, b, g=g))
+    assert np.array_equal(assemble_flux_load(b, f), asm(flux_load_form, b, f=f))
+    assert np.array_equal(assemble_source_load(b, g), asm(source_load_form, b, g=g))
 
 
 def test_diffusion_drops_zero_entries_like_scikit_fem():
@@ -130,7 +131,7 @@ def test_diffusion_drops_zero_entries_like_scikit_fem():
     m = lmesh.rectangle(np.linspace(0.0, 1.0, 5), np.linspace(0.0, 1.0, 5), "tri")
     b = make_basis(m, "P1")
     a = np.ones((b.nelems, b.X.shape[-1]))
-    K, K_ref = assemble_diffusion(b, a), asm(_diffusion, b, a=a).tocsr()
+    K, K_ref = assemble_diffusion(b, a), asm(diffusion_form, b, a=a).tocsr()
     local = np.einsum("idq,jdq->ij", np.array([phi.grad[:, 0] for (phi,) in b.basis]),
                       np.array([phi.grad[:, 0] for (phi,) in b.basis]))
     assert np.any(local == 0.0)  # the case this test is about

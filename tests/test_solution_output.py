@@ -22,7 +22,8 @@ from scipy.integrate import quad
 from lubedyn.lubrication import Cavitation, Film, InclinedSlider, JournalBearing, Lubricant, SpherePlane
 from lubedyn.lubrication import closed_form as cf
 from lubedyn.lubrication import mesh as meshes
-from lubedyn.lubrication.reynolds import _Problem, interpolate, make_basis
+from lubedyn.lubrication.reynolds import interpolate, make_basis
+from lubedyn.lubrication.reynolds.problem import _Problem
 
 R, C, L, ETA, OMEGA = 0.025, 50e-6, 0.025, 0.02, 300.0
 

@@ -493,7 +493,7 @@ def _write_fields(case, setup, stage, summary):
         log.warning("kind %s has no film field: no fields.pvd", setup.kind.name)
         summary["Field frames [-]"] = 0
         return
-    from lubedyn.lubrication.solution import write_vtu
+    from lubedyn.lubrication.vtu import write_vtu
 
     frames = []
     for k, point in enumerate(field_points(case, setup)):

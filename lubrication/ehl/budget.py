@@ -50,7 +50,7 @@ def _spend(P: _Problem):
 # contacts on 65 ... 257 nodes with the multigrid):
 # - FORMULA_TOLERANCE: converged solutions (1025 line nodes; 257 x 257 multigrid up to M = 200)
 #   lie within -5.6 % ... +5.4 % of Moes' line and Nijenbanning's point formula (the fits' own
-#   scatter: "a few per cent", "within about 5 %"); the wrong answers of issue 20 are +86 % (line,
+#   scatter: "a few per cent", "within about 5 %"); under-resolved grids give +86 % (line,
 #   257 nodes, M = 1000) and -35 % (multigrid, 129 x 129, M = 1000).  10 %: twice the scatter.
 # - COARSE_TOLERANCE: the discretisation error estimated from the one-level-coarser solution,
 #   |h_c - h_c,coarse|/((2^2 - 1) h_c) (second order).  Multigrid cases within 5 % of the formula

@@ -14,8 +14,8 @@ log = logging.getLogger(__name__)
 
 FORMULA_TOLERANCE = 0.10
 COARSE_TOLERANCE = 0.13
-# The resolution check for every density, viscosity and flow law (issue 36; FORMULA_TOLERANCE and
-# COARSE_TOLERANCE: issue 20, lubrication/ehl/budget.py).  Measured on Moes line contacts, M = 100 ... 2000,
+# The resolution check for every density, viscosity and flow law (FORMULA_TOLERANCE and
+# COARSE_TOLERANCE: lubrication/ehl/budget.py).  Measured on Moes line contacts, M = 100 ... 2000,
 # L = 5, 10, 20, with Barus, Dowson-Higginson (DH), Roelands + DH, Reynolds-Eyring (tau0 = 0.3 and 1 MPa)
 # and Herschel-Bulkley (tau_y = 1 kPa, M = 20 ... 100) lubricants on 129 ... 1025 nodes, each against the
 # same contact on 2049 nodes (or the finest that converged), and on circular contacts (Barus and DH,

@@ -11,7 +11,7 @@ import numpy as np
 from skfem import asm
 
 from ..errors import InputError, unknown_choice
-from ..reynolds.forms import _source_load
+from ..reynolds.forms import source_load_form
 from .contact import EHLContact
 from .newton import _FBLinear, _row_scale
 from .options import EHLGrid, EHLOptions
@@ -112,7 +112,7 @@ def ehl_normal_coefficients(contact: EHLContact, grid: EHLGrid = EHLGrid(nx=33),
             lin = _FBLinear(P, A, D, np.zeros(idx.size), np.ones(idx.size), idx)
             b = P.basis
             dR_dh = D @ np.ones(P.N)
-            dR_dv = np.asarray(asm(_source_load, b, g=aux["rho"])) + np.asarray(
+            dR_dv = np.asarray(asm(source_load_form, b, g=aux["rho"])) + np.asarray(
                 asm(_supg_load, b, t=aux["tau"] * aux["rho"], u=P.u))
             w = P.weights[idx]
             K = -float(w @ lin.solve(-dR_dh[idx]))

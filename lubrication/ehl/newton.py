@@ -165,7 +165,7 @@ def _pseudo_transient(P: _Problem, p, hn, R, A, D, state):
     unchanged: backward Euler in pseudo time linearised at the current state, where the transient term
     vanishes).  dtau grows as the residual falls (switched evolution relaxation, Mulder & van Leer 1985):
     dtau = dtau0 |R_0|/|R|, dtau0 = ``pseudo_transient`` transit times of the domain (its length over u_m);
-    off once dtau exceeds 1e10 transit times (plain Newton, quadratic convergence kept).  Why (issue 22): where the viscosity is
+    off once dtau exceeds 1e10 transit times (plain Newton, quadratic convergence kept).  Why: where the viscosity is
     eta0 exp(alpha p) with alpha p = 30-60 the Poiseuille flow vanishes, the film is held by its Couette
     balance d(rho h)/dx = 0 alone, whose Jacobian has a near-null mode (a pressure whose deflection is
     constant there); finer grids resolve it and the plain Newton step jumps by p_Hertz along it.  The

@@ -19,7 +19,7 @@ class EHLGrid:
     differ by a factor close to 1 (smooth grading keeps P1/SUPG second order).  The node
     positions (:meth:`x_nodes`) depend only on the grid's fields, so the grid with (nx - 1)/2 + 1
     nodes on the same fields is nested in this one to round-off (every second node).  Why
-    (issue 22, the roller maps): the outlet pressure spike of a line contact is a fraction of a
+    (the roller maps of the coupling layer): the outlet pressure spike of a line contact is a fraction of a
     cell wide on a uniform 257-node grid, and the traction's low-slip slope and transition slip,
     which the spike carries, jitter by +-10 % between neighbouring loads; 1025 uniform nodes
     resolve it but do not converge at every load."""

@@ -14,7 +14,8 @@ from .. import mesh as meshes
 from ..elastic import ElasticKernel, line_influence_matrix
 from ..errors import InputError
 from ..laws import contact as hertz
-from ..reynolds.forms import _advection, _diffusion, _flux_load, _mass, _source_load, _streamline, make_basis
+from ..reynolds.forms import (advection_form, diffusion_form, flux_load_form, make_basis, mass_form, source_load_form,
+                              streamline_form)
 from .assembly import ElementForms, UniformForms
 from .contact import EHLContact, _eyring_terms, _log_slope, supg_parameter
 from .options import EHLGrid, EHLOptions
@@ -378,11 +379,11 @@ class _Problem:
             # SUPG term is consistent and the scheme second order
             div = 0.0
             for d in range(dim):
-                Fd = -np.asarray(asm(_source_load, b, g=k * pf.grad[d])) / self.weights
+                Fd = -np.asarray(asm(source_load_form, b, g=k * pf.grad[d])) / self.weights
                 div = div + b.interpolate(Fd).grad[d]
             strong = strong + div
-        Kd = asm(_diffusion, b, a=k)
-        R = Kd @ p + asm(_flux_load, b, f=-rho * hq * u) + asm(_source_load, b, g=rho * hdot)
+        Kd = asm(diffusion_form, b, a=k)
+        R = Kd @ p + asm(flux_load_form, b, f=-rho * hq * u) + asm(source_load_form, b, g=rho * hdot)
         R = R + asm(_supg_load, b, t=tau * strong, u=u)
         if not jac:
             return R, hn
@@ -395,10 +396,10 @@ class _Problem:
             d_strong_dp = 0.0 * hq
         A = (
             Kd
-            + asm(_advection, b, b=dk_dp * pf.grad - drho * hq * u)
-            + asm(_mass, b, c=drho * hdot * np.ones_like(hq))
-            + asm(_streamline, b, s=tau * drho * hq, beta=u)
-            + asm(_advection, b, b=(tau * d_strong_dp + dtau_dp * strong) * u)
+            + asm(advection_form, b, b=dk_dp * pf.grad - drho * hq * u)
+            + asm(mass_form, b, c=drho * hdot * np.ones_like(hq))
+            + asm(streamline_form, b, s=tau * drho * hq, beta=u)
+            + asm(advection_form, b, b=(tau * d_strong_dp + dtau_dp * strong) * u)
         )
         if ey is not None:
             gp = np.asarray(pf.grad)
@@ -408,9 +409,9 @@ class _Problem:
                  + asm(_supg_derivative, b, t=-dtau_dPe * Pe * ey["c2_rel"] * strong, u=u, e=gp))
         A = A.tocsr()
         D = (
-            asm(_advection, b, b=dk_dh * pf.grad - rho * u)
-            + asm(_streamline, b, s=tau * rho, beta=u)
-            + asm(_advection, b, b=(tau * um * drho * pf.grad[0] + dtau_dh * strong) * u)
+            asm(advection_form, b, b=dk_dh * pf.grad - rho * u)
+            + asm(streamline_form, b, s=tau * rho, beta=u)
+            + asm(advection_form, b, b=(tau * um * drho * pf.grad[0] + dtau_dh * strong) * u)
         ).tocsr()
         if self.o.consistent_supg:
             Ml_inv = sp.diags(1.0 / self.weights)
@@ -418,10 +419,10 @@ class _Problem:
                 e = np.zeros_like(u)
                 e[d] = 1.0
                 S = asm(_supg_derivative, b, t=tau, u=u, e=e)
-                Gp = asm(_directional, b, k=k, e=e) + asm(_mass, b, c=dk_dp * pf.grad[d])
+                Gp = asm(_directional, b, k=k, e=e) + asm(mass_form, b, c=dk_dp * pf.grad[d])
                 if ey is not None:
                     Gp = Gp + asm(_directional, b, k=c2 * gp[d], e=gp)
-                Gh = asm(_mass, b, c=dk_dh * pf.grad[d])
+                Gh = asm(mass_form, b, c=dk_dh * pf.grad[d])
                 A = A - S @ (Ml_inv @ Gp)
                 D = D - S @ (Ml_inv @ Gh)
             A, D = A.tocsr(), D.tocsr()

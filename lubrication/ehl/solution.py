@@ -8,8 +8,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from skfem import asm
 
-from ..reynolds.forms import _source_load
+from ..reynolds.forms import source_load_form
+from ..vtu import write_vtu
 from .contact import EHLContact
+
 
 @dataclass
 class EHLSolution:
@@ -73,7 +75,7 @@ class EHLSolution:
         couette = c.traction.stress(eta, sliding, hq, pq)
         poiseuille = -0.5 * hq * pf.grad[0]
         ones = np.ones(P.N)
-        return (float(asm(_source_load, b, g=couette) @ ones), float(asm(_source_load, b, g=poiseuille) @ ones))
+        return (float(asm(source_load_form, b, g=couette) @ ones), float(asm(source_load_form, b, g=poiseuille) @ ones))
 
     def friction(self) -> float:
         """Sliding (Couette) friction force [N, or N/m for lines] that the fluid
@@ -108,8 +110,6 @@ class EHLSolution:
 
     def save(self, path):
         """Write the fields to a ``.vtu`` file (temporary file + rename)."""
-        from ..solution import write_vtu
-
         return write_vtu(self.to_pyvista(), path)
 
     def plot_profiles(self):

@@ -41,7 +41,7 @@ Eq. 34 writes the load as k_e delta with delta = h0; taken as the magnitude |k_e
 pull the roller onto the beam).  In the Newtonian limit (tau_y = 0, n = 1, phi = eta) q_paper is
 Martin's load exactly; the yield stress drops out of k_e (it is constant in h0), which is the
 paper's Fig. 15 ("little effect").  Squeeze and traction use ``eta`` (the caller's viscosity
-reading; :mod:`lubedyn.lubrication.laws.grease`), as eq. 34 uses phi0 as a viscosity (notes 2.3).
+reading; :mod:`lubedyn.lubrication.laws.grease`), as eq. 34 uses phi0 as a viscosity.
 
 Martin's coefficient: 4.8950 eta u_m R/h (Reynolds exit condition; Martin 1916; Hamrock, Schmid &
 Jacobson 2004, eq. 17.28), the same as 2.4475 eta (u_1 + u_2) R/h.  The half-Sommerfeld (Guembel)

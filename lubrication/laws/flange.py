@@ -26,11 +26,11 @@ grease traction by the fluid share 1 - exp(-B lambda^C), so that lambda -> 0 giv
 friction (s0/p0) q_f exactly and lambda >> 3 the grease traction only (:func:`flange_friction`).
 
 Grease traction (eqs. 26-27): eq. 26's Herschel-Bulkley law over the Hertz ellipse, eq. 27 read as
-f = int tau dA (the printed "x" is a typo, notes 2.5), with the limiting shear stress of
+f = int tau dA (the printed "x" is read as a typo: a product would not be a force), with the limiting shear stress of
 :func:`lubedyn.lubrication.laws.traction.limited_ellipse_traction` (unbounded as printed: tau ~ 5e13 Pa at
 p = 0.43 GPa, D = 5e5 1/s).
 
-The rib film (eq. 24-25).  As printed, eq. 24 is a dimensionless number with no scale (notes 2.6)::
+The rib film (eq. 24-25).  As printed, eq. 24 is a dimensionless number with no length scale::
 
     H = 1.8035e-2 M^-0.5066 L^-1.1869,   M = W U^-3/4,  L = G U^1/4
     W = q_f/(E' r_s^2),  U = phi0 u_f/(E' r_s),  G = alpha E',  u_f = (u_flange + u_end)/2

@@ -1,6 +1,6 @@
 r"""Grease rheology (Herschel-Bulkley), its temperature table, the two readings of the plastic viscosity,
 and the film thickness of a grease-lubricated line contact.  Paper A: Wu, Xu & Deng 2018, eq. 26 and
-Table 2; choices from ``shared/reference/paper_A_notes.md`` (2.3, 3.4).
+Table 2; the readings chosen where the paper is ambiguous are given below with their reasons.
 
 Herschel-Bulkley (Herschel & Bulkley 1926, Kolloid-Z. 39, 291; paper A eq. 26), sign-odd::
 
@@ -17,8 +17,8 @@ two neighbouring table temperatures, *log-linearly* in tau_y and phi (both fall 
 with temperature, as viscosities do) and *linearly* in n; it reproduces the table at its temperatures
 and refuses temperatures outside 15-70 C (no extrapolation of a four-point table).
 
-The readings of phi (notes 2.3: the paper's eqs. 12, 25, 34-35, 40 and 44 use phi, in Pa s^n, as a
-Newtonian viscosity in Pa s):
+The readings of phi (the paper's eqs. 12, 25, 34-35, 40 and 44 use phi, in Pa s^n, as a Newtonian
+viscosity in Pa s):
 
 - ``"base_oil"`` (default): films and Newtonian traction use a base-oil viscosity (given; paper A does not
   give one, so it is assumed in the parameter module); the grease enters through eq. 26's traction only.
@@ -29,21 +29,22 @@ Newtonian viscosity in Pa s):
 Why ``"base_oil"`` is the default: (1) fully flooded grease EHL films at rolling speeds of metres per
 second are base-oil films to within tens of per cent (the thickener is largely excluded from the inlet;
 Kauzlarich & Greenwood 1972, ASLE Trans. 15, 269; Cann, e.g. Tribol. Int. 1996); (2) phi0 = 8.44 taken
-as Pa s gives raceway films of 115-191 um (notes 2.3), which no bearing runs on; (3) the Table 2 fits come
+as Pa s gives raceway films of 115-191 um, which no bearing runs on; (3) the Table 2 fits come
 from rheometers (shear rates up to about 1e3-1e4 1/s), and extrapolated to the contacts' 1e5-1e7 1/s
 their apparent viscosity falls below any plausible base oil (lithium at 30 C: 0.0043 Pa s at 1e6 1/s,
-0.0008 at 1e7: notes 3.4), while a real grease tends to its base oil's viscosity at high shear rate
+0.0008 at 1e7), while a real grease tends to its base oil's viscosity at high shear rate
 (Sisko/Bingham-type behaviour).  The cost of the default: the film no longer depends on the grease, so
 Figs. 14 and 16 respond only through traction.  The other readings are options, and the choice
 reverses the greases' ranking (tests/test_laws_grease.py): by phi0 (``"paper"``) calcium > lithium >
 polyurea at 30 C; by apparent viscosity at 1e6 1/s polyurea > calcium > lithium.
 
 Film of a grease line contact (:func:`grease_line_film`).  The grease film model paper A cites is lost
-(its reference list stops at [3]; Kauzlarich-Greenwood is a guess, notes 1).  Used here: the Newtonian
+(its reference list stops at [3]; Kauzlarich & Greenwood 1972 is a guess).  Used here: the Newtonian
 line-contact formulas of :mod:`.film` -- Dowson & Toyoda (1979) central film or Moes (1992) -- with the
 viscosity of the chosen reading and the grease's pressure-viscosity coefficient alpha.  For tau_y = 0,
 n = 1 (a Newtonian "grease" phi0 = eta) every reading that uses the grease gives exactly those formulas'
-film (tested, with the notes' 5.4 um raceway film at 2.4 krpm).
+film (tested; at paper A's most loaded cone contact at 2.4 krpm, phi0 = 0.1 Pa s, Dowson-Toyoda gives
+5.4 um).
 """
 from __future__ import annotations
 

@@ -10,7 +10,7 @@ alpha_i to the axis, i.e. their contact angles) with unit normals pointing into 
 
     n_o = (sin alpha_o, -cos alpha_o),     n_i = (-sin alpha_i, cos alpha_i)
 
-Reconciliation of Table 1 (shared/reference/paper_A_notes.md sec. 2.1).  Table 1 is not a
+Reconciliation of Table 1 (Wu, Xu & Deng 2018).  Table 1 is not a
 common-apex design: the roller's half-taper atan((24.76 - 17.85)/(2 x 42.06)) = 4.70 deg (end
 diameters printed swapped) does not equal (15 - 5)/2 = 5 deg, and with 15/5 deg raceways through a
 common apex the pitch radius 89 mm would need a 90 mm roller.  Pitch radius, mean roller diameter,
@@ -44,8 +44,8 @@ cone; its height above the cone raceway must be below the rib height.  Hertz cur
 flange contact: 1/r_s in both directions on the roller; the rib is straight in the meridional plane
 and concave circumferentially (-cos beta_f / r_P, r_P the contact point's radius).
 
-Cage and guide land (notes sec. 2.2: Table 1's cage, 196.1-205.8 mm, does not fit between the
-raceways): the cage ring and its inner-ring guide land are placed beyond the large end, at
+Cage and guide land (Table 1's cage, 196.1-205.8 mm, does not fit between the raceways): the cage ring
+and its inner-ring guide land are placed beyond the large end, at
 x = x(large end face) + land gap + width/2 (land gap assumed), land radius = cage bore/2 -
 clearance/2 with the 0.5 mm guide land clearance read as diametral (eq. 43's (r_y - r_d)/2).
 
@@ -65,8 +65,8 @@ are r_i, r_o; for a common apex this is pure rolling along the whole line)::
     entrainment speed                 u_e = omega_c r_o = (omega_i - omega_c) r_i
 
 (the mid-slice contact points sit at R_p -+ rho_m cos(alpha_r) in both readings, so gamma =
-D_m cos(alpha_r)/d_m exactly: 1,058.55 rpm at 2,400 rpm; the notes' conventions D_m cos(alpha)/d_m
-with alpha = 5, 10, 15 deg give 1,056.9 / 1,058.5 / 1,061.3 rpm.)
+D_m cos(alpha_r)/d_m exactly: 1,058.55 rpm at 2,400 rpm; the conventions D_m cos(alpha)/d_m with
+alpha = 5, 10, 15 deg (the cone's, the roller axis' and the cup's angle) give 1,056.9 / 1,058.5 / 1,061.3 rpm.)
 """
 from __future__ import annotations
 

@@ -12,8 +12,8 @@ Grease traction of paper A (Wu, Xu & Deng 2018)
 Sign convention: ``slip_speed`` is the surface speed of the *other* body minus that of the body the
 force acts on; the force drags the body along it (odd in slip).
 
-``"paper"``: eqs. 12-13 exactly as written (notes 2.4: linear in sliding speed, phi0 at atmospheric
-pressure, no yield stress, no limit), per unit length of contact (eq. 12's force of a slice is this
+``"paper"``: eqs. 12-13 exactly as written (linear in sliding speed, phi0 at atmospheric pressure, no
+yield stress, no limit), per unit length of contact (eq. 12's force of a slice is this
 times l_e/n_s)::
 
     f' = pi eps eta R'^(1/2) (v_b - v_r) / (2^(1/2) h0^(1/2))                         (eq. 12)
@@ -23,7 +23,7 @@ eta is phi0 in the paper (its number read as Pa s); :class:`lubedyn.lubrication.
 gives it under each reading.  Rebuilt from the garbled text: eq. 12 prints ``(3 v_b - v_r(`` and
 ``(3 v_r - v_b(``; read here as (v_b - v_r) and (v_r - v_b), the "3" and "(" being extraction debris
 of the large brackets (as elsewhere in that text), which makes f_b = -f_r and the law linear in the
-sliding speed, as notes 2.4 read it.  (The literal 3 v_b - v_r would be a Couette-plus-Poiseuille mix
+sliding speed.  (The literal 3 v_b - v_r would be a Couette-plus-Poiseuille mix
 with a traction at zero slip.)  What eq. 12 integrates (shown by quadrature in the tests): with
 c = (R' h0/2)^(1/2), z = b/c and the gap h(x) = h0 (1 + x^2/c^2) = h0 + 2 x^2/R'::
 
@@ -40,7 +40,7 @@ Hertz pressure with a uniform film h (shear rate D = slip/h)::
     tau    = sign(D) tau_L (1 - exp(-tau_HB/tau_L)),   tau_L = tau_L0 + gamma_L p
 
 so tau -> tau_HB when tau_HB << tau_L, and |tau| < tau_L: the mean traction coefficient over a Hertz
-contact stays below gamma_L + tau_L0 A/W.  tau_L0 = inf gives eq. 26 unbounded, as printed (notes 2.5).
+contact stays below gamma_L + tau_L0 A/W.  tau_L0 = inf gives eq. 26 unbounded, as printed.
 
 - line strip [-b, b], p = p0 (1 - x^2/b^2)^(1/2): with x = b cos(theta),
   f' = 2 b int_0^(pi/2) tau(p0 sin theta) sin theta d theta                         (per unit length)

@@ -96,27 +96,24 @@ References: Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film
 Lubrication* (2004), ch. 7; Giacopini, Fowell, Dini & Strozzi (2010);
 Woloszynski, Podsiadlo & Stachowiak (2015, Tribol. Lett. 58:18).
 
-Modules: ``film`` (Film, Cavitation, SolverOptions and the solver's constants), ``forms`` (weak forms,
-bases, interpolation), ``problem`` (assembly, cavitation sets, linear solves), ``diagnosis`` (stop
-reasons), ``solve`` (solve, solve_nested, film_coefficients).  Every name is re-exported here.
+Modules: ``options`` (Cavitation, SolverOptions and the constants that choose between solver paths),
+``film`` (Film), ``forms`` (weak forms, bases, interpolation; shared with the EHL solver), ``problem``
+(assembly, cavitation sets, linear solves), ``diagnosis`` (stop reasons), ``solve`` (solve, solve_nested),
+``solution`` (FilmSolution: loads, moments, friction, flow, VTK, plots), ``coefficients``
+(film_coefficients).  The public names are re-exported here; the modules import one another, never this
+package.
 """
 from __future__ import annotations
 
-from .diagnosis import (  # noqa: F401  (the package's API)
-    CYCLE_WINDOW, ROUNDOFF_FLOOR, _at_roundoff_floor, _diagnose, _divergence_hint, amg_probe_iterations,
+# The package's public API, re-exported (no ``__all__``: autosummary would then document every name twice,
+# here and in its module).
+from .coefficients import film_coefficients  # noqa: F401
+from .diagnosis import CYCLE_WINDOW, ROUNDOFF_FLOOR, amg_probe_iterations  # noqa: F401
+from .film import Field, Film  # noqa: F401
+from .forms import interpolate, make_basis, unwrapped_dofs  # noqa: F401
+from .options import (  # noqa: F401
+    AMG_STALL_FACTOR, CAVITATION_MODELS, DIRECT_SOLVER_MAX_DOFS, ELEMENT_ORDERS, LINEAR_SOLVERS, WARM_START_MIN_DOFS,
+    Cavitation, SolverOptions,
 )
-from .film import (  # noqa: F401  (the package's API)
-    AMG_STALL_FACTOR, CAVITATION_MODELS, Cavitation, DIRECT_SOLVER_MAX_DOFS, ELEMENT_ORDERS, Field, Film,
-    LINEAR_SOLVERS, SolverOptions, WARM_START_MIN_DOFS,
-)
-from .forms import (  # noqa: F401  (the package's API)
-    _ELEMENTS, _advection, _as_scalar_field, _as_vector_field, _cell_kind, _diffusion, _flux_load, _mass,
-    _source_load, _streamline, interpolate, make_basis, unwrapped_dofs,
-)
-from .problem import (  # noqa: F401  (the package's API)
-    _Problem,
-)
-from .solve import (  # noqa: F401  (the package's API)
-    _Guess, _auto_warm_start, _coarser, _prolong, _select_columns, _solve_single, _tensor_axes,
-    film_coefficients, solve, solve_nested,
-)
+from .solution import FilmSolution  # noqa: F401
+from .solve import solve, solve_nested  # noqa: F401

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .film import AMG_STALL_FACTOR
+from .options import AMG_STALL_FACTOR
 
 def amg_probe_iterations(amg_tol: float) -> int:
     """CG iterations that AMG-CG gets on its first solve under ``linear_solver = "auto"``:

@@ -17,32 +17,38 @@ from ..errors import InputError
 
 
 @BilinearForm
-def _diffusion(u, v, w):
+def diffusion_form(u, v, w):
+    """int a grad u . grad v (``a``: scalar at the quadrature points)."""
     return w["a"] * dot(grad(u), grad(v))
 
 
 @BilinearForm
-def _advection(u, v, w):
+def advection_form(u, v, w):
+    """int u b . grad v (``b``: vector at the quadrature points)."""
     return u * dot(w["b"], grad(v))
 
 
 @BilinearForm
-def _mass(u, v, w):
+def mass_form(u, v, w):
+    """int c u v (``c``: scalar at the quadrature points)."""
     return w["c"] * u * v
 
 
 @BilinearForm
-def _streamline(u, v, w):
+def streamline_form(u, v, w):
+    """int s (beta . grad u)(beta . grad v): streamline diffusion along ``beta`` with weight ``s``."""
     return w["s"] * dot(w["beta"], grad(u)) * dot(w["beta"], grad(v))
 
 
 @LinearForm
-def _flux_load(v, w):
+def flux_load_form(v, w):
+    """int f . grad v (``f``: vector at the quadrature points)."""
     return dot(w["f"], grad(v))
 
 
 @LinearForm
-def _source_load(v, w):
+def source_load_form(v, w):
+    """int g v (``g``: scalar at the quadrature points)."""
     return w["g"] * v
 
 
@@ -59,7 +65,7 @@ def _local_arrays(basis, i):
 
 
 def assemble_diffusion(basis, a) -> sp.csr_matrix:
-    """``asm(_diffusion, basis, a=a).tocsr()``: the matrix of int a grad u . grad v.
+    """``asm(diffusion_form, basis, a=a).tocsr()``: the matrix of int a grad u . grad v.
 
     ``a``: array (nelems, nqp) at the quadrature points.  Why not ``asm``: on the
     1M-DOF P1 benchmark (1000 x 1000 quads) it spent 1.8-2.9 s, of which the form
@@ -104,7 +110,7 @@ def _load_vector(basis, local) -> np.ndarray:
 
 
 def assemble_flux_load(basis, f) -> np.ndarray:
-    """``asm(_flux_load, basis, f=f)``: the vector of int f . grad v, ``f`` (dim, nelems,
+    """``asm(flux_load_form, basis, f=f)``: the vector of int f . grad v, ``f`` (dim, nelems,
     nqp).  Same numbers; without ``asm``'s ``DiscreteField`` wrapping (see
     :func:`assemble_diffusion`)."""
     f = np.asarray(f)
@@ -113,13 +119,14 @@ def assemble_flux_load(basis, f) -> np.ndarray:
 
 
 def assemble_source_load(basis, g) -> np.ndarray:
-    """``asm(_source_load, basis, g=g)``: the vector of int g v, ``g`` (nelems, nqp)."""
+    """``asm(source_load_form, basis, g=g)``: the vector of int g v, ``g`` (nelems, nqp)."""
     g = np.asarray(g)
     dx = np.asarray(basis.dx)
     return _load_vector(basis, lambda i: np.sum(g * _local_arrays(basis, i)[0] * dx, axis=1))
 
 
-_ELEMENTS = {
+# (cell kind, element order) -> scikit-fem element class
+ELEMENTS = {
     ("line", "P1"): skfem.ElementLineP1,
     ("line", "P2"): skfem.ElementLineP2,
     ("tri", "P1"): skfem.ElementTriP1,
@@ -129,7 +136,8 @@ _ELEMENTS = {
 }
 
 
-def _cell_kind(mesh) -> str:
+def cell_kind(mesh) -> str:
+    """``"line"``, ``"tri"`` or ``"quad"``: the key of :data:`ELEMENTS` for ``mesh``."""
     if isinstance(mesh, skfem.MeshLine1):
         return "line"
     if isinstance(mesh, skfem.MeshTri1):
@@ -168,7 +176,7 @@ class _InverseJacobianOnce:
 def make_basis(mesh, element: str = "P1") -> skfem.CellBasis:
     """The scalar Lagrange basis (``P1``/``P2``) of ``mesh``; the inverse Jacobians
     computed once for all basis functions (:class:`_InverseJacobianOnce`)."""
-    elem = _ELEMENTS[(_cell_kind(mesh), element)]()
+    elem = ELEMENTS[(cell_kind(mesh), element)]()
     intorder = 4 if element == "P2" else 3
     mapping = mesh.mapping()
     basis = skfem.Basis(mesh, elem, mapping=_InverseJacobianOnce(mapping), intorder=intorder)
@@ -213,7 +221,9 @@ def interpolate(basis, u, zero: bool = False) -> skfem.element.DiscreteField:
     return skfem.element.DiscreteField(value, grad_)
 
 
-def _as_vector_field(value, x, dim, key):
+def as_vector_field(value, x, dim, key):
+    """``value`` (a constant vector of ``dim`` components or ``f(x)``) evaluated at the points ``x``
+    (shape ``(dim, ...)``); ``key`` names the input in the error message."""
     if callable(value):
         out = np.asarray(value(x), dtype=float)
     else:
@@ -229,7 +239,9 @@ def _as_vector_field(value, x, dim, key):
     return out
 
 
-def _as_scalar_field(value, x, key):
+def as_scalar_field(value, x, key):
+    """``value`` (a number or ``f(x)``) evaluated at the points ``x`` (shape ``(dim, ...)``, result
+    ``x.shape[1:]``); ``key`` names the input in the error message."""
     if callable(value):
         out = np.asarray(value(x), dtype=float)
     else:

@@ -7,6 +7,7 @@ import logging
 import warnings
 
 import numpy as np
+import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 import skfem
 from skfem import asm
@@ -15,16 +16,26 @@ from skfem.mesh.mesh_dg import MeshDG
 from .. import mesh as meshes
 from ..errors import InputError, unknown_choice
 from .diagnosis import amg_probe_iterations
-from .film import AMG_STALL_FACTOR, DIRECT_SOLVER_MAX_DOFS, Film
-from .forms import (_advection, _as_scalar_field, _as_vector_field, _mass, _streamline, assemble_diffusion,
-    assemble_flux_load, assemble_source_load, interpolate, make_basis)
+from .forms import (advection_form, as_scalar_field, as_vector_field, assemble_diffusion, assemble_flux_load,
+                    assemble_source_load, interpolate, make_basis, mass_form, streamline_form)
+from .options import AMG_STALL_FACTOR, DIRECT_SOLVER_MAX_DOFS
 
 log = logging.getLogger(__name__)
 
-class _Problem:
-    """Everything about a Film that does not change during the Newton solve."""
 
-    def __init__(self, film: Film):
+def _select_columns(Jp, Jr, full_mask):
+    """Matrix whose column j is Jp[:, j] for full-film nodes and Jr[:, j] otherwise."""
+    Df = sp.diags(full_mask.astype(float))
+    if Jr is None:
+        return Jp @ Df
+    return Jp @ Df + Jr @ sp.diags((~full_mask).astype(float))
+
+
+class _Problem:
+    """Everything about a film (:class:`~lubedyn.lubrication.reynolds.film.Film`) that does not change
+    during the Newton solve."""
+
+    def __init__(self, film):
         self.film = film
         self.basis = make_basis(film.mesh, film.element)
         b = self.basis
@@ -40,12 +51,12 @@ class _Problem:
                 f"gap h = {np.min(self.h):.4g} m at x = {np.array2string(xm, precision=4)} m; "
                 "the film thickness must be > 0 everywhere (the surfaces touch or overlap)"
             )
-        ul = _as_vector_field(film.velocity_lower, self.x, self.dim, "velocity_lower [m/s]")
-        uu = _as_vector_field(film.velocity_upper, self.x, self.dim, "velocity_upper [m/s]")
+        ul = as_vector_field(film.velocity_lower, self.x, self.dim, "velocity_lower [m/s]")
+        uu = as_vector_field(film.velocity_upper, self.x, self.dim, "velocity_upper [m/s]")
         self.u_lower, self.u_upper = ul, uu
         self.um = 0.5 * (ul + uu)
         self.modes = {k: np.asarray(f(self.x), dtype=float) for k, f in film.gap.modes().items()}
-        hdot = _as_scalar_field(film.squeeze, self.x, "squeeze dh/dt [m/s]")
+        hdot = as_scalar_field(film.squeeze, self.x, "squeeze dh/dt [m/s]")
         for k, qd in film.mode_velocities.items():
             hdot = hdot + float(qd) * self.modes[k]
         self.hdot = hdot
@@ -177,13 +188,13 @@ class _Problem:
         if not self.linear:
             dk = h**3 / 12.0 * (c["drho"] / c["eta"] - c["rho"] * c["deta"] / c["eta"] ** 2)
             bvec = dk * c["gp"] - c["drho"] * h * theta * um
-            A = (K0 + asm(_advection, b, b=bvec) + asm(_mass, b, c=c["drho"] * theta * hdot)).tocsr()
+            A = (K0 + asm(advection_form, b, b=bvec) + asm(mass_form, b, c=c["drho"] * theta * hdot)).tocsr()
         # R = k grad p . grad v - rho h theta um . grad v + rho theta hdot v - SU(r)
         R = K0 @ p + assemble_flux_load(b, -c["rho"] * h * theta * um) + assemble_source_load(b, c["rho"] * theta * hdot)
         Jr = None
         if with_void:
-            S = asm(_streamline, b, s=self.tau * c["rho"] * h, beta=um)
-            Jr = (asm(_advection, b, b=c["rho"] * h * um) - asm(_mass, b, c=c["rho"] * hdot) - S).tocsr()
+            S = asm(streamline_form, b, s=self.tau * c["rho"] * h, beta=um)
+            Jr = (asm(advection_form, b, b=c["rho"] * h * um) - asm(mass_form, b, c=c["rho"] * hdot) - S).tocsr()
             R = R - S @ r
         if self.linear:
             self._cache = (A, Jr, R - A @ p - (Jr @ r if Jr is not None else 0.0))

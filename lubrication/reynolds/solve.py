@@ -1,4 +1,4 @@
-"""solve, solve_nested (nested iteration), film_coefficients: the Reynolds solve drivers.
+"""solve, solve_nested (nested iteration): the Reynolds solve drivers.
 
 Part of :mod:`lubedyn.lubrication.reynolds` (the package docstring gives the equations and sources)."""
 from __future__ import annotations
@@ -8,42 +8,32 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 import skfem
-from skfem import asm
-from skfem.helpers import dot
 from skfem.mesh.mesh_dg import MeshDG
 
 from .. import mesh as meshes
 from ..errors import ConvergenceError, InputError
 from .diagnosis import _at_roundoff_floor, _diagnose, _divergence_hint
-from .film import Film, WARM_START_MIN_DOFS
-from .forms import _ELEMENTS, _cell_kind, _flux_load, _source_load, interpolate
-from .problem import _Problem
+from .forms import ELEMENTS, cell_kind
+from .options import WARM_START_MIN_DOFS
+from .problem import _Problem, _select_columns
+from .solution import FilmSolution
 
 log = logging.getLogger(__name__)
 
-def _select_columns(Jp, Jr, full_mask):
-    """Matrix whose column j is Jp[:, j] for full-film nodes and Jr[:, j] otherwise."""
-    Df = sp.diags(full_mask.astype(float))
-    if Jr is None:
-        return Jp @ Df
-    return Jp @ Df + Jr @ sp.diags((~full_mask).astype(float))
-
-
-def _auto_warm_start(film: Film) -> int:
+def _auto_warm_start(film) -> int:
     """Levels of nested iteration for ``SolverOptions.warm_start_levels = None``."""
     if film.cavitation.model not in ("reynolds", "jfo"):
         return 0
-    elem = _ELEMENTS[(_cell_kind(film.mesh), film.element)]()
+    elem = ELEMENTS[(cell_kind(film.mesh), film.element)]()
     if skfem.Dofs(film.mesh, elem).N < WARM_START_MIN_DOFS or _tensor_axes(film.mesh) is None:
         return 0
     return 2
 
 
-def solve(film: Film, initial=None) -> "FilmSolution":
-    """Solve ``film``; return a :class:`~lubedyn.lubrication.solution.FilmSolution`.
+def solve(film, initial=None) -> FilmSolution:
+    """Solve ``film`` (a :class:`~lubedyn.lubrication.reynolds.film.Film`); return a
+    :class:`~lubedyn.lubrication.reynolds.solution.FilmSolution`.
 
     Without ``initial``, ``film.options.warm_start_levels`` may first solve
     coarser meshes (:func:`solve_nested`; by default for Reynolds/JFO
@@ -79,9 +69,8 @@ def solve(film: Film, initial=None) -> "FilmSolution":
     return _solve_single(film, initial).report_warnings()
 
 
-def _solve_single(film: Film, initial=None) -> "FilmSolution":
+def _solve_single(film, initial=None) -> FilmSolution:
     """:func:`solve` on ``film.mesh`` alone."""
-    from ..solution import FilmSolution
 
     t0 = time.perf_counter()
     prob = _Problem(film)
@@ -316,7 +305,7 @@ def _coarser(mesh, axes):
     return meshes.rectangle(out[0], out[1], cell=cell, periodic_x=isinstance(mesh, MeshDG)), tuple(out)
 
 
-def solve_nested(film: Film, levels: int = 2) -> "FilmSolution":
+def solve_nested(film, levels: int = 2) -> FilmSolution:
     """Solve ``film`` by nested iteration: first on ``levels`` coarser versions
     of its tensor mesh (every second grid line per level), each solution
     interpolated (multi-linearly, on the coarse grid) to start the next finer
@@ -361,7 +350,7 @@ def solve_nested(film: Film, levels: int = 2) -> "FilmSolution":
         level = chain[k][0]
         guess = None
         if solution is not None:
-            elem = _ELEMENTS[(_cell_kind(level.mesh), level.element)]()
+            elem = ELEMENTS[(cell_kind(level.mesh), level.element)]()
             doflocs = skfem.CellBasis(level.mesh, elem, intorder=1).doflocs
             guess = _prolong(solution, chain[k + 1][1], doflocs)
         solution = _solve_single(level, initial=guess)
@@ -369,51 +358,3 @@ def solve_nested(film: Film, levels: int = 2) -> "FilmSolution":
     solution.info["nested"] = record
     solution.info["nested_wall_time"] = time.perf_counter() - t0
     return solution.report_warnings()
-
-
-def film_coefficients(solution) -> tuple[list[str], np.ndarray, np.ndarray]:
-    """Linearised stiffness K and damping C of the film about ``solution``.
-
-    Returns ``(names, K, C)`` with ``names`` the gap's modes (e.g. ``["x", "y"]``
-    for a journal, ``["h0"]`` for planar films), ``K[i, j] = -dF_i/dq_j`` [N/m]
-    and ``C[i, j] = -dF_i/d(dq_j/dt)`` [N s/m], from the perturbation equations
-    (one linear solve with the converged Jacobian per mode and kind).  The
-    active set (cavitated nodes) is frozen: cavitated pressures do not vary.
-    """
-    prob: _Problem = solution.problem
-    film = prob.film
-    jfo = film.cavitation.model == "jfo"
-    p, r = solution.pressure_dofs, 1.0 - solution.fluid_fraction_dofs
-    _, Jp, Jr = prob.assemble(p, r, with_void=jfo)
-    c = prob.coefficients(p, r)
-    full = solution.full_film
-    M = _select_columns(Jp, Jr, full) if jfo else Jp
-    # half-Sommerfeld: p = max(p_full, p_cav), so dp = dp_full masked to the
-    # positive zone (solve on every free node); complementarity models freeze
-    # the active set.
-    gumbel = film.cavitation.model == "half_sommerfeld"
-    idx = np.flatnonzero(prob.free) if (jfo or gumbel) else np.flatnonzero(prob.free & full)
-    Mred = M[idx][:, idx].tocsc()
-    lu = spla.splu(Mred)
-    names = list(prob.modes)
-    n = len(names)
-    K = np.zeros((n, n))
-    C = np.zeros((n, n))
-    b = prob.basis
-    h, um, theta = prob.h, prob.um, 1.0 - c["r"]
-    rho, eta = c["rho"], c["eta"]
-    dk_dh = rho * 3.0 * h**2 / (12.0 * eta)
-    for j, name in enumerate(names):
-        g = prob.modes[name]
-        dR_dq = asm(_flux_load, b, f=dk_dh * g * c["gp"] - rho * g * theta * um)
-        if jfo:
-            dR_dq = dR_dq - asm(_flux_load, b, f=prob.tau * rho * g * dot(um, c["gr"]) * um)
-        dR_dqdot = asm(_source_load, b, g=rho * theta * g)
-        for kind, rhs, out in (("K", dR_dq, K), ("C", dR_dqdot, C)):
-            z = np.zeros(prob.N)
-            z[idx] = lu.solve(-rhs[idx])
-            dp = np.where(full & prob.free, z, 0.0)
-            dpq = np.asarray(interpolate(b, dp))
-            for i, name_i in enumerate(names):
-                out[i, j] = -float(np.sum(dpq * prob.modes[name_i] * b.dx))
-    return names, K, C

@@ -28,8 +28,6 @@ and values from the vertex degrees of freedom (first in ``element_dofs``).
 from __future__ import annotations
 
 import logging
-import os
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -38,8 +36,11 @@ import skfem
 from skfem import Functional, asm
 from skfem.helpers import dot
 
-from . import mesh as meshes
-from .errors import InputError
+from .. import mesh as meshes
+from ..errors import InputError
+from ..vtu import write_vtu
+from .coefficients import film_coefficients
+from .forms import as_vector_field, interpolate, unwrapped_dofs
 
 log = logging.getLogger(__name__)
 
@@ -78,12 +79,6 @@ def per_unit_width(key: str) -> str:
         if key.endswith(" " + unit):
             return f"{key[: -len(unit) - 1]} per unit width {new}"
     return key
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 # Elements across the minimum-gap zone (h < 2 h_min; FilmSolution.min_gap_elements) below which a
@@ -137,8 +132,6 @@ class FilmSolution:
         return np.asarray(self.film.gap(self.basis.doflocs), dtype=float)
 
     def _field_q(self, dofs):
-        from .reynolds import interpolate
-
         return interpolate(self.basis, dofs)
 
     def _gauge_q(self):
@@ -239,8 +232,6 @@ class FilmSolution:
         (DG-point) meshes lack: there the integral runs over the unwrapped mesh
         (same elements, seam cut open) with the fields carried over dof by dof.
         """
-        from .reynolds import _as_vector_field, unwrapped_dofs
-
         mesh, index = unwrapped_dofs(self.basis)
         fb = skfem.FacetBasis(mesh, self.basis.elem, facets=mesh.boundaries[boundary], intorder=4)
         x = np.asarray(fb.global_coordinates())
@@ -250,8 +241,8 @@ class FilmSolution:
         eta = self.film.lubricant.viscosity(np.asarray(pf) - self.film.ambient_pressure)
         dim = self.problem.dim
         um = 0.5 * (
-            _as_vector_field(self.film.velocity_lower, x, dim, "velocity_lower")
-            + _as_vector_field(self.film.velocity_upper, x, dim, "velocity_upper")
+            as_vector_field(self.film.velocity_lower, x, dim, "velocity_lower")
+            + as_vector_field(self.film.velocity_upper, x, dim, "velocity_upper")
         )
         q = -(h**3) / (12.0 * eta) * pf.grad + theta * h * um
         return float(asm(_boundary_flux, fb, q=q))
@@ -301,7 +292,7 @@ class FilmSolution:
     @property
     def warnings(self) -> list[str]:
         """One-line warnings about this solution (empty: none), each logged (WARNING, logger
-        ``lubedyn.lubrication.solution``) once by :func:`lubedyn.lubrication.reynolds.solve` when it returned the
+        ``lubedyn.lubrication.reynolds.solution``) once by :func:`lubedyn.lubrication.reynolds.solve` when it returned the
         solution; today the JFO fluid fraction below 0 (:meth:`fluid_fraction_warning`).  Also in
         ``info["warnings"]``; the film scene lists them under "Warnings" in summary.json."""
         return list(self.info.get("warnings", ()))
@@ -345,8 +336,6 @@ class FilmSolution:
 
     def coefficients(self):
         """``(names, K, C)``: see :func:`lubedyn.lubrication.reynolds.film_coefficients`."""
-        from .reynolds import film_coefficients
-
         return film_coefficients(self)
 
     # ------------------------------------------------------------ output
@@ -491,23 +480,3 @@ class FilmSolution:
             ax.set_aspect("auto")
         ax.set_title("Film pressure")
         return fig
-
-
-def write_vtu(grid, path) -> Path:
-    """Write a pyvista grid to ``path`` (``.vtu``) through a temporary file and
-    a rename, with the usual file mode; shared by every lubrication result."""
-    path = Path(path)
-    if path.suffix != ".vtu":
-        raise InputError(f"output path = {str(path)!r} must end in .vtu")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(suffix=".vtu", dir=path.parent)
-    os.close(fd)
-    try:
-        grid.save(tmp)
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp creates 0600; give the usual mode
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-    log.info("wrote %s", path)
-    return path
