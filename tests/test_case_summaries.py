@@ -104,3 +104,18 @@ def test_recording_one_case_twice_is_identical(tmp_path, capsys):
     assert pressure["shape"] == [13] and pressure["max"] == rec["summary"]["Maximum pressure [Pa]"]
     assert case_summaries.compare(tmp_path / "a.json", tmp_path / "b.json") == 0
     assert b["cases"] == a["cases"]
+
+
+def test_the_temporary_run_folder_named_in_a_text_is_not_a_difference(tmp_path, capsys):
+    """A warning naming the map file a case wrote into its temporary folder
+    (``tempfile.TemporaryDirectory(prefix="case-summaries-<case>-")``: 8 random characters) compares
+    equal across two runs; any other change of the text is still a difference."""
+    def warned(folder, tail="interpolation error 0.3 %"):
+        rec = _recording()
+        rec["cases"]["rayleigh_step"]["summary"]["Warnings"] = [
+            f"map file '/tmp/case-summaries-map_ball_ball-{folder}/out/ball_ball.npz': {tail}"]
+        return rec
+    code, out = _compare(tmp_path, warned("me286y5q"), warned("esd3ke_8"), capsys)
+    assert code == 0, out
+    code, out = _compare(tmp_path, warned("me286y5q"), warned("esd3ke_8", "interpolation error 0.4 %"), capsys)
+    assert code == 1 and "Warnings[0]" in out
