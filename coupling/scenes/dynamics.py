@@ -637,10 +637,10 @@ def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) ->
     summary["Mean inner ring speed in the analysed window [rpm]"] = ring_hz * 60.0
     summary.update(freqs)
     # paper B's figures 3-5 and 11: settling and spin-up times, zones, collisions by quadrant, vibration band
+    from lubedyn.dynamics.analysis.motion import run_columns
     from lubedyn.papers.zhang2024 import figures as paper_b_figures
 
-    summary.update(paper_b_figures.summary_entries(case, t, paper_b_figures.run_columns(model, Y, diag, ring),
-                                                   events, freqs))
+    summary.update(paper_b_figures.summary_entries(case, t, run_columns(model, Y, diag, ring), events, freqs))
 
     summary = outputs.run_summary(case, name, smoke, summary, t0, t_build)
 
@@ -848,6 +848,8 @@ class _Scene3D:
 def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     import matplotlib.pyplot as plt
 
+    from lubedyn.dynamics.analysis.frequency import spectrum_limit
+    from lubedyn.dynamics.analysis.motion import run_columns
     from lubedyn.papers.zhang2024 import figures as paper_b_figures
 
     figs = {}
@@ -897,7 +899,7 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
         # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
         # and the vibration band of the summary (shaded)
         band = case.analysis.vibration_band
-        f_max = min(f[-1], max(paper_b_figures.spectrum_limit(freqs) or f[-1], band[1]))
+        f_max = min(f[-1], max(spectrum_limit(freqs) or f[-1], band[1]))
         ax.axvspan(band[0] / 1e3, min(band[1], f_max) / 1e3, color="0.9", lw=0, label="analysis.vibration_band")
         shown = f <= f_max
         ax.semilogy(f[shown] / 1e3, np.maximum(amp[shown], 1e-12), lw=0.7)
@@ -911,7 +913,7 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     ax.set_title("inner-ring acceleration spectrum")
     fig.tight_layout()
     figs["spectrum.png"] = fig
-    figs.update(paper_b_figures.figures(case, t, paper_b_figures.run_columns(setup.model, Y, diag, ring), events))
+    figs.update(paper_b_figures.figures(case, t, run_columns(setup.model, Y, diag, ring), events))
     return figs
 
 

@@ -43,7 +43,7 @@ tilt = atan2(e_r, e_x) and skew = asin(e_t), both minus their values at the star
 (omega_ideal - omega)/omega_ideal of a roller centre's orbital speed and of the cage's spin, with
 omega_ideal the geometry's own ideal cage speed omega_i (1 - gamma)/2.  A roller is in the loaded zone
 while its cone load exceeds ``analysis.loaded_zone_fraction`` of the start's largest.  Periodicity:
-:func:`periodicity` (1 when every roller repeats its neighbour's signal one roller pass later).
+:func:`lubedyn.dynamics.analysis.windows.periodicity` (1 when every roller repeats its neighbour's signal one roller pass later).
 
 With ``operating.cone_tilt = "free"`` the summary adds the cone's tilt (theta_y, theta_z) [rad]: its
 quasi-static start, and per window its mean and amplitude; the time series carries it (the state's
@@ -63,6 +63,7 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import BeforeValidator, Field, model_validator
 
+from lubedyn.dynamics.analysis.windows import window_summary
 from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 
@@ -331,7 +332,6 @@ def build(case: TaperedCase):
         raise InputError(str(exc)) from None
 
 
-
 #: the roller EHL maps that raceway traction "map" reads (cup, cone): built by cases/map_ehl_roller_cup.toml
 #: and cases/map_ehl_roller_cone.toml (cases/maps/README.md: axes, lubricant, accuracy)
 ROLLER_TRACTION_MAPS = ("maps/ehl_roller_cup.npz", "maps/ehl_roller_cone.npz")
@@ -396,64 +396,6 @@ def record(model, Y, y0, qs, fraction):
     return D
 
 
-def _stats(x) -> dict:
-    x = np.asarray(x, dtype=float)
-    x = x[np.isfinite(x)]
-    if x.size == 0:
-        return {"mean": None, "amplitude": None, "largest magnitude": None}
-    return {"mean": float(np.mean(x)), "amplitude": float(0.5 * (np.max(x) - np.min(x))),
-            "largest magnitude": float(np.max(np.abs(x)))}
-
-
-def periodicity(t, x, lag):
-    """Pearson correlation of roller j's signal ``x[:, j]`` at t + ``lag`` with roller j+1's at t, over
-    all rollers and the samples of ``t`` where t + lag is recorded.  In a motion that is steady in the
-    loaded zone's frame, roller j reaches roller j+1's azimuth one roller pass (``lag`` = 2 pi/(Z
-    omega_c)) later and repeats its signal: 1 for a periodic motion, near 0 for an irregular one.  None
-    when the window is shorter than the lag or the signal constant."""
-    keep = t + lag <= t[-1]
-    if keep.sum() < 3:
-        return None
-    later = np.stack([np.interp(t[keep] + lag, t, x[:, j]) for j in range(x.shape[1])], axis=1)
-    nxt = np.roll(x[keep], -1, axis=1)
-    a, b = later.ravel() - later.mean(), nxt.ravel() - nxt.mean()
-    den = math.sqrt(float(a @ a) * float(b @ b))
-    return float(a @ b / den) if den > 0 else None
-
-
-def window_summary(model, t, D, lo, hi) -> dict:
-    """Means, amplitudes (half the range) and largest magnitudes of tilt, skew, roller slip and radial
-    displacement per zone (loaded, unloaded, all) over lo <= t <= hi; the cage's speed and slip; the
-    periodicity of skew and tilt (:func:`periodicity` at the measured roller-pass period)."""
-    w = (t >= lo) & (t <= hi)
-    out = {"Window [s]": [float(t[w][0]), float(t[w][-1])], "Samples [-]": int(w.sum())}
-    zone = D["Loaded zone [-]"][w]
-    for name, key in (("Tilt [rad]", "Tilt [rad]"), ("Skew [rad]", "Skew [rad]"), ("Roller slip [-]", "Roller slip [-]"),
-                      ("Spin slip [-]", "Spin slip [-]"), ("Radial displacement [m]", "Radial displacement [m]")):
-        x = D[key][w]
-        out[name] = {"loaded zone": _stats(x[zone]), "unloaded zone": _stats(x[~zone]), "all": _stats(x)}
-    for name in ("Tilt [rad]", "Skew [rad]"):
-        m = out[name]["all"]["mean"]
-        out[name.replace("[rad]", "mean [deg]")] = None if m is None else math.degrees(m)
-    out["Rollers in the loaded zone, mean [-]"] = float(np.mean(zone.sum(axis=1)))
-    if "Cone tilt [rad]" in D:
-        for k, ax in enumerate("yz"):
-            out[f"Cone tilt {ax} [rad]"] = _stats(D["Cone tilt [rad]"][w, k])
-    orbital = float(np.mean(D["Orbital speed [rad/s]"][w]))
-    if orbital > 0.0:
-        lag = 2.0 * math.pi / (model.n_rollers * orbital)
-        out["Roller pass period [s]"] = lag
-        out["Skew periodicity [-]"] = periodicity(t[w], D["Skew [rad]"][w], lag)
-        out["Tilt periodicity [-]"] = periodicity(t[w], D["Tilt [rad]"][w], lag)
-    if "Cage speed [rad/s]" in D:
-        out["Cage speed, mean [rpm]"] = float(np.mean(D["Cage speed [rad/s]"][w])) * 30 / math.pi
-        out["Cage slip [-]"] = _stats(D["Cage slip [-]"][w])
-        r = np.hypot(*D["Cage centre [m]"][w].T)
-        out["Cage centre from the cone's, mean [m]"] = float(np.mean(r))
-        out["Cage centre from the cone's, largest [m]"] = float(np.max(r))
-    return out
-
-
 #: the headline means: (summary name, window statistic, zone or None for a whole-bearing statistic)
 HEADLINE = (("Skew, loaded zone", "Skew [rad]", "loaded zone"), ("Skew, unloaded zone", "Skew [rad]", "unloaded zone"),
             ("Tilt, loaded zone", "Tilt [rad]", "loaded zone"), ("Tilt, unloaded zone", "Tilt [rad]", "unloaded zone"),
@@ -469,7 +411,7 @@ def _headline_mean(w: dict, stat: str, zone):
 
 def converged_summary(model, t, D, width: float, tolerance: float) -> dict | None:
     """The record's last ``width`` [s] against the ``width`` before it: the window statistics of the last
-    (:func:`window_summary`) and, per headline mean (:data:`HEADLINE`), its value in both windows, the
+    (:func:`lubedyn.dynamics.analysis.windows.window_summary`) and, per headline mean (:data:`HEADLINE`), its value in both windows, the
     change and the change relative to the last window's magnitude.  "Converged [-]" when every relative
     change is at most ``tolerance`` (a mean that is None in either window, an empty zone, is left out).
     The change is the uncertainty issue 24 asks of a mean: how much it still moves from one window to the
