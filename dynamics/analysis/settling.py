@@ -117,8 +117,8 @@ def spinup_time(t, ring_speed, rotor_speed, tolerance: float = SPINUP_TOLERANCE)
 
 
 def settling_times(t, series, ball: int, scenario: str = "drop") -> dict:
-    """Summary entries of paper B's Fig. 3 (Zhang et al. 2024): ``"Settling time, ball j x [s]"`` (y, z), the orbital speed's and
-    the inner ring's spin-up time, each ``None`` with a ``", note"`` when not reached."""
+    """Summary entries of paper B's Fig. 3 (Zhang et al. 2024): ``"Settling time, ball j x [s]"`` (y, z),
+    the orbital speed's and the inner ring's spin-up time, each ``None`` with a ``", note"`` when not reached."""
     t = np.asarray(t, dtype=float)
     i_final = final_start(t)
     z = n_balls(series)
