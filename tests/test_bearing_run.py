@@ -72,14 +72,15 @@ def test_outputs_not_asked_for_are_neither_computed_nor_written(tmp_path):
 
 
 def test_an_integrator_failure_reaches_the_user_as_the_scene_error(tmp_path):
-    """A step budget of 10 cannot reach the end of the tapered record: the integrator's IntegrationError
+    """A step budget of 10 DOPRI5 steps cannot reach the end of the tapered record: the integrator's IntegrationError
     reaches the user through the driver as the scene's ConvergenceError naming the case key, and nothing
     is written."""
     from lubedyn.config import load_case
     from lubedyn.lubrication.errors import ConvergenceError
     from lubedyn.scenes import tapered
 
-    case = load_case("cases/trb_fig5_2400rpm.toml", smoke=True, overrides=["integrator.max_steps=10"])
+    case = load_case("cases/trb_fig5_2400rpm.toml", smoke=True, overrides=["integrator.method=dopri5",
+                                                                        "integrator.max_steps=10"])
     with pytest.raises(ConvergenceError, match=r"integrator\.rtol = "):
         bearing_run.drive(tapered.TaperedRunModel(case), tmp_path / "out", name="trb")
     assert not (tmp_path / "out").exists()
