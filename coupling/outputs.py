@@ -32,7 +32,9 @@ import shutil
 import re
 import tempfile
 import time
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Callable, Iterable
 
 from lubedyn.lubrication.errors import LubedynError
 
@@ -328,6 +330,75 @@ def write_run(out_dir, resolved: str, summary: dict, write, fields=None, figure=
         write_json(stage / "summary.json", summary)
         names = sorted(p.name for p in stage.iterdir())
     return [out / n for n in names]
+
+
+@dataclass
+class RunFiles:
+    """What a time-domain run (:mod:`lubedyn.scenes.bearing_run`) hands :func:`write_bearing_run`, each
+    piece a callable so that nothing is computed for an output the case does not write.
+
+    ``t``: the sample times [s]; ``columns()``: the time series' columns (name with unit -> array over
+    ``t``); ``meta(summary)``: the time series' extra metadata, given the full summary; ``texts()``: further
+    text files written with the time series (``{"collisions.csv": text}``); ``frames()``: ``(time [s],
+    mesh)`` pairs of the ParaView series, each mesh made when its frame is written, with file extension
+    ``frame_ext`` ("vtp", "vtu"); ``figures()``: ``{file name: matplotlib figure}``; ``complete(summary)``:
+    the summary finished by an analysis that ran in the background while the frames and figures were
+    made (None: nothing to wait for); ``write_time``: record "Output write time [s]" in ``summary.json``."""
+
+    t: Any
+    columns: Callable[[], dict] | None = None
+    meta: Callable[[dict], dict] = lambda summary: {}
+    texts: Callable[[], dict] = dict
+    frames: Callable[[], Iterable] | None = None
+    frame_ext: str = "vtp"
+    figures: Callable[[], dict] | None = None
+    complete: Callable[[dict], dict] | None = None
+    write_time: bool = False
+
+
+def write_bearing_run(out_dir, resolved: str, summary: dict, write, files: RunFiles) -> tuple[list[Path], dict]:
+    """Write a time-domain run's outputs into ``out_dir`` through a staging folder (:func:`staged`):
+    ``case.resolved.toml`` (``resolved``), with "pvd" in ``write`` the frames (``frames/frame_NNNNN.<ext>``,
+    :func:`write_frame`) and ``bearing.pvd`` (:func:`write_pvd`), with "png" the figures (Agg backend), then
+    the summary completed (``files.complete``), with "timeseries" ``timeseries.npz``
+    (:func:`write_timeseries`, its metadata from the completed summary) and the text files, last
+    ``summary.json``.  Frames and figures come first: they do not need the summary, so a background
+    analysis runs on meanwhile.  Returns (the paths written, the completed summary)."""
+    t_write = time.perf_counter()
+    out = Path(out_dir)
+    with staged(out) as stage:
+        write_text(stage / "case.resolved.toml", resolved)
+        if files.frames is not None and "pvd" in write:
+            (stage / "frames").mkdir()
+            entries = []
+            for k, (when, mesh) in enumerate(files.frames()):
+                fname = f"frames/frame_{k:05d}.{files.frame_ext}"
+                write_frame(stage / fname, mesh)
+                entries.append((float(when), fname))
+            write_pvd(stage / "bearing.pvd", entries)
+        if files.figures is not None and "png" in write:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+
+            for fname, fig in files.figures().items():
+                try:
+                    save_figure(stage / fname, fig)
+                finally:
+                    plt.close(fig)
+        if files.complete is not None:
+            summary = files.complete(summary)
+        full = dict(summary)
+        if files.columns is not None and "timeseries" in write:
+            write_timeseries(stage / "timeseries.npz", files.t, files.columns(), files.meta(full))
+            for fname, text in files.texts().items():
+                write_text(stage / fname, text)
+        if files.write_time:
+            full["Output write time [s]"] = time.perf_counter() - t_write
+        write_json(stage / "summary.json", full)
+        names = sorted(p.name for p in stage.iterdir())
+    return [out / n for n in names], summary
 
 
 def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float,

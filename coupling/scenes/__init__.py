@@ -12,6 +12,9 @@ scene          module: what it runs
 =============  =====================================================================================
 
 and :mod:`lubedyn.scenes.study`, a runner over them (a base case over axes of ``--set`` values).
+The two bearings in time (``dynamics``, ``tapered``) run through one driver,
+:mod:`lubedyn.scenes.bearing_run` (build, integrate, analyse, write through
+:func:`lubedyn.outputs.write_bearing_run`): each hands it a run model.
 
 A scene module implements :class:`Scene` (the module itself is the object: its functions and
 constants are the protocol's members).  :data:`SCENES` is the one registry: the case loader

@@ -61,7 +61,7 @@ from lubedyn.lubrication.laws import bearing as bearings
 
 from lubedyn import outputs
 from lubedyn.scenes.dynamics_lyapunov import _benettin, _lyapunov_per_direction
-from lubedyn.config import CASES_DIR, BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, CaseTable, resolved_toml, rule
+from lubedyn.config import CASES_DIR, BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, CaseTable, rule
 
 log = logging.getLogger(__name__)
 
@@ -522,145 +522,186 @@ def ball_centres(setup: DynamicsSetup, Y: np.ndarray) -> np.ndarray:
     return out
 
 
-
 def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str = "",
         smoke: bool = False) -> DynamicsRun:
-    """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold
-    cache are reported as they compile (:func:`lubedyn.compilation.report_compilation`)."""
-    from lubedyn.compilation import report_compilation
+    """Build, integrate, analyse and (with ``out_dir``) write the case through the bearing run driver
+    (:func:`lubedyn.scenes.bearing_run.drive`, :class:`CagelessRunModel`)."""
+    from lubedyn.scenes.bearing_run import drive
 
-    with report_compilation():
-        return _run(case, out_dir, name=name, source=source, smoke=smoke)
+    return drive(CagelessRunModel(case, source), out_dir, name=name, source=source, smoke=smoke)
 
 
-def _run(case: DynamicsCase, out_dir, *, name: str, source: str, smoke: bool) -> DynamicsRun:
-    from lubedyn.dynamics.analysis import collision_events, collision_summary
-    from lubedyn.dynamics.cageless import (
-        D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, D_QO, D_SPIN, forces_many, rhs)
-    from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError
-    from lubedyn.dynamics.integrators import integrate
+class CagelessRunModel:
+    """The cage-less ball bearing's side of :func:`lubedyn.scenes.bearing_run.drive`: its model and
+    quasi-static start (:func:`build`), the integrator options, the summary (collisions, slip, Lyapunov
+    exponents, bearing frequencies, paper B's figures' quantities; the Benettin spectrum in a background
+    thread) and the files (time series, ``collisions.csv``, ``.vtp`` frames, figures)."""
 
-    t0 = time.perf_counter()
-    setup = build(case, source or None, precompile=True)
-    model = setup.model
-    t_build = time.perf_counter() - t0
-    ig = case.integrator
-    progress = sys.stderr.isatty()
-    log.info("integrating %s", describe(case, setup))
-    try:
-        res = integrate(rhs, setup.y0, setup.t_out, model.args(), method=ig.method, rtol=ig.rtol, atol=ig.atol,
-                        dt=ig.dt, max_steps=ig.max_steps, progress=progress,
-                        # the highest contact rate at y0 and, with RK4, again at the state after every chunk
-                        # (a contact that stiffens later in the run stops it, naming the stable step)
-                        omega_max=model.omega_max,
-                        # 200 kernel calls on a terminal or not: the result is bit-identical to one call
-                        # (tests/test_chunking.py), and control comes back to Python between them, so a
-                        # Ctrl-C in a pipe is taken within one chunk (the 0.1 s drop integrates in 1.4 s
-                        # warm: 7 ms a chunk), not at the end of the integration
-                        n_chunks=200)
-    except DynamicsInputError as exc:
-        raise InputError(str(exc)) from None
-    except IntegrationError as exc:
+    def __init__(self, case: DynamicsCase, source: str = ""):
+        self.case, self.source = case, source
+
+    def build(self) -> None:
+        self.setup = build(self.case, self.source or None, precompile=True)
+
+    def describe(self) -> str:
+        return describe(self.case, self.setup)
+
+    def integration(self):
+        from lubedyn.dynamics.cageless import rhs
+        from lubedyn.scenes.bearing_run import Integration
+
+        ig, model = self.case.integrator, self.setup.model
+        return Integration(rhs, self.setup.y0, self.setup.t_out, model.args(),
+                           dict(method=ig.method, rtol=ig.rtol, atol=ig.atol, dt=ig.dt, max_steps=ig.max_steps,
+                                # the highest contact rate at y0 and, with RK4, again at the state after every
+                                # chunk (a contact that stiffens later in the run stops it, naming the stable step)
+                                omega_max=model.omega_max),
+                           # 200 kernel calls on a terminal or not: the result is bit-identical to one call
+                           # (tests/test_chunking.py), and control comes back to Python between them, so a
+                           # Ctrl-C in a pipe is taken within one chunk (the 0.1 s drop integrates in 1.4 s
+                           # warm: 7 ms a chunk), not at the end of the integration
+                           n_chunks=200, on_error=self._error)
+
+    def _error(self, exc):
+        from lubedyn.dynamics.errors import DynamicsInputError
+
+        ig = self.case.integrator
+        if isinstance(exc, DynamicsInputError):
+            return InputError(str(exc))
         if ig.method == "rk4":  # the reason names the step that would be stable (or the step budget)
-            raise ConvergenceError(f"{exc} (integrator.method = 'rk4', integrator.dt = {ig.dt:g} s)") from None
-        raise ConvergenceError(f"{exc} (integrator.method = {ig.method!r}, rtol = {ig.rtol:g}; "
-                               "tighten the tolerance or reduce integrator.dt)") from None
-    t_int = time.perf_counter() - t0 - t_build
-    t, Y = res.t, res.y
-    diag, ring = forces_many(t, Y, model.args())
+            return ConvergenceError(f"{exc} (integrator.method = 'rk4', integrator.dt = {ig.dt:g} s)")
+        return ConvergenceError(f"{exc} (integrator.method = {ig.method!r}, rtol = {ig.rtol:g}; "
+                                "tighten the tolerance or reduce integrator.dt)")
 
-    events = collision_events(t, diag[:, :, D_BBN], diag[:, :, [D_BBX, D_BBY, D_BBZ]],
-                              _contact_positions(setup, Y), case.analysis.collision_threshold)
-    centres = ball_centres(setup, Y)
-    omega_i = Y[:, 7]
-    shaft = float(case.operating.speed)
-    summary = {
-        "Balls [-]": model.n_balls, "Ball degrees of freedom": case.model.dof, "States [-]": int(Y.shape[1]),
-        "Scenario": case.operating.scenario, "Rotor speed at start [rpm]": shaft * 60 / (2 * math.pi),
-        "Radial load [N]": case.operating.radial_load, "Axial load [N]": case.operating.axial_load,
-        "Ball-ball film": case.films.ball_ball, "Simulated time [s]": float(t[-1]),
-        "Sample interval [s]": float(t[1] - t[0]), "Integrator": ig.method,
-    }
-    summary.update(setup.map_info)
-    summary.update(res.stats)
-    summary["Integration wall time [s]"] = t_int
-    summary["Simulated time per wall second [s/s]"] = float(t[-1]) / t_int if t_int > 0 else None
-    summary["Inner ring speed at end [rpm]"] = float(omega_i[-1] * 60 / (2 * math.pi))
-    if case.operating.scenario == "drop":
-        Omega = Y[:, 8]
-        summary["Rotor speed at end [rpm]"] = float(Omega[-1] * 60 / (2 * math.pi))
-        summary["Inner ring slip against rotor at end [-]"] = float(1.0 - omega_i[-1] / Omega[-1])
-    # ball slip: orbital speed against the no-slip epicyclic (ball-train) speed of the current ring speed
-    ideal = bearings.cage_speed(model.bearing.ball_diameter, model.bearing.pitch_diameter, 0.0, omega_i[-1])
-    orbital = diag[-1, :, D_PSIDOT]
-    summary["Ball-train speed at end [rad/s]"] = float(np.mean(orbital))
-    summary["Ball-train slip at end [-]"] = float(1.0 - np.mean(orbital) / ideal) if ideal else None
-    if case.films.race == "closed_form":
-        ue = bearings.entrainment_speed(model.bearing.ball_diameter, model.bearing.pitch_diameter, 0.0, omega_i[-1])
-        h_i, h_o = model.race_film_thickness(ue)
-        summary["Inner race film at end, epicyclic speed [m]"] = h_i
-        summary["Outer race film at end, epicyclic speed [m]"] = h_o
-    summary["Initial largest inner race load [N]"] = float(diag[0, :, D_QI].max())
-    summary["Initial largest outer race load [N]"] = float(diag[0, :, D_QO].max())
-    summary["Largest inner race load [N]"] = float(diag[:, :, D_QI].max())
-    summary["Largest outer race load [N]"] = float(diag[:, :, D_QO].max())
-    summary["Largest ball spin speed [rad/s]"] = float(np.abs(diag[:, :, D_SPIN]).max())
-    summary.update(collision_summary(events, model.n_balls))
-    counter = getattr(model, "map_counter", None)
-    if counter is not None:
-        summary["Film map queries outside axes [-]"] = int(counter[0])
-        if (case.films.ball_ball == "map" or case.model.traction == "map") and counter[0] > 0:
-            log.warning("the film maps were queried outside their axes %d times and clamped there; "
-                        "widen the maps' axes for this scene", int(counter[0]))
-    if case.analysis.lyapunov:
-        drop = case.operating.scenario == "drop"
-        summary.update(_lyapunov_per_direction(
-            case, t, centres, shaft, ring_speed=omega_i, rotor_speed=Y[:, 8] if drop else None,
-            collision_times=[e.t_peak for e in events],
-            # a position is resolved to about rtol times its size (the error control of the integrator)
-            scale_min=ig.rtol * float(np.max(np.abs(centres[:, case.analysis.ball, :])))))
-    benettin = None
-    if case.analysis.lyapunov_exponents:
-        # the whole-system spectrum runs in a thread (its compiled kernel releases the GIL) while the rest
-        # of the analysis, the frames and the figures are made; its entries join the summary before the
-        # time series and summary.json are written (_BackgroundResult)
-        benettin = _BackgroundResult(_benettin, case, model, t, Y, shaft,
-                                     start=summary.get("Lyapunov window start [s]"),
-                                     progress_label="Lyapunov spectrum (Benettin)")
-    # characteristic frequencies at the inner ring's mean speed over the analysed window
-    # (after a drop the ring is still spinning up: the lines move during the run)
-    keep = t >= case.analysis.transient
-    ring_hz = float(np.mean(omega_i[keep])) / (2 * math.pi)
-    window = float(t[keep][-1] - t[keep][0]) if keep.sum() > 1 else 0.0
-    n_in_window = sum(1 for e in events if e.t_peak >= case.analysis.transient)
-    freqs = bearing_frequencies(ring_hz, model, {"Collision rate [Hz]": n_in_window / window if window else 0.0})
-    summary["Mean inner ring speed in the analysed window [rpm]"] = ring_hz * 60.0
-    summary.update(freqs)
-    # paper B's figures 3-5 and 11: settling and spin-up times, zones, collisions by quadrant, vibration band
-    from lubedyn.papers.zhang2024 import figures as paper_b_figures
+    def analyse(self, res, timing) -> dict:
+        from lubedyn.dynamics.analysis import collision_events, collision_summary
+        from lubedyn.dynamics.cageless import D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, D_QO, D_SPIN, forces_many
 
-    summary.update(paper_b_figures.summary_entries(case, t, paper_b_figures.run_columns(model, Y, diag, ring),
-                                                   events, freqs))
+        case, setup = self.case, self.setup
+        model, ig = setup.model, case.integrator
+        t0, t_int = timing.t0, timing.integration
+        t, Y = res.t, res.y
+        diag, ring = forces_many(t, Y, model.args())
 
-    summary = outputs.run_summary(case, name, smoke, summary, t0, t_build)
+        events = collision_events(t, diag[:, :, D_BBN], diag[:, :, [D_BBX, D_BBY, D_BBZ]],
+                                  _contact_positions(setup, Y), case.analysis.collision_threshold)
+        centres = ball_centres(setup, Y)
+        omega_i = Y[:, 7]
+        shaft = float(case.operating.speed)
+        summary = {
+            "Balls [-]": model.n_balls, "Ball degrees of freedom": case.model.dof, "States [-]": int(Y.shape[1]),
+            "Scenario": case.operating.scenario, "Rotor speed at start [rpm]": shaft * 60 / (2 * math.pi),
+            "Radial load [N]": case.operating.radial_load, "Axial load [N]": case.operating.axial_load,
+            "Ball-ball film": case.films.ball_ball, "Simulated time [s]": float(t[-1]),
+            "Sample interval [s]": float(t[1] - t[0]), "Integrator": ig.method,
+        }
+        summary.update(setup.map_info)
+        summary.update(res.stats)
+        summary["Integration wall time [s]"] = t_int
+        summary["Simulated time per wall second [s/s]"] = float(t[-1]) / t_int if t_int > 0 else None
+        summary["Inner ring speed at end [rpm]"] = float(omega_i[-1] * 60 / (2 * math.pi))
+        if case.operating.scenario == "drop":
+            Omega = Y[:, 8]
+            summary["Rotor speed at end [rpm]"] = float(Omega[-1] * 60 / (2 * math.pi))
+            summary["Inner ring slip against rotor at end [-]"] = float(1.0 - omega_i[-1] / Omega[-1])
+        # ball slip: orbital speed against the no-slip epicyclic (ball-train) speed of the current ring speed
+        ideal = bearings.cage_speed(model.bearing.ball_diameter, model.bearing.pitch_diameter, 0.0, omega_i[-1])
+        orbital = diag[-1, :, D_PSIDOT]
+        summary["Ball-train speed at end [rad/s]"] = float(np.mean(orbital))
+        summary["Ball-train slip at end [-]"] = float(1.0 - np.mean(orbital) / ideal) if ideal else None
+        if case.films.race == "closed_form":
+            ue = bearings.entrainment_speed(model.bearing.ball_diameter, model.bearing.pitch_diameter, 0.0, omega_i[-1])
+            h_i, h_o = model.race_film_thickness(ue)
+            summary["Inner race film at end, epicyclic speed [m]"] = h_i
+            summary["Outer race film at end, epicyclic speed [m]"] = h_o
+        summary["Initial largest inner race load [N]"] = float(diag[0, :, D_QI].max())
+        summary["Initial largest outer race load [N]"] = float(diag[0, :, D_QO].max())
+        summary["Largest inner race load [N]"] = float(diag[:, :, D_QI].max())
+        summary["Largest outer race load [N]"] = float(diag[:, :, D_QO].max())
+        summary["Largest ball spin speed [rad/s]"] = float(np.abs(diag[:, :, D_SPIN]).max())
+        summary.update(collision_summary(events, model.n_balls))
+        counter = getattr(model, "map_counter", None)
+        if counter is not None:
+            summary["Film map queries outside axes [-]"] = int(counter[0])
+            if (case.films.ball_ball == "map" or case.model.traction == "map") and counter[0] > 0:
+                log.warning("the film maps were queried outside their axes %d times and clamped there; "
+                            "widen the maps' axes for this scene", int(counter[0]))
+        if case.analysis.lyapunov:
+            drop = case.operating.scenario == "drop"
+            summary.update(_lyapunov_per_direction(
+                case, t, centres, shaft, ring_speed=omega_i, rotor_speed=Y[:, 8] if drop else None,
+                collision_times=[e.t_peak for e in events],
+                # a position is resolved to about rtol times its size (the error control of the integrator)
+                scale_min=ig.rtol * float(np.max(np.abs(centres[:, case.analysis.ball, :])))))
+        benettin = None
+        if case.analysis.lyapunov_exponents:
+            # the whole-system spectrum runs in a thread (its compiled kernel releases the GIL) while the rest
+            # of the analysis, the frames and the figures are made; its entries join the summary before the
+            # time series and summary.json are written (_BackgroundResult)
+            benettin = _BackgroundResult(_benettin, case, model, t, Y, shaft,
+                                         start=summary.get("Lyapunov window start [s]"),
+                                         progress_label="Lyapunov spectrum (Benettin)")
+        # characteristic frequencies at the inner ring's mean speed over the analysed window
+        # (after a drop the ring is still spinning up: the lines move during the run)
+        keep = t >= case.analysis.transient
+        ring_hz = float(np.mean(omega_i[keep])) / (2 * math.pi)
+        window = float(t[keep][-1] - t[keep][0]) if keep.sum() > 1 else 0.0
+        n_in_window = sum(1 for e in events if e.t_peak >= case.analysis.transient)
+        freqs = bearing_frequencies(ring_hz, model, {"Collision rate [Hz]": n_in_window / window if window else 0.0})
+        summary["Mean inner ring speed in the analysed window [rpm]"] = ring_hz * 60.0
+        summary.update(freqs)
+        # paper B's figures 3-5 and 11: settling and spin-up times, zones, collisions by quadrant, vibration band
+        from lubedyn.dynamics.analysis.motion import run_columns
+        from lubedyn.papers.zhang2024 import figures as paper_b_figures
 
-    def complete(summary):
-        """The summary with the Benettin entries (waiting for their thread) and the run time updated."""
-        if benettin is not None:
-            run_time = summary.pop("Run time [s]")
-            tail = {k: summary.pop(k) for k in ("Smoke resolution", "Build time [s]", "lubedyn version") if k in summary}
-            summary.update(benettin.result())
-            summary.update(tail)
-            summary["Run time [s]"] = max(run_time, time.perf_counter() - t0)
+        summary.update(paper_b_figures.summary_entries(case, t, run_columns(model, Y, diag, ring), events, freqs))
+
+        self.t, self.Y, self.diag, self.ring, self.events = t, Y, diag, ring, events
+        self.centres, self.freqs, self.benettin = centres, freqs, benettin
         return summary
 
-    files = []
-    if out_dir is not None:
-        files = _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs,
-                       complete)
-    else:
-        summary = complete(summary)
-    return DynamicsRun(summary=summary, files=files, t=t, y=Y, events=events)
+    def files(self, summary: dict, timing):
+        from lubedyn.dynamics.analysis.motion import run_columns
+
+        t0, benettin = timing.t0, self.benettin
+
+        def complete(summary):
+            """The summary with the Benettin entries (waiting for their thread) and the run time updated."""
+            if benettin is not None:
+                run_time = summary.pop("Run time [s]")
+                tail = {k: summary.pop(k) for k in ("Smoke resolution", "Build time [s]", "lubedyn version")
+                        if k in summary}
+                summary.update(benettin.result())
+                summary.update(tail)
+                summary["Run time [s]"] = max(run_time, time.perf_counter() - t0)
+            return summary
+
+        case, setup, t, Y, diag, ring, events = self.case, self.setup, self.t, self.Y, self.diag, self.ring, self.events
+        return outputs.RunFiles(
+            t=t, columns=lambda: run_columns(setup.model, Y, diag, ring),
+            meta=lambda full: {"Case": full["Case"], "Scene": "dynamics", "Summary": full},
+            texts=lambda: {"collisions.csv": _collisions_csv(events)},
+            frames=self._frames, frame_ext="vtp",
+            figures=lambda: _figures(case, setup, t, Y, diag, ring, events, self.centres, self.freqs),
+            complete=complete, write_time=True)
+
+    def _frames(self):
+        """The ParaView frames: ``analysis.frames`` evenly spaced samples and the peaks of the
+        ``analysis.collision_frames`` strongest collisions (so that the film pressure is seen)."""
+        from lubedyn.dynamics.cageless import D_BBN, D_H
+
+        t, events = self.t, self.events
+        n_frames = min(self.case.analysis.frames, len(t))
+        picks = np.unique(np.linspace(0, len(t) - 1, n_frames).round().astype(int))
+        strongest = sorted(events, key=lambda e: -e.peak_force)[:self.case.analysis.collision_frames]
+        peaks = np.searchsorted(t, [e.t_peak for e in strongest])
+        picks = np.unique(np.concatenate([picks, peaks]))
+        scene3d = _Scene3D(self.case, self.setup)
+        for i in picks:
+            yield float(t[i]), scene3d.frame(self.Y[i], self.diag[i], D_BBN, D_H)
+
+    def result(self, summary: dict, files: list) -> DynamicsRun:
+        return DynamicsRun(summary=summary, files=files, t=self.t, y=self.Y, events=self.events)
 
 
 class _BackgroundResult:
@@ -848,6 +889,8 @@ class _Scene3D:
 def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     import matplotlib.pyplot as plt
 
+    from lubedyn.dynamics.analysis.frequency import spectrum_limit
+    from lubedyn.dynamics.analysis.motion import run_columns
     from lubedyn.papers.zhang2024 import figures as paper_b_figures
 
     figs = {}
@@ -897,7 +940,7 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
         # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
         # and the vibration band of the summary (shaded)
         band = case.analysis.vibration_band
-        f_max = min(f[-1], max(paper_b_figures.spectrum_limit(freqs) or f[-1], band[1]))
+        f_max = min(f[-1], max(spectrum_limit(freqs) or f[-1], band[1]))
         ax.axvspan(band[0] / 1e3, min(band[1], f_max) / 1e3, color="0.9", lw=0, label="analysis.vibration_band")
         shown = f <= f_max
         ax.semilogy(f[shown] / 1e3, np.maximum(amp[shown], 1e-12), lw=0.7)
@@ -911,62 +954,5 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     ax.set_title("inner-ring acceleration spectrum")
     fig.tight_layout()
     figs["spectrum.png"] = fig
-    figs.update(paper_b_figures.figures(case, t, paper_b_figures.run_columns(setup.model, Y, diag, ring), events))
+    figs.update(paper_b_figures.figures(case, t, run_columns(setup.model, Y, diag, ring), events))
     return figs
-
-
-def _write(case, setup, out_dir, name, source, smoke, summary, t, Y, diag, ring, events, centres, freqs,
-           complete=None) -> list:
-    from lubedyn.dynamics.cageless import D_BBN, D_H, DIAG_NAMES, RING_DIAG_NAMES
-
-    write = case.output.write
-    t_write = time.perf_counter()
-    out = Path(out_dir)
-    with outputs.staged(out) as stage:
-        outputs.write_text(stage / "case.resolved.toml",
-                           resolved_toml(case, outputs.resolved_header(name, source, smoke)))
-        # frames and figures first: they do not need the summary, so a background analysis
-        # (``complete``: the Benettin spectrum) runs on meanwhile
-        if "pvd" in write:
-            (stage / "frames").mkdir()
-            n_frames = min(case.analysis.frames, len(t))
-            picks = np.unique(np.linspace(0, len(t) - 1, n_frames).round().astype(int))
-            # frames at the collision peaks too, so that the film pressure is seen
-            strongest = sorted(events, key=lambda e: -e.peak_force)[:case.analysis.collision_frames]
-            peaks = np.searchsorted(t, [e.t_peak for e in strongest])
-            picks = np.unique(np.concatenate([picks, peaks]))
-            entries = []
-            scene3d = _Scene3D(case, setup)
-            for k, i in enumerate(picks):
-                fname = f"frames/frame_{k:05d}.vtp"
-                outputs.write_frame(stage / fname, scene3d.frame(Y[i], diag[i], D_BBN, D_H))
-                entries.append((float(t[i]), fname))
-            outputs.write_pvd(stage / "bearing.pvd", entries)
-        if "png" in write:
-            import matplotlib
-
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
-
-            for fname, fig in _figures(case, setup, t, Y, diag, ring, events, centres, freqs).items():
-                try:
-                    outputs.save_figure(stage / fname, fig)
-                finally:
-                    plt.close(fig)
-        if complete is not None:
-            summary = complete(summary)
-        full = dict(summary)
-        if "timeseries" in write:
-            columns = {n: Y[:, i] for i, n in enumerate(setup.model.state_names())}
-            for j in range(setup.model.n_balls):
-                for k, n in enumerate(DIAG_NAMES):
-                    columns[f"Ball {j} {n}"] = diag[:, j, k]
-            for k, n in enumerate(RING_DIAG_NAMES):
-                columns[n] = ring[:, k]
-            outputs.write_timeseries(stage / "timeseries.npz", t, columns,
-                                     {"Case": name, "Scene": "dynamics", "Summary": full})
-            outputs.write_text(stage / "collisions.csv", _collisions_csv(events))
-        full["Output write time [s]"] = time.perf_counter() - t_write
-        outputs.write_json(stage / "summary.json", full)
-        names = sorted(p.name for p in stage.iterdir())
-    return [out / n for n in names]

@@ -43,7 +43,8 @@ tilt = atan2(e_r, e_x) and skew = asin(e_t), both minus their values at the star
 (omega_ideal - omega)/omega_ideal of a roller centre's orbital speed and of the cage's spin, with
 omega_ideal the geometry's own ideal cage speed omega_i (1 - gamma)/2.  A roller is in the loaded zone
 while its cone load exceeds ``analysis.loaded_zone_fraction`` of the start's largest.  Periodicity:
-:func:`periodicity` (1 when every roller repeats its neighbour's signal one roller pass later).
+:func:`lubedyn.dynamics.analysis.windows.periodicity` (1 when every roller repeats its neighbour's signal one
+roller pass later).
 
 With ``operating.cone_tilt = "free"`` the summary adds the cone's tilt (theta_y, theta_z) [rad]: its
 quasi-static start, and per window its mean and amplitude; the time series carries it (the state's
@@ -55,19 +56,18 @@ from __future__ import annotations
 
 import logging
 import math
-import sys
-import time
 from dataclasses import dataclass, field
 from typing import Annotated, Any, Literal
 
 import numpy as np
 from pydantic import BeforeValidator, Field, model_validator
 
+from lubedyn.dynamics.analysis.windows import window_summary
 from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 from lubedyn import outputs
-from lubedyn.config import BoundsModel, LimitsModel, PositiveInt, Q, CaseTable, resolved_toml, rule
+from lubedyn.config import BoundsModel, LimitsModel, PositiveInt, Q, CaseTable, rule
 from lubedyn.papers.wu2018.parameters import GREASE_TABLE as GREASES
 from lubedyn.scenes.static import BearingTable
 
@@ -331,7 +331,6 @@ def build(case: TaperedCase):
         raise InputError(str(exc)) from None
 
 
-
 #: the roller EHL maps that raceway traction "map" reads (cup, cone): built by cases/map_ehl_roller_cup.toml
 #: and cases/map_ehl_roller_cone.toml (cases/maps/README.md: axes, lubricant, accuracy)
 ROLLER_TRACTION_MAPS = ("maps/ehl_roller_cup.npz", "maps/ehl_roller_cone.npz")
@@ -396,64 +395,6 @@ def record(model, Y, y0, qs, fraction):
     return D
 
 
-def _stats(x) -> dict:
-    x = np.asarray(x, dtype=float)
-    x = x[np.isfinite(x)]
-    if x.size == 0:
-        return {"mean": None, "amplitude": None, "largest magnitude": None}
-    return {"mean": float(np.mean(x)), "amplitude": float(0.5 * (np.max(x) - np.min(x))),
-            "largest magnitude": float(np.max(np.abs(x)))}
-
-
-def periodicity(t, x, lag):
-    """Pearson correlation of roller j's signal ``x[:, j]`` at t + ``lag`` with roller j+1's at t, over
-    all rollers and the samples of ``t`` where t + lag is recorded.  In a motion that is steady in the
-    loaded zone's frame, roller j reaches roller j+1's azimuth one roller pass (``lag`` = 2 pi/(Z
-    omega_c)) later and repeats its signal: 1 for a periodic motion, near 0 for an irregular one.  None
-    when the window is shorter than the lag or the signal constant."""
-    keep = t + lag <= t[-1]
-    if keep.sum() < 3:
-        return None
-    later = np.stack([np.interp(t[keep] + lag, t, x[:, j]) for j in range(x.shape[1])], axis=1)
-    nxt = np.roll(x[keep], -1, axis=1)
-    a, b = later.ravel() - later.mean(), nxt.ravel() - nxt.mean()
-    den = math.sqrt(float(a @ a) * float(b @ b))
-    return float(a @ b / den) if den > 0 else None
-
-
-def window_summary(model, t, D, lo, hi) -> dict:
-    """Means, amplitudes (half the range) and largest magnitudes of tilt, skew, roller slip and radial
-    displacement per zone (loaded, unloaded, all) over lo <= t <= hi; the cage's speed and slip; the
-    periodicity of skew and tilt (:func:`periodicity` at the measured roller-pass period)."""
-    w = (t >= lo) & (t <= hi)
-    out = {"Window [s]": [float(t[w][0]), float(t[w][-1])], "Samples [-]": int(w.sum())}
-    zone = D["Loaded zone [-]"][w]
-    for name, key in (("Tilt [rad]", "Tilt [rad]"), ("Skew [rad]", "Skew [rad]"), ("Roller slip [-]", "Roller slip [-]"),
-                      ("Spin slip [-]", "Spin slip [-]"), ("Radial displacement [m]", "Radial displacement [m]")):
-        x = D[key][w]
-        out[name] = {"loaded zone": _stats(x[zone]), "unloaded zone": _stats(x[~zone]), "all": _stats(x)}
-    for name in ("Tilt [rad]", "Skew [rad]"):
-        m = out[name]["all"]["mean"]
-        out[name.replace("[rad]", "mean [deg]")] = None if m is None else math.degrees(m)
-    out["Rollers in the loaded zone, mean [-]"] = float(np.mean(zone.sum(axis=1)))
-    if "Cone tilt [rad]" in D:
-        for k, ax in enumerate("yz"):
-            out[f"Cone tilt {ax} [rad]"] = _stats(D["Cone tilt [rad]"][w, k])
-    orbital = float(np.mean(D["Orbital speed [rad/s]"][w]))
-    if orbital > 0.0:
-        lag = 2.0 * math.pi / (model.n_rollers * orbital)
-        out["Roller pass period [s]"] = lag
-        out["Skew periodicity [-]"] = periodicity(t[w], D["Skew [rad]"][w], lag)
-        out["Tilt periodicity [-]"] = periodicity(t[w], D["Tilt [rad]"][w], lag)
-    if "Cage speed [rad/s]" in D:
-        out["Cage speed, mean [rpm]"] = float(np.mean(D["Cage speed [rad/s]"][w])) * 30 / math.pi
-        out["Cage slip [-]"] = _stats(D["Cage slip [-]"][w])
-        r = np.hypot(*D["Cage centre [m]"][w].T)
-        out["Cage centre from the cone's, mean [m]"] = float(np.mean(r))
-        out["Cage centre from the cone's, largest [m]"] = float(np.max(r))
-    return out
-
-
 #: the headline means: (summary name, window statistic, zone or None for a whole-bearing statistic)
 HEADLINE = (("Skew, loaded zone", "Skew [rad]", "loaded zone"), ("Skew, unloaded zone", "Skew [rad]", "unloaded zone"),
             ("Tilt, loaded zone", "Tilt [rad]", "loaded zone"), ("Tilt, unloaded zone", "Tilt [rad]", "unloaded zone"),
@@ -469,7 +410,7 @@ def _headline_mean(w: dict, stat: str, zone):
 
 def converged_summary(model, t, D, width: float, tolerance: float) -> dict | None:
     """The record's last ``width`` [s] against the ``width`` before it: the window statistics of the last
-    (:func:`window_summary`) and, per headline mean (:data:`HEADLINE`), its value in both windows, the
+    (:func:`lubedyn.dynamics.analysis.windows.window_summary`) and, per headline mean (:data:`HEADLINE`), its value in both windows, the
     change and the change relative to the last window's magnitude.  "Converged [-]" when every relative
     change is at most ``tolerance`` (a mean that is None in either window, an empty zone, is left out).
     The change is the uncertainty issue 24 asks of a mean: how much it still moves from one window to the
@@ -632,95 +573,87 @@ def kernel_jobs(case: TaperedCase) -> list:
 
 
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:
-    """Build, integrate, analyse and (with ``out_dir``) write the case; kernels compiled on a cold cache are
-    reported as they compile (:func:`lubedyn.compilation.report_compilation`)."""
-    from lubedyn.compilation import report_compilation
+    """Build, integrate, analyse and (with ``out_dir``) write the case through the bearing run driver
+    (:func:`lubedyn.scenes.bearing_run.drive`, :class:`TaperedRunModel`)."""
+    from lubedyn.scenes.bearing_run import drive
 
-    with report_compilation():
-        return _run(case, out_dir, name=name, source=source, smoke=smoke)
+    return drive(TaperedRunModel(case), out_dir, name=name, source=source, smoke=smoke)
 
 
-def _run(case: TaperedCase, out_dir, *, name: str, source: str, smoke: bool) -> TaperedRun:
-    from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError
-    from lubedyn.dynamics.integrators import integrate
-    from lubedyn.dynamics.tapered import kernels as K
+class TaperedRunModel:
+    """The tapered roller bearing's side of :func:`lubedyn.scenes.bearing_run.drive`: its model, quasi-static
+    start and integrator options, summary (:func:`summarise`) and files (time series, ``.vtu`` frames,
+    figures)."""
 
-    t0 = time.perf_counter()
-    model = build(case)
-    # a first run compiles the integrator kernel in a second process meanwhile (lubedyn.dynamics.specialise)
-    from lubedyn.dynamics.specialise import compile_in_background
+    def __init__(self, case: TaperedCase):
+        self.case = case
 
-    compile_in_background(kernel_jobs(case))
-    qs = model.quasi_static()
-    args = model.args(qs)  # the packed arrays on the same equilibrium (the rib film reads it): solved once
-    y0 = model.start_state(qs)
-    t_build = time.perf_counter() - t0
-    log.info("integrating %s", describe(case, model))
-    ig = case.integrator
-    t_out = np.arange(0.0, ig.duration * (1 + 1e-12), ig.sample_interval)
-    kw = dict(method="dopri5", rtol=ig.rtol, atol=ig.atol)
-    dt = None
-    if ig.method == "rk4":
-        stable = model.stable_step(qs, y0, args)
-        dt = 0.8 * stable if ig.dt == "auto" else ig.dt
-        # the integrator refuses a step beyond the limit on the imaginary axis; the estimate folds the
-        # traction's real-axis decay into an equivalent omega
-        kw = dict(method="rk4", dt=dt, omega_max=2.0 * math.sqrt(2.0) / stable)
-    try:
-        res = integrate(K.rhs, y0, t_out, args, max_steps=ig.max_steps, progress=sys.stderr.isatty(), n_chunks=100,
-                        **kw)
-    except DynamicsInputError as exc:
-        raise InputError(f"integrator.dt = {dt:g} s: {exc}") from None
-    except IntegrationError as exc:
-        what = f"integrator.dt = {dt:g} s" if ig.method == "rk4" else f"integrator.rtol = {ig.rtol:g}"
-        raise ConvergenceError(f"{exc} ({what})") from None
-    t_int = time.perf_counter() - t0 - t_build
-    D = record(model, res.y, y0, qs, case.analysis.loaded_zone_fraction)
-    scene = summarise(case, model, res.t, res.y, D, qs)
-    scene.update(res.stats)
-    scene["Integration wall time [s]"] = t_int
-    if ig.method == "rk4":
-        scene["RK4 stable step estimate [s]"] = stable
-        scene["RK4 step [s]"] = dt
-    summary = outputs.run_summary(case, name, smoke, scene, t0, t_build)
-    result = TaperedRun(summary=summary, t=res.t, y=res.y, diagnostics=D)
-    if out_dir is None:
-        return result
-    write = case.output.write
-    from pathlib import Path
+    def build(self) -> None:
+        self.model = build(self.case)
+        # a first run compiles the integrator kernel in a second process meanwhile (lubedyn.dynamics.specialise)
+        from lubedyn.dynamics.specialise import compile_in_background
 
-    out = Path(out_dir)
-    with outputs.staged(out) as stage:
-        outputs.write_text(stage / "case.resolved.toml",
-                           resolved_toml(case, outputs.resolved_header(name, source, smoke)))
-        if "timeseries" in write:
-            outputs.write_timeseries(stage / "timeseries.npz", res.t, _columns(model, res.y, D),
-                                     {"Case": name, "Scene": "tapered"})
-        if "pvd" in write:
-            (stage / "frames").mkdir()
-            picks = np.unique(np.linspace(0, len(res.t) - 1, min(case.analysis.frames, len(res.t))).round().astype(int))
-            entries = []
-            for k, i in enumerate(picks):
-                fname = f"frames/frame_{k:05d}.vtu"
-                fields = {key: D[key][i] for key in FRAME_FIELDS}
-                outputs.write_frame(stage / fname, frame_mesh(model, res.y[i], fields))
-                entries.append((float(res.t[i]), fname))
-            outputs.write_pvd(stage / "bearing.pvd", entries)
-        if "png" in write:
-            import matplotlib
+        compile_in_background(kernel_jobs(self.case))
+        self.qs = self.model.quasi_static()
+        # the packed arrays on the same equilibrium (the rib film reads it): solved once
+        self.args = self.model.args(self.qs)
+        self.y0 = self.model.start_state(self.qs)
 
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
+    def describe(self) -> str:
+        return describe(self.case, self.model)
 
-            for fname, fig in _figures(model, res.t, res.y, D, qs).items():
-                try:
-                    outputs.save_figure(stage / fname, fig)
-                finally:
-                    plt.close(fig)
-        outputs.write_json(stage / "summary.json", summary)
-        names = sorted(p.name for p in stage.iterdir())
-    result.files = [out / n for n in names]
-    return result
+    def integration(self):
+        from lubedyn.dynamics.tapered import kernels as K
+        from lubedyn.scenes.bearing_run import Integration
+
+        ig = self.case.integrator
+        t_out = np.arange(0.0, ig.duration * (1 + 1e-12), ig.sample_interval)
+        kw = dict(method="dopri5", rtol=ig.rtol, atol=ig.atol)
+        self.dt = self.stable = None
+        if ig.method == "rk4":
+            self.stable = self.model.stable_step(self.qs, self.y0, self.args)
+            self.dt = 0.8 * self.stable if ig.dt == "auto" else ig.dt
+            # the integrator refuses a step beyond the limit on the imaginary axis; the estimate folds the
+            # traction's real-axis decay into an equivalent omega
+            kw = dict(method="rk4", dt=self.dt, omega_max=2.0 * math.sqrt(2.0) / self.stable)
+        return Integration(K.rhs, self.y0, t_out, self.args, dict(max_steps=ig.max_steps, **kw), n_chunks=100,
+                           on_error=self._error)
+
+    def _error(self, exc):
+        from lubedyn.dynamics.errors import DynamicsInputError
+
+        if isinstance(exc, DynamicsInputError):
+            return InputError(f"integrator.dt = {self.dt:g} s: {exc}")
+        ig = self.case.integrator
+        what = f"integrator.dt = {self.dt:g} s" if ig.method == "rk4" else f"integrator.rtol = {ig.rtol:g}"
+        return ConvergenceError(f"{exc} ({what})")
+
+    def analyse(self, res, timing) -> dict:
+        self.t, self.y = res.t, res.y
+        self.D = record(self.model, res.y, self.y0, self.qs, self.case.analysis.loaded_zone_fraction)
+        scene = summarise(self.case, self.model, res.t, res.y, self.D, self.qs)
+        scene.update(res.stats)
+        scene["Integration wall time [s]"] = timing.integration
+        if self.case.integrator.method == "rk4":
+            scene["RK4 stable step estimate [s]"] = self.stable
+            scene["RK4 step [s]"] = self.dt
+        return scene
+
+    def _frames(self):
+        t, D = self.t, self.D
+        picks = np.unique(np.linspace(0, len(t) - 1, min(self.case.analysis.frames, len(t))).round().astype(int))
+        for i in picks:
+            yield float(t[i]), frame_mesh(self.model, self.y[i], {key: D[key][i] for key in FRAME_FIELDS})
+
+    def files(self, summary: dict, timing):
+        return outputs.RunFiles(
+            t=self.t, columns=lambda: _columns(self.model, self.y, self.D),
+            meta=lambda full: {"Case": summary["Case"], "Scene": "tapered"},
+            frames=self._frames, frame_ext="vtu",
+            figures=lambda: _figures(self.model, self.t, self.y, self.D, self.qs))
+
+    def result(self, summary: dict, files: list) -> TaperedRun:
+        return TaperedRun(summary=summary, files=files, t=self.t, y=self.y, diagnostics=self.D)
 
 
 PER_ROLLER = ("Tilt [rad]", "Skew [rad]", "Orbital speed [rad/s]", "Spin speed [rad/s]", "Roller slip [-]",

@@ -25,7 +25,7 @@ Verdict rules (stated once, applied by code)
 - **Level** (a number the paper prints): *reproduced* within a factor 1.3 (either way) and with the
   paper's sign; otherwise *not reproduced*, with the ratio.  The paper's numbers are reported
   comparisons, never tolerances the model was tuned to.
-- **Periodic**: the roller-pass periodicity measure (:func:`lubedyn.scenes.tapered.periodicity`) at least
+- **Periodic**: the roller-pass periodicity measure (:func:`lubedyn.dynamics.analysis.windows.periodicity`) at least
   :data:`PERIODIC` (0.95).
 - **Zone comparison** ("larger in the unloaded zone"): the zones' values, each with its uncertainty where
   there is one; *reproduced* when the claimed order holds by more than a tenth of the larger.

@@ -1,4 +1,4 @@
-"""Post-processing of bearing trajectories: collision events, slip.
+"""Ball-ball collision events from sampled contact diagnostics, and slip ratios.
 
 Plain numpy on sampled contact diagnostics (no numba needed: these run once
 per run on arrays of a few thousand samples).
