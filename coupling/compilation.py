@@ -27,7 +27,7 @@ def kernel_name(dispatcher) -> str:
     py = getattr(dispatcher, "py_func", None)
     module = getattr(py, "__module__", "") or ""
     name = getattr(py, "__qualname__", repr(dispatcher))
-    from lubedyn.dynamics.specialise import kernel_label
+    from lubedyn.dynamics.specialise import kernel_label  # deferred: numba
 
     name = kernel_label(name)
     return f"{name} ({module})" if module else name

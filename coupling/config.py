@@ -74,6 +74,7 @@ from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 from lubedyn.papers import SETS as PARAMETER_SETS
 from lubedyn.papers import apply_parameter_set, parameter_set
 from lubedyn.units import UnitError, parse_quantity, si_unit, unit_hint, written
+from lubedyn.limits import parse_bytes
 
 # the bundled cases and maps: package data of ``lubedyn.cases`` (the checkout's ``cases/`` in an editable
 # install, ``site-packages/lubedyn/cases`` in a wheel's), a real folder either way
@@ -630,7 +631,6 @@ class OutputModel(CaseTable):
 def _memory_size(value):
     if value is None:
         return None
-    from lubedyn.limits import parse_bytes
 
     try:
         return parse_bytes(value)

@@ -226,7 +226,7 @@ def _reduced_pressure_inverse(viscosity, q):
 
 
 def _ball_ball_setup(params, point):
-    import lubedyn.lubrication as lub
+    import lubedyn.lubrication as lub  # deferred: scikit-fem
 
     h0, v, ue = _point_speeds(params, point)
     res = _get(params, "resolution", "default")
@@ -250,7 +250,7 @@ def _ball_ball_setup(params, point):
         options=lub.SolverOptions(rtol=1e-10, max_iter=60, warm_start_levels=0),
     )
     # start: the closed-form squeeze pressure of the lubricant's reduced pressure
-    from lubedyn.lubrication.reynolds import make_basis
+    from lubedyn.lubrication.reynolds import make_basis  # deferred: scikit-fem
 
     h = h0 + np.sum(make_basis(mesh, element).doflocs ** 2, axis=0) / (2.0 * Reff)
     ha = h0 * ratio
@@ -269,7 +269,7 @@ def solve_ball_ball(params, point):
     Raises :class:`ConvergenceError` naming the point if the Reynolds solve
     fails or the piezoviscous film has no solution (beyond the pole).
     """
-    import lubedyn.lubrication as lub
+    import lubedyn.lubrication as lub  # deferred: scikit-fem
 
     film, h0, v, ue, p_start = _ball_ball_setup(params, point)
     if np.any(np.isnan(p_start)):
@@ -303,7 +303,7 @@ def evaluate_ball_ball(params: dict, point: dict) -> dict:
     "Maximum pressure [Pa]", "Approach speed [m/s]", "Friction per sliding
     speed [N s/m]" (int eta(p)/h dA over the full film).
     """
-    from lubedyn.lubrication.reynolds import film_coefficients, interpolate
+    from lubedyn.lubrication.reynolds import film_coefficients, interpolate  # deferred: scikit-fem
 
     sol, h0, v, ue = solve_ball_ball(params, point)
     _, K, C = film_coefficients(sol)

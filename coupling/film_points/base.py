@@ -12,6 +12,7 @@ import numpy as np
 from lubedyn.lubrication.errors import InputError, unknown_choice
 
 from lubedyn.papers import printed, si
+from lubedyn.lubrication.laws.contact import reduced_modulus
 
 # ---------------------------------------------------------------- registry
 
@@ -104,8 +105,6 @@ SHAFT_SPEED_A = printed("Wu2018", "inner_speed", "rpm") * 2 * math.pi / 60  # ra
 
 
 def _reduced_modulus(E1, nu1, E2, nu2):
-    from lubedyn.lubrication.laws.contact import reduced_modulus
-
     return reduced_modulus(E1, nu1, E2, nu2)
 
 
@@ -127,7 +126,7 @@ def _get(params, key, default=None):
 
 
 def _lubricant(params):
-    import lubedyn.lubrication as lub
+    import lubedyn.lubrication as lub  # deferred: scikit-fem
 
     law = _get(params, "viscosity_law", "barus")
     eta0 = float(_get(params, "eta0"))

@@ -16,6 +16,12 @@ from lubedyn.film_points.base import (AxisDef, BALL_DIAMETER, BALL_MODULUS, BALL
                    RING_MODULUS, RING_POISSON, ROLLER_BASE_OIL_ETA0, ROLLER_BASE_OIL_RHO0, ROLLER_EFFECTIVE_LENGTH,
                    ROLLER_EYRING_STRESS, ROLLER_FILM_SHEAR_MODULUS, ROLLER_INNER_CONTACT_ANGLE, ROLLER_MEAN_DIAMETER, ROLLER_MODULUS,
                    ROLLER_PITCH_DIAMETER, ROLLER_POISSON, _get, _lubricant, _reduced_modulus)
+from lubedyn.lubrication.laws import bearing
+from lubedyn.lubrication.laws.contact import line_contact
+from lubedyn.lubrication.laws.film import moes_line_central
+from lubedyn.lubrication.laws.grease import grease_at
+from lubedyn.lubrication.laws.lubricant import Barus
+from lubedyn.papers.wu2018.parameters import GREASE_TABLE, tapered_geometry
 
 log = logging.getLogger(__name__)
 
@@ -46,16 +52,12 @@ EHL_OUTPUTS = (
 
 def _ball_race_geometry(race: str, contact_angle: float) -> tuple:
     """(R_x, R_y) [m] of a 6206 ball on its ``race`` at ``contact_angle`` [rad] (lubedyn.lubrication.laws.bearing)."""
-    from lubedyn.lubrication.laws import bearing
-
     groove = INNER_GROOVE_RADIUS if race == "inner" else OUTER_GROOVE_RADIUS
     return bearing.race_radii(BALL_DIAMETER, PITCH_DIAMETER_6206, groove, race, contact_angle)
 
 
 def _paper_b_contact_angle() -> float:
     """Contact angle [rad] of the 6206 (zero clearance) under paper B's axial load 200 N (lubedyn.lubrication.laws.bearing)."""
-    from lubedyn.lubrication.laws import bearing
-
     r_i, r_o = INNER_GROOVE_RADIUS, OUTER_GROOVE_RADIUS
     e_star = _reduced_modulus(BALL_MODULUS, BALL_POISSON, RING_MODULUS, RING_POISSON)
     K_n = bearing.deflection_constant(BALL_DIAMETER, PITCH_DIAMETER_6206, r_i, r_o, 0.0, e_star)
@@ -125,8 +127,6 @@ def ehl_roller_race_default_params() -> dict:
     kN, 8.84 m/s: 5.177 -> 5.114 um; the inlet is Newtonian) and h_min/h_c
     becomes 0.76 (Newtonian: 0.90-0.95, branch-dependent).
     """
-    from lubedyn.lubrication.laws import bearing
-
     rx = bearing.race_radius_x(ROLLER_MEAN_DIAMETER, ROLLER_PITCH_DIAMETER, ROLLER_INNER_CONTACT_ANGLE, "inner")
     return {
         "contact": "line",
@@ -165,8 +165,6 @@ def roller_race_radius(race: str) -> float:
     """Reduced radius R_x [m] of paper A's mid-slice roller/``race`` line contact from the model's own
     geometry (:func:`lubedyn.papers.wu2018.parameters.tapered_geometry`, ``reduced_radius``: roller rho_m/cos(phi)
     against the race's cone r_c/cos(alpha), concave for the cup): cone 9.395 mm, cup 11.906 mm."""
-    from lubedyn.papers.wu2018.parameters import tapered_geometry
-
     if race not in ROLLER_RACES:
         raise unknown_choice("race", race, ROLLER_RACES)
     return float(tapered_geometry().reduced_radius(race))
@@ -222,10 +220,6 @@ def roller_grease_params(name: str, temperature_c: float = 30.0) -> dict:
     alpha stays the kind's, Table 1's 4.662e-8 m^2/N, which the paper gives for polyurea at 30 C only).
     Merge them into the params of a build (``build_map("ehl_roller_cone", {**roller_grease_params(...)})``)
     or write them in a map case's [params]; they are recorded in the map's provenance."""
-    from lubedyn.lubrication.laws.grease import grease_at
-
-    from lubedyn.papers.wu2018.parameters import GREASE_TABLE
-
     if name not in GREASE_TABLE:
         raise unknown_choice("grease", name, sorted(GREASE_TABLE))
     g = grease_at(GREASE_TABLE[name], float(temperature_c), GREASE_ALPHA, name)
@@ -249,17 +243,13 @@ def _film_scaled_domain(params, contact, lengths=None, base=None):
     ROLLER_INLET_FILM_LENGTHS)."""
     import math
 
-    from lubedyn.lubrication.laws.contact import line_contact
-    from lubedyn.lubrication.laws.film import moes_line_central
-
     if contact.lubricant.herschel_bulkley is not None:
         # a grease: Moes' M and L would read the consistency phi0 as Pa s (8-49 Pa s^n: films and domains ~10
         # times too long; calcium then failed on every point); take the Newtonian film of its apparent
         # viscosity at the rolling shear rate (lubedyn.lubrication.ehl's own start for the grease)
         import dataclasses
 
-        from lubedyn.lubrication.ehl.newton import hb_apparent_start
-        from lubedyn.lubrication.laws.lubricant import Barus
+        from lubedyn.lubrication.ehl.newton import hb_apparent_start  # deferred: scikit-fem
 
         lub = contact.lubricant
         eta_app, _ = hb_apparent_start(contact)
@@ -297,7 +287,7 @@ def _graded_fields(params, contact) -> dict:
 
 
 def _ehl_setup(params, load, speed):
-    from lubedyn.lubrication.ehl import EHLContact, EHLOptions, Traction
+    from lubedyn.lubrication.ehl import EHLContact, EHLOptions, Traction  # deferred: scikit-fem
 
     line = _get(params, "contact") == "line"
     res = _get(params, "resolution", "default")
@@ -311,7 +301,7 @@ def _ehl_setup(params, load, speed):
         float(params["radius_x"]), None if line else float(params["radius_y"]), float(params["e_star"]),
         _lubricant(params), float(speed), load=float(load), traction=traction)
     if line and float(params.get("inlet_film_lengths", 0.0)) > 0:
-        from lubedyn.lubrication.ehl import EHLGrid
+        from lubedyn.lubrication.ehl import EHLGrid  # deferred: scikit-fem
 
         # fixed node count on a domain that grows smoothly with the film (_film_scaled_domain)
         x_lo, x_hi = _film_scaled_domain(params, contact)
@@ -329,7 +319,7 @@ def _ehl_grid(nodes, line: bool, x_min: float, x_max: float, y_max: float):
     is then moved to start x_max - (nx - 1) dx_ref, so that the nodes sit at the same x/b as on the
     reference domain (the inlet is extended by whole cells: x_min = -18.5 instead of -20 would put
     every node elsewhere).  The reference domain itself gives the table's grid."""
-    from lubedyn.lubrication.ehl import EHLGrid
+    from lubedyn.lubrication.ehl import EHLGrid  # deferred: scikit-fem
 
     ref = EHL_REFERENCE_DOMAIN["line" if line else "point"]
     nx_ref = nodes if line else nodes[0]
@@ -373,7 +363,7 @@ def _ehl_secant_coefficients(contact, grid, options, sol, step):
     """
     import dataclasses
 
-    from lubedyn.lubrication.ehl import ehl_normal_coefficients, solve_ehl
+    from lubedyn.lubrication.ehl import ehl_normal_coefficients, solve_ehl  # deferred: scikit-fem
 
     w = float(contact.load)
     fields = {f.name for f in dataclasses.fields(options)}
@@ -430,7 +420,7 @@ def _short_inlet_start(contact, grid, options, x_min):
     (multilinear, zero upstream of the short inlet)."""
     import dataclasses
 
-    from lubedyn.lubrication import ehl
+    from lubedyn.lubrication import ehl  # deferred: scikit-fem
 
     if grid.graded:  # the same nodes count on the shorter domain (only a start)
         short = dataclasses.replace(grid, x_min=x_min)
@@ -477,7 +467,7 @@ def _continuation_start(params, contact, grid, options):
     solution both converge.  Raises ConvergenceError naming the step that failed."""
     import dataclasses
 
-    from lubedyn.lubrication.ehl import EHLGrid, solve_ehl
+    from lubedyn.lubrication.ehl import EHLGrid, solve_ehl  # deferred: scikit-fem
 
     errors = []
     for path in CONTINUATION_PATHS:
@@ -541,7 +531,7 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
     """
     import dataclasses
 
-    from lubedyn.lubrication.ehl import solve_ehl
+    from lubedyn.lubrication.ehl import solve_ehl  # deferred: scikit-fem
 
     key = _ehl_key(params, load, speed)
     if key in _EHL_CACHE:
@@ -640,13 +630,13 @@ def ehl_load_response(params: dict, load: float, speed: float, *, _depth: int = 
                 sol = solve_ehl(contact, grid, options, initial=start)
             if method == "secant" and contact.moes_M < float(_get(params, "secant_min_moes_M", 0.0)):
                 # light, hydrodynamic loads: the tangent (see _roller_params, "secant_min_moes_M")
-                from lubedyn.lubrication.ehl import ehl_normal_coefficients
+                from lubedyn.lubrication.ehl import ehl_normal_coefficients  # deferred: scikit-fem
 
                 K, C, _ = ehl_normal_coefficients(contact, grid, options, steady=sol)
             elif method == "secant":
                 K, C = _ehl_secant_coefficients(contact, grid, options, sol, float(_get(params, "secant_step", 0.05)))
             elif method == "linearised":
-                from lubedyn.lubrication.ehl import ehl_normal_coefficients
+                from lubedyn.lubrication.ehl import ehl_normal_coefficients  # deferred: scikit-fem
 
                 K, C, _ = ehl_normal_coefficients(contact, grid, options, steady=sol)
             else:

@@ -20,6 +20,7 @@ from lubedyn.lubrication.errors import InputError, unknown_choice
 from lubedyn import outputs
 from lubedyn.maps.fit import PowerLawFit, fit_power_law, local_floor, relative_error
 from lubedyn.maps.registry import ACCURACY_TOLERANCE, FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR
+from lubedyn.dynamics import contacts
 
 log = logging.getLogger(__name__)
 
@@ -224,7 +225,6 @@ class FilmMap:
         output = self._output(output)
         if not self.is_polar():
             return self.kernel_arrays(output)
-        from lubedyn.dynamics import contacts
 
         if hasattr(contacts, "MAP_AXIS_POLAR"):
             return tuple(self.kernel_arrays(output)) + ("polar",)
@@ -448,7 +448,7 @@ def cartesian_resample(fmap: "FilmMap", output: str = "Force [N]", squeeze=CARTE
     Each node (h0, Lambda, u_e) is turned into (rho, theta) (:func:`lubedyn.film_points.polar_numbers`)
     and read from the polar map: rho above the axis is clamped, rho below its first node scales the
     output by rho/rho_lo (isoviscous limit: F, K ~ rho), rho = 0 gives 0."""
-    from lubedyn import film_points as fp
+    from lubedyn import film_points as fp  # deferred: the point kinds import scikit-fem
 
     params = fmap.provenance.get("params") or fp.ball_ball_default_params()
     g = fmap.axes[0]

@@ -41,7 +41,7 @@ def sha256_text(text: str) -> str:
 def code_fingerprint(kind) -> dict:
     """sha256 of the kind's source file and of ``lubedyn.lubrication``'s ``**/*.py`` (the solver and the laws), and the
     lubedyn version."""
-    from lubedyn import __version__
+    from lubedyn import __version__  # deferred: importlib.metadata, scikit-fem
 
     out = {"lubedyn": __version__}
     try:
@@ -49,7 +49,7 @@ def code_fingerprint(kind) -> dict:
         out[f"kind source {src.name}"] = hashlib.sha256(src.read_bytes()).hexdigest()
     except (TypeError, OSError):
         out["kind source"] = "unavailable"
-    from lubedyn import lubrication
+    from lubedyn import lubrication  # deferred: importlib.metadata, scikit-fem
 
     digest = hashlib.sha256()
     root = Path(lubrication.__file__).parent

@@ -41,7 +41,7 @@ def kinds() -> dict:
     """Every known point kind: :data:`lubedyn.film_points.KINDS` plus the registered ones."""
     out = {}
     try:
-        from lubedyn.film_points import KINDS
+        from lubedyn.film_points import KINDS  # deferred: the point kinds import scikit-fem
 
         out.update(KINDS)
     except ImportError:  # pragma: no cover - the physics module is optional for the machinery

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 from types import ModuleType
 
 from lubedyn.lubrication.errors import InputError, unknown_choice
+from lubedyn.units import parse_quantity
 
 SETS = {"Zhang2024": ".zhang2024.parameters", "Wu2018": ".wu2018.parameters"}
 
@@ -53,8 +54,6 @@ class Parameter:
 
     def si(self) -> float:
         """The value in SI units (numbers as they are)."""
-        from lubedyn.units import parse_quantity
-
         if self.dimension in ("dimensionless", "text", "angles", "count"):
             return self.value
         return parse_quantity(self.value, self.dimension)

@@ -43,6 +43,7 @@ from lubedyn.lubrication.laws import film as film_formulas
 from lubedyn import limits, outputs, validity
 from lubedyn.config import resolved_toml
 from lubedyn.scenes.ehl_case import EHLCase, race_contact
+from lubedyn.scenes.film import build_lubricant as film_lubricant
 
 log = logging.getLogger(__name__)
 
@@ -73,8 +74,6 @@ class EHLSetup:
 
 
 def build_lubricant(case: EHLCase):
-    from lubedyn.scenes.film import build_lubricant as film_lubricant
-
     return film_lubricant(case)
 
 

@@ -43,6 +43,8 @@ from lubedyn.lubrication.laws.bearing import STRIBECK
 from lubedyn.config import (EHL_MAX_PRESSURE, THIN_FILM, Length, LimitsModel, LubricantModel, PositiveInt, PositiveLength,
                      Q, Scaled, ValidityModel, Velocity, CaseTable, root_rule, show_value, bare_hint, check_scale,
                      context_raw, raise_scale, rule, thin_film)
+from lubedyn.lubrication.errors import InputError
+from lubedyn.lubrication.laws.contact import line_contact, point_contact, reduced_modulus
 
 SMALL_CONTACT = THIN_FILM
 """The largest Hertz contact semi-axis over the radius of curvature along it (b/R_x, and a/R_y of a
@@ -155,8 +157,6 @@ class MaterialsModel(CaseTable):
 
     @property
     def e_star(self) -> float:
-        from lubedyn.lubrication.laws.contact import reduced_modulus
-
         return reduced_modulus(self.modulus1, self.poisson1, self.modulus2, self.poisson2)
 
 
@@ -460,8 +460,6 @@ class EHLCase(CaseTable):
         bearing cannot be solved (the scene's build names why)."""
         c, op = self.contact, self.operating
         if self.mode == "bearing":
-            from lubedyn.lubrication.errors import InputError
-
             try:
                 race = race_contact(self, e_star)
             except (InputError, ValueError, ArithmeticError):
@@ -481,8 +479,6 @@ class EHLCase(CaseTable):
         radii of curvature and a line contact's half-width small against its length (SMALL_CONTACT).
         Blamed: a bare modulus that a unit puts right (a bare 207 is 207 Pa: "207 GPa"), else a short
         line's length, else the load."""
-        from lubedyn.lubrication.laws.contact import line_contact, point_contact, reduced_modulus
-
         c, op, mat = self.contact, self.operating, self.materials
         rx, _ = c.reduced_radii()
         radius_x = Scaled("contact.radius_x", rx, given=c.radius_x is not None and not c.by_bodies)

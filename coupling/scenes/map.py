@@ -59,6 +59,8 @@ from lubedyn.lubrication.laws.lubricant import DowsonHigginson
 from lubedyn import maps, outputs, validity
 from lubedyn.config import BoundsModel, LimitsModel, LubricantModel, CaseTable, resolved_toml
 from lubedyn.units import DIMENSIONS, UnitError, parse_quantity, parse_units
+from lubedyn import limits
+from lubedyn.lubrication.vtu import write_vtu
 
 log = logging.getLogger(__name__)
 
@@ -274,8 +276,6 @@ WARN_HOURS = 1.0  # a build estimated to take longer is announced with a warning
 def check_size(case: CaseModel, axes) -> None:
     """Refuse a map with more points than ``limits.map_points`` or more memory than the limit; warn
     when the estimated build time exceeds WARN_HOURS (:mod:`lubedyn.limits`)."""
-    from lubedyn import limits
-
     points = int(np.prod([a.n for a in axes], dtype=float))
     largest = max(axes, key=lambda a: a.n)
     shape = " x ".join(str(a.n) for a in axes)
@@ -493,7 +493,6 @@ def _write_fields(case, setup, stage, summary):
         log.warning("kind %s has no film field: no fields.pvd", setup.kind.name)
         summary["Field frames [-]"] = 0
         return
-    from lubedyn.lubrication.vtu import write_vtu
 
     frames = []
     for k, point in enumerate(field_points(case, setup)):

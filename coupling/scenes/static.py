@@ -53,6 +53,7 @@ from lubedyn.lubrication.errors import InputError
 
 from lubedyn import outputs
 from lubedyn.config import BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, CaseTable, resolved_toml, rule
+from lubedyn.lubrication.laws.tapered import TaperedRollerGeometry
 
 log = logging.getLogger(__name__)
 
@@ -151,8 +152,6 @@ CaseModel = StaticCase
 
 def build(case: StaticCase):
     """The geometry of the case's bearing; an impossible geometry is an InputError naming the key."""
-    from lubedyn.lubrication.laws.tapered import TaperedRollerGeometry
-
     b = case.bearing
     fields = {k: getattr(b, k) for k in BearingTable.model_fields if k != "type"}
     try:
@@ -254,7 +253,7 @@ def headline(s: dict) -> list[str]:
 
 def run(case: StaticCase, out_dir=None, *, name: str = "static", source: str = "", smoke: bool = False) -> StaticRun:
     """Build, solve and (if ``out_dir``) write; nothing is written when the build or the solve fails."""
-    from lubedyn.dynamics.tapered.quasistatic import solve
+    from lubedyn.dynamics.tapered.quasistatic import solve  # deferred: numba (validation needs none)
 
     t0 = time.perf_counter()
     geometry = build(case)

@@ -82,9 +82,9 @@ from lubedyn.lubrication.errors import InputError, LubedynError, close_matches, 
 
 from lubedyn import outputs, scenes
 from lubedyn.config import (CASES_DIR, CaseTable, PositiveInt, case_path, check_smoke, format_validation_error,
-                            load_case_file, parse_override, resolved_toml, rule)
+                            load_case_file, parse_override, read_toml, resolved_toml, rule)
+from lubedyn.maps.sweep import default_workers, init_worker, run_on_dask, sigint_blocked, stop_pool
 from lubedyn.scenes.runner import run_loaded
-from lubedyn.maps.sweep import init_worker, sigint_blocked, stop_pool, default_workers
 
 log = logging.getLogger(__name__)
 
@@ -380,8 +380,6 @@ def _base_path(study: StudyFile, study_dir: Path) -> Path:
 
 def _smoke_keys(base: Path) -> set:
     """The dotted keys the base case's ``[smoke]`` table sets (``"integrator.duration"``)."""
-    from lubedyn.config import read_toml
-
     def walk(node, prefix):
         for k, v in node.items():
             key = f"{prefix}{k}"
@@ -398,8 +396,6 @@ def _common(study: StudyFile, base: Path | None = None, smoke: bool = False) -> 
     """The overrides of every run: ``output.write=[]`` (skip_outputs), then ``set``.  With ``smoke``, an
     entry of ``set`` that the base case's ``[smoke]`` table also sets is left out (logged): a smoke
     study checks the study at the case's smoke size, whatever length the full study asks for."""
-    from lubedyn.config import parse_override
-
     kept = list(study.study.set)
     if smoke and base is not None:
         keys = _smoke_keys(base)
@@ -592,8 +588,6 @@ def _execute(specs: list, todo: list, workers: int, scheduler, accept, scheduler
 def _execute_dask(specs: list, todo: list, scheduler, accept, key: str) -> str:
     """Run on a Dask cluster (:func:`lubedyn.maps.sweep.run_on_dask`): ``scheduler`` is an address, a
     Client or a cluster (``key``: where it was given, for messages)."""
-    from lubedyn.maps.sweep import run_on_dask
-
     return run_on_dask(scheduler, key, [(run_one, specs[i]) for i in todo],
                        lambda k, result: accept(todo[k], *result), error=StudyError)
 
@@ -756,7 +750,7 @@ def aggregates(study: StudyFile, plan: Plan, results: list) -> list[dict]:
 def _machine() -> dict:
     import platform
 
-    from lubedyn import __version__
+    from lubedyn import __version__  # deferred: importlib.metadata
 
     usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     return {"host": platform.node(), "platform": platform.platform(), "python": platform.python_version(),

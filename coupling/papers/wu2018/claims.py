@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from lubedyn.outputs import read_timeseries
 
 #: "little effect": a change below this fraction of the mean magnitude
 LITTLE = 0.05
@@ -148,7 +149,7 @@ def window_value(s: dict, stat: str, zone: str | None, what: str = "mean") -> Va
     unc = None
     c = s.get(CONVERGED)
     if isinstance(c, dict) and what == "mean":
-        from lubedyn.scenes.tapered import HEADLINE
+        from lubedyn.scenes.tapered import HEADLINE  # deferred: numba
 
         key = next((name for name, st, z in HEADLINE if st == stat and z == zone), None)
         ch = c.get("Window-to-window change", {}).get(key)
@@ -214,8 +215,6 @@ def _join(verdicts: list[str]) -> str:
 
 def _roller_series(folder: Path, name: str) -> tuple[np.ndarray, np.ndarray] | None:
     """(t, x[:, rollers]) of a per-roller time-series column ("Tilt [rad]" -> "Roller j tilt [rad]")."""
-    from lubedyn.outputs import read_timeseries
-
     f = Path(folder) / "timeseries.npz"
     if not f.is_file():
         return None
@@ -244,8 +243,6 @@ def _oscillation(t, x, lo, hi) -> float:
 def _whirl(folder: Path, lo=0.1, hi=0.18) -> dict | None:
     """The cage centre's whirl over the window from the time series: radius mean, its coefficient of
     variation, and the turns the centre makes about the cone's centre."""
-    from lubedyn.outputs import read_timeseries
-
     f = Path(folder) / "timeseries.npz"
     if not f.is_file():
         return None

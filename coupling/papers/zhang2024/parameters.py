@@ -8,6 +8,7 @@ Tables 1 (lubricant, materials), 2 (bearing) and 4 (groove geometry, slot).  Wha
 not give is marked ``source="assumed"`` with the reason.
 """
 from lubedyn.papers import Parameter as P
+from lubedyn.units import parse_quantity
 
 NAME = "Zhang2024"
 CITATION = ("J. Zhang, Y. Wang, L. Guan, Y. Zhang, S. Yang, Symmetry 16 (2024) 741 "
@@ -90,8 +91,7 @@ def cageless_bearing(**overrides):
     ``bearing`` group), the Python-side twin of a dynamics case that says ``parameters = "Zhang2024"``.
     ``overrides`` as :meth:`~lubedyn.dynamics.cageless.CagelessBearing.replace` takes them: by group
     (``operating={"speed": 1e3}``) or by case key (``**{"model.dof": "planar"}``)."""
-    from lubedyn.units import parse_quantity
-    from lubedyn.dynamics.cageless import CagelessBearing
+    from lubedyn.dynamics.cageless import CagelessBearing  # deferred: numba
 
     groups = {"bearing": {}, "operating": {}, "films": {}, "slots": {}}
     for key, name in SCENES["dynamics"].items():
