@@ -22,7 +22,8 @@ constants are the protocol's members).  :data:`SCENES` is the one registry: the 
 (:mod:`lubedyn.scenes.runner`) find a scene through :func:`get` and nowhere else.  A new scene is one
 module here and one line in :data:`SCENES`.
 
-This package's ``__init__`` imports nothing heavy (no scene module, no numpy): the registry is read
+(Inside this package ``map`` names the map scene's module once it is imported, not the builtin.)  This
+package's ``__init__`` imports nothing heavy (no scene module, no numpy): the registry is read
 before a case is validated.
 """
 from __future__ import annotations
@@ -85,7 +86,7 @@ def get(name: str) -> Scene:
     """The module of scene ``name`` (imported on first use); an unknown name is an InputError with the
     scenes there are."""
     if name not in SCENES:
-        raise InputError(f"scene = {name!r} is not allowed; choose one of {', '.join(map(repr, SCENES))}"
+        raise InputError(f"scene = {name!r} is not allowed; choose one of {', '.join(repr(s) for s in SCENES)}"
                          + did_you_mean(str(name), list(SCENES)))
     module = importlib.import_module(SCENES[name])
     if not isinstance(module, Scene):  # pragma: no cover - a scene module that lost a member
