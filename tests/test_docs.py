@@ -92,7 +92,8 @@ def test_case_reference_lists_every_field_of_every_case_model(case_reference):
     """Every field of every pydantic model class of the case schema (found as subclasses of the models'
     base class, not by the reference's walk) is a key of some table of the reference."""
     from lubedyn import config
-    from lubedyn.config import SCENES, case_model
+    from lubedyn.config import case_model
+    from lubedyn.scenes import SCENES
 
     for scene in SCENES:
         case_model(scene)  # imports the scene's module, so that its models exist

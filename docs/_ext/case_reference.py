@@ -1,6 +1,6 @@
 """Sphinx extension: the case-file reference, generated from the pydantic case models at build time.
 
-``.. case-reference::`` (no argument: every scene of :data:`lubedyn.config.SCENES`; or one scene name)
+``.. case-reference::`` (no argument: every scene of :data:`lubedyn.scenes.SCENES`; or one scene name)
 walks the scene's case model (:func:`lubedyn.config.case_model`) and writes one table per TOML table:
 every key with its type or SI unit (quantities accept a number in SI or a string with units), its range
 (the :class:`lubedyn.config.Bounds` of a quantity, or pydantic's ``ge``/``le`` constraints), its default
@@ -286,7 +286,7 @@ class CaseReference(Directive):
     optional_arguments = 1
 
     def run(self):
-        from lubedyn.config import SCENES
+        from lubedyn.scenes import SCENES
 
         scenes = [self.arguments[0]] if self.arguments else list(SCENES)
         lines = []
