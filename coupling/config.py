@@ -586,13 +586,21 @@ class HerschelBulkleyModel(CaseTable):
     creep: Q("dimensionless", ge=0, lt=1) = 0.0
 
 
+Viscosity = Annotated[ViscosityModel, BeforeValidator(_viscosity_shorthand)]
+"""``[lubricant.viscosity]``: a table (law, eta0, alpha, z) or the shorthand ``viscosity = "0.1 Pa s"``
+(law = "constant")."""
+
+
 class LubricantModel(CaseTable):
-    """viscosity, density; eyring_stress tau0 (EHL scenes only): Reynolds-Eyring shear thinning of the
+    """The oil of every scene, one table with one spelling (film, EHL, map, dynamics, tapered scenes):
+    viscosity, density; eyring_stress tau0 (EHL scenes only): Reynolds-Eyring shear thinning of the
     Poiseuille flow (:mod:`lubedyn.lubrication.laws.lubricant`), omitted = Newtonian; herschel_bulkley (EHL
     scenes only): [lubricant.herschel_bulkley] yield_stress, exponent, creep, Herschel-Bulkley (grease)
-    Poiseuille flow with the viscosity law as the consistency phi(p); at most one of the two."""
+    Poiseuille flow with the viscosity law as the consistency phi(p); at most one of the two.  The
+    bearing-dynamics scenes read :meth:`barus` of it (their films and traction take Barus' law); the
+    tapered scene adds its grease's keys to the same table (:class:`lubedyn.scenes.tapered.LubricantTable`)."""
 
-    viscosity: Annotated[ViscosityModel, BeforeValidator(_viscosity_shorthand)]
+    viscosity: Viscosity
     density: DensityModel = Field(default_factory=DensityModel)
     eyring_stress: Q("pressure", gt=0) | None = None
     herschel_bulkley: HerschelBulkleyModel | None = None
@@ -603,6 +611,56 @@ class LubricantModel(CaseTable):
             raise rule("eyring_stress", self.eyring_stress, "and [lubricant.herschel_bulkley] are two non-Newtonian "
                        "flows; give one of them")
         return self
+
+    def barus(self, scene: str, *, grease: str = "") -> tuple[float, float]:
+        """``(eta0, alpha)`` of a scene whose films and traction take Barus' law eta0 exp(alpha p) and
+        nothing else of the table but the density, which their films do not read (incompressible):
+        law = "constant" is alpha = 0; law = "roelands" and the EHL scenes' non-Newtonian flows are
+        refused as a case rule on their key (from the case's root), since the scene would not read them.  ``grease``: where the
+        scene takes a grease instead of herschel_bulkley (for the message).  ``(None, 0.0)`` where a
+        scene's table may leave the viscosity out (the tapered scene's grease readings)."""
+        v = self.viscosity
+        if v is not None and v.law == "roelands":
+            raise root_rule("lubricant.viscosity.law", v.law, f"is not read by scene = {scene!r}: its films and "
+                            "traction take Barus' law; use law = 'barus' (eta0, alpha) or 'constant'")
+        if self.eyring_stress is not None:
+            raise root_rule("lubricant.eyring_stress", self.eyring_stress, f"is for EHL scenes; scene = {scene!r} "
+                            "does not read it, remove it")
+        if self.herschel_bulkley is not None:
+            raise root_rule("lubricant.herschel_bulkley", None, f"is for EHL scenes; scene = {scene!r} does "
+                            "not read it" + (f" ({grease})" if grease else "") + ", remove it")
+        if v is None:
+            return None, 0.0
+        return v.eta0, (v.alpha if v.law == "barus" else 0.0)
+
+
+RENAMED = {
+    "films.viscosity": "lubricant.viscosity.eta0",
+    "films.pressure_viscosity": "lubricant.viscosity.alpha",
+    "lubricant.base_oil_viscosity": "lubricant.viscosity.eta0",
+    "lubricant.pressure_viscosity": "lubricant.viscosity.alpha",
+}
+"""The oil's old spellings (the dynamics scene's ``[films]``, the tapered scene's ``[lubricant]``) and the
+one key of :class:`LubricantModel` that replaced each."""
+
+
+def refuse_renamed(data, keys=tuple(RENAMED)):
+    """A ``mode="before"`` check of a case mapping ``data``: the first of ``keys`` (old spellings of
+    :data:`RENAMED`) it gives is a one-line case rule naming the new key with the value rewritten,
+    ``films.viscosity was renamed: write lubricant.viscosity.eta0 = "0.05 Pa s" ...``.
+
+    The message (through :func:`format_error`): ``films.viscosity was renamed: write
+    lubricant.viscosity.eta0 = "0.05 Pa s" (every scene reads its oil from one [lubricant] table)``.
+    """
+    for old in keys:
+        value = _raw_at(data, old) if isinstance(data, dict) else None
+        if value is None:
+            continue
+        shown = f'"{value}"' if isinstance(value, str) else show_value(value)
+        law = ' and lubricant.viscosity.law = "barus"' if RENAMED[old].endswith(".alpha") else ""
+        raise root_rule(old, None, f"was renamed: write {RENAMED[old]} = {shown}{law} (every scene reads its oil "
+                        "from one [lubricant] table)")
+    return data
 
 
 class CavitationModel(CaseTable):

@@ -54,6 +54,17 @@ ROWS = [
     (D, ["bearing.n_balls=1"], 2, ["bearing.n_balls = 1", ">= 3"]),
     (D, ["films.friction_law=coulomb"], 2, ["films.friction_law = 'coulomb'", "'paper'"]),
     (D, ["films.asperity_slope=0"], 2, ["films.asperity_slope = 0", "> 0"]),
+    # the oil's old spellings (one [lubricant] table for every scene): the old key and the new one
+    (D, ["films.viscosity=0.05 Pa s"], 2, ["films.viscosity was renamed", 'lubricant.viscosity.eta0 = "0.05 Pa s"']),
+    (D, ["films.pressure_viscosity=1.85e-8"], 2, ["films.pressure_viscosity was renamed",
+                                                  "lubricant.viscosity.alpha = 1.85e-08", 'law = "barus"']),
+    (TD, ["lubricant.base_oil_viscosity=0.1 Pa s"], 2, ["lubricant.base_oil_viscosity was renamed",
+                                                        'lubricant.viscosity.eta0 = "0.1 Pa s"']),
+    (TD, ["lubricant.pressure_viscosity=4.662e-8 m^2/N"], 2, ["lubricant.pressure_viscosity was renamed",
+                                                              'lubricant.viscosity.alpha = "4.662e-8 m^2/N"']),
+    (D, ["lubricant.viscosity.law=roelands"], 2, ["lubricant.viscosity.law = 'roelands'", "scene = 'dynamics'",
+                                                  "Barus"]),
+    (TD, ["lubricant.eyring_stress=5 MPa"], 2, ["lubricant.eyring_stress", "scene = 'tapered'"]),
     # paper A's tapered roller bearing: static and dynamics scenes
     (TS, ["operating.axial_load=5 kN"], 2, ["axial_load", "exactly one of"]),
     (TS, ["bearing.small_end_diameter=30 mm"], 2, ["bearing.small_end_diameter", "large_end_diameter"]),

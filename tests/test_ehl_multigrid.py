@@ -326,7 +326,7 @@ def test_roelands_compressible_contact_extrapolates_to_the_fem_newton():
     """Roelands viscosity (z matched to the Barus alpha of L = 10) and
     Dowson-Higginson density, M = 100: the multigrid's Richardson value from
     65, 129, 257 nodes (measured order 1.94) against the FEM Newton's from 65
-    and 129 nodes (second order, benchmarks/README.md): measured 2.4012e-7 m
+    and 129 nodes (second order, benchmarks/HISTORY.md): measured 2.4012e-7 m
     against 2.4000e-7 m (0.05 %)."""
     import dataclasses
 

@@ -85,16 +85,58 @@ def test_wu2018_against_the_transcribed_tables():
 def test_a_case_takes_the_set_and_overrides_it():
     base = (CASES / "cageless_6206_10krpm_short.toml").read_text()
     case = load_case_text(base)
-    assert case.bearing.ball_diameter == 9.525e-3 and case.films.viscosity == 0.05
+    assert case.bearing.ball_diameter == 9.525e-3 and case.lubricant.viscosity.eta0 == 0.05
     assert case.slots.azimuths == [pytest.approx(math.radians(270.0), rel=1e-14)]
-    over = load_case_text(base, overrides=["bearing.ball_diameter=9 mm", "films.viscosity=0.1 Pa s"])
-    assert over.bearing.ball_diameter == 9e-3 and over.films.viscosity == 0.1
+    over = load_case_text(base, overrides=["bearing.ball_diameter=9 mm", "lubricant.viscosity.eta0=0.1 Pa s"])
+    assert over.bearing.ball_diameter == 9e-3 and over.lubricant.viscosity.eta0 == 0.1
+    assert over.lubricant.viscosity.alpha == 1.85e-8  # the rest of the oil from the set
     assert over.bearing.pitch_diameter == case.bearing.pitch_diameter  # the rest from the set
     # the resolved case names the set, lists every value and is valid without the set
     text = resolved_toml(case)
-    assert "parameters = 'Zhang2024' (coupling/papers/zhang2024/parameters.py)" in text
+    assert "parameters = 'Zhang2024' (lubedyn.papers.zhang2024.parameters)" in text
     again = load_case_text(text)
     assert again.bearing == case.bearing and again.films == case.films and again.slots == case.slots
+    assert again.lubricant == case.lubricant
+
+
+@pytest.mark.parametrize("scene_cases, seed_oil", [
+    (("cageless_6206_steady", "ehl_ball_inner_race", "ball_ball_squeeze"), ("cageless_ball_bearing", "lubricant")),
+    (("trb_fig5_2400rpm", "ehl_roller_slice"), ("tapered_roller_bearing", "grease_30C")),
+])
+def test_every_scene_reads_one_oil_table(scene_cases, seed_oil):
+    """One [lubricant] table, one spelling: the dynamics, tapered, EHL and film cases of one paper all
+    read the oil as lubricant.viscosity (Barus, eta0, alpha), and the bearing models get the paper's
+    alpha (tests/data/seed_parameters.toml, transcribed independently) from it."""
+    from lubedyn.scenes import dynamics, tapered
+
+    seed = tomllib.loads(SEED.read_text())[seed_oil[0]][seed_oil[1]]
+    alpha = seed["pressure_viscosity_coefficient_m2_per_N"]
+    oils = set()
+    for name in scene_cases:
+        case = load_case(CASES / f"{name}.toml", smoke=True)
+        v = case.lubricant.viscosity
+        assert (v.law, v.alpha) == ("barus", alpha), name
+        oils.add((v.eta0, v.alpha))
+        if case.scene == "dynamics":
+            films = dynamics.build(case).model.films
+            assert (films.viscosity, films.pressure_viscosity) == (v.eta0, alpha)
+        if case.scene == "tapered":
+            group = tapered.build(case).lubricant
+            assert (group.base_oil_viscosity, group.pressure_viscosity) == (v.eta0, alpha)
+    assert len(oils) == 1  # the same oil in every scene of the paper
+
+
+def test_a_tapered_case_may_leave_the_base_oil_out_only_with_a_grease_reading():
+    """The tapered scene's [lubricant] without [lubricant.viscosity]: refused with the base-oil reading
+    (the films would have no viscosity), accepted with the paper's reading of the grease (alpha 0)."""
+    from lubedyn.config import validate_raw
+
+    raw = tomllib.loads(resolved_toml(load_case(CASES / "trb_fig5_2400rpm.toml", smoke=True)))
+    del raw["lubricant"]["viscosity"]
+    with pytest.raises(CaseError, match=r"^lubricant.viscosity is required with reading = 'base_oil'"):
+        validate_raw(raw)
+    raw["lubricant"]["reading"] = "paper"
+    assert validate_raw(raw).lubricant.oil() == (None, 0.0)
 
 
 def test_the_python_twin_of_a_case_is_the_same_bearing():
@@ -105,7 +147,7 @@ def test_the_python_twin_of_a_case_is_the_same_bearing():
     case = load_case(CASES / "cageless_6206_steady.toml")
     from_case = build(case).model
     twin = cageless_bearing(operating=dict(scenario="steady", speed=from_case.operating.speed))
-    # the case's [bearing], [slots] and [films] oil are the set's values; the rest are the case's choices
+    # the case's [bearing], [slots] and [lubricant] oil are the set's values; the rest are the case's choices
     assert twin.bearing == from_case.bearing
     assert twin.slots == from_case.slots
     for group, name in (("operating", "radial_load"), ("operating", "axial_load"), ("films", "viscosity"),

@@ -61,7 +61,8 @@ from lubedyn.lubrication.laws import bearing as bearings
 
 from lubedyn import outputs
 from lubedyn.scenes.dynamics_lyapunov import _benettin, _lyapunov_per_direction
-from lubedyn.config import CASES_DIR, BoundsModel, LimitsModel, PositiveInt, PositiveLength, Q, CaseTable, rule
+from lubedyn.config import (CASES_DIR, BoundsModel, LimitsModel, LubricantModel, PositiveInt, PositiveLength, Q,
+                            CaseTable, refuse_renamed, rule)
 
 log = logging.getLogger(__name__)
 
@@ -192,13 +193,13 @@ class ModelTable(CaseTable):
 class FilmsTable(CaseTable):
     """The oil film between neighbouring balls: "none", "closed_form" (rigid
     isoviscous squeeze film in series with Hertz) or "map" (a FilmMap file of
-    kind ball_ball, path relative to the case file or to cases/)."""
+    kind ball_ball, path relative to the case file or to cases/).  The oil itself is the case's
+    ``[lubricant]`` table (:class:`lubedyn.config.LubricantModel`: ``lubricant.viscosity.eta0`` and
+    Barus' ``alpha``), as in every scene."""
 
     ball_ball: Literal["none", "closed_form", "map"] = "closed_form"
     map: str | None = None
     race: Literal["none", "closed_form"] = "none"  # EHL films on the ball-race contacts (Hamrock-Dowson)
-    pressure_viscosity: Q("inverse pressure", ge=0)
-    viscosity: Q("dynamic viscosity", gt=0)
     rupture_thickness: PositiveLength = 1e-7
     friction_film: Q("dimensionless", ge=0) = 0.03
     friction_boundary: Q("dimensionless", ge=0) = 0.1
@@ -269,6 +270,7 @@ class DynamicsCase(CaseTable):
     operating: OperatingTable
     model: ModelTable = Field(default_factory=ModelTable)
     films: FilmsTable
+    lubricant: LubricantModel  # the oil: eta0 and Barus' alpha (LubricantModel.barus)
     integrator: IntegratorTable = Field(default_factory=IntegratorTable)
     analysis: AnalysisTable = Field(default_factory=AnalysisTable)
     output: OutputTable = Field(default_factory=OutputTable)
@@ -276,8 +278,14 @@ class DynamicsCase(CaseTable):
     validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: lubedyn.bounds
     smoke: dict[str, Any] | None = None
 
+    @model_validator(mode="before")
+    @classmethod
+    def _renamed(cls, data):
+        return refuse_renamed(data, ("films.viscosity", "films.pressure_viscosity"))
+
     @model_validator(mode="after")
     def _checks(self):
+        self.lubricant.barus("dynamics")
         self._slot_geometry()
         if self.analysis.ball >= self.bearing.n_balls:
             raise rule("analysis.ball", self.analysis.ball, f"must be < bearing.n_balls = {self.bearing.n_balls}")
@@ -364,8 +372,10 @@ def model_groups(case: DynamicsCase, **built) -> dict:
     for table, attr in CagelessBearing.GROUPS.items():  # one to one, same field names
         values = dict(getattr(case, table))
         values.update({k.partition(".")[2]: v for k, v in built.items() if k.partition(".")[0] == table})
-        if table == "films" and "films.map" not in built:
-            values["map"] = None
+        if table == "films":
+            values["viscosity"], values["pressure_viscosity"] = case.lubricant.barus("dynamics")
+            if "films.map" not in built:
+                values["map"] = None
         if table == "model" and "model.traction_maps" not in built:
             values["traction_maps"] = None
         if table in ("slots", "initial"):
@@ -805,7 +815,7 @@ class _Scene3D:
         self.case, self.setup = case, setup
         self.R = 0.5 * m.bearing.ball_diameter
         self.r_eff = 0.5 * self.R
-        self.eta = case.films.viscosity
+        self.eta = case.lubricant.viscosity.eta0
         self.e_star = m.e_star_ball
         r_po = 0.5 * m.bearing.pitch_diameter + self.R
         r_pi = 0.5 * m.bearing.pitch_diameter - self.R

@@ -20,6 +20,7 @@ maps one to one onto a group of :class:`lubedyn.dynamics.tapered.model.TaperedBe
     guide_land = "film"         # "film", "contact", "none" (with pocket = "none")
     [lubricant]                 # Lubricant: grease = "polyurea" | "lithium" | "calcium" (Table 2 at temperature_c),
     grease = "polyurea"         #   "custom" (yield_stress, consistency, exponent) or "none"
+    viscosity = { law = "barus", eta0 = "0.1 Pa s", alpha = "4.662e-8 m^2/N" }   # the base oil, as in every scene
     [integrator]
     method = "dopri5"           # or "rk4" with dt (refused above the contact modes' stability limit)
     duration = "180 ms"
@@ -67,7 +68,8 @@ from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 from lubedyn import outputs
-from lubedyn.config import BoundsModel, LimitsModel, PositiveInt, Q, CaseTable, rule
+from lubedyn.config import (BoundsModel, LimitsModel, LubricantModel, PositiveInt, Q, CaseTable, Viscosity,
+                            refuse_renamed, rule)
 from lubedyn.papers.wu2018.parameters import GREASE_TABLE as GREASES
 from lubedyn.scenes.static import BearingTable
 
@@ -117,19 +119,23 @@ class ModelTable(CaseTable):
     traction_evaluation: Literal["quadrature", "table"] = "table"
 
 
-class LubricantTable(CaseTable):
-    """:class:`lubedyn.dynamics.tapered.groups.Lubricant`.  ``grease``: a grease of paper A's Table 2 at
-    ``temperature_c`` [C] (15-70; interpolated by :func:`lubedyn.lubrication.laws.grease.grease_at`), "custom"
-    (``yield_stress``, ``consistency``, ``exponent`` given) or "none" (a Newtonian oil only)."""
+class LubricantTable(LubricantModel):
+    """:class:`lubedyn.dynamics.tapered.groups.Lubricant`: the one ``[lubricant]`` table of every scene
+    (:class:`lubedyn.config.LubricantModel`) with the grease's keys beside the oil.  The oil:
+    ``[lubricant.viscosity]`` ``eta0`` the base oil's viscosity (read with ``reading = "base_oil"``; may be
+    left out with another reading) and Barus' ``alpha`` (law = "barus"; "constant": alpha = 0), the
+    pressure-viscosity coefficient of the films, of eq. 12 and of the grease's consistency phi0 exp(alpha p).
+    ``grease``: a grease of paper A's Table 2 at ``temperature_c`` [C] (15-70; interpolated by
+    :func:`lubedyn.lubrication.laws.grease.grease_at`), "custom" (``yield_stress``, ``consistency``,
+    ``exponent`` given) or "none" (a Newtonian oil only)."""
 
+    viscosity: Viscosity | None = None
     grease: Literal["none", "custom", "polyurea", "lithium", "calcium"] = "none"
     temperature_c: float = 30.0
     yield_stress: Q("pressure", ge=0) | None = None
     consistency: Q("dimensionless", gt=0) | None = None   # phi [Pa s^n]: units depend on n
     exponent: Q("dimensionless", gt=0, le=2) | None = None
     reading: Literal["base_oil", "apparent", "paper"] = "base_oil"
-    base_oil_viscosity: Q("dynamic viscosity", gt=0) | None = None
-    pressure_viscosity: Q("inverse pressure", ge=0) = 0.0
     shear_rate: Q("frequency", gt=0) | None = None
     limiting_stress: Q("pressure", gt=0) = math.inf
     limiting_slope: Q("dimensionless", ge=0) = 0.0
@@ -148,16 +154,25 @@ class LubricantTable(CaseTable):
         if self.grease in GREASES and not 15.0 <= self.temperature_c <= 70.0:
             raise rule("temperature_c", self.temperature_c, "must lie in 15-70 C, the temperatures of paper A's "
                        "Table 2 (not extrapolated)")
+        if self.reading == "base_oil" and self.viscosity is None:
+            raise rule("viscosity", None, "is required with reading = 'base_oil': the base oil's eta0 (and Barus' "
+                       "alpha), e.g. viscosity = { law = 'barus', eta0 = '0.1 Pa s', alpha = '4.662e-8 m^2/N' }")
         return self
+
+    def oil(self) -> tuple[float | None, float]:
+        """``(eta0, alpha)`` of the base oil (:meth:`LubricantModel.barus`; ``(None, 0.0)`` without one)."""
+        return self.barus("tapered", grease="its grease is lubricant.grease")
 
     def group_values(self) -> dict:
         """The fields of :class:`lubedyn.dynamics.tapered.groups.Lubricant`."""
         from lubedyn.lubrication.laws.grease import grease_at
 
-        out = {k: getattr(self, k) for k in ("reading", "base_oil_viscosity", "pressure_viscosity", "shear_rate",
-                                             "limiting_stress", "limiting_slope", "yield_rate", "shear_modulus")}
+        eta0, alpha = self.oil()
+        out = {"reading": self.reading, "base_oil_viscosity": eta0, "pressure_viscosity": alpha,
+               **{k: getattr(self, k) for k in ("shear_rate", "limiting_stress", "limiting_slope", "yield_rate",
+                                                "shear_modulus")}}
         if self.grease in GREASES:
-            g = grease_at(GREASES[self.grease], self.temperature_c, self.pressure_viscosity, self.grease)
+            g = grease_at(GREASES[self.grease], self.temperature_c, alpha, self.grease)
             out.update(yield_stress=g.yield_stress, consistency=g.consistency, exponent=g.exponent)
         elif self.grease == "custom":
             out.update(yield_stress=self.yield_stress, consistency=self.consistency, exponent=self.exponent)
@@ -288,6 +303,16 @@ class TaperedCase(CaseTable):
     limits: LimitsModel = Field(default_factory=LimitsModel)
     validity: BoundsModel = Field(default_factory=BoundsModel)  # strict: lubedyn.bounds
     smoke: dict[str, Any] | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _renamed(cls, data):
+        return refuse_renamed(data, ("lubricant.base_oil_viscosity", "lubricant.pressure_viscosity"))
+
+    @model_validator(mode="after")
+    def _oil(self):
+        self.lubricant.oil()  # refuses what the scene would not read (LubricantModel.barus)
+        return self
 
 
 CaseModel = TaperedCase

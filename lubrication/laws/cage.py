@@ -85,11 +85,11 @@ width b.  Options:
   convergence; against the project's FEM at the land itself the load differs by 4e-4, 8e-4 and 3e-3
   at eps = 0.3, 0.5, 0.8 with half-Sommerfeld cavitation; with Reynolds cavitation 2.6e-4 to 9.5e-3
   at eps 0.1 to 0.95, attitude within 0.011 deg, tests/test_laws_cage.py), so it stays the default:
-  the FEM map (below) is the independent check, and is coarser with 0.1-spaced eps nodes.
+  the FEM (tests/test_laws_cage.py) is the independent check.
   Friction torque on the cage: the Couette shear 2 pi eta r^3 b (omega_land - omega_cage) /
   (c sqrt(1 - eps^2)) (the integral of eta r dOmega/h over the full circle).
-* ``map`` (:func:`guide_land_map_force`): a table built by the project's Reynolds FEM journal with
-  Reynolds (Swift-Stieber) cavitation (:func:`lubedyn.guide_land.build_guide_land_map`).  The
+* ``map`` (:func:`guide_land_map_force`): a table of the Reynolds-cavitated finite journal given by
+  the caller (the tapered model does not use it: its land is the short bearing).  The
   Reynolds right-hand side in the frame of the line of centres is g = A sin(theta) - e' cos(theta)
   with A = e (u_m/r - psi') (whirl psi') and e' the radial speed; the cavitated problem is positively
   homogeneous in (A, e'), so F = eta G r b^3/c^3 Phi(eps, beta)/(1 - eps^2)^2 with G = |(A, e')| and

@@ -114,8 +114,8 @@ VALUES = {
                        "jump in force or friction (lubrication/laws/cage.py)"),
     "guide_land_film": P("short_bearing", "text", "assumed",
                          "Ocvirk's short bearing, within 1 % of the FEM finite bearing at the land's "
-                         "b/2r = 0.025 (Reynolds-cavitated FEM: 2.6e-4 to 9.5e-3 at eps 0.1-0.95); 'map': FEM table "
-                         "(coupling/guide_land.py); 'paper': eq. 44's cylinder-over-plane law, 200-1.3e4 x the FEM"),
+                         "b/2r = 0.025 (Reynolds-cavitated FEM: 2.6e-4 to 9.5e-3 at eps 0.1-0.95); 'paper': eq. 44's "
+                         "cylinder-over-plane law, 200-1.3e4 x the FEM"),
     "guide_land_reaction": P("kept", "text", "assumed",
                              "eq. 46 neglects the cage's load on the guiding ring; kept so that linear and angular "
                              "momentum are conserved ('neglected' reproduces the paper)"),
@@ -126,6 +126,8 @@ VALUES = {
                                   "40 and 44 use it as a Newtonian viscosity"),
     "grease_power_law_exponent": P(0.7196, "dimensionless", "Table 1"),
     "pressure_viscosity": P("4.662e-8 m^2/N", "inverse pressure", "Table 1", "polyurea grease at 30 C only"),
+    "viscosity_law": P("barus", "text", "Eq. 26", "Table 1's pressure-viscosity coefficient is Barus' alpha: "
+                       "phi = phi0 exp(alpha p) of eq. 26, taken for the base oil's eta0 exp(alpha p) too"),
     "base_oil_viscosity": P("0.1 Pa s", "dynamic viscosity", "assumed",
                             "not in the paper; a 0.1 Pa s base oil gives a 5.4 um raceway film at 2.4 krpm"),
     "base_oil_density": P("870 kg/m^3", "density", "assumed", "mineral base oil: not in the paper"),
@@ -201,8 +203,8 @@ SCENES = {
         "bearing.element_diameter": "roller_mean_diameter", "bearing.pitch_diameter": "pitch_diameter",
         "bearing.n_elements": "n_rollers", "bearing.effective_length": "effective_length",
         "materials.modulus1": "steel_modulus", "materials.poisson1": "steel_poisson",
-        "lubricant.viscosity.eta0": "base_oil_viscosity", "lubricant.viscosity.alpha": "pressure_viscosity",
-        "lubricant.density.rho0": "base_oil_density",
+        "lubricant.viscosity.law": "viscosity_law", "lubricant.viscosity.eta0": "base_oil_viscosity",
+        "lubricant.viscosity.alpha": "pressure_viscosity", "lubricant.density.rho0": "base_oil_density",
     },
 }
 
@@ -210,7 +212,8 @@ SCENES = {
 SCENES["tapered"] = {
     **SCENES["static"],
     "model.damping_alpha": "slice_damping_alpha", "model.pocket_switch": "pocket_switch",
-    "lubricant.pressure_viscosity": "pressure_viscosity",
+    "lubricant.viscosity.law": "viscosity_law", "lubricant.viscosity.eta0": "base_oil_viscosity",
+    "lubricant.viscosity.alpha": "pressure_viscosity",
     "cage.mass": "cage_mass", "cage.pocket_critical_film": "pocket_critical_film",
     "cage.pocket_stiffness": "pocket_contact_stiffness", "cage.pocket_damping": "pocket_contact_damping",
     "cage.boundary_friction": "boundary_friction", "cage.land_critical_film": "guide_land_critical_film",
@@ -218,7 +221,7 @@ SCENES["tapered"] = {
     "operating.load_offset": "radial_load_offset", "model.cone_mass": "cone_mass",
     "model.traction": "raceway_traction_law", "model.flange_friction": "flange_friction_mixing",
     "lubricant.grease": "grease_name", "lubricant.temperature_c": "grease_temperature_c",
-    "lubricant.base_oil_viscosity": "base_oil_viscosity", "lubricant.reading": "grease_viscosity_reading",
+    "lubricant.reading": "grease_viscosity_reading",
     "lubricant.limiting_stress": "grease_limiting_shear_stress", "lubricant.limiting_slope": "grease_limiting_shear_slope",
     "lubricant.yield_rate": "grease_yield_regularisation_rate", "lubricant.shear_modulus": "film_shear_modulus",
     "cage.modulus": "cage_modulus", "cage.poisson": "cage_poisson",

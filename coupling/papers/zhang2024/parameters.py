@@ -53,6 +53,8 @@ VALUES = {
     # lubricant (Table 1)
     "viscosity": P("0.050 Pa s", "dynamic viscosity", "Table 1"),
     "pressure_viscosity": P("1.85e-8 m^2/N", "inverse pressure", "Table 1"),
+    "viscosity_law": P("barus", "text", "Eq. 17", "Table 1's pressure-viscosity coefficient is Barus' alpha: "
+                       "eta = eta0 exp(alpha p), the law of the film shear of eq. 17"),
     "density": P("992 kg/m^3", "density", "Table 1"),
 }
 
@@ -66,7 +68,8 @@ SCENES = {
         "slots.race": "slot_race", "slots.azimuths": "slot_azimuths", "slots.width": "slot_width",
         "slots.length": "slot_length", "slots.depth": "slot_depth",
         "operating.radial_load": "radial_load", "operating.axial_load": "axial_load", "operating.speed": "speed",
-        "films.viscosity": "viscosity", "films.pressure_viscosity": "pressure_viscosity",
+        "lubricant.viscosity.law": "viscosity_law", "lubricant.viscosity.eta0": "viscosity",
+        "lubricant.viscosity.alpha": "pressure_viscosity",
     },
     "ehl": {
         "bearing.element_diameter": "ball_diameter", "bearing.pitch_diameter": "pitch_diameter",
@@ -75,12 +78,12 @@ SCENES = {
         "bearing.inner_speed": "speed", "bearing.radial_load": "radial_load", "bearing.axial_load": "axial_load",
         "materials.modulus1": "ball_modulus", "materials.poisson1": "ball_poisson",
         "materials.modulus2": "ring_modulus", "materials.poisson2": "ring_poisson",
-        "lubricant.viscosity.eta0": "viscosity", "lubricant.viscosity.alpha": "pressure_viscosity",
-        "lubricant.density.rho0": "density",
+        "lubricant.viscosity.law": "viscosity_law", "lubricant.viscosity.eta0": "viscosity",
+        "lubricant.viscosity.alpha": "pressure_viscosity", "lubricant.density.rho0": "density",
     },
     "film": {
-        "lubricant.viscosity.eta0": "viscosity", "lubricant.viscosity.alpha": "pressure_viscosity",
-        "lubricant.density.rho0": "density",
+        "lubricant.viscosity.law": "viscosity_law", "lubricant.viscosity.eta0": "viscosity",
+        "lubricant.viscosity.alpha": "pressure_viscosity", "lubricant.density.rho0": "density",
     },
 }
 
@@ -94,8 +97,11 @@ def cageless_bearing(**overrides):
     from lubedyn.dynamics.cageless import CagelessBearing  # deferred: numba
 
     groups = {"bearing": {}, "operating": {}, "films": {}, "slots": {}}
+    oil = {"lubricant.viscosity.eta0": "films.viscosity", "lubricant.viscosity.alpha": "films.pressure_viscosity"}
     for key, name in SCENES["dynamics"].items():
-        table, field = key.split(".")
+        if key == "lubricant.viscosity.law":
+            continue  # Barus: the model's only law
+        table, field = oil.get(key, key).split(".")  # the case's [lubricant] is the model's films group
         p = VALUES[name]
         groups[table][field] = (tuple(parse_quantity(a, "angle") for a in p.value) if p.dimension == "angles"
                                 else p.si())
