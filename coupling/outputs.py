@@ -37,6 +37,8 @@ from pathlib import Path
 from typing import Any, Callable, Iterable
 
 from lubedyn.lubrication.errors import LubedynError
+from lubedyn.bounds import enforce, strict_of
+from lubedyn.papers import assumed_values
 
 log = logging.getLogger(__name__)
 
@@ -205,7 +207,7 @@ def _files_below(root: Path) -> list[str]:
 
 
 def _manifest(stage: Path, files) -> dict:
-    from lubedyn import __version__
+    from lubedyn import __version__  # deferred: importlib.metadata
 
     summary = {}
     try:
@@ -411,10 +413,7 @@ def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_
     :class:`lubedyn.bounds.ImplausibleResult` or, under ``[validity] strict = false``, adds a warning."""
     import time
 
-    from lubedyn import __version__
-
-    from lubedyn.bounds import enforce, strict_of
-    from lubedyn.papers import assumed_values
+    from lubedyn import __version__  # deferred: importlib.metadata
 
     scene_summary = enforce(dict(scene_summary), scales, strict=strict_of(case))
     summary = {"Case": name, "Scene": case.scene, "Description": case.description}
@@ -431,7 +430,7 @@ def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_
 
 def resolved_header(name: str, source, smoke: bool) -> str:
     """First line of ``case.resolved.toml``."""
-    from lubedyn import __version__
+    from lubedyn import __version__  # deferred: importlib.metadata
 
     return f"lubedyn {__version__}: resolved from {source or name}" + (" with --smoke" if smoke else "")
 

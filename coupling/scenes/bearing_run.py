@@ -23,6 +23,10 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Protocol
 
 from lubedyn import outputs
+from lubedyn.compilation import report_compilation
+from lubedyn.config import resolved_toml
+from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError
+from lubedyn.dynamics.integrators import integrate as run_integrator
 
 log = logging.getLogger(__name__)
 
@@ -81,9 +85,6 @@ def integrate(spec: Integration):
     """:func:`lubedyn.dynamics.integrators.integrate` of ``spec`` in ``spec.n_chunks`` kernel calls (bit-identical
     to one call; control comes back to Python between them, so a Ctrl-C is taken within one chunk), a progress
     bar on a terminal; an integrator error re-raised as ``spec.on_error`` makes it."""
-    from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError
-    from lubedyn.dynamics.integrators import integrate as run_integrator
-
     try:
         return run_integrator(spec.rhs, spec.y0, spec.t_out, spec.args, progress=sys.stderr.isatty(),
                               n_chunks=spec.n_chunks, **spec.options)
@@ -97,9 +98,6 @@ def drive(model: BearingRunModel, out_dir=None, *, name: str, source: str = "", 
     """Build, integrate, analyse and (with ``out_dir``) write a bearing run; kernels compiled on a cold cache
     are reported as they compile (:func:`lubedyn.compilation.report_compilation`).  Returns
     ``model.result(summary, files)``."""
-    from lubedyn.compilation import report_compilation
-    from lubedyn.config import resolved_toml
-
     with report_compilation():
         timing = Timing(t0=time.perf_counter())
         model.build()

@@ -63,6 +63,21 @@ from lubedyn import outputs
 from lubedyn.scenes.dynamics_lyapunov import _benettin, _lyapunov_per_direction
 from lubedyn.config import (CASES_DIR, BoundsModel, LimitsModel, LubricantModel, PositiveInt, PositiveLength, Q,
                             CaseTable, refuse_renamed, rule)
+from lubedyn import limits
+from lubedyn.dynamics.analysis import collision_events, collision_summary
+from lubedyn.dynamics.analysis.frequency import spectrum_limit
+from lubedyn.dynamics.analysis.motion import run_columns
+from lubedyn.dynamics.cageless import CagelessBearing, DIAG_NAMES, D_BBN, D_BBX, D_BBY, D_BBZ, D_H, D_PSIDOT, D_QI, D_QO, D_SPIN, N_RING_DIAG, forces_many, rhs
+from lubedyn.dynamics.cageless.kernels import forces_example, forces_many_example
+from lubedyn.dynamics.errors import DynamicsInputError
+from lubedyn.dynamics.integrators import kernel_example
+from lubedyn.dynamics.lyapunov import spectrum_kernel_example
+from lubedyn.dynamics.specialise import compile_in_background
+from lubedyn.dynamics.spectra import amplitude_spectrum, bearing_frequencies as bf
+from lubedyn.lubrication.laws.contact import point_contact
+from lubedyn.maps import FilmMap
+from lubedyn.papers.zhang2024 import figures as paper_b_figures
+from lubedyn.scenes.bearing_run import Integration, drive
 
 log = logging.getLogger(__name__)
 
@@ -353,8 +368,6 @@ def _map_path(case: DynamicsCase, source: str | None, name: str | None = None, k
 
 
 def _film_map(case: DynamicsCase, source: str | None):
-    from lubedyn.maps import FilmMap
-
     path = _map_path(case, source)
     fmap = FilmMap.load(path, key="films.map")
     if fmap.kind != "ball_ball":
@@ -366,8 +379,6 @@ def model_groups(case: DynamicsCase, **built) -> dict:
     """The case's tables as the model's frozen groups (keyword arguments of
     :class:`lubedyn.dynamics.cageless.CagelessBearing`).  ``built``: values loaded from files, by case key
     (``{"films.map": arrays}``), in place of the file names the case gives."""
-    from lubedyn.dynamics.cageless import CagelessBearing
-
     out = {}
     for table, attr in CagelessBearing.GROUPS.items():  # one to one, same field names
         values = dict(getattr(case, table))
@@ -388,9 +399,6 @@ def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = F
     """Bearing model, quasi-static initial state and output times (raises InputError).  With
     ``precompile``, the kernels the run will call (integrator, forces, Benettin) start compiling in a
     second process if numba's cache lacks them (a first run), while this one compiles the model."""
-    from lubedyn.dynamics.cageless import CagelessBearing
-    from lubedyn.dynamics.errors import DynamicsInputError
-
     built = {}
     map_path, info = None, {}
     if case.films.ball_ball == "map":
@@ -399,8 +407,6 @@ def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = F
             "Force [N]")
         info = {"Ball-ball film map": str(map_path), "Ball-ball film map hash": fmap.input_hash}
     if case.model.traction == "map":
-        from lubedyn.maps import FilmMap
-
         arrays = []
         for race, name in zip(("inner", "outer"), case.model.traction_maps):
             path = _map_path(case, source, name, "model.traction_maps")
@@ -414,8 +420,6 @@ def build(case: DynamicsCase, source: str | None = None, *, precompile: bool = F
     try:
         model = CagelessBearing(**model_groups(case, **built))
         if precompile:
-            from lubedyn.dynamics.specialise import compile_in_background
-
             compile_in_background(kernel_jobs(case, model))
         y0 = model.initial_state()
     except DynamicsInputError as exc:  # its message names the case key already
@@ -431,11 +435,6 @@ def kernel_jobs(case: DynamicsCase, model) -> list:
     """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (integrator, forces
     at the samples, Benettin): :func:`build` has those numba's cache lacks compiled in a second process
     while it compiles the model, since they do not contain the model's code (:mod:`lubedyn.dynamics.specialise`)."""
-    from lubedyn.dynamics.cageless import rhs
-    from lubedyn.dynamics.cageless.kernels import forces_example, forces_many_example
-    from lubedyn.dynamics.integrators import kernel_example
-    from lubedyn.dynamics.lyapunov import spectrum_kernel_example
-
     args = model.args()
     # forces first: the quasi-static start calls it right after the model has compiled
     jobs = [forces_example(args), kernel_example(case.integrator.method, rhs, args), forces_many_example(args)]
@@ -447,8 +446,6 @@ def kernel_jobs(case: DynamicsCase, model) -> list:
 def values_per_sample(model) -> int:
     """Numbers a run keeps per output sample: the state, every ball's contact diagnostics, the ring's,
     and the ball centres and contact mid-points of the analysis (3 each per ball)."""
-    from lubedyn.dynamics.cageless import DIAG_NAMES, N_RING_DIAG
-
     return len(model.state_layout()) + model.n_balls * (len(DIAG_NAMES) + 6) + N_RING_DIAG
 
 
@@ -468,8 +465,6 @@ def sample_count(case: DynamicsCase) -> int:
 def check_size(case: DynamicsCase, model) -> None:
     """Refuse a run whose samples cannot fit the memory limit, or whose fixed RK4 steps exceed
     ``integrator.max_steps`` (:mod:`lubedyn.limits`)."""
-    from lubedyn import limits
-
     ig = case.integrator
     n = ig.duration / ig.sample_interval + 1
     # name the key that made the count: the one farthest from its default
@@ -536,8 +531,6 @@ def run(case: DynamicsCase, out_dir=None, *, name: str = "dynamics", source: str
         smoke: bool = False) -> DynamicsRun:
     """Build, integrate, analyse and (with ``out_dir``) write the case through the bearing run driver
     (:func:`lubedyn.scenes.bearing_run.drive`, :class:`CagelessRunModel`)."""
-    from lubedyn.scenes.bearing_run import drive
-
     return drive(CagelessRunModel(case, source), out_dir, name=name, source=source, smoke=smoke)
 
 
@@ -557,9 +550,6 @@ class CagelessRunModel:
         return describe(self.case, self.setup)
 
     def integration(self):
-        from lubedyn.dynamics.cageless import rhs
-        from lubedyn.scenes.bearing_run import Integration
-
         ig, model = self.case.integrator, self.setup.model
         return Integration(rhs, self.setup.y0, self.setup.t_out, model.args(),
                            dict(method=ig.method, rtol=ig.rtol, atol=ig.atol, dt=ig.dt, max_steps=ig.max_steps,
@@ -573,8 +563,6 @@ class CagelessRunModel:
                            n_chunks=200, on_error=self._error)
 
     def _error(self, exc):
-        from lubedyn.dynamics.errors import DynamicsInputError
-
         ig = self.case.integrator
         if isinstance(exc, DynamicsInputError):
             return InputError(str(exc))
@@ -584,9 +572,6 @@ class CagelessRunModel:
                                 "tighten the tolerance or reduce integrator.dt)")
 
     def analyse(self, res, timing) -> dict:
-        from lubedyn.dynamics.analysis import collision_events, collision_summary
-        from lubedyn.dynamics.cageless import D_BBN, D_BBX, D_BBY, D_BBZ, D_PSIDOT, D_QI, D_QO, D_SPIN, forces_many
-
         case, setup = self.case, self.setup
         model, ig = setup.model, case.integrator
         t0, t_int = timing.t0, timing.integration
@@ -661,8 +646,6 @@ class CagelessRunModel:
         summary["Mean inner ring speed in the analysed window [rpm]"] = ring_hz * 60.0
         summary.update(freqs)
         # paper B's figures 3-5 and 11: settling and spin-up times, zones, collisions by quadrant, vibration band
-        from lubedyn.dynamics.analysis.motion import run_columns
-        from lubedyn.papers.zhang2024 import figures as paper_b_figures
 
         summary.update(paper_b_figures.summary_entries(case, t, run_columns(model, Y, diag, ring), events, freqs))
 
@@ -671,8 +654,6 @@ class CagelessRunModel:
         return summary
 
     def files(self, summary: dict, timing):
-        from lubedyn.dynamics.analysis.motion import run_columns
-
         t0, benettin = timing.t0, self.benettin
 
         def complete(summary):
@@ -698,8 +679,6 @@ class CagelessRunModel:
     def _frames(self):
         """The ParaView frames: ``analysis.frames`` evenly spaced samples and the peaks of the
         ``analysis.collision_frames`` strongest collisions (so that the film pressure is seen)."""
-        from lubedyn.dynamics.cageless import D_BBN, D_H
-
         t, events = self.t, self.events
         n_frames = min(self.case.analysis.frames, len(t))
         picks = np.unique(np.linspace(0, len(t) - 1, n_frames).round().astype(int))
@@ -781,8 +760,6 @@ def headline(summary: dict) -> list[str]:
 
 def bearing_frequencies(ring_hz: float, model, extra=None) -> dict:
     """Kinematic bearing frequencies [Hz] at an inner-ring speed (outer ring fixed, zero contact angle)."""
-    from lubedyn.dynamics.spectra import bearing_frequencies as bf
-
     return bf(ring_hz, model.bearing.ball_diameter, model.bearing.pitch_diameter, model.n_balls, 0.0, extra=extra)
 
 
@@ -838,8 +815,6 @@ class _Scene3D:
 
     def frame(self, y, diag_row, D_BBN, D_H):
         import pyvista as pv
-
-        from lubedyn.lubrication.laws.contact import point_contact
 
         m = self.setup.model
         pts, tris, body, pres = [], [], [], []
@@ -899,10 +874,6 @@ class _Scene3D:
 def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     import matplotlib.pyplot as plt
 
-    from lubedyn.dynamics.analysis.frequency import spectrum_limit
-    from lubedyn.dynamics.analysis.motion import run_columns
-    from lubedyn.papers.zhang2024 import figures as paper_b_figures
-
     figs = {}
     j = case.analysis.ball
     ms = t * 1e3
@@ -944,8 +915,6 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     keep = t >= case.analysis.transient
     acc = np.gradient(Y[keep, 5], t[keep])  # inner ring vertical acceleration
     if keep.sum() > 16:
-        from lubedyn.dynamics.spectra import amplitude_spectrum
-
         f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
         # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
         # and the vibration band of the summary (shaded)

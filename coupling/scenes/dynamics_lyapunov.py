@@ -10,6 +10,9 @@ import math
 import time
 
 import numpy as np
+from lubedyn.dynamics.cageless import rhs
+from lubedyn.dynamics.errors import DynamicsInputError
+from lubedyn.dynamics.lyapunov import WOLF_SCALE_MIN, largest_lyapunov_rosenstein, largest_lyapunov_wolf, lyapunov_spectrum, per_shaft_revolution, rosenstein_shortfall, wolf_shortfall
 
 log = logging.getLogger("lubedyn.scenes.dynamics")
 
@@ -172,9 +175,6 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, r
 
 def _wolf_direction(key, series, size, scale_min, start) -> dict:
     """Summary entries of Wolf's exponent of one coordinate (see :func:`_lyapunov_per_direction`)."""
-    from lubedyn.dynamics.errors import DynamicsInputError
-    from lubedyn.dynamics.lyapunov import WOLF_SCALE_MIN, largest_lyapunov_wolf, wolf_shortfall
-
     out = {f"{key} [bits/s]": None, f"{key} verdict": "not computed"}  # the verdict key is always there
     if isinstance(series, str):
         out[f"{key}, note"] = f"not computed: {series}"
@@ -216,9 +216,6 @@ def _wolf_direction(key, series, size, scale_min, start) -> dict:
 
 def _rosenstein_directions(j, t, keep, centres, shaft_speed) -> dict:
     """Rosenstein's largest exponent of ball ``j``'s inertial x, y, z after the window start."""
-    from lubedyn.dynamics.errors import DynamicsInputError
-    from lubedyn.dynamics.lyapunov import largest_lyapunov_rosenstein, per_shaft_revolution, rosenstein_shortfall
-
     out = {}
     # Rosenstein's neighbour search is O(n^2): decimate to at most LYAPUNOV_SAMPLES samples
     step = max(1, int(math.ceil(keep.size / LYAPUNOV_SAMPLES)))
@@ -297,9 +294,6 @@ def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict
     (:func:`spin_up_end`, the rule by which the per-direction exponents are not computed).
     ``progress(fraction)`` is called as the spectrum advances (100 kernel
     calls, bit-identical to one: :func:`lubedyn.dynamics.lyapunov.lyapunov_spectrum`'s ``n_chunks``)."""
-    from lubedyn.dynamics.cageless import rhs
-    from lubedyn.dynamics.lyapunov import lyapunov_spectrum, per_shaft_revolution
-
     k = case.analysis.lyapunov_exponents
     i0 = int(np.searchsorted(t, benettin_start(float(case.analysis.transient), start, float(t[-1]))))
     window = float(t[-1] - t[i0])

@@ -72,6 +72,17 @@ from lubedyn.config import (BoundsModel, LimitsModel, LubricantModel, PositiveIn
                             refuse_renamed, rule)
 from lubedyn.papers.wu2018.parameters import GREASE_TABLE as GREASES
 from lubedyn.scenes.static import BearingTable
+from lubedyn.config import CASES_DIR
+from lubedyn.dynamics.errors import DynamicsInputError
+from lubedyn.dynamics.integrators import kernel_example
+from lubedyn.dynamics.rotations import to_scipy
+from lubedyn.dynamics.specialise import compile_in_background
+from lubedyn.dynamics.tapered import groups as G, kernels as K, layout as L
+from lubedyn.dynamics.tapered.model import TaperedBearing
+from lubedyn.lubrication.laws.grease import grease_at
+from lubedyn.maps import FilmMap
+from lubedyn.scenes.bearing_run import Integration, drive
+from lubedyn.scenes.static import body_grid, build as build_geometry, raceway_surface
 
 log = logging.getLogger(__name__)
 
@@ -165,8 +176,6 @@ class LubricantTable(LubricantModel):
 
     def group_values(self) -> dict:
         """The fields of :class:`lubedyn.dynamics.tapered.groups.Lubricant`."""
-        from lubedyn.lubrication.laws.grease import grease_at
-
         eta0, alpha = self.oil()
         out = {"reading": self.reading, "base_oil_viscosity": eta0, "pressure_viscosity": alpha,
                **{k: getattr(self, k) for k in ("shear_rate", "limiting_stress", "limiting_slope", "yield_rate",
@@ -321,12 +330,6 @@ CaseModel = TaperedCase
 def build(case: TaperedCase):
     """The :class:`lubedyn.dynamics.tapered.model.TaperedBearing` of a case: each table one group, field by field
     (the lubricant's grease resolved from Table 2); a bad value is a one-line error naming the key."""
-    from lubedyn.dynamics.errors import DynamicsInputError
-    from lubedyn.dynamics.tapered import groups as G
-    from lubedyn.dynamics.tapered.model import TaperedBearing
-
-    from lubedyn.scenes.static import build as build_geometry
-
     g = build_geometry(case)
     m = case.model
     try:
@@ -363,9 +366,6 @@ ROLLER_TRACTION_MAPS = ("maps/ehl_roller_cup.npz", "maps/ehl_roller_cone.npz")
 
 def roller_traction_maps() -> tuple:
     """The shipped roller EHL maps (cup, cone) of :data:`ROLLER_TRACTION_MAPS`, loaded once per process."""
-    from lubedyn.config import CASES_DIR
-    from lubedyn.maps import FilmMap
-
     global _ROLLER_MAPS
     if _ROLLER_MAPS is None:
         _ROLLER_MAPS = tuple(FilmMap.load(CASES_DIR / rel) for rel in ROLLER_TRACTION_MAPS)
@@ -407,8 +407,6 @@ def record(model, Y, y0, qs, fraction):
     rollers' "Radial displacement [m]" and "Axial displacement [m]" of their centres from the start (paper
     A's Fig. 5b) and "Loaded zone [-]" (True where a roller's cone load exceeds ``fraction`` of the
     quasi-static start's largest cone load)."""
-    from lubedyn.dynamics.tapered import layout as L
-
     D = model.diagnostics(Y, y0)
     Z = model.n_rollers
     idx = L.N_CONE + L.NB * np.arange(Z)
@@ -462,8 +460,6 @@ def converged_summary(model, t, D, width: float, tolerance: float) -> dict | Non
 
 def summarise(case, model, t, Y, D, qs) -> dict:
     """The scene's summary (module docstring): the paper's window and the last cage revolution."""
-    from lubedyn.dynamics.tapered import layout as L
-
     kin = model.ideal()
     ideal = float(kin["cage speed [rad/s]"])
     s = {"Rollers [-]": model.n_rollers, "Slices per roller [-]": model.n_slices,
@@ -587,9 +583,6 @@ def kernel_jobs(case: TaperedCase) -> list:
     """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (the integrator, the
     forces at the samples): they do not contain the model's code, so a first run compiles them in a second
     process while it compiles the model (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
-    from lubedyn.dynamics.integrators import kernel_example
-    from lubedyn.dynamics.tapered import kernels as K
-
     # only the argument types count here: (P, U, RHO) are C-contiguous float64 vectors for every case
     # (TaperedBearing.args; tests/test_specialise.py checks the jobs' signatures against a run's), and the
     # real ones cost 35-95 ms (traction tables), which the run builds anyway on its quasi-static state
@@ -600,8 +593,6 @@ def kernel_jobs(case: TaperedCase) -> list:
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:
     """Build, integrate, analyse and (with ``out_dir``) write the case through the bearing run driver
     (:func:`lubedyn.scenes.bearing_run.drive`, :class:`TaperedRunModel`)."""
-    from lubedyn.scenes.bearing_run import drive
-
     return drive(TaperedRunModel(case), out_dir, name=name, source=source, smoke=smoke)
 
 
@@ -616,7 +607,6 @@ class TaperedRunModel:
     def build(self) -> None:
         self.model = build(self.case)
         # a first run compiles the integrator kernel in a second process meanwhile (lubedyn.dynamics.specialise)
-        from lubedyn.dynamics.specialise import compile_in_background
 
         compile_in_background(kernel_jobs(self.case))
         self.qs = self.model.quasi_static()
@@ -628,9 +618,6 @@ class TaperedRunModel:
         return describe(self.case, self.model)
 
     def integration(self):
-        from lubedyn.dynamics.tapered import kernels as K
-        from lubedyn.scenes.bearing_run import Integration
-
         ig = self.case.integrator
         t_out = np.arange(0.0, ig.duration * (1 + 1e-12), ig.sample_interval)
         kw = dict(method="dopri5", rtol=ig.rtol, atol=ig.atol)
@@ -645,8 +632,6 @@ class TaperedRunModel:
                            on_error=self._error)
 
     def _error(self, exc):
-        from lubedyn.dynamics.errors import DynamicsInputError
-
         if isinstance(exc, DynamicsInputError):
             return InputError(f"integrator.dt = {self.dt:g} s: {exc}")
         ig = self.case.integrator
@@ -722,11 +707,6 @@ def frame_mesh(model, y, fields: dict, n_around: int = 16, n_along: int = 7):
     (arrays over rollers: loads, tilt, skew, slip, loaded zone; 0 on rings and cage)."""
     import pyvista as pv
     from scipy.spatial.transform import Rotation
-
-    from lubedyn.dynamics.rotations import to_scipy
-    from lubedyn.dynamics.tapered import layout as L
-
-    from lubedyn.scenes.static import body_grid, raceway_surface
 
     g = model.geometry
     l = g.effective_length

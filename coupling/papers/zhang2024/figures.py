@@ -58,6 +58,8 @@ from lubedyn.dynamics.analysis.poincare import poincare_section
 from lubedyn.dynamics.analysis.quadrants import collision_entries, collision_table
 from lubedyn.dynamics.analysis.rotation import axial_rates, ball_angular_displacement
 from lubedyn.dynamics.analysis.settling import final_start, settling_times, spinup_time, steady_residuals
+from lubedyn.lubrication.errors import InputError
+from lubedyn.outputs import read_timeseries, save_figure
 
 log = logging.getLogger(__name__)
 
@@ -287,10 +289,6 @@ def read_run(folder) -> RunData:
     """A dynamics run folder: ``timeseries.npz``, ``summary.json`` and ``case.resolved.toml``."""
     import tomllib
 
-    from lubedyn.lubrication.errors import InputError
-
-    from lubedyn.outputs import read_timeseries
-
     folder = Path(folder)
     missing = [n for n in ("timeseries.npz", "summary.json", "case.resolved.toml") if not (folder / n).is_file()]
     if missing:
@@ -338,12 +336,8 @@ def compare_runs(run_dirs, out_png) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from lubedyn.outputs import save_figure
-
     runs = [read_run(d) for d in run_dirs]
     if not runs:
-        from lubedyn.lubrication.errors import InputError
-
         raise InputError("compare_runs needs at least one run folder")
     n = len(runs)
     fig = plt.figure(figsize=(3.4 * n + 1.0, 11))
