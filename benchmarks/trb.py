@@ -127,8 +127,8 @@ TARGET_RUNS = {"quadrature": ["model.traction_evaluation=quadrature"],
 
 
 def target() -> dict:
-    """Issue 23's target, 0.18 s of the full 17-roller model at converged accuracy in under 10 s warm on one
-    core: RK4 at the 'auto' step (0.8 x the stable-step estimate; RK4 converges at order 3.6-3.9 there,
+    """The speed target of the tapered bearing, 0.18 s (paper A's run) of the full 17-roller model at
+    converged accuracy in under 10 s warm on one core: RK4 at the 'auto' step (0.8 x the stable-step estimate; RK4 converges at order 3.6-3.9 there,
     tests/test_trb_scene.py) with the limited traction by quadrature and by table, and with the roller EHL
     maps' traction ("map"); the order quadrature, table, map, quadrature, table, map after a warm-up run;
     the map once more at half its step (its step error); the means over the paper's window."""
