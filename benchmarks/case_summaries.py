@@ -1,6 +1,6 @@
 """Record every bundled case's results and compare two recordings (bit-identical by default).
 
-Made for refactors that must not change any number (issue 13): record on the code before the
+Made for refactors that must not change any number: record on the code before the
 change, record again after it, compare.
 
 ::
@@ -12,8 +12,8 @@ change, record again after it, compare.
 ``record`` runs each ``cases/*.toml`` of the checkout ``--root`` (default: the checkout holding
 this script) with ``PYTHON -m lubedyn.cli run CASE [--smoke] --out TMP``, one subprocess per case,
 each into a fresh temporary folder (so no map cache of an earlier run is reused), and checks first
-that the code the runs import is the checkout's.  A checkout of the one-namespace layout (issue 37:
-``pyproject.toml`` maps ``lubedyn`` onto ``coupling/``) is importable only installed, so ``--python``
+that the code the runs import is the checkout's.  A checkout of the one-namespace layout
+(``pyproject.toml`` maps ``lubedyn`` onto ``coupling/``) is importable only installed, so ``--python``
 (default: this interpreter) must have it installed (``pip install -e CHECKOUT``); a checkout of the
 earlier layout (top-level ``coupling``, ``lubrication``, ``dynamics``) runs as ``python -m coupling.cli``
 with the checkout first on ``sys.path``, from any interpreter with the dependencies, so that a
@@ -214,7 +214,7 @@ def bundled_cases(root: Path) -> list[Path]:
 
 
 def namespace_layout(root: Path) -> bool:
-    """Whether the checkout ``root`` installs one namespace, ``lubedyn`` (issue 37), rather than the top-level
+    """Whether the checkout ``root`` installs one namespace, ``lubedyn``, rather than the top-level
     packages ``coupling``, ``lubrication`` and ``dynamics`` of the earlier layout."""
     import tomllib
 

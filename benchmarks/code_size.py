@@ -1,4 +1,5 @@
-"""Size and shape of the library code: the checks of issue 13 ("no god modules", "laws written once").
+"""Size and shape of the library code: no module too large to read ("no god
+modules"), every law written once.
 
 ::
 

@@ -6,7 +6,7 @@ Each round runs, for each checkout in turn, ``lubedyn run <case>`` in a fresh pr
 ``NUMBA_CACHE_DIR`` pointing to a new empty folder (cold: every kernel compiles), then again with the
 same folder (warm).  The checkouts run with this interpreter, so both use the same installed packages: a
 checkout of the earlier layout (top-level ``coupling``) with ``PYTHONPATH`` set to its root, one of the
-one-namespace layout (``lubedyn``, issue 37) as installed in this interpreter, which must therefore be
+one-namespace layout (``lubedyn``) as installed in this interpreter, which must therefore be
 that checkout's editable install (``case_summaries.packages``).  Wall times of the whole process; the
 run's own summary gives the integration and Benettin times.  Writes ``results/cold_start.json`` and ``results/cold_start.png``.
 """

@@ -1,4 +1,4 @@
-"""Measuring tools of the integrators, kept out of the library (issue 13): the first-call (compile) time
+"""Measuring tools of the integrators, kept out of the library: the first-call (compile) time
 of a kernel in a fresh process, and the step-size study of a Hertz impact that the integrator choice
 of the bearing runs rests on (numbers in dynamics/integrators.py, "Stiffness of the ball contacts").
 """

@@ -242,7 +242,7 @@ def main(argv=None):
     RESULTS.mkdir(exist_ok=True)
     data = dict(machine=_common.machine_info(), quick=args.quick, repeats=repeats, line=[], point=[], multigrid=[])
     if args.only:
-        # keep the other scenes' stored results (and the machine notes they were measured with)
+        # keep the other scenes' stored results (and the machine information they were measured with)
         import json
 
         old = RESULTS / f"{stem}.json"

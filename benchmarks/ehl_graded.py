@@ -1,4 +1,4 @@
-"""Graded line grids of the EHL solver (issue 22): what they resolve, what they cost, where Newton stops.
+"""Graded line grids of the EHL solver (needed by paper A's roller maps): what they resolve, what they cost, where Newton stops.
 
 1. Moes line contacts M = 20 and 100, L = 10 on [-4.5, 1.5] b: h_c, h_min, the spike's p_max and the time
    on uniform 257 / 513 / 1025 / 2049 nodes and graded 257 / 513 nodes (refine 4 and 8 on [-1.2, 1.2] b).

@@ -20,7 +20,7 @@ Every point is solved in this process inside ``try/except`` and classified:
     DynamicsInputError); the message and the stop reason are stored;
 ``wrong (silent)``
     the method finished without a warning but its answer is beyond the
-    tolerance: the case issue 20 forbids.  None is expected; the atlas shows
+    tolerance: the case the library must never give.  None is expected; the atlas shows
     where one would be.
 
 Sweeps (stress axis, reference, tolerance for "right")
@@ -463,7 +463,7 @@ def plot(data, path):
     handles.append(Line2D([], [], color="0.6", marker=".", label="wall time (right axis)"))
     fig.legend(handles=handles, loc="lower center", ncol=5, fontsize=8)
     m = data["machine"]
-    fig.suptitle(f"Methods atlas (issue 20): error and time along each method's stress axis; {m['cpu'].get('model name')}"
+    fig.suptitle(f"Methods atlas: error and time along each method's stress axis; {m['cpu'].get('model name')}"
                  f", {m['cpus_available_to_process']} cores, load {m['load_average_at_start'][0]:.1f} at start"
                  + (" (quick)" if data.get("quick") else ""), fontsize=10)
     fig.tight_layout(rect=(0, 0.04, 1, 0.96))

@@ -1,4 +1,4 @@
-"""Paper A's Figures 5-16 from the project's studies (issue 24), and the claim checklist beside them.
+"""Paper A's Figures 5-16 from the project's studies, and the claim checklist beside them.
 
 Run the studies first (``lubedyn study studies/<name>.toml --out runs/studies/<name>`` for trb_speed,
 trb_preload, trb_plastic_viscosity, trb_yield_stress, trb_grease_temperature and the sensitivity studies

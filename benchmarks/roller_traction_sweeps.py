@@ -1,4 +1,4 @@
-"""Roller EHL maps (issue 22): would a compressible film plus denser nodes make the traction interpolable?
+"""Roller EHL maps of paper A's roller: would a compressible film plus denser nodes make the traction interpolable?
 
 Dense line-load sweeps of the roller kinds (``ehl_roller_cone``, ``ehl_roller_cup``; their parameters with
 ``density_law`` overridden, default Dowson-Higginson) at a few entrainment speeds, then the interpolation

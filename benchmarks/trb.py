@@ -1,4 +1,4 @@
-"""Paper A's tapered roller bearing in time (issue 23 sec. 5): what each fidelity option costs and what
+"""Paper A's tapered roller bearing in time: what each fidelity option costs and what
 it changes, and how accuracy trades against wall time for DOPRI5 and RK4.
 
 On cases/trb_fig5_2400rpm.toml (Fr 20 kN, 2,400 rpm, axial locked, polyurea, 10 slices) over ``T``
@@ -93,7 +93,7 @@ def rhs_costs():
 
 
 def slice_convergence(counts=(5, 10, 20, 40, 80), duration=0.005) -> dict:
-    """Slice convergence (issue 23 sec. 3): the loaded-zone mean skew and tilt over the second half of 5 ms
+    """Slice convergence: the loaded-zone mean skew and tilt over the second half of 5 ms
     of Fig. 5's point (RK4 auto, traction table) against the slice count, the differences between
     successive counts and the observed order log2(d_n / d_2n)."""
     from lubedyn.scenes import tapered as S
@@ -127,8 +127,8 @@ TARGET_RUNS = {"quadrature": ["model.traction_evaluation=quadrature"],
 
 
 def target() -> dict:
-    """Issue 23's target, 0.18 s of the full 17-roller model at converged accuracy in under 10 s warm on one
-    core: RK4 at the 'auto' step (0.8 x the stable-step estimate; RK4 converges at order 3.6-3.9 there,
+    """The speed target of the tapered bearing, 0.18 s (paper A's run) of the full 17-roller model at
+    converged accuracy in under 10 s warm on one core: RK4 at the 'auto' step (0.8 x the stable-step estimate; RK4 converges at order 3.6-3.9 there,
     tests/test_trb_scene.py) with the limited traction by quadrature and by table, and with the roller EHL
     maps' traction ("map"); the order quadrature, table, map, quadrature, table, map after a warm-up run;
     the map once more at half its step (its step error); the means over the paper's window."""
@@ -169,7 +169,7 @@ def main(argv=None) -> dict:
     ap.add_argument("--duration", type=float, default=0.02, help="simulated time [s]")
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--target", action="store_true",
-                    help="only issue 23's target: 0.18 s of Fig. 5's point with RK4 at the 'auto' step, the limited "
+                    help="only the paper's window: 0.18 s of Fig. 5's point with RK4 at the 'auto' step, the limited "
                          "traction by quadrature and by table, the maps' traction (results/trb_target.json)")
     ap.add_argument("--slices", action="store_true",
                     help="only the slice convergence of the mean skew and tilt (5-80 slices, 5 ms; results/trb_slices.json)")

@@ -1,4 +1,4 @@
-"""Cost of the tapered roller bearing's compiled dynamics (issue 23): cold compile, warm wall time per
+"""Cost of the tapered roller bearing's compiled dynamics: cold compile, warm wall time per
 simulated millisecond for DOPRI5 (rtol 1e-7) and RK4 (at 0.8 x its measured largest stable step), and
 that largest stable step by bisection, on the smoke case (2,400 rpm, Fa = 15 kN, 5 and 20 slices, eq. 12
 traction, contact-only cage).  Writes ``results/trb_dynamics.json``.

@@ -1,5 +1,5 @@
 """Kernels bound to their right-hand side through function pointers, cached by numba across processes,
-and compiled in a second process while the first compiles the model (issue 18).
+and compiled in a second process while the first compiles the model.
 
 A kernel source (an integrator, the Benettin spectrum, a map over samples) is a plain function whose
 leading parameters are callables (``rhs``, ``jac``, ``jvp`` ...).  :func:`register_kernel` compiles it

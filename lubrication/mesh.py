@@ -165,11 +165,11 @@ def boundary_vertices(mesh) -> np.ndarray | None:
 
     Why: ``mesh.boundary_facets()`` builds every facet of the mesh first
     (``np.unique`` over the sorted vertex pairs of all element sides, then
-    the facet-to-element inverse): 0.9-1.5 s on a 1000 x 1000 quad mesh,
-    while a P1 film only needs the boundary vertices.  A facet (a vertex in
+    the facet-to-element inverse), a sizeable share of the 1M-DOF solve of
+    benchmarks/reynolds.py, while a P1 film only needs the boundary vertices.  A facet (a vertex in
     1-D, an edge in 2-D) is on the boundary iff exactly one element has it:
     the element sides are counted by a sparse COO -> CSR conversion (which
-    sums duplicates in linear time), 0.05-0.2 s on that mesh.  The same
+    sums duplicates in linear time), an order of magnitude faster.  The same
     vertices as ``np.unique(mesh.facets[:, mesh.boundary_facets()])`` on
     every mesh kind (``tests/test_reynolds_fast_paths.py``), periodic
     (DG-point) meshes included: there ``mesh.t`` holds topological numbers,

@@ -2,7 +2,7 @@
 on stderr that names the key (and the value where there is one), no traceback, and an --out
 folder that is left exactly as it was.
 
-The rows are the bad inputs of issue 12 (sizes that cannot run, impossible geometry, misleading
+The rows are bad inputs (sizes that cannot run, impossible geometry, misleading
 messages) and those of tests/test_bad_input.py and tests/test_cli.py, each through ``lubedyn run``
 into an --out that already holds a previous run's file, so "nothing already written is lost" is
 checked for each.  Exit codes (README): 2 input error, 3 an output that cannot be written.
@@ -40,7 +40,7 @@ ROWS = [
     (J, ["foo.bar=1"], 2, ["foo", "unknown key"]),
     (S, ["gap.h_out=0"], 2, ["gap.h_out = 0", "> 0 m"]),
     (P, ["gap.depth=-1.04 um"], 2, ["gap (pocketed_slider)", "must be > 0 everywhere"]),
-    # sizes that cannot run (issue 12.3)
+    # sizes that cannot run
     (J, ["mesh.nx=1"], 2, ["mesh.nx = 1", ">= 3"]),
     (J, ["mesh.nx=100000", "mesh.ny=10000"], 2, ["mesh.nx = 100000", "mesh.ny = 10000", "TiB", "limit"]),
     (S, ["mesh.nx=1000000000"], 2, ["mesh.nx = 1000000000", "TiB", "limit"]),
@@ -48,7 +48,7 @@ ROWS = [
     (D, ["integrator.sample_interval=1e-12 s"], 2, ["integrator.sample_interval = 1e-12 s", "TiB", "limit"]),
     (M, ["axes.central_gap.n=1000000"], 2, ["axes.central_gap.n = 1000000", "limits.map_points"]),
     (ER, ["grid.nx=1048577"], 2, ["grid.nx = 1048577", "too fine for a line contact"]),
-    # bearing geometry (issue 12.5)
+    # bearing geometry
     (D, ["bearing.inner_groove_radius=4 mm"], 2, ["bearing.inner_groove_radius = 0.004", "ball_diameter/2"]),
     (D, ["slots.depth=20 mm"], 2, ["slots.depth = 0.02", "wall under the groove"]),
     (D, ["bearing.n_balls=1"], 2, ["bearing.n_balls = 1", ">= 3"]),

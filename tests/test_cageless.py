@@ -1,4 +1,4 @@
-"""The cage-less 6206 ball bearing (lubedyn.dynamics.cageless), issue 5 section 5:
+"""The cage-less 6206 ball bearing (lubedyn.dynamics.cageless) against paper B's bearing:
 quasi-static load distribution from a damped settling run against Jones' rigid-ring
 model (lubedyn.lubrication.laws.bearing) and Stribeck's 4.37 Fr/(Z cos a); Hertz deflection against
 load (lubedyn.lubrication.laws.contact); ball-train speed against epicyclic kinematics in the
@@ -154,7 +154,7 @@ def test_rotor_drop_friction_law():
     assert y0[7] == 0.0 and y0[8] == pytest.approx(10000 * math.pi / 30)
     # dt = 1 us: at 2 us RK4 is beyond its real-axis limit for the race traction of the balls at rest
     # (rate ~1.5e6 1/s, h lambda ~ 3 > 2.785; integrators module docstring), the ball slips chatter for
-    # the first steps and the growth guard stops the run (issue 20); at 1 us its estimate stays <= 2.54
+    # the first steps and the growth guard stops the run; at 1 us its estimate stays <= 2.54
     res, diag, ring = _run(model, y0, 1e-3, 1e-6, n_out=11)
     decel = model.operating.rotor_friction * model.operating.radial_load * model.operating.rotor_contact_radius / model.bearing.rotor_inertia
     np.testing.assert_allclose(res.y[:, 8], y0[8] - decel * res.t, rtol=1e-9)

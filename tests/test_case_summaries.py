@@ -1,4 +1,4 @@
-"""benchmarks/case_summaries.py, the before/after tool of refactors (issue 13): its comparison is
+"""benchmarks/case_summaries.py, the before/after tool of refactors: its comparison is
 bit-exact by default, names the key that changed and honours an explicit tolerance; a recording of
 one cheap case is identical across two runs (a few seconds; no time is asserted)."""
 import importlib.util

@@ -498,9 +498,9 @@ def _trb_window(s):
 
 def _check_trb_dynamic(s, case, loaded, flange=0.03):
     """Every tapered dynamics case at smoke size (1 ms from the quasi-static start): the loads stay on the
-    quasi-static equilibrium (a separate 2-D solver, issue 23 sec. 3), the rollers' orbital speed and
-    the cage's within 1 % of the geometry's ideal cage speed (eq. 52), whose ratio to the cone speed is the
-    notes' 1,057/2,400 (0.2 %: the notes' rounding), ``loaded`` rollers in the loaded zone."""
+    quasi-static equilibrium (a separate 2-D solver), the rollers' orbital speed and
+    the cage's within 1 % of the geometry's ideal cage speed (eq. 52), whose ratio to the cone speed is a
+    hand estimate's 1,057/2,400 (0.2 %: its rounding; docs/paper_a.md), ``loaded`` rollers in the loaded zone."""
     w = _trb_window(s)
     # 2 %: the cases run with flange friction (eqs. 22-23), which the frictionless quasi-static solver
     # leaves out; it moves the cup loads by 1.0 % (measured on trb_grease_fa15kN; without it 2.5e-5, the
@@ -519,7 +519,8 @@ def _check_trb_dynamic(s, case, loaded, flange=0.03):
 def check_trb_fig5_2400rpm(s, case):
     """Paper A's Fig. 5 point in time: the most loaded roller's cup load within 5 % of Stribeck's
     4.08 Fr/(Z cos a) (as the static case), the common checks with 7-10 rollers loaded (a half load zone),
-    the ideal cage speed the notes' 1,057 rpm (issue 23: 1.058 krpm)."""
+    the ideal cage speed about 1,057 rpm (a hand
+    estimate from Table 1; the model's geometry gives 1,058.6 rpm)."""
     fr = case["operating"]["radial_load"]
     assert fr == pytest.approx(20e3)
     alpha_o = math.radians(11.19)  # the common-apex cup angle (tests/test_trb_geometry.py)
@@ -582,7 +583,8 @@ check_trb_speed_2krpm = check_trb_speed_3krpm = check_trb_speed_4krpm = check_tr
 
 def _check_trb_preload(s, case):
     """The preload series: every roller in the loaded zone; the largest cone load rises with the preload
-    (the static scene's laminae model is checked against the notes' rigid-ring values in its own case)."""
+    (the static scene's laminae model is checked against rigid-ring estimates in
+    tests/test_trb_quasistatic.py)."""
     _check_trb_dynamic(s, case, (17, 17))
     u = case["operating"]["axial_displacement"]
     assert s["Quasi-static largest cone load [N]"] > 0.0 and u > 0.0

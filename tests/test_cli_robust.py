@@ -1,5 +1,4 @@
-"""The command line under interrupts, kills, reruns, closed pipes and unwritable outputs (issue 12,
-items 4, 5 and 6): exit codes, one-line messages, an output folder that holds one run.
+"""The command line under interrupts, kills, reruns, closed pipes and unwritable outputs: exit codes, one-line messages, an output folder that holds one run.
 
 Real processes where a signal is involved (SIGINT to the process group as a terminal sends it,
 SIGKILL of the parent of a map build's workers); ``lubedyn.cli.main`` in-process otherwise.

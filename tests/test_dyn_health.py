@@ -1,13 +1,13 @@
-"""Issue 36, items 4 and 7: integrator tolerances with a meaning, Lyapunov verdicts consistent with
+"""Integrator tolerances with a meaning, Lyapunov verdicts consistent with
 their own numbers.
 
-4. ``integrator.rtol`` up to 1 passed silently (an oscillator's end state 10 x its amplitude off at
-   rtol 0.1, with the stop reason "reached the last output time"): the dynamics and tapered scenes now
-   refuse rtol above ``RTOL_MAX`` = 1e-3 and atol above ``ATOL_MAX`` = 1e-8, and the tests below repeat
-   the measurement that puts the limit there (dynamics/integrators.py, comments above ``RTOL_MAX``).
-7. A Lyapunov verdict "positive" next to an 80 % drift of its own estimate; a whole-system "positive" on a
-   record that ends inside the spin-up, where the per-direction analysis says "still spinning up";
-   ``largest_lyapunov_rosenstein`` on a constant series raising "cannot convert float NaN to integer".
+- ``integrator.rtol`` up to 1 passed silently (an oscillator's end state 10 x its amplitude off at
+  rtol 0.1, with the stop reason "reached the last output time"): the dynamics and tapered scenes now
+  refuse rtol above ``RTOL_MAX`` = 1e-3 and atol above ``ATOL_MAX`` = 1e-8, and the tests below repeat
+  the measurement that puts the limit there (dynamics/integrators.py, comments above ``RTOL_MAX``).
+- A Lyapunov verdict "positive" next to an 80 % drift of its own estimate; a whole-system "positive" on a
+  record that ends inside the spin-up, where the per-direction analysis says "still spinning up";
+  ``largest_lyapunov_rosenstein`` on a constant series raising "cannot convert float NaN to integer".
 """
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ DYNAMICS, TAPERED = "cageless_6206_10krpm_short", "trb_fig5_2400rpm"
 @pytest.mark.parametrize("key, value, allowed", [("rtol", "0.1", "(0, 0.001]"), ("rtol", "0.9", "(0, 0.001]"),
                                                  ("rtol", "3e-3", "(0, 0.001]"), ("atol", "1e-6", "(0, 1e-08]")])
 def test_tolerances_the_error_control_cannot_honour_are_refused_in_one_line(case, key, value, allowed):
-    """rtol 0.1 and 0.9 (issue 36's numbers), 3e-3 (the first measured rtol whose error grows without
+    """rtol 0.1 and 0.9, 3e-3 (the first measured rtol whose error grows without
     bound) and atol 1e-6: refused, one line naming the key, the value, what is allowed and why."""
     with pytest.raises(CaseError) as err:
         load_case(CASES_DIR / f"{case}.toml", overrides=[f"integrator.{key}={value}"])
@@ -110,7 +110,7 @@ def _drifting(q=100):
 
 
 def test_a_drifting_benettin_estimate_is_not_converged_rather_than_positive():
-    """Issue 36's case: 1.0 +- 0.27 (beyond two uncertainties) whose running estimate moved 80 % over the
+    """A built spectrum: 1.0 +- 0.27 (beyond two uncertainties) whose running estimate moved 80 % over the
     second half was "positive"; now "not converged (moved 80 % over the second half)".  A settled one stays
     "positive"."""
     res = _spectrum(_drifting())

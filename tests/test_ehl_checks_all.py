@@ -1,5 +1,5 @@
 """The EHL resolution check for every density, viscosity and flow law and every grid kind, and the EHL
-error messages that named the wrong grid or what a case file cannot set (issue 36, items 2 and 6).
+error messages that named the wrong grid or what a case file cannot set.
 
 Before, :func:`lubedyn.lubrication.ehl.check_solution` compared the central film with a closed form only for
 Barus, incompressible, Newtonian films, and line contacts recorded no coarser level: the Moes line

@@ -1,5 +1,5 @@
 """Graded line grids of the EHL solver (``EHLGrid(refine > 1)``): elastic matrix, assembly, nesting, and
-what the grading buys and where it stops (issue 22, the roller maps' knee).
+what the grading buys and where it stops (the roller maps' knee, cases/maps/README.md).
 
 Independent references: the Toeplitz/FFT kernel of a uniform grid (:class:`lubedyn.lubrication.elastic.ElasticKernel`),
 the Hertz line contact's deflection (u + x^2/(2R) constant inside the contact, Johnson 1985, section 5.6),

@@ -1,4 +1,4 @@
-"""Where the EHL methods stop being right, and what they say there (issue 20, items 1, 2, 6, 7).
+"""Where the EHL methods stop being right, and what they say there.
 
 A-posteriori checks (:func:`lubedyn.lubrication.ehl.check_solution`): a converged EHL solution is compared
 with the closed-form central film (Moes' line formula, Nijenbanning-Venner-Moes for circles) and
@@ -41,7 +41,7 @@ def _line(M, L):
 
 
 def test_line_m1000_on_257_nodes_warns_and_names_the_grid(caplog):
-    """Issue 20 item 1: M = 1000, L = 10 on 257 nodes converges (5 Newton steps, stop reason
+    """M = 1000, L = 10 on 257 nodes converges (5 Newton steps, stop reason
     'tolerance met') to h_c +86 % off Moes' formula.  Before the check nothing said so; now a
     WARNING names the deviation and 513 nodes, and the solution's info carries it."""
     c = _line(1000, 10)
@@ -70,7 +70,7 @@ def test_line_m1000_strict_raises_and_513_nodes_is_right():
 
 @pytest.mark.parametrize("M, nx, measured", [(1000, 129, -0.350), (1000, 257, -0.084), (2000, 257, -0.184)])
 def test_multigrid_wrong_films_raise_in_strict_mode(M, nx, measured):
-    """Issue 20 item 2: the multigrid 'converges' (stop 'tolerance met') -35 % / -8.4 % / -18 % off
+    """The multigrid 'converges' (stop 'tolerance met') -35 % / -8.4 % / -18 % off
     Nijenbanning-Venner-Moes; the FMG coarser level's film had collapsed (<= 0) in each, and the
     check says so and names the next grid."""
     c = EHLContact.from_moes(M, 10)
@@ -115,7 +115,7 @@ def test_check_on_a_doctored_coarse_level_names_the_grid():
 
 
 def test_point_newton_work_budget_stops_with_a_reason():
-    """Issue 20 item 6: every Newton step of every start and fallback counts against
+    """Every Newton step of every start and fallback counts against
     EHLOptions.max_work (steps on the requested grid); a spent budget stops the whole solve with
     stop reason 'work budget' and no fallback (small size: 65 x 65, M = 100 needs 12.8 units)."""
     c = EHLContact.from_moes(100, 10)
@@ -127,7 +127,7 @@ def test_point_newton_work_budget_stops_with_a_reason():
 
 
 def test_iteration_limit_hint_is_computed_from_the_state():
-    """Issue 20 item 7: the active-set error no longer appends a fixed 'M = 1000 line contacts
+    """The active-set error no longer appends a fixed 'M = 1000 line contacts
     converge on 513+ nodes': at M = 20 (resolved by 129 nodes) no grid is named; at M = 1000 on
     129 nodes the grid that resolves it is (M <= (nx - 1)^2/220: 513 nodes)."""
     with pytest.raises(ConvergenceError) as light:
@@ -169,7 +169,7 @@ nx = {nx}
 
 def test_errors_carry_their_stop_reason():
     """Every EHL error names why it stopped: the line contact M = 1000 on 129 nodes reaches the film
-    floor ('film collapsed', the measured clear stop of issue 20 item 1); a multigrid cut at 3 cycles
+    floor ('film collapsed', the clear stop of the M = 1000 line contact above); a multigrid cut at 3 cycles
     ('iteration limit')."""
     from lubedyn.lubrication.ehl.multigrid import MultigridOptions
 
@@ -192,7 +192,7 @@ def test_a_failed_solve_reports_the_work_it_took():
 
 
 def test_hint_names_the_test_that_refused_a_converged_step():
-    """Issue 20 item 7 (the Eyring line contact at M = 7.3 of issue 12): when the Newton step met
+    """The Eyring line contact at M = 7.3: when the Newton step met
     rtol but the state was refused, the hint says which test refused it with its figures, and names
     no grid at a load the grid resolves (M = 7.3 on 257 nodes; resolved up to M = 298)."""
     from lubedyn.lubrication.ehl.newton import _iteration_limit_hint

@@ -1,4 +1,4 @@
-"""Issue 36 (items 2, 6, 8; map and film parts): what the library finds wrong with a result or an input
+"""What the library finds wrong with a result or an input
 reaches the user from Python as well as from the CLI, once, in one line.
 
 - a film map whose accuracy report exceeds its tolerance (lubedyn.maps.ACCURACY_TOLERANCE, 3 %, or the

@@ -1,4 +1,4 @@
-"""Issue 20, item 4: a film whose minimum-gap zone is resolved by too few elements converges in
+"""A film whose minimum-gap zone is resolved by too few elements converges in
 the Newton iterations but not in the mesh.  The film scene warns (logging WARNING, summary.json
 "Warnings"), naming the mesh that resolves the zone.
 

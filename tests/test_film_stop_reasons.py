@@ -1,4 +1,4 @@
-"""Issue 20, item 7: every Reynolds film solve says why it stopped, and a failed one says what
+"""Every Reynolds film solve says why it stopped, and a failed one says what
 failed, from its own iteration history and state (not a fixed hint).
 
 - JFO under a sideways (half separating) squeeze of the journal on a fine mesh: the active set

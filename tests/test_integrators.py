@@ -357,7 +357,7 @@ def test_dopri5_step_count_on_stiff_linear_problem_is_set_by_the_real_stability_
     assert counts[1] == pytest.approx(expected, rel=0.03)
 
 
-# RK4 growth guard (issue 20, item 3) ---------------------------------------------------------------
+# RK4 growth guard ---------------------------------------------------------------------------------
 def _rk4_oscillator(h_omega, omega=1e5, periods=20):
     """integrate() with RK4 on x'' = -omega^2 x (unscaled state (x, v): |v| = omega |x|), one step per
     output interval, no omega_max: the bare call the guard must protect."""
@@ -368,7 +368,7 @@ def _rk4_oscillator(h_omega, omega=1e5, periods=20):
 
 
 def test_rk4_guard_pins_the_oscillation_limit():
-    """Issue 20, item 3: RK4 without omega_max past its stability limit returned finite garbage
+    """RK4 without omega_max past its stability limit used to return finite garbage
     (|x|/x0 = 20 after 20 periods at h omega = 2.86, 1e20 at 3.49).  Just below the limit 2 sqrt 2 =
     2.828 the run completes and equals the amplification factor |R(i h omega)|^N (the guard changes
     nothing); at 2.86 and 3.49 it stops with STATUS_UNSTABLE, names the imaginary-axis limit and the

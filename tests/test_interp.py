@@ -178,7 +178,7 @@ def test_convergence_orders():
 def test_out_of_axes_clamp_counts_and_nan_mode(fn):
     """Clamp mode: the value at the nearest end (never extrapolated) and one count per query with any
     coordinate outside; NaN mode: NaN and no count; a NaN coordinate gives NaN in both modes and is
-    counted in clamp mode (issue 20: a run that clamps reports it; before, it passed uncounted)."""
+    counted in clamp mode (a run that clamps reports it)."""
     x, y = np.linspace(0, 1, 5), np.geomspace(1.0, 100.0, 4)
     ax = (prepare_axis(x, False), prepare_axis(y, True))
     V = x[:, None] + np.log(y)[None, :]
@@ -297,7 +297,7 @@ def test_hermite_clamp_counts(fn):
 def test_hermite3_clamp_count_and_nan(name, plain):
     """3-D hermite kernels (single-exit code): a query outside is clamped to the end value of
     v = 1 + x + 2 y - z (reproduced exactly) with one count; mode 1 gives NaN without a count; a NaN
-    coordinate gives NaN in both modes, counted in mode 0 only (issue 20); the gradient at a clamped
+    coordinate gives NaN in both modes, counted in mode 0 only; the gradient at a clamped
     point is the one-sided derivative (1, 2, -1)."""
     fn = getattr(interp, name)
     fn = fn.py_func if plain else fn

@@ -146,7 +146,7 @@ def test_guide_land_torque_against_quadrature():
     assert L.equivalent_radius(98.05e-3, 98.3e-3) == pytest.approx(98.05e-3 * 98.3e-3 / 0.25e-3, rel=1e-14)
 
 
-# ------------------------------------------------------------------ issue 22 section 2: paper law, land options
+# ------------------------------------------------------------------ paper A's cage laws: paper law, land options
 
 
 def test_half_sommerfeld_coefficient_against_the_fem():

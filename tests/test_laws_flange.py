@@ -93,7 +93,7 @@ def test_friction_limits_and_continuity(compiled):
         assert jump <= slope * (MU_A * q + fg) * step * 1.01
 
 
-# paper A's rib operating points (notes 3.1-3.2): flange loads 200-989 N, entrainment 8.1-20.2 m/s
+# paper A's rib operating points (hand estimates, docs/paper_a.md): flange loads 200-989 N, entrainment 8.1-20.2 m/s
 CORNERS = [(q, u) for q in (200.0, 989.0) for u in (8.1, 20.2)]
 #: (reading, grease, model) -> (min, max) h_c [um] over CORNERS: the flange module's docstring table
 TABLE = {("base", None, "hamrock_dowson"): (8.4, 17.3), ("base", None, "paper_eq24"): (12.4, 30.1),
@@ -118,7 +118,8 @@ def _film(reading, name, model, q, u):
 def test_rib_film_ratio_at_paper_a_operating_points(key):
     """h_c at the four corners within the docstring's printed ranges (to the printed digits, 1 %); lambda
     = h_c/sigma >= 34 and the asperity share negligible except lithium's apparent film under
-    Hamrock-Dowson (lambda 0.72-1.25, share 0.10-0.30): the notes' 9-10 um (3.3) lies in the base-oil range."""
+    Hamrock-Dowson (lambda 0.72-1.25, share 0.10-0.30): a Hamrock-Dowson hand estimate
+    with a 0.1 Pa s oil, 9-10 um, lies in the base-oil range."""
     h = [_film(*key, q, u) for q, u in CORNERS]
     lo, hi = TABLE[key]
     assert min(h) * 1e6 == pytest.approx(lo, rel=0.01) and max(h) * 1e6 == pytest.approx(hi, rel=0.01)

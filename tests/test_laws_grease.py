@@ -1,7 +1,9 @@
-"""Grease laws (lubedyn.lubrication.laws.grease) against independent values: the apparent-viscosity table of
-paper_A_notes.md 3.4 (recomputed here from Table 2's raw rows), the ranking reversal of notes 2.3, Table 2
+"""Grease laws (lubedyn.lubrication.laws.grease) against independent values: a hand-computed apparent-viscosity
+table of Table 2's 30 C rows (recomputed here from the raw rows; docs/paper_a.md, "Estimates at paper A's
+operating points"), the ranking reversal of the two readings of phi, Table 2
 itself at its temperatures, the Herschel-Bulkley law's oddness and its Newtonian limit, and the film of a
-Newtonian "grease" against the project's Dowson-Toyoda and Moes line films and the notes' 5.4 um."""
+Newtonian "grease" against the project's Dowson-Toyoda and Moes line films and the hand estimate's
+5.4 um."""
 import math
 
 import pytest
@@ -12,8 +14,8 @@ from lubedyn.lubrication.laws import film as F
 from lubedyn.lubrication.laws import grease as G
 
 ALPHA = 4.662e-8  # Table 1, polyurea at 30 C
-# paper_A_notes.md 3.4: apparent viscosity [Pa s] at 30 C, as printed (2 significant figures)
-NOTES_34 = {1e4: {"polyurea": 0.67, "lithium": 0.16, "calcium": 0.74},
+# hand-computed apparent viscosity [Pa s] of Table 2's 30 C rows, tau_y/D + phi D^(n-1), to 2 significant figures
+HAND_TABLE = {1e4: {"polyurea": 0.67, "lithium": 0.16, "calcium": 0.74},
             1e6: {"polyurea": 0.18, "lithium": 0.0043, "calcium": 0.080},
             1e7: {"polyurea": 0.09, "lithium": 0.0008, "calcium": 0.027}}
 
@@ -29,11 +31,11 @@ def _row(name, t):
     return next(r for r in GREASE_TABLE[name] if r[0] == t)
 
 
-@pytest.mark.parametrize("rate", sorted(NOTES_34))
-def test_apparent_viscosity_is_notes_table_34(rate):
+@pytest.mark.parametrize("rate", sorted(HAND_TABLE))
+def test_apparent_viscosity_is_the_hand_table(rate):
     """tau_y/D + phi D^(n-1) from Table 2's raw 30 C rows (written out here) equals the law to 1e-13 and
-    the notes' printed table to half a unit in its last digit."""
-    for name, printed in NOTES_34[rate].items():
+    the hand table to half a unit in its last digit."""
+    for name, printed in HAND_TABLE[rate].items():
         _, ty, ph, n = _row(name, 30)
         independent = ty / rate + ph * rate ** (n - 1)
         law = G.grease_at(GREASE_TABLE[name], 30.0, ALPHA, name).apparent_viscosity(rate)
@@ -42,7 +44,7 @@ def test_apparent_viscosity_is_notes_table_34(rate):
 
 
 def test_the_two_readings_reverse_the_ranking():
-    """Notes 2.3: phi0 read as Pa s ranks calcium > lithium > polyurea; the apparent viscosity at the
+    """Table 2's phi0 read as Pa s (paper A's eqs. 12, 25, 34-35) ranks calcium > lithium > polyurea; the apparent viscosity at the
     contacts' 1e6 1/s ranks polyurea > calcium > lithium (lithium falls from second to last)."""
     greases = {n: G.grease_at(GREASE_TABLE[n], 30.0, ALPHA, n) for n in GREASE_TABLE}
     paper = sorted(greases, key=lambda n: -greases[n].viscosity("paper"))
@@ -53,8 +55,8 @@ def test_the_two_readings_reverse_the_ranking():
     assert {g.viscosity("base_oil", base_oil_viscosity=0.1) for g in greases.values()} == {0.1}
 
 
-def test_yield_share_at_1e6_is_the_notes():
-    """Notes 3.4: at 1e6 1/s the yield stress is 0.2 % of the stress for polyurea, about 19 % for lithium."""
+def test_yield_share_at_1e6():
+    """Table 2's 30 C rows: at 1e6 1/s the yield stress is 0.2 % of the stress for polyurea, about 19 % for lithium."""
     for name, share in (("polyurea", 0.002), ("lithium", 0.19)):
         g = G.grease_at(GREASE_TABLE[name], 30.0, ALPHA, name)
         assert g.yield_stress / g.stress(1e6) == pytest.approx(share, abs=0.0005 if share < 0.01 else 0.005)
@@ -104,8 +106,8 @@ def _u_w_g(eta, u, w, R, Ep):
 def test_newtonian_grease_film_is_dowson_toyoda_and_moes():
     """tau_y = 0, n = 1, phi0 = 0.1 Pa s: every reading that uses the grease gives the Newtonian line film
     of lubedyn.lubrication.laws.film to round-off (Dowson-Toyoda and Moes); at paper A's most loaded cone contact
-    (2.4 krpm: u_m 11.03 m/s, 115 kN/m, R' 9.41 mm, E' 225 GPa) Dowson-Toyoda gives the notes' 5.4 um
-    (3.3, printed to 0.1 um) and Moes lies within 6 % of it (measured 5.3 %)."""
+    (2.4 krpm: u_m 11.03 m/s, 115 kN/m, R' 9.41 mm, E' 225 GPa) Dowson-Toyoda gives the hand estimate's
+    5.4 um (to 0.1 um) and Moes lies within 6 % of it (measured 5.3 %)."""
     u, w, R, Ep = 11.03, 115e3, 9.41e-3, 225e9
     newtonian = G.Grease(0.0, 0.1, 1.0, ALPHA)
     U, W, Gp = _u_w_g(0.1, u, w, R, Ep)

@@ -1,6 +1,6 @@
-"""The architecture rules of DESIGN.md that a scan can check (issue 13): every law constant has one home
+"""The architecture rules of DESIGN.md that a scan can check: every law constant has one home
 (lubrication/laws), and dynamics imports from lubrication only the laws and the error tree; and the layout of
-the one installed namespace (issue 37): the folders lubrication/, dynamics/, coupling/ and cases/ are
+the one installed namespace: the folders lubrication/, dynamics/, coupling/ and cases/ are
 lubedyn.lubrication, lubedyn.dynamics, lubedyn itself and lubedyn.cases, and nothing names them otherwise."""
 import ast
 import re
@@ -203,7 +203,7 @@ def test_no_private_name_is_imported_across_packages():
 
 
 # ---------------------------------------------------------------------------
-# one namespace (issue 37)
+# one namespace
 
 
 def test_pyproject_installs_one_namespace_with_every_package():

@@ -248,7 +248,7 @@ def test_frozen_bad_input():
                             n_exponents=3)
 
 
-# uncertainty and verdict (issue 20, item 9) ----------------------------------------------------------
+# uncertainty and verdict ----------------------------------------------------------------------------
 @njit(cache=True)
 def harmonic(t, y, args, dydt):
     """x'' = -omega^2 x (omega = args[0]): exponents exactly 0, 0."""
@@ -259,7 +259,7 @@ def harmonic(t, y, args, dydt):
 @pytest.mark.parametrize("n, period", [(500, 17.3), (500, 50.0), (1000, 17.3), (1000, 50.0), (2000, 31.7),
                                        (4000, 50.0)])
 def test_rosenstein_pure_sine_is_not_positive_within_its_uncertainty(n, period):
-    """Issue 20, item 9: a pure sine (dim 6, delay at the autocorrelation zero, default fit, as the
+    """A pure sine (dim 6, delay at the autocorrelation zero, default fit, as the
     dynamics scene calls it) gives +0.001-0.005 per sample with no uncertainty before; its neighbours
     sit at the rounding level (ln d ~ -31) and drift apart linearly, not exponentially.  Now the
     estimate lies within its uncertainty (measured |lambda| / u = 0.38-0.98 over 500-8000 samples and

@@ -165,7 +165,7 @@ def test_signed_output_is_not_logged_and_out_of_axes_raises_or_clamps():
 
 @pytest.mark.parametrize("method", ["hermite", "linear"])
 def test_nan_coordinate_raises_in_raise_mode_and_is_counted_in_clamp_mode(method):
-    """Issue 20, item 5: a NaN coordinate in the default "raise" mode returned NaN (the check skipped
+    """A NaN coordinate in the default "raise" mode used to return NaN (the check skipped
     NaN points); it now raises InputError naming the axis and the number of such points.  "clamp"
     returns NaN for it and counts it with the points outside (one count per point), "nan" returns NaN
     without a count; finite points in the same query keep their exact values (F linear in v)."""
@@ -463,7 +463,7 @@ def test_dask_worker_processes_give_the_same_real_map(tmp_path):
 
 
 # ---------------------------------------------------------------------------
-# the shipped maps' accuracy (issue 4, section 5) and the polar ball-ball map
+# the shipped maps' accuracy (cases/maps/README.md) and the polar ball-ball map
 
 SHIPPED_MAPS = CASES_DIR / "maps"
 

@@ -1,4 +1,4 @@
-"""The methods atlas (benchmarks/method_limits.py, issue 20) classifies the known limit cases as the
+"""The methods atlas (benchmarks/method_limits.py) classifies the known limit cases as the
 library reports them: the sweep functions run against the current library, so an API change that
 would break the benchmark, or a check that stops firing, fails here.  Smoke sizes (a few seconds;
 no time is asserted)."""

@@ -1,4 +1,4 @@
-"""One installed namespace (issue 37): the library is ``lubedyn`` and nothing else, each module is imported
+"""One installed namespace: the library is ``lubedyn`` and nothing else, each module is imported
 under one name, and a wheel installed away from the checkout runs the bundled cases as the checkout does.
 
 The folders ``coupling/``, ``lubrication/`` and ``dynamics/`` of the checkout are importable by their own

@@ -1,4 +1,4 @@
-"""The verdict rules of paper A's checklist (lubedyn.papers.wu2018.claims, issue 24) on numbers built to fall on
+"""The verdict rules of paper A's checklist (lubedyn.papers.wu2018.claims) on numbers built to fall on
 each side of each rule, and the checklist read from a study folder written like ``lubedyn study``'s."""
 from __future__ import annotations
 

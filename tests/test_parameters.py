@@ -1,5 +1,5 @@
 """Parameter sets (lubedyn.papers): each paper's values against the independent transcription of
-its tables in tests/data/seed_parameters.toml (a copy of shared/reference/seed_parameters.toml), every value cited, and the case-file
+its tables in tests/data/seed_parameters.toml (made apart from the parameter modules), every value cited, and the case-file
 merge (the set fills, the file and --set overrides win, errors are one line)."""
 import math
 import tomllib
@@ -57,7 +57,7 @@ def test_wu2018_against_the_transcribed_tables():
     seed = tomllib.loads(SEED.read_text())["tapered_roller_bearing"]
     si = lambda n: P.si("Wu2018", n)  # noqa: E731
     assert si("n_rollers") == seed["n_rollers"]
-    # the printed end diameters are swapped (paper_A_notes.md, section 2): the large end is the larger
+    # Table 1 prints the end diameters with their labels swapped (docs/paper_a.md): the large end is the larger
     ends = sorted((seed["roller_large_end_diameter_mm"], seed["roller_small_end_diameter_mm"]))
     assert (si("roller_small_end_diameter"), si("roller_large_end_diameter")) == pytest.approx(
         (ends[0] * 1e-3, ends[1] * 1e-3), rel=1e-15)

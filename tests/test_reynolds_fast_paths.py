@@ -1,4 +1,4 @@
-"""The Reynolds solver's fast paths against scikit-fem's generic ones (issue 18, the 1M-DOF solve).
+"""The Reynolds solver's fast paths against scikit-fem's generic ones (the 1M-DOF solve of benchmarks/reynolds.py).
 
 Each replacement must give what scikit-fem gives: the boundary vertices without building the
 facets (``lubedyn.lubrication.mesh.boundary_vertices``), the Dirichlet dofs of ``_Problem``, the basis

@@ -1,10 +1,10 @@
-"""Issue 20, item 3 through the dynamics scene: RK4 is checked along the run, not only at t0.
+"""RK4's growth guard through the dynamics scene: RK4 is checked along the run, not only at t0.
 
 The 10 krpm drop (smoke) starts with the balls at rest on the races, where the linearised race
 traction is a real eigenvalue of about -1.5e6 1/s (``lubedyn.dynamics.integrators`` module docstring), five
 times the contact rate ``model.omega_max(y0)`` = 2.74e5 rad/s that the t0 check sees.  At
 ``integrator.dt = 2 us`` the t0 check passes (dt omega_max = 0.55) but RK4 is beyond its real-axis
-limit for the traction (h lambda ~ 3 > 2.785): before issue 20 the run completed with the ball slips
+limit for the traction (h lambda ~ 3 > 2.785): before the guard the run completed with the ball slips
 chattering over the first steps; now the growth guard stops it within 5 steps with the stable step.
 At 1 us the same run completes and reports its largest estimate (2.54, 9 % below the limit: the
 margin of this case)."""

@@ -1,7 +1,7 @@
-"""Paper A's roller EHL map kinds on a line-load axis (issue 22, section 4): geometry, the light-load
+"""Paper A's roller EHL map kinds on a line-load axis: geometry, the light-load
 domain, the high-speed limit of the Newton iteration, and the convention of the traction axis.
 
-Independent values: paper A's notes (reduced radii, 3.2), the rigid piezoviscous line contact solved
+Independent values: hand estimates of the reduced radii from paper A's Table 1, the rigid piezoviscous line contact solved
 here by quadrature (Martin's isoviscous film with Barus' reduced pressure), a second solve of the same
 discrete problem from another start."""
 from __future__ import annotations
@@ -20,16 +20,16 @@ from lubedyn.lubrication.ehl import solve_ehl
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 
-def test_reduced_radii_are_the_models_geometry_and_match_the_notes():
-    """R_x of the cone and cup kinds is tapered_geometry().reduced_radius (the model's own); paper A's
-    notes (3.2) give 9.41 / 11.93 mm, rounded: within 0.3 % (measured 0.16 % / 0.20 %)."""
+def test_reduced_radii_are_the_models_geometry_and_match_a_hand_estimate():
+    """R_x of the cone and cup kinds is tapered_geometry().reduced_radius (the model's own); a hand
+    estimate from Table 1 at the roller's mid-length gives 9.41 / 11.93 mm, rounded: within 0.3 % (measured 0.16 % / 0.20 %)."""
     from lubedyn.papers.wu2018.parameters import tapered_geometry
 
     g = tapered_geometry()
-    for race, notes in (("cone", 9.41e-3), ("cup", 11.93e-3)):
+    for race, estimate in (("cone", 9.41e-3), ("cup", 11.93e-3)):
         params = fp.KINDS[f"ehl_roller_{race}"].default_params()
         assert params["radius_x"] == g.reduced_radius(race)
-        assert params["radius_x"] == pytest.approx(notes, rel=3e-3)
+        assert params["radius_x"] == pytest.approx(estimate, rel=3e-3)
     with pytest.raises(InputError, match="race"):
         fp.roller_race_radius("flange")
 
@@ -59,7 +59,8 @@ def _rigid_barus_film(w, u, R, eta0, alpha):
 
 @pytest.mark.parametrize("race", ["cone", "cup"])
 def test_light_load_film_against_the_rigid_piezoviscous_solution(race):
-    """Centrifugal-only rollers (notes 3.2: 2.1 kN/m at 2 krpm) are hydrodynamic: at 0.7 kN/m, 8 m/s
+    """Centrifugal-only rollers (a Hertz hand estimate: 2.1 kN/m at
+    2 krpm) are hydrodynamic: at 0.7 kN/m, 8 m/s
     (M = 0.012) the kind's film on its film-scaled domain (smoke, 129 nodes) against the rigid Barus
     solution above: measured -2.8 % (cone and cup, also at 2.1 kN/m, 9.2 m/s: the inlet at -8 sqrt(2 R h);
     on 257 nodes -2.2 % against -16 sqrt(2 R h)), within 4 %.
@@ -75,7 +76,7 @@ def test_light_load_film_against_the_rigid_piezoviscous_solution(race):
 
 
 def test_high_speed_heavy_load_converges_and_is_unique():
-    """Where the Newton iteration's own start fails (issue 22, 2): 100 kN/m, 25 m/s (M = 0.97, L = 73;
+    """Where the Newton iteration's own start fails: 100 kN/m, 25 m/s (M = 0.97, L = 73;
     smoke, 129 nodes) -- solve_ehl from its start raises ConvergenceError (a clear error, no answer);
     the kind's fallbacks (continuation, then other Newton strategies on the same discrete problem)
     converge, and a solve of the same problem started from the converged 28 m/s state reaches the same
@@ -179,7 +180,7 @@ def test_rigid_limit_is_the_solvers_traction_and_heavy_loads_shear_elastically()
 
 
 def test_transition_band_traction_is_grid_converged():
-    """The cause of the roller maps' traction misses (issue 22): in the hydrodynamic-to-EHL transition the
+    """The cause of the roller maps' traction misses (cases/maps/README.md): in the hydrodynamic-to-EHL transition the
     rigid law's low-slip traction is carried by the one-cell pressure spike (cone, 31.66 kN/m, 17.7 m/s:
     mu(1e-4) = 1.58e-4 ... 2.98e-4 on 257 nodes, 5.79e-4 on 513, 7.12e-4 on 1025 (measured along a load
     sweep)), so it is neither grid-converged nor smooth in load.  The Maxwell traction of the same states
@@ -211,9 +212,10 @@ def test_grease_map_nodes_are_direct_grease_solves(grease):
     resolution (129 nodes; 100-135 kN/m, 9-10 m/s) holds at every node exactly the value of a direct grease
     solve (process cache cleared) and records the grease in its provenance.  Its films differ from the
     base-oil (0.1 Pa s, Eyring) map's in the direction the greases' apparent viscosities at the inlet's shear
-    rates give (notes 3.4 at 1e4-1e6 1/s: polyurea 0.67-0.18, calcium 0.74-0.080 Pa s; the rolling rate u/h_c
+    rates give (Table 2's 30 C rows at 1e4-1e6 1/s: polyurea 0.67-0.18, calcium 0.74-0.080 Pa s; the rolling rate u/h_c
     is ~1e6 1/s): polyurea thicker than the kind's Eyring oil (measured 1.82-1.94 times), calcium thinner
-    (0.85-0.91 times) -- the ranking reversal of notes 2.3.  At 135 kN/m, 10 m/s the film is the EHL solver's pinned grease film
+    (0.85-0.91 times) -- the ranking reversal of the two readings of phi
+    (docs/paper_a.md).  At 135 kN/m, 10 m/s the film is the EHL solver's pinned grease film
     (tests/test_ehl_hbflow.py, 257 nodes on [-20, 3] b: 8.7125 / 4.0897 um; measured here 8.787 / 4.082 um,
     the kind's longer inlet and 129 nodes) within 2 %, and 1-2 times the apparent-viscosity formula's film
     (lubedyn.lubrication.laws.grease.grease_line_film, "apparent"; 1.28 / 1.45 there).  The traction is not checked

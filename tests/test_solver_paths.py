@@ -128,7 +128,7 @@ def _geometric_axis(half, cells, ratio):
 
 @pytest.mark.parametrize("ratio, stalls", [(1.1, True), (1.0, False)])
 def test_auto_linear_solver_leaves_a_stalled_amg(monkeypatch, caplog, ratio, stalls):
-    """Issue 20, item 8.  Sphere-plane squeeze film on a P2 quad mesh of 60 x 60 cells graded
+    """Sphere-plane squeeze film on a P2 quad mesh of 60 x 60 cells graded
     geometrically (cell ratio 1.1 away from the contact) or uniform, 14161 DOFs; the "auto"
     switch is lowered below that size so that AMG-CG is tried.
 

@@ -1,4 +1,4 @@
-"""Kernels bound to their callables through numba function pointers (lubedyn.dynamics.specialise, issue 18):
+"""Kernels bound to their callables through numba function pointers (lubedyn.dynamics.specialise):
 the same bits as the kernel with the right-hand side linked in, one compiled kernel for every
 right-hand side of the same argument types, cached across processes without any file of ours, a
 clear error for a callable of the wrong kind, and compilation in a second process."""

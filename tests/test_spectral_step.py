@@ -1,6 +1,6 @@
 """RK4's step from the right-hand side's own spectrum (lubedyn.dynamics.integrators.spectral_step), and the
-tapered bearing's "auto" step that now takes it into account (issue 23: the auto step was not
-conservative under paper A's reading of phi).
+tapered bearing's "auto" step that now takes it into account (the closed-form step alone was
+not conservative under paper A's reading of phi; docs/paper_a.md).
 
 References: the closed-form stability limits of RK4 on a linear oscillator and a linear decay
 (lubedyn.dynamics.integrators.stability_limit, from the stability polynomial), and the integrator's own growth

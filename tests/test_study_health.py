@@ -1,6 +1,6 @@
 """Study tables carry each run's health (coupling/scenes/study.py): ``ok``, ``ok-with-warnings`` or ``failed`` per
 row of study.csv and study.json with the warnings' texts, a count per point, marks on study.png, and the
-warnings logged again when a resumed study reuses the runs (issue 36, item 3).
+warnings logged again when a resumed study reuses the runs.
 
 One zipped study of the cheap inclined slider (``--smoke``) with three members of health: a clean run, a
 run whose minimum film (10 um) is below ``validity.min_film = 1 mm`` (the film scene's validity warning),

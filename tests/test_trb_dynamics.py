@@ -1,4 +1,4 @@
-"""The tapered roller bearing's compiled right-hand side (lubedyn.dynamics.tapered.kernels, issue 23) against
+"""The tapered roller bearing's compiled right-hand side (lubedyn.dynamics.tapered.kernels) against
 independent values: the quasi-static solver's equilibrium (a separate 2-D implementation), the
 torque-free motion of an axisymmetric body (analytic precession, conserved energy and angular momentum),
 the return to equilibrium after a perturbation, the geometry's ideal kinematics, RK4's stability bound
@@ -262,8 +262,8 @@ def test_rk4_is_stable_below_the_contact_mode_bound_and_agrees_with_dopri5(runni
     """RK4's largest stable step on the smoke case, by bisection (stable: the contact loads within 5 % of
     DOPRI5's over 2 ms), lies within [0.8, 1.6] x 2 sqrt(2)/omega_max, RK4's stability limit on the
     imaginary axis with omega_max = sqrt(k/m) of a roller between its two raceways (the Palmgren law's
-    tangent stiffness at the start's cup load, :meth:`TaperedBearing.omega_max`, 1.5e5 rad/s, notes 3.5:
-    steps below about 2e-5 s); measured 2.07e-5 s against the bound's 1.86e-5 s.  At 1 us RK4 and DOPRI5
+    tangent stiffness at the start's cup load, :meth:`TaperedBearing.omega_max`, 1.5e5 rad/s; a hand
+    estimate from the line contact's approach gives steps below about 2e-5 s); measured 2.07e-5 s against the bound's 1.86e-5 s.  At 1 us RK4 and DOPRI5
     (rtol 1e-9) agree to 1e-6 of the largest load (measured 7e-8)."""
     tb, args, y0, t, ref = running
     bound = 2.0 * math.sqrt(2.0) / tb.omega_max()
@@ -280,9 +280,9 @@ def test_rk4_is_stable_below_the_contact_mode_bound_and_agrees_with_dopri5(runni
     assert _rk4_load_error(tb, args, y0, t, ref, 1e-6) < 1e-6
 
 
-def test_the_rib_sliding_speed_is_the_notes_estimate():
+def test_the_rib_sliding_speed_is_the_hand_estimate():
     """The roller end's ideal sliding on the rib at 2,400 rpm, from the model's contact point and ideal
-    kinematics, is the 4.7 m/s of paper_A_notes 3.1 (an independent estimate, rounded: 2 % asserted);
+    kinematics, is 4.7 m/s, a pure-rolling hand estimate from Table 1 (rounded: 2 % asserted);
     the kernel's flange sliding at the start state is the same (1e-4: the start has the rollers at their
     elastic approach; measured 3e-6), and eqs. 22-23 there give a
     friction of mu_a q exp(-B lambda^C) + f_grease with lambda = h_rib/sigma > 3 (no asperity share),
@@ -340,7 +340,7 @@ def test_rk4_step_limit_of_the_limited_traction():
 
 
 def test_frictionless_undamped_bearing_conserves_energy_and_axial_angular_momentum():
-    """Issue 23 sec. 3's invariants on the whole bearing: no traction, no flange friction, no cage,
+    """Invariants on the whole bearing: no traction, no flange friction, no cage,
     alpha_e = 0, 2,400 rpm under Fa 15 kN with the cone pushed 2 um off centre (so everything moves),
     2 ms with DOPRI5 at rtol 1e-10.  Every normal force lies in a meridional plane of the surface of
     revolution it comes from (cup about x, cone and rib about the cone's axis), so the axial angular

@@ -1,6 +1,6 @@
 """Tapered roller bearing geometry (lubedyn.lubrication.laws.tapered) and slice law (lubedyn.lubrication.laws.slices)
-against independent values: Table 1 of paper A, the numbers of shared/reference/paper_A_notes.md,
-Palmgren's line law, ISO/TS 16281's constant and closed forms written here."""
+against independent values: Table 1 of paper A, hand estimates from its tables (docs/paper_a.md,
+"Estimates at paper A's operating points"), Palmgren's line law, ISO/TS 16281's constant and closed forms written here."""
 import math
 
 import numpy as np
@@ -29,7 +29,7 @@ def literal():
 
 
 def test_common_apex_taper_and_raceways(apex):
-    """phi = atan(rho_m sin(alpha_r)/R_p) with the roller axis at (15 + 5)/2 deg (notes 2.1: 1.19 deg);
+    """phi = atan(rho_m sin(alpha_r)/R_p) with the roller axis at (15 + 5)/2 deg (1.19 deg);
     both raceway lines and the roller axis pass through one point of the bearing axis."""
     alpha_r = math.radians(10.0)
     phi = math.atan(RHO_M * math.sin(alpha_r) / R_P)
@@ -47,7 +47,8 @@ def test_common_apex_taper_and_raceways(apex):
 
 
 def test_literal_taper_and_misfit(literal):
-    """Half-taper atan(3.455/42.06) = 4.70 deg (notes 2.1); the generatrices miss the 15/5 deg
+    """Half-taper atan(3.455/42.06) = 4.70 deg (the printed end diameters read with
+    their labels swapped); the generatrices miss the 15/5 deg
     raceways by 5 - 4.70 = 0.30 deg: touching at the small end, the large end gap is l_e sin(0.30 deg)."""
     phi = math.atan(0.5 * (D_L - D_S) / L_E)
     assert math.degrees(phi) == pytest.approx(4.70, abs=0.005)
@@ -60,8 +61,8 @@ def test_literal_taper_and_misfit(literal):
         assert -gaps[1] == pytest.approx(L_E * math.sin(misfit), rel=0.02)
 
 
-def test_literal_end_sliding_reproduces_the_notes(literal):
-    """Notes 2.1: the literal roller ends slide +13.6 / -14.2 % against the cone.  Independent
+def test_literal_end_sliding_against_a_hand_estimate(literal):
+    """The literal roller ends slide -14.2 / +13.6 % against the cone.  Independent
     estimate from Table 1: roller radius ratio 1 +- (l_e/2) tan(phi)/rho_m over race radius ratio
     1 +- (l_e/2) sin(5 deg)/78.48 mm (pure rolling at mid-length)."""
     phi = math.atan(0.5 * (D_L - D_S) / L_E)
@@ -83,7 +84,8 @@ def test_common_apex_has_no_end_sliding(apex):
 
 
 def test_ideal_kinematics(apex):
-    """Cage speed at 2,400 rpm, cup fixed: about 1,057 rpm (notes 3.1; their conventions span 0.41 %).
+    """Cage speed at 2,400 rpm, cup fixed: about 1,057 rpm (a hand estimate from Table 1;
+    the usual conventions for gamma span 0.41 %).
     Independent: the roller's instantaneous axis is the cup line, so omega_c/omega_i =
     sin(alpha_i) sin(alpha_o - alpha_r) / (sin(alpha_o - alpha_i) sin(alpha_r)) for a common apex,
     equal to (1 - gamma)/2 with gamma = D_m cos(alpha_r)/d_m."""
@@ -95,7 +97,7 @@ def test_ideal_kinematics(apex):
     gamma = 2 * RHO_M * math.cos(ar) / (2 * R_P)
     assert k["cage speed [rad/s]"] / wi == pytest.approx((1 - gamma) / 2, rel=1e-12)
     assert k["cage speed [rad/s]"] / RPM == pytest.approx(1057.0, rel=0.005)      # 1,058.6 rpm
-    # roller spin 9,886 rpm and entrainment 11.03 m/s (notes 3.1, rounded there)
+    # roller spin 9,886 rpm and entrainment 11.03 m/s (hand estimates for pure rolling, rounded)
     assert k["roller spin relative to cage [rad/s]"] / RPM == pytest.approx(9886, rel=0.002)
     assert k["entrainment speed [m/s]"] == pytest.approx(11.03, rel=0.002)
     r_o, r_i = k["cup contact radius [m]"], k["cone contact radius [m]"]
@@ -126,7 +128,8 @@ def test_flange_hertz_constant(apex):
 
 
 def test_cage_and_guide_land_placement(apex):
-    """Beyond the large end (assumed, notes 2.2); 0.5 mm read as diametral."""
+    """Beyond the large end (assumed: Table 1's cage overlaps the cup raceway); 0.5 mm read as
+    diametral (eq. 43's Delta e = (r_y - r_d)/2)."""
     assert apex.land_radius == pytest.approx(0.5 * 196.10e-3 - 0.25e-3, rel=1e-12)
     large_end = np.array([0.0, R_P]) + 0.5 * L_E * apex.axis_direction
     assert apex.land_x - 0.5 * 4.93e-3 > large_end[0]
@@ -134,7 +137,8 @@ def test_cage_and_guide_land_placement(apex):
 
 def test_roller_mass_properties(apex, literal):
     """Frustum closed forms: m = rho pi l (R1^2 + R1 R2 + R2^2)/3, I_x = 3 m (R1^5 - R2^5)/(10 (R1^3 -
-    R2^3)); the literal roller weighs about 0.119 kg (notes 1)."""
+    R2^3)); the literal roller weighs about 0.119 kg (a hand estimate of a steel
+    frustum)."""
     for g in (apex, literal):
         r1, r2 = (float(g.roller_radius(s * 0.5 * L_E, crown=False)) for s in (1, -1))
         m = 7850 * math.pi * L_E * (r1**2 + r1 * r2 + r2**2) / 3

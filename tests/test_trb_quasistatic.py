@@ -37,7 +37,8 @@ def triangle(fa, cup, cone, flange, fc=0.0):
 
 
 def test_pure_axial_load_force_triangle(apex):
-    """F_a = 15 kN: the literal 15/5/83 deg angles give the notes' 3,409 / 3,378 / 592 N; the common
+    """F_a = 15 kN: the literal 15/5/83 deg angles give 3,409 / 3,378 / 592 N (the force triangle
+    solved by hand); the common
     apex (11.19/8.81/83 deg) its own triangle; every roller alike."""
     lit = tapered_geometry(reconciliation="literal", profile="straight")
     ref = triangle(15e3, math.radians(15), math.radians(5), math.radians(83))
@@ -66,7 +67,7 @@ def test_centrifugal_load_at_speed(apex):
     fc = m * wc**2 * (0.089 + u_cm * math.sin(g.roller_axis_angle))
     r = solve(g, axial_load=15e3, n_slices=10, inner_speed=2400 * RPM)
     assert r.centrifugal_force == pytest.approx(fc, rel=1e-6)
-    assert fc == pytest.approx(130, rel=0.03)            # notes 3.1: 130 N at 2,400 rpm
+    assert fc == pytest.approx(130, rel=0.03)            # hand estimate: 130 N at 2,400 rpm
     # the force acts at the mass centre where the loaded roller sits (its radius moves by the elastic
     # approach, 1e-6 of the load)
     rr = 0.089 + r.roller_displacements[0][1] + u_cm * math.sin(g.roller_axis_angle + r.roller_tilts[0])
@@ -134,7 +135,8 @@ class Laminae:
 
 def test_radial_load_against_independent_laminae(apex):
     """F_r = 20 kN, axial DOF locked (zero clearance): per-roller loads agree with the independent
-    laminae equilibrium; the most loaded roller carries 4.8-5.0 kN (notes 3.2)."""
+    laminae equilibrium; the most loaded roller carries 4.8-5.0 kN (a rigid-ring Hertz
+    estimate)."""
     n = 10
     lam = Laminae(apex, n)
     psi = 2 * math.pi * np.arange(Z) / Z
@@ -166,14 +168,14 @@ def test_radial_load_against_independent_laminae(apex):
 
 def test_preload_against_independent_laminae(apex):
     """Axial displacement 10/20/30/40 um (rigid rings): per-roller cup loads against the laminae
-    model; the same laminae model with the printed 15/5 deg angles reproduces the notes' rigid-ring
-    estimate (1,153 / 2,568 / 4,093 / 5,692 N), and the common apex carries less (its 11.19/8.81 deg
+    model; the same laminae model with the printed 15/5 deg angles reproduces a rigid-ring estimate
+    with those angles (1,153 / 2,568 / 4,093 / 5,692 N), and the common apex carries less (its 11.19/8.81 deg
     raceways close the wedge less per um)."""
     lam = Laminae(apex, 10)
-    notes = (1153, 2568, 4093, 5692)
+    rigid_ring = (1153, 2568, 4093, 5692)
     lit = Laminae(apex, 10)
     lit.n_o, lit.n_i, lit.n_f = normals(math.radians(15), math.radians(5), math.radians(83))
-    for s, note in zip((10e-6, 20e-6, 30e-6, 40e-6), notes):
+    for s, note in zip((10e-6, 20e-6, 30e-6, 40e-6), rigid_ring):
         d = np.array([-s, 0.0])
         _, q_o, q_i, q_f = lam.roller(d, np.array([-s, 0.0, 0.0]))
         r = solve(apex, axial_displacement=s, n_slices=10)

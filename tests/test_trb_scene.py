@@ -1,4 +1,4 @@
-"""The tapered scene's analysis and outputs (lubedyn.scenes.tapered, issue 23 sec. 2) against
+"""The tapered scene's analysis and outputs (lubedyn.scenes.tapered) against
 independent values: the periodicity measure on signals built to be periodic or not, the loaded-zone
 marker against the quasi-static solution, the dynamic loads settling on the quasi-static ones, the
 ParaView frame's rollers where their states put them, and the written files."""
@@ -37,7 +37,7 @@ def test_periodicity_is_one_for_a_motion_steady_in_the_load_frame_and_small_for_
 
 
 def test_converged_window_reports_a_drift_as_its_window_to_window_change():
-    """The converged window (issue 24: a mean with its uncertainty) on built signals, 17 rollers, all
+    """The converged window (a mean with its uncertainty) on built signals, 17 rollers, all
     loaded, 0.3 s sampled every 0.1 ms: a skew drifting as a + b t moves by exactly b x width between the
     last two windows (the means of a linear function over equal windows), so its relative change is
     b w/(a + b (T - w/2)) and the window is not converged beyond that tolerance; constant signals change
@@ -118,7 +118,7 @@ def test_frame_rollers_sit_where_their_states_put_them(smoke_run):
 
 
 def test_without_flange_friction_the_loads_stay_on_the_quasi_static_ones():
-    """Issue 23 sec. 3: with damping and a start without transients the dynamic loads sit on the
+    """With damping and a start without transients the dynamic loads sit on the
     quasi-static equilibrium (a separate solver).  Fa 15 kN at 2,800 rpm (every roller alike), 1 ms:
     the cup loads within 1e-3 (measured 2.5e-5); flange friction, which the quasi-static solver leaves
     out, moves them by 1.0 % (measured), the reason the case checks allow 2 %."""
@@ -132,7 +132,7 @@ def test_without_flange_friction_the_loads_stay_on_the_quasi_static_ones():
 
 
 def test_rk4_converges_at_fourth_order_in_the_mean_skew_and_tilt():
-    """Step convergence (issue 23 sec. 3): Fig. 5's point at smoke size (5 slices, 1 ms, window 0.5-1 ms),
+    """Step convergence: Fig. 5's point at smoke size (5 slices, 1 ms, window 0.5-1 ms),
     RK4 at 1, 1/2 and 1/4 of the model's stable-step estimate against DOPRI5 at rtol 1e-10: the errors
     of the loaded-zone mean skew and tilt fall at an observed order between 3 and 5 (RK4's 4; measured
     3.64, 3.84 for skew and 3.73, 3.86 for tilt, errors 1.9e-10 -> 1.1e-12 rad; on 5 ms at 10 slices in
@@ -154,7 +154,7 @@ def test_rk4_converges_at_fourth_order_in_the_mean_skew_and_tilt():
 
 @pytest.mark.parametrize("limiting_slope", [None, 0.04, 0.1])
 def test_trend_signs_that_hold_from_3_ms_to_the_papers_window(limiting_slope):
-    """Issue 24's trend-sign tests, chosen because they hold at every record length measured and under
+    """The trend-sign tests of paper A's Figs. 7 and 12, chosen because they hold at every record length measured and under
     the assumed value that moves the skew most (the limiting shear slope gamma_L, 0.04-0.1: the skew's
     level x1.8 at Fig. 5's point, studies/trb_sensitivity_limiting_slope.toml), not because they match
     paper A: the loaded rollers' mean skew grows with speed (2 -> 5 krpm: 1.5e-4 -> 1.4e-3 rad over 3 ms;

@@ -1,4 +1,4 @@
-"""The cone's tilt as an option (issue 23 sec. 1: ``operating.cone_tilt = "free"``) against independent
+"""The cone's tilt as an option (``operating.cone_tilt = "free"``) against independent
 values: the bearing's effective load centre (where the cup normals through the contact centres meet the
 axis, from the geometry alone), the quasi-static solver's tilt stiffness (a finite difference of a separate
 2-D implementation) against a damped dynamic run, the virtual work of the kernel's own contact energy, and

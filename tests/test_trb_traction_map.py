@@ -1,4 +1,4 @@
-"""Raceway traction "map" of the tapered bearing (issue 23, section 1; issue 22, fidelity options): the
+"""Raceway traction "map" of the tapered bearing (a fidelity option): the
 roller EHL maps (cases/maps/ehl_roller_cup.npz, ehl_roller_cone.npz) read by the compiled kernel at the
 run's entrainment speed (lubedyn.dynamics.tapered.model.TaperedBearing.map_traction_tables,
 lubedyn.dynamics.tapered.kernels.map_traction_coefficient).

@@ -1,4 +1,4 @@
-"""Units that cannot slip (issue 36, items 5 and 6): a bare number for a dimensioned key is SI, and
+"""Units that cannot slip: a bare number for a dimensioned key is SI, and
 every length is checked against the scales of its own scene.
 
 Before, ``clearance = 50`` (meant um) was a 50 m clearance that validated and ran; ``--set

@@ -18,7 +18,7 @@ ZERO_FLOOR = 1e-3  # relative-error floor, as a fraction of an output's largest 
 #: accuracy report's random off-grid points (``build_map(accuracy_tolerance=)``, a map case's
 #: ``build.accuracy_tolerance``) above which the map warns when built and when loaded
 #: (:meth:`FilmMap.accuracy_warning`).  No tolerance existed before: 3 % is the target the shipped maps
-#: are held to (issue 4: median < 1 %, max < 3 %; cases/maps/README.md, tests/test_maps.py), about the
+#: are held to (median < 1 %, max < 3 %; cases/maps/README.md, tests/test_maps.py), about the
 #: spread of the films themselves (K, C of neighbouring EHL solves jitter by 1-4 %), so a map within it
 #: adds no error a film model would not; every miss recorded there (4-877 %: interpolation across a
 #: front, or a solver's jitter) is above it.  The shipped maps meet it (worst: ball_ball damping 2.98 %);

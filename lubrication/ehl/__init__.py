@@ -170,18 +170,15 @@ Newtonian state at 15 kN), and on 1025 nodes no start converged at 10 kN,
 An ``initial`` from another grid is interpolated onto this one
 (:func:`_prolong`).
 
-Measured (circular, L = 10, benchmarks/ehl.py and benchmarks/README.md;
-CPU seconds of one core, the shared machine's wall times were 3-8 times
-more): M = 20 ... 200 converge on 33 x 33 (6 steps, 0.6 - 0.9 s); M = 20 ...
-500 on 65 x 65 (9 - 11 steps, 1.2 - 1.8 s); M = 20 ... 1000 on 129 x 129 (7 -
-13 steps, 8 - 31 s; M = 20, 50 and 1000 through the fallback chain; 1.6 - 3.7
-times less CPU than before these changes); M = 100 on 257 x 257 in 136 s
-(first-order chain, 16 second-order steps; before: 661 s wall): far from a
-10 s target, because each Newton step there costs about 5 s (sparse LU of
-the preconditioner 2.7 s, GMRES 2 s) and the outlet spike needs a global
-Newton phase on every level.  M = 200 on 257 x 257 fails clearly after
-both starts (247 s).  M = 500 on 33 x 33 and M = 1000 on 33 and 65 fail
-clearly (the film reaches the floor: outlet constriction not resolved).
+Reach (circular, L = 10; benchmarks/ehl.py times it, benchmarks/method_limits.py
+sweeps M and the grid): M = 20 ... 200 converge on 33 x 33, M = 20 ... 500 on
+65 x 65, M = 20 ... 1000 on 129 x 129 (M = 20, 50 and 1000 through the fallback
+chain) in 6 - 13 Newton steps; M = 100 converges on 257 x 257, but slowly, because
+each Newton step there needs a sparse LU of the preconditioner and GMRES on
+66,000 unknowns and the outlet spike needs a global Newton phase on every
+level.  M = 200 on 257 x 257 fails clearly after both starts; M = 500 on
+33 x 33 and M = 1000 on 33 and 65 fail clearly (the film reaches the floor:
+outlet constriction not resolved).
 
 Multigrid (``EHLOptions(method="multigrid")``, point contacts only)
 -------------------------------------------------------------------
@@ -194,18 +191,18 @@ returns the same :class:`EHLSolution` (film, pressure, friction, VTK) on
 the :class:`_Problem` nodes.  Grids nx = 16 2^k + 1 (17 ... 1025; ny chosen
 by :func:`multigrid_grid`); ``max_point_grid`` does not apply.  Steady
 contacts with a load or an approach; no squeeze, no line contacts.
-Measured (circular, L = 10, CPU s of one core, benchmarks/ehl.py and
-benchmarks/README.md): 257 x 257 in 2.0-2.6 s for M = 20 ... 1000 (11-12
-W(3,1)-cycles to a relative residual of 1e-5), 513 x 513 in 7-14 s; M = 1000
+Reach (circular, L = 10; benchmarks/ehl.py times it): 257 x 257 and 513 x 513
+for M = 20 ... 1000 in 11-12 W(3,1)-cycles to a relative residual of 1e-5, in
+seconds where the FEM Newton needs minutes; M = 1000
 converges from 129 x 129 on (on 65 x 65 the film goes negative: clear
 ConvergenceError), M = 2000 from 257, M = 3000 on 513 (stagnation error on
 129 and 257).  H_c converges at second order to the same limit as the FEM
 Newton (M = 100: Richardson 4.648 from both), but the finite-difference
 scheme is less accurate per grid (M = 100: -3.7 % on 129 x 129 against the
-FEM's -0.3 %), so in error against CPU time the two are about even at light
+FEM's -0.3 %), so in error against CPU time (benchmarks/ehl.py) the two are about even at light
 loads; the multigrid is ahead at M = 1000, converges where the Newton
-methods do not (M = 200 on 257 x 257, 513 x 513) and meets the 257 x 257
-speed target.  The default stays the FEM Newton (``auto``): it also gives squeeze
+methods do not (M = 200 on 257 x 257, 513 x 513) and solves 257 x 257 in
+seconds.  The default stays the FEM Newton (``auto``): it also gives squeeze
 films and the linearised normal coefficients, and it is the method the
 coupling code is validated with.  Limit, measured on paper B's most loaded
 ball / inner race contact (k = 11, M = 1001, L = 25.4,
@@ -245,16 +242,16 @@ one-level-finer grid; it warns (``EHLOptions(strict=True)``: raises),
 naming the figures and the grid needed (point contacts: the finer grid only up
 to 4500 nodes, 33 x 33 -> 65 x 65; above, the coarser level's estimate where
 that level has 8 cells across the Hertz contact).
-Measured cost (lubrication/ehl/checks.py has the sweep): a line contact's
-coarser level 0.04-0.11 s (median; at most 0.8 s), the finer one where it is
-solved 0.07-0.7 s (median; at most 2.2 s), beside solves of 0.1-1.7 s on
-129-1025 nodes; a point contact's nested level is reused where it converged,
-else solved in 0.1-2.7 s (solves of 1-90 s); its finer level 1-10 s.
+Cost: a line contact's coarser and finer levels each cost less than its solve;
+a point contact's nested level is reused where it converged, and its finer level
+(33 x 33 -> 65 x 65 only) costs seconds (benchmarks/method_limits.py records each
+solve's time with its checks).
 ``EHLOptions(check_resolution=False)`` skips these solves (the closed form and
 the inlet are still checked).
 ``EHLOptions.max_work`` bounds the Newton steps of one :func:`solve_ehl`
 call, every start and fallback included (default :data:`DEFAULT_MAX_WORK`:
-100 for points, 400 for lines, about 2.5 times the most measured to converge).
+100 for points, 400 for lines, about 2.5 times the most a converging contact of
+the EHL limit sweeps needs; :mod:`lubedyn.lubrication.ehl.budget`).
 
 Normal film coefficients: :func:`ehl_normal_coefficients`.
 

@@ -9,11 +9,12 @@ from ..errors import ConvergenceError
 from .problem import _Problem
 
 _BUDGET = contextvars.ContextVar("ehl_work_budget", default=None)
-# Default EHLOptions.max_work, about 2.5 times the most work measured to converge (Newton steps on
-# the requested grid, all starts and fallbacks): points 40.5 (M = 1000, L = 10, 129 x 129; M = 20:
-# 37.5, through the fallback chain; the bundled ball case 13.9), lines 142.7 (M = 20, L = 10 on 1025
-# nodes, through the fallback; the bundled roller slice 40.3).  A line step is cheap (dense LU; 1025
-# nodes: 0.01 s), a point step on 129 x 129 is 1.5 - 3.5 s.
+# Default EHLOptions.max_work, about 2.5 times the most work any converging contact of the EHL limit
+# sweeps needs (Newton steps on the requested grid, all starts and fallbacks; benchmarks/method_limits.py,
+# sweeps 1 and 2): points about 40 (M = 1000, L = 10 on 129 x 129, and M = 20 through the fallback
+# chain), lines about 140 (M = 20, L = 10 on 1025 nodes through the fallback); the bundled ball and
+# roller-slice cases need a third of that.  A line step is cheap (a dense LU), a point step on 129 x 129
+# costs seconds (benchmarks/ehl.py times them).
 DEFAULT_MAX_WORK = {"point": 100.0, "line": 400.0}
 
 

@@ -15,7 +15,7 @@ log = logging.getLogger(__name__)
 FORMULA_TOLERANCE = 0.10
 COARSE_TOLERANCE = 0.13
 # The resolution check for every density, viscosity and flow law (FORMULA_TOLERANCE and
-# COARSE_TOLERANCE: lubrication/ehl/budget.py).  Measured on Moes line contacts, M = 100 ... 2000,
+# COARSE_TOLERANCE: lubrication/ehl/budget.py).  Chosen on Moes line contacts, M = 100 ... 2000,
 # L = 5, 10, 20, with Barus, Dowson-Higginson (DH), Roelands + DH, Reynolds-Eyring (tau0 = 0.3 and 1 MPa)
 # and Herschel-Bulkley (tau_y = 1 kPa, M = 20 ... 100) lubricants on 129 ... 1025 nodes, each against the
 # same contact on 2049 nodes (or the finest that converged), and on circular contacts (Barus and DH,
@@ -180,7 +180,8 @@ def wants_finer(sol: EHLSolution):
     resolved film from a wrong one.  Point contacts (Newton methods): the coarser level did not converge,
     collapsed or differs by more than :data:`COARSE_TOLERANCE`, where the finer grid has at most
     :data:`FINER_POINT_NODES` nodes (else the coarser level's estimate stands).  Multigrid: never (its
-    FMG level is in the asymptotic range).  Module constants: measured."""
+    FMG level is in the asymptotic range).  Module constants: from the sweeps described above them
+    (tests/test_ehl_checks_all.py names the cases they separate)."""
     coarse = sol.info.get("coarse_level")
     if sol.info.get("method") == "multigrid":
         return None

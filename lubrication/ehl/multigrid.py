@@ -81,9 +81,9 @@ this length folds together are equal; 512 for 257 nodes, a power of two,
 against next_fast_len(2n - 1) = 540 before and 2n = 514, which contains the
 prime 257: three times slower; :func:`_level_spectrum`), the real
 transforms along y run on the n pressure rows only (:func:`_deflect`;
-257 x 257 films 1.6 ms against 4.4 ms with rfftn on 540^2), and a dense
-product on grids of at most 600 nodes (the coarsest, where the FFT call overhead dominates: 17 x 17
-dense 9 us; 33 x 33 dense 177 us against 51 us by FFT, measured).
+together several times faster than rfftn on the 540^2 padding at 257 x 257), and a dense
+product on grids of at most 600 nodes (the coarsest, where the FFT call overhead dominates; from
+33 x 33 on the FFT is faster).
 
 Stopping (target grid, after every cycle).  Residual test: the relative
 projected ("natural") residual res = sum_i |max(P_i + r_i/a_ii, 0) - P_i| /
@@ -127,18 +127,14 @@ one call per block of sweeps between H00 updates, for the Barus, Roelands
 and constant viscosities and the Dowson-Higginson and constant densities;
 other laws take the numpy path).  The line systems are solved by
 :func:`_band_solve_line` (band_solve's operations with fixed trip counts:
-23 against 47 ns per row), and the sweeps on the FFT levels read
-column-major copies of their arrays (lines run along x: 257 x 257 3.3
-against 5.0 ms per sweep).  Everything else is numpy.  Cost at 257 x 257,
-M = 100 (AMD EPYC, 2 shared CPUs, one solve timed by level, 0.74 s CPU with
-the timers): FFT and dense films 0.22 s, line sweeps 0.17 s on the FFT
-levels and 0.07 s for the 2500 coarsest sweeps (compiled blocks),
-coefficients 0.06 s, the rest (operator, residual and norm arithmetic,
-transfers) about 0.2 s; the grid setup (:class:`_Problem` without mesh and
-basis) 0.04 s.  Before these changes (main at ac1a7de) the same solve
-took 1.0-1.1 s: setup 0.27 s, sweeps 0.4 s (90 ns per node and sweep on
-every level, 17 x 17 included: the coarsest sweeps were computation, not
-call overhead), films 0.4 s.
+about twice as fast per row), and the sweeps on the FFT levels read
+column-major copies of their arrays (lines run along x: a third faster
+per sweep).  Everything else is numpy.  At 257 x 257 the films (FFT and
+dense), the line sweeps, the coefficients and the remaining array arithmetic
+(operator, residual, norms, transfers) each take a comparable share of a solve;
+the thousands of coarsest-grid sweeps are compiled blocks, since in Python their
+call overhead would dominate.  benchmarks/ehl.py (``--only multigrid``) times
+whole solves.
 
 References: Brandt, Multigrid techniques: 1984 guide (GMD Studien 85) and
 Trottenberg, Oosterlee & Schueller, Multigrid (Academic Press 2001) for the
@@ -256,9 +252,9 @@ def _band_solve_line(S, y, n):
     below the n of the system, zero in S, so the pivot search and the
     elimination need no ``min(n, ...)`` bounds (a zero sub-diagonal entry
     gives m = 0 and no update; columns >= n of S are zero and only ever feed
-    columns >= n), and the loops unroll.  Measured (AMD EPYC, 255 rows):
-    23.5 against 47 ns per row without pivoting, 42 against 54 ns with
-    frequent pivoting.  Returns False if a pivot is zero."""
+    columns >= n), and the loops unroll: about twice as fast per row as
+    band_solve without pivoting, somewhat faster with frequent pivoting.
+    Returns False if a pivot is zero."""
     for k in range(n):
         best = k
         amax = abs(S[k, 3])
@@ -433,9 +429,9 @@ def coefficients_kernel(P, H, ph, lam, vcode, vpar, dcode, dpar, rho, eps):
     """rho/rho0 and eps = rho H+^3/(eta/eta0 lambda) at p = ph max(P, 0) into ``rho``, ``eps``:
     the expressions of the laws' ``__call__`` (lubedyn.lubrication.laws.lubricant; Barus, Roelands,
     constant viscosity; Dowson-Higginson, incompressible) node by node, for the coarsest grid
-    (:func:`dense_relaxations`): at 17 x 17 2-11 us against numpy's 10-18 us (AMD EPYC,
-    medians of 50), equal to 7e-15 (Roelands' pow), 4e-16 otherwise.  Not used on the finer
-    grids: numpy's vectorised exp is faster there (257 x 257: 0.9-2.9 ms against 0.5-0.9 ms).
+    (:func:`dense_relaxations`), where numpy's per-call overhead dominates; equal to 7e-15
+    (Roelands' pow), 4e-16 otherwise.  Not used on the finer grids: numpy's vectorised exp is
+    faster there.
     A diverging iterate overflows exp to inf and gives eps = nan, as the numpy path does."""
     nx, ny = P.shape
     eta0, rho0 = vpar[0], dpar[0]
@@ -464,7 +460,7 @@ def dense_relaxations(count, P, H00, rigid, hcorr, dense, f, K, hx, hy, order, s
     before each, the film H = H00 + rigid + hcorr + dense P and the coefficients as
     :meth:`MultigridEHL.film` and :func:`coefficients_kernel`, then :func:`line_relax`; one call
     instead of three Python-level calls per sweep (17 x 17: 20 sweeps per visit, 16 visits per
-    W-cycle; 56 us per sweep from Python, 2500 sweeps in a 257 x 257 solve)."""
+    W-cycle; thousands of sweeps in a 257 x 257 solve)."""
     nx, ny = P.shape
     for _ in range(count):
         u = np.dot(dense, P.reshape(nx * ny))
@@ -483,10 +479,9 @@ def _deflect(P, fft_shape, spectrum):
     array, nor, backwards, on the rows that are cut off), the complex ones along
     x on every column as before.  The same 1-D transforms in the same order as
     scipy's ``rfftn``/``irfftn`` (equal to 1.3e-15 of the largest deflection;
-    not bitwise: pocketfft vectorises the n-D transform differently).  Measured
-    (AMD EPYC, CPU time, median of 30): 257 x 257 nodes (540 x 540 padded)
-    1.96 ms against 4.40 ms, 129^2 0.49 against 0.61 ms, 65^2 0.12 against
-    0.15 ms, 513^2 9.6 against 20.3 ms."""
+    not bitwise: pocketfft vectorises the n-D transform differently).  About
+    twice as fast as ``rfftn``/``irfftn`` at 257 x 257 and 513 x 513, a little
+    faster on small grids."""
     nx, ny = P.shape
     F0, F1 = fft_shape
     A = scipy.fft.rfft(P, n=F1, axis=1)
@@ -641,9 +636,8 @@ def _level_spectrum(Kk, kscale):
     2n - 2 folds onto one index, carry the same value and 2n - 2 suffices
     instead of 2n - 1 (the outputs 0 .. n-1 see every offset -(n-1) .. n-1
     once): the pair is averaged.  On the multigrid grids 2n - 2 is a power of
-    two (512 for 257 nodes, against 540 = next_fast_len(513)): 257 x 257
-    films 1.6 ms against 2.0-4.7 ms, 129^2 0.37 against 0.48 ms, 513^2 8.9
-    against 10.6 ms (AMD EPYC, loaded, medians of 40).  Axes where 2n - 2 is
+    two (512 for 257 nodes, against 540 = next_fast_len(513)), faster at
+    every multigrid grid size.  Axes where 2n - 2 is
     not an FFT-friendly length keep next_fast_len(2n - 1)."""
     K = np.asarray(Kk, dtype=float)
     shape = tuple((q + 1) // 2 for q in K.shape)
@@ -796,8 +790,8 @@ class MultigridEHL:
         o = self.o
         if lv.dense is None:
             # the sweep reads the arrays along x (lines i = 1 .. nx - 2 at fixed j): column-major copies make
-            # those reads contiguous; the same arithmetic (equal to the bit), 257 x 257: 3.3 ms against
-            # 5.0 ms per sweep, the five copies 0.2 ms (AMD EPYC, medians of 40)
+            # those reads contiguous; the same arithmetic (equal to the bit), a third faster per sweep, the
+            # five copies a small fraction of it
             P = np.asfortranarray(lv.P)
             line_relax(P, np.asfortranarray(H), np.asfortranarray(rho), np.asfortranarray(eps),
                        np.asfortranarray(lv.f), lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)

@@ -306,9 +306,9 @@ def _active_set_newton(P: _Problem, p, h00, W):
     return p, h00, history, gm
 
 
-# Moes M up to which a line contact's outlet constriction is resolved by nx nodes, measured (the
-# sweep of tests/test_ehl_limits.py's docstring: Moes line M = 10 ... 1000, L = 5 ... 20, active
-# set, against 1025 nodes): 129 nodes are within 3 % up to M = 100, 257 up to M = 300 (+19 % at
+# Moes M up to which a line contact's outlet constriction is resolved by nx nodes, from the sweep of
+# tests/test_ehl_limits.py's docstring (benchmarks/method_limits.py, sweep 1, repeats it: Moes line
+# M = 10 ... 1000, L = 5 ... 20, active set, against 1025 nodes): 129 nodes are within 3 % up to M = 100, 257 up to M = 300 (+19 % at
 # M = 500, +86 % at M = 1000), 513 up to M = 1000; M_resolved = (nx - 1)^2/220 (74, 298, 1191).
 def _resolved_line_M(nx):
     return (nx - 1) ** 2 / 220.0
@@ -346,16 +346,16 @@ def _iteration_limit_hint(P: _Problem, history, rejected, hn):
     return "; ".join(parts)
 
 
-# Moes M up to which the Newton methods converge on a circular contact of nx x nx nodes (measured, L = 10,
-# the package docstring: M = 200 on 33 x 33, 500 on 65 x 65, 1000 on 129 x 129; M = 500 on 33 x 33, 1000 on
-# 65 x 65 and 2000 on 129 x 129 fail).  The FAS multigrid converges at M = 1000 from 129 x 129 and M = 2000
-# from 257 x 257, and on 513 x 513 is within 10 % of the closed form at M = 2000 (measured -4 %; 257 x 257:
+# Moes M up to which the Newton methods converge on a circular contact of nx x nx nodes (L = 10, the
+# package docstring; benchmarks/method_limits.py, sweeps 1-2: M = 200 on 33 x 33, 500 on 65 x 65,
+# 1000 on 129 x 129; M = 500 on 33 x 33, 1000 on 65 x 65 and 2000 on 129 x 129 fail).  The FAS multigrid converges at M = 1000 from 129 x 129 and M = 2000
+# from 257 x 257, and on 513 x 513 is within 10 % of the closed form at M = 2000 (-4 %; 257 x 257:
 # -8 % at M = 1000, -18 % at M = 2000; tests/test_ehl_limits.py)
 def _converged_point_M(nx):
     return 8.0 * (nx - 1)
 
 
-# elongated point contacts (R_y/R_x > 4): the largest M measured to converge (paper B's ball / inner race,
+# elongated point contacts (R_y/R_x > 4): the largest M known to converge (paper B's ball / inner race,
 # cases/ehl_ball_inner_race.toml, k = 11, M = 1001, L = 25: 33 x 17, 65 x 33, 129 x 33 converge)
 ELONGATED_POINT_M = 1001.0
 

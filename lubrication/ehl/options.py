@@ -93,7 +93,7 @@ class EHLOptions:
     h_floor: float = 1e-4  # relative to the Hertz film scale b^2/R_x
     consistent_supg: bool = True  # second-order SUPG (recovered Poiseuille flux); False: first order
     active_set_passes: int = 1  # >1: re-solve after moving newly negative nodes to the cavitated set
-    max_point_grid: int = 257  # largest point-contact grid (nodes per side) measured to converge
+    max_point_grid: int = 257  # largest point-contact grid (nodes per side) known to converge
     method: str = "auto"  # "fischer_burmeister", "active_set"; auto: FB for points, active set for lines
     line_search: int = 12  # Armijo halvings of the FB Newton step
     first_order_start: str = "auto"  # "every_grid", "coarsest"; auto: lines every grid, points coarsest

@@ -77,8 +77,8 @@ class _Problem:
         self.xs = xs
         self.ys = None if contact.is_line else ys
         # Mesh and P1 basis are built on first use (:attr:`mesh`, :attr:`basis`): the multigrid method
-        # needs neither (measured at 257 x 257: mesh with named boundaries 0.06-0.08 s, basis 0.05-0.06 s,
-        # boundary dofs from the mesh facets 0.06-0.11 s, about a quarter of a whole multigrid solve).
+        # needs neither (at 257 x 257 mesh, basis and boundary dofs together cost about a quarter of a
+        # whole multigrid solve).
         # The dofs of P1 on scikit-fem's tensor meshes are the vertices, numbered x-major (vertex
         # ix * ny + iy sits at (xs[ix], ys[iy]); MeshLine: in the order of xs): so the dof locations,
         # the grid index of every dof (identity) and the boundary dofs follow from xs, ys alone
@@ -105,7 +105,7 @@ class _Problem:
         if not contact.is_line:
             self.rigid = self.rigid + loc[1] ** 2 / (2 * contact.radius_y)
         # assembly templates and nodal weights int phi_i dA, built on first use
-        # (1.6 s at 513 x 513, which the multigrid method does not need)
+        # (seconds at 513 x 513, which the multigrid method does not need)
         self._forms = None
         self._weights = None
         self._u = None

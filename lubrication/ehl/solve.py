@@ -35,7 +35,7 @@ def solve_ehl(contact: EHLContact, grid: EHLGrid = EHLGrid(), options: EHLOption
     (one that does not resolve a heavily loaded contact), the requested grid is solved once
     more from the Hertz start (``sequence=False``; measured: Dowson-Higginson line contacts at
     M = 500, L = 5 and Barus at M = 1000, L = 5 on 513 nodes, whose 257- and 129-node levels fail,
-    converge so in 0.6 s); if that fails too, the error names the level that failed and the
+    converge so); if that fails too, the error names the level that failed and the
     grid asked for.
 
     The solution is then checked a posteriori (:func:`_a_posteriori`: the one-level-coarser grid's
@@ -162,9 +162,9 @@ def _solve_hb(contact, grid, options):
 
 def _solve_ehl(contact, grid, options, initial=None, sequence=True, _final=True, _stage_info=None, _coarse=False,
                _loose=False, _fallback=True):
-    """:func:`solve_ehl` body (BLAS limited to one thread by the caller: the
-    dense LU of a 561-unknown contact took 0.18 s with two OpenBLAS threads
-    and 0.004 s with one on this project's 2-core machine)."""
+    """:func:`solve_ehl` body (BLAS limited to one thread by the caller: the dense LUs of a few hundred
+    unknowns are many times slower with two OpenBLAS threads than with one on a shared 2-core machine;
+    benchmarks/ehl.py times the solves)."""
     t0 = time.perf_counter()
     if options.method == "multigrid":
         return _solve_multigrid(contact, grid, options, initial)
@@ -364,10 +364,11 @@ def _resolution_levels(sol: EHLSolution, options: EHLOptions):
     of the solve's work budget for the coarser level, twice CHECK_MAX_ITER steps for the finer one.  The
     nested start's coarser level is used where it is a converged solution of the same scheme (point
     contacts up to 129 x 129, most of them: no extra solve).  Multigrid: the FMG level (:func:`_solve_multigrid`).
-    Measured cost (line contacts of 129 ... 1025 nodes, 215 cases): the coarser level 0.04 - 0.11 s
-    (median; at most 0.8 s), the finer one where asked for 0.07 - 0.7 s (median; at most 2.2 s), beside
-    solves of 0.1 - 1.7 s; point contacts: the coarser level 0.1 - 2.7 s where it is solved (solves of
-    1 - 90 s), the finer one (33 x 33 -> 65 x 65) 1 - 10 s."""
+    Cost: for line contacts both levels cost less than the solve itself; for point contacts the
+    coarser level is reused where the nested start converged, and the finer one is solved only up to
+    :data:`~lubedyn.lubrication.ehl.checks.FINER_POINT_NODES` nodes (33 x 33 -> 65 x 65), where it
+    costs seconds; ``EHLOptions(check_resolution=False)`` skips both (benchmarks/method_limits.py
+    records each solve's time with its checks)."""
     import dataclasses
 
     from .checks import wants_finer

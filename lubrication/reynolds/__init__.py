@@ -52,7 +52,7 @@ JFO with P2 elements is inaccurate: use P1
 The complementarity ``(p - p_cav) r = 0`` is imposed at the nodes, but P2
 vertex functions are negative over part of their support, so a nodal void
 fraction r >= 0 does not keep the interpolated fluid fraction in [0, 1] and
-the discrete rupture moves.  Measured on the Fowell pocket (rupture at the
+the discrete rupture moves.  On the Fowell pocket (rupture at the
 2 mm pocket edge): on 100/200/400 elements P2 ruptures one element early
 (1.90/1.95/1.975 mm) and its pressure error is 1.4e-2/6.8e-3/3.4e-3 of
 p_max (first order), against 3.1e-5/7.8e-6/2.0e-6 for P1 (second order;
@@ -67,7 +67,7 @@ hydrodynamic sources) or at its round-off floor (``<= 1e3 eps || |J| |p|
 ||R_0||) with a last pressure update ``<= max(rtol, 1e-8) max|p|``, or a
 last full Newton update ``<= rtol max|p|`` whatever the residual.  The last
 branch is the round-off floor too: the residual of an
-iterate cannot fall below the backward error of the sparse LU (measured on
+iterate cannot fall below the backward error of the sparse LU (on
 the nested Martin cylinder of tests/test_solver_paths.py: 1.05e-11 ||R_0||,
 about 40 eps || |J| |p| ||; with residuals perturbed by 30 round-off units,
 tests/roundoff.py, 1.5e-9 ||R_0|| > 10 rtol, while the Newton update was

@@ -107,8 +107,8 @@ def _at_roundoff_floor(R, Jp, Jr, p, r, mask) -> bool:
     """||R|| <= ROUNDOFF_FLOOR eps || |J| |u| || on ``mask``: the residual is as small as the
     round-off of its own terms (|J| |u|, u = (p, r)) lets it be.
 
-    Measured: a 1-D inclined slider of 1e5 P1 cells (linear: one solve is exact up to round-off)
-    sits at ||R|| = 0.2 eps || |J||p| ||, which is 1.8e-7 ||R_0|| because the terms cancel to a
+    A 1-D inclined slider of 1e5 P1 cells (linear: one solve is exact up to round-off;
+    tests/test_roundoff.py) sits at ||R|| = 0.2 eps || |J||p| ||, which is 1.8e-7 ||R_0|| because the terms cancel to a
     source 1e7 times smaller, with a Newton step of 5e-10 |p| (cond ~ N^2): neither 10 rtol
     ||R_0|| nor a step below rtol could be met and the solve ran out of iterations.  The nested
     Martin cylinder sits at 42 eps (the sparse LU's backward error).  Used only with a step below

@@ -68,9 +68,9 @@ def assemble_diffusion(basis, a) -> sp.csr_matrix:
     """``asm(diffusion_form, basis, a=a).tocsr()``: the matrix of int a grad u . grad v.
 
     ``a``: array (nelems, nqp) at the quadrature points.  Why not ``asm``: on the
-    1M-DOF P1 benchmark (1000 x 1000 quads) it spent 1.8-2.9 s, of which the form
-    kernel evaluated all 16 local pairs through ``DiscreteField`` arithmetic (ndarray
-    subclass wrapping, 0.7 s), and ``eliminate_zeros`` copied the 16M COO entries even
+    1M-DOF P1 benchmark (1000 x 1000 quads, benchmarks/reynolds.py, profiled there) the
+    form kernel evaluated all 16 local pairs through ``DiscreteField`` arithmetic (ndarray
+    subclass wrapping, a large share of the assembly), and ``eliminate_zeros`` copied the 16M COO entries even
     when none is zero.  Here the kernel is evaluated on plain arrays for i <= j only
     (a grad phi_j . grad phi_i is symmetric bit for bit: the products commute), zeros
     are removed only if there are any, and the COO triplets are laid out exactly as
@@ -153,8 +153,8 @@ class _InverseJacobianOnce:
 
     Why: scikit-fem's ``ElementH1.gbasis`` asks the mapping for ``invDF`` once per basis
     function, and the isoparametric (quad) mapping recomputes the inverse Jacobian every
-    time: 4 times 0.15-0.2 s on a 1000 x 1000 quad mesh, 0.6-0.8 s of repeated work in
-    building the basis.  Used only while :func:`make_basis` builds the basis (which then
+    time: four times the same work on a quad mesh, a visible share of building the basis
+    of the 1M-DOF benchmark (benchmarks/reynolds.py).  Used only while :func:`make_basis` builds the basis (which then
     gets the mesh's own mapping back), so the cached array does not outlive it.  The same
     numbers: the one computation is scikit-fem's own.
     """

@@ -70,7 +70,8 @@ class _Problem:
     def tau(self):
         """Streamline-diffusion parameter h_K/(2 order |u_m|) at the quadrature points (0 where
         u_m = 0).  Computed on first use: only JFO cavitation (and its film coefficients) reads
-        it, and the element sizes cost 0.4 s on a 1000 x 1000 quad mesh."""
+        it, and the element sizes are costly on large quad meshes (the 1M-DOF benchmark of
+        benchmarks/reynolds.py)."""
         if self._tau is None:
             speed = np.sqrt(np.sum(self.um**2, axis=0))
             order = 2.0 if self.film.element == "P2" else 1.0
@@ -130,9 +131,9 @@ class _Problem:
 
         P1 (vertex dofs only): the nodal dofs of :func:`lubedyn.lubrication.mesh.boundary_vertices`,
         which finds them without building the mesh's facets (scikit-fem's
-        ``boundary_facets`` costs 0.9-1.5 s on a 1000 x 1000 quad mesh, about a sixth of the
-        whole solve).  Other elements: scikit-fem's ``get_dofs(boundary_facets())`` (their
-        basis has built the facets already, for the edge dofs).  Both give the same set
+        ``boundary_facets`` is a sizeable share of the 1M-DOF solve of benchmarks/reynolds.py).
+        Other elements: scikit-fem's ``get_dofs(boundary_facets())`` (their basis has built the
+        facets already, for the edge dofs).  Both give the same set
         (``tests/test_reynolds_fast_paths.py``).
         """
         b, mesh = self.basis, self.film.mesh
@@ -150,7 +151,7 @@ class _Problem:
         ``pressure=False`` (only for pressure-independent lubricants, ``self.linear``): the
         laws are evaluated at gauge pressure 0 instead of at the interpolated p, which they do
         not read, and ``pq``/``gp`` are None: this skips interpolating p and its gradient
-        (0.15-0.25 s on the 1M-DOF benchmark).
+        (a visible share of the 1M-DOF benchmark's assembly, benchmarks/reynolds.py).
         """
         lub = self.film.lubricant
         if pressure:
@@ -216,10 +217,9 @@ class _Problem:
         if use_amg:
             import pyamg
 
-            # classical AMG: on the 1M-DOF benchmark matrix setup 0.9-1.0 s against
-            # 1.5-7.5 s for smoothed aggregation (whose Jacobi prolongation smoother
-            # estimates spectral radii; 7.5 s with both cores busy), 9 CG
-            # iterations against 11
+            # classical AMG: on the 1M-DOF benchmark matrix (benchmarks/reynolds.py) its setup is
+            # faster than smoothed aggregation's (whose Jacobi prolongation smoother estimates
+            # spectral radii, slow on a busy machine) and CG needs fewer iterations
             probe = opts.linear_solver == "auto" and not getattr(self, "amg_checked", False)
             maxiter = amg_probe_iterations(opts.amg_tol) if probe else 200
             ml = pyamg.ruge_stuben_solver(M.tocsr())

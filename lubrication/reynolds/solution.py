@@ -82,22 +82,15 @@ def per_unit_width(key: str) -> str:
 
 
 # Elements across the minimum-gap zone (h < 2 h_min; FilmSolution.min_gap_elements) below which a
-# film warns.  Measured on the finite journal of cases/journal_finite.toml (L/D = 1, Reynolds
-# cavitation) at eps 0.6/0.9/0.99/0.999 on 32x8 to 256x64 quads; elements across, load error
-# against 256x64 P2 (at eps 0.999 that reference is itself within 0.9 % of 128x32):
-#   P2: 0.13 el. -66 % (eps 0.999 on the bundled smoke mesh 32x8), 0.43 el. -22.5 % (eps 0.999 on
-#       the bundled 64x16), 1.06 el. -5.2 %, 1.96 el. -2.2 % (eps 0.99); 1.66 el. -0.85 %,
-#       3.69 el. -0.26 %, 5.1 el. +0.4 %, 8.6 el. and more within 0.04 %
-#   P1: 1.26 el. -55 %, 2.1 el. -12 %, 3.8 el. -3.6 %, 5.3 el. -3.2 %, 8.75 el. -1.1 %,
-#       17 el. -0.34 % (at eps 0.6 P1 32x8 is 1.6 % low with 12 el.: its error is the whole
-#       film's resolution, not the zone's)
-# Bundled cases: ball_ball_squeeze's smoke mesh has 2.44 el. (P2, -0.4 % against its full mesh,
-# 6 el.), the sphere squeeze 4.5, the journal (eps 0.6) 25 (12 on its smoke mesh).  The P2
-# errors overlap near 2 el. (1.66 el. -0.85 %, 1.96 el. -2.2 %, 2.44 el. -0.4 %): 2.2 (P2)
-# warns for every measured error beyond 1 % (margin 1.12x on 1.96 el.) and passes the bundled
-# smoke meshes (margin 1.11x on 2.44 el.; the estimate depends on the geometry and mesh only,
-# not on the solve, so round-off cannot move it); 12 (P1) warns for every zone-limited error
-# beyond 1 % (margin 1.4x on 8.75 el.).
+# film warns.  benchmarks/method_limits.py (sweep 3) measures the load error of the finite journal of
+# cases/journal_finite.toml (L/D = 1, Reynolds cavitation) at eps 0.6 ... 0.999 on 32x8 ... 256x64 quads
+# against the finest mesh, with the elements across the zone of each: P2 errors fall below 1 % at about
+# 2 elements across and below 0.05 % from about 8, P1 ones need about 10 for 1 % (at small eccentricity
+# a coarse P1 mesh's error is the whole film's resolution, not the zone's).  The P2 errors overlap near
+# 2 elements, so 2.2 (P2) warns for every error beyond 1 % in that sweep and passes the bundled cases'
+# smoke meshes (ball_ball_squeeze's has the fewest, about 2.4); 12 (P1) warns for every zone-limited
+# error beyond 1 %.  The estimate depends on the geometry and mesh only, not on the solve, so round-off
+# cannot move it; tests/test_film_resolution.py pins the element counts of the journal at eps 0.999.
 MIN_GAP_ELEMENTS = {"P1": 12, "P2": 2.2}
 
 
@@ -311,9 +304,8 @@ class FilmSolution:
         """One line if a JFO film's fluid fraction leaves [0, 1] at a node (below -1e-9): the
         complementarity bounds the void fraction r = 1 - theta from below only, so a film that
         would need more gas than gap (theta < 0) converges to a state no fluid can be in.
-        Measured on the bundled journal with JFO cavitation (P1, 64x16, supply 1e5 Pa at the ends)
-        and its centre moving along x at v: theta_min 0.106 at v = 0, -0.13 at +0.05 m/s,
-        -0.40 at -0.01 m/s, -0.27 at -0.2 m/s; 96x24 at -0.5 m/s: -651."""
+        The bundled journal with JFO cavitation whose centre moves sideways shows it
+        (tests/test_film_stop_reasons.py, tests/test_film_health.py)."""
         if self.film.cavitation.model != "jfo":
             return None
         theta = self.fluid_fraction_dofs[self.problem.free]
