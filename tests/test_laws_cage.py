@@ -241,14 +241,12 @@ def test_guide_land_options_against_the_reynolds_fem(eps, short_diff, paper_rati
     assert np.linalg.norm(pp) / np.linalg.norm(F) == pytest.approx(paper_ratio, rel=0.01)
     # the combined leaf hands the ring the FEM's force on the land, the cage its negative (kept reaction)
     out = L.guide_land_force(-eps * C_LAND, 0.0, 0.0, 0.0, 251.3, 110.8, R_LAND, C_LAND, B_LAND, ETA, ric, 2e-6,
-                             1e8, 100.0, 0.1, 0, 0, 1, *_EMPTY_MAP)
+                             1e8, 100.0, 0.1, 0, 0, 1)
     assert np.array(out[3:5]) == pytest.approx(F, rel=6e-3)
     assert np.array(out[0:2]) == pytest.approx(-F, rel=6e-3)
     assert L.guide_land_force(-eps * C_LAND, 0.0, 0.0, 0.0, 251.3, 110.8, R_LAND, C_LAND, B_LAND, ETA, ric, 2e-6,
-                              1e8, 100.0, 0.1, 0, 0, 0, *_EMPTY_MAP)[3:] == (0.0, 0.0, 0.0)  # eq. 46
+                              1e8, 100.0, 0.1, 0, 0, 0)[3:] == (0.0, 0.0, 0.0)  # eq. 46
 
-
-_EMPTY_MAP = (np.zeros(2), np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2)))
 
 
 @pytest.mark.parametrize("switch", [0, 1])
@@ -259,7 +257,7 @@ def test_guide_land_boundary_state(switch):
     F_cage) (the pressure couple of the eccentric pair)."""
     dh0, kh, ch, mu = 2e-6, 1e8, 100.0, 0.1
     ric = L.equivalent_radius(R_LAND - C_LAND, R_LAND)
-    common = (251.3, 110.8, R_LAND, C_LAND, B_LAND, ETA, ric, dh0, kh, ch, mu, 0, switch, 1, *_EMPTY_MAP)
+    common = (251.3, 110.8, R_LAND, C_LAND, B_LAND, ETA, ric, dh0, kh, ch, mu, 0, switch, 1)
     e_lim = C_LAND - dh0
     w = (0.0, -1e-3)
     above = L.guide_land_force(0.0, e_lim * (1 - 1e-12), *w, *common)

@@ -88,14 +88,6 @@ width b.  Options:
   the FEM (tests/test_laws_cage.py) is the independent check.
   Friction torque on the cage: the Couette shear 2 pi eta r^3 b (omega_land - omega_cage) /
   (c sqrt(1 - eps^2)) (the integral of eta r dOmega/h over the full circle).
-* ``map`` (:func:`guide_land_map_force`): a table of the Reynolds-cavitated finite journal given by
-  the caller (the tapered model does not use it: its land is the short bearing).  The
-  Reynolds right-hand side in the frame of the line of centres is g = A sin(theta) - e' cos(theta)
-  with A = e (u_m/r - psi') (whirl psi') and e' the radial speed; the cavitated problem is positively
-  homogeneous in (A, e'), so F = eta G r b^3/c^3 Phi(eps, beta)/(1 - eps^2)^2 with G = |(A, e')| and
-  beta = atan2(e', A); the mirror theta -> -theta maps A -> -A (tangential force flips), so the
-  table covers beta in [-pi/2, pi/2].  Bilinear in (eps, beta); NaN outside the eps axis (the
-  integrators report a non-finite state).
 * ``paper``: eq. 44 as the paper writes it, the roller/crossbeam laws of eq. 34 with the equivalent
   radius r_ic = r_d r_y / (r_y - r_d) of the two conformal circles and h = delta' (eq. 43).
 
@@ -127,7 +119,7 @@ HALF_SOMMERFELD_COEFFICIENT = 4.0
 
 POCKET_SWITCHES = {"continuous": 0, "paper": 1}
 POCKET_FILM_LAWS = {"martin": 0, "paper": 1}
-LAND_FILMS = {"short_bearing": 0, "paper": 1, "map": 2}
+LAND_FILMS = {"short_bearing": 0, "paper": 1}
 
 # 32-point Gauss-Legendre rule on [-1, 1] (numpy.polynomial.legendre.leggauss)
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(32)
@@ -298,67 +290,14 @@ def guide_land_paper(e_x, e_y, v_x, v_y, equivalent, clearance, width, eta, surf
     return -q * ux, -q * uy
 
 
-@njit(**INLINE)
-def _bilinear(x, y, xs, ys, table):
-    i = np.searchsorted(xs, x) - 1
-    if i < 0:
-        i = 0
-    if i > xs.size - 2:
-        i = xs.size - 2
-    j = np.searchsorted(ys, y) - 1
-    if j < 0:
-        j = 0
-    if j > ys.size - 2:
-        j = ys.size - 2
-    tx = (x - xs[i]) / (xs[i + 1] - xs[i])
-    ty = (y - ys[j]) / (ys[j + 1] - ys[j])
-    return ((1.0 - tx) * ((1.0 - ty) * table[i, j] + ty * table[i, j + 1])
-            + tx * ((1.0 - ty) * table[i + 1, j] + ty * table[i + 1, j + 1]))
-
-
-@njit(**INLINE)
-def guide_land_map_force(e_x, e_y, v_x, v_y, radius, clearance, width, eta, surface_speed, eps_axis, beta_axis,
-                         radial, tangential):
-    """``(F_x, F_y)`` [N] on the journal from the FEM map (module docstring): ``eps_axis`` (increasing),
-    ``beta_axis`` (increasing, within [-pi/2, pi/2]), tables ``radial``/``tangential`` [n_eps, n_beta] of
-    Phi = F c^3 (1 - eps^2)^2/(eta G r b^3) along e/|e| and its +90 deg rotation.  NaN when eps lies
-    outside the eps axis.  Same frame as :func:`guide_land_short_bearing`."""
-    e = math.hypot(e_x, e_y)
-    if e > 0.0:
-        ux = e_x / e
-        uy = e_y / e
-    else:
-        s = math.hypot(v_x, v_y)
-        if s == 0.0:
-            return 0.0, 0.0
-        ux = v_x / s
-        uy = v_y / s
-    eps = e / clearance
-    if eps < eps_axis[0] or eps > eps_axis[-1]:
-        return math.nan, math.nan
-    e_dot = v_x * ux + v_y * uy
-    A = e * 0.5 * surface_speed / radius - (-v_x * uy + v_y * ux)
-    G = math.hypot(A, e_dot)
-    if G == 0.0:
-        return 0.0, 0.0
-    mirror = -1.0 if A < 0.0 else 1.0
-    beta = math.atan2(e_dot, abs(A))
-    scale = eta * G * radius * width ** 3 / clearance ** 3 / (1.0 - eps * eps) ** 2
-    fr = scale * _bilinear(eps, beta, eps_axis, beta_axis, radial)
-    ft = mirror * scale * _bilinear(eps, beta, eps_axis, beta_axis, tangential)
-    return fr * ux - ft * uy, fr * uy + ft * ux
-
-
 @njit(**JIT)
 def guide_land_force(c_x, c_y, w_x, w_y, omega_land, omega_cage, radius, clearance, width, eta, equivalent,
-                     critical_film, k_h, c_h, mu_bd, film, switch, keep_reaction, eps_axis, beta_axis, radial,
-                     tangential):
+                     critical_film, k_h, c_h, mu_bd, film, switch, keep_reaction):
     """The cage on its guide land, eqs. 43-46: ``(Fc_x, Fc_y, Tc, Fr_x, Fr_y, Tr)``, force [N] and torque
     [N m] on the cage and on the guiding ring.  ``(c_x, c_y)`` [m], ``(w_x, w_y)`` [m/s]: the cage centre
     relative to the land's and its velocity; ``film`` one of :data:`LAND_FILMS`; ``switch`` as
     :func:`pocket_force`; ``keep_reaction`` 0 reproduces eq. 46 (the ring gets nothing), 1 (default of
-    the model) the momentum-conserving reaction (module docstring).  The map arrays are ignored unless
-    ``film`` is 2."""
+    the model) the momentum-conserving reaction (module docstring)."""
     e = math.hypot(c_x, c_y)
     limit = clearance - critical_film
     ex, ey, vx, vy = -c_x, -c_y, -w_x, -w_y  # the journal (land) relative to the bearing (cage)
@@ -374,9 +313,6 @@ def guide_land_force(c_x, c_y, w_x, w_y, omega_land, omega_cage, radius, clearan
     U = radius * (omega_land + omega_cage)
     if film == 1:
         fx, fy = guide_land_paper(ex, ey, vx, vy, equivalent, clearance, width, eta, U)
-    elif film == 2:
-        fx, fy = guide_land_map_force(ex, ey, vx, vy, radius, clearance, width, eta, U, eps_axis, beta_axis,
-                                      radial, tangential)
     else:
         fx, fy = guide_land_short_bearing(ex, ey, vx, vy, radius, clearance, width, eta, U)
     eps_f = math.hypot(ex, ey) / clearance
