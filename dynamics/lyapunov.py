@@ -113,6 +113,7 @@ from numba import types as _nt
 from .errors import DynamicsInputError
 from .integrators import chunk_bounds, put, put2, rhs_signature, stability_limit
 from .specialise import register_kernel, specialise
+from .errors import IntegrationError
 
 logger = logging.getLogger(__name__)
 
@@ -507,8 +508,6 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
     accumulated = float(accumulated[0])
     y_final = z * scale
     if status != 0:
-        from .errors import IntegrationError
-
         raise IntegrationError(f"lyapunov_spectrum: non-finite state or tangent vector before t = {t_end:.6g} s "
                                f"(dt = {dt:g} s too large?)", status=status, t_reached=t_end)
     lam = log_sum / accumulated

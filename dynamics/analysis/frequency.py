@@ -7,6 +7,7 @@ cage-less bearing: its dominant line lies at 950-1,000 Hz at 3,000 rpm (:func:`v
 from __future__ import annotations
 
 import numpy as np
+from lubedyn.dynamics.spectra import amplitude_spectrum
 
 #: the bearing lines that set the spectrum's axis (their first harmonics 2 f included)
 SPECTRUM_LINES = ("Shaft [Hz]", "Ball train (cage) [Hz]", "Ball spin [Hz]", "Ball defect (2 x spin) [Hz]",
@@ -31,8 +32,6 @@ def dominant_frequency(t, signal, band):
     """(frequency [Hz], amplitude) of the largest line of the Hann-windowed amplitude spectrum
     (:func:`lubedyn.dynamics.spectra.amplitude_spectrum`) within ``band`` = (low, high) [Hz]; (None, None)
     when the band holds no bin."""
-    from lubedyn.dynamics.spectra import amplitude_spectrum
-
     t = np.asarray(t, dtype=float)
     f, amp = amplitude_spectrum(signal, 1.0 / float(t[1] - t[0]))
     inside = np.flatnonzero((f >= band[0]) & (f <= band[1]))

@@ -9,14 +9,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from lubedyn.dynamics.cageless import DIAG_NAMES, RING_DIAG_NAMES
 
 
 
 def run_columns(model, Y, diag, ring) -> dict:
     """The columns of ``timeseries.npz`` (views of the arrays, no copies) from a run's state,
     ball diagnostics (m, Z, k) and ring diagnostics."""
-    from lubedyn.dynamics.cageless import DIAG_NAMES, RING_DIAG_NAMES
-
     columns = {n: Y[:, i] for i, n in enumerate(model.state_names())}
     for j in range(model.n_balls):
         for k, n in enumerate(DIAG_NAMES):

@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from lubedyn.dynamics.analysis.motion import n_balls
+from lubedyn.dynamics.rotations import to_scipy
 
 
 
@@ -17,8 +18,6 @@ def angular_displacement(t, quaternion, body_rate) -> np.ndarray:
     it does not wrap at pi: a ball spinning at 2,000 rad/s turns 40 rad in 20 ms."""
     from scipy.integrate import cumulative_trapezoid
     from scipy.spatial.transform import Rotation
-
-    from lubedyn.dynamics.rotations import to_scipy
 
     q = np.asarray(quaternion, dtype=float)
     q = q / np.linalg.norm(q, axis=1, keepdims=True)
@@ -45,8 +44,6 @@ def axial_rates(t, series) -> np.ndarray:
     """Every ball's axial angular rate (m, Z) [rad/s]: the z component of its inertial angular
     velocity R(q) w_body (planar: its spin speed), the rate of its z angular displacement."""
     from scipy.spatial.transform import Rotation
-
-    from lubedyn.dynamics.rotations import to_scipy
 
     out = np.zeros((len(t), n_balls(series)))
     for j in range(out.shape[1]):

@@ -11,6 +11,7 @@ from lubedyn.lubrication.laws.collision import BB_K
 
 from .layout import P_FX, P_FY, P_FZ, P_KI, P_KO, P_RI, P_RIC, P_RO, P_ROC
 from .model import CagelessBearing
+from ..rotations import quat_rotate as _qr
 
 def bearing_energy(model: CagelessBearing, y: np.ndarray) -> float:
     """Mechanical energy [J] of a state: kinetic energy of balls, ring (and
@@ -62,8 +63,6 @@ def angular_momentum_z(model: CagelessBearing, y: np.ndarray) -> float:
     for j in range(Z):
         b = model.ball_offset(j)
         if model.fidelity.dof == "6dof":
-            from ..rotations import quat_rotate as _qr
-
             w = np.empty(3)
             q = y[b + 3:b + 7] / np.linalg.norm(y[b + 3:b + 7])
             _qr(q, y[b + 10:b + 13].copy(), w)

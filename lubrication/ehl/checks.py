@@ -9,6 +9,8 @@ import numpy as np
 from ..errors import ConvergenceError
 from .contact import EHLContact
 from .solution import EHLSolution
+from ..laws.film import moes_line_central, nijenbanning_central
+from ..laws.lubricant import Barus, Incompressible
 
 log = logging.getLogger(__name__)
 
@@ -69,9 +71,6 @@ def closed_form_central_film(contact: EHLContact):
     or None outside the conditions it was fitted and measured for: a Barus, incompressible,
     Newtonian lubricant, given load, a line or circular contact, and Moes' M and L inside
     :data:`FORMULA_ENVELOPE` (Moes' line formula; Nijenbanning-Venner-Moes for circles)."""
-    from ..laws.film import moes_line_central, nijenbanning_central
-    from ..laws.lubricant import Barus, Incompressible
-
     lub = contact.lubricant
     if (contact.load is None or not lub.is_newtonian or not isinstance(lub.viscosity, Barus)
             or not isinstance(lub.density, Incompressible) or contact.squeeze_velocity != 0.0):

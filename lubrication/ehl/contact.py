@@ -11,6 +11,7 @@ from ..errors import InputError, require_positive, unknown_choice
 from ..laws import contact as hertz
 from ..laws.contact import hamrock_brewe_radius_ratio
 from ..laws.lubricant import HB_PHI_CAP, Lubricant, eyring_flow_factor
+from ..laws.lubricant import Barus, Incompressible
 
 TRACTION_MODELS = ("newtonian", "limiting_shear", "eyring")
 
@@ -201,8 +202,6 @@ class EHLContact:
         only if ``mean_speed`` is None (then alpha = L/((2U)^(1/4) E')), else
         alpha is chosen from L at that speed.  Returns a Barus lubricant.
         """
-        from ..laws.lubricant import Barus, Incompressible
-
         Ep = 2 * e_star
         if mean_speed is None:
             mean_speed = 1.0
@@ -236,8 +235,6 @@ class EHLContact:
         >>> round(c.W / 1e-6, 12), round(c.U / 1e-11, 12), round(c.G / 5000, 12)
         (1.0, 1.0, 1.0)
         """
-        from ..laws.lubricant import Barus, Incompressible
-
         for key, val in (("W", W), ("U", U)):
             require_positive(f"Hamrock-Dowson {key}", val)
         if G < 0:

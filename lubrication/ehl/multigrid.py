@@ -154,6 +154,7 @@ from numba import njit
 
 from ..elastic import ElasticKernel
 from ..errors import ConvergenceError, InputError
+from ..laws import lubricant as L
 
 log = logging.getLogger(__name__)
 
@@ -403,8 +404,6 @@ _DENS_CONSTANT, _DENS_DOWSON_HIGGINSON = 0, 1
 def _law_codes(viscosity, density):
     """``(vcode, vpar, dcode, dpar)`` of the kernels' laws, or None for a law they do not know
     (exact types only: a subclass may change ``__call__``)."""
-    from ..laws import lubricant as L
-
     t = type(viscosity)
     if t is L.ConstantViscosity:
         v = (_VISC_CONSTANT, np.array([viscosity.eta0, 0.0, 0.0, 0.0]))

@@ -16,6 +16,8 @@ from .budget import _BUDGET, _spend
 from .contact import EHLContact
 from .problem import _Problem
 from .solution import EHLSolution
+from ..laws.film import dowson_toyoda_central, nijenbanning_central
+from ..laws.lubricant import Barus
 
 log = logging.getLogger(__name__)
 
@@ -38,8 +40,6 @@ def _film_guess(c: EHLContact) -> float:
     3 to 17 times too thick for M = 20 ... 200, L = 10, and its Newton
     iteration did not recover: measured failures at M = 40, 50, 100 on 33 x 33.)
     """
-    from ..laws.film import dowson_toyoda_central, nijenbanning_central
-
     U, G, W = c.U, max(c.G, 1e-3), c.W
     if c.lubricant.herschel_bulkley is not None:
         return hb_apparent_start(c)[1]
@@ -57,8 +57,6 @@ def hb_apparent_start(c: EHLContact):
     rolling shear rate D = u_m/h_c (the fixed point of lubedyn.lubrication.laws.grease.apparent_film, by
     damped iteration in logs: h <- sqrt(h h_new))."""
     import dataclasses
-
-    from ..laws.lubricant import Barus
 
     hb = c.lubricant.herschel_bulkley
     phi0, alpha = c.lubricant.viscosity.eta0, c.lubricant.viscosity.pressure_viscosity

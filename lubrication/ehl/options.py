@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..errors import InputError, unknown_choice
+from .multigrid import MultigridOptions
 
 @dataclass(frozen=True)
 class EHLGrid:
@@ -128,8 +129,6 @@ class EHLOptions:
             if value not in allowed:
                 raise unknown_choice(f"solver.{key}", value, allowed)
         if self.multigrid is not None:
-            from .multigrid import MultigridOptions
-
             if not isinstance(self.multigrid, MultigridOptions):
                 raise InputError(f"ehl.multigrid = {self.multigrid!r} must be a MultigridOptions (or None)")
 

@@ -17,6 +17,10 @@ from .newton import _active_set_newton, _fb_newton, _film_guess, _heavy, _hertz_
 from .options import EHLGrid, EHLOptions
 from .problem import _Problem
 from .solution import EHLSolution
+from ..laws.lubricant import Barus
+from .checks import wants_finer
+from .multigrid import MultigridEHL, MultigridOptions
+from .newton import hb_apparent_start
 
 log = logging.getLogger(__name__)
 
@@ -118,9 +122,6 @@ def _solve_hb(contact, grid, options):
     loaded: inside the Newtonian solver's reach at paper A's light loads, M ~ 1-2 with L ~ 60).  If all
     fail, :class:`ConvergenceError` names every start and its failure."""
     import dataclasses
-
-    from ..laws.lubricant import Barus
-    from .newton import hb_apparent_start
 
     eta_app, _ = hb_apparent_start(contact)
     lub = contact.lubricant
@@ -371,8 +372,6 @@ def _resolution_levels(sol: EHLSolution, options: EHLOptions):
     records each solve's time with its checks)."""
     import dataclasses
 
-    from .checks import wants_finer
-
     info, c, g = sol.info, sol.contact, sol.problem.g
     nested = info.get("coarse_level")
     if not (nested is not None and nested.get("converged") and nested.get("scheme") == info.get("scheme")
@@ -485,8 +484,6 @@ def _solve_multigrid(contact: EHLContact, grid: EHLGrid, options: EHLOptions, in
     """``method="multigrid"``: FAS multigrid (:mod:`lubedyn.lubrication.ehl.multigrid`) on the
     nodes of :class:`_Problem` (same grid, kernel, film and outputs as the Newton
     methods).  Steady point contacts, given load or approach."""
-    from .multigrid import MultigridEHL, MultigridOptions
-
     t0, c0 = time.perf_counter(), time.process_time()
     mopt = options.multigrid if options.multigrid is not None else MultigridOptions()
     if contact.squeeze_velocity != 0.0:

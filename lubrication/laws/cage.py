@@ -108,6 +108,7 @@ import numpy as np
 from numba import njit
 
 from .jit import INLINE, JIT
+from ..errors import InputError
 
 #: Martin's (1916) rigid isoviscous cylinder with the Reynolds exit condition: W h0/(eta u_m R)
 #: (lubedyn.lubrication.closed_form.martin_rigid_cylinder computes it: 4.894968...)
@@ -355,8 +356,6 @@ def equivalent_radius(land_radius: float, cage_radius: float) -> float:
     """r_ic = r_d r_y/(r_y - r_d): the radius of the cylinder over a plane that has the gap of two
     conformal circles near their closest point (the paper's eq. 44 option)."""
     if not 0.0 < land_radius < cage_radius:
-        from ..errors import InputError
-
         raise InputError(f"guide land radius = {land_radius!r} must be > 0 and < the cage's centering radius "
                          f"{cage_radius!r} [m]")
     return land_radius * cage_radius / (cage_radius - land_radius)
