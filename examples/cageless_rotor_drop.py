@@ -17,7 +17,7 @@ catches up near t = Omega_0 / (mu F_r r_c (1/J_ring + 1/J_rotor)) (the balls' dr
 measured 1.83 ms against 1.51 ms).  Wolf's per-direction estimates need a record of many delay times after the
 spin-up and the burst of collisions: at full size (0.1 s, the case's duration, about 15 s) the z direction is
 estimated (and not resolved: its uncertainty, 52 of 104 bits/s, is not below half its value), x and y ask for a longer record, as the
-summary's notes say; at smoke size (5 ms) only the whole-system (Benettin) exponents are computed.
+summary's ``"..., note"`` entries say; at smoke size (5 ms) only the whole-system (Benettin) exponents are computed.
 """
 import math
 

@@ -1,4 +1,4 @@
-"""Tapered-roller dynamics scene (``scene = "tapered"``): paper A's bearing in time (issue 23).
+"""Tapered-roller dynamics scene (``scene = "tapered"``): paper A's bearing in time.
 
 A case (usually ``parameters = "Wu2018"``: Table 1 and the parameter module's assumed values; each table
 maps one to one onto a group of :class:`lubedyn.dynamics.tapered.model.TaperedBearing`, field by field)::
@@ -12,7 +12,7 @@ maps one to one onto a group of :class:`lubedyn.dynamics.tapered.model.TaperedBe
     cone_tilt = "locked"        # or "free": the cone tilts (two small rotations) under the loads' moment
     load_offset = "0 mm"        # the radial load's axial position from the cone's reference point (tilt free)
     applied_moment = ["0 N m", "0 N m"]   # (M_y, M_z) about that point (tilt free)
-    [model]                     # Fidelity: the options of issue 22, each a key
+    [model]                     # Fidelity: one key per modelling option (which law, or none)
     slices = 10
     traction = "limited"        # "paper" (eq. 12), "limited" (HB + limiting shear + elastic film), "map" (roller EHL maps), "none"
     flange_friction = "none"    # "paper" (eqs. 22-23), "load_share", "none"
@@ -38,7 +38,8 @@ slips, displacements, the loaded-zone marker, loads, friction and every slice lo
 as point data) and the PNGs ``roller_attitude.png`` (loaded zone shaded), ``roller_displacement.png``,
 ``slip.png``, ``cage_whirl.png``, ``cone_orbit.png``, ``slice_loads.png``.
 
-Definitions (paper A, sec. 4; notes 2.9; :meth:`TaperedBearing.diagnostics`): at each sample the roller
+Definitions (paper A, sec. 4 and eq. 52; ``docs/paper_a.md``, "What paper A leaves out";
+:meth:`TaperedBearing.diagnostics`): at each sample the roller
 axis e is split in the roller's own radial frame (x axial, r radial through its centre, t tangential):
 tilt = atan2(e_r, e_x) and skew = asin(e_t), both minus their values at the start; slip (eq. 52) =
 (omega_ideal - omega)/omega_ideal of a roller centre's orbital speed and of the cage's spin, with
@@ -51,7 +52,7 @@ With ``operating.cone_tilt = "free"`` the summary adds the cone's tilt (theta_y,
 quasi-static start, and per window its mean and amplitude; the time series carries it (the state's
 "Cone tilt y/z [rad]" and the contacts' moment on the cone).
 
-Not yet (issue 23): a rib film that follows the load.
+Not modelled yet: a rib film that follows the load.
 """
 from __future__ import annotations
 
@@ -114,7 +115,7 @@ class OperatingTable(CaseTable):
 
 
 class ModelTable(CaseTable):
-    """:class:`lubedyn.dynamics.tapered.groups.Fidelity` (the fidelity options of issue 22)."""
+    """:class:`lubedyn.dynamics.tapered.groups.Fidelity` (which law each contact uses, or none)."""
 
     slices: PositiveInt = 20
     traction: Literal["none", "paper", "limited", "map"] = "limited"
@@ -436,7 +437,7 @@ def converged_summary(model, t, D, width: float, tolerance: float) -> dict | Non
     (:func:`lubedyn.dynamics.analysis.windows.window_summary`) and, per headline mean (:data:`HEADLINE`), its value in both windows, the
     change and the change relative to the last window's magnitude.  "Converged [-]" when every relative
     change is at most ``tolerance`` (a mean that is None in either window, an empty zone, is left out).
-    The change is the uncertainty issue 24 asks of a mean: how much it still moves from one window to the
+    The change is the uncertainty of a mean: how much it still moves from one window to the
     next.  None when the record is shorter than two windows."""
     end = float(t[-1])
     if end - float(t[0]) < 2.0 * width:

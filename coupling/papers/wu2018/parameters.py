@@ -2,10 +2,11 @@
 Bearings", *Shock and Vibration* 2018, 7183042.
 
 Table 1 (bearing, cage, materials, grease at 30 C), Table 2 (Herschel-Bulkley rheology of three
-greases at 15-70 C) and the operating points of Figs. 5-16.  The paper's own inconsistencies, and
-the choices made here, are those of ``shared/reference/paper_A_notes.md`` (section 2): the two
-roller end diameters are printed swapped (the large end is 24.76 mm); the pitch diameter is the
-sum of the two raceway radii; what the paper does not give is ``source="assumed"`` with a reason.
+greases at 15-70 C) and the operating points of Figs. 5-16.  Where the paper's tables and equations
+do not fit together, the reading taken here is the one listed in ``docs/paper_a.md`` ("What paper A
+leaves out"): the two roller end diameters of Table 1 are printed swapped (the large end is 24.76 mm);
+the pitch diameter is the sum of the two raceway radii; what the paper does not give is
+``source="assumed"`` with a reason.
 The bearing's geometry (reconciliation of Table 1's non-common-apex values, rib, crown, cage and
 guide-land placement) is :class:`lubedyn.lubrication.laws.tapered.TaperedRollerGeometry`, built from these
 values; its quasi-static equilibrium is :mod:`lubedyn.dynamics.tapered.quasistatic`.  Default
@@ -56,7 +57,7 @@ VALUES = {
     "cage_inner_diameter": P("196.10 mm", "length", "Table 1"),
     "cage_thickness": P("5 mm", "length", "Table 1"),
     "pocket_clearance": P("0.27 mm", "length", "Table 1"),
-    # --- geometry, slices, quasi-static (issue 22) ---
+    # --- geometry, slices, quasi-static (not all in Table 1: the readings of docs/paper_a.md) ---
     "geometry_reconciliation": P("common_apex", "text", "assumed",
                                  "Table 1 is not a common-apex design (notes 2.1): keep R_p 89 mm, D_m, l_e and "
                                  "the 10 deg roller axis, taper from a common apex (phi 1.19 deg, raceways "
@@ -84,7 +85,7 @@ VALUES = {
     "steel_poisson": P(0.3, "dimensionless", "Table 1"),
     "cage_modulus": P("8.3 GPa", "pressure", "Table 1", "polyamide, inner-ring guided"),
     "cage_poisson": P(0.28, "dimensionless", "Table 1"),
-    # --- cage pocket and guide land (issue 22) ---
+    # --- cage pocket and guide land (eqs. 30-46; most constants not given) ---
     "guide_land_radius": P("97.8 mm", "length", "assumed",
                            "the cage's centering surface is its bore (196.10/2 = 98.05 mm); the land lies 0.25 mm "
                            "inside it (Table 1's 0.5 mm read as diametral)"),
@@ -131,7 +132,7 @@ VALUES = {
     "base_oil_viscosity": P("0.1 Pa s", "dynamic viscosity", "assumed",
                             "not in the paper; a 0.1 Pa s base oil gives a 5.4 um raceway film at 2.4 krpm"),
     "base_oil_density": P("870 kg/m^3", "density", "assumed", "mineral base oil: not in the paper"),
-    # --- grease, traction, flange (issue 22) ---
+    # --- grease, traction, flange (eqs. 12-29; limits and constants the paper does not give) ---
     "grease_pressure_viscosity_all": P("4.662e-8 m^2/N", "inverse pressure", "assumed",
                                        "Table 1 gives alpha for polyurea at 30 C only; used for every grease "
                                        "and temperature of Table 2"),
