@@ -110,7 +110,7 @@ class OperatingTable(CaseTable):
     def _axial(self):
         if self.axial == "force" and self.axial_load == 0.0:
             raise rule("axial_load", 0.0, "must be > 0 with axial = 'force': a single tapered bearing has no "
-                       "axial equilibrium without an axial load (paper_A_notes 2.7); or set axial = 'locked'")
+                       "axial equilibrium without an axial load (docs/paper_a.md); or set axial = 'locked'")
         return self
 
 

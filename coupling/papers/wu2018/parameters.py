@@ -59,20 +59,20 @@ VALUES = {
     "pocket_clearance": P("0.27 mm", "length", "Table 1"),
     # --- geometry, slices, quasi-static (not all in Table 1: the readings of docs/paper_a.md) ---
     "geometry_reconciliation": P("common_apex", "text", "assumed",
-                                 "Table 1 is not a common-apex design (notes 2.1): keep R_p 89 mm, D_m, l_e and "
+                                 "Table 1 is not a common-apex design (docs/paper_a.md): keep R_p 89 mm, D_m, l_e and "
                                  "the 10 deg roller axis, taper from a common apex (phi 1.19 deg, raceways "
                                  "11.19/8.81 deg); 'literal' keeps 15/5 deg and is edge-loaded"),
     "rib_height": P("8 mm", "length", "assumed",
                     "not given; the 83 deg flange contact sits 3.96 mm (common apex) / 5.44 mm (literal) above "
                     "the cone raceway, so 8 mm (0.32 D_large) keeps it on the rib"),
     "guide_land_axial_gap": P("2 mm", "length", "assumed",
-                              "Table 1's cage (196.1-205.8 mm) fits no raceway (notes 2.2): cage ring and "
+                              "Table 1's cage (196.1-205.8 mm) fits no raceway (docs/paper_a.md): cage ring and "
                               "inner-ring guide land placed beyond the large end, 2 mm clear of it"),
     "roller_profile": P("logarithmic", "text", "assumed",
                         "not given; Lundberg/Johns-Gohar logarithmic crown (usual for TRB rollers), "
                         "'straight' as the other choice"),
     "crown_design_load": P("5 kN", "force", "assumed",
-                           "crown design load: the most loaded roller at Fr 20 kN (4.8-5.0 kN, notes 3.2)"),
+                           "crown design load: the most loaded roller at Fr 20 kN (4.8-5.0 kN, docs/paper_a.md)"),
     "n_slices": P(20, "count", "assumed",
                   "not given; the preload reaction changes by 0.6 % from 20 to 160 slices (order ~1.1 with "
                   "the logarithmic crown, tests/test_trb_quasistatic.py)"),
@@ -137,10 +137,10 @@ VALUES = {
                                        "Table 1 gives alpha for polyurea at 30 C only; used for every grease "
                                        "and temperature of Table 2"),
     "grease_viscosity_reading": P("base_oil", "text", "assumed",
-                                  "phi (Pa s^n) is used as a Newtonian viscosity in eqs. 12, 25 (notes 2.3); films "
+                                  "phi (Pa s^n) is used as a Newtonian viscosity in eqs. 12, 25 (docs/paper_a.md); films "
                                   "use the base oil (lubrication/laws/grease.py says why)"),
     "grease_limiting_shear_stress": P("1 MPa", "pressure", "assumed",
-                                      "not in the paper (eq. 26 unbounded, notes 2.5): ambient part tau_L0 of "
+                                      "not in the paper (eq. 26 unbounded, docs/paper_a.md): ambient part tau_L0 of "
                                       "tau_L = tau_L0 + gamma_L p, of the order Bair & Winer (1979) report"),
     "grease_limiting_shear_slope": P(0.07, "dimensionless", "assumed",
                                      "gamma_L = d tau_L/dp: 0.04-0.1 for mineral oils (Bair & Winer 1979); "
@@ -173,7 +173,7 @@ VALUES = {
                                 "eq. 22 adds asperity and grease friction as printed; 'load_share' weights the "
                                 "grease part by 1 - exp(-B lambda^C)"),
     "rib_film_model": P("hamrock_dowson", "text", "assumed",
-                        "eq. 24 has no length scale (notes 2.6); 'paper_eq24' reads it as h_c/r_s"),
+                        "eq. 24 has no length scale (docs/paper_a.md); 'paper_eq24' reads it as h_c/r_s"),
     "cone_mass": P("5 kg", "mass", "assumed",
                    "paper A gives no ring masses: about a steel cone of the 78.5 mm raceway radius and 50 mm width"),
     "radial_load_offset": P("0 mm", "length", "assumed",
