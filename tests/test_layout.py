@@ -249,3 +249,16 @@ def test_no_code_names_the_folders_as_modules():
                     if n.removeprefix("-m ").split(".")[0] in OLD_NAMES
                     and (path.relative_to(ROOT).as_posix(), n) not in EARLIER_LAYOUT]
     assert bad == []
+
+
+# the papers whose systems the toolkit models, by the names the project gives them
+PAPER_NAMES = ("paper", "wu2018", "zhang2024")
+
+
+def test_no_library_module_is_named_after_a_paper_outside_the_papers_room():
+    """Each paper's parameter set, claims and figures live in ``lubedyn.papers.<paper>``; the library's
+    other modules are named for what they compute."""
+    bad = [m for m in MODULES if not (m == "lubedyn.papers" or m.startswith("lubedyn.papers."))
+           and any(n in part for part in m.split(".") for n in PAPER_NAMES)]
+    assert bad == []
+    assert {"lubedyn.papers.wu2018.parameters", "lubedyn.papers.zhang2024.parameters"} <= set(MODULES)
