@@ -145,7 +145,7 @@ def test_spin_about_a_tilted_body_axis_turns_about_the_tilted_inertial_axis():
 # ---------------------------------------------------------------------------- Fig. 5: collisions by position
 def test_quadrants():
     angles = np.radians([45, 135, 225, 315, 0, 90])
-    assert list(an.quadrants(np.cos(angles), np.sin(angles))) == [1, 2, 3, 4, 1, 2]
+    assert list(an.quadrant_of(np.cos(angles), np.sin(angles))) == [1, 2, 3, 4, 1, 2]
 
 
 def test_a_collision_is_placed_relative_to_the_inner_ring_centre():

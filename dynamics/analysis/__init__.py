@@ -21,7 +21,7 @@ from lubedyn.dynamics.analysis.frequency import (
     vibration_entries)
 from lubedyn.dynamics.analysis.motion import BallMotion, ball_motion, n_balls, run_columns
 from lubedyn.dynamics.analysis.poincare import poincare_section
-from lubedyn.dynamics.analysis.quadrants import QUADRANTS, collision_entries, collision_table, quadrants
+from lubedyn.dynamics.analysis.quadrants import QUADRANTS, collision_entries, collision_table, quadrant_of
 from lubedyn.dynamics.analysis.rotation import angular_displacement, axial_rates, ball_angular_displacement
 from lubedyn.dynamics.analysis.settling import (
     AZIMUTH_BINS, BAND_FRACTION, FINAL_FRACTION, FINAL_MARGIN, SPINUP_TOLERANCE, final_start, settling_time,
@@ -34,7 +34,7 @@ __all__ = [
     "vibration_entries",
     "BallMotion", "ball_motion", "n_balls", "run_columns",
     "poincare_section",
-    "QUADRANTS", "collision_entries", "collision_table", "quadrants",
+    "QUADRANTS", "collision_entries", "collision_table", "quadrant_of",
     "angular_displacement", "axial_rates", "ball_angular_displacement",
     "AZIMUTH_BINS", "BAND_FRACTION", "FINAL_FRACTION", "FINAL_MARGIN", "SPINUP_TOLERANCE", "final_start",
     "settling_time", "settling_times", "spinup_time", "steady_residuals",

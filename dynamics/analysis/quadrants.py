@@ -10,7 +10,7 @@ import numpy as np
 QUADRANTS = ("I (x > 0, y > 0)", "II (x < 0, y > 0)", "III (x < 0, y < 0)", "IV (x > 0, y < 0)")
 
 
-def quadrants(x, y) -> np.ndarray:
+def quadrant_of(x, y) -> np.ndarray:
     """Quadrant 1-4 (counter-clockwise from +x, +y; the load zone at the bottom is III and IV) of
     points (x, y) relative to the inner ring's centre [m]; on an axis the point goes to the
     quadrant counter-clockwise of it."""
@@ -32,7 +32,7 @@ def collision_table(t, series, events):
 def collision_entries(t, series, events, t_spinup) -> dict:
     """Counts of collisions by quadrant around the inner ring and before / after its spin-up."""
     tp, pos, _, _ = collision_table(t, series, events)
-    quad = quadrants(pos[:, 0], pos[:, 1])
+    quad = quadrant_of(pos[:, 0], pos[:, 1])
     out = {f"Collisions in quadrant {name} [-]": int(np.sum(quad == k + 1)) for k, name in enumerate(QUADRANTS)}
     if t_spinup is not None:
         out["Collisions during ring spin-up [-]"] = int(np.sum(tp < t_spinup))
