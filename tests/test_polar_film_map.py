@@ -30,7 +30,7 @@ def polar():
                     films=dict(ball_ball="map", map=fmap.dynamics_film_map(), viscosity=float(params["eta0"]),
                                pressure_viscosity=float(params["alpha"])))
     args = model.args()
-    return fmap, params, args[2], args[4:10]
+    return fmap, params, args.bbp, (*args.film_map, args.counter)
 
 
 @pytest.mark.parametrize("kernel", ["compiled", "py_func"])

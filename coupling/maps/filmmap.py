@@ -217,18 +217,14 @@ class FilmMap:
         """Kernel arrays of ``output`` for :class:`lubedyn.dynamics.cageless.CagelessBearing` (``film = "map"``).
 
         A map on (gap, squeeze number or approach speed, entrainment speed): its kernel arrays.  A polar
-        ball_ball map (:mod:`lubedyn.film_points`, "Polar axes"): ``(*kernel_arrays, "polar")`` when the
-        bearing kernel reads polar axes (``lubedyn.dynamics.contacts.MAP_AXIS_POLAR``); otherwise the map resampled
-        on the (gap, squeeze number, entrainment speed) nodes that kernel reads (:func:`cartesian_resample`;
-        transitional: that grid has the cone at zero approach speed that the polar axes remove)."""
+        ball_ball map (:mod:`lubedyn.film_points`, "Polar axes"): its kernel arrays with the speed axis they
+        are on, ``BallBallMap(kernel_arrays, "polar")`` (:class:`lubedyn.dynamics.cageless.layout.BallBallMap`)."""
         output = self._output(output)
         if not self.is_polar():
             return self.kernel_arrays(output)
-        from lubedyn.dynamics import contacts
+        from lubedyn.dynamics.cageless.layout import BallBallMap
 
-        if hasattr(contacts, "MAP_AXIS_POLAR"):
-            return tuple(self.kernel_arrays(output)) + ("polar",)
-        return cartesian_resample(self, output).kernel_arrays(output)
+        return BallBallMap(self.kernel_arrays(output), "polar")
 
     def grid_points(self) -> np.ndarray:
         """All nodes as (N, ndim) in C order of the value arrays."""
