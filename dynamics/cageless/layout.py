@@ -29,7 +29,6 @@ OPTIONS = (
     ("z", "number of balls Z"), ("dof", "degrees of freedom (DOFS)"), ("film", "ball-ball film kind (FILM_KINDS)"),
     ("drive", "the scenario (SCENARIOS): 0 ring speed held, 1 ring driven by the rotor's friction, 2 free"),
     ("traction", "race traction (TRACTIONS)"), ("ballball", "1: ball-ball contacts on"),
-    ("nslot", "number of slots"),
 )
 PARAMETERS = (
     ("d", "ball diameter D [m]"), ("rb", "ball radius [m]"), ("roc", "outer groove centre radius [m]"),
@@ -39,7 +38,7 @@ PARAMETERS = (
     ("ki", "inner race Hertz constant [N/m^1.5]"), ("ko", "outer race Hertz constant [N/m^1.5]"),
     ("alpha", "race contact damping [s/m]"), ("mu", "traction limit [-]"), ("srr", "traction's slide-to-roll scale [-]"),
     ("vreg", "traction slip regularisation [m/s]"), ("fx", "ring load x [N]"), ("fy", "ring load y [N]"),
-    ("fz", "ring load z [N]"), ("g", "gravity [m/s^2]"), ("omega_fix", "inner ring speed [rad/s]"),
+    ("fz", "ring load z [N]"), ("g", "gravity [m/s^2]"),
     ("murot", "rotor friction coefficient"), ("rc", "rotor contact radius [m]"),
     ("wreg", "rotor slip regularisation [rad/s]"), ("nrot", "rotor normal load [N]"), ("sw", "slot width [m]"),
     ("sl", "slot length [m]"), ("sblend", "slot blend width [m]"), ("keo", "outer slot edge Hertz constant"),

@@ -280,7 +280,6 @@ class CagelessBearing:
         v["drive"] = SCENARIOS[self.operating.scenario]
         v["traction"] = TRACTIONS[self.fidelity.traction]
         v["ballball"] = int(bool(self.fidelity.ball_ball))
-        v["nslot"] = len(self.slots.azimuths)
         Ki, Ko = self.hertz_constants()
         Pd4 = 0.25 * self.bearing.diametral_clearance
         v["d"], v["rb"] = D, Rb
@@ -299,7 +298,6 @@ class CagelessBearing:
         v["fx"] = 0.0
         v["fy"] = -(self.operating.radial_load - self.bearing.ring_mass * self.operating.gravity)
         v["fz"] = self.operating.axial_load
-        v["omega_fix"] = self.omega_inner
         v["murot"], v["rc"], v["wreg"] = self.operating.rotor_friction, self.operating.rotor_contact_radius, self.operating.rotor_slip_regularisation
         v["nrot"] = self.operating.radial_load
         v["sw"], v["sl"], v["sblend"] = self.slots.width, self.slots.length, self.slots.blend
