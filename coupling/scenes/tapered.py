@@ -624,10 +624,12 @@ def kernel_jobs(case: TaperedCase) -> list:
     from lubedyn.dynamics.integrators import kernel_example
     from lubedyn.dynamics.tapered import kernels as K
 
-    # only the argument types count here: (P, U, RHO) are C-contiguous float64 vectors for every case
-    # (TaperedBearing.args; tests/test_specialise.py checks the jobs' signatures against a run's), and the
-    # real ones cost 35-95 ms (traction tables), which the run builds anyway on its quasi-static state
-    args = (np.zeros(1), np.zeros(1), np.zeros(1))
+    # only the argument types count here: they are the same for every case (TaperedBearing.args;
+    # tests/test_specialise.py checks the jobs' signatures against a run's), and the real arguments cost
+    # 35-95 ms (traction tables), which the run builds anyway on its quasi-static state
+    from lubedyn.dynamics.tapered.layout import example_args
+
+    args = example_args()
     return [kernel_example(case.integrator.method, K.rhs, args), K.forces_many_example(args)]
 
 

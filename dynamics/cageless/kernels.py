@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 from numba import njit, types
+from numba.extending import overload
 import numpy as np
 
 from lubedyn.lubrication.laws.collision import BB_HCUT, BB_VREG, hertz_force
@@ -45,14 +46,23 @@ def _traction_from_map(tmap, race, Q, ue, vs, counter):
     return lin * abs(mu)
 
 
-@njit(**JIT)
 def _film_map_arrays(film_map):
     """The ball-ball film map's arrays (:class:`lubedyn.dynamics.cageless.layout.MapArrays`) as
-    :func:`lubedyn.dynamics.contacts.ball_ball_normal` takes them, or five None without a map (numba prunes
-    the branch by type: such a model never compiles the map readers)."""
+    :func:`lubedyn.dynamics.contacts.ball_ball_normal` takes them, or five None without a map.  Compiled
+    by type (:func:`_film_map_arrays_typed`): a model without a map passes None-typed arrays, and numba
+    never compiles the map readers for it."""
     if film_map is None:
         return None, None, None, None, None
     return film_map.ax0, film_map.ax1, film_map.ax2, film_map.values, film_map.opts
+
+
+@overload(_film_map_arrays, inline="always")
+def _film_map_arrays_typed(film_map):
+    # one implementation per type (an ``is None`` test in one compiled function would unify the two
+    # returns into optional arrays, and the readers' choice by the values' dimension would not prune)
+    if isinstance(film_map, types.NoneType):
+        return lambda film_map: (None, None, None, None, None)
+    return lambda film_map: (film_map.ax0, film_map.ax1, film_map.ax2, film_map.values, film_map.opts)
 
 
 @njit(**INLINE)

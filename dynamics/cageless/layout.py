@@ -1,4 +1,4 @@
-"""The cage-less bearing's state layout, option codes and the indices of its packed parameters and diagnostics.
+"""The cage-less bearing's state layout, option codes, the record of its parameters (read by name) and diagnostics.
 
 Part of :mod:`lubedyn.dynamics.cageless` (the package docstring gives the overview)."""
 from __future__ import annotations

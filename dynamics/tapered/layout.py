@@ -1,4 +1,4 @@
-"""The tapered roller bearing's state layout, option codes and the indices of its packed parameters and
+"""The tapered roller bearing's state layout, option codes, the record of its parameters (read by name) and
 diagnostics.
 
 Part of :mod:`lubedyn.dynamics.tapered` (:mod:`lubedyn.dynamics.tapered.kernels` gives the equations).  State::
@@ -26,7 +26,7 @@ N_CONE, NB, N_TILT = 6, 13, 4
 # offsets inside a body block
 B_C, B_Q, B_V, B_W = 0, 3, 7, 10
 
-# option codes (the float parameter vector carries them as floats)
+# option codes (the parameter record carries them as floats)
 AXIAL_MODES = {"locked": 0, "force": 1}   # "locked": held at operating.axial_displacement
 AXIAL_LOCKED, AXIAL_FORCE = 0.0, 1.0
 CONE_TILTS = {"locked": 0, "free": 1}    # "locked": the shaft's other support carries the moment
@@ -215,3 +215,11 @@ N_FRICTION = 7
 CAGE_NAMES = ("Cage force on cage y [N]", "Cage force on cage z [N]", "Cage torque x [N m]", "Guide land load [N]",
               "Side beam load [N]")
 N_CAGE_DIAG = 5
+
+
+def example_args() -> KernelArgs:
+    """Kernel arguments of the types every model's :class:`KernelArgs` has (a zero record, one slice,
+    no tables): what compiling a kernel needs before the model is built
+    (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
+    record = parameter_record(dict.fromkeys(PARAMETER_DTYPE.names, 0.0))
+    return KernelArgs(record, np.zeros(1), np.zeros(1), no_traction_table(), no_map_table())

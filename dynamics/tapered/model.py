@@ -521,7 +521,7 @@ class TaperedBearing:
           2 G (8 R' Q/(pi E'))/(u_e h) (b^2 = 8 w R'/(pi E') is linear in the slice load), h the kernel's
           Dowson-Toyoda film at that load (cup and cone R');
         - "map": (mu/s) Q/u_e, mu/s the maps' linear branch at the slide-to-roll axis' first node
-          (``args``: the model's packed arrays, built when not given)."""
+          (``args``: the model's kernel arguments, built when not given)."""
         lu, g = self.lubricant, self.geometry
         law = self.fidelity.traction
         if not (law == "map" or (law == "limited" and math.isfinite(lu.shear_modulus))):
@@ -552,7 +552,7 @@ class TaperedBearing:
         """An estimate of RK4's largest stable step [s]: the smaller of 2 sqrt(2)/omega_max (the contact
         modes, imaginary axis), 2.785/lambda (the traction's decay, real axis: :meth:`traction_rate`) and,
         given the start state ``y0``, the step the right-hand side's own spectrum there allows
-        (:meth:`spectral_step`; ``args`` the packed arrays when the caller has them): the closed forms know the raceway contacts and traction only, and a mode
+        (:meth:`spectral_step`; ``args`` the kernel arguments when the caller has them): the closed forms know the raceway contacts and traction only, and a mode
         they miss -- the pocket films' squeeze damping with phi read as a viscosity (paper A's reading:
         a decay at 3.4e5 1/s, 8.3 us at phi = 38.44) -- once made the "auto" step unstable."""
         from ..integrators import stability_limit
