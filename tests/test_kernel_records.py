@@ -29,7 +29,7 @@ def test_a_missing_or_misspelt_field_is_refused_by_name(bearing):
     layout, _ = LAYOUTS[bearing]
     values = _values(layout)
     record = layout.parameter_record(values)
-    assert record.alpha == 1.0
+    assert record[0].alpha == 1.0 and record.shape == (1,)
     missing = dict(values)
     del missing["alpha"]
     with pytest.raises(DynamicsInputError, match=r"misses the field 'alpha'") as err:
@@ -43,12 +43,12 @@ def test_a_missing_or_misspelt_field_is_refused_by_name(bearing):
 @pytest.mark.parametrize("bearing", sorted(LAYOUTS))
 def test_the_kernels_read_named_fields_only_and_every_field(bearing):
     """Every parameter the kernels read is a field of the record (by name: ``P.kw``), no parameter is read
-    by position (``P[...]``), and every field of the record is read by a kernel."""
+    by position (``P[k]``; ``args.P[0]`` is the record array's one row), and every field of the record is read by a kernel."""
     layout, files = LAYOUTS[bearing]
     source = "".join((DYNAMICS / f).read_text() for f in files)
     read = set(re.findall(r"\bP\.([a-z_][a-z0-9_]*)", source))
     fields = set(layout.PARAMETER_DTYPE.names)
     assert read - fields == set()
     assert fields - read == set()
-    assert not re.search(r"\bP\[", source)
+    assert not re.search(r"\bP\[(?!0\])", source)   # P[0]: the record array's one row
     assert len(fields) == len(layout.PARAMETER_DTYPE.names)    # no field twice

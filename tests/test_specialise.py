@@ -213,7 +213,7 @@ def test_tapered_forces_many_equals_contact_forces_row_by_row():
     run = ts.run(case, None, source=str(path), smoke=True)
     model = ts.build(case)
     args = model.args(model.quasi_static())
-    P = args.P
+    P = args.P[0]
     Y = run.y[::max(1, len(run.y) // 4)]
     loads, SL, FR, CG, FC = K.forces_many(Y, args)
     Z, ns = int(P.z), int(P.ns)

@@ -93,7 +93,7 @@ def test_a_free_roller_conserves_energy_and_angular_momentum():
 
     tb = bearing(contacts=False)
     args = tb.args()
-    P = args.P
+    P = args.P[0]
     y0 = tb.start_state()
     b = K.N_CONE
     w0 = np.array([6000.0, 400.0, 0.0])
@@ -207,7 +207,7 @@ def test_the_guide_land_contact_pushes_the_cage_back_to_centre():
     c = 0.5 * g.guide_land_clearance
     y[b + 1] = y[1] - (c - 1e-6)
     args = tb.args()
-    P = args.P
+    P = args.P[0]
     Z = g.n_rollers
     F, T, Fc, Fg, Tg = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty(3)
     loads = np.empty((Z, 4))
@@ -295,7 +295,7 @@ def test_the_rib_sliding_speed_is_the_notes_estimate():
     args, y0 = tb.args(), tb.start_state()
     D = tb.diagnostics(y0[None, :], y0, args)
     assert D["Flange sliding speed [m/s]"][0] == pytest.approx(np.full(tb.n_rollers, slide), rel=1e-4)
-    assert args.P.lam > 3.0
+    assert args.P[0].lam > 3.0
     from lubedyn.lubrication.laws.flange import rib_hertz
 
     g = tb.geometry
@@ -356,7 +356,7 @@ def test_frictionless_undamped_bearing_conserves_energy_and_axial_angular_moment
     tb = replace(tb, fidelity=replace(tb.fidelity, damping_alpha=0.0),
                  initial=G.Initial(cone_offset=(2e-6, 0.0)))
     args, y0 = tb.args(), tb.start_state()
-    P = args.P
+    P = args.P[0]
     res = integrate(K.rhs, y0, np.linspace(0.0, 2e-3, 21), args, method="dopri5", rtol=1e-10, atol=1e-15)
     Y = res.y
     g = tb.geometry
@@ -445,7 +445,7 @@ def test_the_side_beams_push_an_axially_displaced_cage_back():
     y = tb.start_state()
     b = K.N_CONE + K.NB * g.n_rollers
     args = tb.args()
-    P = args.P
+    P = args.P[0]
     Z = g.n_rollers
     beta = g.roller_axis_angle
 
@@ -484,7 +484,7 @@ def test_the_traction_table_holds_the_limited_law():
     from lubedyn.lubrication.laws.traction import elastic_limited, elastic_strip_slope
 
     model = S.build(load_case("cases/trb_fig5_2400rpm.toml", overrides=["model.traction_evaluation=table"]))
-    P = model.args().P
+    P = model.args().P[0]
     rng = np.random.default_rng(7)
     counter = np.zeros(1, dtype=np.int64)
     for race, radius in enumerate((P.rxo, P.rxi)):

@@ -177,7 +177,7 @@ def _torques(y, args):
     from lubedyn.dynamics.tapered import kernels as K
     from lubedyn.dynamics.tapered import layout as L
 
-    Z, ns = int(args.P.z), int(args.P.ns)
+    Z, ns = int(args.P[0].z), int(args.P[0].ns)
     F, T = np.zeros((Z, 3)), np.zeros((Z, 3))
     K.contact_forces(np.ascontiguousarray(y), args, F, T, np.zeros(3), np.zeros(3), np.zeros((Z, 4)), np.zeros(3),
                      np.zeros(3),
@@ -209,7 +209,7 @@ def test_under_an_axial_force_the_skewed_rollers_traction_screws_the_cone_in():
         args = model.args()
 
         def changed(**values):   # the model's arguments with some parameters changed
-            return args._replace(P=L.parameter_record({**{n: args.P[n] for n in L.PARAMETER_DTYPE.names}, **values}))
+            return args._replace(P=L.parameter_record({**{n: args.P[0][n] for n in L.PARAMETER_DTYPE.names}, **values}))
 
         y = run.y[-1:]
         loads, _, _, _, fc = K.forces_many(y, args)

@@ -37,7 +37,7 @@ def test_kernel_reads_the_maps_own_interpolant(model, A):
     speed (11.03 m/s, between the speed nodes), the kernel's value equals the FilmMap's 3-D query to
     1e-12 relative (measured 1.2e-14): a tricubic Hermite restricted to a plane is the bicubic Hermite of
     the restricted node data, so any difference is a defect of the restriction, not an approximation."""
-    ue = A.P.ue
+    ue = A.P[0].ue
     assert ue == pytest.approx(11.03, rel=1e-3)
     rng = np.random.default_rng(7)
     counter = np.zeros(1, dtype=np.int64)
@@ -46,7 +46,7 @@ def test_kernel_reads_the_maps_own_interpolant(model, A):
         w = np.exp(rng.uniform(np.log(w_axis.lo), np.log(w_axis.hi), 300))
         s = np.exp(rng.uniform(np.log(s_axis.lo), np.log(s_axis.hi), 300))
         ref = fmap(TRACTION, w, ue, s)
-        got = np.array([K.map_traction_coefficient(race, a, b, A.P, A.maps, counter) for a, b in zip(w, s)])
+        got = np.array([K.map_traction_coefficient(race, a, b, A.P[0], A.maps, counter) for a, b in zip(w, s)])
         assert np.all(ref > 0.0)
         np.testing.assert_allclose(got, ref, rtol=1e-12)
     assert counter[0] == 0
@@ -57,19 +57,19 @@ def test_linear_below_the_axis_and_held_above_it(model, A):
     maps' convention, the film's linear shear); above the last (0.1) it is held; a load beyond the axis
     is clamped and counted."""
     counter = np.zeros(1, dtype=np.int64)
-    lo, hi = A.P.tmslo, A.P.tmshi
+    lo, hi = A.P[0].tmslo, A.P[0].tmshi
     assert (lo, hi) == (pytest.approx(1e-5), pytest.approx(0.1))
     for race in (0, 1):
         w = 5e4
-        at_lo = K.map_traction_coefficient(race, w, lo, A.P, A.maps, counter)
+        at_lo = K.map_traction_coefficient(race, w, lo, A.P[0], A.maps, counter)
         for s in (1e-9, 1e-7, 3e-6):
-            assert K.map_traction_coefficient(race, w, s, A.P, A.maps, counter) == pytest.approx(at_lo * s / lo, rel=1e-12)
-        assert K.map_traction_coefficient(race, w, 0.5, A.P, A.maps, counter) == K.map_traction_coefficient(race, w, hi, A.P, A.maps,
+            assert K.map_traction_coefficient(race, w, s, A.P[0], A.maps, counter) == pytest.approx(at_lo * s / lo, rel=1e-12)
+        assert K.map_traction_coefficient(race, w, 0.5, A.P[0], A.maps, counter) == K.map_traction_coefficient(race, w, hi, A.P[0], A.maps,
                                                                                                   counter)
         assert counter[0] == 0
         top = model.traction_maps[race].axes[0].hi
-        assert K.map_traction_coefficient(race, 2 * top, 1e-3, A.P, A.maps, counter) == pytest.approx(
-            K.map_traction_coefficient(race, top, 1e-3, A.P, A.maps, counter), rel=1e-12)
+        assert K.map_traction_coefficient(race, 2 * top, 1e-3, A.P[0], A.maps, counter) == pytest.approx(
+            K.map_traction_coefficient(race, top, 1e-3, A.P[0], A.maps, counter), rel=1e-12)
         assert counter[0] >= 1
         counter[:] = 0
 
@@ -83,10 +83,10 @@ def test_kernel_traction_against_a_direct_ehl_solve(model, A, race, load):
     from lubedyn.film_points import evaluate_ehl_line
 
     fmap = model.traction_maps[race]
-    ue, s = float(A.P.ue), 3.3e-3
+    ue, s = float(A.P[0].ue), 3.3e-3
     direct = evaluate_ehl_line(fmap.provenance["params"], {"Line load [N/m]": load, "Entrainment speed [m/s]": ue,
                                                           "Slide-to-roll ratio [-]": s})[TRACTION]
-    got = K.map_traction_coefficient(race, load, s, A.P, A.maps, np.zeros(1, dtype=np.int64))
+    got = K.map_traction_coefficient(race, load, s, A.P[0], A.maps, np.zeros(1, dtype=np.int64))
     assert got == pytest.approx(direct, rel=0.03)
 
 
@@ -103,7 +103,7 @@ def test_stable_step_follows_the_maps_low_slip_slope(model):
     qs = model.quasi_static()
     g = model.geometry
     load = float(np.max(qs.cup_loads))
-    ue = float(model.args().P.ue)
+    ue = float(model.args().P[0].ue)
     k = [float(fmap(TRACTION, load / g.effective_length, ue, 1e-5)) / 1e-5 * load / ue for fmap in model.traction_maps]
     m, ix, _, _ = g.roller_mass_properties()
     assert model.traction_rate(qs) == pytest.approx(sliding_decay_rate(*k, m, ix, g.mean_roller_radius), rel=1e-10)

@@ -18,7 +18,7 @@ def bearing_energy(model: CagelessBearing, y: np.ndarray) -> float:
     the constant applied ring load.  (Exact invariant of a frictionless,
     undamped, film-free, elastic run with a free ring.)"""
     args = model.args()
-    P = args.P
+    P = args.P[0]
     Z = model.n_balls
     y = np.asarray(y, dtype=float)
     m, J = model.mass, model.ball_inertia

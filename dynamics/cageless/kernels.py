@@ -315,7 +315,7 @@ def _rotate3(w, x, y, z, v0, v1, v2):
 
 @njit(**JIT)
 def _evaluate(t, y, args, dydt, diag, ring_diag):
-    P, bbp, slots, counter, tmap = args.P, args.bbp, args.slots, args.counter, args.traction_maps
+    P, bbp, slots, counter, tmap = args.P[0], args.bbp, args.slots, args.counter, args.traction_maps
     map_ax0, map_ax1, map_ax2, map_vals, map_opts = _film_map_arrays(args.film_map)
     want = diag.shape[0] > 0
     Z = P.z
@@ -540,7 +540,7 @@ def rhs(t, y, args, dydt):
 
 
 def _forces_impl(evaluate, t, y, args):
-    Z = args.P.z
+    Z = args.P[0].z
     dydt = np.empty(y.size)
     diag = np.zeros((Z, N_DIAG))
     ring_diag = np.zeros(N_RING_DIAG)
@@ -550,7 +550,7 @@ def _forces_impl(evaluate, t, y, args):
 
 def _forces_many_impl(evaluate, t, Y, args):
     m = Y.shape[0]
-    Z = args.P.z
+    Z = args.P[0].z
     D = np.zeros((m, Z, N_DIAG))
     R = np.zeros((m, N_RING_DIAG))
     dydt = np.empty(Y.shape[1])

@@ -46,12 +46,13 @@ PARAMETERS = (
     ("rei", "inner slot edge circle radius [m]"), ("qstab", "quaternion drift stabilisation [1/s]"),
     ("hci", "inner race film coefficient [m (s/m)^0.67]"), ("hco", "outer race film coefficient [m (s/m)^0.67]"),
 )
-PARAMETER_DTYPE = np.dtype([(name, np.int64) for name, _ in OPTIONS] + [(name, np.float64) for name, _ in PARAMETERS])
+PARAMETER_DTYPE = np.dtype([(name, np.int64) for name, _ in OPTIONS] + [(name, np.float64) for name, _ in PARAMETERS], align=True)
 
 
-def parameter_record(values: dict) -> np.record:
+def parameter_record(values: dict) -> np.recarray:
     """The kernels' parameter record (:data:`PARAMETER_DTYPE`, read by name: ``P.ki``) from ``values``
-    {field: number}: every field of :data:`OPTIONS` and :data:`PARAMETERS` and no other, else a
+    {field: number}, as a record array of one row (the kernels read its row, ``P = args.P[0]``: numba
+    takes an array from Python at the cost of any array, a record scalar costs ten times more): every field of :data:`OPTIONS` and :data:`PARAMETERS` and no other, else a
     :class:`DynamicsInputError` naming the field."""
     names = PARAMETER_DTYPE.names
     for name in values:
@@ -62,7 +63,7 @@ def parameter_record(values: dict) -> np.record:
         if name not in values:
             raise DynamicsInputError(f"the cage-less bearing's parameter record misses the field {name!r} "
                                      f"({dict(OPTIONS + PARAMETERS)[name]})", key=name)
-    record = np.rec.array(np.zeros(1, dtype=PARAMETER_DTYPE))[0]
+    record = np.zeros(1, dtype=PARAMETER_DTYPE).view(np.recarray)
     for name in names:
         record[name] = values[name]
     return record
@@ -109,7 +110,7 @@ class KernelArgs(NamedTuple):
     map's axes and the traction maps (:class:`TractionMaps`, None without them).  None prunes a map's
     readers by type: a model without maps never compiles them."""
 
-    P: np.record
+    P: np.recarray
     bbp: np.ndarray
     slots: np.ndarray
     film_map: MapArrays | None

@@ -467,7 +467,7 @@ class CagelessBearing:
         from scipy.optimize import brentq, root
 
         D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
-        P = args.P
+        P = args.P[0]
         m = self.mass
         b = self.ball_offset(j)
         six = self.fidelity.dof == "6dof"

@@ -326,7 +326,7 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     torque about its centre [N m] on the cage; SL[j, race, k] the slice loads [N] (race 0 cup, 1 cone);
     FR[j] the friction diagnostics (:data:`lubedyn.dynamics.tapered.layout.FRICTION_NAMES`); CG the cage's
     (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`).  ``A``: the model's :class:`KernelArgs`."""
-    P, U, RHO = A.P, A.U, A.RHO
+    P, U, RHO = A.P[0], A.U, A.RHO
     Z = int(P.z)
     ns = int(P.ns)
     F[:, :] = 0.0
@@ -638,7 +638,7 @@ def _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy):
 @njit(**JIT)
 def rhs(t, y, args, dydt):
     """dy/dt of the tapered roller bearing (module docstring); ``args``: the model's :class:`KernelArgs`."""
-    P = args.P
+    P = args.P[0]
     Z = int(P.z)
     ns = int(P.ns)
     F = np.empty((Z, 3))
@@ -712,7 +712,7 @@ def rhs(t, y, args, dydt):
 @njit(**JIT)
 def loads_many(Y, args):
     """(n, Z, 4) cup, cone, flange and pocket loads [N] of each roller at each sampled state."""
-    P = args.P
+    P = args.P[0]
     Z = int(P.z)
     out = np.empty((Y.shape[0], Z, 4))
     F = np.empty((Z, 3))
@@ -730,7 +730,7 @@ def loads_many(Y, args):
 
 
 def _forces_many_impl(contact, Y, args):
-    P = args.P
+    P = args.P[0]
     Z = int(P.z)
     ns = int(P.ns)
     n = Y.shape[0]

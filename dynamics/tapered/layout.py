@@ -141,12 +141,13 @@ PARAMETERS = (
     ('tmslo', "traction maps' slide-to-roll axis, first node"),
     ('tmshi', "traction maps' slide-to-roll axis, last node"),
 )
-PARAMETER_DTYPE = np.dtype([(name, np.float64) for name, _ in PARAMETERS])
+PARAMETER_DTYPE = np.dtype([(name, np.float64) for name, _ in PARAMETERS], align=True)
 
 
-def parameter_record(values: dict) -> np.record:
+def parameter_record(values: dict) -> np.recarray:
     """The kernels' parameter record (:data:`PARAMETER_DTYPE`, read by name: ``P.kw``) from ``values``
-    {field: number}: every field of :data:`PARAMETERS` and no other, else a :class:`DynamicsInputError`
+    {field: number}, as a record array of one row (the kernels read its row, ``P = args.P[0]``: numba
+    takes an array from Python at the cost of any array, a record scalar costs ten times more): every field of :data:`PARAMETERS` and no other, else a :class:`DynamicsInputError`
     naming the field (a misspelt or forgotten parameter is not left at 0)."""
     names = PARAMETER_DTYPE.names
     for name in values:
@@ -157,7 +158,7 @@ def parameter_record(values: dict) -> np.record:
         if name not in values:
             raise DynamicsInputError(f"the tapered bearing's parameter record misses the field {name!r} "
                                      f"({dict(PARAMETERS)[name]})", key=name)
-    record = np.rec.array(np.zeros(1, dtype=PARAMETER_DTYPE))[0]
+    record = np.zeros(1, dtype=PARAMETER_DTYPE).view(np.recarray)
     for name in names:
         record[name] = values[name]
     return record
@@ -199,7 +200,7 @@ class KernelArgs(NamedTuple):
     (:func:`parameter_record`), the slices' axial coordinates ``U`` and radii ``RHO`` (n_s), the limited
     traction's tables and the traction maps' tables (empty when not used: one compiled variant)."""
 
-    P: np.record
+    P: np.recarray
     U: np.ndarray
     RHO: np.ndarray
     table: TractionTable
@@ -221,5 +222,4 @@ def example_args() -> KernelArgs:
     """Kernel arguments of the types every model's :class:`KernelArgs` has (a zero record, one slice,
     no tables): what compiling a kernel needs before the model is built
     (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
-    record = parameter_record(dict.fromkeys(PARAMETER_DTYPE.names, 0.0))
-    return KernelArgs(record, np.zeros(1), np.zeros(1), no_traction_table(), no_map_table())
+    return KernelArgs(parameter_record(dict.fromkeys(PARAMETER_DTYPE.names, 0.0)), np.zeros(1), np.zeros(1), no_traction_table(), no_map_table())

@@ -259,9 +259,9 @@ class TaperedBearing:
         P = L.parameter_record(v)
         table, maps = L.no_traction_table(), L.no_map_table()
         if fi.traction == "limited" and fi.traction_evaluation == "table":
-            table = self.traction_tables(P)
+            table = self.traction_tables(P[0])
         if fi.traction == "map":
-            maps = self.map_traction_tables(P)
+            maps = self.map_traction_tables(P[0])
         return L.KernelArgs(P, np.ascontiguousarray(u), np.ascontiguousarray(rho), table, maps)
 
     #: traction tables: nodes along the sliding speed (log, 1e-12-100 m/s) and the line load (log, 8
@@ -431,7 +431,7 @@ class TaperedBearing:
         if not self.fidelity.contacts:      # free bodies: nothing holds the cone, nothing to balance
             return
         args = self.args(qs)
-        P = args.P
+        P = args.P[0]
         k = self.tilt_index
         idx = ([0] if self.operating.axial == "force" else []) + [1, 2, k, k + 1]
         acc = [3, 4, 5, k + 2, k + 3]
@@ -533,10 +533,10 @@ class TaperedBearing:
         k = []  # cup, cone
         if law == "map":
             args = self.args(qs) if args is None else args
-            s0 = float(args.P.tmslo)
+            s0 = float(args.P[0].tmslo)
             counter = np.zeros(1, dtype=np.int64)
             for race in (0, 1):
-                k.append(K.map_traction_coefficient(race, w, s0, args.P, args.maps, counter) / s0 * load / ue)
+                k.append(K.map_traction_coefficient(race, w, s0, args.P[0], args.maps, counter) / s0 * load / ue)
         else:
             from lubedyn.lubrication.laws.film import dowson_toyoda_central
 
