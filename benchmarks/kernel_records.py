@@ -12,7 +12,7 @@ interpreter; "after" is this checkout, the same way.  The two alternate, ``--rep
    in a compiled loop (as an integrator calls it; the best of 5 loops), and from Python (the dispatch,
    as :func:`lubedyn.dynamics.specialise` kernels are called once per chunk); the derivative's bytes
    are hashed, so the two sides are shown to compute the same numbers;
-2. cold compile: wall time of ``lubedyn run CASE --smoke`` with a fresh ``NUMBA_CACHE_DIR`` (numba
+2. cold compile: wall and CPU time of ``lubedyn run CASE --smoke`` with a fresh ``NUMBA_CACHE_DIR`` (numba
    compiles every kernel; the second core compiles the integrator meanwhile), and warm (the same cache
    again).
 
@@ -102,14 +102,21 @@ def _rhs_times(root: Path, cases, n, cache_dir):
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
-def _run_time(root: Path, case: str, cache_dir: str) -> float:
+def _run_time(root: Path, case: str, cache_dir: str) -> tuple[float, float]:
+    """(wall, CPU) seconds of ``lubedyn run case --smoke``; the CPU time (user + system of the run and of
+    the second process it compiles in) is far less sensitive than the wall time to other jobs on the machine."""
+    import resource
+
     env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
     out = tempfile.mkdtemp(prefix="kr_out_")
     try:
+        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
         subprocess.run([str(root / ".venv" / "bin" / "lubedyn"), "run", case, "--smoke", "--out", out],
                        cwd=root, env=env, capture_output=True, text=True, check=True)
-        return time.perf_counter() - t0
+        wall = time.perf_counter() - t0
+        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
     finally:
         shutil.rmtree(out, ignore_errors=True)
 
@@ -120,6 +127,7 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--n", type=int, default=2000)
     ap.add_argument("--no-compile", action="store_true")
+    ap.add_argument("--compile-only", action="store_true", help="keep the JSON's rhs times, measure the compile")
     ap.add_argument("--worker", action="store_true")
     ap.add_argument("cases", nargs="*")
     args = ap.parse_args(argv)
@@ -132,12 +140,14 @@ def main(argv=None):
     sides = {"before": args.before.resolve(), "after": common.ROOT}
     caches = {side: tempfile.mkdtemp(prefix=f"kr_cache_{side}_") for side in sides}
     rhs = {side: [] for side in sides}
-    for _ in range(args.repeats):
+    for _ in range(0 if args.compile_only else args.repeats):
         for side, root in sides.items():
             rhs[side].append(_rhs_times(root, TAPERED + CAGELESS, args.n, caches[side]))
     result = {"machine": common.machine_info(extra_packages=("numba", "llvmlite")),
               "before": str(sides["before"]), "repeats": args.repeats, "calls": args.n, "rhs": {}}
-    for case in TAPERED + CAGELESS:
+    if args.compile_only:
+        result["rhs"] = json.loads((common.RESULTS / "kernel_records.json").read_text())["rhs"]
+    for case in () if args.compile_only else TAPERED + CAGELESS:
         row = {}
         for side in sides:
             row[side] = {k: float(np.median([r[case][k] for r in rhs[side]])) for k in ("jit_us", "python_us")}
@@ -149,18 +159,21 @@ def main(argv=None):
     if not args.no_compile:
         result["compile"] = {}
         for case in COMPILE_CASES:
-            row = {side: {"cold_s": [], "warm_s": []} for side in sides}
+            row = {side: {"cold_s": [], "warm_s": [], "cold_cpu_s": [], "warm_cpu_s": []} for side in sides}
             for _ in range(max(1, args.repeats - 1)):
                 for side, root in sides.items():
                     cache = tempfile.mkdtemp(prefix="kr_cold_")
                     try:
-                        row[side]["cold_s"].append(_run_time(root, case, cache))
-                        row[side]["warm_s"].append(_run_time(root, case, cache))
+                        for kind in ("cold", "warm"):
+                            wall, cpu = _run_time(root, case, cache)
+                            row[side][f"{kind}_s"].append(wall)
+                            row[side][f"{kind}_cpu_s"].append(cpu)
                     finally:
                         shutil.rmtree(cache, ignore_errors=True)
             for side in sides:
                 row[side] = {k: float(np.median(v)) for k, v in row[side].items()} | {"runs": row[side]}
             row["ratio cold"] = row["after"]["cold_s"] / row["before"]["cold_s"]
+            row["ratio cold CPU"] = row["after"]["cold_cpu_s"] / row["before"]["cold_cpu_s"]
             result["compile"][case] = row
     for cache in caches.values():
         shutil.rmtree(cache, ignore_errors=True)
