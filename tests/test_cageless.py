@@ -198,7 +198,7 @@ def _slot_weight_reference(psi, z, azimuths, R_race, P):
     """numpy reference of the slot weight (module docstring of lubedyn.dynamics.cageless): the largest
     w_s(s) w_z(z) over the slots, w(x) = (1 - tanh((|x| - half)/blend))/2, s = R_race wrap(psi - az),
     exactly 0 for |s| > L_s/2 + 10 blend (and the largest w_s alone)."""
-    half_l, half_w, blend = 0.5 * P[cg.P_SL], 0.5 * P[cg.P_SW], P[cg.P_SBLEND]
+    half_l, half_w, blend = 0.5 * P.sl, 0.5 * P.sw, P.sblend
     far = half_l + 10.0 * blend
     best = np.zeros_like(psi)
     best_s = np.zeros_like(psi)
@@ -219,11 +219,11 @@ def test_slot_weight_skip_keeps_every_slot_point(compiled, race):
     |s| = far (1 -+ 1e-6), inside the slot and all round the race, against a numpy reference."""
     model = paper_b(slots=dict(azimuths=(math.radians(270.0), math.radians(30.0)), race=race))
     a = model.args()
-    P, slots = a[1], a[3]
+    P, slots = a.P[0], a.slots
     theta = 0.7 if race == "inner" else 0.0  # an inner-ring slot turns with the ring
     r = 0 if race == "outer" else 1
-    R_race = P[cg.P_RO] + P[cg.P_ROC] if r == 0 else P[cg.P_RIC] - P[cg.P_RI]
-    far = 0.5 * P[cg.P_SL] + 10.0 * P[cg.P_SBLEND]
+    R_race = P.ro + P.roc if r == 0 else P.ric - P.ri
+    far = 0.5 * P.sl + 10.0 * P.sblend
     az = slots[:, 0] + theta * r
     ds = far / R_race * np.array([0.0, 0.2, 0.5, 0.9, 1.0 - 1e-6, 1.0 + 1e-6, 1.005, 1.02, 3.0])
     psi = np.concatenate([az[0] + ds, az[0] - ds, az[1] + ds, np.linspace(-np.pi, np.pi, 97)])

@@ -18,6 +18,7 @@ from lubedyn import film_points as fp
 from lubedyn.config import CASES_DIR
 from lubedyn.maps import FilmMap
 from lubedyn.dynamics import contacts as C
+from lubedyn.dynamics.errors import DynamicsInputError
 from lubedyn.papers.zhang2024.parameters import cageless_bearing as paper_b  # noqa: E402
 
 
@@ -30,7 +31,7 @@ def polar():
                     films=dict(ball_ball="map", map=fmap.dynamics_film_map(), viscosity=float(params["eta0"]),
                                pressure_viscosity=float(params["alpha"])))
     args = model.args()
-    return fmap, params, args[2], args[4:10]
+    return fmap, params, args.bbp, (*args.film_map, args.counter)
 
 
 @pytest.mark.parametrize("kernel", ["compiled", "py_func"])
@@ -150,3 +151,19 @@ def test_a_locked_film_hands_the_load_to_the_solids(polar):
     assert above[1] > hL and below[1] == pytest.approx(hL, rel=1e-12)
     assert above[0] == pytest.approx(f_lock, rel=1e-4) and below[0] == pytest.approx(f_lock, rel=1e-4)
     assert counter[0] == 0
+
+
+def test_a_speed_axis_that_differs_from_the_maps_own_is_refused():
+    """A polar map names its own speed axis (lubedyn.dynamics.cageless.layout.BallBallMap): the bearing takes
+    it when films.map_speed_axis is not given, and refuses a different one by the key, not overriding it."""
+    from lubedyn.dynamics.cageless import BallBallMap
+
+    fmap = FilmMap.load(CASES_DIR / "maps" / "ball_ball.npz")
+    arrays = fmap.dynamics_film_map()
+    assert isinstance(arrays, BallBallMap) and arrays.speed_axis == "polar"
+    films = dict(ball_ball="map", map=arrays, viscosity=0.01, pressure_viscosity=2e-8)
+    model = paper_b(films=films)
+    assert model.args().film_map.opts[C.MO_AXIS1] == C.MAP_AXIS_POLAR
+    with pytest.raises(DynamicsInputError, match="films.map_speed_axis") as err:
+        paper_b(films=films | {"map_speed_axis": "squeeze_number"}).args()
+    assert "'polar'" in str(err.value)

@@ -212,14 +212,15 @@ def test_tapered_forces_many_equals_contact_forces_row_by_row():
     path, _, case = load_case_file(str(CASES_DIR / "trb_fig5_2400rpm.toml"), smoke=True)
     run = ts.run(case, None, source=str(path), smoke=True)
     model = ts.build(case)
-    P, U, RHO = args = model.args(model.quasi_static())
+    args = model.args(model.quasi_static())
+    P = args.P[0]
     Y = run.y[::max(1, len(run.y) // 4)]
     loads, SL, FR, CG, FC = K.forces_many(Y, args)
-    Z, ns = int(P[K.P_Z]), int(P[K.P_NS])
+    Z, ns = int(P.z), int(P.ns)
     for i in range(len(Y)):
         F, T, Fc, Tc, ld = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty((Z, 4))
         sl, fr, cg = np.empty((Z, 2, ns)), np.empty((Z, K.N_FRICTION)), np.empty(K.N_CAGE_DIAG)
-        K.contact_forces(np.ascontiguousarray(Y[i]), P, U, RHO, F, T, Fc, Tc, ld, np.empty(3), np.empty(3), sl, fr, cg)
+        K.contact_forces(np.ascontiguousarray(Y[i]), args, F, T, Fc, Tc, ld, np.empty(3), np.empty(3), sl, fr, cg)
         assert np.array_equal(loads[i], ld) and np.array_equal(SL[i], sl) and np.array_equal(FR[i], fr)
         assert np.array_equal(CG[i], cg) and np.array_equal(FC[i], np.concatenate([Fc, Tc]))
 

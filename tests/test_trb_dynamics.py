@@ -92,14 +92,15 @@ def test_a_free_roller_conserves_energy_and_angular_momentum():
     from lubedyn.dynamics.tapered.model import _matrices
 
     tb = bearing(contacts=False)
-    P, U, RHO = tb.args()
+    args = tb.args()
+    P = args.P[0]
     y0 = tb.start_state()
     b = K.N_CONE
     w0 = np.array([6000.0, 400.0, 0.0])
     y0[b + 10:b + 13] = w0
     t = np.linspace(0.0, 20e-3, 41)
-    res = integrate(K.rhs, y0, t, (P, U, RHO), method="dopri5", rtol=1e-11, atol=1e-14)
-    ix, iy = P[K.P_IX], P[K.P_IY]
+    res = integrate(K.rhs, y0, t, args, method="dopri5", rtol=1e-11, atol=1e-14)
+    ix, iy = P.ix, P.iy
     rate = (ix - iy) / iy * w0[0]
     assert abs(rate) * t[-1] / (2 * math.pi) > 10
     w = res.y[:, b + 10:b + 13]
@@ -205,16 +206,17 @@ def test_the_guide_land_contact_pushes_the_cage_back_to_centre():
     b = K.N_CONE + K.NB * g.n_rollers
     c = 0.5 * g.guide_land_clearance
     y[b + 1] = y[1] - (c - 1e-6)
-    P, U, RHO = tb.args()
+    args = tb.args()
+    P = args.P[0]
     Z = g.n_rollers
     F, T, Fc, Fg, Tg = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty(3)
     loads = np.empty((Z, 4))
     diag = (np.empty((Z, 2, tb.n_slices)), np.empty((Z, K.N_FRICTION)), np.empty(K.N_CAGE_DIAG))
-    K.contact_forces(y, P, U, RHO, F, T, Fc, np.empty(3), loads, Fg, Tg, *diag)
+    K.contact_forces(y, args, F, T, Fc, np.empty(3), loads, Fg, Tg, *diag)
     y_free = y.copy()
     y_free[b + 1] = y[1]  # the same state with the cage centred: no land contact
     F0, Fc0, Fg0 = np.empty((Z, 3)), np.empty(3), np.empty(3)
-    K.contact_forces(y_free, P, U, RHO, F0, T, Fc0, np.empty(3), loads, Fg0, Tg, *diag)
+    K.contact_forces(y_free, args, F0, T, Fc0, np.empty(3), loads, Fg0, Tg, *diag)
     assert Fg[1] - Fg0[1] - (F0[:, 1].sum() - F[:, 1].sum()) == pytest.approx(100.0, rel=1e-6)
     assert Fc[1] - Fc0[1] == pytest.approx(-100.0, rel=1e-6)
 
@@ -293,7 +295,7 @@ def test_the_rib_sliding_speed_is_the_hand_estimate():
     args, y0 = tb.args(), tb.start_state()
     D = tb.diagnostics(y0[None, :], y0, args)
     assert D["Flange sliding speed [m/s]"][0] == pytest.approx(np.full(tb.n_rollers, slide), rel=1e-4)
-    assert args[0][K.P_LAMBDA] > 3.0
+    assert args.P[0].lam > 3.0
     from lubedyn.lubrication.laws.flange import rib_hertz
 
     g = tb.geometry
@@ -354,12 +356,12 @@ def test_frictionless_undamped_bearing_conserves_energy_and_axial_angular_moment
     tb = replace(tb, fidelity=replace(tb.fidelity, damping_alpha=0.0),
                  initial=G.Initial(cone_offset=(2e-6, 0.0)))
     args, y0 = tb.args(), tb.start_state()
-    P = args[0]
+    P = args.P[0]
     res = integrate(K.rhs, y0, np.linspace(0.0, 2e-3, 21), args, method="dopri5", rtol=1e-10, atol=1e-15)
     Y = res.y
     g = tb.geometry
     m, ix, iy, _ = g.roller_mass_properties()
-    mc = P[K.P_MC]
+    mc = P.mc
     D = tb.diagnostics(Y, y0, args)
     Lx = mc * (Y[:, 1] * Y[:, 5] - Y[:, 2] * Y[:, 4])
     E = 0.5 * mc * np.sum(Y[:, 3:6] ** 2, axis=1)
@@ -375,11 +377,11 @@ def test_frictionless_undamped_bearing_conserves_energy_and_axial_angular_moment
         Lx += m * (c[:, 1] * v[:, 2] - c[:, 2] * v[:, 1]) + w_in[:, 0]
         E += 0.5 * m * np.sum(v * v, axis=1) + 0.5 * np.sum(Ib * wb * wb, axis=1)
     q = D["Slice loads [N]"]
-    delta = (q / P[K.P_KW]) ** 0.9
+    delta = (q / P.kw) ** 0.9
     E += (9.0 / 19.0) * np.sum(q * delta, axis=(1, 2, 3))
     qf = D["Flange load [N]"]
-    E += 0.4 * np.sum(qf * (qf / P[K.P_KF]) ** (2.0 / 3.0), axis=1)
-    E += P[K.P_FA] * Y[:, 0]   # the axial load's potential: the kernel pushes the cone along -x with F_a
+    E += 0.4 * np.sum(qf * (qf / P.kf) ** (2.0 / 3.0), axis=1)
+    E += P.fa * Y[:, 0]   # the axial load's potential: the kernel pushes the cone along -x with F_a
     scale_L = m * tb.n_rollers * g.pitch_radius**2 * tb.ideal()["cage speed [rad/s]"]
     assert np.max(np.abs(Lx - Lx[0])) / scale_L < 1e-8
     ke = E[0]
@@ -442,14 +444,15 @@ def test_the_side_beams_push_an_axially_displaced_cage_back():
     g = tb.geometry
     y = tb.start_state()
     b = K.N_CONE + K.NB * g.n_rollers
-    P, U, RHO = tb.args()
+    args = tb.args()
+    P = args.P[0]
     Z = g.n_rollers
     beta = g.roller_axis_angle
 
     def forces(state):
         F, T, Fc, Fg, Tg = np.empty((Z, 3)), np.empty((Z, 3)), np.empty(3), np.empty(3), np.empty(3)
         diag = (np.empty((Z, 4)), np.empty((Z, 2, tb.n_slices)), np.empty((Z, K.N_FRICTION)), np.empty(K.N_CAGE_DIAG))
-        K.contact_forces(state, P, U, RHO, F, T, Fc, np.empty(3), diag[0], Fg, Tg, *diag[1:])
+        K.contact_forces(state, args, F, T, Fc, np.empty(3), diag[0], Fg, Tg, *diag[1:])
         return F, Fg, diag[3]
 
     F0, Fg0, _ = forces(y)
@@ -481,19 +484,20 @@ def test_the_traction_table_holds_the_limited_law():
     from lubedyn.lubrication.laws.traction import elastic_limited, elastic_strip_slope
 
     model = S.build(load_case("cases/trb_fig5_2400rpm.toml", overrides=["model.traction_evaluation=table"]))
-    P, _, _ = model.args()
+    args = model.args()
+    P = args.P[0]
     rng = np.random.default_rng(7)
     counter = np.zeros(1, dtype=np.int64)
-    for race, radius in enumerate((P[L.P_RXO], P[L.P_RXI])):
+    for race, radius in enumerate((P.rxo, P.rxi)):
         p0 = 10 ** rng.uniform(math.log10(5e7), math.log10(3e9), 3000)
-        W = 2 * math.pi * radius * p0**2 / P[L.P_EP]
+        W = 2 * math.pi * radius * p0**2 / P.ep
         V = 10 ** rng.uniform(-9, 1, 3000)
         final, viscous = [], []
         for v, w in zip(V, W):
-            _, b, _, h0 = K._slice_film(w * P[L.P_WIDTH], radius, P)
-            k = elastic_strip_slope(P[L.P_GSHEAR], b, P[L.P_UE], h0)
+            _, b, _, h0 = K._slice_film(w * P.width, radius, P)
+            k = elastic_strip_slope(P.gshear, b, P.ue, h0)
             exact = K.strip_viscous_traction(w, radius, v, P)
-            table = K._table_viscous(race, w, v, P, counter)
+            table = K._table_viscous(race, w, v, args.table, counter)
             viscous.append(abs(table / exact - 1))
             final.append(abs(elastic_limited(table, k, v) / elastic_limited(exact, k, v) - 1))
         assert np.max(final) < 2e-4 and np.median(final) < 1e-6, (race, np.max(final), np.median(final))

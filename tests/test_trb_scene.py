@@ -173,14 +173,14 @@ def test_trend_signs_that_hold_from_3_ms_to_the_papers_window(limiting_slope):
     assert abs(slip40) < 0.8 * abs(slip10)
 
 
-def _torques(y, P, U, RHO):
+def _torques(y, args):
     """Roller 0's contact torque about its mass centre [N m] (inertial frame) at state y."""
     from lubedyn.dynamics.tapered import kernels as K
     from lubedyn.dynamics.tapered import layout as L
 
-    Z, ns = int(P[L.P_Z]), int(P[L.P_NS])
+    Z, ns = int(args.P[0].z), int(args.P[0].ns)
     F, T = np.zeros((Z, 3)), np.zeros((Z, 3))
-    K.contact_forces(np.ascontiguousarray(y), P, U, RHO, F, T, np.zeros(3), np.zeros(3), np.zeros((Z, 4)), np.zeros(3),
+    K.contact_forces(np.ascontiguousarray(y), args, F, T, np.zeros(3), np.zeros(3), np.zeros((Z, 4)), np.zeros(3),
                      np.zeros(3),
                      np.zeros((Z, 2, ns)), np.zeros((Z, L.N_FRICTION)), np.zeros(L.N_CAGE_DIAG))
     return T[0]
@@ -207,12 +207,15 @@ def test_under_an_axial_force_the_skewed_rollers_traction_screws_the_cone_in():
         case = load_case("cases/trb_grease_fa15kN.toml", smoke=True, overrides=["integrator.duration=10 ms", *overrides])
         run = S.run(case)
         model = S.build(case)
-        P, U, RHO = model.args()
+        args = model.args()
+
+        def changed(**values):   # the model's arguments with some parameters changed
+            return args._replace(P=L.parameter_record({**{n: args.P[0][n] for n in L.PARAMETER_DTYPE.names}, **values}))
+
         y = run.y[-1:]
-        loads, _, _, _, fc = K.forces_many(y, (P, U, RHO))
-        P0 = P.copy()
-        P0[L.P_TRACTION] = 0.0
-        traction = fc[0, 0] - K.forces_many(y, (P0, U, RHO))[4][0, 0]
+        loads, _, _, _, fc = K.forces_many(y, args)
+        P0 = changed(traction=0.0)
+        traction = fc[0, 0] - K.forces_many(y, P0)[4][0, 0]
         fa = model.operating.axial_load
         qs = [solve(model.geometry, axial_load=f, inner_speed=model.speed, n_slices=model.n_slices).cup_loads.max()
               for f in (fa, fa - traction)]
@@ -221,9 +224,8 @@ def test_under_an_axial_force_the_skewed_rollers_traction_screws_the_cone_in():
         b = L.N_CONE
         c = run.y[-1, b:b + 3]
         t = np.array([0.0, -c[2], c[1]]) / math.hypot(c[1], c[2])
-        P1 = P.copy()
-        P1[L.P_KF] = 0.0
-        moments = [(_torques(run.y[-1], P, U, RHO) - _torques(run.y[-1], Q, U, RHO)) @ t for Q in (P0, P1)]
+        P1 = changed(kf=0.0)
+        moments = [(_torques(run.y[-1], args) - _torques(run.y[-1], Q)) @ t for Q in (P0, P1)]
         return traction / fa, loads[0, :, 0].max(), qs, moments
 
     share, cup, (qs_fa, qs_fa_traction), (m_traction, m_rib) = creep()

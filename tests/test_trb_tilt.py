@@ -96,11 +96,11 @@ def test_the_tilt_stiffness_of_the_quasi_static_solver_is_where_a_damped_run_set
 def _contact_energy(tb, args, y):
     """The kernel's elastic contact energy [J] at y: sum k_w delta^(19/9) 9/19 over the slices and
     (2/5) Q delta over the ribs (delta from each load by the laws' inverses)."""
-    P = args[0]
+    P = args.P[0]
     D = tb.diagnostics(y[None, :], y, args)
     q = D["Slice loads [N]"][0]
     qf = D["Flange load [N]"][0]
-    return (9.0 / 19.0) * np.sum(q * (q / P[K.P_KW]) ** 0.9) + 0.4 * np.sum(qf * (qf / P[K.P_KF]) ** (2.0 / 3.0))
+    return (9.0 / 19.0) * np.sum(q * (q / P.kw) ** 0.9) + 0.4 * np.sum(qf * (qf / P.kf) ** (2.0 / 3.0))
 
 
 def test_the_contact_moment_on_the_cone_balances_the_applied_moment_at_the_start():
@@ -130,7 +130,7 @@ def test_the_contact_moment_on_the_cone_balances_the_applied_moment_at_the_start
     assert abs(M[2] + x_f * fr) < 1e-10 * x_f * fr and abs(M[1]) < 1e-10 * x_f * fr
     d = np.zeros_like(y0)
     K.rhs(0.0, y0, args, d)
-    assert np.max(np.abs(d[k + 2:k + 4])) * args[0][K.P_ICONET] < 1e-10 * x_f * fr
+    assert np.max(np.abs(d[k + 2:k + 4])) * args.P[0].iconet < 1e-10 * x_f * fr
     y1 = y0.copy()
     y1[k] = 0.0
 
@@ -215,8 +215,9 @@ def test_the_locked_cone_reproduces_the_model_before_the_option():
     def same(a, b):
         np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-12 * float(np.max(np.abs(b))))
 
-    same(args[0][:84], ref["P"])
-    assert not np.any(args[0][84:])
+    values = np.array(args.P[0].tolist())   # the record's fields in the packed vector's order of that commit
+    same(values[:84], ref["P"])
+    assert not np.any(values[84:])
     same(y0, ref["y0"])
     same(d, ref["dydt0"])
     same(qs.cone_displacement, ref["cone"])

@@ -28,16 +28,16 @@ def model():
 
 
 @pytest.fixture(scope="module")
-def P(model):
-    return model.args()[0]
+def A(model):
+    return model.args()
 
 
-def test_kernel_reads_the_maps_own_interpolant(model, P):
+def test_kernel_reads_the_maps_own_interpolant(model, A):
     """At 300 random (line load, slide-to-roll) points inside the maps' axes, at the run's entrainment
     speed (11.03 m/s, between the speed nodes), the kernel's value equals the FilmMap's 3-D query to
     1e-12 relative (measured 1.2e-14): a tricubic Hermite restricted to a plane is the bicubic Hermite of
     the restricted node data, so any difference is a defect of the restriction, not an approximation."""
-    ue = P[L.P_UE]
+    ue = A.P[0].ue
     assert ue == pytest.approx(11.03, rel=1e-3)
     rng = np.random.default_rng(7)
     counter = np.zeros(1, dtype=np.int64)
@@ -46,36 +46,36 @@ def test_kernel_reads_the_maps_own_interpolant(model, P):
         w = np.exp(rng.uniform(np.log(w_axis.lo), np.log(w_axis.hi), 300))
         s = np.exp(rng.uniform(np.log(s_axis.lo), np.log(s_axis.hi), 300))
         ref = fmap(TRACTION, w, ue, s)
-        got = np.array([K.map_traction_coefficient(race, a, b, P, counter) for a, b in zip(w, s)])
+        got = np.array([K.map_traction_coefficient(race, a, b, A.P[0], A.maps, counter) for a, b in zip(w, s)])
         assert np.all(ref > 0.0)
         np.testing.assert_allclose(got, ref, rtol=1e-12)
     assert counter[0] == 0
 
 
-def test_linear_below_the_axis_and_held_above_it(model, P):
+def test_linear_below_the_axis_and_held_above_it(model, A):
     """Below the slide-to-roll axis' first node (1e-5) the traction is linear in the slip through 0 (the
     maps' convention, the film's linear shear); above the last (0.1) it is held; a load beyond the axis
     is clamped and counted."""
     counter = np.zeros(1, dtype=np.int64)
-    lo, hi = P[L.P_TMSLO], P[L.P_TMSHI]
+    lo, hi = A.P[0].tmslo, A.P[0].tmshi
     assert (lo, hi) == (pytest.approx(1e-5), pytest.approx(0.1))
     for race in (0, 1):
         w = 5e4
-        at_lo = K.map_traction_coefficient(race, w, lo, P, counter)
+        at_lo = K.map_traction_coefficient(race, w, lo, A.P[0], A.maps, counter)
         for s in (1e-9, 1e-7, 3e-6):
-            assert K.map_traction_coefficient(race, w, s, P, counter) == pytest.approx(at_lo * s / lo, rel=1e-12)
-        assert K.map_traction_coefficient(race, w, 0.5, P, counter) == K.map_traction_coefficient(race, w, hi, P,
+            assert K.map_traction_coefficient(race, w, s, A.P[0], A.maps, counter) == pytest.approx(at_lo * s / lo, rel=1e-12)
+        assert K.map_traction_coefficient(race, w, 0.5, A.P[0], A.maps, counter) == K.map_traction_coefficient(race, w, hi, A.P[0], A.maps,
                                                                                                   counter)
         assert counter[0] == 0
         top = model.traction_maps[race].axes[0].hi
-        assert K.map_traction_coefficient(race, 2 * top, 1e-3, P, counter) == pytest.approx(
-            K.map_traction_coefficient(race, top, 1e-3, P, counter), rel=1e-12)
+        assert K.map_traction_coefficient(race, 2 * top, 1e-3, A.P[0], A.maps, counter) == pytest.approx(
+            K.map_traction_coefficient(race, top, 1e-3, A.P[0], A.maps, counter), rel=1e-12)
         assert counter[0] >= 1
         counter[:] = 0
 
 
 @pytest.mark.parametrize("race, load", [(0, 1.0e5), (1, 1.5e5)])
-def test_kernel_traction_against_a_direct_ehl_solve(model, P, race, load):
+def test_kernel_traction_against_a_direct_ehl_solve(model, A, race, load):
     """The kernel's traction coefficient at the run's entrainment speed (off the maps' speed nodes) and a
     slip between the SRR nodes, against the EHL line contact solved directly with the map's own
     parameters: within 3 %, the maps' accuracy target (their measured misses, up to 8.5 %, lie in the
@@ -83,10 +83,10 @@ def test_kernel_traction_against_a_direct_ehl_solve(model, P, race, load):
     from lubedyn.film_points import evaluate_ehl_line
 
     fmap = model.traction_maps[race]
-    ue, s = float(P[L.P_UE]), 3.3e-3
+    ue, s = float(A.P[0].ue), 3.3e-3
     direct = evaluate_ehl_line(fmap.provenance["params"], {"Line load [N/m]": load, "Entrainment speed [m/s]": ue,
                                                           "Slide-to-roll ratio [-]": s})[TRACTION]
-    got = K.map_traction_coefficient(race, load, s, P, np.zeros(1, dtype=np.int64))
+    got = K.map_traction_coefficient(race, load, s, A.P[0], A.maps, np.zeros(1, dtype=np.int64))
     assert got == pytest.approx(direct, rel=0.03)
 
 
@@ -103,7 +103,7 @@ def test_stable_step_follows_the_maps_low_slip_slope(model):
     qs = model.quasi_static()
     g = model.geometry
     load = float(np.max(qs.cup_loads))
-    ue = float(model.args()[0][L.P_UE])
+    ue = float(model.args().P[0].ue)
     k = [float(fmap(TRACTION, load / g.effective_length, ue, 1e-5)) / 1e-5 * load / ue for fmap in model.traction_maps]
     m, ix, _, _ = g.roller_mass_properties()
     assert model.traction_rate(qs) == pytest.approx(sliding_decay_rate(*k, m, ix, g.mean_roller_radius), rel=1e-10)

@@ -42,8 +42,8 @@ coordinates.  The ball-ball film is tabulated on polar axes (gap, pressure numbe
 on (gap, squeeze number, entrainment speed) it has a cone at zero approach and entrainment speed, and the
 EHL traction on a log slide-to-roll axis from 1e-3 because through SRR = 0 it is a step
 (:mod:`lubedyn.film_points`).  :meth:`FilmMap.dynamics_film_map` hands a polar ball-ball map to the
-bearing kernel (polar arrays when :mod:`lubedyn.dynamics.contacts` reads them, else resampled on the Cartesian
-nodes it reads, :func:`cartesian_resample`).
+bearing kernel (its polar arrays, tagged with their speed axis; :func:`cartesian_resample` gives the same
+map on Cartesian nodes).
 
 Accuracy tolerance: a map whose accuracy report shows a relative error above its tolerance (the
 largest relative error of any output; :data:`ACCURACY_TOLERANCE` = 3 % unless the build says otherwise,

@@ -15,12 +15,12 @@ import zipfile
 import numpy as np
 
 from lubedyn.dynamics import interp
+from lubedyn.dynamics.cageless.layout import BallBallMap
 from lubedyn.lubrication.errors import InputError, unknown_choice
 
 from lubedyn import outputs
 from lubedyn.maps.fit import PowerLawFit, fit_power_law, local_floor, relative_error
 from lubedyn.maps.registry import ACCURACY_TOLERANCE, FORMAT, FORMAT_VERSION, METHODS, MapAxis, ZERO_FLOOR
-from lubedyn.dynamics import contacts
 
 log = logging.getLogger(__name__)
 
@@ -218,17 +218,13 @@ class FilmMap:
         """Kernel arrays of ``output`` for :class:`lubedyn.dynamics.cageless.CagelessBearing` (``film = "map"``).
 
         A map on (gap, squeeze number or approach speed, entrainment speed): its kernel arrays.  A polar
-        ball_ball map (:mod:`lubedyn.film_points`, "Polar axes"): ``(*kernel_arrays, "polar")`` when the
-        bearing kernel reads polar axes (``lubedyn.dynamics.contacts.MAP_AXIS_POLAR``); otherwise the map resampled
-        on the (gap, squeeze number, entrainment speed) nodes that kernel reads (:func:`cartesian_resample`;
-        transitional: that grid has the cone at zero approach speed that the polar axes remove)."""
+        ball_ball map (:mod:`lubedyn.film_points`, "Polar axes"): its kernel arrays with the speed axis they
+        are on, ``BallBallMap(kernel_arrays, "polar")`` (:class:`lubedyn.dynamics.cageless.layout.BallBallMap`)."""
         output = self._output(output)
         if not self.is_polar():
             return self.kernel_arrays(output)
 
-        if hasattr(contacts, "MAP_AXIS_POLAR"):
-            return tuple(self.kernel_arrays(output)) + ("polar",)
-        return cartesian_resample(self, output).kernel_arrays(output)
+        return BallBallMap(self.kernel_arrays(output), "polar")
 
     def grid_points(self) -> np.ndarray:
         """All nodes as (N, ndim) in C order of the value arrays."""

@@ -584,10 +584,10 @@ def kernel_jobs(case: TaperedCase) -> list:
     """``[(kernel, example arguments)]`` of the bound kernels a run of ``case`` calls (the integrator, the
     forces at the samples): they do not contain the model's code, so a first run compiles them in a second
     process while it compiles the model (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
-    # only the argument types count here: (P, U, RHO) are C-contiguous float64 vectors for every case
-    # (TaperedBearing.args; tests/test_specialise.py checks the jobs' signatures against a run's), and the
-    # real ones cost 35-95 ms (traction tables), which the run builds anyway on its quasi-static state
-    args = (np.zeros(1), np.zeros(1), np.zeros(1))
+    # only the argument types count here: they are the same for every case (TaperedBearing.args;
+    # tests/test_specialise.py checks the jobs' signatures against a run's), and the real arguments cost
+    # 35-95 ms (traction tables), which the run builds anyway on its quasi-static state
+    args = L.example_args()
     return [kernel_example(case.integrator.method, K.rhs, args), K.forces_many_example(args)]
 
 

@@ -90,7 +90,7 @@ on the balls.
 
 API
 ---
-:class:`CagelessBearing` (parameters, ``args()`` the numba tuple,
+:class:`CagelessBearing` (parameters, ``args()`` the kernels' :class:`KernelArgs`,
 ``initial_state()`` the quasi-static start, ``state_layout()``/``state_names()``,
 ``omega_max()`` for the explicit step limit); :func:`rhs` (integrator
 contract ``rhs(t, y, args, dydt)``); :func:`forces` / :func:`forces_many`
@@ -132,13 +132,11 @@ from .kernels import (  # noqa: F401  (the package's API)
     _traction_from_map, forces, forces_many, rhs,
 )
 from .layout import (  # noqa: F401  (the package's API)
-    ARG_COUNTER, DIAG_NAMES, DOFS, D_AI, D_AO, D_BBN, D_BBT, D_BBX, D_BBY, D_BBZ, D_GAP, D_H, D_PHASE,
-    D_PSI, D_PSIDOT, D_QE, D_QI, D_QO, D_SPIN, D_SRRI, D_SRRO, D_VSI, D_VSO, I_BALLBALL, I_DOF, I_DRIVE,
-    I_FILM, I_NSLOT, I_SIZE, I_TRACTION, I_Z, MAP_SPEED_AXES, NB_6DOF, NB_PLANAR, N_DIAG, N_RING,
-    N_RING_DIAG, P_ALPHA, P_D, P_FX, P_FY, P_FZ, P_G, P_HCI, P_HCO, P_JB, P_JR, P_JROT, P_KEI, P_KEO, P_KI,
-    P_KO, P_MB, P_MR, P_MU, P_MUROT, P_NROT, P_OMEGA_FIX, P_QSTAB, P_RB, P_RC, P_REI, P_REO, P_RI, P_RIC,
-    P_RO, P_ROC, P_SBLEND, P_SIZE, P_SL, P_SRR, P_SW, P_VREG, P_WREG, RACES, RACE_FILMS, RING_DIAG_NAMES,
-    SCENARIOS, TRACTIONS, TRACTION_MAP_BELOW_AXIS,
+    DIAG_NAMES, DOFS, D_AI, D_AO, D_BBN, D_BBT, D_BBX, D_BBY, D_BBZ, D_GAP, D_H, D_PHASE,
+    D_PSI, D_PSIDOT, D_QE, D_QI, D_QO, D_SPIN, D_SRRI, D_SRRO, D_VSI, D_VSO, MAP_SPEED_AXES, NB_6DOF, NB_PLANAR,
+    N_DIAG, N_RING, N_RING_DIAG, OPTIONS, PARAMETERS, PARAMETER_DTYPE, RACES, RACE_FILMS, RING_DIAG_NAMES,
+    SCENARIOS, TRACTIONS, TRACTION_MAP_BELOW_AXIS, BallBallMap, KernelArgs, MapArrays, TractionMaps,
+    parameter_record,
 )
 from .groups import Bearing, Fidelity, Films, Initial, Operating, Slots  # noqa: F401  (the package's API)
 from .model import (  # noqa: F401  (the package's API)

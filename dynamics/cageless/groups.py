@@ -223,8 +223,10 @@ class Fidelity(Group):
 class Films(Group):
     """The oil and its films: ``viscosity`` eta0 [Pa s], ``pressure_viscosity`` alpha [1/Pa];
     ``ball_ball`` ("none", "closed_form": the rigid isoviscous squeeze film in series with Hertz,
-    "map": ``map`` = the kernel arrays of a ball_ball force map whose speed axis is
-    ``map_speed_axis``); the film ruptures below ``rupture_thickness`` [m] (``cutoff_gap`` [m]: where
+    "map": ``map`` = the kernel arrays of a ball_ball force map (:class:`lubedyn.maps.KernelArrays`) whose
+    speed axis is ``map_speed_axis`` (None: "squeeze_number"), or a
+    :class:`lubedyn.dynamics.cageless.layout.BallBallMap` that names its own speed axis (then
+    ``map_speed_axis``, if given, must agree)); the film ruptures below ``rupture_thickness`` [m] (``cutoff_gap`` [m]: where
     the squeeze film is cut off; None: the law's default), friction ``friction_film`` while the film
     carries the load and ``friction_boundary`` once it ruptures, regularised over
     ``slip_regularisation`` [m/s], mixed by ``friction_law`` ("exponential_share": the asperities'
@@ -236,7 +238,7 @@ class Films(Group):
 
     ball_ball: str = "closed_form"
     map: tuple | None = None
-    map_speed_axis: str = "squeeze_number"
+    map_speed_axis: str | None = None
     race: str = "none"
     viscosity: float
     pressure_viscosity: float
@@ -253,7 +255,8 @@ class Films(Group):
         self.choice("friction_law", FRICTION_LAWS)
         self.positive("asperity_slope")
         self.choice("race", RACE_FILMS)
-        self.choice("map_speed_axis", MAP_SPEED_AXES)
+        if self.map_speed_axis is not None:
+            self.choice("map_speed_axis", MAP_SPEED_AXES)
         self.positive("rupture_thickness", "slip_regularisation")
         self.non_negative("viscosity", "pressure_viscosity", "friction_film", "friction_boundary")
         if self.ball_ball == "map" and self.map is None:

@@ -9,7 +9,6 @@ import numpy as np
 
 from lubedyn.lubrication.laws.collision import BB_K
 
-from .layout import P_FX, P_FY, P_FZ, P_KI, P_KO, P_RI, P_RIC, P_RO, P_ROC
 from .model import CagelessBearing
 from ..rotations import quat_rotate as _qr
 
@@ -20,12 +19,12 @@ def bearing_energy(model: CagelessBearing, y: np.ndarray) -> float:
     the constant applied ring load.  (Exact invariant of a frictionless,
     undamped, film-free, elastic run with a free ring.)"""
     args = model.args()
-    P = args[1]
+    P = args.P[0]
     Z = model.n_balls
     y = np.asarray(y, dtype=float)
     m, J = model.mass, model.ball_inertia
     E = 0.5 * model.bearing.ring_mass * float(np.sum(y[4:7] ** 2)) + 0.5 * model.bearing.ring_inertia * y[7] ** 2
-    E += model.bearing.ring_mass * model.operating.gravity * y[1] - (P[P_FX] * y[0] + P[P_FY] * y[1] + P[P_FZ] * y[2])
+    E += model.bearing.ring_mass * model.operating.gravity * y[1] - (P.fx * y[0] + P.fy * y[1] + P.fz * y[2])
     pos = np.zeros((Z, 3))
     for j in range(Z):
         b = model.ball_offset(j)
@@ -39,14 +38,14 @@ def bearing_energy(model: CagelessBearing, y: np.ndarray) -> float:
         E += m * model.operating.gravity * pos[j, 1]
         for race in (0, 1):
             ctr = np.zeros(3) if race == 0 else y[0:3]
-            Rgc, rg, K = (P[P_ROC], P[P_RO], P[P_KO]) if race == 0 else (P[P_RIC], P[P_RI], P[P_KI])
+            Rgc, rg, K = (P.roc, P.ro, P.ko) if race == 0 else (P.ric, P.ri, P.ki)
             d = pos[j] - ctr
             rho = math.hypot(d[0], d[1])
             delta = math.hypot(rho - Rgc, d[2]) - (rg - 0.5 * model.bearing.ball_diameter)
             if delta > 0.0:
                 E += 0.4 * K * delta**2.5
     if model.fidelity.ball_ball:
-        Kbb = args[2][BB_K]
+        Kbb = args.bbp[BB_K]
         for j in range(Z):
             k = (j + 1) % Z
             gap = float(np.linalg.norm(pos[k] - pos[j])) - model.bearing.ball_diameter

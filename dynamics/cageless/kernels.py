@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 from numba import njit, types
+from numba.extending import overload
 import numpy as np
 
 from lubedyn.lubrication.laws.collision import BB_HCUT, BB_VREG, hertz_force
@@ -17,10 +18,7 @@ from ..contacts import FILM_NONE, ball_ball_friction_coefficient, ball_ball_norm
 from ..interp import HERMITE, hermite3, interp3
 from ..specialise import register_kernel, specialise
 from .layout import (D_AI, D_AO, D_BBN, D_BBT, D_BBX, D_BBY, D_BBZ, D_GAP, D_H, D_PHASE, D_PSI, D_PSIDOT, D_QE, D_QI,
-    D_QO, D_SPIN, D_SRRI, D_SRRO, D_VSI, D_VSO, I_BALLBALL, I_DOF, I_DRIVE, I_FILM, I_TRACTION, I_Z,
-    NB_6DOF, NB_PLANAR, N_DIAG, N_RING, N_RING_DIAG, P_ALPHA, P_D, P_FX, P_FY, P_FZ, P_G, P_HCI, P_HCO,
-    P_JB, P_JR, P_JROT, P_KEI, P_KEO, P_KI, P_KO, P_MB, P_MR, P_MU, P_MUROT, P_NROT, P_QSTAB, P_RB,
-    P_RC, P_REI, P_REO, P_RI, P_RIC, P_RO, P_ROC, P_SBLEND, P_SL, P_SRR, P_SW, P_VREG, P_WREG)
+    D_QO, D_SPIN, D_SRRI, D_SRRO, D_VSI, D_VSO, NB_6DOF, NB_PLANAR, N_DIAG, N_RING, N_RING_DIAG)
 
 # ----------------------------------------------------------------------------- kernels
 @njit(**JIT)
@@ -33,7 +31,7 @@ def _traction_from_map(tmap, race, Q, ue, vs, counter):
     compiles the map readers (about a third of the cold compile of ``rhs``)."""
     if tmap is None:
         return math.nan
-    ax0, ax1, ax2, vals, opts = tmap
+    ax0, ax1, ax2, vals, opts = tmap.ax0, tmap.ax1, tmap.ax2, tmap.values, tmap.opts
     sq = vs / ue
     s_lo = math.exp(ax2[race][0]) if opts[C.MO_LOG2] == 1 else ax2[race][0]
     lin = 1.0
@@ -46,6 +44,25 @@ def _traction_from_map(tmap, race, Q, ue, vs, counter):
         mu = interp3(ax0[race], ax1[race], ax2[race], opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2],
                      vals[race][0], opts[C.MO_LOGV], opts[C.MO_METHOD], Q, ue, sq, opts[C.MO_MODE], counter)
     return lin * abs(mu)
+
+
+def _film_map_arrays(film_map):
+    """The ball-ball film map's arrays (:class:`lubedyn.dynamics.cageless.layout.MapArrays`) as
+    :func:`lubedyn.dynamics.contacts.ball_ball_normal` takes them, or five None without a map.  Compiled
+    by type (:func:`_film_map_arrays_typed`): a model without a map passes None-typed arrays, and numba
+    never compiles the map readers for it."""
+    if film_map is None:
+        return None, None, None, None, None
+    return film_map.ax0, film_map.ax1, film_map.ax2, film_map.values, film_map.opts
+
+
+@overload(_film_map_arrays, inline="always")
+def _film_map_arrays_typed(film_map):
+    # one implementation per type (an ``is None`` test in one compiled function would unify the two
+    # returns into optional arrays, and the readers' choice by the values' dimension would not prune)
+    if isinstance(film_map, types.NoneType):
+        return lambda film_map: (None, None, None, None, None)
+    return lambda film_map: (film_map.ax0, film_map.ax1, film_map.ax2, film_map.values, film_map.opts)
 
 
 @njit(**INLINE)
@@ -144,7 +161,7 @@ def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P, sdir, cfar):
     the atan2 (the same points the arc-length test skips; results unchanged)."""
     best = 0.0
     best_s = 0.0
-    far = 0.5 * P[P_SL] + 10.0 * P[P_SBLEND]
+    far = 0.5 * P.sl + 10.0 * P.sblend
     psi = 0.0
     have_psi = False
     rho_p = -1.0
@@ -163,10 +180,10 @@ def _slot_weight(px, py, pz, race, ring_theta, slots, R_race, P, sdir, cfar):
         s_arc = R_race * dpsi
         if abs(s_arc) > far:
             continue
-        ws = _smooth_in(s_arc, 0.5 * P[P_SL], P[P_SBLEND])
+        ws = _smooth_in(s_arc, 0.5 * P.sl, P.sblend)
         if ws > best_s:
             best_s = ws
-        wz = _smooth_in(pz, 0.5 * P[P_SW], P[P_SBLEND])
+        wz = _smooth_in(pz, 0.5 * P.sw, P.sblend)
         if ws * wz > best:
             best = ws * wz
     return best, best_s
@@ -178,9 +195,9 @@ def _slot_directions(P, slots, ring_theta, sdir, cfar):
     inner-ring slot); cfar[race] <- cos of 1.01 times the angular reach
     far/R_race of a slot's weight on that race (-2 when it reaches past pi),
     for the dot-product skip of :func:`_slot_weight`."""
-    far = 0.5 * P[P_SL] + 10.0 * P[P_SBLEND]
+    far = 0.5 * P.sl + 10.0 * P.sblend
     for race in range(2):
-        R_race = P[P_RO] + P[P_ROC] if race == 0 else P[P_RIC] - P[P_RI]
+        R_race = P.ro + P.roc if race == 0 else P.ric - P.ri
         reach = 1.01 * far / R_race
         cfar[race] = math.cos(reach) if reach < math.pi else -2.0
     for k in range(slots.shape[0]):
@@ -195,26 +212,26 @@ def _ball_races(j, cpos, cvel, cw, y, P, slots, diag, tmap, use_map, counter, wa
     torque on the ball (6) and the force and z-torque on the inner ring (4);
     with ``want`` its diagnostics go to diag[j] (race loads, angles, slip,
     slot-edge load)."""
-    D = P[P_D]
-    Rb = P[P_RB]
-    halfw = 0.5 * P[P_SW]
+    D = P.d
+    Rb = P.rb
+    halfw = 0.5 * P.sw
     c0, c1, c2 = cpos[j, 0], cpos[j, 1], cpos[j, 2]
     v0, v1, v2 = cvel[j, 0], cvel[j, 1], cvel[j, 2]
     w0, w1, w2 = cw[j, 0], cw[j, 1], cw[j, 2]
-    alpha, mu_lim, srr_ref, v_reg = P[P_ALPHA], P[P_MU], P[P_SRR], P[P_VREG]
+    alpha, mu_lim, srr_ref, v_reg = P.alpha, P.mu, P.srr, P.vreg
     F0 = F1 = F2 = T0 = T1 = T2 = 0.0
     R0 = R1 = R2 = R3 = 0.0
     if want:
         diag[j, D_QE] = 0.0
     for race in range(2):
         if race == 0:
-            Rgc, rg, K, KE, RE = P[P_ROC], P[P_RO], P[P_KO], P[P_KEO], P[P_REO]
+            Rgc, rg, K, KE, RE = P.roc, P.ro, P.ko, P.keo, P.reo
             ctr0, ctr1, ctr2 = 0.0, 0.0, 0.0
             vc0, vc1, vc2 = 0.0, 0.0, 0.0
             wr = 0.0
             th = 0.0
         else:
-            Rgc, rg, K, KE, RE = P[P_RIC], P[P_RI], P[P_KI], P[P_KEI], P[P_REI]
+            Rgc, rg, K, KE, RE = P.ric, P.ri, P.ki, P.kei, P.rei
             ctr0, ctr1, ctr2 = y[0], y[1], y[2]
             vc0, vc1, vc2 = y[4], y[5], y[6]
             wr = y[7]
@@ -233,7 +250,7 @@ def _ball_races(j, cpos, cvel, cw, y, P, slots, diag, tmap, use_map, counter, wa
                                         rg + Rgc if race == 0 else Rgc - rg, P, sdir, cfar[race])
         Q, srr, vs, ang, fx, fy, fz, tx, ty, tz, mz = _race_contact(
             c0, c1, v0, v1, v2, w0, w1, w2, n0, n1, n2, delta, K * (1.0 - wslot), ctr0, ctr1, vc0, vc1, vc2, wr,
-            race == 1, Rb, alpha, mu_lim, srr_ref, v_reg, P[P_HCO] if race == 0 else P[P_HCI], tmap,
+            race == 1, Rb, alpha, mu_lim, srr_ref, v_reg, P.hco if race == 0 else P.hci, tmap,
             race if use_map else -1, counter, want)
         F0 += fx
         F1 += fy
@@ -298,18 +315,19 @@ def _rotate3(w, x, y, z, v0, v1, v2):
 
 @njit(**JIT)
 def _evaluate(t, y, args, dydt, diag, ring_diag):
-    iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap = args
+    P, bbp, slots, counter, tmap = args.P[0], args.bbp, args.slots, args.counter, args.traction_maps
+    map_ax0, map_ax1, map_ax2, map_vals, map_opts = _film_map_arrays(args.film_map)
     want = diag.shape[0] > 0
-    Z = iopt[I_Z]
-    dof = iopt[I_DOF]
+    Z = P.z
+    dof = P.dof
     nb = NB_6DOF if dof == 1 else NB_PLANAR
     off = N_RING + Z
-    mb = P[P_MB]
-    Jb = P[P_JB]
-    g = P[P_G]
-    Rb = P[P_RB]
-    D = P[P_D]
-    use_map = iopt[I_TRACTION] == 1
+    mb = P.mb
+    Jb = P.jb
+    g = P.g
+    Rb = P.rb
+    D = P.d
+    use_map = P.traction == 1
     # Kinematics of every ball in the inertial frame, ball forces and torques in one allocation, the
     # ring load and the slot directions in another; no array views in the loops below (a view costs an
     # atomic reference-count pair, which dominated the cost of this function before).
@@ -367,7 +385,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
     # ball-ball pairs j, j+1
     for j in range(Z):
         dydt[N_RING + j] = 0.0
-    if iopt[I_BALLBALL] == 1:
+    if P.ballball == 1:
         for j in range(Z):
             k = j + 1 if j + 1 < Z else 0
             d0 = cpos[k, 0] - cpos[j, 0]
@@ -379,7 +397,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
             if want:
                 diag[j, D_GAP] = gap
                 diag[j, D_H] = gap
-            if gap > 0.0 and (iopt[I_FILM] == FILM_NONE or gap >= bbp[BB_HCUT]):
+            if gap > 0.0 and (P.film == FILM_NONE or gap >= bbp[BB_HCUT]):
                 dydt[N_RING + j] = plastic_memory_rate(0.0, 0.0, dmax, 0.0, bbp)
                 continue
             n0, n1, n2 = d0 / dist, d1 / dist, d2 / dist
@@ -395,7 +413,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
             e1 = 0.5 * ((wj2 - wk2) * a0 - (wj0 - wk0) * a2)
             e2 = 0.5 * ((wj0 - wk0) * a1 - (wj1 - wk1) * a0)
             ue = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
-            Fn, h, de, phase, share = ball_ball_normal(gap, vapp, ue, dmax, bbp, iopt[I_FILM], map_ax0, map_ax1,
+            Fn, h, de, phase, share = ball_ball_normal(gap, vapp, ue, dmax, bbp, P.film, map_ax0, map_ax1,
                                                        map_ax2, map_vals, map_opts, counter)
             dydt[N_RING + j] = plastic_memory_rate(de, share * vapp, dmax, Fn, bbp)
             f0, f1, f2 = Fn * n0, Fn * n1, Fn * n2
@@ -435,7 +453,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
                 diag[j, D_H] = h
                 diag[j, D_PHASE] = phase
     # balls: equations of motion
-    stab = P[P_QSTAB]
+    stab = P.qstab
     for j in range(Z):
         b = off + j * nb
         Fb[j, 1] -= mb * g
@@ -483,29 +501,29 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
             diag[j, D_PSIDOT] = (c0 * cvel[j, 1] - c1 * cvel[j, 0]) / (c0 * c0 + c1 * c1)
             diag[j, D_SPIN] = cw[j, 2]
     # inner ring and rotor
-    mr = P[P_MR]
+    mr = P.mr
     dydt[0] = y[4]
     dydt[1] = y[5]
     dydt[2] = y[6]
     dydt[3] = y[7]
-    dydt[4] = (RF[0] + P[P_FX]) / mr
-    dydt[5] = (RF[1] + P[P_FY]) / mr - g
+    dydt[4] = (RF[0] + P.fx) / mr
+    dydt[5] = (RF[1] + P.fy) / mr - g
     if dof == 1:
-        dydt[6] = (RF[2] + P[P_FZ]) / mr
+        dydt[6] = (RF[2] + P.fz) / mr
     else:
         dydt[2] = 0.0
         dydt[6] = 0.0
-    drive = iopt[I_DRIVE]
+    drive = P.drive
     Tf = 0.0
     if drive == 0:
         dydt[7] = 0.0
         dydt[8] = 0.0
     elif drive == 1:
-        Tf = P[P_MUROT] * P[P_NROT] * P[P_RC] * math.tanh((y[8] - y[7]) / P[P_WREG])
-        dydt[7] = (RF[3] + Tf) / P[P_JR]
-        dydt[8] = -Tf / P[P_JROT] if P[P_JROT] > 0.0 else 0.0
+        Tf = P.murot * P.nrot * P.rc * math.tanh((y[8] - y[7]) / P.wreg)
+        dydt[7] = (RF[3] + Tf) / P.jr
+        dydt[8] = -Tf / P.jrot if P.jrot > 0.0 else 0.0
     else:
-        dydt[7] = RF[3] / P[P_JR]
+        dydt[7] = RF[3] / P.jr
         dydt[8] = 0.0
     if want:
         ring_diag[0] = RF[0]
@@ -522,7 +540,7 @@ def rhs(t, y, args, dydt):
 
 
 def _forces_impl(evaluate, t, y, args):
-    Z = args[0][I_Z]
+    Z = args.P[0].z
     dydt = np.empty(y.size)
     diag = np.zeros((Z, N_DIAG))
     ring_diag = np.zeros(N_RING_DIAG)
@@ -532,7 +550,7 @@ def _forces_impl(evaluate, t, y, args):
 
 def _forces_many_impl(evaluate, t, Y, args):
     m = Y.shape[0]
-    Z = args[0][I_Z]
+    Z = args.P[0].z
     D = np.zeros((m, Z, N_DIAG))
     R = np.zeros((m, N_RING_DIAG))
     dydt = np.empty(Y.shape[1])

@@ -1,9 +1,14 @@
-"""The cage-less bearing's state layout, option codes and the indices of its packed parameters and diagnostics.
+"""The cage-less bearing's state layout, option codes, the record of its parameters (read by name) and diagnostics.
 
 Part of :mod:`lubedyn.dynamics.cageless` (the package docstring gives the overview)."""
 from __future__ import annotations
 
+from typing import NamedTuple
+
+import numpy as np
+
 from .. import contacts as C
+from ..errors import DynamicsInputError
 
 DOFS = {"planar": 0, "6dof": 1}
 SCENARIOS = {"steady": 0, "drop": 1, "free": 2}
@@ -18,15 +23,99 @@ TRACTION_MAP_BELOW_AXIS = "linear"
 N_RING = 9
 NB_PLANAR, NB_6DOF = 6, 13
 
-# integer options
-I_Z, I_DOF, I_FILM, I_DRIVE, I_TRACTION, I_BALLBALL, I_NSLOT = range(7)
-I_SIZE = 7
-ARG_COUNTER = 9  # position of the clamp counter in the args tuple
-# float parameters
-(P_D, P_RB, P_ROC, P_RIC, P_RO, P_RI, P_MB, P_JB, P_MR, P_JR, P_JROT, P_KI, P_KO, P_ALPHA, P_MU, P_SRR, P_VREG,
- P_FX, P_FY, P_FZ, P_G, P_OMEGA_FIX, P_MUROT, P_RC, P_WREG, P_NROT, P_SW, P_SL, P_SBLEND, P_KEO, P_KEI, P_REO,
- P_REI, P_QSTAB, P_HCI, P_HCO) = range(36)
-P_SIZE = 36
+# the bearing's parameters: one named field each, the record of PARAMETER_DTYPE the kernels read by name
+# (P.ki); the integer options first (int64), then the floats
+OPTIONS = (
+    ("z", "number of balls Z"), ("dof", "degrees of freedom (DOFS)"), ("film", "ball-ball film kind (FILM_KINDS)"),
+    ("drive", "the scenario (SCENARIOS): 0 ring speed held, 1 ring driven by the rotor's friction, 2 free"),
+    ("traction", "race traction (TRACTIONS)"), ("ballball", "1: ball-ball contacts on"),
+)
+PARAMETERS = (
+    ("d", "ball diameter D [m]"), ("rb", "ball radius [m]"), ("roc", "outer groove centre radius [m]"),
+    ("ric", "inner groove centre radius [m]"), ("ro", "outer groove radius [m]"), ("ri", "inner groove radius [m]"),
+    ("mb", "ball mass [kg]"), ("jb", "ball moment of inertia [kg m^2]"), ("mr", "ring mass [kg]"),
+    ("jr", "ring moment of inertia [kg m^2]"), ("jrot", "rotor moment of inertia [kg m^2] (0: none)"),
+    ("ki", "inner race Hertz constant [N/m^1.5]"), ("ko", "outer race Hertz constant [N/m^1.5]"),
+    ("alpha", "race contact damping [s/m]"), ("mu", "traction limit [-]"), ("srr", "traction's slide-to-roll scale [-]"),
+    ("vreg", "traction slip regularisation [m/s]"), ("fx", "ring load x [N]"), ("fy", "ring load y [N]"),
+    ("fz", "ring load z [N]"), ("g", "gravity [m/s^2]"),
+    ("murot", "rotor friction coefficient"), ("rc", "rotor contact radius [m]"),
+    ("wreg", "rotor slip regularisation [rad/s]"), ("nrot", "rotor normal load [N]"), ("sw", "slot width [m]"),
+    ("sl", "slot length [m]"), ("sblend", "slot blend width [m]"), ("keo", "outer slot edge Hertz constant"),
+    ("kei", "inner slot edge Hertz constant"), ("reo", "outer slot edge circle radius [m]"),
+    ("rei", "inner slot edge circle radius [m]"), ("qstab", "quaternion drift stabilisation [1/s]"),
+    ("hci", "inner race film coefficient [m (s/m)^0.67]"), ("hco", "outer race film coefficient [m (s/m)^0.67]"),
+)
+PARAMETER_DTYPE = np.dtype([(name, np.int64) for name, _ in OPTIONS] + [(name, np.float64) for name, _ in PARAMETERS], align=True)
+
+
+def parameter_record(values: dict) -> np.recarray:
+    """The kernels' parameter record (:data:`PARAMETER_DTYPE`, read by name: ``P.ki``) from ``values``
+    {field: number}, as a record array of one row (the kernels read its row, ``P = args.P[0]``: numba
+    takes an array from Python at the cost of any array, a record scalar costs ten times more): every field of :data:`OPTIONS` and :data:`PARAMETERS` and no other, else a
+    :class:`DynamicsInputError` naming the field."""
+    names = PARAMETER_DTYPE.names
+    for name in values:
+        if name not in names:
+            raise DynamicsInputError(f"{name!r} is not a field of the cage-less bearing's parameter record; the "
+                                     "fields are lubedyn.dynamics.cageless.layout.OPTIONS and PARAMETERS", key=name)
+    for name in names:
+        if name not in values:
+            raise DynamicsInputError(f"the cage-less bearing's parameter record misses the field {name!r} "
+                                     f"({dict(OPTIONS + PARAMETERS)[name]})", key=name)
+    record = np.zeros(1, dtype=PARAMETER_DTYPE).view(np.recarray)
+    for name in names:
+        record[name] = values[name]
+    return record
+
+
+class MapArrays(NamedTuple):
+    """A ball-ball force map as the kernels read it (:mod:`lubedyn.dynamics.interp`): three prepared axes
+    (a two-axis map gets a constant third), the values ((8, n0, n1, n2) Hermite data or (n0, n1, n2)) and the
+    reader's options (``lubedyn.dynamics.contacts.MO_*``)."""
+
+    ax0: np.ndarray
+    ax1: np.ndarray
+    ax2: np.ndarray
+    values: np.ndarray
+    opts: np.ndarray
+
+
+class TractionMaps(NamedTuple):
+    """The inner and outer race EHL maps' traction coefficient (index 0 inner, 1 outer): axes (2, n_k),
+    values (2, k, n0, n1, n2) and the reader's options."""
+
+    ax0: np.ndarray
+    ax1: np.ndarray
+    ax2: np.ndarray
+    values: np.ndarray
+    opts: np.ndarray
+
+
+class BallBallMap(NamedTuple):
+    """A ball-ball force map's kernel arrays (:class:`lubedyn.maps.KernelArrays`: axes, logs, values, logv,
+    method) with the speed axis they are on (a key of :data:`MAP_SPEED_AXES`), as
+    :meth:`lubedyn.maps.FilmMap.dynamics_film_map` gives a polar map: ``films.map_speed_axis``, when given,
+    must agree with it."""
+
+    arrays: tuple
+    speed_axis: str
+
+
+class KernelArgs(NamedTuple):
+    """The arguments of :func:`lubedyn.dynamics.cageless.kernels.rhs`: the parameter record ``P``
+    (:func:`parameter_record`), the ball-ball law's parameter vector ``bbp``
+    (:func:`lubedyn.lubrication.laws.collision.ball_ball_parameters`), the slots (k, 2: azimuth, race),
+    the ball-ball film map (:class:`MapArrays`, None without one), the counter of queries clamped to a
+    map's axes and the traction maps (:class:`TractionMaps`, None without them).  None prunes a map's
+    readers by type: a model without maps never compiles them."""
+
+    P: np.recarray
+    bbp: np.ndarray
+    slots: np.ndarray
+    film_map: MapArrays | None
+    counter: np.ndarray
+    traction_maps: TractionMaps | None
 
 # per-ball diagnostics of forces()
 DIAG_NAMES = (

@@ -24,23 +24,29 @@ from ..groups import fail
 from .groups import Bearing, Films, Fidelity, Initial, Operating, Slots
 from ..interp import HERMITE
 from .kernels import forces, rhs
-from .layout import (ARG_COUNTER, DOFS, D_AI, D_AO, D_QI, D_QO, I_BALLBALL, I_DOF, I_DRIVE, I_FILM, I_NSLOT, I_SIZE,
-    I_TRACTION, I_Z, MAP_SPEED_AXES, NB_6DOF, NB_PLANAR, N_RING, P_ALPHA, P_D, P_FX, P_FY, P_FZ, P_G,
-    P_HCI, P_HCO, P_JB, P_JR, P_JROT, P_KEI, P_KEO, P_KI, P_KO, P_MB, P_MR, P_MU, P_MUROT, P_NROT,
-    P_OMEGA_FIX, P_QSTAB, P_RB, P_RC, P_REI, P_REO, P_RI, P_RIC, P_RO, P_ROC, P_SBLEND, P_SIZE, P_SL,
-    P_SRR, P_SW, P_VREG, P_WREG, RACES, SCENARIOS, TRACTIONS)
+from .layout import (DOFS, D_AI, D_AO, D_QI, D_QO, MAP_SPEED_AXES, NB_6DOF, NB_PLANAR, N_RING, PARAMETER_DTYPE,
+    RACES, SCENARIOS, TRACTIONS, BallBallMap, KernelArgs, MapArrays, TractionMaps, parameter_record)
 
 logger = logging.getLogger(__name__)
 
 # ----------------------------------------------------------------------------- model builder
-def _map_arrays(film_map, axis1_kind):
-    """(ax0, ax1, ax2, vals, opts) for the map kernel from a force map's kernel arrays
-    ``(axes, logs, values, logv, method)`` (:class:`lubedyn.maps.KernelArrays`); a two-axis map (gap,
-    speed) gets a constant third axis.  ``vals``: (8, n0, n1, n2) hermite data, or (n0, n1, n2) values
-    of the linear and pchip methods (the kernels choose the reader by this dimension at compile time)."""
-    if len(film_map) == 6:  # (axes, logs, values, logv, method, axis kind name): lubedyn.maps.FilmMap.dynamics_film_map
-        axis1_kind = MAP_SPEED_AXES[film_map[5]]
-        film_map = tuple(film_map[:5])
+def _map_arrays(film_map, speed_axis):
+    """The :class:`MapArrays` of the map kernel from a force map's kernel arrays ``(axes, logs, values, logv,
+    method)`` (:class:`lubedyn.maps.KernelArrays`) on the speed axis ``speed_axis`` (``films.map_speed_axis``;
+    None: "squeeze_number"), or from a :class:`BallBallMap` (kernel arrays with their own speed axis; a
+    ``speed_axis`` given that differs from it is refused); a two-axis map (gap, speed) gets a constant third
+    axis.  ``values``: (8, n0, n1, n2) hermite data, or (n0, n1, n2) values of the linear and pchip methods
+    (the kernels choose the reader by this dimension at compile time)."""
+    if isinstance(film_map, BallBallMap):
+        if speed_axis is not None and speed_axis != film_map.speed_axis:
+            raise fail("films.map_speed_axis", speed_axis, f"differs from the film map's own speed axis "
+                                                           f"{film_map.speed_axis!r}; leave it out or give that one")
+        speed_axis, film_map = film_map.speed_axis, film_map.arrays
+    if speed_axis is None:
+        speed_axis = "squeeze_number"
+    if speed_axis not in MAP_SPEED_AXES:
+        raise fail("films.map_speed_axis", speed_axis, f"is not allowed; choose one of {', '.join(MAP_SPEED_AXES)}")
+    axis1_kind = MAP_SPEED_AXES[speed_axis]
     try:
         axes, logs, values, logv, method = film_map
     except (TypeError, ValueError):
@@ -71,12 +77,12 @@ def _map_arrays(film_map, axis1_kind):
     opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = logs
     opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = int(logv), int(method), 0
     opts[C.MO_AXIS1] = axis1_kind
-    return axes[0], axes[1], axes[2], np.ascontiguousarray(vals), opts
+    return MapArrays(axes[0], axes[1], axes[2], np.ascontiguousarray(vals), opts)
 
 
 
 def _traction_arrays(maps):
-    """``(ax0 (2, n0), ax1 (2, n1), ax2 (2, n2), vals (2, k, n0, n1, n2), opts)`` from the kernel arrays
+    """:class:`TractionMaps` ``(ax0 (2, n0), ax1 (2, n1), ax2 (2, n2), values (2, k, n0, n1, n2), opts)`` from the kernel arrays
     (:class:`lubedyn.maps.KernelArrays` of "Traction coefficient [-]") of the inner and the outer race
     EHL maps, both over (load [N], entrainment speed [m/s], slide-to-roll ratio [-]) with the same
     node counts and method."""
@@ -100,7 +106,7 @@ def _traction_arrays(maps):
     opts = np.zeros(C.MO_SIZE, dtype=np.int64)
     opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = (int(x) for x in li)
     opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = 0, int(mi), 0
-    return axes[0], axes[1], axes[2], np.ascontiguousarray(np.stack(vals)), opts
+    return TractionMaps(axes[0], axes[1], axes[2], np.ascontiguousarray(np.stack(vals)), opts)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -262,53 +268,50 @@ class CagelessBearing:
     @property
     def map_counter(self) -> np.ndarray:
         """int64[1]: film- and traction-map queries outside the axes (clamped) so far."""
-        return self.args()[ARG_COUNTER]
+        return self.args().counter
 
-    def _build_args(self) -> tuple:
+    def _build_args(self) -> KernelArgs:
         D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
         Rb = 0.5 * D
-        iopt = np.zeros(I_SIZE, dtype=np.int64)
-        iopt[I_Z] = self.bearing.n_balls
-        iopt[I_DOF] = DOFS[self.fidelity.dof]
-        iopt[I_FILM] = FILM_KINDS[self.films.ball_ball]
-        iopt[I_DRIVE] = SCENARIOS[self.operating.scenario]
-        iopt[I_TRACTION] = TRACTIONS[self.fidelity.traction]
-        iopt[I_BALLBALL] = int(bool(self.fidelity.ball_ball))
-        iopt[I_NSLOT] = len(self.slots.azimuths)
-        P = np.zeros(P_SIZE)
+        v = dict.fromkeys(PARAMETER_DTYPE.names, 0.0)   # the fields of options not in use stay 0
+        v["z"] = self.bearing.n_balls
+        v["dof"] = DOFS[self.fidelity.dof]
+        v["film"] = FILM_KINDS[self.films.ball_ball]
+        v["drive"] = SCENARIOS[self.operating.scenario]
+        v["traction"] = TRACTIONS[self.fidelity.traction]
+        v["ballball"] = int(bool(self.fidelity.ball_ball))
         Ki, Ko = self.hertz_constants()
         Pd4 = 0.25 * self.bearing.diametral_clearance
-        P[P_D], P[P_RB] = D, Rb
-        P[P_RO], P[P_RI] = self.bearing.outer_groove_radius, self.bearing.inner_groove_radius
-        P[P_ROC] = 0.5 * dm + Rb + Pd4 - self.bearing.outer_groove_radius
-        P[P_RIC] = 0.5 * dm - Rb - Pd4 + self.bearing.inner_groove_radius
-        P[P_MB], P[P_JB] = self.mass, self.ball_inertia
-        P[P_MR], P[P_JR] = self.bearing.ring_mass, self.bearing.ring_inertia
-        P[P_JROT] = self.bearing.rotor_inertia if math.isfinite(self.bearing.rotor_inertia) else 0.0
-        P[P_KI], P[P_KO] = Ki, Ko
+        v["d"], v["rb"] = D, Rb
+        v["ro"], v["ri"] = self.bearing.outer_groove_radius, self.bearing.inner_groove_radius
+        v["roc"] = 0.5 * dm + Rb + Pd4 - self.bearing.outer_groove_radius
+        v["ric"] = 0.5 * dm - Rb - Pd4 + self.bearing.inner_groove_radius
+        v["mb"], v["jb"] = self.mass, self.ball_inertia
+        v["mr"], v["jr"] = self.bearing.ring_mass, self.bearing.ring_inertia
+        v["jrot"] = self.bearing.rotor_inertia if math.isfinite(self.bearing.rotor_inertia) else 0.0
+        v["ki"], v["ko"] = Ki, Ko
         if self.films.race == "closed_form":
-            P[P_HCI], P[P_HCO] = self.race_film_coefficients()
-        P[P_ALPHA] = self.fidelity.race_damping
-        P[P_MU], P[P_SRR], P[P_VREG] = self.fidelity.traction_limit, self.fidelity.traction_srr, self.fidelity.traction_slip_regularisation
-        P[P_G] = self.operating.gravity
-        P[P_FX] = 0.0
-        P[P_FY] = -(self.operating.radial_load - self.bearing.ring_mass * self.operating.gravity)
-        P[P_FZ] = self.operating.axial_load
-        P[P_OMEGA_FIX] = self.omega_inner
-        P[P_MUROT], P[P_RC], P[P_WREG] = self.operating.rotor_friction, self.operating.rotor_contact_radius, self.operating.rotor_slip_regularisation
-        P[P_NROT] = self.operating.radial_load
-        P[P_SW], P[P_SL], P[P_SBLEND] = self.slots.width, self.slots.length, self.slots.blend
+            v["hci"], v["hco"] = self.race_film_coefficients()
+        v["alpha"] = self.fidelity.race_damping
+        v["mu"], v["srr"], v["vreg"] = self.fidelity.traction_limit, self.fidelity.traction_srr, self.fidelity.traction_slip_regularisation
+        v["g"] = self.operating.gravity
+        v["fx"] = 0.0
+        v["fy"] = -(self.operating.radial_load - self.bearing.ring_mass * self.operating.gravity)
+        v["fz"] = self.operating.axial_load
+        v["murot"], v["rc"], v["wreg"] = self.operating.rotor_friction, self.operating.rotor_contact_radius, self.operating.rotor_slip_regularisation
+        v["nrot"] = self.operating.radial_load
+        v["sw"], v["sl"], v["sblend"] = self.slots.width, self.slots.length, self.slots.blend
         # slot edges: sphere against an edge rounded with r_e along a circle of radius R_e
         hw = 0.5 * self.slots.width
-        P[P_REO] = P[P_ROC] + math.sqrt(self.bearing.outer_groove_radius**2 - hw * hw)
-        P[P_REI] = P[P_RIC] - math.sqrt(self.bearing.inner_groove_radius**2 - hw * hw)
+        v["reo"] = v["roc"] + math.sqrt(self.bearing.outer_groove_radius**2 - hw * hw)
+        v["rei"] = v["ric"] - math.sqrt(self.bearing.inner_groove_radius**2 - hw * hw)
         es = self.e_star_race
         re = self.slots.edge_radius
-        rxo, ryo = laws_contact.relative_radii([2.0 / D, -1.0 / P[P_REO]], [2.0 / D, 1.0 / re])
-        rxi, ryi = laws_contact.relative_radii([2.0 / D, 1.0 / P[P_REI]], [2.0 / D, 1.0 / re])
-        P[P_KEO] = laws_contact.hertz_constant(max(rxo, ryo), min(rxo, ryo), es, self.fidelity.hertz)
-        P[P_KEI] = laws_contact.hertz_constant(max(rxi, ryi), min(rxi, ryi), es, self.fidelity.hertz)
-        P[P_QSTAB] = self.fidelity.quaternion_stabilisation
+        rxo, ryo = laws_contact.relative_radii([2.0 / D, -1.0 / v["reo"]], [2.0 / D, 1.0 / re])
+        rxi, ryi = laws_contact.relative_radii([2.0 / D, 1.0 / v["rei"]], [2.0 / D, 1.0 / re])
+        v["keo"] = laws_contact.hertz_constant(max(rxo, ryo), min(rxo, ryo), es, self.fidelity.hertz)
+        v["kei"] = laws_contact.hertz_constant(max(rxi, ryi), min(rxi, ryi), es, self.fidelity.hertz)
+        v["qstab"] = self.fidelity.quaternion_stabilisation
         bbp = ball_ball_parameters(
             ball_radius=Rb, e_star=self.e_star_ball, yield_stress=self.fidelity.yield_stress,
             damping_alpha=self.fidelity.ball_ball_damping, viscosity=self.films.viscosity if self.films.ball_ball != "none" else 0.0,
@@ -323,14 +326,13 @@ class CagelessBearing:
             slots[k, 1] = RACES[self.slots.race]
         # a model without a film map or traction maps passes None in their places: numba then prunes the
         # map readers by type and never compiles them (the args' types select the compiled variant)
-        map_ax0 = map_ax1 = map_ax2 = map_vals = map_opts = None
+        film_map = None
         if self.films.ball_ball == "map":
-            map_ax0, map_ax1, map_ax2, map_vals, map_opts = _map_arrays(self.films.map, MAP_SPEED_AXES[
-                self.films.map_speed_axis])
-            bbp = with_map_ends(bbp, map_ax0, map_ax1, map_opts)
+            film_map = _map_arrays(self.films.map, self.films.map_speed_axis)
+            bbp = with_map_ends(bbp, film_map.ax0, film_map.ax1, film_map.opts)
         counter = np.zeros(1, dtype=np.int64)
         tmap = _traction_arrays(self.fidelity.traction_maps) if self.fidelity.traction == "map" else None
-        return (iopt, P, bbp, slots, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter, tmap)
+        return KernelArgs(parameter_record(v), bbp, slots, film_map, counter, tmap)
 
     # state layout ---------------------------------------------------------------
     def state_layout(self) -> list[tuple[str, str]]:
@@ -465,7 +467,7 @@ class CagelessBearing:
         from scipy.optimize import brentq, root
 
         D, dm = self.bearing.ball_diameter, self.bearing.pitch_diameter
-        P = args[1]
+        P = args.P[0]
         m = self.mass
         b = self.ball_offset(j)
         six = self.fidelity.dof == "6dof"
@@ -487,10 +489,10 @@ class CagelessBearing:
             return (m * dydt[b + 4], 0.0)
 
         # groove centres in the ball's radial plane (rho, z)
-        gi = np.array([P[P_RIC] + y[0] * c + y[1] * s, y[2]])
-        go = np.array([P[P_ROC], 0.0])
-        Ki, Ko = P[P_KI], P[P_KO]
-        si, so_ = P[P_RI] - 0.5 * D, P[P_RO] - 0.5 * D
+        gi = np.array([P.ric + y[0] * c + y[1] * s, y[2]])
+        go = np.array([P.roc, 0.0])
+        Ki, Ko = P.ki, P.ko
+        si, so_ = P.ri - 0.5 * D, P.ro - 0.5 * D
         u = go - gi
         L = float(np.hypot(*u))
         dtot = L - si - so_

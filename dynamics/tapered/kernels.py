@@ -118,20 +118,11 @@ from ..interp import hermite_dot, hermite_value, locate, pair2
 from ..integrators import put
 from ..specialise import register_kernel, specialise
 from ..rotations import euler_rate, quat_derivative, quat_from_rotvec, quat_rotate, quat_rotate_inverse, quat_to_matrix
-from .layout import *  # noqa: F401,F403  (indices and option codes: lubedyn.dynamics.tapered.layout)
+from .layout import *  # noqa: F401,F403  (option codes and records: lubedyn.dynamics.tapered.layout)
 from .layout import (AXIAL_FORCE, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
                      N_CONE, N_FRICTION, NB, POCKET_CONTACT, POCKET_FILM, TRACTION_LIMITED, TRACTION_MAP,
                      TRACTION_PAPER)
-from .layout import (P_ALPHA, P_ALPHAG, P_AXIAL, P_BLAND, P_CAGE, P_CH, P_CLAND, P_CONNR, P_CONNX, P_CONR,
-                     P_CONTACTS, P_CONX, P_CUPNR, P_CUPNX, P_CUPR, P_CUPX, P_DR, P_EP, P_ETA, P_FA, P_FA1, P_FB1,
-                     P_FBC, P_FCC, P_FFRIC, P_FLNR, P_FLNX, P_FLR, P_FLX, P_FP01, P_FR, P_GAMMAL, P_GRAV, P_HCRIT,
-                     P_HLAND, P_HRIB, P_ICT, P_ICX, P_IX, P_IY, P_KF, P_KH, P_KLAND, P_KPOCKET, P_KW, P_LAMBDA,
-                     P_LANDMODE, P_LEN, P_M, P_MC, P_MCG, P_MUA, P_MUBD, P_NEXP, P_NS, P_OMEGA, P_PHI0,
-                     P_POCKET, P_POCKETMODE, P_PVC, P_QSTAB, P_RHOM, P_RLAND, P_RS, P_RXI, P_RXO, P_SWITCH,
-                     P_TAUL0, P_TAUY, P_TRACTION, P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_UC, P_UE, P_US, P_VREG,
-                     P_WIDTH, P_Z)
-from .layout import P_ICONET, P_ICONEX, P_LANDX, P_LOADX, P_MY, P_MZ, P_TILT, P_TILTAT
-from .layout import P_TMA, P_TMB, P_TMCEN, P_TMNW, P_TMNX, P_TMOFF0, P_TMSHI, P_TMSLO
+from .layout import KernelArgs, MapTable, TractionTable  # noqa: F401  (the records the kernels take)
 
 _dowson_toyoda = njit(**INLINE)(dowson_toyoda_central)   # the law of lubedyn.lubrication.laws.film, compiled here
 
@@ -156,7 +147,7 @@ def _load_roller(F, T, j, r0, r1, r2, f0, f1, f2):
 @njit(**INLINE)
 def _rheo(P):
     """The grease rheology tuple (tau_y, phi0, n, alpha, tau_L0, gamma_L, D_r) of the limited laws."""
-    return (P[P_TAUY], P[P_PHI0], P[P_NEXP], P[P_ALPHAG], P[P_TAUL0], P[P_GAMMAL], P[P_DR])
+    return (P.tauy, P.phi0, P.nexp, P.alphag, P.taul0, P.gammal, P.dr)
 
 
 @njit(**INLINE)
@@ -164,9 +155,9 @@ def _strip_film(w, radius, P):
     """(Hertz half-width b [m], peak pressure p0 [Pa], Dowson-Toyoda central film h0 [m] at the ideal
     entrainment speed) of a strip carrying the line load ``w`` [N/m] on a raceway of reduced radius
     ``radius``: b = sqrt(8 w R'/(pi E')), p0 = 2 w/(pi b)."""
-    ep = P[P_EP]
+    ep = P.ep
     b = math.sqrt(8.0 * w * radius / (math.pi * ep))
-    h0 = radius * _dowson_toyoda(P[P_ETA] * P[P_UE] / (ep * radius), P[P_PVC] * ep, w / (ep * radius))
+    h0 = radius * _dowson_toyoda(P.eta * P.ue / (ep * radius), P.pvc * ep, w / (ep * radius))
     return b, 2.0 * w / (math.pi * b), h0
 
 
@@ -174,7 +165,7 @@ def _strip_film(w, radius, P):
 def _slice_film(load, radius, P):
     """(line load w [N/m], b, p0, h0) of a slice carrying ``load`` [N] (:func:`_strip_film` at
     w = load/width)."""
-    w = load / P[P_WIDTH]
+    w = load / P.width
     b, p0, h0 = _strip_film(w, radius, P)
     return w, b, p0, h0
 
@@ -225,7 +216,7 @@ def _traction_per_speed(load, radius, P):
     """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N]: pi eps eta
     sqrt(R'/(2 h0)) times the slice width (:func:`lubedyn.lubrication.laws.traction.paper_raceway_traction`)."""
     w, b, p0, h0 = _slice_film(load, radius, P)
-    return paper_raceway_traction(1.0, P[P_ETA], radius, h0, b) * P[P_WIDTH]
+    return paper_raceway_traction(1.0, P.eta, radius, h0, b) * P.width
 
 
 @njit(**JIT)
@@ -249,31 +240,28 @@ def strip_viscous_table(V, W, radius, P):
 
 
 @njit(**INLINE)
-def _table_viscous(race, w, vs, P, counter):
+def _table_viscous(race, w, vs, table, counter):
     """The viscous part of the limited traction per unit length [N/m] from raceway ``race``'s table (cubic
-    Hermite in log v_s and log w of the logarithm of the values), or -1 when (v_s, w) lies outside it
+    Hermite in log v_s and log w of the logarithm of the values, ``table``: :class:`TractionTable`), or -1 when (v_s, w) lies outside it
     (the caller then evaluates the law)."""
-    off = int(P[P_TTOFF0 + race])
-    n0 = int(P[P_TTN0])
-    n1 = int(P[P_TTN1])
     # lubedyn.dynamics.interp.hermite2's operations in the same order, inlined (its call with array views cost
     # about as much as the interpolation); without its fused multiply-adds, so equal to round-off only: a
     # 10 ms run of Fig. 5's point moves by 1.5e-8 relative at most
-    av, aw = P[off:off + n0], P[off + n0:off + n0 + n1]
+    av, aw = table.speeds[race], table.loads[race]
     i, c0, o0 = locate(av, math.log(vs))
     j, c1, o1 = locate(aw, math.log(w))
     if o0 != 0 or o1 != 0:
         return -1.0
-    D = P[off + n0 + n1:off + n0 + n1 + 4 * n0 * n1].reshape((4, n0, n1))
+    D = table.data[race]
     w1 = hermite_value(aw, j, c1)
     return math.exp(hermite_dot(pair2(D, 0, i, j, w1), pair2(D, 1, i, j, w1), hermite_value(av, i, c0)))
 
 
 @njit(**JIT)
-def map_traction_coefficient(race, w, s, P, counter):
+def map_traction_coefficient(race, w, s, P, maps, counter):
     """Traction coefficient [-] of raceway ``race`` (0 cup, 1 cone) at line load ``w`` [N/m] and
     slide-to-roll ratio ``s`` >= 0 from the roller EHL map's tables at the run's entrainment speed
-    (:meth:`lubedyn.dynamics.tapered.model.TaperedBearing.map_traction_tables`), read as the map reads its sheared
+    (``maps``, :class:`MapTable`: :meth:`lubedyn.dynamics.tapered.model.TaperedBearing.map_traction_tables`), read as the map reads its sheared
     traction (:class:`lubedyn.maps.FilmMap`, "sheared"): the transition slip s_t(w) (cubic Hermite in
     log w of log s_t), the normalised slip sigma = s/s_t, the map's coordinate x = centre exp(asinh(ln
     sigma / a)/b) (clamped to the axis), and G(w, x) (cubic Hermite in log w, log x of log G).  Worked in
@@ -283,32 +271,28 @@ def map_traction_coefficient(race, w, s, P, counter):
     slide-to-roll axis' first node the traction is linear in s (the maps' convention: the film's shear is
     linear there); above its last node it is held; a load outside the axis is clamped (counted in
     ``counter[0]``)."""
-    off = int(P[P_TMOFF0 + race])
-    nw = int(P[P_TMNW])
-    nx = int(P[P_TMNX])
-    aw = P[off:off + nw]
-    ax = P[off + nw:off + nw + nx]
-    c0 = off + nw + nx
-    g0 = c0 + 2 * nw
+    aw = maps.loads[race]
+    ax = maps.slips[race]
+    st = maps.shift[race]
     scale = 1.0
-    lo = P[P_TMSLO]
+    lo = P.tmslo
     if s < lo:
         scale = s / lo
         s = lo
-    elif s > P[P_TMSHI]:
-        s = P[P_TMSHI]
+    elif s > P.tmshi:
+        s = P.tmshi
     i, tw, out = locate(aw, math.log(w))
     counter[0] += out
     bw = hermite_value(aw, i, tw)
-    ln_st = (bw[0] * P[c0 + i] + bw[1] * P[c0 + i + 1]) + (bw[2] * P[c0 + nw + i] + bw[3] * P[c0 + nw + i + 1])
-    j, tx, _ = locate(ax, math.log(P[P_TMCEN]) + math.asinh((math.log(s) - ln_st) / P[P_TMA]) / P[P_TMB])
+    ln_st = (bw[0] * st[0, i] + bw[1] * st[0, i + 1]) + (bw[2] * st[1, i] + bw[3] * st[1, i + 1])
+    j, tx, _ = locate(ax, math.log(P.tmcen) + math.asinh((math.log(s) - ln_st) / P.tma) / P.tmb)
     wx = hermite_value(ax, j, tx)
-    G = P[g0:g0 + 4 * nw * nx].reshape((4, nw, nx))
+    G = maps.values[race]
     return scale * math.exp(hermite_dot(pair2(G, 0, i, j, wx), pair2(G, 1, i, j, wx), bw))
 
 
 @njit(**INLINE)
-def _slice_traction(load, race, vs, P, counter):
+def _slice_traction(load, race, vs, P, table, maps, counter):
     """Magnitude [N] of the raceway traction of a slice of raceway ``race`` (0 cup, 1 cone) sliding at
     ``vs`` >= 0 [m/s] (the force opposes the roller's sliding): eq. 12 ("paper"), the limited
     Herschel-Bulkley strip law ("limited", :func:`strip_viscous_traction`, from the raceway's table when
@@ -316,24 +300,24 @@ def _slice_traction(load, race, vs, P, counter):
     (:func:`lubedyn.lubrication.laws.traction.elastic_limited`, shear modulus G), or the roller EHL map's
     traction coefficient times the slice load ("map", :func:`map_traction_coefficient`, at the slide-to-roll
     ratio v_s/u_e of the run's ideal entrainment speed)."""
-    radius = P[P_RXO] if race == 0 else P[P_RXI]
-    if P[P_TRACTION] == TRACTION_PAPER:
+    radius = P.rxo if race == 0 else P.rxi
+    if P.traction == TRACTION_PAPER:
         return _traction_per_speed(load, radius, P) * vs
     if vs <= 0.0:
         return 0.0
-    if P[P_TRACTION] == TRACTION_MAP:  # the EHL map's film traction (its elastic shear included)
-        return map_traction_coefficient(race, load / P[P_WIDTH], vs / P[P_UE], P, counter) * load
+    if P.traction == TRACTION_MAP:  # the EHL map's film traction (its elastic shear included)
+        return map_traction_coefficient(race, load / P.width, vs / P.ue, P, maps, counter) * load
     w, b, p0, h0 = _slice_film(load, radius, P)
     viscous = -1.0
-    if P[P_TTAB] != 0.0:
-        viscous = _table_viscous(race, w, vs, P, counter)
+    if P.ttab != 0.0:
+        viscous = _table_viscous(race, w, vs, table, counter)
     if viscous < 0.0:
         viscous = limited_strip_traction(vs, h0, b, p0, _rheo(P))
-    return elastic_limited(viscous * P[P_WIDTH], elastic_strip_slope(P[P_GSHEAR], b, P[P_UE], h0) * P[P_WIDTH], vs)
+    return elastic_limited(viscous * P.width, elastic_strip_slope(P.gshear, b, P.ue, h0) * P.width, vs)
 
 
 @njit(**JIT)
-def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
+def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     """Contact forces and torques: F[j] force on roller j [N], T[j] torque about its mass centre
     (inertial frame) [N m], Fc the force of all rollers (and the cage) on the cone [N], Tc their moment
     about the cone's (displaced) reference point [N m] (computed with the cone's tilt free; zeros when it
@@ -341,9 +325,10 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     (cup, cone, flange, pocket) sums of the normal forces' magnitudes [N]; Fg, Tg the force [N] and the
     torque about its centre [N m] on the cage; SL[j, race, k] the slice loads [N] (race 0 cup, 1 cone);
     FR[j] the friction diagnostics (:data:`lubedyn.dynamics.tapered.layout.FRICTION_NAMES`); CG the cage's
-    (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`)."""
-    Z = int(P[P_Z])
-    ns = int(P[P_NS])
+    (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`).  ``A``: the model's :class:`KernelArgs`."""
+    P, U, RHO = A.P[0], A.U, A.RHO
+    Z = int(P.z)
+    ns = int(P.ns)
     F[:, :] = 0.0
     T[:, :] = 0.0
     Fc[:] = 0.0
@@ -354,27 +339,27 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     SL[:, :, :] = 0.0
     FR[:, :] = 0.0
     CG[:] = 0.0
-    if P[P_CONTACTS] == 0.0:
+    if P.contacts == 0.0:
         return
     counter = np.zeros(1, dtype=np.int64)      # queries outside a traction table (lubedyn.dynamics.interp)
     dx, dy, dz = y[0], y[1], y[2]
     vcx, vcy, vcz = y[3], y[4], y[5]
-    om = P[P_OMEGA]
+    om = P.omega
     # the cone's angular velocity and attitude: the prescribed spin Omega about its axis a = R e_x and,
     # tilted, the tilt rate (0, theta_y', theta_z'); R the rotation of the rotation vector (0, theta_y,
     # theta_z) (used only when the tilt is free)
-    tilted = P[P_TILT] != 0.0
+    tilted = P.tilt != 0.0
     wx, wy, wz = om, 0.0, 0.0
     lx, ly, lvx, lvy = 0.0, 0.0, 0.0, 0.0
     Rm = np.empty((3, 3))
     if tilted:
-        kt = int(P[P_TILTAT])
+        kt = int(P.tiltat)
         qt = np.empty(4)
         quat_from_rotvec(np.array([0.0, y[kt], y[kt + 1]]), qt)
         quat_to_matrix(qt, Rm)
         wx, wy, wz = om * Rm[0, 0], om * Rm[1, 0] + y[kt + 2], om * Rm[2, 0] + y[kt + 3]
         # the guide land's centre and velocity (y, z) at its axial station x_L, moved by the tilt
-        xl = P[P_LANDX]
+        xl = P.landx
         lx, ly = xl * Rm[1, 0], xl * Rm[2, 0]
         lvx, lvy = xl * y[kt + 3], -xl * y[kt + 2]
     ex_b = np.array([1.0, 0.0, 0.0])
@@ -384,7 +369,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     bc = N_CONE + Z * NB
     qc = np.empty(4)
     wc = np.zeros(3)
-    if P[P_CAGE] != 0.0:
+    if P.cage != 0.0:
         qn = math.sqrt(y[bc + 3] ** 2 + y[bc + 4] ** 2 + y[bc + 5] ** 2 + y[bc + 6] ** 2)
         for i in range(4):  # a loop, not qc[:] = ...: see lubedyn.dynamics.integrators.put
             qc[i] = y[bc + 3 + i] / qn
@@ -398,13 +383,13 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
         quat_rotate(q, y[b + 10:b + 13], wi)          # angular velocity, inertial frame
         e0, e1, e2 = e[0], e[1], e[2]
         # the roller's mid-point (slice coordinates u are measured from it)
-        m0, m1, m2 = c0 - P[P_UC] * e0, c1 - P[P_UC] * e1, c2 - P[P_UC] * e2
+        m0, m1, m2 = c0 - P.uc * e0, c1 - P.uc * e1, c2 - P.uc * e2
         for race in range(2):
             if race == 0:
-                px, pr, nx, nr = P[P_CUPX], P[P_CUPR], P[P_CUPNX], P[P_CUPNR]
+                px, pr, nx, nr = P.cupx, P.cupr, P.cupnx, P.cupnr
                 ox, oy, oz = 0.0, 0.0, 0.0
             else:
-                px, pr, nx, nr = P[P_CONX], P[P_CONR], P[P_CONNX], P[P_CONNR]
+                px, pr, nx, nr = P.conx, P.conr, P.connx, P.connr
                 ox, oy, oz = dx, dy, dz
             for k in range(ns):
                 u = U[k]
@@ -433,18 +418,18 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                     u1 -= vcy + a1
                     u2 -= vcz + a2
                 ddot = -(u0 * n0 + u1 * n1 + u2 * n2)
-                f = slice_force(delta, ddot, P[P_KW], P[P_ALPHA])
+                f = slice_force(delta, ddot, P.kw, P.alpha)
                 if f <= 0.0:
                     continue
                 f0, f1, f2 = f * n0, f * n1, f * n2
-                if P[P_TRACTION] != 0.0:
+                if P.traction != 0.0:
                     # against the sliding velocity's tangential part: rolling direction and the axial
                     # sliding a skewed roller makes, one vector
                     un = u0 * n0 + u1 * n1 + u2 * n2
                     s0, s1, s2 = u0 - un * n0, u1 - un * n1, u2 - un * n2
                     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                     if vs > 0.0:
-                        ft = _slice_traction(f, race, vs, P, counter)
+                        ft = _slice_traction(f, race, vs, P, A.table, A.maps, counter)
                         f0 -= ft * s0 / vs
                         f1 -= ft * s1 / vs
                         f2 -= ft * s2 / vs
@@ -457,39 +442,39 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                 if race == 1:
                     _load_cone(Fc, Tc, tilted, q0, q1, q2, f0, f1, f2)
         # flange: the large-end sphere against the rib (on the cone)
-        us = P[P_US]
+        us = P.us
         s0, s1, s2 = m0 + us * e0 - dx, m1 + us * e1 - dy, m2 + us * e2 - dz
         if tilted:      # the rib in the cone frame, its normal back
             t0, t1, t2 = _rot_t(Rm, s0, s1, s2)
             a0, a1, a2 = _rot_t(Rm, e0, e1, e2)
-            d0, _, _, _, k0_, k1_, k2_ = slice_contact_3d(t0, t1, t2, a0, a1, a2, 0.0, P[P_FLX], P[P_FLR], P[P_FLNX],
-                                                          P[P_FLNR])
+            d0, _, _, _, k0_, k1_, k2_ = slice_contact_3d(t0, t1, t2, a0, a1, a2, 0.0, P.flx, P.flr, P.flnx,
+                                                          P.flnr)
             n0, n1, n2 = _rot(Rm, k0_, k1_, k2_)
         else:
-            d0, _, _, _, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, 0.0, P[P_FLX], P[P_FLR],
-                                                       P[P_FLNX], P[P_FLNR])
-        delta = P[P_RS] + d0
+            d0, _, _, _, n0, n1, n2 = slice_contact_3d(s0, s1, s2, e0, e1, e2, 0.0, P.flx, P.flr,
+                                                       P.flnx, P.flnr)
+        delta = P.rs + d0
         if delta > 0.0:
-            q0, q1, q2 = s0 - P[P_RS] * n0, s1 - P[P_RS] * n1, s2 - P[P_RS] * n2
+            q0, q1, q2 = s0 - P.rs * n0, s1 - P.rs * n1, s2 - P.rs * n2
             P0, P1, P2 = q0 + dx, q1 + dy, q2 + dz
             r0, r1, r2 = P0 - c0, P1 - c1, P2 - c2
             w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
             a0, a1, a2 = _cross(wx, wy, wz, q0, q1, q2)
             u0, u1, u2 = v0 + w0 - vcx - a0, v1 + w1 - vcy - a1, v2 + w2 - vcz - a2
             un = u0 * n0 + u1 * n1 + u2 * n2
-            f = hertz_force(delta, -un, P[P_KF], P[P_ALPHA])
+            f = hertz_force(delta, -un, P.kf, P.alpha)
             if f > 0.0:
                 f0, f1, f2 = f * n0, f * n1, f * n2
-                if P[P_FFRIC] != 0.0:
+                if P.ffric != 0.0:
                     s0, s1, s2 = u0 - un * n0, u1 - un * n1, u2 - un * n2
                     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                     FR[j, 6] = vs
                     if vs > 0.0:
                         c3 = f ** (1.0 / 3.0)          # Hertz: a, b, p0 scale with Q^(1/3)
-                        grease = limited_ellipse_traction(vs, P[P_HRIB], P[P_FA1] * c3, P[P_FB1] * c3,
-                                                          P[P_FP01] * c3, _rheo(P))
-                        ff = flange_friction(vs, f, P[P_LAMBDA], grease, P[P_MUA], P[P_FBC], P[P_FCC],
-                                             P[P_FFRIC] == 2.0)
+                        grease = limited_ellipse_traction(vs, P.hrib, P.fa1 * c3, P.fb1 * c3,
+                                                          P.fp01 * c3, _rheo(P))
+                        ff = flange_friction(vs, f, P.lam, grease, P.mua, P.fbc, P.fcc,
+                                             P.ffric == 2.0)
                         f0 -= ff * s0 / vs
                         f1 -= ff * s1 / vs
                         f2 -= ff * s2 / vs
@@ -497,16 +482,16 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                 _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
                 loads[j, 2] += f
                 _load_cone(Fc, Tc, tilted, q0, q1, q2, f0, f1, f2)
-        if P[P_CAGE] != 0.0:
+        if P.cage != 0.0:
             _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR)
-            if P[P_SIDEGAP] > 0.0:
+            if P.sidegap > 0.0:
                 _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG)
-    if P[P_CAGE] != 0.0:
+    if P.cage != 0.0:
         fy0, fz0 = Fc[1], Fc[2]
         _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy)
         if tilted:      # the land's force acts on the cone's axis at the land's station x_L
-            Tc[1] -= P[P_LANDX] * (Fc[2] - fz0)
-            Tc[2] += P[P_LANDX] * (Fc[1] - fy0)
+            Tc[1] -= P.landx * (Fc[2] - fz0)
+            Tc[2] += P.landx * (Fc[1] - fy0)
         CG[0], CG[1], CG[2] = Fg[1], Fg[2], Tg[0]
 
 
@@ -514,7 +499,7 @@ def contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
 def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR):
     """Roller j against the crossbeams of its pocket (module docstring): forces on the roller and the cage
     (``qc`` the cage's unit quaternion, ``wc`` its inertial angular velocity)."""
-    Z = int(P[P_Z])
+    Z = int(P.z)
     b = N_CONE + Z * NB
     g0, g1, g2 = y[b], y[b + 1], y[b + 2]
     phi = 2.0 * math.pi * j / Z
@@ -524,11 +509,11 @@ def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2,
     s = t[0] * (m0 - g0) + t[1] * (m1 - g1) + t[2] * (m2 - g2)
     for side in range(2):
         sg = 1.0 if side == 0 else -1.0           # leading beam (+t), trailing beam (-t)
-        gap = P[P_POCKET] - sg * s
-        if P[P_POCKETMODE] == POCKET_CONTACT and gap >= 0.0:
+        gap = P.pocket - sg * s
+        if P.pocketmode == POCKET_CONTACT and gap >= 0.0:
             continue
         # contact point on the roller's side facing the beam
-        p0, p1, p2 = m0 + sg * P[P_RHOM] * t[0], m1 + sg * P[P_RHOM] * t[1], m2 + sg * P[P_RHOM] * t[2]
+        p0, p1, p2 = m0 + sg * P.rhom * t[0], m1 + sg * P.rhom * t[1], m2 + sg * P.rhom * t[2]
         r0, r1, r2 = p0 - c0, p1 - c1, p2 - c2
         a0, a1, a2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
         h0, h1, h2 = p0 - g0, p1 - g1, p2 - g2
@@ -539,12 +524,12 @@ def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2,
         un = u0 * t[0] + u1 * t[1] + u2 * t[2]
         s0, s1, s2 = u0 - un * t[0], u1 - un * t[1], u2 - un * t[2]
         vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
-        if P[P_POCKETMODE] == POCKET_FILM:
-            q, f = pocket_force(gap, -sg * un, vs, P[P_RHOM], P[P_LEN], P[P_ETA], P[P_HCRIT], P[P_KH], P[P_CH],
-                                P[P_MUBD], int(P[P_SWITCH]))
+        if P.pocketmode == POCKET_FILM:
+            q, f = pocket_force(gap, -sg * un, vs, P.rhom, P.len, P.eta, P.hcrit, P.kh, P.ch,
+                                P.mubd, int(P.switch))
         else:   # "contact": line contact of the roller on the beam (Palmgren law, eq. 11 damping), mu_bd
-            q = slice_force(-gap, sg * un, P[P_KPOCKET], P[P_ALPHA])
-            f = P[P_MUBD] * q * math.tanh(vs / P[P_VREG])
+            q = slice_force(-gap, sg * un, P.kpocket, P.alpha)
+            f = P.mubd * q * math.tanh(vs / P.vreg)
         if q <= 0.0 and f == 0.0:
             continue
         f0, f1, f2 = -sg * q * t[0], -sg * q * t[1], -sg * q * t[2]
@@ -567,22 +552,22 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
     boundary state below the critical film); contact-only pocket: a line contact (the pocket's constant,
     eq. 11's damping) once the gap closes.  The force acts along a_j at the end face's centre, on the roller
     and (opposite) on the cage."""
-    Z = int(P[P_Z])
+    Z = int(P.z)
     b = N_CONE + Z * NB
     g0, g1, g2 = y[b], y[b + 1], y[b + 2]
     phi = 2.0 * math.pi * j / Z
     cp, sp = math.cos(phi), math.sin(phi)
-    cb, sb = math.cos(P[P_BETA0]), math.sin(P[P_BETA0])
+    cb, sb = math.cos(P.beta0), math.sin(P.beta0)
     cw = np.empty(3)
-    quat_rotate(qc, np.array([P[P_POCKX], P[P_PITCH] * cp, P[P_PITCH] * sp]), cw)
+    quat_rotate(qc, np.array([P.pockx, P.pitch * cp, P.pitch * sp]), cw)
     a = np.empty(3)
     quat_rotate(qc, np.array([cb, sb * cp, sb * sp]), a)
     s = a[0] * (m0 - g0 - cw[0]) + a[1] * (m1 - g1 - cw[1]) + a[2] * (m2 - g2 - cw[2])
-    half = 0.5 * P[P_LEN]
+    half = 0.5 * P.len
     for end in range(2):
         sg = 1.0 if end == 0 else -1.0            # large end (+a), small end (-a)
-        gap = P[P_SIDEGAP] - sg * s
-        if P[P_POCKETMODE] == POCKET_CONTACT and gap >= 0.0:
+        gap = P.sidegap - sg * s
+        if P.pocketmode == POCKET_CONTACT and gap >= 0.0:
             continue
         p0, p1, p2 = m0 + sg * half * e0, m1 + sg * half * e1, m2 + sg * half * e2   # end face centre
         r0, r1, r2 = p0 - c0, p1 - c1, p2 - c2
@@ -592,11 +577,11 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
         rel = (a[0] * (v0 + w0 - y[b + 7] - k0) + a[1] * (v1 + w1 - y[b + 8] - k1)
                + a[2] * (v2 + w2 - y[b + 9] - k2))
         rate = -sg * rel                           # d(gap)/dt
-        if P[P_POCKETMODE] == POCKET_FILM:
-            d = P[P_DLARGE] if end == 0 else P[P_DSMALL]
-            f = side_beam_force(gap, rate, d, P[P_HSIDE], P[P_ETA], P[P_HCRIT], P[P_KH], P[P_CH])
+        if P.pocketmode == POCKET_FILM:
+            d = P.dlarge if end == 0 else P.dsmall
+            f = side_beam_force(gap, rate, d, P.hside, P.eta, P.hcrit, P.kh, P.ch)
         else:
-            f = slice_force(-gap, -rate, P[P_KPOCKET], P[P_ALPHA])
+            f = slice_force(-gap, -rate, P.kpocket, P.alpha)
         if f <= 0.0:
             continue
         f0, f1, f2 = -sg * f * a[0], -sg * f * a[1], -sg * f * a[2]
@@ -609,38 +594,38 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
 def _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy):
     """The cage's centering surface on the cone's guide land (module docstring); (lx, ly) and (lvx, lvy)
     move the land's centre and velocity (y, z) off the cone's (the tilt; 0 when locked)."""
-    Z = int(P[P_Z])
+    Z = int(P.z)
     b = N_CONE + Z * NB
     # the land (journal) relative to the cage (bearing), in the radial plane (y, z)
     ex, ey = y[1] + lx - y[b + 1], y[2] + ly - y[b + 2]
     vx, vy = y[4] + lvx - y[b + 8], y[5] + lvy - y[b + 9]
-    r, c, w = P[P_RLAND], P[P_CLAND], P[P_BLAND]
+    r, c, w = P.rland, P.cland, P.bland
     ecc = math.sqrt(ex * ex + ey * ey)
     fx, fy, torque = 0.0, 0.0, 0.0
-    slide = r * (P[P_OMEGA] - wc[0])
-    if P[P_LANDMODE] == LAND_FILM:
+    slide = r * (P.omega - wc[0])
+    if P.landmode == LAND_FILM:
         ecc_f = ecc if ecc < c else c * (1.0 - 1e-9)
-        fx, fy = guide_land_short_bearing(ex, ey, vx, vy, r, c, w, P[P_ETA], r * (P[P_OMEGA] + wc[0]))
-        torque = guide_land_torque(ecc_f / c, r, c, w, P[P_ETA], P[P_OMEGA], wc[0])
+        fx, fy = guide_land_short_bearing(ex, ey, vx, vy, r, c, w, P.eta, r * (P.omega + wc[0]))
+        torque = guide_land_torque(ecc_f / c, r, c, w, P.eta, P.omega, wc[0])
         gap = c - ecc
-        if gap < P[P_HLAND] and ecc > 0.0:
+        if gap < P.hland and ecc > 0.0:
             nx, ny = ex / ecc, ey / ecc                 # from the cage's centre towards the land's
             vr = vx * nx + vy * ny                       # rate at which the land closes on the bore
-            qs = P[P_KH] * (P[P_HLAND] - gap) + P[P_CH] * vr
+            qs = P.kh * (P.hland - gap) + P.ch * vr
             if qs > 0.0:
                 # the bore pushes the land back towards the cage's centre (-n; the first step had +n)
                 fx -= qs * nx
                 fy -= qs * ny
-                torque += P[P_MUBD] * qs * r * (1.0 if slide > 0.0 else (-1.0 if slide < 0.0 else 0.0))
+                torque += P.mubd * qs * r * (1.0 if slide > 0.0 else (-1.0 if slide < 0.0 else 0.0))
                 CG[3] = qs
-    elif P[P_LANDMODE] == LAND_CONTACT and ecc > c:
+    elif P.landmode == LAND_CONTACT and ecc > c:
         # contact only: the land touches the cage's bore (line contact of the land's width, Palmgren law with
         # eq. 11 damping), friction mu_bd along the land's sliding (regularised Coulomb)
         nx, ny = ex / ecc, ey / ecc
-        qs = slice_force(ecc - c, vx * nx + vy * ny, P[P_KLAND], P[P_ALPHA])
+        qs = slice_force(ecc - c, vx * nx + vy * ny, P.kland, P.alpha)
         fx -= qs * nx
         fy -= qs * ny
-        torque = P[P_MUBD] * qs * r * math.tanh(slide / P[P_VREG])
+        torque = P.mubd * qs * r * math.tanh(slide / P.vreg)
         CG[3] = qs
     # (fx, fy) acts on the land (journal): the cage gets the opposite, the cone the force itself
     Fg[1] -= fx
@@ -652,10 +637,10 @@ def _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy):
 
 @njit(**JIT)
 def rhs(t, y, args, dydt):
-    """dy/dt of the tapered roller bearing (module docstring); ``args = (P, U, RHO)``."""
-    P, U, RHO = args
-    Z = int(P[P_Z])
-    ns = int(P[P_NS])
+    """dy/dt of the tapered roller bearing (module docstring); ``args``: the model's :class:`KernelArgs`."""
+    P = args.P[0]
+    Z = int(P.z)
+    ns = int(P.ns)
     F = np.empty((Z, 3))
     T = np.empty((Z, 3))
     Fc = np.empty(3)
@@ -666,69 +651,69 @@ def rhs(t, y, args, dydt):
     SL = np.empty((Z, 2, ns))
     FR = np.empty((Z, N_FRICTION))
     CG = np.empty(N_CAGE_DIAG)
-    contact_forces(y, P, U, RHO, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG)
-    g = P[P_GRAV]                                      # gravity along -y
+    contact_forces(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG)
+    g = P.grav                                      # gravity along -y
     # cone: translation under the rollers' forces, F_r along +y, F_a along -x (closing the bearing)
-    mc = P[P_MC]
+    mc = P.mc
     dydt[0] = y[3]
     dydt[1] = y[4]
     dydt[2] = y[5]
-    if P[P_AXIAL] == AXIAL_FORCE:
-        dydt[3] = (Fc[0] - P[P_FA]) / mc
+    if P.axial == AXIAL_FORCE:
+        dydt[3] = (Fc[0] - P.fa) / mc
     else:
         dydt[0] = 0.0
         dydt[3] = 0.0
-    dydt[4] = (Fc[1] + P[P_FR]) / mc - g
+    dydt[4] = (Fc[1] + P.fr) / mc - g
     dydt[5] = Fc[2] / mc
-    inertia = np.array([P[P_IX], P[P_IY], P[P_IY]])
+    inertia = np.array([P.ix, P.iy, P.iy])
     tb = np.empty(3)
-    m = P[P_M]
+    m = P.m
     for j in range(Z):
         b = N_CONE + j * NB
         q = y[b + 3:b + 7]
         dydt[b] = y[b + 7]
         dydt[b + 1] = y[b + 8]
         dydt[b + 2] = y[b + 9]
-        quat_derivative(q, y[b + 10:b + 13], dydt[b + 3:b + 7], P[P_QSTAB])
+        quat_derivative(q, y[b + 10:b + 13], dydt[b + 3:b + 7], P.qstab)
         dydt[b + 7] = F[j, 0] / m
         dydt[b + 8] = F[j, 1] / m - g
         dydt[b + 9] = F[j, 2] / m
         qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
         quat_rotate_inverse(qn, T[j], tb)
         euler_rate(inertia, y[b + 10:b + 13], tb, dydt[b + 10:b + 13])
-    if P[P_CAGE] != 0.0:
+    if P.cage != 0.0:
         b = N_CONE + Z * NB
         q = y[b + 3:b + 7]
-        free = P[P_SIDEGAP] > 0.0                      # the side beams hold it axially; else held
+        free = P.sidegap > 0.0                      # the side beams hold it axially; else held
         dydt[b] = y[b + 7] if free else 0.0
         dydt[b + 1] = y[b + 8]
         dydt[b + 2] = y[b + 9]
-        quat_derivative(q, y[b + 10:b + 13], dydt[b + 3:b + 7], P[P_QSTAB])
-        dydt[b + 7] = Fg[0] / P[P_MCG] if free else 0.0
-        dydt[b + 8] = Fg[1] / P[P_MCG] - g
-        dydt[b + 9] = Fg[2] / P[P_MCG]
+        quat_derivative(q, y[b + 10:b + 13], dydt[b + 3:b + 7], P.qstab)
+        dydt[b + 7] = Fg[0] / P.mcg if free else 0.0
+        dydt[b + 8] = Fg[1] / P.mcg - g
+        dydt[b + 9] = Fg[2] / P.mcg
         qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
         quat_rotate_inverse(qn, Tg, tb)
-        euler_rate(np.array([P[P_ICX], P[P_ICT], P[P_ICT]]), y[b + 10:b + 13], tb, dydt[b + 10:b + 13])
-    if P[P_TILT] != 0.0:
+        euler_rate(np.array([P.icx, P.ict, P.ict]), y[b + 10:b + 13], tb, dydt[b + 10:b + 13])
+    if P.tilt != 0.0:
         # the cone's tilt (small rotations theta_y, theta_z about its reference point): Euler's equations
         # of the spinning cone, H = I_x Omega a + I_t (0, theta_y', theta_z'), dH/dt = M with
         # a' = (0, theta_z', -theta_y') (first order in the tilt):
         #   I_t theta_y'' = M_y - I_x Omega theta_z',   I_t theta_z'' = M_z + I_x Omega theta_y'
         # M: the contacts' moment Tc, the radial load's x_F F_r about z and the applied moment
-        k = int(P[P_TILTAT])
-        gyro = P[P_ICONEX] * P[P_OMEGA]
+        k = int(P.tiltat)
+        gyro = P.iconex * P.omega
         dydt[k] = y[k + 2]
         dydt[k + 1] = y[k + 3]
-        dydt[k + 2] = (Tc[1] + P[P_MY] - gyro * y[k + 3]) / P[P_ICONET]
-        dydt[k + 3] = (Tc[2] + P[P_MZ] + P[P_LOADX] * P[P_FR] + gyro * y[k + 2]) / P[P_ICONET]
+        dydt[k + 2] = (Tc[1] + P.my - gyro * y[k + 3]) / P.iconet
+        dydt[k + 3] = (Tc[2] + P.mz + P.loadx * P.fr + gyro * y[k + 2]) / P.iconet
 
 
 @njit(**JIT)
 def loads_many(Y, args):
     """(n, Z, 4) cup, cone, flange and pocket loads [N] of each roller at each sampled state."""
-    P, U, RHO = args
-    Z = int(P[P_Z])
+    P = args.P[0]
+    Z = int(P.z)
     out = np.empty((Y.shape[0], Z, 4))
     F = np.empty((Z, 3))
     T = np.empty((Z, 3))
@@ -736,18 +721,18 @@ def loads_many(Y, args):
     Tc = np.empty(3)
     Fg = np.empty(3)
     Tg = np.empty(3)
-    SL = np.empty((Z, 2, int(P[P_NS])))
+    SL = np.empty((Z, 2, int(P.ns)))
     FR = np.empty((Z, N_FRICTION))
     CG = np.empty(N_CAGE_DIAG)
     for i in range(Y.shape[0]):
-        contact_forces(Y[i], P, U, RHO, F, T, Fc, Tc, out[i], Fg, Tg, SL, FR, CG)
+        contact_forces(Y[i], args, F, T, Fc, Tc, out[i], Fg, Tg, SL, FR, CG)
     return out
 
 
 def _forces_many_impl(contact, Y, args):
-    P, U, RHO = args
-    Z = int(P[P_Z])
-    ns = int(P[P_NS])
+    P = args.P[0]
+    Z = int(P.z)
+    ns = int(P.ns)
     n = Y.shape[0]
     loads = np.empty((n, Z, 4))
     SL = np.empty((n, Z, 2, ns))
@@ -761,7 +746,7 @@ def _forces_many_impl(contact, Y, args):
     Fg = np.empty(3)
     Tg = np.empty(3)
     for i in range(n):
-        contact(Y[i], P, U, RHO, F, T, Fc, Tc, loads[i], Fg, Tg, SL[i], FR[i], CG[i])
+        contact(Y[i], args, F, T, Fc, Tc, loads[i], Fg, Tg, SL[i], FR[i], CG[i])
         put(FC[i], 0, Fc)
         put(FC[i], 3, Tc)
     return loads, SL, FR, CG, FC
@@ -769,9 +754,8 @@ def _forces_many_impl(contact, Y, args):
 
 def _contact_signature(types):
     """:func:`contact_forces` as :func:`_forces_many_impl` calls it (rows of C-contiguous arrays)."""
-    P, U, RHO = types["args"].types
     v, m = nbtypes.float64[::1], nbtypes.float64[:, ::1]
-    return nbtypes.void(v, P, U, RHO, m, m, v, v, m, v, v, nbtypes.float64[:, :, ::1], m, v)
+    return nbtypes.void(v, types["args"], m, m, v, v, m, v, v, nbtypes.float64[:, :, ::1], m, v)
 
 
 # contact_forces reached through a function pointer (lubedyn.dynamics.specialise): compiled once, not linked and

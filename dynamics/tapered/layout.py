@@ -1,4 +1,4 @@
-"""The tapered roller bearing's state layout, option codes and the indices of its packed parameters and
+"""The tapered roller bearing's state layout, option codes, the record of its parameters (read by name) and
 diagnostics.
 
 Part of :mod:`lubedyn.dynamics.tapered` (:mod:`lubedyn.dynamics.tapered.kernels` gives the equations).  State::
@@ -16,11 +16,17 @@ rotation vector of the cone about its reference point (:mod:`lubedyn.dynamics.ta
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
+import numpy as np
+
+from ..errors import DynamicsInputError
+
 N_CONE, NB, N_TILT = 6, 13, 4
 # offsets inside a body block
 B_C, B_Q, B_V, B_W = 0, 3, 7, 10
 
-# option codes (the float parameter vector carries them as floats)
+# option codes (the parameter record carries them as floats)
 AXIAL_MODES = {"locked": 0, "force": 1}   # "locked": held at operating.axial_displacement
 AXIAL_LOCKED, AXIAL_FORCE = 0.0, 1.0
 CONE_TILTS = {"locked": 0, "free": 1}    # "locked": the shaft's other support carries the moment
@@ -32,37 +38,173 @@ POCKET_NONE, POCKET_CONTACT, POCKET_FILM = 0.0, 1.0, 2.0
 LANDS = {"none": 0, "contact": 1, "film": 2}                    # "film": short bearing + Couette drag + boundary
 LAND_NONE, LAND_CONTACT, LAND_FILM = 0.0, 1.0, 2.0
 
-# float parameters (the first 54 are those of issue 23's first step, in that order)
-(P_Z, P_NS, P_M, P_IX, P_IY, P_MC, P_OMEGA, P_FA, P_FR, P_AXIAL, P_KW, P_KF, P_ALPHA, P_RS, P_US, P_UC,
- P_CUPX, P_CUPR, P_CUPNX, P_CUPNR, P_CONX, P_CONR, P_CONNX, P_CONNR, P_FLX, P_FLR, P_FLNX, P_FLNR,
- P_CONTACTS, P_QSTAB, P_TRACTION, P_ETA, P_PVC, P_EP, P_RXO, P_RXI, P_UE, P_WIDTH,
- P_CAGE, P_MCG, P_ICX, P_ICT, P_POCKET, P_LEN, P_RHOM, P_HCRIT, P_KH, P_CH, P_MUBD, P_SWITCH, P_RLAND, P_CLAND,
- P_BLAND, P_HLAND,
- # issue 23 part 2: options, gravity, grease rheology, flange friction, contact-only pocket and land
- P_POCKETMODE, P_LANDMODE, P_GRAV,
- P_TAUY, P_PHI0, P_NEXP, P_ALPHAG, P_TAUL0, P_GAMMAL, P_DR,
- P_FFRIC, P_MUA, P_FBC, P_FCC, P_LAMBDA, P_HRIB, P_FA1, P_FB1, P_FP01,
- P_KPOCKET, P_KLAND, P_VREG,
- # the film's shear modulus of the limited raceway traction (elastic_limited)
- P_GSHEAR,
- # side beams (eqs. 39-40): axial clearance (0: none, the cage's axial DOF held), pocket centre's radius
- # and axial offset from the cage centre, the roller axis angle, end diameters, the beams' thickness
- P_SIDEGAP, P_PITCH, P_POCKX, P_BETA0, P_DLARGE, P_DSMALL, P_HSIDE,
- # the cone's tilt: flag (CONE_TILTS), offset of the state's tilt block, transverse and polar moments of
- # inertia of the cone, the radial load's axial position from the cone's reference point, the applied
- # moment (y, z) about it, the guide land's axial position from the cone's reference point
- P_TILT, P_TILTAT, P_ICONET, P_ICONEX, P_LOADX, P_MY, P_MZ, P_LANDX,
- # the limited traction's tables (TaperedBearing.traction_tables), appended to P after P_SIZE: a flag, the
- # node counts along sliding speed and line load, and the offset of each raceway's block (cup, cone); a
- # block is [log v nodes (n0), log w nodes (n1), Hermite data (4 x n0 x n1)]
- P_TTAB, P_TTN0, P_TTN1, P_TTOFF0, P_TTOFF1,
- # the roller EHL maps' traction at the run's entrainment speed (TaperedBearing.map_traction_tables,
- # traction "map"), appended after P_SIZE: node counts along line load and the maps' slide-to-roll
- # coordinate, the offset of each raceway's block (cup, cone), the normalised-slip map (a, b, centre of
- # lubedyn.film_points.normalised_slip) and the slide-to-roll axis' ends; a block is [log w nodes (nw),
- # log x nodes (nx), Hermite data of log s_t (2 x nw), Hermite data of log G (4 x nw x nx)]
- P_TMNW, P_TMNX, P_TMOFF0, P_TMOFF1, P_TMA, P_TMB, P_TMCEN, P_TMSLO, P_TMSHI) = range(106)
-P_SIZE = 106
+# the bearing's parameters: one named float64 field each (option codes as floats), the record of
+# PARAMETER_DTYPE the kernels read by name (P.kw); the tables are their own arrays (TractionTable,
+# MapTable), not appended to it
+PARAMETERS = (
+    ('z', 'number of rollers Z'),
+    ('ns', 'slices per roller n_s'),
+    ('m', 'roller mass [kg]'),
+    ('ix', "roller's axial moment of inertia [kg m^2]"),
+    ('iy', "roller's transverse moment of inertia [kg m^2]"),
+    ('mc', 'cone mass [kg]'),
+    ('omega', 'cone speed [rad/s]'),
+    ('fa', 'axial load [N]'),
+    ('fr', 'radial load [N]'),
+    ('axial', 'axial mode (AXIAL_MODES)'),
+    ('kw', 'slice load constant (Palmgren, per slice)'),
+    ('kf', 'flange Hertz constant [N/m^1.5]'),
+    ('alpha', 'contact damping alpha_e (eq. 11) [s/m]'),
+    ('rs', 'roller end sphere radius [m]'),
+    ('us', "end sphere centre's axial offset from the roller's mid-point [m]"),
+    ('uc', "mass centre's axial offset from the mid-point [m]"),
+    ('cupx', 'cup raceway point x [m]'),
+    ('cupr', 'cup raceway point r [m]'),
+    ('cupnx', 'cup raceway normal x'),
+    ('cupnr', 'cup raceway normal r'),
+    ('conx', 'cone raceway point x [m]'),
+    ('conr', 'cone raceway point r [m]'),
+    ('connx', 'cone raceway normal x'),
+    ('connr', 'cone raceway normal r'),
+    ('flx', 'flange (rib) point x [m]'),
+    ('flr', 'flange point r [m]'),
+    ('flnx', 'flange normal x'),
+    ('flnr', 'flange normal r'),
+    ('contacts', '1: contacts on, 0: free bodies'),
+    ('qstab', 'quaternion drift stabilisation [1/s]'),
+    ('traction', 'raceway traction law (TRACTIONS)'),
+    ('eta', 'viscosity [Pa s]'),
+    ('pvc', 'pressure-viscosity coefficient [1/Pa]'),
+    ('ep', "E' of the raceway contacts [Pa]"),
+    ('rxo', 'cup reduced radius [m]'),
+    ('rxi', 'cone reduced radius [m]'),
+    ('ue', 'ideal entrainment speed [m/s]'),
+    ('width', 'slice width [m]'),
+    ('cage', '1: the cage is present'),
+    ('mcg', 'cage mass [kg]'),
+    ('icx', 'cage polar moment of inertia [kg m^2]'),
+    ('ict', 'cage transverse moment of inertia [kg m^2]'),
+    ('pocket', 'pocket clearance [m]'),
+    ('len', 'roller effective length [m]'),
+    ('rhom', 'mean roller radius [m]'),
+    ('hcrit', 'pocket critical film [m]'),
+    ('kh', 'pocket film stiffness'),
+    ('ch', 'pocket film damping'),
+    ('mubd', 'boundary friction coefficient'),
+    ('switch', 'pocket film switch (POCKET_SWITCHES)'),
+    ('rland', 'guide land radius [m]'),
+    ('cland', 'guide land radial clearance [m]'),
+    ('bland', 'guide land width [m]'),
+    ('hland', 'land critical film [m]'),
+    ('pocketmode', 'pocket level (POCKETS)'),
+    ('landmode', 'guide land level (LANDS)'),
+    ('grav', 'gravity [m/s^2]'),
+    ('tauy', 'grease yield stress [Pa]'),
+    ('phi0', 'grease consistency [Pa s^n]'),
+    ('nexp', 'grease flow exponent'),
+    ('alphag', 'grease pressure-viscosity [1/Pa]'),
+    ('taul0', 'limiting shear stress [Pa]'),
+    ('gammal', 'limiting shear slope'),
+    ('dr', 'yield rate [1/s]'),
+    ('ffric', 'flange friction law (FLANGE_FRICTIONS)'),
+    ('mua', 'asperity friction coefficient'),
+    ('fbc', 'asperity share B'),
+    ('fcc', 'asperity share C'),
+    ('lam', 'film parameter h/sigma of the rib'),
+    ('hrib', 'rib film [m]'),
+    ('fa1', 'rib Hertz semi-axis a at 1 N [m]'),
+    ('fb1', 'rib Hertz semi-axis b at 1 N [m]'),
+    ('fp01', 'rib Hertz peak pressure at 1 N [Pa]'),
+    ('kpocket', 'contact-only pocket line constant'),
+    ('kland', 'contact-only land line constant'),
+    ('vreg', 'friction regularisation speed [m/s]'),
+    ('gshear', 'film shear modulus G [Pa] (limited traction)'),
+    ('sidegap', 'side beam axial clearance [m] (0: none)'),
+    ('pitch', 'pitch radius [m]'),
+    ('pockx', "pocket centre's axial offset from the cage centre [m]"),
+    ('beta0', 'roller axis angle [rad]'),
+    ('dlarge', 'large end diameter [m]'),
+    ('dsmall', 'small end diameter [m]'),
+    ('hside', 'side beam thickness [m]'),
+    ('tilt', 'cone tilt (CONE_TILTS)'),
+    ('tiltat', "offset of the state's tilt block"),
+    ('iconet', 'cone transverse moment of inertia [kg m^2]'),
+    ('iconex', 'cone polar moment of inertia [kg m^2]'),
+    ('loadx', "radial load's axial position [m]"),
+    ('my', 'applied moment y [N m]'),
+    ('mz', 'applied moment z [N m]'),
+    ('landx', "guide land's axial position [m]"),
+    ('ttab', "1: the limited traction's tables are given (TractionTable)"),
+    ('tma', "traction maps' normalised slip a"),
+    ('tmb', "traction maps' normalised slip b"),
+    ('tmcen', "traction maps' normalised slip centre"),
+    ('tmslo', "traction maps' slide-to-roll axis, first node"),
+    ('tmshi', "traction maps' slide-to-roll axis, last node"),
+)
+PARAMETER_DTYPE = np.dtype([(name, np.float64) for name, _ in PARAMETERS], align=True)
+
+
+def parameter_record(values: dict) -> np.recarray:
+    """The kernels' parameter record (:data:`PARAMETER_DTYPE`, read by name: ``P.kw``) from ``values``
+    {field: number}, as a record array of one row (the kernels read its row, ``P = args.P[0]``: numba
+    takes an array from Python at the cost of any array, a record scalar costs ten times more): every field of :data:`PARAMETERS` and no other, else a :class:`DynamicsInputError`
+    naming the field (a misspelt or forgotten parameter is not left at 0)."""
+    names = PARAMETER_DTYPE.names
+    for name in values:
+        if name not in names:
+            raise DynamicsInputError(f"{name!r} is not a field of the tapered bearing's parameter record; the "
+                                     f"fields are lubedyn.dynamics.tapered.layout.PARAMETERS", key=name)
+    for name in names:
+        if name not in values:
+            raise DynamicsInputError(f"the tapered bearing's parameter record misses the field {name!r} "
+                                     f"({dict(PARAMETERS)[name]})", key=name)
+    record = np.zeros(1, dtype=PARAMETER_DTYPE).view(np.recarray)
+    for name in names:
+        record[name] = values[name]
+    return record
+
+
+class TractionTable(NamedTuple):
+    """The limited traction's tables of both raceways (index 0 cup, 1 cone;
+    :meth:`lubedyn.dynamics.tapered.model.TaperedBearing.traction_tables`): the prepared log nodes of the
+    sliding speed (2, n0) and of the line load (2, n1), and the cubic Hermite data of the log traction
+    (2, 4, n0, n1).  Empty (n0 = n1 = 0) when the model has none (``P.ttab`` = 0)."""
+
+    speeds: np.ndarray
+    loads: np.ndarray
+    data: np.ndarray
+
+
+class MapTable(NamedTuple):
+    """The roller EHL maps' traction at the run's entrainment speed, both raceways (0 cup, 1 cone;
+    :meth:`lubedyn.dynamics.tapered.model.TaperedBearing.map_traction_tables`): log line-load nodes (2, nw),
+    log slide-to-roll coordinate nodes (2, nx), Hermite data of log s_t (2, 2, nw) and of log G
+    (2, 4, nw, nx).  Empty when the raceway traction is not "map"."""
+
+    loads: np.ndarray
+    slips: np.ndarray
+    shift: np.ndarray
+    values: np.ndarray
+
+
+def no_traction_table() -> TractionTable:
+    return TractionTable(np.zeros((2, 0)), np.zeros((2, 0)), np.zeros((2, 4, 0, 0)))
+
+
+def no_map_table() -> MapTable:
+    return MapTable(np.zeros((2, 0)), np.zeros((2, 0)), np.zeros((2, 2, 0)), np.zeros((2, 4, 0, 0)))
+
+
+class KernelArgs(NamedTuple):
+    """The arguments of :func:`lubedyn.dynamics.tapered.kernels.rhs`: the parameter record ``P``
+    (:func:`parameter_record`), the slices' axial coordinates ``U`` and radii ``RHO`` (n_s), the limited
+    traction's tables and the traction maps' tables (empty when not used: one compiled variant)."""
+
+    P: np.recarray
+    U: np.ndarray
+    RHO: np.ndarray
+    table: TractionTable
+    maps: MapTable
 
 # per-roller loads of loads_many / forces: columns
 LOAD_NAMES = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]")
@@ -74,3 +216,10 @@ N_FRICTION = 7
 CAGE_NAMES = ("Cage force on cage y [N]", "Cage force on cage z [N]", "Cage torque x [N m]", "Guide land load [N]",
               "Side beam load [N]")
 N_CAGE_DIAG = 5
+
+
+def example_args() -> KernelArgs:
+    """Kernel arguments of the types every model's :class:`KernelArgs` has (a zero record, one slice,
+    no tables): what compiling a kernel needs before the model is built
+    (:func:`lubedyn.dynamics.specialise.compile_in_background`)."""
+    return KernelArgs(parameter_record(dict.fromkeys(PARAMETER_DTYPE.names, 0.0)), np.zeros(1), np.zeros(1), no_traction_table(), no_map_table())

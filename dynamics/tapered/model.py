@@ -183,82 +183,86 @@ class TaperedBearing:
         return float(np.linalg.norm(roller - rib)), float(np.linalg.norm(0.5 * (roller + rib)))
 
     def args(self, qs: QuasiStaticResult | None = None):
-        """``(P, U, RHO)`` of :func:`lubedyn.dynamics.tapered.kernels.rhs` (indices: :mod:`lubedyn.dynamics.tapered.layout`)."""
+        """The :class:`lubedyn.dynamics.tapered.layout.KernelArgs` of :func:`lubedyn.dynamics.tapered.kernels.rhs`:
+        the parameter record (every field of :data:`lubedyn.dynamics.tapered.layout.PARAMETERS` set here;
+        those of options not in use stay 0), the slices and the traction tables."""
         g, op, fi, lu = self.geometry, self.operating, self.fidelity, self.lubricant
         u, _ = g.slices(fi.slices)
         rho = np.asarray(g.roller_radius(u), dtype=float)
         m, ix, iy, uc = g.roller_mass_properties()
-        P = np.zeros(L.P_SIZE)
-        P[L.P_Z], P[L.P_NS] = self.n_rollers, fi.slices
-        P[L.P_M], P[L.P_IX], P[L.P_IY], P[L.P_UC] = m, ix, iy, uc
-        P[L.P_MC], P[L.P_OMEGA] = fi.cone_mass, op.speed
-        P[L.P_FA], P[L.P_FR] = op.axial_load, op.radial_load
-        P[L.P_AXIAL] = L.AXIAL_MODES[op.axial]
-        P[L.P_GRAV] = op.gravity
+        v = dict.fromkeys(L.PARAMETER_DTYPE.names, 0.0)
+        v["z"], v["ns"] = self.n_rollers, fi.slices
+        v["m"], v["ix"], v["iy"], v["uc"] = m, ix, iy, uc
+        v["mc"], v["omega"] = fi.cone_mass, op.speed
+        v["fa"], v["fr"] = op.axial_load, op.radial_load
+        v["axial"] = L.AXIAL_MODES[op.axial]
+        v["grav"] = op.gravity
         if self.tilt_free:
-            P[L.P_TILT], P[L.P_TILTAT] = L.CONE_TILTS["free"], self.tilt_index
-            P[L.P_ICONEX], P[L.P_ICONET] = self.cone_inertia()
-            P[L.P_LOADX] = op.load_offset
-            P[L.P_MY], P[L.P_MZ] = (float(v) for v in op.applied_moment)
-            P[L.P_LANDX] = g.land_x
-        P[L.P_KW] = sl.slice_constant(sl.palmgren_line_constant(g.effective_length), fi.slices)
-        P[L.P_KF] = g.flange_hertz_constant()
-        P[L.P_ALPHA] = fi.damping_alpha
-        P[L.P_RS], P[L.P_US] = g.end_sphere_radius, g.sphere_center_u
-        (P[L.P_CUPX], P[L.P_CUPR]), (P[L.P_CUPNX], P[L.P_CUPNR]) = g.cup_point, g.cup_normal
-        (P[L.P_CONX], P[L.P_CONR]), (P[L.P_CONNX], P[L.P_CONNR]) = g.cone_point, g.cone_normal
-        (P[L.P_FLX], P[L.P_FLR]), (P[L.P_FLNX], P[L.P_FLNR]) = g.flange_point, g.flange_normal
-        P[L.P_CONTACTS] = 1.0 if fi.contacts else 0.0
-        P[L.P_QSTAB] = fi.quaternion_stabilisation
-        P[L.P_TRACTION] = L.TRACTIONS[fi.traction]
-        P[L.P_ETA], P[L.P_PVC], P[L.P_EP] = lu.viscosity(), lu.pressure_viscosity, g.e_prime
-        P[L.P_RXO], P[L.P_RXI] = g.reduced_radius("cup"), g.reduced_radius("cone")
-        P[L.P_UE] = self.entrainment_speed
-        P[L.P_WIDTH] = g.effective_length / fi.slices
-        P[L.P_VREG] = fi.friction_speed
+            v["tilt"], v["tiltat"] = L.CONE_TILTS["free"], self.tilt_index
+            v["iconex"], v["iconet"] = self.cone_inertia()
+            v["loadx"] = op.load_offset
+            v["my"], v["mz"] = (float(v) for v in op.applied_moment)
+            v["landx"] = g.land_x
+        v["kw"] = sl.slice_constant(sl.palmgren_line_constant(g.effective_length), fi.slices)
+        v["kf"] = g.flange_hertz_constant()
+        v["alpha"] = fi.damping_alpha
+        v["rs"], v["us"] = g.end_sphere_radius, g.sphere_center_u
+        (v["cupx"], v["cupr"]), (v["cupnx"], v["cupnr"]) = g.cup_point, g.cup_normal
+        (v["conx"], v["conr"]), (v["connx"], v["connr"]) = g.cone_point, g.cone_normal
+        (v["flx"], v["flr"]), (v["flnx"], v["flnr"]) = g.flange_point, g.flange_normal
+        v["contacts"] = 1.0 if fi.contacts else 0.0
+        v["qstab"] = fi.quaternion_stabilisation
+        v["traction"] = L.TRACTIONS[fi.traction]
+        v["eta"], v["pvc"], v["ep"] = lu.viscosity(), lu.pressure_viscosity, g.e_prime
+        v["rxo"], v["rxi"] = g.reduced_radius("cup"), g.reduced_radius("cone")
+        v["ue"] = self.entrainment_speed
+        v["width"] = g.effective_length / fi.slices
+        v["vreg"] = fi.friction_speed
         grease = lu.grease()
         if grease is not None:
-            P[L.P_TAUY], P[L.P_PHI0], P[L.P_NEXP] = grease.yield_stress, grease.consistency, grease.exponent
-            P[L.P_ALPHAG], P[L.P_TAUL0] = grease.pressure_viscosity, lu.limiting_stress
-            P[L.P_GAMMAL], P[L.P_DR] = lu.limiting_slope, lu.yield_rate
-        P[L.P_GSHEAR] = lu.shear_modulus
+            v["tauy"], v["phi0"], v["nexp"] = grease.yield_stress, grease.consistency, grease.exponent
+            v["alphag"], v["taul0"] = grease.pressure_viscosity, lu.limiting_stress
+            v["gammal"], v["dr"] = lu.limiting_slope, lu.yield_rate
+        v["gshear"] = lu.shear_modulus
         if fi.flange_friction != "none":
             fl = self.flange
-            P[L.P_FFRIC] = L.FLANGE_FRICTIONS[fi.flange_friction]
-            P[L.P_MUA], P[L.P_FBC], P[L.P_FCC] = fl.asperity_friction, fl.asperity_b, fl.asperity_c
-            P[L.P_HRIB] = self.rib_film(qs)
-            P[L.P_LAMBDA] = P[L.P_HRIB] / fl.roughness
+            v["ffric"] = L.FLANGE_FRICTIONS[fi.flange_friction]
+            v["mua"], v["fbc"], v["fcc"] = fl.asperity_friction, fl.asperity_b, fl.asperity_c
+            v["hrib"] = self.rib_film(qs)
+            v["lam"] = v["hrib"] / fl.roughness
             unit = laws_flange.rib_hertz(1.0, g.end_sphere_radius, g.flange_point[1], g.flange_contact_angle,
                                          g.e_star)
-            P[L.P_FA1], P[L.P_FB1], P[L.P_FP01] = unit.a, unit.b, unit.p0
+            v["fa1"], v["fb1"], v["fp01"] = unit.a, unit.b, unit.p0
         if self.has_cage:
             c = self.cage
             ro, ri, h = 0.5 * g.cage_outer_diameter, 0.5 * g.cage_inner_diameter, g.cage_thickness
-            P[L.P_CAGE], P[L.P_MCG] = 1.0, c.mass
+            v["cage"], v["mcg"] = 1.0, c.mass
             # the cage ring as an annulus (its bars' share of the inertia is not known: assumed)
-            P[L.P_ICX], P[L.P_ICT] = annulus_inertia(c.mass, ro * ro + ri * ri, h)
-            P[L.P_POCKET], P[L.P_LEN], P[L.P_RHOM] = g.pocket_clearance, g.effective_length, g.mean_roller_radius
-            P[L.P_HCRIT], P[L.P_KH], P[L.P_CH] = c.pocket_critical_film, c.pocket_stiffness, c.pocket_damping
-            P[L.P_MUBD], P[L.P_SWITCH] = c.boundary_friction, POCKET_SWITCHES[fi.pocket_switch]
-            P[L.P_RLAND], P[L.P_CLAND] = g.land_radius, 0.5 * g.guide_land_clearance
-            P[L.P_BLAND], P[L.P_HLAND] = g.guide_land_width, c.land_critical_film
-            P[L.P_POCKETMODE], P[L.P_LANDMODE] = L.POCKETS[fi.pocket], L.LANDS[fi.guide_land]
+            v["icx"], v["ict"] = annulus_inertia(c.mass, ro * ro + ri * ri, h)
+            v["pocket"], v["len"], v["rhom"] = g.pocket_clearance, g.effective_length, g.mean_roller_radius
+            v["hcrit"], v["kh"], v["ch"] = c.pocket_critical_film, c.pocket_stiffness, c.pocket_damping
+            v["mubd"], v["switch"] = c.boundary_friction, POCKET_SWITCHES[fi.pocket_switch]
+            v["rland"], v["cland"] = g.land_radius, 0.5 * g.guide_land_clearance
+            v["bland"], v["hland"] = g.guide_land_width, c.land_critical_film
+            v["pocketmode"], v["landmode"] = L.POCKETS[fi.pocket], L.LANDS[fi.guide_land]
             if fi.side_beams:
                 if not (c.side_beam_clearance > 0.0 and c.side_beam_thickness > 0.0):
                     raise fail("cage.side_beam_clearance", c.side_beam_clearance,
                                "and cage.side_beam_thickness must be > 0 with model.side_beams = true")
-                P[L.P_SIDEGAP], P[L.P_HSIDE] = c.side_beam_clearance, c.side_beam_thickness
-                P[L.P_PITCH], P[L.P_POCKX], P[L.P_BETA0] = g.pitch_radius, -g.cage_x, g.roller_axis_angle
-                P[L.P_DLARGE], P[L.P_DSMALL] = g.large_end_diameter, g.small_end_diameter
+                v["sidegap"], v["hside"] = c.side_beam_clearance, c.side_beam_thickness
+                v["pitch"], v["pockx"], v["beta0"] = g.pitch_radius, -g.cage_x, g.roller_axis_angle
+                v["dlarge"], v["dsmall"] = g.large_end_diameter, g.small_end_diameter
             if c.modulus is not None:
                 ep = self.pocket_modulus()
-                P[L.P_KPOCKET] = sl.line_constant(g.effective_length, ep)
-                P[L.P_KLAND] = sl.line_constant(g.guide_land_width, ep)
+                v["kpocket"] = sl.line_constant(g.effective_length, ep)
+                v["kland"] = sl.line_constant(g.guide_land_width, ep)
+        P = L.parameter_record(v)
+        table, maps = L.no_traction_table(), L.no_map_table()
         if fi.traction == "limited" and fi.traction_evaluation == "table":
-            P = self.traction_tables(P)
+            table = self.traction_tables(P[0])
         if fi.traction == "map":
-            P = self.map_traction_tables(P)
-        return P, np.ascontiguousarray(u), np.ascontiguousarray(rho)
+            maps = self.map_traction_tables(P[0])
+        return L.KernelArgs(P, np.ascontiguousarray(u), np.ascontiguousarray(rho), table, maps)
 
     #: traction tables: nodes along the sliding speed (log, 1e-12-100 m/s) and the line load (log, 8
     #: decades below the load of :data:`TABLE_PEAK_PRESSURE`)
@@ -267,8 +271,9 @@ class TaperedBearing:
     TABLE_PEAK_PRESSURE: ClassVar[float] = 4e9
     TABLE_LOAD_DECADES: ClassVar[float] = 8.0
 
-    def traction_tables(self, P: np.ndarray) -> np.ndarray:
-        """``P`` with the limited traction's tables appended (``model.traction_evaluation = "table"``).
+    def traction_tables(self, P: np.record) -> "L.TractionTable":
+        """The limited traction's tables (``model.traction_evaluation = "table"``) for the parameter record
+        ``P``, whose flag ``P.ttab`` it sets.
 
         Per raceway, :func:`lubedyn.dynamics.tapered.kernels.strip_viscous_traction` (the limited
         Herschel-Bulkley strip law over the slice's Hertz strip, before the elastic shear) on a grid of
@@ -285,27 +290,26 @@ class TaperedBearing:
         n0, n1 = self.TABLE_NODES
         V = np.logspace(math.log10(self.TABLE_SPEEDS[0]), math.log10(self.TABLE_SPEEDS[1]), n0)
         blocks = []
-        for race, radius in enumerate((P[L.P_RXO], P[L.P_RXI])):
-            w_max = 2.0 * math.pi * radius * self.TABLE_PEAK_PRESSURE**2 / P[L.P_EP]
+        for race, radius in enumerate((P.rxo, P.rxi)):
+            w_max = 2.0 * math.pi * radius * self.TABLE_PEAK_PRESSURE**2 / P.ep
             W = np.logspace(math.log10(w_max) - self.TABLE_LOAD_DECADES, math.log10(w_max), n1)
             values = K.strip_viscous_table(V, W, radius, P)
             if not np.all(values > 0.0):
                 raise DynamicsInputError(f"the limited traction is not > 0 on its table ({('cup', 'cone')[race]}): "
                                          "use model.traction_evaluation = 'quadrature'")
             axes = [prepare_axis(V, True), prepare_axis(W, True)]
-            blocks.append(np.concatenate([axes[0], axes[1], hermite_data(axes, np.log(values)).ravel()]))
-        P = P.copy()
-        P[L.P_TTAB], P[L.P_TTN0], P[L.P_TTN1] = 1.0, n0, n1
-        P[L.P_TTOFF0] = P.size
-        P[L.P_TTOFF1] = P.size + blocks[0].size
-        return np.ascontiguousarray(np.concatenate([P] + blocks))
+            blocks.append((axes[0], axes[1], hermite_data(axes, np.log(values))))
+        P.ttab = 1.0
+        return L.TractionTable(*(np.ascontiguousarray(np.stack(parts), dtype=np.float64) for parts in zip(*blocks)))
 
     MAP_TRACTION: ClassVar[str] = "Traction coefficient [-]"
     MAP_AXES: ClassVar[list] = ["Line load [N/m]", "Entrainment speed [m/s]", "Slide-to-roll ratio [-]"]
 
-    def map_traction_tables(self, P: np.ndarray) -> np.ndarray:
-        """``P`` with the roller EHL maps' traction at the run's ideal entrainment speed u_e appended
-        (raceway traction "map", read by :func:`lubedyn.dynamics.tapered.kernels.map_traction_coefficient`).
+    def map_traction_tables(self, P: np.record) -> "L.MapTable":
+        """The roller EHL maps' traction at the run's ideal entrainment speed u_e (raceway traction "map",
+        read by :func:`lubedyn.dynamics.tapered.kernels.map_traction_coefficient`); sets the normalised slip
+        and the slide-to-roll axis' ends (``P.tma``, ``P.tmb``, ``P.tmcen``, ``P.tmslo``, ``P.tmshi``) of the
+        parameter record ``P``.
 
         Per raceway (cup, cone: :attr:`traction_maps`) the map's sheared traction (lubedyn.maps.FilmMap,
         "sheared": the transition slip s_t(w, u) and the traction G(w, u, x) at the normalised slip's
@@ -319,7 +323,7 @@ class TaperedBearing:
         u_e outside the maps' speed axis is refused (one line naming operating.speed)."""
         from ..interp import hermite_value, locate_call
 
-        ue = float(P[L.P_UE])
+        ue = float(P.ue)
         spec, shape = None, None
         blocks = []
         for race, fmap in zip(("cup", "cone"), self.traction_maps):
@@ -362,13 +366,9 @@ class TaperedBearing:
                 raise fail("model.traction", "map", "needs the cup and cone maps on the same nodes, slide-to-roll "
                                                     "axis and normalised slip")
             spec, shape = key, (aw.size, ax.size)
-            blocks.append(np.concatenate([aw, ax, st.ravel(), G.ravel()]))
-        P = P.copy()
-        P[L.P_TMNW], P[L.P_TMNX] = shape
-        P[L.P_TMA], P[L.P_TMB], P[L.P_TMCEN], P[L.P_TMSLO], P[L.P_TMSHI] = spec
-        P[L.P_TMOFF0] = P.size
-        P[L.P_TMOFF1] = P.size + blocks[0].size
-        return np.ascontiguousarray(np.concatenate([P] + blocks))
+            blocks.append((aw, ax, st, G))
+        P.tma, P.tmb, P.tmcen, P.tmslo, P.tmshi = spec
+        return L.MapTable(*(np.ascontiguousarray(np.stack(parts), dtype=np.float64) for parts in zip(*blocks)))
 
     # ---------------------------------------------------------------- start
     def quasi_static(self) -> QuasiStaticResult:
@@ -431,12 +431,12 @@ class TaperedBearing:
         if not self.fidelity.contacts:      # free bodies: nothing holds the cone, nothing to balance
             return
         args = self.args(qs)
-        P = args[0]
+        P = args.P[0]
         k = self.tilt_index
         idx = ([0] if self.operating.axial == "force" else []) + [1, 2, k, k + 1]
         acc = [3, 4, 5, k + 2, k + 3]
         acc = [acc[[0, 1, 2, k, k + 1].index(i)] for i in idx]
-        scale = np.array([P[L.P_MC] if i < 3 else P[L.P_ICONET] for i in idx])
+        scale = np.array([P.mc if i < 3 else P.iconet for i in idx])
         steps = np.array([1e-9 if i < 3 else 1e-8 for i in idx])
         d = np.zeros_like(y)
 
@@ -521,7 +521,7 @@ class TaperedBearing:
           2 G (8 R' Q/(pi E'))/(u_e h) (b^2 = 8 w R'/(pi E') is linear in the slice load), h the kernel's
           Dowson-Toyoda film at that load (cup and cone R');
         - "map": (mu/s) Q/u_e, mu/s the maps' linear branch at the slide-to-roll axis' first node
-          (``args``: the model's packed arrays, built when not given)."""
+          (``args``: the model's kernel arguments, built when not given)."""
         lu, g = self.lubricant, self.geometry
         law = self.fidelity.traction
         if not (law == "map" or (law == "limited" and math.isfinite(lu.shear_modulus))):
@@ -532,11 +532,11 @@ class TaperedBearing:
         ue = self.entrainment_speed
         k = []  # cup, cone
         if law == "map":
-            P = (self.args(qs) if args is None else args)[0]
-            s0 = float(P[L.P_TMSLO])
+            args = self.args(qs) if args is None else args
+            s0 = float(args.P[0].tmslo)
             counter = np.zeros(1, dtype=np.int64)
             for race in (0, 1):
-                k.append(K.map_traction_coefficient(race, w, s0, P, counter) / s0 * load / ue)
+                k.append(K.map_traction_coefficient(race, w, s0, args.P[0], args.maps, counter) / s0 * load / ue)
         else:
             from lubedyn.lubrication.laws.film import dowson_toyoda_central
 
@@ -552,7 +552,7 @@ class TaperedBearing:
         """An estimate of RK4's largest stable step [s]: the smaller of 2 sqrt(2)/omega_max (the contact
         modes, imaginary axis), 2.785/lambda (the traction's decay, real axis: :meth:`traction_rate`) and,
         given the start state ``y0``, the step the right-hand side's own spectrum there allows
-        (:meth:`spectral_step`; ``args`` the packed arrays when the caller has them): the closed forms know the raceway contacts and traction only, and a mode
+        (:meth:`spectral_step`; ``args`` the kernel arguments when the caller has them): the closed forms know the raceway contacts and traction only, and a mode
         they miss -- the pocket films' squeeze damping with phi read as a viscosity (paper A's reading:
         a decay at 3.4e5 1/s, 8.3 us at phi = 38.44) -- once made the "auto" step unstable."""
         from ..integrators import stability_limit
