@@ -272,8 +272,8 @@ def _graded_fields(params, contact) -> dict:
     the pressurised part of paper A's roller films in the hydrodynamic-to-EHL knee (measured on the cone at
     7 m/s, 15-120 kN/m: p > 0.05 p_Hertz from -(0.7-1.14) r b to 0.3 b, the peak at -(0.2-0.4) r b).  The shipped
     roller maps use it (refine 6, with a Dowson-Higginson film and pseudo_transient 0.1: their map cases'
-    [params]); the kinds' default stays the uniform grid (cases/maps/README.md, "Measured 28 Nov 2026,
-    session 14"; benchmarks/ehl_graded.py, roller_traction_sweeps.py --refine)."""
+    [params]); the kinds' default stays the uniform grid (cases/maps/README.md, "Measured 28 Nov 2026";
+    benchmarks/ehl_graded.py, roller_traction_sweeps.py --refine)."""
     r = float(_get(params, "grid_refine", 1.0))
     if r == 1.0:
         return {}

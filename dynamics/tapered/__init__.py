@@ -10,7 +10,7 @@ module           responsibility
 ``layout``       state layout, option codes, parameter and diagnostic indices
 ``groups``       frozen groups (operating, model, lubricant, cage, flange,
                  initial) that check their values and name the case key
-``kernels``      the compiled right-hand side (issue 23): cone translation with
+``kernels``      the compiled right-hand side: cone translation with
                  prescribed spin, 6-DOF rollers and cage, sliced raceway
                  contacts in 3-D with traction, the flange with friction, the
                  pocket and guide land (contact only or film), eq. 11 damping;

@@ -37,7 +37,7 @@ from .layout import AXIAL_MODES, CONE_TILTS, FLANGE_FRICTIONS, LANDS, POCKETS, T
 class Operating(Group):
     """The cone's ``speed`` [rad/s] (the cup is fixed), ``radial_load`` [N] on the cone along +y;
     ``axial``: "locked" (the cone's axial DOF held at ``axial_displacement`` [m], closing: 0 is zero
-    clearance as paper A's Figs. 5-9 hold it, notes 2.7; > 0 a preload) or "force" (free under
+    clearance as paper A's Figs. 5-9 hold it, docs/paper_a.md; > 0 a preload) or "force" (free under
     ``axial_load`` [N], closing the bearing);
     ``gravity`` [m/s^2] along -y on every body (0: none);
     ``cone_tilt``: "locked" (the cone's tilts held at zero: the shaft's other support carries the
@@ -71,7 +71,7 @@ class Operating(Group):
             raise self.fail("axial_displacement", "must be finite")
         if self.axial == "force" and self.axial_load == 0.0:
             raise self.fail("axial_load", "N with operating.axial = 'force' leaves the cone without an axial "
-                                          "equilibrium (notes 2.7): give an axial load or operating.axial = 'locked'")
+                                          "equilibrium (docs/paper_a.md): give an axial load or operating.axial = 'locked'")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -131,7 +131,7 @@ class Fidelity(Group):
 class Lubricant(Group):
     """The grease of paper A's Table 2 (``yield_stress`` tau_y [Pa], ``consistency`` phi0 [Pa s^n],
     ``exponent`` n; None: no grease, only a Newtonian oil), its ``pressure_viscosity`` alpha [1/Pa], and
-    the ``reading`` of phi that films and eq. 12 take as their Newtonian viscosity (notes 2.3;
+    the ``reading`` of phi that films and eq. 12 take as their Newtonian viscosity (docs/paper_a.md;
     :meth:`lubedyn.lubrication.laws.grease.Grease.viscosity`): "base_oil" (``base_oil_viscosity`` [Pa s]),
     "apparent" (tau_y/D + phi D^(n-1) at ``shear_rate`` [1/s]) or "paper" (phi0's number as Pa s).
     The limited laws (raceway "limited", flange grease traction) use the grease with the limiting shear

@@ -1,4 +1,4 @@
-r"""Compiled right-hand side of the tapered roller bearing (issue 23): cone, 17 rollers and the cage.
+r"""Compiled right-hand side of the tapered roller bearing: cone, 17 rollers and the cage.
 
 State (:mod:`lubedyn.dynamics.tapered.layout`; :class:`lubedyn.dynamics.tapered.model.TaperedBearing` names every entry)::
 
@@ -21,7 +21,7 @@ they are what the contacts must supply to keep the bodies on their orbits)::
     I omega_body' + omega_body x (I omega_body) = R(q)^T sum T     (Euler, I = diag(I_x, I_y, I_y))
     q' = q * (0, omega_body)/2  (+ a drift term pulling |q| to 1)
 
-paper A's eqs. 47-51 in their body frame; eq. 50's third row is read with omega_x omega_y (notes 2.8),
+paper A's eqs. 47-51 in their body frame; eq. 50's third row is read with omega_x omega_y (the print's garbled product; docs/paper_a.md),
 which is what Euler's equations give.
 
 Contacts of roller j (laws written once in :mod:`lubedyn.lubrication.laws`):
@@ -64,7 +64,7 @@ Contacts of roller j (laws written once in :mod:`lubedyn.lubrication.laws`):
   :func:`lubedyn.lubrication.laws.cage.guide_land_torque` (Couette drag), and below the critical film a
   contact k_h (h_crit - h) with boundary friction pushing the land back towards the cage's centre; the
   land's reaction acts on the cone.  These are the "film" levels of the options ``pocket`` and
-  ``guide_land``.  The "contact" levels (issue 23's "contact only" fidelity, the cheapest that holds the
+  ``guide_land``.  The "contact" levels (the "contact only" fidelity, the cheapest that holds the
   cage; a pocket or land film law replaces them through the same option code): a roller touches a
   crossbeam when its mid-point is off the pocket's mid-plane by more than the pocket clearance Delta
   (0.27 mm), a line contact of the whole roller (Palmgren's law with E' of steel on the cage's polyamide,

@@ -586,7 +586,7 @@ class TaperedBearing:
         - speeds: "Orbital speed [rad/s]" of the centre about x, "Spin speed [rad/s]" (the angular
           velocity relative to the orbiting frame, along e), "Roller slip [-]" eq. 52 (omega_ideal -
           omega)/omega_ideal of the orbital speed and "Spin slip [-]" of the spin against the geometry's
-          ideal kinematics (notes 2.9; NaN at rest);
+          ideal kinematics (docs/paper_a.md; NaN at rest);
         - the cage: "Cage speed [rad/s]" (about x, inertial), "Cage slip [-]", "Cage centre [m]" (n, 2)
           relative to the cone's, "Guide land load [N]";
         - "Cone force [N]" (n, 3) of the rollers and cage on the cone; with the cone's tilt free, "Cone moment

@@ -320,7 +320,7 @@ def solve(geometry: TaperedRollerGeometry, *, radial_load: float = 0.0, axial_lo
         raise InputError(f"axial_displacement = {axial_displacement!r} must be finite")
     if axial_load is not None and axial_load == 0.0 and radial_load > 0.0:
         raise InputError("axial_load = 0.0 with radial_load > 0: a single tapered roller bearing has no "
-                         "equilibrium with a free axial DOF (paper_A_notes 2.7); lock it with axial_displacement = 0")
+                         "equilibrium with a free axial DOF (docs/paper_a.md); lock it with axial_displacement = 0")
     kin = g.kinematics(inner_speed)
     wc = kin["cage speed [rad/s]"]
     m, ix, iy, uc = g.roller_mass_properties()
