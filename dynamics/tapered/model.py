@@ -30,6 +30,9 @@ from . import kernels as K
 from . import layout as L
 from .groups import Cage, Fidelity, Flange, Initial, Lubricant, Operating
 from .quasistatic import QuasiStaticResult, solve
+from ..integrators import spectral_step, stability_limit
+from ..interp import hermite_data, hermite_value, locate_call, prepare_axis
+from lubedyn.lubrication.laws.film import dowson_toyoda_central
 
 log = logging.getLogger(__name__)
 
@@ -285,8 +288,6 @@ class TaperedBearing:
         strip and rheology are fixed for a run, so the traction per length depends on (v_s, w) only.
         Accuracy: tests/test_trb_dynamics.py measures it against the law at random points (the
         traction with its elastic shear within the strip quadrature's own error, 3e-4)."""
-        from ..interp import hermite_data, prepare_axis
-
         n0, n1 = self.TABLE_NODES
         V = np.logspace(math.log10(self.TABLE_SPEEDS[0]), math.log10(self.TABLE_SPEEDS[1]), n0)
         blocks = []
@@ -321,8 +322,6 @@ class TaperedBearing:
         is the film's (a Maxwell fluid capped by limiting shear, in the map's own lubricant:
         lubedyn.film_points.ehl, ``evaluate_ehl_line``), so the kernel adds no elastic shear of its own.
         u_e outside the maps' speed axis is refused (one line naming operating.speed)."""
-        from ..interp import hermite_value, locate_call
-
         ue = float(P.ue)
         spec, shape = None, None
         blocks = []
@@ -538,8 +537,6 @@ class TaperedBearing:
             for race in (0, 1):
                 k.append(K.map_traction_coefficient(race, w, s0, args.P[0], args.maps, counter) / s0 * load / ue)
         else:
-            from lubedyn.lubrication.laws.film import dowson_toyoda_central
-
             ep = g.e_prime
             for race in ("cup", "cone"):
                 r = g.reduced_radius(race)
@@ -555,8 +552,6 @@ class TaperedBearing:
         (:meth:`spectral_step`; ``args`` the kernel arguments when the caller has them): the closed forms know the raceway contacts and traction only, and a mode
         they miss -- the pocket films' squeeze damping with phi read as a viscosity (paper A's reading:
         a decay at 3.4e5 1/s, 8.3 us at phi = 38.44) -- once made the "auto" step unstable."""
-        from ..integrators import stability_limit
-
         step = stability_limit("rk4", "imaginary") / self.omega_max()
         rate = self.traction_rate(qs, args)
         if rate > 0.0:
@@ -569,8 +564,6 @@ class TaperedBearing:
         """RK4's largest stable step [s] at the state ``y0`` from the right-hand side's own spectrum
         (:func:`lubedyn.dynamics.integrators.spectral_step`: finite-difference Jacobian, about 0.04 s for 240
         states)."""
-        from ..integrators import spectral_step
-
         return spectral_step(K.rhs, y0, self.args() if args is None else args, "rk4")
 
     # ---------------------------------------------------------------- diagnostics
