@@ -18,7 +18,7 @@ interpreter; "after" is this checkout, the same way.  The two alternate, ``--rep
 
 Writes ``results/kernel_records.json`` and ``results/kernel_records.png`` with the machine noted; ratios
 are after/before of the medians.  Speed is measured here, never asserted in tests.
-``python benchmarks/kernel_records.py [--before /work/main] [--repeats 3] [--no-compile]``
+``python benchmarks/kernel_records.py --before CHECKOUT [--repeats 3] [--no-compile]``
 """
 from __future__ import annotations
 
@@ -123,7 +123,8 @@ def _run_time(root: Path, case: str, cache_dir: str) -> tuple[float, float]:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--before", type=Path, default=Path("/work/main"))
+    ap.add_argument("--before", type=Path, help="root of the checkout to compare with (its .venv is used); "
+                    "required unless --worker")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--n", type=int, default=2000)
     ap.add_argument("--no-compile", action="store_true")
@@ -133,6 +134,8 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.worker:
         return _worker(args.cases, args.n)
+    if args.before is None:
+        ap.error("--before CHECKOUT is required: the checkout of the code before the change (its .venv is used)")
 
     spec = importlib.util.spec_from_file_location("_common", _HERE / "_common.py")
     common = importlib.util.module_from_spec(spec)

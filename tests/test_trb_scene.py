@@ -239,3 +239,16 @@ def test_under_an_axial_force_the_skewed_rollers_traction_screws_the_cone_in():
     assert abs(share) < 1e-3
     assert cup == pytest.approx(qs_fa_traction, rel=2e-4) and cup == pytest.approx(qs_fa, rel=1e-3)
     assert abs(m_traction) < 0.05 * abs(m_rib)
+
+
+def test_rk4_refuses_a_run_whose_fixed_steps_exceed_the_step_budget(tmp_path):
+    """RK4's step count is duration/dt, known before the first step: a budget below it is an input
+    error naming both keys (as the cage-less scene), and nothing is written."""
+    from lubedyn.lubrication.errors import InputError
+
+    case = load_case("trb_fig5_2400rpm", smoke=True, overrides=["integrator.max_steps=10", "integrator.dt='2 us'"])
+    steps = case.integrator.duration / 2e-6
+    with pytest.raises(InputError, match=rf"integrator.dt = 2e-06 s: {steps:.3g} fixed RK4 steps .* more than "
+                                         r"integrator.max_steps = 10"):
+        S.run(case, tmp_path / "out")
+    assert not (tmp_path / "out").exists()

@@ -611,7 +611,7 @@ class TaperedRunModel:
 
         compile_in_background(kernel_jobs(self.case))
         self.qs = self.model.quasi_static()
-        # the packed arrays on the same equilibrium (the rib film reads it): solved once
+        # the kernel arguments on the same equilibrium (the rib film reads it): solved once
         self.args = self.model.args(self.qs)
         self.y0 = self.model.start_state(self.qs)
 
@@ -626,6 +626,11 @@ class TaperedRunModel:
         if ig.method == "rk4":
             self.stable = self.model.stable_step(self.qs, self.y0, self.args)
             self.dt = 0.8 * self.stable if ig.dt == "auto" else ig.dt
+            if ig.duration / self.dt > ig.max_steps:  # fixed steps: the budget is known before the first one
+                raise InputError(f"integrator.dt = {self.dt:g} s: {ig.duration / self.dt:.3g} fixed RK4 steps over "
+                                 f"integrator.duration = {ig.duration:g} s, more than integrator.max_steps = "
+                                 f"{ig.max_steps}; use a larger step or a shorter duration, or raise "
+                                 "integrator.max_steps")
             # the integrator refuses a step beyond the limit on the imaginary axis; the estimate folds the
             # traction's real-axis decay into an equivalent omega
             kw = dict(method="rk4", dt=self.dt, omega_max=2.0 * math.sqrt(2.0) / self.stable)
