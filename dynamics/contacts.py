@@ -110,9 +110,8 @@ import math
 from numba import njit
 
 from lubedyn.lubrication.laws.collision import (
-    BB_ALPHA, BB_HCUT, BB_MAP_H0, BB_MAP_HTOP, BB_MAP_X1LO, BB_MAP_X1TOP, BB_R, BB_SQF, BB_TAU, BB_VREG, PHASE_FILM,
-    PHASE_PLASTIC, PHASE_RECOVERY, PHASE_SEPARATED, ball_ball_friction_coefficient, squeeze_film_closed_form,
-    thornton_force,
+    BALL_BALL_DTYPE, PHASE_FILM, PHASE_PLASTIC, PHASE_RECOVERY, PHASE_SEPARATED, ball_ball_friction_coefficient,
+    squeeze_film_closed_form, thornton_force,
 )
 from lubedyn.lubrication.laws.jit import INLINE, JIT
 
@@ -135,26 +134,28 @@ MAP_AXIS_APPROACH, MAP_AXIS_SQUEEZE, MAP_AXIS_POLAR = 0, 1, 2
 
 # ------------------------------------------------------------------ set-up (Python)
 def with_map_ends(p, map_ax0, map_ax1, map_opts):
-    """A copy of the ball-ball parameter vector ``p`` with the film map's axis ends in physical units
-    (``BB_MAP_*``: first and last node of the gap and of the second axis, the exponentials of log axes).
-    The map kernels read them there instead of taking ``exp`` of the axis ends on every film read (four
-    exponentials a read, about 10 % of a polar read); a vector without them (NaN) makes the kernels
-    compute them as before, to the same bits."""
+    """A copy of the ball-ball parameter record ``p``
+    (:func:`lubedyn.lubrication.laws.collision.ball_ball_parameters`) with the film map's axis ends in
+    physical units (fields ``map_h0``, ``map_htop``, ``map_x1lo``, ``map_x1top``: first and last node of
+    the gap and of the second axis, the exponentials of log axes).  The map kernels read them there
+    instead of taking ``exp`` of the axis ends on every film read (four exponentials a read, about 10 %
+    of a polar read); a record without them (NaN) makes the kernels compute them as before, to the same
+    bits."""
     import numpy as np
 
-    out = np.array(p, dtype=np.float64)
+    out = np.array([p], dtype=BALL_BALL_DTYPE).view(np.recarray)[0]
     if map_ax0 is None:
         return out
-    for (lo, hi), ax, log in (((BB_MAP_H0, BB_MAP_HTOP), map_ax0, map_opts[MO_LOG0]),
-                              ((BB_MAP_X1LO, BB_MAP_X1TOP), map_ax1, map_opts[MO_LOG1])):
+    for (lo, hi), ax, log in ((("map_h0", "map_htop"), map_ax0, map_opts[MO_LOG0]),
+                              (("map_x1lo", "map_x1top"), map_ax1, map_opts[MO_LOG1])):
         out[lo], out[hi] = ((math.exp(ax[0]), math.exp(ax[-1])) if log == 1 else (float(ax[0]), float(ax[-1])))
     return out
 
 
 @njit(**INLINE)
-def _axis_end(p, k, ax, i, log):
-    """Node ``i`` (0 or -1) of a map axis in physical units: ``p[k]`` when :func:`with_map_ends` set it."""
-    v = p[k]
+def _axis_end(v, ax, i, log):
+    """Node ``i`` (0 or -1) of a map axis in physical units: ``v`` (a ``map_*`` field of the parameter record)
+    when :func:`with_map_ends` set it, else from the axis."""
     if v == v:
         return v
     return math.exp(ax[i]) if log == 1 else ax[i]
@@ -178,10 +179,10 @@ def _film(h, v, ue, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts,
 @njit(**JIT)
 def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     """F and dF/dh (fixed v, u_e) from a ball_ball map on (gap, rho, theta); see :func:`_film_map`."""
-    if h >= p[BB_HCUT]:
+    if h >= p.hcut:
         return 0.0, 0.0
-    h0 = _axis_end(p, BB_MAP_H0, ax0, 0, opts[MO_LOG0])
-    h_top = _axis_end(p, BB_MAP_HTOP, ax0, -1, opts[MO_LOG0])
+    h0 = _axis_end(p.map_h0, ax0, 0, opts[MO_LOG0])
+    h_top = _axis_end(p.map_htop, ax0, -1, opts[MO_LOG0])
     floored = h < h0
     if floored:
         h = h0 * (1.0 + 1e-12)  # the first gap node acts as the rupture thickness (no clamp count)
@@ -189,8 +190,8 @@ def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     # its last gap node and scaled by h/h_top (no clamp)
     above = h > h_top
     hq = h_top * (1.0 - 1e-12) if above else h
-    lam = p[BB_SQF] * v / (h * h)
-    e = p[BB_SQF] * abs(ue) * math.sqrt(2.0 / (p[BB_R] * h)) / h
+    lam = p.sqf * v / (h * h)
+    e = p.sqf * abs(ue) * math.sqrt(2.0 / (p.r * h)) / h
     rho = math.sqrt(lam * lam + e * e)
     if rho <= 0.0:
         return 0.0, 0.0
@@ -203,7 +204,7 @@ def _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     dth = (e * dlam - lam * de) / (rho * rho)
     if floored:
         drho, dth = 0.0, 0.0
-    rho_lo = _axis_end(p, BB_MAP_X1LO, ax1, 0, opts[MO_LOG1])
+    rho_lo = _axis_end(p.map_x1lo, ax1, 0, opts[MO_LOG1])
     scale, rq = 1.0, rho
     if rho < rho_lo:
         scale, rq = rho / rho_lo, rho_lo * (1.0 + 1e-12)
@@ -253,19 +254,19 @@ def _film_map(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
     scaling F ~ rho holds (:mod:`lubedyn.film_points`, "Polar axes")."""
     if opts[MO_AXIS1] == MAP_AXIS_POLAR:
         return _film_map_polar(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter)
-    if v <= 0.0 or h >= p[BB_HCUT]:
+    if v <= 0.0 or h >= p.hcut:
         return 0.0, 0.0
-    h0 = _axis_end(p, BB_MAP_H0, ax0, 0, opts[MO_LOG0])
+    h0 = _axis_end(p.map_h0, ax0, 0, opts[MO_LOG0])
     if h < h0:
         h = h0 * (1.0 + 1e-12)  # the first gap node acts as the rupture thickness (no clamp count)
     scale = 1.0
     if opts[MO_AXIS1] == MAP_AXIS_SQUEEZE:
-        x1 = p[BB_SQF] * v / (h * h)
+        x1 = p.sqf * v / (h * h)
         dx1dh = -2.0 * x1 / h
     else:
         x1 = v
         dx1dh = 0.0
-        v0 = _axis_end(p, BB_MAP_X1LO, ax1, 0, opts[MO_LOG1])
+        v0 = _axis_end(p.map_x1lo, ax1, 0, opts[MO_LOG1])
         if v < v0:
             scale = v / v0
             x1 = v0 * (1.0 + 1e-12)  # stay inside the axis after the log/exp round trip
@@ -322,8 +323,8 @@ def _lock(v, ue, p, film_kind, map_ax1, map_vals, map_opts):
         return 0.0
     if map_opts[MO_AXIS1] != MAP_AXIS_POLAR:
         return 0.0
-    rho_top = _axis_end(p, BB_MAP_X1TOP, map_ax1, -1, map_opts[MO_LOG1])
-    return locked_gap(v, ue, p[BB_SQF], p[BB_R], rho_top * (1.0 - 1e-9), p[BB_VREG])
+    rho_top = _axis_end(p.map_x1top, map_ax1, -1, map_opts[MO_LOG1])
+    return locked_gap(v, ue, p.sqf, p.r, rho_top * (1.0 - 1e-9), p.vreg)
 
 
 @njit(**JIT)
@@ -332,10 +333,10 @@ def _solid(delta, delta_dot, delta_max, p):
     f, k, ph = thornton_force(delta, delta_max, p)
     if f <= 0.0:
         return 0.0, 0.0, ph
-    f2 = f * (1.0 + p[BB_ALPHA] * delta_dot)
+    f2 = f * (1.0 + p.alpha * delta_dot)
     if f2 < 0.0:
         return 0.0, 0.0, ph
-    return f2, k * (1.0 + p[BB_ALPHA] * delta_dot), ph
+    return f2, k * (1.0 + p.alpha * delta_dot), ph
 
 
 @njit(**JIT)
@@ -438,4 +439,4 @@ def plastic_memory_rate(delta_e, delta_e_dot, delta_max, F, p):
         if delta_e >= delta_max and delta_e_dot > 0.0:
             return delta_e_dot
         return 0.0
-    return -delta_max / p[BB_TAU]
+    return -delta_max / p.tau

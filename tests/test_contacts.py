@@ -34,7 +34,7 @@ def test_ball_ball_stiffness_is_the_circular_hertz_law():
     """Two balls: K = (4/3) E* sqrt(R/2) (Hertz, sphere on sphere; Johnson 1985, eq. 4.23)."""
     R = 0.5 * D
     p = LC.ball_ball_parameters(ball_radius=R, e_star=ES_BALL)
-    assert p[LC.BB_K] == pytest.approx(4 / 3 * ES_BALL * math.sqrt(R / 2), rel=1e-14)
+    assert p.k == pytest.approx(4 / 3 * ES_BALL * math.sqrt(R / 2), rel=1e-14)
 
 
 def _impact(force, v0, mass, dt):
@@ -75,7 +75,7 @@ def test_thornton_restitution(compiled, ratio):
     tf, rate = _k(LC.thornton_force, compiled), _k(C.plastic_memory_rate, compiled)
     p = LC.ball_ball_parameters(ball_radius=0.5 * D, e_star=ES_BALL, yield_stress=1.7e9)
     ms = 0.5 * M_BALL
-    K, dy = p[LC.BB_K], p[LC.BB_DY]
+    K, dy = p.k, p.dy
     vy = math.sqrt(4.0 * K * dy**2.5 / (5.0 * ms))  # (2/5) K dy^2.5 = m* Vy^2/2
     v0 = ratio * vy
     dt = 1e-3 * (ms / (1.5 * K * dy**0.5)) ** 0.5 / ratio**0.2
@@ -114,7 +114,7 @@ def test_series_law_matches_brentq_reference(compiled):
     R = 0.5 * D
     eta = 0.05
     p = LC.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=eta, rupture_thickness=1e-7)
-    K, C0, hr, hcut = p[LC.BB_K], 6 * math.pi * eta * (R / 2) ** 2, 1e-7, 0.1 * R
+    K, C0, hr, hcut = p.k, 6 * math.pi * eta * (R / 2) ** 2, 1e-7, 0.1 * R
     dummy = _no_map()
     for g, v in [(5e-6, 0.3), (2e-7, 0.05), (-1e-7, 0.5), (-1e-6, 2.0)]:
         F, h, x, phase, share = bbn(g, v, 0.0, 0.0, p, C.FILM_CLOSED_FORM, *dummy)
@@ -146,7 +146,7 @@ def test_rigid_squeeze_film_approach_is_analytic():
     R = 0.5 * D
     eta = 0.05
     p = LC.ball_ball_parameters(ball_radius=R, e_star=ES_BALL, viscosity=eta)
-    C0, hr, hcut = p[LC.BB_C0], p[LC.BB_HR], p[LC.BB_HCUT]
+    C0, hr, hcut = p.c0, p.hr, p.hcut
     ms = 0.5 * M_BALL
     dummy = _no_map()
     g0, v0 = 1e-4, 0.02
@@ -177,7 +177,7 @@ def test_map_option_reproduces_tabulated_closed_form(method, speed_axis):
     """The map slot: a force table of the closed form over (gap, approach speed) or
     (gap, squeeze number, entrainment speed), read through lubedyn.dynamics.interp, gives the
     same series force within the table's interpolation error."""
-    from lubedyn.dynamics.cageless import MAP_SPEED_AXES, _map_arrays
+    from lubedyn.dynamics.cageless import _map_arrays
 
     R = 0.5 * D
     alpha = 1.85e-8
@@ -191,13 +191,13 @@ def test_map_option_reproduces_tabulated_closed_form(method, speed_axis):
     else:  # Lambda = 3 alpha eta R_eff v/h^2; a third (entrainment) axis on which nothing depends
         lam = np.geomspace(1e-16, 1e10, 131)  # isoviscous: any Lambda (a Barus map stops below 1)
         ue = np.array([0.0, 0.05])
-        vals = np.array([[[LC.squeeze_film_closed_form(h, L * h * h / p[LC.BB_SQF], p)[0]] * 2 for L in lam]
+        vals = np.array([[[LC.squeeze_film_closed_form(h, L * h * h / p.sqf, p)[0]] * 2 for L in lam]
                          for h in gaps])
         axes, logs = (ax0, interp.prepare_axis(lam, True), interp.prepare_axis(ue, False)), (1, 1, 0)
     u = interp.prepare_values(np.maximum(vals, 1e-300), True)
     if method == interp.HERMITE:
         u = interp.hermite_data(axes, u)
-    arrays = _map_arrays((axes, logs, u, 1, method), MAP_SPEED_AXES[speed_axis])
+    arrays = _map_arrays((axes, logs, u, 1, method), speed_axis)
     counter = np.zeros(1, dtype=np.int64)
     dummy = _no_map()
     for g, v in [(5e-6, 0.3), (2e-7, 0.05), (-5e-7, 0.5), (3e-5, 3e-5)]:

@@ -31,7 +31,7 @@ def polar():
                     films=dict(ball_ball="map", map=fmap.dynamics_film_map(), viscosity=float(params["eta0"]),
                                pressure_viscosity=float(params["alpha"])))
     args = model.args()
-    return fmap, params, args.bbp, (*args.film_map, args.counter)
+    return fmap, params, args.bbp[0], (*args.film_map, args.counter)
 
 
 @pytest.mark.parametrize("kernel", ["compiled", "py_func"])
@@ -61,17 +61,18 @@ def test_polar_reader_matches_the_map_and_its_gap_derivative(polar, kernel):
 
 
 def test_map_ends_in_the_parameters_change_no_bit(polar):
-    """The bearing's parameter vector carries the map's axis ends (``with_map_ends``, read instead of four
-    exponentials a film read); a vector without them (as ``ball_ball_parameters`` returns it) makes the
+    """The bearing's parameter record carries the map's axis ends (``with_map_ends``, read instead of four
+    exponentials a film read); a record without them (as ``ball_ball_parameters`` returns it) makes the
     kernels compute them from the axes: the collision's force, film, approach, phase and share are the
     same to the bit, across the lock, the map's gap range, above it and in separation."""
     from lubedyn.lubrication.laws import collision as LC
 
     fmap, params, bbp, (ax0, ax1, ax2, vals, opts, counter) = polar
-    ends = bbp[LC.BB_MAP_H0:LC.BB_MAP_X1TOP + 1]
+    ends = [bbp.map_h0, bbp.map_htop, bbp.map_x1lo, bbp.map_x1top]
     assert ends == pytest.approx([fmap.axes[0].lo, fmap.axes[0].hi, fmap.axes[1].lo, fmap.axes[1].hi], rel=1e-12)
-    bare = bbp.copy()
-    bare[LC.BB_MAP_H0:LC.BB_MAP_X1TOP + 1] = np.nan
+    bare = LC.ball_ball_row(bbp)[0]
+    bare.map_h0 = bare.map_htop = bare.map_x1lo = bare.map_x1top = np.nan
+    assert bare.r == bbp.r and math.isnan(bare.map_h0) and not math.isnan(bbp.map_h0)
     rng = np.random.default_rng(7)
     phases = set()
     for _ in range(400):
@@ -108,7 +109,7 @@ def test_locked_gap_is_where_the_pressure_number_reaches_the_lock(polar, v, ue):
     lubedyn.film_points.polar_numbers (the map builder's own definition of rho); the entrainment
     regularisation u_reg shifts h_L as u_e -> sqrt(u_e^2 + u_reg^2)."""
     fmap, params, bbp, _ = polar
-    sqf, R = bbp[C.BB_SQF], bbp[C.BB_R]
+    sqf, R = bbp.sqf, bbp.r
     h = C.locked_gap(v, ue, sqf, R, 0.9, 0.0)
     if ue == 0.0:
         assert h == pytest.approx(math.sqrt(sqf * abs(v) / 0.9), rel=1e-12)
@@ -131,10 +132,10 @@ def test_a_locked_film_hands_the_load_to_the_solids(polar):
     from lubedyn.lubrication.laws.contact import reduced_modulus
 
     fmap, params, bbp, (ax0, ax1, ax2, vals, opts, _) = polar
-    K = 4.0 / 3.0 * reduced_modulus(207e9, 0.29, 207e9, 0.29) * math.sqrt(bbp[C.BB_R])  # paper B's balls
+    K = 4.0 / 3.0 * reduced_modulus(207e9, 0.29, 207e9, 0.29) * math.sqrt(bbp.r)  # paper B's balls
     counter = np.zeros(1, dtype=np.int64)
     v, ue = 1.0, 1.0
-    hL = C.locked_gap(v, ue, bbp[C.BB_SQF], bbp[C.BB_R], 0.9 * (1 - 1e-9), bbp[C.BB_VREG])
+    hL = C.locked_gap(v, ue, bbp.sqf, bbp.r, 0.9 * (1 - 1e-9), bbp.vreg)
     f_lock, _ = C._film_map(hL, v, ue, bbp, ax0, ax1, ax2, vals, opts, counter)
     g_star = hL - (f_lock / K) ** (2.0 / 3.0)  # below it the film is locked
     for g in (g_star - 0.05e-6, g_star - 0.2e-6, g_star - 0.4e-6):

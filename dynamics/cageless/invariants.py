@@ -7,8 +7,6 @@ import math
 
 import numpy as np
 
-from lubedyn.lubrication.laws.collision import BB_K
-
 from .model import CagelessBearing
 from ..rotations import quat_rotate as _qr
 
@@ -45,7 +43,7 @@ def bearing_energy(model: CagelessBearing, y: np.ndarray) -> float:
             if delta > 0.0:
                 E += 0.4 * K * delta**2.5
     if model.fidelity.ball_ball:
-        Kbb = args.bbp[BB_K]
+        Kbb = args.bbp[0].k
         for j in range(Z):
             k = (j + 1) % Z
             gap = float(np.linalg.norm(pos[k] - pos[j])) - model.bearing.ball_diameter

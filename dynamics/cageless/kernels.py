@@ -9,7 +9,7 @@ from numba import njit, types
 from numba.extending import overload
 import numpy as np
 
-from lubedyn.lubrication.laws.collision import BB_HCUT, BB_VREG, hertz_force
+from lubedyn.lubrication.laws.collision import hertz_force
 from lubedyn.lubrication.laws.jit import INLINE, JIT
 from lubedyn.lubrication.laws.traction import traction_coefficient
 
@@ -315,7 +315,7 @@ def _rotate3(w, x, y, z, v0, v1, v2):
 
 @njit(**JIT)
 def _evaluate(t, y, args, dydt, diag, ring_diag):
-    P, bbp, slots, counter, tmap = args.P[0], args.bbp, args.slots, args.counter, args.traction_maps
+    P, bbp, slots, counter, tmap = args.P[0], args.bbp[0], args.slots, args.counter, args.traction_maps
     map_ax0, map_ax1, map_ax2, map_vals, map_opts = _film_map_arrays(args.film_map)
     want = diag.shape[0] > 0
     Z = P.z
@@ -397,7 +397,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
             if want:
                 diag[j, D_GAP] = gap
                 diag[j, D_H] = gap
-            if gap > 0.0 and (P.film == FILM_NONE or gap >= bbp[BB_HCUT]):
+            if gap > 0.0 and (P.film == FILM_NONE or gap >= bbp.hcut):
                 dydt[N_RING + j] = plastic_memory_rate(0.0, 0.0, dmax, 0.0, bbp)
                 continue
             n0, n1, n2 = d0 / dist, d1 / dist, d2 / dist
@@ -426,7 +426,7 @@ def _evaluate(t, y, args, dydt, diag, ring_diag):
                 vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                 if vs > 0.0:
                     mu = ball_ball_friction_coefficient(h, Fn, vs, bbp)
-                    ft = mu * Fn * math.tanh(vs / bbp[BB_VREG])
+                    ft = mu * Fn * math.tanh(vs / bbp.vreg)
                     t0, t1, t2 = -ft * s0 / vs, -ft * s1 / vs, -ft * s2 / vs  # on k
                     f0 += t0
                     f1 += t1

@@ -104,14 +104,15 @@ class BallBallMap(NamedTuple):
 
 class KernelArgs(NamedTuple):
     """The arguments of :func:`lubedyn.dynamics.cageless.kernels.rhs`: the parameter record ``P``
-    (:func:`parameter_record`), the ball-ball law's parameter vector ``bbp``
-    (:func:`lubedyn.lubrication.laws.collision.ball_ball_parameters`), the slots (k, 2: azimuth, race),
+    (:func:`parameter_record`), the ball-ball law's parameter record ``bbp`` (one row:
+    :func:`lubedyn.lubrication.laws.collision.ball_ball_row` of
+    :func:`lubedyn.lubrication.laws.collision.ball_ball_parameters`, read by name), the slots (k, 2: azimuth, race),
     the ball-ball film map (:class:`MapArrays`, None without one), the counter of queries clamped to a
     map's axes and the traction maps (:class:`TractionMaps`, None without them).  None prunes a map's
     readers by type: a model without maps never compiles them."""
 
     P: np.recarray
-    bbp: np.ndarray
+    bbp: np.recarray
     slots: np.ndarray
     film_map: MapArrays | None
     counter: np.ndarray

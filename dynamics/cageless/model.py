@@ -14,7 +14,7 @@ import numpy as np
 from lubedyn.lubrication.errors import did_you_mean
 from lubedyn.lubrication.laws import bearing as laws_bearing
 from lubedyn.lubrication.laws import contact as laws_contact
-from lubedyn.lubrication.laws.collision import ball_ball_parameters
+from lubedyn.lubrication.laws.collision import ball_ball_parameters, ball_ball_row
 from lubedyn.lubrication.laws.film import hamrock_dowson_central
 
 from .. import contacts as C
@@ -332,7 +332,7 @@ class CagelessBearing:
             bbp = with_map_ends(bbp, film_map.ax0, film_map.ax1, film_map.opts)
         counter = np.zeros(1, dtype=np.int64)
         tmap = _traction_arrays(self.fidelity.traction_maps) if self.fidelity.traction == "map" else None
-        return KernelArgs(parameter_record(v), bbp, slots, film_map, counter, tmap)
+        return KernelArgs(parameter_record(v), ball_ball_row(bbp), slots, film_map, counter, tmap)
 
     # state layout ---------------------------------------------------------------
     def state_layout(self) -> list[tuple[str, str]]:

@@ -25,10 +25,10 @@ Rigid isoviscous squeeze film of two spheres (R_eff = R/2; Reynolds' sphere-plan
 e.g. Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film Lubrication*, 2004, ch. 10):
 F = C0 v/h with C0 = 6 pi eta R_eff^2 (:func:`squeeze_film_closed_form`).
 
-The parameters of a ball pair travel as one float vector (indices ``BB_*``, made by
-:func:`ball_ball_parameters`) so that numba kernels take one array.  The kernels are ``@njit``:
-:mod:`dynamics` calls them compiled, Python callers call the same code (compiled on first call, or
-``.py_func`` for the interpreted one).
+The parameters of a ball pair travel as one numba structured record (:data:`BALL_BALL_DTYPE`, read by
+name: ``p.hcut``; made by :func:`ball_ball_parameters`) so that numba kernels take one argument.  The
+kernels are ``@njit``: :mod:`dynamics` calls them compiled, Python callers call the same code (compiled
+on first call, or ``.py_func`` for the interpreted one).
 """
 from __future__ import annotations
 
@@ -46,14 +46,28 @@ from .jit import INLINE, JIT
 PHASE_SEPARATED, PHASE_FILM, PHASE_ELASTIC, PHASE_PLASTIC, PHASE_RECOVERY = 0, 1, 2, 3, 4
 PHASE_NAMES = ("separated", "film", "elastic", "elastic-plastic", "recovery")
 
-# indices of the ball-ball parameter vector (see ball_ball_parameters); BB_MAP_*: the film map's axis ends
-# [m, m, -, -] (first and last gap node, first and last pressure-number node), filled by
+# the ball-ball law's parameters: one named field each, the record of BALL_BALL_DTYPE the laws read by name
+# (p.hcut); the integer option first (int64), then the floats.  map_*: the film map's axis ends [m, m, -, -]
+# (first and last gap node, first and last pressure-number node), filled by
 # lubedyn.dynamics.contacts.with_map_ends for the map the kernels read, NaN until then
-(BB_K, BB_R, BB_ESTAR, BB_PY, BB_DY, BB_FY, BB_ALPHA, BB_C0, BB_HR, BB_HCUT, BB_MUF, BB_MUB, BB_VREG, BB_TAU,
- BB_SQF, BB_FLAW, BB_ETA, BB_PVA, BB_SLOPE, BB_MAP_H0, BB_MAP_HTOP, BB_MAP_X1LO, BB_MAP_X1TOP) = range(23)
-BB_SIZE = 23
+BALL_BALL_OPTIONS = (("flaw", "friction law (FRICTION_LAWS)"),)
+BALL_BALL_FIELDS = (
+    ("k", "Hertz constant K = (4/3) E* sqrt(R_eff) [N/m^1.5]"), ("r", "effective radius R_eff = R/2 [m]"),
+    ("estar", "reduced modulus E* [Pa]"), ("py", "yield pressure p_y [Pa] (inf: elastic only)"),
+    ("dy", "yield approach delta_y [m]"), ("fy", "yield force F_y [N]"),
+    ("alpha", "Hunt-Crossley damping alpha [s/m]"), ("c0", "squeeze film constant C0 = 6 pi eta R_eff^2 [N s]"),
+    ("hr", "film rupture thickness h_r [m]"), ("hcut", "film cut-off gap h_cut [m]"),
+    ("muf", "film friction coefficient mu_f [-]"), ("mub", "boundary friction coefficient mu_b [-]"),
+    ("vreg", "slip regularisation speed [m/s]"), ("tau", "plastic memory time tau_mem [s]"),
+    ("sqf", "squeeze number factor 3 alpha eta0 R_eff [m s]"), ("eta", "viscosity eta0 [Pa s]"),
+    ("pva", "pressure-viscosity coefficient alpha [m^2/N]"), ("slope", "asperity slope sigma_theta [-]"),
+    ("map_h0", "film map's first gap node [m]"), ("map_htop", "film map's last gap node [m]"),
+    ("map_x1lo", "film map's first second-axis node"), ("map_x1top", "film map's last second-axis node"),
+)
+BALL_BALL_DTYPE = np.dtype([(name, np.int64) for name, _ in BALL_BALL_OPTIONS]
+                           + [(name, np.float64) for name, _ in BALL_BALL_FIELDS], align=True)
 
-# ball-ball friction laws (BB_FLAW; :func:`ball_ball_friction_coefficient`)
+# ball-ball friction laws (field flaw; :func:`ball_ball_friction_coefficient`)
 FRICTION_LAWS = {"exponential_share": 0, "paper": 1}
 
 
@@ -74,8 +88,8 @@ def yield_onset(radius_eff: float, e_star: float, yield_stress: float) -> tuple[
 def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alpha=0.0, viscosity=0.0,
                          rupture_thickness=1e-7, cutoff_gap=None, mu_film=0.03, mu_boundary=0.1,
                          slip_regularisation=0.01, memory_time=1e-4, pressure_viscosity=0.0,
-                         friction_law="exponential_share", asperity_slope=0.02) -> np.ndarray:
-    """Parameter vector (indices ``BB_*``) of the ball-ball collision law.
+                         friction_law="exponential_share", asperity_slope=0.02) -> np.record:
+    """Parameter record (:data:`BALL_BALL_DTYPE`, read by name: ``p.hcut``) of the ball-ball collision law.
 
     ``yield_stress`` [Pa] None: elastic only (p_y = inf).  ``viscosity`` [Pa s]
     of the squeeze film (closed form); ``rupture_thickness`` h_r [m],
@@ -83,40 +97,50 @@ def ball_ball_parameters(*, ball_radius, e_star, yield_stress=None, damping_alph
     ``pressure_viscosity`` alpha [m^2/N] (a map over the squeeze number; the paper's friction law);
     ``friction_law`` one of :data:`FRICTION_LAWS` (see :func:`ball_ball_friction_coefficient`),
     ``asperity_slope`` sigma_theta [-] of the paper's law (eq. 19).
+
+    Returns the row of a one-row record array (:func:`ball_ball_row` gives the array the bearing's kernels
+    take); njit laws and their ``py_func`` take it as it is.
     """
     R = _positive("ball radius [m]", ball_radius)
     Reff = 0.5 * R
     e_star = _positive("E* [Pa]", e_star)
-    p = np.zeros(BB_SIZE)
-    p[BB_K] = 4.0 / 3.0 * e_star * math.sqrt(Reff)
-    p[BB_R] = Reff
-    p[BB_ESTAR] = e_star
+    p = np.zeros(1, dtype=BALL_BALL_DTYPE).view(np.recarray)[0]
+    p.k = 4.0 / 3.0 * e_star * math.sqrt(Reff)
+    p.r = Reff
+    p.estar = e_star
     if yield_stress is None:
-        p[BB_PY], p[BB_DY], p[BB_FY] = np.inf, np.inf, np.inf
+        p.py, p.dy, p.fy = np.inf, np.inf, np.inf
     else:
-        p[BB_PY], p[BB_DY], p[BB_FY] = yield_onset(Reff, e_star, yield_stress)
+        p.py, p.dy, p.fy = yield_onset(Reff, e_star, yield_stress)
     if damping_alpha < 0.0:
         raise InputError(f"ball-ball damping alpha = {damping_alpha!r} must be >= 0 [s/m]")
-    p[BB_ALPHA] = damping_alpha
+    p.alpha = damping_alpha
     if viscosity < 0.0:
         raise InputError(f"viscosity = {viscosity!r} must be >= 0 [Pa s]")
-    p[BB_C0] = 6.0 * math.pi * viscosity * Reff**2
-    p[BB_HR] = _positive("film rupture thickness [m]", rupture_thickness)
-    p[BB_HCUT] = _positive("film cut-off gap [m]", 0.1 * R if cutoff_gap is None else cutoff_gap)
+    p.c0 = 6.0 * math.pi * viscosity * Reff**2
+    p.hr = _positive("film rupture thickness [m]", rupture_thickness)
+    p.hcut = _positive("film cut-off gap [m]", 0.1 * R if cutoff_gap is None else cutoff_gap)
     for key, mu in (("mu_film", mu_film), ("mu_boundary", mu_boundary)):
         if not 0.0 <= mu < 10.0:
             raise InputError(f"{key} = {mu!r} must lie in [0, 10)")
-    p[BB_MUF], p[BB_MUB] = mu_film, mu_boundary
-    p[BB_VREG] = _positive("slip regularisation speed [m/s]", slip_regularisation)
-    p[BB_TAU] = _positive("plastic memory time [s]", memory_time)
-    p[BB_SQF] = 3.0 * pressure_viscosity * viscosity * Reff
+    p.muf, p.mub = mu_film, mu_boundary
+    p.vreg = _positive("slip regularisation speed [m/s]", slip_regularisation)
+    p.tau = _positive("plastic memory time [s]", memory_time)
+    p.sqf = 3.0 * pressure_viscosity * viscosity * Reff
     if friction_law not in FRICTION_LAWS:
         raise InputError(f"friction_law = {friction_law!r} is not allowed; choose one of {', '.join(FRICTION_LAWS)}")
-    p[BB_FLAW] = FRICTION_LAWS[friction_law]
-    p[BB_ETA], p[BB_PVA] = viscosity, pressure_viscosity
-    p[BB_SLOPE] = _positive("asperity slope [-]", asperity_slope)
-    p[BB_MAP_H0:BB_MAP_X1TOP + 1] = np.nan
+    p.flaw = FRICTION_LAWS[friction_law]
+    p.eta, p.pva = viscosity, pressure_viscosity
+    p.slope = _positive("asperity slope [-]", asperity_slope)
+    p.map_h0 = p.map_htop = p.map_x1lo = p.map_x1top = np.nan
     return p
+
+
+def ball_ball_row(p) -> np.recarray:
+    """A copy of the parameter record ``p`` (:func:`ball_ball_parameters`) as a record array of one row, the
+    form the bearing's kernels take (they read its row, ``args.bbp[0]``): numba takes an array from Python
+    at the cost of any array, a record scalar costs ten times more."""
+    return np.array([p], dtype=BALL_BALL_DTYPE).view(np.recarray)
 
 
 # ------------------------------------------------------------------ paper B's film and friction laws (Python)
@@ -303,7 +327,7 @@ def thornton_force(delta, delta_max, p):
     recovery (below delta_max after yielding)."""
     if delta <= 0.0:
         return 0.0, 0.0, PHASE_SEPARATED
-    K, R, es, py, dy, Fy = p[BB_K], p[BB_R], p[BB_ESTAR], p[BB_PY], p[BB_DY], p[BB_FY]
+    K, R, es, py, dy, Fy = p.k, p.r, p.estar, p.py, p.dy, p.fy
     if delta <= dy and delta_max <= dy:
         s = math.sqrt(delta)
         return K * delta * s, 1.5 * K * s, PHASE_ELASTIC
@@ -327,10 +351,10 @@ def thornton_force(delta, delta_max, p):
 @njit(**JIT)
 def residual_indentation(delta_max, p):
     """delta_p [m] left after unloading from ``delta_max`` (0 if never yielded)."""
-    dy = p[BB_DY]
+    dy = p.dy
     if delta_max <= dy:
         return 0.0
-    R, es, py, Fy = p[BB_R], p[BB_ESTAR], p[BB_PY], p[BB_FY]
+    R, es, py, Fy = p.r, p.estar, p.py, p.fy
     Fm = Fy + math.pi * py * R * (delta_max - dy)
     am2 = (2.0 * Fm + Fy) / (2.0 * math.pi * py)
     Rp = 4.0 * es * am2 * math.sqrt(am2) / (3.0 * Fm)
@@ -345,22 +369,22 @@ def squeeze_film_closed_form(h, v, p):
 
     Reynolds' sphere-plane squeeze film F = 6 pi eta R^2 v/h (h << R) with
     the rupture thickness h_r as an offset that bounds it at contact."""
-    if v <= 0.0 or h >= p[BB_HCUT]:
+    if v <= 0.0 or h >= p.hcut:
         return 0.0, 0.0
-    hr = p[BB_HR]
+    hr = p.hr
     inv = 1.0 / (h + hr)
-    return p[BB_C0] * v * (inv - 1.0 / (p[BB_HCUT] + hr)), -p[BB_C0] * v * inv * inv
+    return p.c0 * v * (inv - 1.0 / (p.hcut + hr)), -p.c0 * v * inv * inv
 
 
 @njit(**INLINE)  # small leaf of the bearing rhs (see lubedyn.dynamics.cageless)
 def ball_ball_friction_coefficient(h, load, sliding_speed, p):
-    """Friction coefficient of a ball pair [-] by the law ``p[BB_FLAW]`` (:data:`FRICTION_LAWS`).
+    """Friction coefficient of a ball pair [-] by the law ``p.flaw`` (:data:`FRICTION_LAWS`).
 
     ``exponential_share``: mu = mu_b f_a + mu_f (1 - f_a), f_a = exp(-h/h_r) (the asperities' share of
     the load falls exponentially with the film over the composite roughness h_r);
     ``paper``: :func:`film_rupture_friction_coefficient` (paper B eqs. 17-21, h_r as the roughness)."""
-    if p[BB_FLAW] == 1.0:
-        return film_rupture_friction_coefficient(load, h, sliding_speed, p[BB_ETA], p[BB_PVA], p[BB_R], p[BB_ESTAR],
-                                                 p[BB_HR], p[BB_SLOPE], p[BB_MUF], p[BB_MUB])
-    fa = math.exp(-h / p[BB_HR])
-    return p[BB_MUB] * fa + p[BB_MUF] * (1.0 - fa)
+    if p.flaw == 1:
+        return film_rupture_friction_coefficient(load, h, sliding_speed, p.eta, p.pva, p.r, p.estar,
+                                                 p.hr, p.slope, p.muf, p.mub)
+    fa = math.exp(-h / p.hr)
+    return p.mub * fa + p.muf * (1.0 - fa)
