@@ -81,12 +81,22 @@ def _close_children():
                 stream.close()
 
 
+def _terminal_sigint():
+    """In the child before it runs Python: SIGINT as a terminal's foreground program has it (default
+    disposition, not blocked).  A test suite started in the background by a shell without job control
+    (``pytest ... &``) has SIGINT ignored, and every process it starts inherits that: its runs could not
+    be interrupted at all, whatever the CLI does."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
 def cli_process(*argv, **kwargs):
     """``python -m lubedyn.cli ARGV`` (the installed lubedyn: this checkout, installed editable), in its own
-    process group."""
+    process group, SIGINT as in a terminal."""
     return _tracked(subprocess.Popen([sys.executable, "-m", "lubedyn.cli", *map(str, argv)], cwd=WORKTREE,
                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                     start_new_session=True, **kwargs))
+                                     start_new_session=True, preexec_fn=_terminal_sigint, **kwargs))
 
 
 def alive(pid: int) -> bool:
@@ -501,7 +511,7 @@ def map_process(tmp_path, delay, program=True):
         sys.exit(cli.main(argv))
     """)
     proc = _tracked(subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                     text=True, start_new_session=True))
+                                     text=True, start_new_session=True, preexec_fn=_terminal_sigint))
     return proc, logs, tmp_path / "out" / ".map-cache" / "points" / "test_squeeze", script
 
 
