@@ -11,6 +11,8 @@ case file and nothing has to translate it.
 from __future__ import annotations
 
 import math
+
+import numpy as np
 from dataclasses import dataclass, fields, replace
 from typing import Any, ClassVar, Mapping
 
@@ -85,3 +87,23 @@ class Group:
             return changes
         self._known(changes)
         return replace(self, **changes)
+
+
+def record_row(dtype, values: Mapping[str, float], what: str, fields_doc: Mapping[str, str], where: str):
+    """A one-row record array of ``dtype`` filled from ``values`` {field: number}, the form the bearings'
+    kernels take their parameters in (read by name, ``P = args.P[0]``: numba takes an array from Python at
+    the cost of any array, a record scalar costs ten times more).  Every field of ``dtype`` and no other,
+    else a :class:`DynamicsInputError` naming the field (a misspelt or forgotten parameter is not left at
+    0); ``what`` names the record ("the tapered bearing's parameter record"), ``where`` the module listing
+    its fields, ``fields_doc`` {field: description}."""
+    names = dtype.names
+    for name in values:
+        if name not in names:
+            raise DynamicsInputError(f"{name!r} is not a field of {what}; the fields are {where}", key=name)
+    for name in names:
+        if name not in values:
+            raise DynamicsInputError(f"{what} misses the field {name!r} ({fields_doc[name]})", key=name)
+    record = np.zeros(1, dtype=dtype).view(np.recarray)
+    for name in names:
+        record[name] = values[name]
+    return record

@@ -8,7 +8,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .. import contacts as C
-from ..errors import DynamicsInputError
+from ..groups import record_row
 
 DOFS = {"planar": 0, "6dof": 1}
 SCENARIOS = {"steady": 0, "drop": 1, "free": 2}
@@ -54,19 +54,7 @@ def parameter_record(values: dict) -> np.recarray:
     {field: number}, as a record array of one row (the kernels read its row, ``P = args.P[0]``: numba
     takes an array from Python at the cost of any array, a record scalar costs ten times more): every field of :data:`OPTIONS` and :data:`PARAMETERS` and no other, else a
     :class:`DynamicsInputError` naming the field."""
-    names = PARAMETER_DTYPE.names
-    for name in values:
-        if name not in names:
-            raise DynamicsInputError(f"{name!r} is not a field of the cage-less bearing's parameter record; the "
-                                     "fields are lubedyn.dynamics.cageless.layout.OPTIONS and PARAMETERS", key=name)
-    for name in names:
-        if name not in values:
-            raise DynamicsInputError(f"the cage-less bearing's parameter record misses the field {name!r} "
-                                     f"({dict(OPTIONS + PARAMETERS)[name]})", key=name)
-    record = np.zeros(1, dtype=PARAMETER_DTYPE).view(np.recarray)
-    for name in names:
-        record[name] = values[name]
-    return record
+    return record_row(PARAMETER_DTYPE, values, "the cage-less bearing's parameter record", dict(OPTIONS + PARAMETERS), "lubedyn.dynamics.cageless.layout.OPTIONS and PARAMETERS")
 
 
 class MapArrays(NamedTuple):

@@ -20,7 +20,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import DynamicsInputError
+from ..groups import record_row
 
 N_CONE, NB, N_TILT = 6, 13, 4
 # offsets inside a body block
@@ -149,19 +149,7 @@ def parameter_record(values: dict) -> np.recarray:
     {field: number}, as a record array of one row (the kernels read its row, ``P = args.P[0]``: numba
     takes an array from Python at the cost of any array, a record scalar costs ten times more): every field of :data:`PARAMETERS` and no other, else a :class:`DynamicsInputError`
     naming the field (a misspelt or forgotten parameter is not left at 0)."""
-    names = PARAMETER_DTYPE.names
-    for name in values:
-        if name not in names:
-            raise DynamicsInputError(f"{name!r} is not a field of the tapered bearing's parameter record; the "
-                                     f"fields are lubedyn.dynamics.tapered.layout.PARAMETERS", key=name)
-    for name in names:
-        if name not in values:
-            raise DynamicsInputError(f"the tapered bearing's parameter record misses the field {name!r} "
-                                     f"({dict(PARAMETERS)[name]})", key=name)
-    record = np.zeros(1, dtype=PARAMETER_DTYPE).view(np.recarray)
-    for name in names:
-        record[name] = values[name]
-    return record
+    return record_row(PARAMETER_DTYPE, values, "the tapered bearing's parameter record", dict(PARAMETERS), "lubedyn.dynamics.tapered.layout.PARAMETERS")
 
 
 class TractionTable(NamedTuple):
