@@ -45,6 +45,7 @@ DIMENSIONS: dict[str, tuple[int, ...]] = {
     "pressure": (-1, 1, -2, 0, 0),
     "inverse pressure": (1, -1, 2, 0, 0),
     "dynamic viscosity": (-1, 1, -1, 0, 0),
+    "kinematic viscosity": (2, 0, -1, 0, 0),
     "density": (-3, 1, 0, 0, 0),
     "energy": (2, 1, -2, 0, 0),
     "power": (2, 1, -3, 0, 0),
@@ -81,13 +82,14 @@ _UNITS: dict[str, tuple[float, tuple[int, ...]]] = {
     "bar": (1e5, DIMENSIONS["pressure"]),
     "psi": (6894.757293168361, DIMENSIONS["pressure"]),
     "P": (0.1, DIMENSIONS["dynamic viscosity"]),  # poise; cP via the prefix
+    "St": (1e-4, DIMENSIONS["kinematic viscosity"]),  # stokes; cSt (= mm^2/s) via the prefix
     "J": (1.0, DIMENSIONS["energy"]),
     "W": (1.0, DIMENSIONS["power"]),
     "L": (1e-3, (3, 0, 0, 0, 0)),
 }
 _PREFIXES = {"p": 1e-12, "n": 1e-9, "u": 1e-6, "µ": 1e-6, "μ": 1e-6, "m": 1e-3, "c": 1e-2,
              "d": 1e-1, "k": 1e3, "M": 1e6, "G": 1e9}
-_PREFIXABLE = {"m", "g", "s", "N", "Pa", "bar", "P", "J", "W", "Hz", "rad", "L"}
+_PREFIXABLE = {"m", "g", "s", "N", "Pa", "bar", "P", "St", "J", "W", "Hz", "rad", "L"}
 _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
 
 _NUMBER = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
@@ -156,6 +158,7 @@ def dimension_name(dim: tuple[int, ...]) -> str:
 def si_unit(dimension: str) -> str:
     """The SI unit symbol of a named dimension (``"pressure"`` -> ``"Pa"``)."""
     special = {"dimensionless": "-", "pressure": "Pa", "force": "N", "dynamic viscosity": "Pa s",
+               "kinematic viscosity": "m^2/s",
                "inverse pressure": "1/Pa", "velocity": "m/s", "angular velocity": "rad/s",
                "frequency": "Hz", "density": "kg/m^3", "energy": "J", "power": "W",
                "volume flow": "m^3/s", "stiffness": "N/m", "damping": "N s/m",

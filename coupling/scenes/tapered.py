@@ -21,6 +21,8 @@ maps one to one onto a group of :class:`lubedyn.dynamics.tapered.model.TaperedBe
     [lubricant]                 # Lubricant: grease = "polyurea" | "lithium" | "calcium" (Table 2 at temperature_c),
     grease = "polyurea"         #   "custom" (yield_stress, consistency, exponent) or "none"
     viscosity = { law = "barus", eta0 = "0.1 Pa s", alpha = "4.662e-8 m^2/N" }   # the base oil, as in every scene
+    oil_temperature = "walther" #   eta0 at oil_reference_c, moved to temperature_c on ASTM D341's line
+    oil_nu100 = "8.6 mm^2/s"    #   through the base oil's viscosity at 100 C ("none": eta0 at every temperature)
     [integrator]
     method = "dopri5"           # or "rk4" with dt (refused above the contact modes' stability limit)
     duration = "180 ms"
@@ -81,6 +83,7 @@ from lubedyn.dynamics.specialise import compile_in_background
 from lubedyn.dynamics.tapered import groups as G, kernels as K, layout as L
 from lubedyn.dynamics.tapered.model import TaperedBearing
 from lubedyn.lubrication.laws.grease import grease_at
+from lubedyn.lubrication.laws.thermal import walther_dynamic
 from lubedyn.maps import FilmMap
 from lubedyn.scenes.bearing_run import Integration, drive
 from lubedyn.scenes.static import body_grid, build as build_geometry, raceway_surface
@@ -139,7 +142,14 @@ class LubricantTable(LubricantModel):
     pressure-viscosity coefficient of the films, of eq. 12 and of the grease's consistency phi0 exp(alpha p).
     ``grease``: a grease of paper A's Table 2 at ``temperature_c`` [C] (15-70; interpolated by
     :func:`lubedyn.lubrication.laws.grease.grease_at`), "custom" (``yield_stress``, ``consistency``,
-    ``exponent`` given) or "none" (a Newtonian oil only)."""
+    ``exponent`` given) or "none" (a Newtonian oil only).
+
+    The base oil at ``temperature_c``: ``oil_temperature = "none"`` takes eta0 at every temperature;
+    ``"walther"`` reads eta0 as the base oil's viscosity at ``oil_reference_c`` [C] and moves it along the
+    ASTM D341 (Walther) line through (``oil_reference_c``, eta0/rho0) and (100 C, ``oil_nu100``)
+    (:func:`lubedyn.lubrication.laws.thermal.walther_dynamic`; rho0 of ``[lubricant.density]``, its own
+    change with temperature left out), so the films, the film's elastic traction slope and the pocket and
+    guide-land films follow the temperature as the grease's Table 2 constants do."""
 
     viscosity: Viscosity | None = None
     grease: Literal["none", "custom", "polyurea", "lithium", "calcium"] = "none"
@@ -153,6 +163,9 @@ class LubricantTable(LubricantModel):
     limiting_slope: Q("dimensionless", ge=0) = 0.0
     yield_rate: Q("frequency", ge=0) = 0.0
     shear_modulus: Q("pressure", gt=0) = math.inf
+    oil_temperature: Literal["none", "walther"] = "none"
+    oil_reference_c: float = 30.0
+    oil_nu100: Q("kinematic viscosity", gt=0) | None = None
 
     @model_validator(mode="after")
     def _grease(self):
@@ -166,6 +179,16 @@ class LubricantTable(LubricantModel):
         if self.grease in GREASES and not 15.0 <= self.temperature_c <= 70.0:
             raise rule("temperature_c", self.temperature_c, "must lie in 15-70 C, the temperatures of paper A's "
                        "Table 2 (not extrapolated)")
+        if self.oil_temperature == "walther":
+            if self.oil_nu100 is None:
+                raise rule("oil_nu100", None, "is required with oil_temperature = 'walther': the base oil's "
+                           "kinematic viscosity at 100 C, e.g. '8.6 mm^2/s'")
+            if not -20.0 <= self.oil_reference_c < 100.0:
+                raise rule("oil_reference_c", self.oil_reference_c, "must lie in -20 C to below 100 C (the "
+                           "temperature of oil_nu100)")
+            if not -20.0 <= self.temperature_c <= 150.0:
+                raise rule("temperature_c", self.temperature_c, "must lie in -20 to 150 C with oil_temperature = "
+                           "'walther' (a bearing's range; ASTM D341's line is not used beyond it)")
         if self.reading == "base_oil" and self.viscosity is None:
             raise rule("viscosity", None, "is required with reading = 'base_oil': the base oil's eta0 (and Barus' "
                        "alpha), e.g. viscosity = { law = 'barus', eta0 = '0.1 Pa s', alpha = '4.662e-8 m^2/N' }")
@@ -178,6 +201,9 @@ class LubricantTable(LubricantModel):
     def group_values(self) -> dict:
         """The fields of :class:`lubedyn.dynamics.tapered.groups.Lubricant`."""
         eta0, alpha = self.oil()
+        if self.oil_temperature == "walther" and eta0 is not None:
+            eta0 = walther_dynamic(self.temperature_c, self.oil_reference_c, eta0, 100.0, self.oil_nu100,
+                                   self.density.rho0)
         out = {"reading": self.reading, "base_oil_viscosity": eta0, "pressure_viscosity": alpha,
                **{k: getattr(self, k) for k in ("shear_rate", "limiting_stress", "limiting_slope", "yield_rate",
                                                 "shear_modulus")}}

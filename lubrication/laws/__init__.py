@@ -11,6 +11,8 @@ module         laws
                angles, Stribeck's most loaded element, Jones' load distribution
 ``lubricant``  viscosity (constant, Barus, Roelands) and density
                (incompressible, Dowson-Higginson) with d/dp, Eyring flow factor
+``thermal``    viscosity against temperature: the Walther line of
+               ASTM D341 through two points
 ``film``       closed-form EHL film thickness (Hamrock-Dowson, Nijenbanning,
                Dowson-Toyoda, Pan-Hamrock, Moes)
 ``grease``     Herschel-Bulkley grease (Barus phi, Papanastasiou option),

@@ -132,6 +132,14 @@ VALUES = {
     "base_oil_viscosity": P("0.1 Pa s", "dynamic viscosity", "assumed",
                             "not in the paper; a 0.1 Pa s base oil gives a 5.4 um raceway film at 2.4 krpm"),
     "base_oil_density": P("870 kg/m^3", "density", "assumed", "mineral base oil: not in the paper"),
+    "base_oil_temperature_law": P("walther", "text", "assumed",
+                                  "the paper gives no base oil: its viscosity follows the grease's temperature "
+                                  "on ASTM D341's Walther line (0.1 Pa s at 30 C)"),
+    "base_oil_reference_c": P(30.0, "dimensionless", "assumed",
+                              "the temperature of base_oil_viscosity: Table 1's grease temperature"),
+    "base_oil_nu100": P("8.6 mm^2/s", "kinematic viscosity", "assumed",
+                        "an ISO VG 68 mineral oil (about 68 mm^2/s at 40 C, 8.6 at 100 C): with 0.1 Pa s at 30 C "
+                        "it gives 0.26 / 0.037 / 0.017 Pa s at 15 / 50 / 70 C"),
     # --- grease, traction, flange (eqs. 12-29; limits and constants the paper does not give) ---
     "grease_pressure_viscosity_all": P("4.662e-8 m^2/N", "inverse pressure", "assumed",
                                        "Table 1 gives alpha for polyurea at 30 C only; used for every grease "
@@ -222,6 +230,8 @@ SCENES["tapered"] = {
     "operating.load_offset": "radial_load_offset", "model.cone_mass": "cone_mass",
     "model.traction": "raceway_traction_law", "model.flange_friction": "flange_friction_mixing",
     "lubricant.grease": "grease_name", "lubricant.temperature_c": "grease_temperature_c",
+    "lubricant.oil_temperature": "base_oil_temperature_law", "lubricant.oil_reference_c": "base_oil_reference_c",
+    "lubricant.oil_nu100": "base_oil_nu100", "lubricant.density.rho0": "base_oil_density",
     "lubricant.reading": "grease_viscosity_reading",
     "lubricant.limiting_stress": "grease_limiting_shear_stress", "lubricant.limiting_slope": "grease_limiting_shear_slope",
     "lubricant.yield_rate": "grease_yield_regularisation_rate", "lubricant.shear_modulus": "film_shear_modulus",
