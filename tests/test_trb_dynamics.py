@@ -494,9 +494,9 @@ def test_the_traction_table_holds_the_limited_law():
         V = 10 ** rng.uniform(-9, 1, 3000)
         final, viscous = [], []
         for v, w in zip(V, W):
-            _, b, _, h0 = K._slice_film(w * P.width, radius, P)
+            _, b, _, h0 = K._slice_film(w * P.width, race, P)
             k = elastic_strip_slope(P.gshear, b, P.ue, h0)
-            exact = K.strip_viscous_traction(w, radius, v, P)
+            exact = K.strip_viscous_traction(w, race, v, P)
             table = K._table_viscous(race, w, v, args.table, counter)
             viscous.append(abs(table / exact - 1))
             final.append(abs(elastic_limited(table, k, v) / elastic_limited(exact, k, v) - 1))

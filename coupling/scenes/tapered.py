@@ -58,8 +58,10 @@ Not modelled yet: a rib film that follows the load.
 """
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
+import time
 from dataclasses import dataclass, field
 from typing import Annotated, Any, Literal
 
@@ -72,7 +74,7 @@ from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 from lubedyn import outputs
 from lubedyn.config import (BoundsModel, LimitsModel, LubricantModel, PositiveInt, Q, CaseTable, Viscosity,
-                            refuse_renamed, rule)
+                            refuse_renamed, root_rule, rule)
 from lubedyn.papers.wu2018.parameters import GREASE_TABLE as GREASES
 from lubedyn.scenes.static import BearingTable
 from lubedyn.config import CASES_DIR
@@ -82,6 +84,7 @@ from lubedyn.dynamics.rotations import to_scipy
 from lubedyn.dynamics.specialise import compile_in_background
 from lubedyn.dynamics.tapered import groups as G, kernels as K, layout as L
 from lubedyn.dynamics.tapered.model import TaperedBearing
+from lubedyn.lubrication.laws.film import dowson_toyoda_central
 from lubedyn.lubrication.laws.grease import grease_at
 from lubedyn.lubrication.laws.thermal import walther_dynamic
 from lubedyn.maps import FilmMap
@@ -166,6 +169,7 @@ class LubricantTable(LubricantModel):
     oil_temperature: Literal["none", "walther"] = "none"
     oil_reference_c: float = 30.0
     oil_nu100: Q("kinematic viscosity", gt=0) | None = None
+    raceway_film: Literal["formula", "grease_ehl"] = "formula"
 
     @model_validator(mode="after")
     def _grease(self):
@@ -189,6 +193,9 @@ class LubricantTable(LubricantModel):
             if not -20.0 <= self.temperature_c <= 150.0:
                 raise rule("temperature_c", self.temperature_c, "must lie in -20 to 150 C with oil_temperature = "
                            "'walther' (a bearing's range; ASTM D341's line is not used beyond it)")
+        if self.raceway_film == "grease_ehl" and self.grease == "none":
+            raise rule("raceway_film", self.raceway_film, "needs a grease (its EHL film): lubricant.grease = 'polyurea', "
+                       "'calcium', 'lithium' (Table 2 at temperature_c) or 'custom'; or raceway_film = 'formula'")
         if self.reading == "base_oil" and self.viscosity is None:
             raise rule("viscosity", None, "is required with reading = 'base_oil': the base oil's eta0 (and Barus' "
                        "alpha), e.g. viscosity = { law = 'barus', eta0 = '0.1 Pa s', alpha = '4.662e-8 m^2/N' }")
@@ -348,6 +355,10 @@ class TaperedCase(CaseTable):
     @model_validator(mode="after")
     def _oil(self):
         self.lubricant.oil()  # refuses what the scene would not read (LubricantModel.barus)
+        if self.lubricant.raceway_film == "grease_ehl" and self.model.traction not in ("paper", "limited"):
+            raise root_rule("lubricant.raceway_film", "grease_ehl", f"sets the raceway films that traction 'paper' "
+                            f"and 'limited' read; model.traction = {self.model.traction!r} reads none (the maps "
+                            "hold their own films): use raceway_film = 'formula'")
         return self
 
 
@@ -381,9 +392,136 @@ def build(case: TaperedCase):
             groups["flange"] = G.Flange(**f)
         if m.traction == "map":
             groups["traction_maps"] = roller_traction_maps()
-        return TaperedBearing(geometry=g, **groups)
+        model = TaperedBearing(geometry=g, **groups)
+        if case.lubricant.raceway_film == "grease_ehl":
+            films = raceway_films(case, model, model.quasi_static())
+            model = dataclasses.replace(model, lubricant=dataclasses.replace(
+                model.lubricant, raceway_film_viscosities=tuple(films[race]["Effective viscosity [Pa s]"]
+                                                                for race in RACES)))
+        return model
     except DynamicsInputError as exc:
         raise InputError(str(exc)) from None
+
+
+# ---------------------------------------------------------------- raceway films from the grease's EHL solve
+RACES = ("cup", "cone")
+#: the EHL resolutions (lubedyn.film_points.EHL_RESOLUTIONS, line: 257 and 513 nodes on the roller kinds'
+#: film-scaled domain) tried in turn: the finer one where the coarser solution fails the solver's own
+#: a-posteriori checks (measured at Fa 15 kN, 2,800 rpm, phi0 = 38.44 Pa s^n: the cup's 257-node solve
+#: returned a 408 um film flagged by the resolution check; 513 nodes gave 40.20 um, 1025 nodes 40.16 um)
+RACEWAY_FILM_RESOLUTIONS = ("default", "fine")
+_RACEWAY_EHL: dict = {}   # solve inputs -> film record or the error: one solve per process
+
+
+def _dt_film(eta, speed, load, radius, alpha, e_prime) -> float:
+    """Dowson-Toyoda's central film [m] (lubedyn.lubrication.laws.film.dowson_toyoda_central) of a line
+    contact: the kernel's formula (lubedyn.dynamics.tapered.kernels.raceway_film)."""
+    return radius * dowson_toyoda_central(eta * speed / (e_prime * radius), alpha * e_prime, load / (e_prime * radius))
+
+
+def _grease_name(case) -> str:
+    lu = case.lubricant
+    if lu.grease == "custom":
+        return (f"the custom grease (tau_y {lu.yield_stress:g} Pa, phi0 {lu.consistency:g} Pa s^n, n {lu.exponent:g}) "
+                f"at {lu.temperature_c:g} C")
+    return f"{lu.grease} at {lu.temperature_c:g} C"
+
+
+def grease_ehl_film(race: str, radius: float, e_prime: float, grease, density: float, load: float,
+                    speed: float) -> dict:
+    """The central and minimum film [m] of a raceway's line contact (reduced radius ``radius`` [m], E'
+    ``e_prime`` [Pa]) with the Herschel-Bulkley ``grease`` (:class:`lubedyn.lubrication.laws.grease.Grease`:
+    Poiseuille flow of tau_y + phi |D|^n, phi = phi0 exp(alpha p)) at the line load ``load`` [N/m] and
+    entrainment speed ``speed`` [m/s]: the roller kind's solve (:func:`lubedyn.film_points.ehl_load_response`,
+    its film-scaled domain, the solver's Newtonian starts), at the resolutions of
+    :data:`RACEWAY_FILM_RESOLUTIONS` in turn until a solution passes the solver's a-posteriori checks.
+    Cached per process (the same inputs are solved once; a failure is raised again)."""
+    from lubedyn.film_points import (ehl_load_response, ehl_roller_cone_default_params,  # deferred: scikit-fem
+                                     ehl_roller_cup_default_params)
+
+    key = (race, float(radius), float(e_prime), float(grease.yield_stress), float(grease.consistency),
+           float(grease.exponent), float(grease.pressure_viscosity), float(density), float(load), float(speed))
+    if key in _RACEWAY_EHL:
+        out = _RACEWAY_EHL[key]
+        if isinstance(out, Exception):
+            raise out
+        return dict(out, cached=True)
+    base = (ehl_roller_cup_default_params if race == "cup" else ehl_roller_cone_default_params)()
+    t0 = time.perf_counter()
+    tried = []
+    try:
+        for resolution in RACEWAY_FILM_RESOLUTIONS:
+            params = {**base, "radius_x": float(radius), "e_star": 0.5 * float(e_prime),
+                      "alpha": float(grease.pressure_viscosity), "rho0": float(density), "coefficients": "linearised",
+                      "resolution": resolution, "rheology": "herschel_bulkley",
+                      "hb_consistency": float(grease.consistency), "hb_yield_stress": float(grease.yield_stress),
+                      "hb_exponent": float(grease.exponent), "hb_creep": 0.0}
+            res = ehl_load_response(params, float(load), float(speed))
+            sol = res["solution"]
+            warnings = list(sol.info.get("warnings", []))
+            g = sol.problem.g
+            tried.append(f"{g.nx} nodes: h_c {res['Central film thickness [m]'] * 1e6:.4g} um"
+                         + (f" ({'; '.join(warnings)})" if warnings else ""))
+            if not warnings:
+                break
+        else:
+            raise ConvergenceError(f"no solution passed the solver's checks ({' / '.join(tried)})")
+    except ConvergenceError as exc:
+        _RACEWAY_EHL[key] = exc
+        raise
+    out = {"central": float(res["Central film thickness [m]"]), "minimum": float(res["Minimum film thickness [m]"]),
+           "grid": (int(g.nx), float(g.x_min), float(g.x_max)), "tried": tried, "seconds": time.perf_counter() - t0,
+           "cached": False}
+    _RACEWAY_EHL[key] = out
+    log.info("raceway film (%s, %.4g N/m, %.4g m/s): grease EHL %.4g um in %.1f s", race, load, speed,
+             out["central"] * 1e6, out["seconds"])
+    return out
+
+
+def raceway_films(case, model, qs) -> dict:
+    """``lubricant.raceway_film = "grease_ehl"``: per raceway (cup, cone) the grease's EHL central film at the
+    most loaded roller's quasi-static load per unit effective length (``qs``: the model's quasi-static
+    equilibrium) and the run's ideal entrainment speed (:func:`grease_ehl_film`), Dowson-Toyoda's film there
+    with the films' viscosity eta_ref (:meth:`lubedyn.dynamics.tapered.groups.Lubricant.viscosity`) and the
+    effective viscosity eta_eff = eta_ref (h_EHL/h_DT(eta_ref))^(1/k), k = 0.69 Dowson-Toyoda's speed exponent
+    (H ~ U^0.69; taken from the law itself): the viscosity with which the kernel's formula
+    (:func:`lubedyn.dynamics.tapered.kernels.raceway_film`) gives the EHL film at that load.  The summary's
+    "Raceway films" (films in um).  A solve that fails is a one-line :class:`InputError` naming
+    ``lubricant.raceway_film``, the grease and its temperature."""
+    g, lu = model.geometry, model.lubricant
+    grease = lu.grease()
+    speed = model.entrainment_speed
+    eta_ref, alpha, ep = lu.viscosity(), lu.pressure_viscosity, g.e_prime
+    # Dowson-Toyoda's exponent of the speed (and so of the viscosity), from the law itself: 0.69
+    k = math.log(_dt_film(2.0, 1.0, 1e5, 0.01, alpha, ep) / _dt_film(1.0, 1.0, 1e5, 0.01, alpha, ep)) / math.log(2.0)
+    out = {}
+    for race, loads in zip(RACES, (qs.cup_loads, qs.cone_loads)):
+        w = float(np.max(loads)) / g.effective_length
+        radius = float(g.reduced_radius(race))
+        try:
+            ehl = grease_ehl_film(race, radius, ep, grease, case.lubricant.density.rho0, w, speed)
+        except ConvergenceError as exc:
+            log.info("lubricant.raceway_film = 'grease_ehl' (%s): %s", race, exc)
+            raise InputError(f"lubricant.raceway_film = 'grease_ehl': the EHL line contact of {_grease_name(case)} "
+                             f"did not converge on the {race} ({w:.4g} N/m, {speed:.4g} m/s; measured: Table 2's "
+                             "lithium, n = 0.31, never converges at paper A's loads); use lubricant.raceway_film = 'formula' (Dowson-Toyoda with the "
+                             "films' viscosity) or a grease the solver reaches (polyurea or calcium)") from exc
+        h_dt = _dt_film(eta_ref, speed, w, radius, alpha, ep)
+        factor = ehl["central"] / h_dt
+        eta = eta_ref * factor ** (1.0 / k)
+        out[race] = {"Line load [N/m]": w, "Entrainment speed [m/s]": speed, "Reduced radius [m]": radius,
+                     "EHL central film [um]": 1e6 * ehl["central"], "EHL minimum film [um]": 1e6 * ehl["minimum"],
+                     "Formula film [um]": 1e6 * h_dt, "Factor h_EHL/h_formula [-]": factor,
+                     "Reference viscosity [Pa s]": eta_ref, "Effective viscosity [Pa s]": eta,
+                     "Formula film at the effective viscosity [um]": 1e6 * _dt_film(eta, speed, w, radius, alpha, ep),
+                     "EHL grid (nodes, x_min, x_max) [-, b, b]": list(ehl["grid"]),
+                     "EHL resolutions tried": ehl["tried"],
+                     "EHL solve wall time [s]": ehl["seconds"]}   # of its first solve in this process
+    out["Grease"] = _grease_name(case)
+    out["Dowson-Toyoda speed exponent [-]"] = k
+    out["Load"] = ("the most loaded roller's quasi-static load per unit effective length, per raceway; the "
+                   "effective viscosity is held for every slice and load of the run")
+    return out
 
 
 #: the roller EHL maps that raceway traction "map" reads (cup, cone): built by cases/map_ehl_roller_cup.toml
@@ -423,7 +561,8 @@ def describe(case: TaperedCase, model) -> str:
     else:
         step = f"DOPRI5 rtol {ig.rtol:g}"
     return (f"tapered roller bearing, {model.n_rollers} rollers x {model.n_slices} slices, traction {m.traction}, "
-            f"pocket {m.pocket}, land {m.guide_land}, flange friction {m.flange_friction}; "
+            f"pocket {m.pocket}, land {m.guide_land}, flange friction {m.flange_friction}"
+            f"{', raceway films from the grease EHL' if case.lubricant.raceway_film == 'grease_ehl' else ''}; "
             f"{op.speed * 30 / math.pi:g} rpm, F_r {op.radial_load:g} N, axial {op.axial}"
             f"{f', cone tilt free (load at {op.load_offset * 1e3:g} mm)' if op.cone_tilt == 'free' else ''}; "
             f"{ig.duration * 1e3:g} ms, {step}")
@@ -490,8 +629,9 @@ def summarise(case, model, t, Y, D, qs) -> dict:
     kin = model.ideal()
     ideal = float(kin["cage speed [rad/s]"])
     s = {"Rollers [-]": model.n_rollers, "Slices per roller [-]": model.n_slices,
-         "Fidelity": {k: getattr(case.model, k) for k in ("traction", "flange_friction", "pocket", "guide_land",
-                                                         "pocket_switch", "traction_evaluation")},
+         "Fidelity": {**{k: getattr(case.model, k) for k in ("traction", "flange_friction", "pocket", "guide_land",
+                                                            "pocket_switch", "traction_evaluation")},
+                      "raceway_film": case.lubricant.raceway_film},
          "Integrator": case.integrator.method, "Cone speed [rpm]": model.speed * 30 / math.pi,
          "Simulated time [s]": float(t[-1]), "Samples [-]": int(t.size),
          "Ideal cage speed [rad/s]": ideal, "Ideal cage speed [rpm]": ideal * 30 / math.pi,
@@ -502,6 +642,8 @@ def summarise(case, model, t, Y, D, qs) -> dict:
          "Quasi-static largest flange load [N]": float(np.max(qs.flange_loads))}
     if case.model.traction == "map":
         s.update(traction_map_summary(model))
+    if case.lubricant.raceway_film == "grease_ehl":   # the build's solves, from the cache
+        s["Raceway films (lubricant.raceway_film = 'grease_ehl')"] = raceway_films(case, model, qs)
     lo, hi = case.analysis.window
     if t[-1] >= lo + (t[1] - t[0]):
         s["Paper window (analysis.window)"] = window_summary(model, t, D, lo, min(hi, t[-1]))

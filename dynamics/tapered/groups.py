@@ -137,7 +137,10 @@ class Lubricant(Group):
     The limited laws (raceway "limited", flange grease traction) use the grease with the limiting shear
     stress ``limiting_stress`` tau_L0 [Pa] (inf: none), ``limiting_slope`` gamma_L and the yield
     regularisation ``yield_rate`` D_r [1/s]; the raceway's "limited" law adds the film's elastic shear
-    of modulus ``shear_modulus`` G [Pa] in series (inf: none, the near-Coulomb law)."""
+    of modulus ``shear_modulus`` G [Pa] in series (inf: none, the near-Coulomb law).
+    ``raceway_film_viscosities`` (cup, cone) [Pa s]: the viscosities of the raceway slices' Dowson-Toyoda
+    films (None: :meth:`viscosity` for both; the tapered scene's ``lubricant.raceway_film = "grease_ehl"``
+    sets them so that the formula gives the grease's EHL film; :meth:`film_viscosities`)."""
 
     TABLE: ClassVar[str] = "lubricant"
 
@@ -152,9 +155,14 @@ class Lubricant(Group):
     limiting_slope: float = 0.0
     yield_rate: float = 0.0
     shear_modulus: float = math.inf
+    raceway_film_viscosities: tuple | None = None
 
     def __post_init__(self):
         self.choice("reading", READINGS)
+        v = self.raceway_film_viscosities
+        if v is not None and (len(v) != 2 or not all(isinstance(x, (int, float)) and math.isfinite(x) and x > 0.0
+                                                     for x in v)):
+            raise self.fail("raceway_film_viscosities", "must be two viscosities > 0 [Pa s] (cup, cone), or None")
         self.non_negative("pressure_viscosity", "limiting_slope", "yield_rate")
         if not self.shear_modulus > 0.0:
             raise self.fail("shear_modulus", "must be > 0 (inf: no elastic compliance)")
@@ -192,6 +200,14 @@ class Lubricant(Group):
         if g is None:
             return float(self.base_oil_viscosity)
         return float(g.viscosity(self.reading, shear_rate=self.shear_rate, base_oil_viscosity=self.base_oil_viscosity))
+
+    def film_viscosities(self) -> tuple[float, float]:
+        """(cup, cone) viscosities [Pa s] of the raceway films' Dowson-Toyoda formula:
+        ``raceway_film_viscosities`` when given, else :meth:`viscosity` for both."""
+        if self.raceway_film_viscosities is None:
+            eta = self.viscosity()
+            return eta, eta
+        return float(self.raceway_film_viscosities[0]), float(self.raceway_film_viscosities[1])
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -39,7 +39,8 @@ Contacts of roller j (laws written once in :mod:`lubedyn.lubrication.laws`):
 * raceway traction (option ``traction``): against the tangential part of the sliding velocity at each
   loaded slice (rolling direction and the axial sliding a skewed roller makes, one vector), with the
   Hertz half-width b = sqrt(8 w R'/(pi E')) of the slice's line load w and the Dowson-Toyoda film at the
-  ideal entrainment speed: "paper" eq. 12 (linear in the sliding speed,
+  ideal entrainment speed with the race's film viscosity (``P.etao`` cup, ``P.etai`` cone: the films'
+  Newtonian viscosity, or the one that makes the grease's EHL film, :func:`_strip_film`): "paper" eq. 12 (linear in the sliding speed,
   :func:`lubedyn.lubrication.laws.traction.paper_raceway_traction`), "limited" the Herschel-Bulkley strip law
   with Barus consistency and a limiting shear stress (an extension,
   :func:`lubedyn.lubrication.laws.traction.limited_strip_traction`) in series with the film's elastic shear
@@ -151,23 +152,47 @@ def _rheo(P):
 
 
 @njit(**INLINE)
-def _strip_film(w, radius, P):
+def _race_radius(race, P):
+    """Reduced radius R' [m] of raceway ``race`` (0 cup, 1 cone)."""
+    return P.rxo if race == 0 else P.rxi
+
+
+@njit(**INLINE)
+def _race_viscosity(race, P):
+    """The viscosity [Pa s] of raceway ``race``'s (0 cup, 1 cone) Dowson-Toyoda film: ``P.etao`` / ``P.etai``
+    (the model's :meth:`lubedyn.dynamics.tapered.groups.Lubricant.film_viscosities`: both the films'
+    Newtonian viscosity ``P.eta`` unless the scene set them from the grease's EHL film)."""
+    return P.etao if race == 0 else P.etai
+
+
+@njit(**INLINE)
+def _strip_film(w, race, P):
     """(Hertz half-width b [m], peak pressure p0 [Pa], Dowson-Toyoda central film h0 [m] at the ideal
-    entrainment speed) of a strip carrying the line load ``w`` [N/m] on a raceway of reduced radius
-    ``radius``: b = sqrt(8 w R'/(pi E')), p0 = 2 w/(pi b)."""
+    entrainment speed) of a strip of raceway ``race`` (0 cup, 1 cone; reduced radius R' and film viscosity
+    eta_race) carrying the line load ``w`` [N/m]: b = sqrt(8 w R'/(pi E')), p0 = 2 w/(pi b),
+    h0 = R' H_DT(eta_race u_e/(E' R'), alpha E', w/(E' R'))."""
     ep = P.ep
+    radius = _race_radius(race, P)
     b = math.sqrt(8.0 * w * radius / (math.pi * ep))
-    h0 = radius * _dowson_toyoda(P.eta * P.ue / (ep * radius), P.pvc * ep, w / (ep * radius))
+    h0 = radius * _dowson_toyoda(_race_viscosity(race, P) * P.ue / (ep * radius), P.pvc * ep, w / (ep * radius))
     return b, 2.0 * w / (math.pi * b), h0
 
 
 @njit(**INLINE)
-def _slice_film(load, radius, P):
-    """(line load w [N/m], b, p0, h0) of a slice carrying ``load`` [N] (:func:`_strip_film` at
-    w = load/width)."""
+def _slice_film(load, race, P):
+    """(line load w [N/m], b, p0, h0) of a slice of raceway ``race`` carrying ``load`` [N]
+    (:func:`_strip_film` at w = load/width)."""
     w = load / P.width
-    b, p0, h0 = _strip_film(w, radius, P)
+    b, p0, h0 = _strip_film(w, race, P)
     return w, b, p0, h0
+
+
+@njit(**JIT)
+def raceway_film(w, race, P):
+    """The Dowson-Toyoda central film [m] the kernel gives a strip of raceway ``race`` (0 cup, 1 cone)
+    carrying the line load ``w`` [N/m] (:func:`_strip_film`; what sets the limited traction's shear rate
+    and the film's elastic slope 2 G b^2/(u_e h))."""
+    return _strip_film(w, race, P)[2]
 
 
 @njit(**INLINE)
@@ -212,30 +237,32 @@ def _load_cone(Fc, Tc, tilted, q0, q1, q2, f0, f1, f2):
 
 
 @njit(**INLINE)
-def _traction_per_speed(load, radius, P):
-    """Eq. 12's traction per sliding speed [N s/m] of a slice carrying ``load`` [N]: pi eps eta
-    sqrt(R'/(2 h0)) times the slice width (:func:`lubedyn.lubrication.laws.traction.paper_raceway_traction`)."""
-    w, b, p0, h0 = _slice_film(load, radius, P)
-    return paper_raceway_traction(1.0, P.eta, radius, h0, b) * P.width
+def _traction_per_speed(load, race, P):
+    """Eq. 12's traction per sliding speed [N s/m] of a slice of raceway ``race`` carrying ``load`` [N]:
+    pi eps eta sqrt(R'/(2 h0)) times the slice width
+    (:func:`lubedyn.lubrication.laws.traction.paper_raceway_traction`); eta the films' Newtonian viscosity
+    ``P.eta`` (eq. 12's), h0 the race's film (:func:`_slice_film`, its own film viscosity)."""
+    w, b, p0, h0 = _slice_film(load, race, P)
+    return paper_raceway_traction(1.0, P.eta, _race_radius(race, P), h0, b) * P.width
 
 
 @njit(**JIT)
-def strip_viscous_traction(w, radius, vs, P):
-    """The limited Herschel-Bulkley traction per unit length [N/m] of a raceway strip of reduced radius
-    ``radius`` [m] carrying the line load ``w`` [N/m] and sliding at ``vs`` [m/s]
+def strip_viscous_traction(w, race, vs, P):
+    """The limited Herschel-Bulkley traction per unit length [N/m] of a strip of raceway ``race`` (0 cup,
+    1 cone) carrying the line load ``w`` [N/m] and sliding at ``vs`` [m/s]
     (:func:`lubedyn.lubrication.laws.traction.limited_strip_traction` over the Hertz strip of :func:`_slice_film`,
     Gauss rule), before the film's elastic shear: the function the traction tables hold."""
-    b, p0, h0 = _strip_film(w, radius, P)
+    b, p0, h0 = _strip_film(w, race, P)
     return limited_strip_traction(vs, h0, b, p0, _rheo(P))
 
 
 @njit(**JIT)
-def strip_viscous_table(V, W, radius, P):
-    """:func:`strip_viscous_traction` at every (V[i], W[j]): the values of a traction table."""
+def strip_viscous_table(V, W, race, P):
+    """:func:`strip_viscous_traction` of raceway ``race`` at every (V[i], W[j]): the values of a traction table."""
     out = np.empty((V.size, W.size))
     for i in range(V.size):
         for j in range(W.size):
-            out[i, j] = strip_viscous_traction(W[j], radius, V[i], P)
+            out[i, j] = strip_viscous_traction(W[j], race, V[i], P)
     return out
 
 
@@ -300,14 +327,13 @@ def _slice_traction(load, race, vs, P, table, maps, counter):
     (:func:`lubedyn.lubrication.laws.traction.elastic_limited`, shear modulus G), or the roller EHL map's
     traction coefficient times the slice load ("map", :func:`map_traction_coefficient`, at the slide-to-roll
     ratio v_s/u_e of the run's ideal entrainment speed)."""
-    radius = P.rxo if race == 0 else P.rxi
     if P.traction == TRACTION_PAPER:
-        return _traction_per_speed(load, radius, P) * vs
+        return _traction_per_speed(load, race, P) * vs
     if vs <= 0.0:
         return 0.0
     if P.traction == TRACTION_MAP:  # the EHL map's film traction (its elastic shear included)
         return map_traction_coefficient(race, load / P.width, vs / P.ue, P, maps, counter) * load
-    w, b, p0, h0 = _slice_film(load, radius, P)
+    w, b, p0, h0 = _slice_film(load, race, P)
     viscous = -1.0
     if P.ttab != 0.0:
         viscous = _table_viscous(race, w, vs, table, counter)

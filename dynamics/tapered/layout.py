@@ -74,6 +74,8 @@ PARAMETERS = (
     ('qstab', 'quaternion drift stabilisation [1/s]'),
     ('traction', 'raceway traction law (TRACTIONS)'),
     ('eta', 'viscosity [Pa s]'),
+    ('etao', 'cup raceway film viscosity [Pa s] (the Dowson-Toyoda film of the cup slices)'),
+    ('etai', 'cone raceway film viscosity [Pa s] (the Dowson-Toyoda film of the cone slices)'),
     ('pvc', 'pressure-viscosity coefficient [1/Pa]'),
     ('ep', "E' of the raceway contacts [Pa]"),
     ('rxo', 'cup reduced radius [m]'),

@@ -217,6 +217,7 @@ class TaperedBearing:
         v["qstab"] = fi.quaternion_stabilisation
         v["traction"] = L.TRACTIONS[fi.traction]
         v["eta"], v["pvc"], v["ep"] = lu.viscosity(), lu.pressure_viscosity, g.e_prime
+        v["etao"], v["etai"] = lu.film_viscosities()
         v["rxo"], v["rxi"] = g.reduced_radius("cup"), g.reduced_radius("cone")
         v["ue"] = self.entrainment_speed
         v["width"] = g.effective_length / fi.slices
@@ -294,7 +295,7 @@ class TaperedBearing:
         for race, radius in enumerate((P.rxo, P.rxi)):
             w_max = 2.0 * math.pi * radius * self.TABLE_PEAK_PRESSURE**2 / P.ep
             W = np.logspace(math.log10(w_max) - self.TABLE_LOAD_DECADES, math.log10(w_max), n1)
-            values = K.strip_viscous_table(V, W, radius, P)
+            values = K.strip_viscous_table(V, W, race, P)
             if not np.all(values > 0.0):
                 raise DynamicsInputError(f"the limited traction is not > 0 on its table ({('cup', 'cone')[race]}): "
                                          "use model.traction_evaluation = 'quadrature'")
@@ -518,7 +519,8 @@ class TaperedBearing:
 
         - "limited": the elastic slope; the slice slopes 2 G b_k^2 w_k/(u_e h) summed over a race give
           2 G (8 R' Q/(pi E'))/(u_e h) (b^2 = 8 w R'/(pi E') is linear in the slice load), h the kernel's
-          Dowson-Toyoda film at that load (cup and cone R');
+          Dowson-Toyoda film at that load (cup and cone R' and film viscosity,
+          :meth:`lubedyn.dynamics.tapered.groups.Lubricant.film_viscosities`);
         - "map": (mu/s) Q/u_e, mu/s the maps' linear branch at the slide-to-roll axis' first node
           (``args``: the model's kernel arguments, built when not given)."""
         lu, g = self.lubricant, self.geometry
@@ -538,9 +540,9 @@ class TaperedBearing:
                 k.append(K.map_traction_coefficient(race, w, s0, args.P[0], args.maps, counter) / s0 * load / ue)
         else:
             ep = g.e_prime
-            for race in ("cup", "cone"):
+            for race, eta in zip(("cup", "cone"), lu.film_viscosities()):
                 r = g.reduced_radius(race)
-                h = r * dowson_toyoda_central(lu.viscosity() * ue / (ep * r), lu.pressure_viscosity * ep, w / (ep * r))
+                h = r * dowson_toyoda_central(eta * ue / (ep * r), lu.pressure_viscosity * ep, w / (ep * r))
                 k.append(2.0 * lu.shear_modulus * (8.0 * r * load / (math.pi * ep)) / (ue * h))
         m, ix, _, _ = g.roller_mass_properties()
         return sliding_decay_rate(k[0], k[1], m, ix, g.mean_roller_radius)
