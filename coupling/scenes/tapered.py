@@ -23,6 +23,7 @@ maps one to one onto a group of :class:`lubedyn.dynamics.tapered.model.TaperedBe
     viscosity = { law = "barus", eta0 = "0.1 Pa s", alpha = "4.662e-8 m^2/N" }   # the base oil, as in every scene
     oil_temperature = "walther" #   eta0 at oil_reference_c, moved to temperature_c on ASTM D341's line
     oil_nu100 = "8.6 mm^2/s"    #   through the base oil's viscosity at 100 C ("none": eta0 at every temperature)
+    raceway_film = "formula"    # or "grease_ehl": the raceway films from the grease's EHL solve (below)
     [integrator]
     method = "dopri5"           # or "rk4" with dt (refused above the contact modes' stability limit)
     duration = "180 ms"
@@ -53,6 +54,28 @@ roller pass later).
 With ``operating.cone_tilt = "free"`` the summary adds the cone's tilt (theta_y, theta_z) [rad]: its
 quasi-static start, and per window its mean and amplitude; the time series carries it (the state's
 "Cone tilt y/z [rad]" and the contacts' moment on the cone).
+
+Raceway films (``lubricant.raceway_film``).  The compiled dynamics give each raceway slice the
+Dowson-Toyoda central film at its line load and the ideal entrainment speed; it sets the limited
+traction's shear rate and the film's elastic slope 2 G b^2/(u_e h), so the rollers' and the cage's slip
+scale with it.  "formula" (the default) takes the films' Newtonian viscosity (``reading``: with
+"base_oil" the assumed base oil, so the films do not depend on the grease).  "grease_ehl" solves, per
+raceway, the line EHL contact of the case's grease (Herschel-Bulkley Poiseuille flow, phi0 exp(alpha p):
+Table 2 at ``temperature_c`` or "custom") at the most loaded roller's quasi-static load per unit effective
+length and the ideal entrainment speed (:func:`grease_ehl_film`: the roller kinds' film-scaled domain on
+257 nodes, 513 where the solver's own checks reject the 257-node solution; cached per process), and gives
+that raceway the viscosity eta_eff = eta (h_EHL/h_DT(eta))^(1/0.69) with which Dowson-Toyoda (H ~ U^0.69)
+reproduces the solved film at that load (:func:`raceway_films`; the summary's "Raceway films": both films
+in um, the factor, the viscosities, the grid, the solve's wall time).  The factor is held for every
+slice and load of the run.  Measured (docs/paper_a.md, benchmarks/trb_raceway_film.py) at Fa 15 kN,
+2,800 rpm (all rollers equally loaded), polyurea at 30 C: factors 1.70 (cup) and 1.71 (cone) at the
+108 / 104 kN/m of the rollers; at 0.6 times that load 1.58 / 1.58 (-7 %, -8 %); at 0.3 times the solver
+gives no grid-independent film, so a radially loaded bearing's light rollers take the heavy roller's
+factor unchecked.  The cup's solution is not unique (loads 1e-9 apart converge to 10.13 or 11.33 um
+from different Newtonian starts, 10.13-11.48 um within +-1 % of the load; the cone's within 0.05 %).  A grease the solver does
+not reach (Table 2's lithium, n = 0.31) is a one-line error; "grease_ehl" needs a grease and a traction
+that reads the film ("paper" or "limited").  Eq. 12's viscosity, the pocket, land and rib films keep
+the films' viscosity.
 
 Not modelled yet: a rib film that follows the load.
 """
@@ -428,19 +451,21 @@ def _grease_name(case) -> str:
 
 
 def grease_ehl_film(race: str, radius: float, e_prime: float, grease, density: float, load: float,
-                    speed: float) -> dict:
+                    speed: float, resolutions: tuple = RACEWAY_FILM_RESOLUTIONS) -> dict:
     """The central and minimum film [m] of a raceway's line contact (reduced radius ``radius`` [m], E'
     ``e_prime`` [Pa]) with the Herschel-Bulkley ``grease`` (:class:`lubedyn.lubrication.laws.grease.Grease`:
     Poiseuille flow of tau_y + phi |D|^n, phi = phi0 exp(alpha p)) at the line load ``load`` [N/m] and
     entrainment speed ``speed`` [m/s]: the roller kind's solve (:func:`lubedyn.film_points.ehl_load_response`,
     its film-scaled domain, the solver's Newtonian starts), at the resolutions of
-    :data:`RACEWAY_FILM_RESOLUTIONS` in turn until a solution passes the solver's a-posteriori checks.
+    ``resolutions`` (:data:`RACEWAY_FILM_RESOLUTIONS`) in turn until a solution passes the solver's
+    a-posteriori checks.
     Cached per process (the same inputs are solved once; a failure is raised again)."""
     from lubedyn.film_points import (ehl_load_response, ehl_roller_cone_default_params,  # deferred: scikit-fem
                                      ehl_roller_cup_default_params)
 
     key = (race, float(radius), float(e_prime), float(grease.yield_stress), float(grease.consistency),
-           float(grease.exponent), float(grease.pressure_viscosity), float(density), float(load), float(speed))
+           float(grease.exponent), float(grease.pressure_viscosity), float(density), float(load), float(speed),
+           tuple(resolutions))
     if key in _RACEWAY_EHL:
         out = _RACEWAY_EHL[key]
         if isinstance(out, Exception):
@@ -450,7 +475,7 @@ def grease_ehl_film(race: str, radius: float, e_prime: float, grease, density: f
     t0 = time.perf_counter()
     tried = []
     try:
-        for resolution in RACEWAY_FILM_RESOLUTIONS:
+        for resolution in resolutions:
             params = {**base, "radius_x": float(radius), "e_star": 0.5 * float(e_prime),
                       "alpha": float(grease.pressure_viscosity), "rho0": float(density), "coefficients": "linearised",
                       "resolution": resolution, "rheology": "herschel_bulkley",
