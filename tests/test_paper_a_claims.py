@@ -237,3 +237,30 @@ def test_elasticities_power_laws_and_the_papers_numbers(tmp_path):
     assert el["roller slip"]["paper"] == pytest.approx(-0.86468, abs=1e-5)
     assert all("axial_displacement" in r["route"] for r in el.values())
     assert C.elasticity(1.0, 2.0, 1.0, -4.0) == pytest.approx(2.0)       # |y|: the magnitude's slope
+
+
+def test_temperature_elasticity_in_kelvin_per_grease_and_its_route(tmp_path):
+    """The temperature study's elasticities are per grease and against the absolute temperature: a skew
+    proportional to T_K^0.5 (15-70 C) has 0.5 for lithium, one proportional to T_K^-1 has -1 for calcium.
+    The route says what the runs' cases say: with lubricant.oil_temperature = "walther" the films follow
+    the temperature, with "none" no film does."""
+    temps, greases = (15, 30, 50, 70), {"lithium": 0.5, "calcium": -1.0}
+    labels = [(g, t) for g in greases for t in temps]
+    for law in ("walther", "none"):
+        folder = tmp_path / law / "trb_grease_temperature"
+        points = []
+        for k, (g, t) in enumerate(labels):
+            run = folder / "runs" / f"p{k}" / "m0"
+            run.mkdir(parents=True)
+            skew = 4e-3 * ((t + 273.15) / 288.15) ** greases[g]
+            (run / "summary.json").write_text(json.dumps(_summary(skew, -3e-5, 1e-4, 1e-4)))
+            (run / "case.resolved.toml").write_text(
+                f'[lubricant]\nreading = "base_oil"\noil_temperature = "{law}"\nlimiting_stress = 1e6\n')
+            points.append({"axes": {"lubricant.grease": g, "lubricant.temperature_c": t}, "run folders": [f"runs/p{k}/m0"]})
+        (folder / "study.json").write_text(json.dumps({"points": points}))
+        el = {r["study"]: r for r in C.elasticities(tmp_path / law) if r["output"] == "skew"}
+        assert el["trb_grease_temperature (lithium)"]["ours"] == pytest.approx(0.5, rel=1e-12)
+        assert el["trb_grease_temperature (calcium)"]["ours"] == pytest.approx(-1.0, rel=1e-12)
+        assert el["trb_grease_temperature (lithium)"]["paper text"] == "not printed"
+        films = "follows the temperature on ASTM D341's line" in el["trb_grease_temperature (lithium)"]["route"]
+        assert films == (law == "walther")

@@ -884,9 +884,9 @@ def conclusions(rows: list[Claim]) -> list[Claim]:
 
 # --------------------------------------------------------------------------- elasticities
 
-#: per main study: the axis key (last part), how its labels read as numbers, and the route by which the
-#: parameter enters the model (read from the code: lubedyn.dynamics.tapered.model.TaperedBearing.args,
-#: lubedyn.dynamics.tapered.kernels, lubedyn.lubrication.laws)
+#: per main study: the axis key (last part) and the route by which the parameter enters the model (read
+#: from the code: lubedyn.dynamics.tapered.model.TaperedBearing.args, lubedyn.dynamics.tapered.kernels,
+#: lubedyn.lubrication.laws); "{films}" is filled from the runs' cases (:func:`route`)
 ROUTES = {
     "trb_speed": (
         "speed", "operating.speed, the cone's: the ideal kinematics (cage speed, entrainment speed u_e) and with "
@@ -899,23 +899,62 @@ ROUTES = {
         "approaches, so every slice load (Palmgren slice law), the Hertz strips (half-width b, peak p0) the "
         "traction integrates over, the films' load term and the flange load; no lubricant value changes"),
     "trb_plastic_viscosity": (
-        "consistency", "lubricant.consistency phi0 (a custom grease): only the Herschel-Bulkley stress "
+        "consistency", "lubricant.consistency phi0 (a custom grease): the Herschel-Bulkley stress "
         "tau_y r(D) + phi0 exp(alpha p) |D|^n of the limited laws, capped by tau_L = tau_L0 + gamma_L p "
         "(lubrication/laws/traction.py) -- the raceway traction (limited_strip_traction, tabulated or by "
         "quadrature) and the rib's grease friction (limited_ellipse_traction, added in flange.flange_friction); "
-        "every film (raceway, rib, pocket, guide land) takes lubricant.reading's viscosity, the base oil's "
-        "(0.1 Pa s) by default, so phi0 thickens no film: the paper's route (the rib film thickening, the "
-        "asperity share falling) is not in the model"),
+        "{films}; the paper's route for Fig. 14 (the rib film thickening with phi, the asperity share falling) "
+        "needs a film that follows phi"),
     "trb_yield_stress": (
         "yield_stress", "lubricant.yield_stress tau_y: the same two limited laws, as the additive "
         "tau_y (1 - exp(-D/D_r)) (D_r = lubricant.yield_rate) in a stress capped by tau_L = tau_L0 + gamma_L p "
-        "(tau_L0 = 1 MPa: tau_y/tau_L0 <= 5.0e-4 over 251.8-501.8 Pa); no film"),
+        "({limit}); {films}"),
     "trb_grease_temperature": (
         "temperature_c", "lubricant.grease and temperature_c: Table 2's tau_y, phi0 and n at the temperature "
-        "(lubrication.laws.grease.grease_at, log-linear between its rows) into the same two limited laws; the base "
-        "oil's viscosity and alpha do not change with temperature, so no film changes; the elasticity is against "
-        "the absolute temperature (K)"),
+        "(lubrication.laws.grease.grease_at, log-linear between its rows) into the same two limited laws; {films}; "
+        "the elasticity is against the absolute temperature (K)"),
 }
+
+
+def _case_values(st: Study) -> dict:
+    """The lubricant table of the study's first run (its case.resolved.toml), {} when not kept."""
+    import tomllib
+
+    f = Path(st.folders[0]) / "case.resolved.toml" if st.folders else None
+    if f is None or not f.is_file():
+        return {}
+    return tomllib.loads(f.read_text()).get("lubricant", {})
+
+
+def route(name: str, st: Study | None = None) -> str:
+    """:data:`ROUTES`' text of a main study, its films part read from the runs' lubricant: under
+    ``lubricant.reading = "base_oil"`` every film (raceway, rib, pocket, guide land) takes the base oil's
+    viscosity, which follows ``temperature_c`` only with ``lubricant.oil_temperature = "walther"``."""
+    text = ROUTES[name][1]
+    if "{films}" not in text:
+        return text
+    lub = _case_values(st) if st is not None else {}
+    tau_l0 = lub.get("limiting_stress")
+    text = text.replace("{limit}", "tau_L0 not recorded" if tau_l0 is None else
+                        f"tau_L0 = {tau_l0 / 1e6:g} MPa: tau_y/tau_L0 <= {501.8 / tau_l0:.2g} at 501.8 Pa")
+    reading, law = lub.get("reading"), lub.get("oil_temperature", "none")
+    if reading is None:
+        films = "the films: as the runs' lubricant.reading says (their cases were not kept)"
+    elif reading != "base_oil":
+        films = (f"and, with lubricant.reading = '{reading}', the films' Newtonian viscosity "
+                 "(lubrication.laws.grease.Grease.viscosity), so every film too")
+    elif name == "trb_grease_temperature" and law == "walther":
+        films = ("and every film (raceway h0, the rib film and its asperity share, the elastic-film slope, the pocket and "
+                 "guide-land films) through the base oil's viscosity, which follows the temperature on ASTM D341's "
+                 "line (lubricant.oil_temperature = 'walther', lubrication.laws.thermal)")
+    elif name == "trb_grease_temperature":
+        films = "no film: the base oil's viscosity stays at every temperature (lubricant.oil_temperature = 'none')"
+    else:
+        eta0 = lub.get("viscosity", {}).get("eta0") if isinstance(lub.get("viscosity"), dict) else None
+        films = ("no film: every film (raceway, rib, pocket, guide land) takes the base oil's viscosity"
+                 + ("" if eta0 is None else f" ({eta0:g} Pa s)") + " (lubricant.reading = 'base_oil')")
+    return text.replace("{films}", films)
+
 
 #: the paper's end points where it prints them: study -> output -> (y at the first value, y at the last)
 PAPER_ENDS = {"trb_speed": {"tilt": (-0.14e-4, -0.40e-4), "skew": (3.06e-3, 4.47e-3)},
@@ -951,7 +990,8 @@ def elasticities(folder) -> list[dict]:
         st = Study.load(Path(folder) / name)
         if st is None:
             continue
-        key, route = ROUTES[name]
+        key = ROUTES[name][0]
+        how = route(name, st)
         kx = next(j for j, a in enumerate(st.axes) if a.rpartition(".")[2] == key)
         groups = [None]
         if name == "trb_grease_temperature":
@@ -975,7 +1015,7 @@ def elasticities(folder) -> list[dict]:
                             "sign change": y1 is not None and y2 is not None and y1 * y2 < 0,
                             "paper": paper, "paper text": (f"{paper:.3g}" if paper is not None else
                                                            PAPER_BOUNDS.get((name, out_name), "not printed")),
-                            "route": route})
+                            "route": how})
     return out
 
 
@@ -1078,7 +1118,7 @@ def markdown(folder) -> str:
         lines += ["", "| study | how the parameter enters the model |", "|---|---|"]
         for name in MAIN_STUDIES:
             if any(r["study"].startswith(name) for r in el):
-                lines.append(f"| `{name}` | {_cell(ROUTES[name][1])} |")
+                lines.append(f"| `{name}` | {_cell(route(name, Study.load(Path(folder) / name)))} |")
     sens = sensitivity(folder)
     if sens:
         lines += ["", "| assumption (study) | values | loaded-zone skew [rad] | loaded-zone tilt [rad] | roller slip | "
