@@ -120,8 +120,8 @@ raceway law gives which tilt sign"):
     the cone's side, a moment -0.85 to -0.97 N m (negative: paper A's tilt sense; what sets the
     quasi-static tilt, -2.2e-6 rad in the loaded zone); its friction adds +0.07 to +0.10 N m.
 
-So Delta beta ~ (couple + changes of (c))/k: +1.2e-5 rad with the limited law, -1e-6 with eq. 12 (a
-run in which the rollers are not held: slip -15 %).
+So the tilt is the quasi-static one plus about (couple + changes of (c))/k: from the nominal axis +1.1e-5
+rad with the limited law, -1.0e-6 with eq. 12 (a run in which the rollers are not held: slip -15 %).
 
 Not yet: a rib film that follows the load.  :func:`forces_many` returns slice
 loads, contact loads, friction and cage diagnostics at sampled states; the model's ``diagnostics`` reads
