@@ -37,6 +37,13 @@ from lubedyn.lubrication.laws.film import dowson_toyoda_central
 log = logging.getLogger(__name__)
 
 
+def _race_index(race: str) -> int:
+    """0 for "cup", 1 for "cone" (the kernel's raceway index); anything else is an input error."""
+    if race not in ("cup", "cone"):
+        raise DynamicsInputError(f"race = {race!r} is not a raceway; choose 'cup' or 'cone'")
+    return 0 if race == "cup" else 1
+
+
 def sliding_decay_rate(k1: float, k2: float, m: float, ix: float, rho: float) -> float:
     """Larger decay rate [1/s] of a roller's rolling-direction speed and spin under linear tractions of
     slopes ``k1`` (cup) and ``k2`` (cone) [N s/m] at radius ``rho`` [m] on opposite sides (mass ``m``,
@@ -507,6 +514,30 @@ class TaperedBearing:
         at 1 mm/s for a bearing at rest)."""
         return max(float(self.ideal()["entrainment speed [m/s]"]), 1e-3)
 
+    def raceway_strip(self, race: str, line_load: float, args=None) -> dict:
+        """The Hertz strip the raceway laws see on ``race`` ("cup" or "cone") at ``line_load`` w [N/m]: its
+        reduced radius R' [m], half-width b = sqrt(8 w R'/(pi E')) [m], peak pressure p0 = 2 w/(pi b) [Pa] and
+        the Dowson-Toyoda central film h [m] at the ideal entrainment speed (the kernel's own evaluation)."""
+        race_index = _race_index(race)
+        P = (self.args() if args is None else args).P[0]
+        radius = P.rxo if race_index == 0 else P.rxi
+        b, p0, h0 = K.strip_film(line_load, radius, P)
+        return {"reduced radius [m]": float(radius), "half-width [m]": float(b), "peak pressure [Pa]": float(p0),
+                "film [m]": float(h0)}
+
+    def raceway_traction_coefficient(self, race: str, line_load: float, srr: float, args=None) -> float:
+        """Traction coefficient [-] of the model's raceway law (``model.traction``) on ``race`` ("cup" or
+        "cone") at ``line_load`` [N/m] and slide-to-roll ratio ``srr`` >= 0 (sliding speed srr u_e), as the
+        kernel evaluates a slice carrying that line load (:func:`kernels.slice_traction`, its table or maps
+        included): the traction curve the dynamics uses.  ``args``: the model's kernel arguments (built when
+        not given)."""
+        args = self.args() if args is None else args
+        P = args.P[0]
+        load = line_load * P.width
+        force = K.slice_traction(load, _race_index(race), srr * P.ue, P, args.table, args.maps,
+                                 np.zeros(1, dtype=np.int64))
+        return float(force / load)
+
     def traction_rate(self, qs: QuasiStaticResult | None = None, args=None) -> float:
         """Decay rate [1/s] of a roller's sliding under the raceway traction's low-slip slopes k_cup, k_cone
         (0 for the laws whose slopes are orders smaller: "paper", "none", an infinitely stiff film), at the
@@ -586,6 +617,8 @@ class TaperedBearing:
           ideal kinematics (docs/paper_a.md; NaN at rest);
         - the cage: "Cage speed [rad/s]" (about x, inertial), "Cage slip [-]", "Cage centre [m]" (n, 2)
           relative to the cone's, "Guide land load [N]";
+        - the terms of each roller's tilt moment, "Tilt moment, cup normal [N m]" etc. (n, Z)
+          (:data:`layout.TILT_MOMENT_NAMES`, :mod:`kernels` "Tilt moment");
         - "Cone force [N]" (n, 3) of the rollers and cage on the cone; with the cone's tilt free, "Cone moment
           [N m]" (n, 3), their moment about its reference point, and "Cone tilt [rad]" (n, 2) theta_y,
           theta_z."""
