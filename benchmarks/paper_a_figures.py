@@ -7,11 +7,13 @@ trb_sensitivity_* and trb_plastic_viscosity_paper_reading), then::
     python benchmarks/paper_a_figures.py [runs/studies]
 
 Writes ``benchmarks/results/paper_a/fig05.png`` ... ``fig16.png`` (one figure per paper figure, the panels
-as the paper's: Fig. 5 the cone orbit, the roller displacements, the cage whirl and speeds at 2,400 rpm;
+as the paper's: Fig. 5 the cone orbit from the unloaded position, the roller displacements from the ideal
+position, the cage whirl and speeds at 2,400 rpm, each with the paper's plotted ranges;
 Figs. 6-9 tilt, skew, roller slip and cage slip of roller 0 against time at 2, 3, 4 and 5 krpm with the
 loaded zone shaded; Figs. 10-13 the same against the preload; Figs. 14-16 the means against the parameter
 over the paper's window and the converged window with the window-to-window change as error bars),
-``claims.md`` (:func:`lubedyn.papers.wu2018.claims.markdown`) and ``studies.json`` (every point's headline
+``claims.md`` (:func:`lubedyn.papers.wu2018.claims.markdown`: the verdict counts, the checklist, the
+steadiness of every point, the elasticities and routes) and ``studies.json`` (every point's headline
 numbers, for the docs).
 """
 from __future__ import annotations
@@ -82,26 +84,40 @@ def fig05(st: C.Study, path: Path):
     idx = st.where(speed="2400 rpm")
     if not idx:
         return None
-    cols = _series(st.folders[idx[0]])
+    folder = st.folders[idx[0]]
+    cols = _series(folder)
     s = st.summaries[idx[0]]
     t = cols["Time [s]"]
     fig, ax = plt.subplots(2, 2, figsize=(11, 7.5))
-    ax[0, 0].plot(1e6 * (cols["Cone y [m]"] - cols["Cone y [m]"][0]), 1e6 * (cols["Cone z [m]"] - cols["Cone z [m]"][0]), lw=0.5)
-    ax[0, 0].set(xlabel="cone y from the start [um]", ylabel="cone z from the start [um]", title="(a) cone centre orbit")
-    ax[0, 1].plot(t, 1e6 * cols["Roller 0 radial displacement [m]"], lw=0.7, label="radial")
-    ax[0, 1].plot(t, 1e6 * cols["Roller 0 axial displacement [m]"], lw=0.7, label="axial")
-    ax[0, 1].set(xlabel="t [s]", ylabel="roller 0 displacement from the start [um]", title="(b) roller displacement")
+    # (a) from the unloaded position: across the load (our z, the paper's y) against along it (our y, its z)
+    run = t <= 0.18
+    ax[0, 0].plot(1e6 * cols["Cone z [m]"][run], 1e6 * cols["Cone y [m]"][run], lw=0.5, label="lubedyn, 0-0.18 s")
+    across, along = (1e6 * x for x in C.FIG5_CONE)
+    ax[0, 0].plot([-across, across, across, -across, -across], [0, 0, along, along, 0], "C3--", lw=0.8,
+                  label="paper A: about +-6 x 0-15 um")
+    ax[0, 0].set(xlabel="cone centre across the load [um] (paper's y)",
+                 ylabel="along the load [um] (paper's z)", title="(a) cone centre from the unloaded position")
+    ax[0, 0].legend(fontsize=7)
+    # (b) roller 0 from its ideal, unloaded position
+    d = C.ideal_displacements(folder, cols)
+    if d is not None:
+        for k, (name, axis) in enumerate((("radial", C.FIG5_RADIAL), ("axial", C.FIG5_AXIAL))):
+            ax[0, 1].plot(t, 1e6 * d[k][:, 0], lw=0.7, color=f"C{k}", label=name)
+            for y in axis:
+                ax[0, 1].axhline(1e6 * y, color=f"C{k}", ls=":", lw=0.8)
+    ax[0, 1].set(xlabel="t [s]", ylabel="roller 0 from its ideal position [um]",
+                 title="(b) roller displacement (dotted: paper A's axes)")
     ax[0, 1].legend(fontsize=8)
     ax[1, 0].plot(1e3 * cols["Cage centre from the cone's, y [m]"], 1e3 * cols["Cage centre from the cone's, z [m]"], lw=0.5)
     ax[1, 0].set(xlabel="cage centre y [mm]", ylabel="cage centre z [mm]", title="(c) cage centre whirl (from the cone's)")
     ax[1, 0].set_aspect("equal", adjustable="datalim")
     rpm = 30 / np.pi
+    ax[1, 1].axhspan(*C.FIG5_CAGE, color="C3", alpha=0.12, label="paper A's axes 1.02-1.10 krpm")
     ax[1, 1].plot(t, rpm * cols["Cage speed [rad/s]"], lw=0.7, label="cage")
     ax[1, 1].plot(t, rpm * cols["Roller 0 orbital speed [rad/s]"], lw=0.5, label="roller 0 orbit")
     ax[1, 1].axhline(s["Ideal cage speed [rpm]"], color="k", ls="--", lw=0.8, label="ideal (model geometry)")
-    ax[1, 1].axhline(1058.0, color="C3", ls=":", lw=0.8, label="paper A's ideal 1.058 krpm")
-    ax[1, 1].set(xlabel="t [s]", ylabel="speed [rpm]", title="(d) cage and roller orbital speed",
-                 ylim=(1000, 1120))
+    ax[1, 1].axhline(C.FIG5_IDEAL, color="C3", ls=":", lw=0.8, label="paper A's ideal 1.058 krpm")
+    ax[1, 1].set(xlabel="t [s]", ylabel="speed [rpm]", title="(d) cage and roller orbital speed", ylim=(1000, 1120))
     ax[1, 1].legend(fontsize=7)
     fig.suptitle("Paper A Fig. 5's point: Fr 20 kN, 2,400 rpm, axial locked (studies/trb_speed.toml)", fontsize=10)
     fig.tight_layout()

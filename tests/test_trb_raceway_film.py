@@ -47,7 +47,7 @@ def test_formula_leaves_both_film_viscosities_at_the_films_viscosity(case):
 
 
 def test_the_kernel_film_reads_the_race_viscosity():
-    """K.raceway_film (the kernel's _strip_film) against the closed form with the race's own viscosity,
+    """K.raceway_film (the kernel's strip_film) against the closed form with the race's own viscosity,
     and the limited strip traction on that film: the cup's film follows P.etao only, the cone's P.etai
     only (measured: equal to the closed form to 1.1e-16)."""
     P = S.build(_case()).args().P.copy()[0]

@@ -117,6 +117,30 @@ def test_frame_rollers_sit_where_their_states_put_them(smoke_run):
     assert np.allclose(roller.point_data["Cup load [N]"], fields["Cup load [N]"][j])
 
 
+def test_displacement_from_the_ideal_position_at_the_quasi_static_start():
+    """Fig. 5b's displacement from the ideal, unloaded position (S.displacement_from_ideal on the start
+    state's roller centres) against the quasi-static solution's own numbers: a roller whose reference point
+    moved by (a axially, r radially) and tilted by t from the axis angle beta0 has its centre (mass-centre
+    offset uc along the axis) moved by a + uc (cos(beta0 + t) - cos beta0) axially and
+    r + uc (sin(beta0 + t) - sin beta0) radially (1e-15 m).  At Fig. 5's point (smoke size) the cone sits
+    8.87 um along the 20 kN load; the most loaded roller's centre 5.036 um out and 3.015 um along the axis
+    (measured)."""
+    from lubedyn.dynamics.tapered import layout as L
+
+    model = S.build(_case())
+    qs = model.quasi_static()
+    y = model.start_state(qs)
+    idx = L.N_CONE + L.NB * np.arange(model.n_rollers)
+    radial, axial = S.displacement_from_ideal(model.geometry, np.stack([y[idx + k] for k in range(3)], axis=-1))
+    _, _, _, uc = model.geometry.roller_mass_properties()
+    b0, tilt = model.geometry.roller_axis_angle, np.asarray(qs.roller_tilts)
+    a, r = np.asarray(qs.roller_displacements).T
+    assert np.allclose(axial, a + uc * (np.cos(b0 + tilt) - math.cos(b0)), rtol=0, atol=1e-15)
+    assert np.allclose(radial, r + uc * (np.sin(b0 + tilt) - math.sin(b0)), rtol=0, atol=1e-15)
+    assert y[1] == pytest.approx(8.87e-6, rel=1e-3)
+    assert radial[0] == pytest.approx(5.036e-6, rel=1e-3) and axial[0] == pytest.approx(3.015e-6, rel=1e-3)
+
+
 def test_without_flange_friction_the_loads_stay_on_the_quasi_static_ones():
     """With damping and a start without transients the dynamic loads sit on the
     quasi-static equilibrium (a separate solver).  Fa 15 kN at 2,800 rpm (every roller alike), 1 ms:

@@ -7,7 +7,8 @@ A study file (TOML; ``lubedyn study STUDY.toml --out DIR``)::
     [axes]                          # any key `lubedyn run --set` accepts -> its values (units allowed)
     "motion.velocity_lower" = ["2 m/s", "5 m/s", "8 m/s"]
     [study]
-    combine = "grid"                # every combination of the axes; "zip": the i-th values together
+    combine = "grid"                # every combination of the axes; "zip": the i-th values together;
+                                    # "morris": each axis a range [low, high], a Morris screen (below)
     members = 1                     # ensemble members per point
     member_key = "initial.seed"     # the --set key given the member index 0 .. members-1 (members > 1)
     set = ["mesh.nx=20"]            # --set overrides of every run
@@ -18,6 +19,12 @@ A study file (TOML; ``lubedyn study STUDY.toml --out DIR``)::
     outputs = ["Load per unit width [N/m]"]   # summary.json keys to tabulate and plot
     [paper]                         # published values drawn as markers on study.png
     "Load per unit width [N/m]" = { axis = "motion.velocity_lower", at = ["5 m/s"], values = [63550] }
+
+Morris screening (``combine = "morris"``, :mod:`lubedyn.scenes.screening`): each axis is a range
+``[low, high]`` (numbers or strings in one unit), ``[study.morris]`` gives ``trajectories`` r (>= 2),
+``levels`` p (even), ``seed`` and ``log`` (the axes scaled in log10); the study runs r (k + 1) points of
+Morris trajectories and study.json gains ``"Morris screening"``: per output and factor mu, mu* and sigma
+of the elementary effects (output units per full range of the factor).
 
 Every run of the study is a normal run folder, ``DIR/runs/<point>/m<member>/``, written by the scene's
 ``run`` exactly as ``lubedyn run BASE --set ... --out FOLDER`` writes it (:func:`lubedyn.config.load_case_file`
@@ -84,6 +91,7 @@ from lubedyn import outputs, scenes
 from lubedyn.config import (CASES_DIR, CaseTable, PositiveInt, case_path, check_smoke, format_validation_error,
                             load_case_file, parse_override, read_toml, resolved_toml, rule)
 from lubedyn.maps.sweep import default_workers, init_worker, run_on_dask, sigint_blocked, stop_pool
+from lubedyn.scenes import screening
 from lubedyn.scenes.runner import run_loaded
 
 log = logging.getLogger(__name__)
@@ -117,10 +125,27 @@ class PaperSeries(CaseTable):
         return self
 
 
+class MorrisTable(CaseTable):
+    """``[study.morris]``: r trajectories on a grid of ``levels`` (even) levels from ``seed``; the axes
+    of ``log`` scaled in log10 (:mod:`lubedyn.scenes.screening`)."""
+
+    trajectories: Annotated[int, Field(strict=True, ge=2)] = 4
+    levels: Annotated[int, Field(strict=True, ge=2)] = 4
+    seed: Annotated[int, Field(strict=True, ge=0)] = 1
+    log: list[str] = []
+
+    @model_validator(mode="after")
+    def _even(self):
+        if self.levels % 2:
+            raise rule("levels", self.levels, "must be even (Morris's step p/(2(p-1)) then lands on the grid)")
+        return self
+
+
 class StudyTable(CaseTable):
     """The ``[study]`` table: how the points combine and run, and what is tabulated."""
 
-    combine: Literal["grid", "zip"] = "grid"
+    combine: Literal["grid", "zip", "morris"] = "grid"
+    morris: MorrisTable | None = None
     members: PositiveInt = 1
     member_key: str = "initial.seed"
     set: list[str] = []
@@ -147,6 +172,23 @@ class StudyFile(CaseTable):
         if not self.axes:
             raise rule("axes", None, "needs at least one axis: a --set key and its values, "
                        "e.g. \"operating.speed\" = [\"10000 rpm\", \"15000 rpm\"]")
+        if self.study.combine == "morris":
+            if self.study.morris is None:
+                self.study.morris = MorrisTable()
+            morris = self.study.morris
+            for key, values in self.axes.items():
+                _check_dotted(f"axes.{key!r}", key)
+            try:
+                screening.design(self.axes, morris.trajectories, morris.levels, morris.seed, tuple(morris.log))
+            except InputError as exc:
+                raise rule("axes", None, str(exc)) from None
+            if self.study.members > 1:
+                raise rule("study.members", self.study.members, "must be 1 with combine = 'morris' (each "
+                           "trajectory step compares two single runs)")
+            self._check_paper()
+            return self
+        if self.study.morris is not None:
+            raise rule("study.morris", None, f"is only read with combine = 'morris' (combine = {self.study.combine!r})")
         for key, values in self.axes.items():
             # a grid repeats each value of an axis with every value of the others: each must be distinct;
             # zipped axes may repeat values as long as the points (the i-th values together) differ
@@ -257,10 +299,29 @@ def given(value) -> str:
 def points(study: StudyFile) -> list[dict]:
     """The study's points, {axis key: value} in file order: every combination (grid, last axis
     fastest) or the i-th values of every axis together (zip)."""
+    if study.study.combine == "morris":
+        m = study.study.morris
+        return screening.design(study.axes, m.trajectories, m.levels, m.seed, tuple(m.log))[0]
     keys = list(study.axes)
     lists = [study.axes[k] for k in keys]
     combos = itertools.product(*lists) if study.study.combine == "grid" else zip(*lists)
     return [dict(zip(keys, combo)) for combo in combos]
+
+
+def morris_screening(study: StudyFile, stats: list) -> dict | None:
+    """``"Morris screening"`` of study.json: per output, per factor (axis) mu, mu*, sigma and the number
+    of elementary effects (:func:`lubedyn.scenes.screening.effects`); None unless combine = 'morris'."""
+    if study.study.combine != "morris":
+        return None
+    m, keys = study.study.morris, list(study.axes)
+    _, X = screening.design(study.axes, m.trajectories, m.levels, m.seed, tuple(m.log))
+    out = {"method": "Morris 1991 elementary effects; mu* of Campolongo et al. 2007 (lubedyn.scenes.screening)",
+           "trajectories": m.trajectories, "levels": m.levels, "seed": m.seed, "log-scaled axes": list(m.log),
+           "units": "output units per full range of the factor (scaled 0-1)", "outputs": {}}
+    for name in study.study.outputs:
+        y = [entry["outputs"][name]["median"] for entry in stats]
+        out["outputs"][name] = dict(zip(keys, screening.effects(X, y, len(keys))))
+    return out
 
 
 def point_label(values: dict) -> str:
@@ -483,6 +544,8 @@ def plan_study(study: StudyFile, study_path, *, smoke: bool = False) -> Plan:
     plan = Plan(base=base, points=pts, si=[], runs=[])
     for p, values in enumerate(pts):
         name = slug(values)
+        if study.study.combine == "morris":  # trajectories may share a point: one folder per step
+            name = f"t{p // (len(study.axes) + 1)}.{p % (len(study.axes) + 1)}," + name
         if name in folders:
             raise StudyError(f"axes: the points ({point_label(folders[name])}) and ({point_label(values)}) "
                              f"share the folder name {name!r}; give values that differ in more than spaces and punctuation")
@@ -869,6 +932,9 @@ def write_tables(study: StudyFile, study_path, plan: Plan, results: list, out: P
                          "warnings": run_warnings(results[r.index][1]) if results[r.index][0] == "ok" else []}
                         for r in plan.runs],
            "machine": _machine(), "finished [UTC]": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+    screen = morris_screening(study, stats)
+    if screen is not None:
+        doc["Morris screening"] = screen
     fig = figure(study, plan, stats)
     try:
         with outputs.staged(out, keep=("runs",)) as stage:

@@ -36,7 +36,8 @@ cage and rollers at their ideal speeds, integrates :func:`lubedyn.dynamics.taper
 unloaded, all -- the mean, amplitude and largest magnitude of tilt, skew, slip and radial displacement;
 cage speed and slip, whirl radius, a periodicity measure; the quasi-static loads beside the largest
 dynamic ones; the assumed values), ``timeseries.npz`` (every state; per roller tilt, skew, speeds,
-slips, displacements, the loaded-zone marker, loads, friction and every slice load; the cage),
+slips, displacements (from the start and from the ideal, unloaded position), the loaded-zone marker,
+loads, friction and every slice load; the cage),
 ``bearing.pvd`` with ``frames/*.vtu`` (cup, cone, rollers and cage for ParaView, loads and attitude
 as point data) and the PNGs ``roller_attitude.png`` (loaded zone shaded), ``roller_displacement.png``,
 ``slip.png``, ``cage_whirl.png``, ``cone_orbit.png``, ``slice_loads.png``.
@@ -593,11 +594,34 @@ def describe(case: TaperedCase, model) -> str:
             f"{ig.duration * 1e3:g} ms, {step}")
 
 
+def ideal_roller_centre(geometry) -> tuple[float, float]:
+    """(axial x [m], radial r [m]) of a roller's centre in its meridional plane at the ideal, unloaded
+    position: the roller's reference point on the pitch radius, its axis at ``roller_axis_angle``, the
+    centre ``uc`` along it (the mass centre of ``roller_mass_properties``), the cone undisplaced --
+    where :meth:`TaperedBearing.start_state` puts a roller whose quasi-static displacement and tilt are
+    zero."""
+    _, _, _, uc = geometry.roller_mass_properties()
+    beta = geometry.roller_axis_angle
+    return uc * math.cos(beta), geometry.pitch_radius + uc * math.sin(beta)
+
+
+def displacement_from_ideal(geometry, c) -> tuple[np.ndarray, np.ndarray]:
+    """(radial, axial) displacement [m] of roller centres ``c`` (..., 3) (x, y, z) from their ideal,
+    unloaded position (:func:`ideal_roller_centre`) at their own azimuth: |c_yz| - r_ideal and
+    c_x - x_ideal (paper A's Fig. 5b measures the roller "relative to the initial position", its runs
+    starting from the unloaded bearing)."""
+    c = np.asarray(c, dtype=float)
+    x0, r0 = ideal_roller_centre(geometry)
+    return np.hypot(c[..., 1], c[..., 2]) - r0, c[..., 0] - x0
+
+
 def record(model, Y, y0, qs, fraction):
     """Everything the outputs read from the sampled states: :meth:`TaperedBearing.diagnostics` plus the
-    rollers' "Radial displacement [m]" and "Axial displacement [m]" of their centres from the start (paper
-    A's Fig. 5b) and "Loaded zone [-]" (True where a roller's cone load exceeds ``fraction`` of the
-    quasi-static start's largest cone load)."""
+    rollers' "Radial displacement [m]" and "Axial displacement [m]" of their centres from the start,
+    the same from their ideal, unloaded position ("Radial displacement from the ideal position [m]",
+    "Axial ...", :func:`displacement_from_ideal`: what paper A's Fig. 5b plots) and "Loaded zone [-]"
+    (True where a roller's cone load exceeds ``fraction`` of the quasi-static start's largest cone
+    load)."""
     D = model.diagnostics(Y, y0)
     Z = model.n_rollers
     idx = L.N_CONE + L.NB * np.arange(Z)
@@ -605,6 +629,9 @@ def record(model, Y, y0, qs, fraction):
     c0 = np.stack([y0[idx + k] for k in range(3)], axis=-1)
     D["Radial displacement [m]"] = np.hypot(c[..., 1], c[..., 2]) - np.hypot(c0[:, 1], c0[:, 2])
     D["Axial displacement [m]"] = c[..., 0] - c0[:, 0]
+    radial, axial = displacement_from_ideal(model.geometry, c)
+    D["Radial displacement from the ideal position [m]"] = radial
+    D["Axial displacement from the ideal position [m]"] = axial
     D["Loaded zone [-]"] = D["Cone load [N]"] > fraction * float(np.max(qs.cone_loads))
     return D
 
@@ -866,7 +893,9 @@ class TaperedRunModel:
 
 
 PER_ROLLER = ("Tilt [rad]", "Skew [rad]", "Orbital speed [rad/s]", "Spin speed [rad/s]", "Roller slip [-]",
-              "Spin slip [-]", "Radial displacement [m]", "Axial displacement [m]", "Loaded zone [-]",
+              "Spin slip [-]", "Radial displacement [m]", "Axial displacement [m]",
+              "Radial displacement from the ideal position [m]", "Axial displacement from the ideal position [m]",
+              "Loaded zone [-]",
               "Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]", "Cup traction [N]",
               "Cone traction [N]", "Flange friction [N]", "Pocket friction [N]")
 FRAME_FIELDS = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]", "Tilt [rad]", "Skew [rad]",

@@ -39,10 +39,15 @@ def periodicity(t, x, lag):
     return float(a @ b / den) if den > 0 else None
 
 
+def _mean(x):
+    return float(np.mean(x)) if x.size else None
+
+
 def window_summary(model, t, D, lo, hi) -> dict:
     """Means, amplitudes (half the range) and largest magnitudes of tilt, skew, roller slip and radial
     displacement per zone (loaded, unloaded, all) over lo <= t <= hi; the cage's speed and slip; the
-    periodicity of skew and tilt (:func:`periodicity` at the measured roller-pass period)."""
+    periodicity of skew and tilt (:func:`periodicity` at the measured roller-pass period); where ``D`` has
+    them (the tapered bearing), the zone means of the terms of the rollers' tilt moment and of their sum."""
     w = (t >= lo) & (t <= hi)
     out = {"Window [s]": [float(t[w][0]), float(t[w][-1])], "Samples [-]": int(w.sum())}
     zone = D["Loaded zone [-]"][w]
@@ -54,6 +59,12 @@ def window_summary(model, t, D, lo, hi) -> dict:
         m = out[name]["all"]["mean"]
         out[name.replace("[rad]", "mean [deg]")] = None if m is None else math.degrees(m)
     out["Rollers in the loaded zone, mean [-]"] = float(np.mean(zone.sum(axis=1)))
+    terms = [k for k in D if k.startswith("Tilt moment, ")]
+    if terms:   # the terms of the contacts' moment about the rollers' tilt axes, mean per zone, and their sum
+        out["Tilt moment means [N m]"] = {
+            z: {**{k[len("Tilt moment, "):-len(" [N m]")]: _mean(D[k][w][sel]) for k in terms},
+                "sum": _mean(sum(D[k][w] for k in terms)[sel])}
+            for z, sel in (("loaded zone", zone), ("unloaded zone", ~zone))}
     if "Cone tilt [rad]" in D:
         for k, ax in enumerate("yz"):
             out[f"Cone tilt {ax} [rad]"] = window_stats(D["Cone tilt [rad]"][w, k])

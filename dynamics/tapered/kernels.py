@@ -40,7 +40,7 @@ Contacts of roller j (laws written once in :mod:`lubedyn.lubrication.laws`):
   loaded slice (rolling direction and the axial sliding a skewed roller makes, one vector), with the
   Hertz half-width b = sqrt(8 w R'/(pi E')) of the slice's line load w and the Dowson-Toyoda film at the
   ideal entrainment speed with the race's film viscosity (``P.etao`` cup, ``P.etai`` cone: the films'
-  Newtonian viscosity, or the one that makes the grease's EHL film, :func:`_strip_film`): "paper" eq. 12 (linear in the sliding speed,
+  Newtonian viscosity, or the one that makes the grease's EHL film, :func:`strip_film`): "paper" eq. 12 (linear in the sliding speed,
   :func:`lubedyn.lubrication.laws.traction.paper_raceway_traction`), "limited" the Herschel-Bulkley strip law
   with Barus consistency and a limiting shear stress (an extension,
   :func:`lubedyn.lubrication.laws.traction.limited_strip_traction`) in series with the film's elastic shear
@@ -94,6 +94,36 @@ Contacts of roller j (laws written once in :mod:`lubedyn.lubrication.laws`):
   of the spinning cone, gyroscopic coupling I_x Omega included: :func:`rhs`).  The cone's mass centre is
   taken at its reference point (its weight makes no moment).
 
+Tilt moment (diagnostics, :data:`lubedyn.dynamics.tapered.layout.TILT_MOMENT_NAMES`): each contact's moment
+on roller j about its tilt axis t = e_x x e_r = (0, -c_z, c_y)/|c_yz| through its mass centre c (positive
+turns its axis from x towards r, the sense of "Tilt [rad]"), as seven terms -- cup and cone normal loads,
+cup and cone traction, flange normal force and friction, cage (pockets and side beams) -- whose sum is
+T_j . t.  In the mean a roller orbiting at Omega and spinning at omega_s needs from its contacts the
+moment Omega sin(beta) [I_x (omega_s + Omega cos beta) - I_y Omega cos beta] about t (Euler's equations,
+beta the axis angle): -0.163 N m at Fig. 5's point, matched by the terms' loaded-zone sum to 0.1 % over
+20-40 ms (benchmarks/results/trb_tilt_sign.json).  Which term sets the tilt's sign (docs/paper_a.md, "Which
+raceway law gives which tilt sign"):
+
+(a) the raceway normal loads: their distribution along the line makes whatever moment the other terms
+    leave; a tilt Delta beta relative to the raceways changes it by -k Delta beta, k = sum (10/9) (q_k/delta_k)
+    (u_k - u_c)^2 over both lines' slices (Palmgren) = 3.9e5 N m/rad at the most loaded roller (the runs
+    show 3.8e5);
+(b) the raceway traction of a skewed roller: skew psi turns the roller's surface velocity at both
+    contacts by psi, so the roller slides along its axis at psi u_e relative to the cup one way and to the
+    cone the other; the two tractions against that sliding act on opposite sides of the axis (at +-rho
+    along the contact normals) and form a couple about t of rho_m [mu_cup(|psi|) Q_cup + mu_cone(|psi|)
+    Q_cone] with the sign of psi (kinematics: psi > 0 drags the roller towards -x at the cup and +x at the
+    cone, both moments +rho F about t).  The laws differ here only, through mu at a slide-to-roll ratio
+    |psi| ~ 1e-2: the limited and map laws are at their limiting shear (0.072 / 0.060-0.063), eq. 12
+    ("paper", ambient viscosity) gives 6e-7; measured couple +4.58 / +4.09 / +4.4e-5 N m at skew +8.3 /
+    +9.2 / +9.3e-3 rad (limited / map / paper), 0.98 / 1.02 / 1.08 of the closed form;
+(c) the flange: its normal force acts on the end sphere towards the small end at a point off the axis on
+    the cone's side, a moment -0.85 to -0.97 N m (negative: paper A's tilt sense; what sets the
+    quasi-static tilt, -2.2e-6 rad in the loaded zone); its friction adds +0.07 to +0.10 N m.
+
+So the tilt is the quasi-static one plus about (couple + changes of (c))/k: from the nominal axis +1.1e-5
+rad with the limited law, -1.0e-6 with eq. 12 (a run in which the rollers are not held: slip -15 %).
+
 Not yet: a rib film that follows the load.  :func:`forces_many` returns slice
 loads, contact loads, friction and cage diagnostics at sampled states; the model's ``diagnostics`` reads
 tilt, skew and slip from them.
@@ -120,7 +150,7 @@ from ..integrators import put
 from ..specialise import register_kernel, specialise
 from ..rotations import euler_rate, quat_derivative, quat_from_rotvec, quat_rotate, quat_rotate_inverse, quat_to_matrix
 from .layout import *  # noqa: F401,F403  (option codes and records: lubedyn.dynamics.tapered.layout)
-from .layout import (AXIAL_FORCE, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
+from .layout import (AXIAL_FORCE, F_TILT, L_CONE, L_CUP, L_FLANGE, L_POCKET, LAND_CONTACT, LAND_FILM, N_CAGE_DIAG,
                      N_CONE, N_FRICTION, NB, POCKET_CONTACT, POCKET_FILM, TRACTION_LIMITED, TRACTION_MAP,
                      TRACTION_PAPER)
 from .layout import KernelArgs, MapTable, TractionTable  # noqa: F401  (the records the kernels take)
@@ -146,6 +176,12 @@ def _load_roller(F, T, j, r0, r1, r2, f0, f1, f2):
 
 
 @njit(**INLINE)
+def _tilt_about(t1, t2, r0, r1, r2, f0, f1, f2):
+    """(r x f).t of a force f at r (from a roller's mass centre) about its tilt axis t = (0, t1, t2)."""
+    return t1 * (r2 * f0 - r0 * f2) + t2 * (r0 * f1 - r1 * f0)
+
+
+@njit(**INLINE)
 def _rheo(P):
     """The grease rheology tuple (tau_y, phi0, n, alpha, tau_L0, gamma_L, D_r) of the limited laws."""
     return (P.tauy, P.phi0, P.nexp, P.alphag, P.taul0, P.gammal, P.dr)
@@ -166,7 +202,7 @@ def _race_viscosity(race, P):
 
 
 @njit(**INLINE)
-def _strip_film(w, race, P):
+def strip_film(w, race, P):
     """(Hertz half-width b [m], peak pressure p0 [Pa], Dowson-Toyoda central film h0 [m] at the ideal
     entrainment speed) of a strip of raceway ``race`` (0 cup, 1 cone; reduced radius R' and film viscosity
     eta_race) carrying the line load ``w`` [N/m]: b = sqrt(8 w R'/(pi E')), p0 = 2 w/(pi b),
@@ -181,18 +217,18 @@ def _strip_film(w, race, P):
 @njit(**INLINE)
 def _slice_film(load, race, P):
     """(line load w [N/m], b, p0, h0) of a slice of raceway ``race`` carrying ``load`` [N]
-    (:func:`_strip_film` at w = load/width)."""
+    (:func:`strip_film` at w = load/width)."""
     w = load / P.width
-    b, p0, h0 = _strip_film(w, race, P)
+    b, p0, h0 = strip_film(w, race, P)
     return w, b, p0, h0
 
 
 @njit(**JIT)
 def raceway_film(w, race, P):
     """The Dowson-Toyoda central film [m] the kernel gives a strip of raceway ``race`` (0 cup, 1 cone)
-    carrying the line load ``w`` [N/m] (:func:`_strip_film`; what sets the limited traction's shear rate
+    carrying the line load ``w`` [N/m] (:func:`strip_film`; what sets the limited traction's shear rate
     and the film's elastic slope 2 G b^2/(u_e h))."""
-    return _strip_film(w, race, P)[2]
+    return strip_film(w, race, P)[2]
 
 
 @njit(**INLINE)
@@ -252,7 +288,7 @@ def strip_viscous_traction(w, race, vs, P):
     1 cone) carrying the line load ``w`` [N/m] and sliding at ``vs`` [m/s]
     (:func:`lubedyn.lubrication.laws.traction.limited_strip_traction` over the Hertz strip of :func:`_slice_film`,
     Gauss rule), before the film's elastic shear: the function the traction tables hold."""
-    b, p0, h0 = _strip_film(w, race, P)
+    b, p0, h0 = strip_film(w, race, P)
     return limited_strip_traction(vs, h0, b, p0, _rheo(P))
 
 
@@ -319,7 +355,7 @@ def map_traction_coefficient(race, w, s, P, maps, counter):
 
 
 @njit(**INLINE)
-def _slice_traction(load, race, vs, P, table, maps, counter):
+def slice_traction(load, race, vs, P, table, maps, counter):
     """Magnitude [N] of the raceway traction of a slice of raceway ``race`` (0 cup, 1 cone) sliding at
     ``vs`` >= 0 [m/s] (the force opposes the roller's sliding): eq. 12 ("paper"), the limited
     Herschel-Bulkley strip law ("limited", :func:`strip_viscous_traction`, from the raceway's table when
@@ -350,7 +386,8 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     is locked, which keeps the locked path's cost), loads[j] =
     (cup, cone, flange, pocket) sums of the normal forces' magnitudes [N]; Fg, Tg the force [N] and the
     torque about its centre [N m] on the cage; SL[j, race, k] the slice loads [N] (race 0 cup, 1 cone);
-    FR[j] the friction diagnostics (:data:`lubedyn.dynamics.tapered.layout.FRICTION_NAMES`); CG the cage's
+    FR[j] the friction diagnostics (:data:`lubedyn.dynamics.tapered.layout.FRICTION_NAMES`: friction forces,
+    sliding speeds and the terms of the tilt moment, module docstring); CG the cage's
     (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`).  ``A``: the model's :class:`KernelArgs`."""
     P, U, RHO = A.P[0], A.U, A.RHO
     Z = int(P.z)
@@ -408,6 +445,9 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
         quat_rotate(q, ex_b, e)
         quat_rotate(q, y[b + 10:b + 13], wi)          # angular velocity, inertial frame
         e0, e1, e2 = e[0], e[1], e[2]
+        # the roller's tilt axis t = e_x x e_r = (0, -c_z, c_y)/|c_yz| (the diagnostics' tilt moments)
+        rc = math.sqrt(c1 * c1 + c2 * c2)
+        ta1, ta2 = -c2 / rc, c1 / rc
         # the roller's mid-point (slice coordinates u are measured from it)
         m0, m1, m2 = c0 - P.uc * e0, c1 - P.uc * e1, c2 - P.uc * e2
         for race in range(2):
@@ -448,6 +488,7 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                 if f <= 0.0:
                     continue
                 f0, f1, f2 = f * n0, f * n1, f * n2
+                FR[j, F_TILT + race] += _tilt_about(ta1, ta2, r0, r1, r2, f0, f1, f2)
                 if P.traction != 0.0:
                     # against the sliding velocity's tangential part: rolling direction and the axial
                     # sliding a skewed roller makes, one vector
@@ -455,11 +496,13 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                     s0, s1, s2 = u0 - un * n0, u1 - un * n1, u2 - un * n2
                     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                     if vs > 0.0:
-                        ft = _slice_traction(f, race, vs, P, A.table, A.maps, counter)
-                        f0 -= ft * s0 / vs
-                        f1 -= ft * s1 / vs
-                        f2 -= ft * s2 / vs
+                        ft = slice_traction(f, race, vs, P, A.table, A.maps, counter)
+                        g0, g1, g2 = -ft * s0 / vs, -ft * s1 / vs, -ft * s2 / vs
+                        f0 += g0
+                        f1 += g1
+                        f2 += g2
                         FR[j, race] += ft
+                        FR[j, F_TILT + 2 + race] += _tilt_about(ta1, ta2, r0, r1, r2, g0, g1, g2)
                         if vs > FR[j, 4 + race]:
                             FR[j, 4 + race] = vs
                 _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
@@ -491,6 +534,7 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
             f = hertz_force(delta, -un, P.kf, P.alpha)
             if f > 0.0:
                 f0, f1, f2 = f * n0, f * n1, f * n2
+                FR[j, F_TILT + 4] = _tilt_about(ta1, ta2, r0, r1, r2, f0, f1, f2)
                 if P.ffric != 0.0:
                     s0, s1, s2 = u0 - un * n0, u1 - un * n1, u2 - un * n2
                     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
@@ -501,17 +545,21 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                                                           P.fp01 * c3, _rheo(P))
                         ff = flange_friction(vs, f, P.lam, grease, P.mua, P.fbc, P.fcc,
                                              P.ffric == 2.0)
-                        f0 -= ff * s0 / vs
-                        f1 -= ff * s1 / vs
-                        f2 -= ff * s2 / vs
+                        g0, g1, g2 = -ff * s0 / vs, -ff * s1 / vs, -ff * s2 / vs
+                        f0 += g0
+                        f1 += g1
+                        f2 += g2
                         FR[j, 2] = ff
+                        FR[j, F_TILT + 5] = _tilt_about(ta1, ta2, r0, r1, r2, g0, g1, g2)
                 _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
                 loads[j, 2] += f
                 _load_cone(Fc, Tc, tilted, q0, q1, q2, f0, f1, f2)
         if P.cage != 0.0:
+            x1, x2 = T[j, 1], T[j, 2]          # the pockets' and side beams' tilt moment: T's change
             _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, loads, Fg, Tg, FR)
             if P.sidegap > 0.0:
                 _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2, F, T, Fg, Tg, CG)
+            FR[j, F_TILT + 6] = ta1 * (T[j, 1] - x1) + ta2 * (T[j, 2] - x2)
     if P.cage != 0.0:
         fy0, fz0 = Fc[1], Fc[2]
         _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy)

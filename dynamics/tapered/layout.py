@@ -200,9 +200,17 @@ class KernelArgs(NamedTuple):
 LOAD_NAMES = ("Cup load [N]", "Cone load [N]", "Flange load [N]", "Pocket load [N]")
 L_CUP, L_CONE, L_FLANGE, L_POCKET = range(4)
 # per-roller friction diagnostics of forces(): columns
+# and the terms of the contacts' moment on the roller about its tilt axis through its mass centre
+# (lubedyn.dynamics.tapered.kernels, "Tilt moment"; positive turns the axis from x towards r, the "Tilt [rad]" sense)
+TILT_MOMENT_NAMES = ("Tilt moment, cup normal [N m]", "Tilt moment, cone normal [N m]",
+                     "Tilt moment, cup traction [N m]", "Tilt moment, cone traction [N m]",
+                     "Tilt moment, flange normal [N m]", "Tilt moment, flange friction [N m]",
+                     "Tilt moment, cage [N m]")
 FRICTION_NAMES = ("Cup traction [N]", "Cone traction [N]", "Flange friction [N]", "Pocket friction [N]",
-                  "Cup sliding speed max [m/s]", "Cone sliding speed max [m/s]", "Flange sliding speed [m/s]")
-N_FRICTION = 7
+                  "Cup sliding speed max [m/s]", "Cone sliding speed max [m/s]", "Flange sliding speed [m/s]",
+                  *TILT_MOMENT_NAMES)
+N_FRICTION = 14
+F_TILT = 7          # the first tilt-moment column
 CAGE_NAMES = ("Cage force on cage y [N]", "Cage force on cage z [N]", "Cage torque x [N m]", "Guide land load [N]",
               "Side beam load [N]")
 N_CAGE_DIAG = 5

@@ -37,6 +37,13 @@ from lubedyn.lubrication.laws.film import dowson_toyoda_central
 log = logging.getLogger(__name__)
 
 
+def _race_index(race: str) -> int:
+    """0 for "cup", 1 for "cone" (the kernel's raceway index); anything else is an input error."""
+    if race not in ("cup", "cone"):
+        raise DynamicsInputError(f"race = {race!r} is not a raceway; choose 'cup' or 'cone'")
+    return 0 if race == "cup" else 1
+
+
 def sliding_decay_rate(k1: float, k2: float, m: float, ix: float, rho: float) -> float:
     """Larger decay rate [1/s] of a roller's rolling-direction speed and spin under linear tractions of
     slopes ``k1`` (cup) and ``k2`` (cone) [N s/m] at radius ``rho`` [m] on opposite sides (mass ``m``,
@@ -169,8 +176,12 @@ class TaperedBearing:
 
     def rib_speeds(self) -> tuple[float, float]:
         """(sliding, entrainment) speeds [m/s] of the roller end on the rib at the ideal kinematics, the
-        roller in its meridional plane at azimuth 0: rib surface Omega e_x x P, roller end omega_c e_x x P
-        + w_s e x (P - c); entrainment the mean of the two, sliding their difference."""
+        roller in its meridional plane at azimuth 0, both in the cage frame, where the contact point P
+        is at rest (it orbits with the roller): rib surface (Omega - omega_c) e_x x P, roller end
+        w_s e x (P - c); entrainment the mean of the two (the speed the Reynolds equation of a steady
+        contact takes), sliding their difference (the same in every frame).  In the ground frame the
+        mean would carry the contact's own orbital speed omega_c r_P as well (measured at 2,800 rpm:
+        22.39 m/s against the cage frame's 11.32 m/s; 8.09-20.21 m/s over 2-5 krpm)."""
         g = self.geometry
         kin = self.ideal()
         wc, ws = kin["cage speed [rad/s]"], -kin["roller spin relative to cage [rad/s]"]
@@ -181,8 +192,8 @@ class TaperedBearing:
         n = np.array([g.flange_normal[0], g.flange_normal[1], 0.0])
         p = sphere - g.end_sphere_radius * n
         ex = np.array([1.0, 0.0, 0.0])
-        rib = np.cross(self.speed * ex, p)
-        roller = np.cross(wc * ex, p) + np.cross(ws * e, p - mid)
+        rib = np.cross((self.speed - wc) * ex, p)
+        roller = np.cross(ws * e, p - mid)
         return float(np.linalg.norm(roller - rib)), float(np.linalg.norm(0.5 * (roller + rib)))
 
     def args(self, qs: QuasiStaticResult | None = None):
@@ -504,6 +515,30 @@ class TaperedBearing:
         at 1 mm/s for a bearing at rest)."""
         return max(float(self.ideal()["entrainment speed [m/s]"]), 1e-3)
 
+    def raceway_strip(self, race: str, line_load: float, args=None) -> dict:
+        """The Hertz strip the raceway laws see on ``race`` ("cup" or "cone") at ``line_load`` w [N/m]: its
+        reduced radius R' [m], half-width b = sqrt(8 w R'/(pi E')) [m], peak pressure p0 = 2 w/(pi b) [Pa] and
+        the Dowson-Toyoda central film h [m] at the ideal entrainment speed (the kernel's own evaluation)."""
+        race_index = _race_index(race)
+        P = (self.args() if args is None else args).P[0]
+        radius = P.rxo if race_index == 0 else P.rxi
+        b, p0, h0 = K.strip_film(line_load, race_index, P)
+        return {"reduced radius [m]": float(radius), "half-width [m]": float(b), "peak pressure [Pa]": float(p0),
+                "film [m]": float(h0)}
+
+    def raceway_traction_coefficient(self, race: str, line_load: float, srr: float, args=None) -> float:
+        """Traction coefficient [-] of the model's raceway law (``model.traction``) on ``race`` ("cup" or
+        "cone") at ``line_load`` [N/m] and slide-to-roll ratio ``srr`` >= 0 (sliding speed srr u_e), as the
+        kernel evaluates a slice carrying that line load (:func:`kernels.slice_traction`, its table or maps
+        included): the traction curve the dynamics uses.  ``args``: the model's kernel arguments (built when
+        not given)."""
+        args = self.args() if args is None else args
+        P = args.P[0]
+        load = line_load * P.width
+        force = K.slice_traction(load, _race_index(race), srr * P.ue, P, args.table, args.maps,
+                                 np.zeros(1, dtype=np.int64))
+        return float(force / load)
+
     def traction_rate(self, qs: QuasiStaticResult | None = None, args=None) -> float:
         """Decay rate [1/s] of a roller's sliding under the raceway traction's low-slip slopes k_cup, k_cone
         (0 for the laws whose slopes are orders smaller: "paper", "none", an infinitely stiff film), at the
@@ -584,6 +619,8 @@ class TaperedBearing:
           ideal kinematics (docs/paper_a.md; NaN at rest);
         - the cage: "Cage speed [rad/s]" (about x, inertial), "Cage slip [-]", "Cage centre [m]" (n, 2)
           relative to the cone's, "Guide land load [N]";
+        - the terms of each roller's tilt moment, "Tilt moment, cup normal [N m]" etc. (n, Z)
+          (:data:`layout.TILT_MOMENT_NAMES`, :mod:`kernels` "Tilt moment");
         - "Cone force [N]" (n, 3) of the rollers and cage on the cone; with the cone's tilt free, "Cone moment
           [N m]" (n, 3), their moment about its reference point, and "Cone tilt [rad]" (n, 2) theta_y,
           theta_z."""
