@@ -262,12 +262,13 @@ def test_literal_reading_at_fig5_start():
     5 slices (cases/trb_fig5_literal.toml): the quasi-static start converges (it stalled at a relative
     residual 0.98 before the trust-region steps), the cone's radial balance over the reported loads and
     the printed angles gives Fr to 1e-8, and without the gyroscopic moment every roller's loads and the
-    cone's displacement agree to 1e-6 with an independent rigid-laminae equilibrium (measured 1e-10 on
-    the displacement, 1e-9 on the loads).  The unloaded rollers lie on the cup: their tilt is the 0.30 deg
+    cone's displacement agree to 1e-6 with an independent rigid-laminae equilibrium (measured 6e-11 on
+    the displacement, 7e-9 on the loads).  The unloaded rollers lie on the cup: their tilt is the 0.30 deg
     misfit of the roller's generatrix to the cup, alpha_o - alpha_r - phi = 5 deg - 4.696 deg = 5.306e-3 rad
-    (measured 5.304e-3 .. 5.310e-3: the crown and the load).  The loaded zone is narrower than Stribeck's half (the roller escapes its
-    three edge contacts until a second slice takes part), so the most loaded cup load, 6,712 N, is above
-    Stribeck's 4.08 Fr/(Z cos 15 deg) = 4,969 N, which the common-apex reading meets to 5 %."""
+    (measured 5.3097e-3, 0.07 % more).  The loaded zone is narrower than Stribeck's half (the
+    roller escapes its three edge contacts until a second slice takes part), so the most loaded cup load,
+    6,712 N, is above Stribeck's 4.08 Fr/(Z cos 15 deg) = 4,969 N, which the common-apex reading meets to
+    5 %."""
     from lubedyn.config import CASES_DIR, load_case
     from lubedyn.scenes import tapered as ts
 
@@ -287,7 +288,7 @@ def test_literal_reading_at_fig5_start():
     # by hand: the cup's 15 deg less the roller axis' 10 deg and the printed roller's half-taper
     assert misfit == pytest.approx(math.radians(5.0) - math.atan((24.76 - 17.85) / (2 * 42.06)), rel=1e-12)
     assert 7 <= unloaded.sum() <= 11
-    assert r.roller_tilts[unloaded] == pytest.approx(np.full(unloaded.sum(), misfit), rel=5e-3)
+    assert r.roller_tilts[unloaded] == pytest.approx(np.full(unloaded.sum(), misfit), rel=2e-3)
     stribeck = 4.08 * fr / (Z * math.cos(math.radians(15)))
     assert 1.2 * stribeck < r.cup_loads.max() < 1.5 * stribeck
 
