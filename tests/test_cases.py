@@ -554,6 +554,30 @@ def check_trb_fig5_tilt(s, case):
     _check_trb_dynamic(s, case, (7, 10), flange=None)
 
 
+def check_trb_fig5_literal(s, case):
+    """Fig. 5's point with Table 1 read literally (edge-loaded rollers): the run stays on its quasi-static
+    start (cup load within 2 %, measured 1.5 % with the rib's friction, as the common checks), whose most
+    loaded roller sits above Stribeck's zero-clearance 4.08 Fr/(Z cos 15 deg) = 4,969 N: the rollers escape
+    their three edge contacts until a second slice takes part, so the load zone is narrower than a half
+    (5-7 rollers loaded, measured 6.0; the common apex 7-10) and the largest load 6,712 N (x 1.35;
+    tests/test_trb_quasistatic.py checks the start against an independent rigid-laminae model).  The rollers
+    roll near their small ends, whose contact radii give the cage 1,072-1,076 rpm (the first slice's centre
+    and the end; by hand from the geometry's contact points): the cage runs faster than the mid-slice ideal
+    1,058.6 rpm (measured over the smoke run's second half 1,070.5 rpm; over 20-40 ms of the full case
+    1,084 rpm) and the loaded rollers' slip is negative (measured -4.2 %, -2.2 % over 20-40 ms)."""
+    fr = case["operating"]["radial_load"]
+    assert case["bearing"]["reconciliation"] == "literal" and fr == pytest.approx(20e3)
+    w = _trb_window(s)
+    assert s["Largest cup load [N]"] == pytest.approx(s["Quasi-static largest cup load [N]"], rel=0.02)
+    assert 1.2 < s["Quasi-static largest cup load [N]"] / (4.08 * fr / (17 * math.cos(math.radians(15)))) < 1.5
+    assert 5 <= w["Rollers in the loaded zone, mean [-]"] <= 7
+    ideal = s["Ideal cage speed [rpm]"]
+    assert ideal == pytest.approx(1058.55, rel=1e-5)
+    assert ideal < w["Cage speed, mean [rpm]"] < 1.03 * ideal
+    assert w["Roller slip [-]"]["loaded zone"]["mean"] < 0.0
+    assert s["Assumed values"]
+
+
 def check_trb_fig5_traction_map(s, case):
     """Fig. 5's point with the raceway traction from the roller EHL maps: as check_trb_fig5_2400rpm (the
     loads are the quasi-static ones whatever the traction law), the fidelity says "map", and RK4's
