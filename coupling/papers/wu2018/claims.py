@@ -568,10 +568,18 @@ def _fig5(st: Study | None) -> list[Claim]:
     return [steady(c, unsteady) for c in out]
 
 
+def _missing(st: Study, key: str, values) -> list[str]:
+    """The axis values of ``values`` the study has no (finished) point for."""
+    return [str(v) for v in values if not st.where(**{key: v})]
+
+
 def _speed(st: Study | None) -> list[Claim]:
     if st is None:
         return [Claim("6-9", "speed series", "-", "-", "not run", "studies/trb_speed.toml")]
-    order = [st.where(speed=f"{k} rpm")[0] for k in (2000, 3000, 4000, 5000) if st.where(speed=f"{k} rpm")]
+    speeds = [f"{k} rpm" for k in (2000, 3000, 4000, 5000)]
+    if _missing(st, "speed", speeds):
+        return [Claim("6-9", "speed series", "-", "-", "not run", f"no finished run at {', '.join(_missing(st, 'speed', speeds))}")]
+    order = [st.where(speed=k)[0] for k in speeds]
     S = [st.summaries[i] for i in order]
     ends, every = st.unsteady([order[0], order[-1]]), st.unsteady(order)
     out = []
@@ -665,7 +673,11 @@ def _speed(st: Study | None) -> list[Claim]:
 def _preload(st: Study | None) -> list[Claim]:
     if st is None:
         return [Claim("10-13", "preload series", "-", "-", "not run", "studies/trb_preload.toml")]
-    order = [st.where(axial_displacement=f"{k} um")[0] for k in (10, 20, 30, 40)]
+    preloads = [f"{k} um" for k in (10, 20, 30, 40)]
+    if _missing(st, "axial_displacement", preloads):
+        return [Claim("10-13", "preload series", "-", "-", "not run",
+                      f"no finished run at {', '.join(_missing(st, 'axial_displacement', preloads))}")]
+    order = [st.where(axial_displacement=k)[0] for k in preloads]
     S = [st.summaries[i] for i in order]
     ends, every = st.unsteady([order[0], order[-1]]), st.unsteady(order)
     out = []
@@ -750,6 +762,8 @@ def _grease_param(st: Study | None, fig: str, key: str, values: list, label: str
     or None)) and level rows (name, statistic, zone, the paper's number)."""
     if st is None:
         return [Claim(fig, f"{label} series", "-", "-", "not run", f"studies/{'trb_' + label.replace(' ', '_')}.toml")]
+    if _missing(st, key, values):
+        return [Claim(fig, f"{label} series", "-", "-", "not run", f"no finished run at {', '.join(_missing(st, key, values))}")]
     out = []
     idx = [st.where(**{key: v})[0] for v in values]
     for name, (stat, zone) in HEADLINE_OUTPUTS.items():
@@ -783,6 +797,9 @@ FIG16 = {"lithium": {"tilt": -1, "skew": -1, "roller slip": -1},
 def _temperature(st: Study | None) -> list[Claim]:
     if st is None:
         return [Claim("16", "grease x temperature series", "-", "-", "not run", "studies/trb_grease_temperature.toml")]
+    gone = [f"{g} {t} C" for g in FIG16 for t in (15, 70) if not st.where(grease=g, temperature_c=t)]
+    if gone:
+        return [Claim("16", "grease x temperature series", "-", "-", "not run", f"no finished run at {', '.join(gone)}")]
     out = []
     for grease, per in FIG16.items():
         i_lo, i_hi = st.where(grease=grease, temperature_c=15)[0], st.where(grease=grease, temperature_c=70)[0]
@@ -988,7 +1005,7 @@ def elasticities(folder) -> list[dict]:
     out = []
     for name in MAIN_STUDIES:
         st = Study.load(Path(folder) / name)
-        if st is None:
+        if st is None or not st.summaries:
             continue
         key = ROUTES[name][0]
         how = route(name, st)
@@ -1000,6 +1017,8 @@ def elasticities(folder) -> list[dict]:
         for g in groups:
             idx = [i for i, lab in enumerate(st.labels) if g is None or lab[kg] == g]
             idx.sort(key=lambda i: _number(st.labels[i][kx]))
+            if len(idx) < 2:
+                continue
             i1, i2 = idx[0], idx[-1]
             x1, x2 = _number(st.labels[i1][kx]), _number(st.labels[i2][kx])
             if name == "trb_grease_temperature":
