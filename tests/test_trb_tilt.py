@@ -219,7 +219,21 @@ def test_the_locked_cone_reproduces_the_model_before_the_option():
     def same(a, b, rtol=1e-12):
         np.testing.assert_allclose(a, b, rtol=rtol, atol=rtol * float(np.max(np.abs(b))))
 
-    values = np.array(args.P[0].tolist())   # the record's fields in the packed vector's order of that commit
+    # the record's fields in the packed vector's order of that commit: the raceway film viscosities added
+    # since (etao, etai) are left out and equal the films' viscosity eta with raceway_film = "formula"
+    names = list(args.P.dtype.names)
+    since = ("etao", "etai")
+    assert all(args.P[0][n] == args.P[0]["eta"] for n in since)
+    values = np.array([v for n, v in zip(names, args.P[0].tolist()) if n not in since])
+    # the rib's film parameter: its entrainment speed is the cage frame's since 28 Nov 2026 (the ground
+    # frame's carried the contact's orbital speed), a Hamrock-Dowson film thinner by (u_new/u_old)^0.67;
+    # the reference is reproduced with the film parameter of its time
+    lam = names.index("lam") - len(since)
+    assert 0.6 < values[lam] / ref["P"][lam] < 0.66
+    old_film = ref["P"][lam] / values[lam]  # the rib film and its film parameter of the reference's time
+    values[lam] = ref["P"][lam]
+    args.P["lam"][0] = ref["P"][lam]
+    args.P["hrib"][0] *= old_film
     same(values[:84], ref["P"])
     assert not np.any(values[84:])
     same(y0, ref["y0"])
@@ -235,6 +249,8 @@ def test_the_locked_cone_reproduces_the_model_before_the_option():
         def build(self):
             super().build()
             self.y0 = ref["y0"].copy()
+            self.args.P["lam"][0] = ref["P"][lam]  # the rib film of the reference's time (above)
+            self.args.P["hrib"][0] *= old_film
 
     r = drive(FromTheRecordedStart(case), None, name="tapered")
     assert np.array_equal(r.t, ref["t"])
