@@ -206,7 +206,8 @@ def test_the_locked_cone_reproduces_the_model_before_the_option():
     from lubedyn.scenes.bearing_run import drive
     from lubedyn.config import load_case
 
-    ref = np.load(DATA / "trb_locked_reference.npz")
+    with np.load(DATA / "trb_locked_reference.npz") as npz:
+        ref = dict(npz)
     case = load_case(CASES_DIR / "trb_fig5_2400rpm.toml",
                      overrides=["model.slices=5", "integrator.duration=1 ms", "integrator.sample_interval=100 us",
                                 "output.write=[]", "model.traction_evaluation=quadrature",
