@@ -264,3 +264,27 @@ def test_temperature_elasticity_in_kelvin_per_grease_and_its_route(tmp_path):
         assert el["trb_grease_temperature (lithium)"]["paper text"] == "not printed"
         films = "follows the temperature on ASTM D341's line" in el["trb_grease_temperature (lithium)"]["route"]
         assert films == (law == "walther")
+
+
+def test_the_screen_counts_the_sets_that_reproduce_the_paper(tmp_path):
+    """lubedyn.papers.wu2018.claims.screen on a built study.json: a printed level counts a set within the
+    level factor with the paper's sign (skew 3.06e-3: 2.5e-3 and 3.9e-3 count, 4.1e-3 and -3e-3 do not:
+    4.1/3.06 = 1.34 > 1.3), a printed range counts the sets inside it; factors ranked by mu*."""
+    from lubedyn.papers.wu2018 import claims as C
+
+    names = list(C.SCREEN_PAPER)
+    values = {names[0]: [2.5e-3, 3.9e-3, 4.1e-3, -3e-3], names[1]: [1e-5, 2e-5, -1.4e-5, -3e-5],
+              names[2]: [-2e-4, 0.0, 5e-4, 8e-4], names[3]: [1e-4, -1e-4, 2e-4, 4e-4]}
+    points = [{"outputs": {n: {"median": values[n][i]} for n in names}} for i in range(4)]
+    morris = {n: {"a.b": {"mu*": 1.0, "mu": -1.0, "sigma": 0.1}, "c.d": {"mu*": 2.0, "mu": 2.0, "sigma": 0.2}}
+              for n in names}
+    folder = tmp_path / C.SCREEN_STUDY
+    folder.mkdir()
+    (folder / "study.json").write_text(json.dumps({"runs": {"total": 4, "failed": 0}, "points": points,
+                                                   "Morris screening": {"outputs": morris}}))
+    got = C.screen(tmp_path)["outputs"]
+    assert [got[n]["reproducing sets"] for n in names] == [2, 1, 2, 2]
+    assert got[names[0]]["min"] == -3e-3 and got[names[0]]["max"] == 4.1e-3
+    assert [k for k, *_ in got[names[0]]["ranked"]] == ["c.d", "a.b"]
+    assert "reproducing" in C.markdown(tmp_path) or "Morris screen" in C.markdown(tmp_path)
+    assert C.screen(tmp_path / "nothing") is None

@@ -1056,6 +1056,38 @@ def sensitivity(folder) -> list[dict]:
     return sorted(out, key=lambda r: -(r["skew range [-]"] or 0))
 
 
+#: the Morris screen of the unstated values (studies/trb_screen_unstated.toml) and paper A's numbers at its
+#: point (2,000 rpm, Fr 20 kN: Figs. 6-9's first speed): output -> (paper's value or range, what it is)
+SCREEN_STUDY = "trb_screen_unstated"
+SCREEN_PAPER = {"Skew, loaded zone, mean [rad]": ((3.06e-3, 3.06e-3), "Fig. 7 mean"),
+                "Tilt, loaded zone, mean [rad]": ((-0.14e-4, -0.14e-4), "Fig. 6 mean"),
+                "Roller slip, loaded zone, mean [-]": ((-1e-4, 7e-4), "Fig. 8 inset, -0.01..0.07 %"),
+                "Cage slip, mean [-]": ((0.0, 3e-4), "Fig. 9 inset, 0..0.03 %")}
+
+
+def screen(folder) -> dict | None:
+    """The Morris screen's answer per output (None when the study has not run): the range over every
+    plausible set it ran, the paper's number, whether any set reproduces it (a level within
+    :data:`LEVEL_FACTOR` with the paper's sign; a range: a value inside it) and the factors by mu*."""
+    path = Path(folder) / SCREEN_STUDY / "study.json"
+    if not path.is_file():
+        return None
+    doc = json.loads(path.read_text(encoding="utf-8"))
+    morris = doc.get("Morris screening", {}).get("outputs", {})
+    out = {"runs": doc["runs"]["total"], "failed": doc["runs"]["failed"], "outputs": {}}
+    for name, ((lo, hi), what) in SCREEN_PAPER.items():
+        values = [p["outputs"][name]["median"] for p in doc["points"] if p["outputs"][name]["median"] is not None]
+        if lo == hi:  # a printed level
+            hits = [v for v in values if v * lo > 0 and 1 / LEVEL_FACTOR <= v / lo <= LEVEL_FACTOR]
+        else:
+            hits = [v for v in values if lo <= v <= hi]
+        ranked = sorted(morris.get(name, {}).items(), key=lambda kv: -(kv[1]["mu*"] or 0.0))
+        out["outputs"][name] = {"min": min(values), "max": max(values), "paper": (lo, hi), "paper is": what,
+                                "reproducing sets": len(hits), "sets": len(values),
+                                "ranked": [(k, v["mu*"], v["mu"], v["sigma"]) for k, v in ranked]}
+    return out
+
+
 def _traction_evaluation(run: Path) -> str:
     """The run's model.traction_evaluation (its case.resolved.toml; "quadrature" before the key existed)."""
     import tomllib
@@ -1147,6 +1179,18 @@ def markdown(folder) -> str:
             rng = "-" if r["skew range [-]"] is None else f"{r['skew range [-]']:.2f}"
             lines.append(f"| `{r['key']}` ({r['study']}) | {', '.join(map(str, r['values']))} | {fmt(r['skew'], '.3g')} | "
                          f"{fmt(r['tilt'], '.2g')} | {fmt(r['slip'], '.2g')} | {rng} |")
+    scr = screen(folder)
+    if scr is not None:
+        lines += ["", f"Morris screen of the unstated values (`{SCREEN_STUDY}`, {scr['runs']} runs, {scr['failed']} "
+                  "failed; mu* in output units per full range of the factor):", "",
+                  "| output | over the plausible sets | paper A | sets reproducing it | factors by mu* (mu) |",
+                  "|---|---|---|---|---|"]
+        for name, r in scr["outputs"].items():
+            lo, hi = r["paper"]
+            paper = f"{lo:.3g}" if lo == hi else f"{lo:.3g} .. {hi:.3g}"
+            ranked = "; ".join(f"`{k}` {m:.2g} ({mu:+.2g})" for k, m, mu, _ in r["ranked"][:3])
+            lines.append(f"| {name} | {r['min']:.3g} .. {r['max']:.3g} | {paper} ({r['paper is']}) | "
+                         f"**{r['reproducing sets']} of {r['sets']}** | {ranked} |")
     times = run_times(folder)
     if times:
         lines += ["", "| study | runs | workers | wall time | raceway traction evaluated by |", "|---|---|---|---|---|"]
