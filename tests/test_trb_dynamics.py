@@ -305,6 +305,23 @@ def test_the_rib_sliding_speed_is_the_hand_estimate():
     assert 0.0 < D["Flange friction [N]"][0, 0] < limit
 
 
+@pytest.mark.parametrize("rpm", [2000.0, 2800.0, 5000.0])
+def test_the_rib_entrainment_is_taken_in_the_cage_frame(rpm):
+    """The rib's entrainment speed is the mean surface speed in the frame where the contact is at rest
+    (the cage's: the contact point orbits with the roller), by hand from the geometry: rib (Omega -
+    omega_c) r_P, roller end omega_R d (d = |flange_offset|, the contact point's distance from the roller
+    axis; both circumferential); the sliding speed is their difference.  Measured 8.09 / 11.32 / 20.21 m/s
+    (the ground-frame mean, which carries the contact's orbital speed omega_c r_P, is 16.0 / 22.4 / 40.0)."""
+    tb = bearing(speed=rpm * RPM)
+    g, kin = tb.geometry, tb.ideal()
+    rib = (tb.speed - kin["cage speed [rad/s]"]) * g.flange_point[1]
+    end = kin["roller spin relative to cage [rad/s]"] * abs(g.flange_offset)
+    slide, entrain = tb.rib_speeds()
+    assert entrain == pytest.approx(0.5 * (rib + end), rel=1e-12)
+    assert slide == pytest.approx(rib - end, rel=1e-12)
+    assert entrain == pytest.approx({2000.0: 8.09, 2800.0: 11.32, 5000.0: 20.21}[rpm], abs=0.006)
+
+
 @pytest.mark.parametrize("table, changes, key", [
     ("operating", {"axial": "free"}, "operating.axial"),
     ("operating", {"axial_load": 0.0}, "operating.axial_load"),
