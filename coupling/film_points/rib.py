@@ -32,8 +32,10 @@ naming every start).
 Accuracy (lithium at 30 C, Fig. 14's point 215.9 N, 11.32 m/s unless said).  Grid: the Newtonian film of
 lithium's apparent viscosity at 500 N, 11.3 m/s moves from 65 x 57 to 129 x 111 nodes by +3.0 % (h_c) and
 +15 % (h_min): the default grid's films are about 4 % (h_c) low by Richardson's estimate.  Side extent y_max
-3 -> 4.5 b_y: +0.01 %.  A shorter inlet (the same spacing) starves the film: -3 b_x: -5.0 %, -1.5 b_x: -33 %
-(asperity share 0.051 -> 0.060 -> 0.159).  Against the closed forms: Hamrock-Dowson with the Newtonian film's
+3 -> 4.5 b_y: +0.01 %.  Inlet (the same spacing, 97 x 57 nodes): -7.5 b_x against the default -4.5, h_c +1.6 %,
+h_min +0.8 % (so with the grid the map's films are about 5 % thin: lambda 1.52 -> ~1.60, share 0.051 -> ~0.042
+at Fig. 14's point).  A shorter inlet starves the film: -3 b_x: -5.0 %, -1.5 b_x: -33 % (asperity share
+0.051 -> 0.060 -> 0.159).  Against the closed forms: Hamrock-Dowson with the Newtonian film's
 viscosity, +0.7 ... +4.5 % (h_c; h_min 0.42-0.64 times); the Herschel-Bulkley film is 1.23-1.56 times
 Hamrock-Dowson's with the grease's apparent viscosity over the map's nodes (1.49 at Fig. 14's point; 1.34 /
 1.29 / 1.44 at 15 / 50 / 70 C, 474 N, 12.2 m/s), so one correction factor would be off by up to 12 % where
