@@ -193,18 +193,42 @@ def test_paper_a_grease_film_converges(name):
 
 
 # where it stops: measured on 257 nodes, [-20, 3] b, paper A's cone, 30 C (alpha 4.662e-8)
-#   polyurea: converges at 135/10, 135/15, 100/10, 100/15, 50/10 (kN/m, m/s); fails at 135/20, 50/20
+#   polyurea: converges at 135/10, 135/15, 100/10, 100/15, 50/10 (kN/m, m/s); fails at 135/20, 50/20 (the
+#             Newtonian starts fail)
 #   calcium:  converges at all of 135/10, 135/15, 135/20, 100/10, 100/15, 50/10, 50/20
 #   lithium (n = 0.31, apparent viscosity ~7e-5 Pa s at the rolling shear rate; formula film 34 nm):
-#             fails at all seven
-@pytest.mark.parametrize("name, load, speed", [("polyurea", 135e3, 20.0), ("lithium", 135e3, 10.0),
-                                               ("lithium", 50e3, 20.0)])
+#             converges at all seven through the (n, tau_y) homotopy from the Newtonian start
+#             (lubedyn.lubrication.ehl.solve._hb_homotopy; 6-11 steps, 11-26 s each): h_c 39.41, 47.93, 54.95, 41.13,
+#             50.29, 54.68, 76.24 nm (the Newtonian start's 34.4-54.8 nm: 1.14-1.39 times); before it, the direct
+#             Herschel-Bulkley step from the Newtonian start stalled at all seven
+@pytest.mark.parametrize("name, load, speed", [("polyurea", 135e3, 20.0)])
 def test_where_the_grease_solve_stops_converging(name, load, speed):
-    """The failures raise ConvergenceError naming the Herschel-Bulkley lubricant and every start tried."""
+    """The failures raise ConvergenceError naming the Herschel-Bulkley lubricant and every start tried (measured:
+    polyurea at 135 kN/m, 20 m/s fails from all four Newtonian starts, directly and by the homotopy)."""
     with pytest.raises(ConvergenceError, match=r"Herschel-Bulkley contact did not converge from any Newtonian "
                                                r"start .*HerschelBulkleyFlow\(yield_stress=") as info:
         solve_ehl(_paper_contact(name, load, speed), PAPER_GRID)
-    assert str(info.value).count("Newtonian start eta =") == 4
+    import re
+
+    # each of the four start viscosities named (with, where its Newtonian contact converged, the direct step's
+    # and the homotopy's failures from it)
+    assert len(set(re.findall(r"Newtonian start eta = ([0-9.e+-]+) Pa s", str(info.value)))) == 4
+
+
+@pytest.mark.parametrize("load, speed, film", [(50e3, 20.0, 76.2380), (135e3, 10.0, 39.4139)])
+def test_lithium_converges_by_the_homotopy(load, speed, film):
+    """Lithium (n = 0.3125) on paper A's cone: the direct Herschel-Bulkley step from the Newtonian start (its
+    apparent viscosity) stalls, the homotopy in (n, tau_y) that keeps the apparent viscosity at the start's shear
+    rate reaches it (measured h_c 76.238 / 39.414 nm, 1.39 / 1.14 times the Newtonian start's).  The end state is
+    an exact discrete solution in the reference assembly, whatever the path (the complementarity, as for
+    polyurea and calcium: measured free residual 1.8e-10 / 1.5e-7 of p_Hertz)."""
+    s = solve_ehl(_paper_contact("lithium", load, speed), PAPER_GRID)
+    start = s.info["hb_start"]
+    assert start["homotopy"]["steps"][-1][0] == 1.0 and any("stalled" in f for f in start["failed_starts"])
+    assert s.central_film_thickness * 1e9 == pytest.approx(film, rel=2e-4)
+    assert 1.1 < s.central_film_thickness / start["central_film"] < 1.45
+    free_res, cav_min, pr, load_err = _complementarity(s)
+    assert free_res < 2e-7 and pr < 1e-7 and cav_min > -1e-7 and load_err < 1e-6
 
 
 def test_calcium_converges_across_the_paper_a_range():
@@ -282,3 +306,39 @@ def test_calcium_contact_has_two_discrete_solutions():
     for s in (a, b):
         free_res, cav_min, pr, load = _complementarity(s)
         assert free_res < 1e-7 and pr < 1e-7 and cav_min > -1e-7 and load < 1e-6
+
+
+def _rib_contact(tau_y, phi0, n, load, speed):
+    """Paper A's rib (roller end r_s 136.2 mm on the cone's rib: R_x 168.96 mm along the entrainment, R_y 136.2 mm)."""
+    from lubedyn.lubrication.laws.flange import rib_radii
+
+    rx, ry = rib_radii(0.1362, 0.08559954394988122, np.radians(83.0))
+    lub = Lubricant(Barus(phi0, ALPHA), Incompressible(870.0), herschel_bulkley=HerschelBulkleyFlow(tau_y, n))
+    return EHLContact(rx, ry, E_PRIME / 2, lub, speed, load=load)
+
+
+def test_apparent_start_is_the_thinnest_fixed_point_on_a_point_contact():
+    """hb_apparent_start on paper A's rib (calcium, 500 N, 11.3 m/s): the film h = h_guess(eta_app(h)) (measured
+    9.188 um, eta_app 0.07244 Pa s) to round-off, and no thinner one (h_guess/h > 1 on a log grid from 1e-3 of it).
+    The damped iteration from eta = phi0 it replaces ran off to the guess's rigid-isoviscous branch (0.95 m, 1.9 m,
+    ... 2e5 m in 8 steps, then ZeroDivisionError).  A grease whose film has no fixed point (polyurea's yield stress
+    with phi0 = 38.44 at 216 N: eta_app grows with h faster than the rigid film allows) is one ConvergenceError."""
+    import dataclasses
+
+    from lubedyn.lubrication.ehl.newton import _film_guess, hb_apparent_start
+
+    c = _rib_contact(649.5, 49.23, 0.5344, 500.0, 11.3)
+    eta, h = hb_apparent_start(c)
+    assert (eta, h * 1e6) == pytest.approx((0.07244, 9.188), rel=2e-4)
+
+    def guess(hh):
+        D = c.mean_speed / hh
+        e = 649.5 / D + 49.23 * D ** (0.5344 - 1.0)
+        return _film_guess(dataclasses.replace(c, lubricant=dataclasses.replace(
+            c.lubricant, viscosity=Barus(e, ALPHA), herschel_bulkley=None)))
+
+    assert guess(h) == pytest.approx(h, rel=1e-10)
+    assert all(guess(x) > x for x in np.geomspace(1e-3 * h, 0.999 * h, 40))
+    with pytest.raises(ConvergenceError, match=r"^EHL Herschel-Bulkley start: no apparent-viscosity film h = "
+                                               r"h_guess\(eta_app\(h\)\) between .* phi0 = 38.44 Pa s\^n"):
+        hb_apparent_start(_rib_contact(351.8, 38.44, 0.7196, 215.9, 11.32))

@@ -253,22 +253,33 @@ def test_grease_map_nodes_are_direct_grease_solves(grease):
             assert 1.0 < gmap.values[hc][i, j, 0] / formula < 2.0
 
 
-def test_lithium_grease_map_fails_with_one_line_naming_the_parameter():
-    """Table 2's lithium grease (n = 0.31) does not converge (tests/test_ehl_hbflow.py: at none of seven
-    points of paper A's range): a map build stops with one line naming params.rheology and the grease's
-    parameters instead of filling a map with anything (each (load, speed) fails once per process, not once
-    per slide-to-roll node)."""
+def test_lithium_grease_map_builds_and_its_smoke_grid_is_flagged(caplog):
+    """Table 2's lithium grease (n = 0.31), which no Newtonian start reached before, converges through the
+    EHL solver's (n, tau_y) homotopy (tests/test_ehl_hbflow.py: all seven points of paper A's range): a 2 x 2 x 2
+    map at smoke resolution (129 nodes, 50-50.5 kN/m, 9-10 m/s) builds, and the solver's resolution check warns
+    that 129 nodes do not resolve these 36-39 nm films (measured: -28 % to -29 % against 257 nodes, 51-54 nm).
+    So the smoke films are below the apparent-viscosity formula's (measured 0.931 at 50 kN/m, 9 m/s), the resolved ones 1.3 times
+    it (tests/test_ehl_hbflow.py: 1.14-1.39 times the Newtonian start's on 257 nodes).  Bad grease parameters are
+    one-line errors."""
+    import logging
+
     from lubedyn.maps import build_map
+    from lubedyn.papers.wu2018.parameters import GREASE_TABLE
+    from lubedyn.lubrication.laws import grease as G
 
     params = dict(resolution="smoke", **fp.roller_grease_params("lithium", 30.0))
     axes = dict(GREASE_AXES, line_load={"lo": 5e4, "hi": 5e4 * 1.01, "n": 2})
     E._EHL_CACHE.clear()
-    with pytest.raises(ConvergenceError) as info:
-        build_map("ehl_roller_cone", params, axes, workers=1, progress=False, fit=False)
-    msg = str(info.value)
-    assert "\n" not in msg
-    assert "params.rheology = 'herschel_bulkley' (hb_consistency = 46.23 Pa s^n, hb_yield_stress = 805.2 Pa, " \
-           "hb_exponent = 0.3125)" in msg
+    with caplog.at_level(logging.WARNING, logger="lubedyn.lubrication.ehl.checks"):
+        gmap = build_map("ehl_roller_cone", params, axes, workers=1, progress=False, fit=False)
+    assert any("use grid.nx >= 257" in r.getMessage() for r in caplog.records)
+    hc = gmap.values["Central film thickness [m]"]
+    full = dict(fp.ehl_roller_cone_default_params(), **params)
+    g = G.grease_at(GREASE_TABLE["lithium"], 30.0, full["alpha"], "lithium")
+    for i, w in enumerate(gmap.axes[0].nodes):
+        for j, u in enumerate(gmap.axes[1].nodes):
+            formula = G.grease_line_film(g, "apparent", u, w, full["radius_x"], 2 * full["e_star"]).central
+            assert 0.85 < hc[i, j, 0] / formula < 1.0
     with pytest.raises(InputError, match=r"^params.hb_consistency = 0.0: rheology = 'herschel_bulkley' needs"):
         fp.evaluate_ehl_line(dict(fp.ehl_roller_cone_default_params(), rheology="herschel_bulkley"),
                              {"Line load [N/m]": 5e4, "Entrainment speed [m/s]": 10.0})

@@ -22,6 +22,9 @@ kind                       film
                            of contact, on a line-load axis (per slice:
                            stiffness and damping times the slice length)
 ``ehl_roller_cup``         the same on the cup (outer race)
+``ehl_rib``                roller end / cone rib EHL point contact of paper A
+                           per flange load and entrainment speed (module
+                           ``rib``: where the solver reaches it)
 =========================  ===================================================
 
 The roller kinds replace ``ehl_roller_race`` (the whole 42.06 mm roller at
@@ -290,7 +293,7 @@ was rebuilt:
 The contact and film laws these kinds use are written once in :mod:`lubedyn.lubrication.laws` (Hertz,
 Thornton, the squeeze films, the friction laws); the papers' values come from
 :mod:`lubedyn.papers`.  Modules: ``base`` (registry types, paper values, lubricant), ``ball_ball``
-(the ball-ball film kind), ``ehl`` (the four EHL race kinds); the registry :data:`KINDS` is here.
+(the ball-ball film kind), ``ehl`` (the four EHL race kinds), ``rib`` (the rib kind); the registry :data:`KINDS` is here.
 """
 from __future__ import annotations
 
@@ -316,6 +319,9 @@ from lubedyn.film_points.ehl import (  # noqa: F401  (the package's API: names u
     field_ehl_line, roller_race_radius, ROLLER_TRACTION_SHEAR, ROLLER_TRANSITION, ROLLER_TRACTION_NORMALISED,
     transition_slide_to_roll, saturated_transition, normalised_slip, LIGHTER_LOAD_STEP, ROLLER_LINE_LOADS,
     couette_profile, maxwell_traction, roller_grease_params,
+)
+from lubedyn.film_points.rib import (  # noqa: F401  (the package's API: names used by maps, scenes and tests)
+    RIB_AXES, RIB_OUTPUTS, RIB_RESOLUTIONS, ehl_rib_default_params, evaluate_ehl_rib, rib_contact, rib_geometry,
 )
 
 
@@ -367,6 +373,16 @@ KINDS: dict = {
         field=field_ehl_line,
         signed=("Traction coefficient [-]",),
         sheared={"Traction coefficient [-]": ROLLER_TRACTION_SHEAR},
+    ),
+    "ehl_rib": PointKind(
+        name="ehl_rib",
+        description=("EHL point contact of paper A's roller end (sphere r_s 136.2 mm) on the cone's rib: R_x 169.0 mm "
+                     "(circumferential, entrainment), R_y 136.2 mm, base oil 0.1 Pa s (assumed) or a Table 2 grease "
+                     "(Herschel-Bulkley flow), Barus alpha 4.662e-8, per flange load and entrainment speed"),
+        axes=RIB_AXES,
+        outputs=RIB_OUTPUTS,
+        evaluate=evaluate_ehl_rib,
+        default_params=ehl_rib_default_params,
     ),
     "ehl_roller_cup": PointKind(
         name="ehl_roller_cup",

@@ -264,9 +264,10 @@ class MapSetup:
 # Measured CPU seconds per point at each kind's default resolution (the shipped maps' provenance:
 # build time x workers / points): ball_ball (fine) 844 s x 2 / 480, EHL ball inner race 960 s / 168,
 # outer race 353 s / 168, roller race 39 s x 2 / 693, roller cone / cup per length (34 x 13 x 37, the SRR
-# nodes cost no EHL solve) ~440 s x 2 / 16354.  Other kinds: 1 s.
+# nodes cost no EHL solve) ~440 s x 2 / 16354, rib with lithium grease (65 x 57 nodes, Herschel-Bulkley
+# homotopy) ~140 s a point.  Other kinds: 1 s.
 SECONDS_PER_POINT = {"ball_ball": 3.5, "ehl_ball_inner_race": 5.7, "ehl_ball_outer_race": 2.1,
-                     "ehl_roller_cone": 0.06, "ehl_roller_cup": 0.06}
+                     "ehl_roller_cone": 0.06, "ehl_roller_cup": 0.06, "ehl_rib": 140.0}
 # Memory per map point while a map is built: the point's dict and its hash, the result's dict of
 # outputs (about 1 kB in CPython), the value arrays; about four times that:
 BYTES_PER_POINT = 4096

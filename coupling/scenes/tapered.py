@@ -78,7 +78,12 @@ not reach (Table 2's lithium, n = 0.31) is a one-line error; "grease_ehl" needs 
 that reads the film ("paper" or "limited").  Eq. 12's viscosity, the pocket, land and rib films keep
 the films' viscosity.
 
-Not modelled yet: a rib film that follows the load.
+
+Rib film (``[flange] rib_film``): "hamrock_dowson" (default), "paper_eq24" (eq. 24 rebuilt) or "ehl", the
+project's EHL solver at the rib (Herschel-Bulkley flow of the grease) read from the shipped map of the case's
+grease and temperature (:data:`RIB_FILM_MAPS`: lithium at 30 C; the solver does not reach the thick films of the
+base oil, polyurea and calcium, coupling/film_points/rib.py).  Each is evaluated once, at the quasi-static start's
+largest flange load and the rib's ideal entrainment speed (the kernel's film ratio is constant in a run).
 """
 from __future__ import annotations
 
@@ -268,7 +273,7 @@ class FlangeTable(CaseTable):
     asperity_b: Q("dimensionless", ge=0) | None = None
     asperity_c: Q("dimensionless", ge=0) | None = None
     roughness: Q("length", gt=0) | None = None
-    rib_film: Literal["hamrock_dowson", "paper_eq24"] = "hamrock_dowson"
+    rib_film: Literal["hamrock_dowson", "paper_eq24", "ehl"] = "hamrock_dowson"
 
 
 class InitialTable(CaseTable):
@@ -416,6 +421,8 @@ def build(case: TaperedCase):
             groups["flange"] = G.Flange(**f)
         if m.traction == "map":
             groups["traction_maps"] = roller_traction_maps()
+        if m.flange_friction != "none" and case.flange.rib_film == "ehl":
+            groups["rib_film_map"] = rib_film_map(case.lubricant)
         model = TaperedBearing(geometry=g, **groups)
         if case.lubricant.raceway_film == "grease_ehl":
             films = raceway_films(case, model, model.quasi_static())
@@ -548,6 +555,37 @@ def raceway_films(case, model, qs) -> dict:
     out["Load"] = ("the most loaded roller's quasi-static load per unit effective length, per raceway; the "
                    "effective viscosity is held for every slice and load of the run")
     return out
+
+
+#: the rib's EHL film maps that flange.rib_film = "ehl" reads, per (grease, temperature [C]) of Table 2: built
+#: by the map cases named in them (coupling/film_points/rib.py says where the solver reaches the rib contact:
+#: the thin lithium films; the base oil, polyurea and calcium films, 7-300 um thick, are out of its reach)
+RIB_FILM_MAPS = {("lithium", 30.0): "maps/ehl_rib_lithium_30C.npz"}
+#: the grease parameters a rib map's provenance must match (relative)
+RIB_MAP_MATCH = 1e-9
+
+
+def rib_film_map(lubricant: "LubricantTable"):
+    """The shipped rib EHL film map (:data:`RIB_FILM_MAPS`) of the case's grease at its temperature, checked
+    against the case's grease (its Table 2 consistency, yield stress and exponent at the temperature, and
+    alpha); a grease or temperature without a map is a one-line error naming ``flange.rib_film``."""
+    key = (lubricant.grease, float(lubricant.temperature_c))
+    shipped = ", ".join(f"{g} at {t:g} C" for g, t in RIB_FILM_MAPS)
+    if key not in RIB_FILM_MAPS:
+        raise InputError(f"flange.rib_film = 'ehl' has no rib EHL film map for lubricant.grease = {lubricant.grease!r} "
+                         f"at temperature_c = {lubricant.temperature_c:g}: shipped {shipped} (the EHL solver does not "
+                         "reach the rib's thick base-oil, polyurea and calcium films: coupling/film_points/rib.py); "
+                         "or use flange.rib_film = 'hamrock_dowson'")
+    fmap = FilmMap.load(CASES_DIR / RIB_FILM_MAPS[key])
+    params = fmap.provenance.get("params", {})
+    want = lubricant.group_values()
+    for name, mine in (("hb_consistency", want["consistency"]), ("hb_yield_stress", want["yield_stress"]),
+                       ("hb_exponent", want["exponent"]), ("alpha", want["pressure_viscosity"])):
+        theirs = params.get(name)
+        if theirs is None or abs(float(theirs) - float(mine)) > RIB_MAP_MATCH * abs(float(mine)):
+            raise InputError(f"flange.rib_film = 'ehl': the rib map {RIB_FILM_MAPS[key]} was built with {name} = "
+                             f"{theirs!r}, the case's lubricant has {mine!r}")
+    return fmap
 
 
 #: the roller EHL maps that raceway traction "map" reads (cup, cone): built by cases/map_ehl_roller_cup.toml

@@ -247,8 +247,9 @@ class Cage(Group):
 @dataclass(frozen=True, kw_only=True)
 class Flange(Group):
     """Eq. 23 at the rib: ``asperity_friction`` s0/p0, ``asperity_b`` B, ``asperity_c`` C, composite
-    ``roughness`` sigma [m]; ``rib_film`` the film formula (:data:`lubedyn.lubrication.laws.flange.RIB_FILMS`)
-    evaluated once at the start's flange load and the ideal rib entrainment speed."""
+    ``roughness`` sigma [m]; ``rib_film`` the film model (:data:`lubedyn.lubrication.laws.flange.RIB_FILMS`: two
+    closed forms, or "ehl", the rib's EHL film map of the case's grease) evaluated once at the start's flange
+    load and the ideal rib entrainment speed."""
 
     TABLE: ClassVar[str] = "flange"
 

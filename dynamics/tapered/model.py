@@ -73,6 +73,9 @@ class TaperedBearing:
     #: (:class:`lubedyn.maps.FilmMap`: ``axes``, ``sheared`` and ``map(output, *coords)``), read at the
     #: run's entrainment speed by :meth:`map_traction_tables`
     traction_maps: tuple = ()
+    #: ``flange.rib_film = "ehl"``: the rib's EHL film map (kind ``ehl_rib``, axes flange load [N] and
+    #: entrainment speed [m/s]; :func:`lubedyn.scenes.tapered.rib_film_map`), read by :meth:`rib_film`
+    rib_film_map: object = None
 
     GROUP_CLASSES: ClassVar[dict] = {"operating": Operating, "fidelity": Fidelity, "lubricant": Lubricant,
                                      "cage": Cage, "flange": Flange, "initial": Initial}
@@ -90,6 +93,9 @@ class TaperedBearing:
             raise fail("cage", None, f"must be given with model.pocket = {f.pocket!r}")
         if f.flange_friction != "none" and self.flange is None:
             raise fail("flange", None, f"must be given with model.flange_friction = {f.flange_friction!r}")
+        if self.flange is not None and self.flange.rib_film == "ehl" and self.rib_film_map is None:
+            raise fail("flange.rib_film", "ehl", "needs the rib's EHL film map (rib_film_map; the tapered scene loads "
+                                                 "the shipped one of the case's grease)")
         if "contact" in (f.pocket, f.guide_land) and self.cage.modulus is None:
             raise fail("cage.modulus", None, "must be given with a contact-only pocket or guide land")
         if f.pocket == "film" or f.guide_land == "film":
@@ -170,9 +176,22 @@ class TaperedBearing:
         qs = self.quasi_static() if qs is None else qs
         load = max(float(np.max(qs.flange_loads)), 1.0)
         speed = max(self.rib_speeds()[1], 1e-3)
+        if self.flange.rib_film == "ehl":
+            return self.rib_map_film(load, speed)
         return laws_flange.rib_film(self.flange.rib_film, load, speed, self.lubricant.viscosity(),
                                     self.lubricant.pressure_viscosity, g.e_prime, g.end_sphere_radius,
                                     g.flange_point[1], g.flange_contact_angle)
+
+    def rib_map_film(self, load: float, speed: float) -> float:
+        """The central film [m] of :attr:`rib_film_map` at flange ``load`` [N] and entrainment ``speed`` [m/s]
+        (``flange.rib_film = "ehl"``); a point outside the map's axes is a one-line error naming the key."""
+        fmap = self.rib_film_map
+        for axis, value in zip(fmap.axes, (load, speed)):
+            lo, hi = float(axis.nodes[0]), float(axis.nodes[-1])
+            if not lo <= value <= hi:
+                raise fail("flange.rib_film", "ehl", f"reads the rib's EHL film map at {axis.name} = {value:.4g}, "
+                                                     f"outside its axis {lo:.4g}-{hi:.4g}")
+        return float(fmap("Central film thickness [m]", load, speed))
 
     def rib_speeds(self) -> tuple[float, float]:
         """(sliding, entrainment) speeds [m/s] of the roller end on the rib at the ideal kinematics, the

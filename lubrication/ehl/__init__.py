@@ -49,7 +49,12 @@ Fischer-Burmeister (the active set kept cycling with plugs at the cavitation bou
 phi0 D^(n-1) at D = u_m/h_c (then 0.5, 0.25, 0.125 times it; :func:`lubedyn.lubrication.ehl.solve._solve_hb`);
 the Hertz start stalls.  Measured on paper A's cone (R 9.395 mm, E' 225 GPa, 30 C, 257 nodes on
 [-20, 3] b): calcium converges over 50-135 kN/m x 10-20 m/s, polyurea on 5 of 7 points (not
-135 kN/m, 20 m/s nor 50 kN/m, 20 m/s: there the Newtonian starts fail), lithium (n = 0.31) nowhere;
+135 kN/m, 20 m/s nor 50 kN/m, 20 m/s: there the Newtonian starts fail), lithium (n = 0.31) on all 7
+through a homotopy: where the Herschel-Bulkley iteration from a converged Newtonian start stalls (as
+lithium's does everywhere), the grease is reached along yield stress s tau_y and exponent 1 - s (1 - n),
+s: 0 -> 1, with the consistency that keeps the apparent viscosity of the start
+(:func:`lubedyn.lubrication.ehl.solve._hb_homotopy`; 6-11 steps, 11-26 s a point, h_c 39-76 nm, 1.14-1.39
+times the Newtonian start's); the same holds on paper A's rib (point contact, 500 N, 11.3 m/s: 0.240 um);
 calcium at 135 kN/m, 10 m/s has two discrete solutions (h_min 5.7 % apart) as the Newtonian roller
 does (tests/test_ehl_hbflow.py).  Reported M and L read phi0 as Pa s.
 

@@ -58,6 +58,17 @@ So lambda >= 34 (asperity share exp(-B lambda^C) < 1e-50) for every combination 
 reading of lithium with Hamrock-Dowson (lambda 0.72-1.25, share 0.10-0.30): only there does eq. 23's
 asperity friction act, as the paper's explanation of Fig. 14 needs.  Under ``"paper_eq24"`` the film
 barely moves with phi (2.44 -> 38.44 Pa s^n: x1.26), under Hamrock-Dowson it grows 6.3-fold.
+
+The EHL rib film (``"ehl"``, not a closed form: :meth:`lubedyn.dynamics.tapered.model.TaperedBearing.rib_film`
+reads it from a film map of kind ``ehl_rib``, :mod:`lubedyn.film_points.rib`): the project's point-EHL solver
+on this contact (R_x = R_circ, R_y = r_s, Herschel-Bulkley flow of the case's grease), tabulated over the
+flange load and the entrainment speed.  Hamrock-Dowson's fit (k = 1-8) is extrapolated here to k = 0.87
+(entrainment along the ellipse's major axis); against the solver (65 x 57 nodes, the Newtonian film of lithium's
+apparent viscosity, 2.25e-4 Pa s, Moes M 150-570, L 6-7), see tests/test_rib_film.py.  The solver reaches the
+rib's thin films only (lithium: h_c 0.24 um at 500 N, 11.3 m/s, by its homotopy in (n, tau_y)); the base oil's,
+polyurea's and calcium's films (7-300 um, Moes M 1-10 at L 25-40 for the oil) are in a light-load, strongly
+piezoviscous corner where its Newton iterations stall and the multigrid stagnates (measured in
+:mod:`lubedyn.film_points.rib`): for them the lambda of this table stands (>= 34: no asperity share).
 """
 from __future__ import annotations
 
@@ -70,7 +81,11 @@ from . import film as F
 from .contact import point_contact, positive, relative_radii
 from .jit import INLINE
 
-RIB_FILMS = ("hamrock_dowson", "paper_eq24")
+#: rib film models of the tapered model's ``flange.rib_film``: two closed forms (:func:`rib_film`) and "ehl", the
+#: central film of the project's EHL solver at the rib read from a film map of kind ``ehl_rib``
+#: (:meth:`lubedyn.dynamics.tapered.model.TaperedBearing.rib_film`)
+RIB_FILMS = ("hamrock_dowson", "paper_eq24", "ehl")
+CLOSED_FORM_RIB_FILMS = ("hamrock_dowson", "paper_eq24")
 MIXINGS = ("paper", "load_share")
 
 
@@ -101,8 +116,8 @@ def paper_eq24_film(load, speed, viscosity, alpha, e_prime, sphere_radius):
 def rib_film(model, load, speed, viscosity, alpha, e_prime, sphere_radius, rib_contact_radius, flange_angle):
     """Central film h_c [m] at the rib: ``model`` "hamrock_dowson" (R_x = R_circ, k from the exact
     Hertz ellipse) or "paper_eq24"; ``speed`` u_f [m/s] the entrainment speed."""
-    if model not in RIB_FILMS:
-        raise unknown_choice("rib film model", model, RIB_FILMS)
+    if model not in CLOSED_FORM_RIB_FILMS:
+        raise unknown_choice("rib film model", model, CLOSED_FORM_RIB_FILMS)
     load, speed = positive("flange load [N]", load), positive("rib entrainment speed u_f [m/s]", speed)
     viscosity, e_prime = positive("viscosity [Pa s]", viscosity), positive("E' [Pa]", e_prime)
     if model == "paper_eq24":
