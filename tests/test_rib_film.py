@@ -114,14 +114,15 @@ def test_the_shipped_rib_map_against_direct_solves():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("point", [FIG14, NODE], ids=["fig14", "node"])
-def test_the_pinned_direct_solves_are_the_kinds(point):
-    """Fig. 14's point and the map's middle node solved directly again (lithium, 30 C, 65 x 57 nodes; 60-160 s
-    each: the Newtonian start, the stalled direct Herschel-Bulkley step, the homotopy): the values the fast tests
-    pin."""
+def test_the_pinned_direct_solve_is_the_kinds():
+    """Fig. 14's point solved directly again (lithium, 30 C, 65 x 57 nodes; 60-160 s: the Newtonian start, the
+    stalled direct Herschel-Bulkley step, the homotopy): the values the fast tests pin, to the solve's own
+    reproducibility: its homotopy stops at the Newton's tolerance, and the stopping iterate depends on the
+    start the process's earlier solves leave (measured 1.4e-5 relative between a fresh process and the
+    recording's; the map's middle node, pinned beside it, is the map's own node value, checked above)."""
     p = {**fp.ehl_rib_default_params(), **fp.roller_grease_params("lithium", 30.0)}
-    out = fp.evaluate_ehl_rib(p, {"Flange load [N]": point[0], "Entrainment speed [m/s]": point[1]})
-    assert (out[HC], out["Minimum film thickness [m]"]) == pytest.approx(DIRECT[point], rel=1e-6)
+    out = fp.evaluate_ehl_rib(p, {"Flange load [N]": FIG14[0], "Entrainment speed [m/s]": FIG14[1]})
+    assert (out[HC], out["Minimum film thickness [m]"]) == pytest.approx(DIRECT[FIG14], rel=1e-4)
 
 
 @pytest.mark.parametrize("load, speed, ratio", [(200.0, 8.1, 1.0072), (500.0, 11.3, 1.0129)])
