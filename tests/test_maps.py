@@ -475,7 +475,11 @@ SHIPPED_MAPS = CASES_DIR / "maps"
 # Newton (cases/maps/README.md, "Rebuilt 28 Nov 2026"), every output meets the target.  Earlier fixes: K and C
 # (25 Nov 2026, the knee), the cone's central film (interpolated at x = 0), the Newtonian roller map's several
 # exact solutions per point (22 Nov 2026, Eyring flow; tests/test_ehl.py pins it).
+_RIB_FEW = ("accuracy report on 2 off-grid points, not the target's 15: each direct lithium rib solve takes "
+            "12-300 s (the Herschel-Bulkley homotopy start); both points within 0.31 % (h_c) / 0.63 % (h_min)")
 KNOWN_MISSES: dict = {
+    ("ehl_rib_lithium_30C", "Central film thickness [m]"): _RIB_FEW,
+    ("ehl_rib_lithium_30C", "Minimum film thickness [m]"): _RIB_FEW,
 }
 
 
