@@ -119,6 +119,11 @@ BOUNDS: tuple[Bound, ...] = (
     Bound(r"Force balance error \[-\]", None, 1e-3,
           "the quasi-static equilibrium: the contact forces sum to the applied loads (the solver meets it to "
           "2e-12 to 2.3e-8 on the bundled static cases)"),
+    # the tapered scene's "Raceway films (lubricant.raceway_film = ...)" block, per raceway
+    Bound(r"Raceway films .* / (?:EHL central|EHL minimum|Formula) film[^/]*\[um\]", 0.0, None,
+          "a film thickness is a distance between two surfaces"),
+    Bound(r"Raceway films .* / (?:Factor h_EHL/h_formula \[-\]|(?:Reference|Effective) viscosity \[Pa s\])",
+          0.0, None, "a viscosity, and the ratio of two films, is positive"),
     Bound(r"Load \[N\]", 0.99, 1.01, _BALANCE, scale="applied_load"),
     Bound(r"Load per length \[N/m\]", 0.99, 1.01, _BALANCE, scale="applied_load_per_length"),
 )
@@ -143,8 +148,8 @@ def violations(summary: dict, scales: dict | None = None) -> list[str]:
     """One line per summary value outside a bound of :data:`BOUNDS` (none: []).
 
     A bound applies to a top-level key and to every value nested below it (statistics of a series:
-    ``"Skew [rad] / loaded zone / mean"``), matched on the top-level key; NaN ("not computed") is
-    not a violation."""
+    ``"Skew [rad] / loaded zone / mean"``), matched on the top-level key, and to a nested value whose
+    whole path it matches (a film inside a block of films); NaN ("not computed") is not a violation."""
     scales = dict(scales or {})
     out = []
     compiled = [(re.compile(b.pattern), b) for b in BOUNDS]
@@ -152,7 +157,7 @@ def violations(summary: dict, scales: dict | None = None) -> list[str]:
         if math.isnan(value):
             continue
         for rx, bound in compiled:
-            if not rx.fullmatch(key):
+            if not (rx.fullmatch(key) or rx.fullmatch(path)):
                 continue
             lims = bound.limits(scales)
             if lims is None:

@@ -113,6 +113,16 @@ def test_violations_of_each_kind():
         "Cavitated area fraction [-] / largest = 1.5")
     assert not v({"Cavitated area fraction [-]": math.nan, "Converged [-]": True, "Traction coefficient [-]": "n/a"})
     assert v({"Traction coefficient [-]": math.inf})
+    # a nested value whose whole path a bound names: the tapered scene's raceway films
+    block = "Raceway films (lubricant.raceway_film = 'grease_ehl')"
+    films = {"cup": {"EHL central film [um]": 0.41, "Formula film [um]": 0.68, "Factor h_EHL/h_formula [-]": 0.60,
+                     "Effective viscosity [Pa s]": 0.048, "Line load [N/m]": 1.5e5}}
+    assert not v({block: films})
+    films["cup"]["EHL minimum film [um]"] = -0.02
+    films["cup"]["Effective viscosity [Pa s]"] = -1.0
+    found = v({block: films})
+    assert len(found) == 2 and found[0].startswith(f"{block} / cup / Effective viscosity [Pa s] = -1 " + BOUND_LINE)
+    assert not v({"Line load [N/m]": -1.0})  # a path bound does not reach a top-level key of another name
 
 
 def test_strict_raises_the_first_and_counts_the_rest():

@@ -112,6 +112,19 @@ def _direct_start(contact, grid, options, final, nested):
 HB_START_FACTORS = (1.0, 0.5, 0.25, 0.125)  # Newtonian starts: eta_app times these, in turn
 
 
+def _attempt(failures, label, solve, *args, **kwargs):
+    """``(solve(*args, **kwargs), None)``, or ``(None, error)`` for a :class:`ConvergenceError`, whose
+    message is appended to ``failures`` under ``label``; a work-budget error (``budget`` set) is
+    re-raised: the caller's budget is spent, no further start may be tried."""
+    try:
+        return solve(*args, **kwargs), None
+    except ConvergenceError as exc:
+        if getattr(exc, "budget", False):
+            raise
+        failures.append(f"{label}: {exc}")
+        return None, exc
+
+
 def _solve_hb(contact, grid, options):
     """A Herschel-Bulkley contact from a Newtonian start: the Newtonian contact (Barus, the grease's
     alpha) with the apparent viscosity eta_app of :func:`hb_apparent_start` is solved first, its state
@@ -135,30 +148,22 @@ def _solve_hb(contact, grid, options):
         eta = eta_app * factor
         newtonian = dataclasses.replace(contact, lubricant=dataclasses.replace(
             lub, viscosity=Barus(eta, lub.viscosity.pressure_viscosity), herschel_bulkley=None))
-        try:
-            start = solve_ehl(newtonian, grid, options, _check=False)
-        except ConvergenceError as exc:
-            if getattr(exc, "budget", False):
-                raise
-            failures.append(f"Newtonian start eta = {eta:.4g} Pa s: {exc}")
+        start, exc = _attempt(failures, f"Newtonian start eta = {eta:.4g} Pa s", solve_ehl, newtonian, grid,
+                              options, _check=False)
+        if start is None:
             last = exc
             continue
         homotopy = None
-        try:
-            sol = solve_ehl(contact, grid, options, initial=start, _check=False)
-        except ConvergenceError as exc:
-            if getattr(exc, "budget", False):
-                raise
-            failures.append(f"from the Newtonian start eta = {eta:.4g} Pa s: {exc}")
+        sol, exc = _attempt(failures, f"from the Newtonian start eta = {eta:.4g} Pa s", solve_ehl, contact,
+                            grid, options, initial=start, _check=False)
+        if sol is None:
             last = exc
-            try:
-                sol, homotopy = _hb_homotopy(contact, grid, options, start, eta)
-            except ConvergenceError as exc2:
-                if getattr(exc2, "budget", False):
-                    raise
-                failures.append(f"homotopy from the Newtonian start eta = {eta:.4g} Pa s: {exc2}")
-                last = exc2
+            reached, exc = _attempt(failures, f"homotopy from the Newtonian start eta = {eta:.4g} Pa s",
+                                    _hb_homotopy, contact, grid, options, start, eta)
+            if reached is None:
+                last = exc
                 continue
+            sol, homotopy = reached
         sol.info["hb_start"] = dict(apparent_viscosity=eta_app, start_viscosity=eta,
                                     central_film=start.central_film_thickness, failed_starts=failures,
                                     homotopy=homotopy)

@@ -377,19 +377,32 @@ def _oscillation(t, x, lo, hi) -> float:
     return float(math.sqrt(2.0) * np.sqrt(np.mean(np.square(res))))
 
 
-def _whirl(folder: Path, lo=0.1, hi=0.18) -> dict | str:
-    """The cage centre's whirl over the window from the time series: radius mean, its coefficient of
-    variation, and the turns the centre makes about the cone's centre (a sentence when the run cannot
-    give it)."""
+def _window_columns(folder: Path, needs: tuple[str, ...], absent: str, lo: float,
+                    hi: float) -> tuple[dict, np.ndarray] | str:
+    """(the time series' columns, the mask of lo <= t <= hi) of a run, or the sentence that says why the
+    run cannot give a window quantity: no time series kept, a column of ``needs`` missing (``absent``
+    says what that means), or a record that does not reach the window."""
     cols = _timeseries(folder)
     if cols is None:
         return "the study kept no time series"
-    if "Cage centre from the cone's, y [m]" not in cols:
-        return "the run has no cage"
+    if any(name not in cols for name in needs):
+        return absent
     t = cols["Time [s]"]
     w = (t >= lo) & (t <= hi)
     if w.sum() < 2:
         return f"the record ({t[0]:g}-{t[-1]:g} s) does not reach the window {lo:g}-{hi:g} s"
+    return cols, w
+
+
+def _whirl(folder: Path, lo=0.1, hi=0.18) -> dict | str:
+    """The cage centre's whirl over the window from the time series: radius mean, its coefficient of
+    variation, and the turns the centre makes about the cone's centre (a sentence when the run cannot
+    give it)."""
+    got = _window_columns(folder, ("Cage centre from the cone's, y [m]", "Cage centre from the cone's, z [m]"),
+                          "the run has no cage", lo, hi)
+    if isinstance(got, str):
+        return got
+    cols, w = got
     y, z = cols["Cage centre from the cone's, y [m]"][w], cols["Cage centre from the cone's, z [m]"][w]
     r = np.hypot(y, z)
     angle = np.unwrap(np.arctan2(z, y))
@@ -446,16 +459,14 @@ def roller_displacements(folder: Path, lag: float | None, lo: float = 0.1, hi: f
     give them."""
     from lubedyn.dynamics.analysis.windows import periodicity
 
-    cols = _timeseries(folder)
-    if cols is None:
-        return "the study kept no time series"
+    got = _window_columns(folder, (), "", lo, hi)
+    if isinstance(got, str):
+        return got
+    cols, w = got
     d = ideal_displacements(folder, cols)
     if d is None:
         return "the time series has neither the displacement from the ideal position nor the rollers' states"
     t = cols["Time [s]"]
-    w = (t >= lo) & (t <= hi)
-    if w.sum() < 2:
-        return f"the record ({t[0]:g}-{t[-1]:g} s) does not reach the window {lo:g}-{hi:g} s"
     out = {}
     for name, x in zip(("radial", "axial"), d):
         out[f"{name} range [m]"] = (float(x[w, 0].min()), float(x[w, 0].max()))
@@ -466,15 +477,10 @@ def roller_displacements(folder: Path, lag: float | None, lo: float = 0.1, hi: f
 def cage_speed(folder: Path, lo: float = 0.1, hi: float = 0.18) -> dict | str:
     """The cage's speed about the axis ("Cage speed [rad/s]" of the time series) over lo <= t <= hi:
     mean, smallest and largest [rpm]."""
-    cols = _timeseries(folder)
-    if cols is None:
-        return "the study kept no time series"
-    if "Cage speed [rad/s]" not in cols:
-        return "the run has no cage"
-    t = cols["Time [s]"]
-    w = (t >= lo) & (t <= hi)
-    if w.sum() < 2:
-        return f"the record ({t[0]:g}-{t[-1]:g} s) does not reach the window {lo:g}-{hi:g} s"
+    got = _window_columns(folder, ("Cage speed [rad/s]",), "the run has no cage", lo, hi)
+    if isinstance(got, str):
+        return got
+    cols, w = got
     x = cols["Cage speed [rad/s]"][w] * 30.0 / math.pi
     return {"mean [rpm]": float(x.mean()), "smallest [rpm]": float(x.min()), "largest [rpm]": float(x.max())}
 
