@@ -10,8 +10,14 @@
    grease's EHL film (the scene's solve, :func:`lubedyn.scenes.tapered.grease_ehl_film`) at 1, 0.6 and
    0.3 times the most loaded roller's line load, on 257 and 513 nodes ("default", "fine"), per raceway.
 
+3. ``cost``: 0.18 s of Fig. 5's point (cases/trb_fig5_2400rpm.toml, polyurea) with the grease's raceway films
+   ("grease_ehl") against the default ("formula"), interleaved in one process (default, grease, default,
+   grease; the scene's per-process cache of the EHL solves cleared before each run, so each grease run pays
+   them): build, integration and run wall times, RK4 steps, and the ratio grease/default of the fastest of
+   each (the cost the grease films add: their EHL solves at the start, and any change of the stable step).
+
 Writes ``results/trb_raceway_film.json``.  ``nice -n 10 python benchmarks/trb_raceway_film.py runs
-[--duration 60ms] [--phi 2.44 38.44]`` / ``... factors [--phi 8.44]``.
+[--duration 60ms] [--phi 2.44 38.44]`` / ``... factors [--phi 8.44]`` / ``... cost [--duration 180ms]``.
 """
 from __future__ import annotations
 
@@ -95,16 +101,45 @@ def factors(phis, fractions=(1.0, 0.6, 0.3), resolutions=("default", "fine")) ->
     return out
 
 
+def cost(duration: str, repeats: int = 2) -> dict:
+    import lubedyn
+    from lubedyn.scenes import tapered as S
+
+    rows = {"formula": [], "grease_ehl": []}
+    for _ in range(repeats):
+        for film in rows:
+            S._RACEWAY_EHL.clear()  # every grease run pays its own EHL solves (the scene caches them per process)
+            case = lubedyn.load_case("trb_fig5_2400rpm", overrides=[f"integrator.duration='{duration}'",
+                                                                  f"lubricant.raceway_film={film}"])
+            t0 = time.perf_counter()
+            s = S.run(case).summary
+            row = {k: s.get(k) for k in ("Build time [s]", "Integration wall time [s]", "RK4 step [s]",
+                                         "Skew, loaded zone, mean [rad]", "Cage slip, mean [-]")}
+            row["Run wall time [s]"] = time.perf_counter() - t0
+            if FILMS in s:
+                row["EHL solves wall time [s]"] = sum(s[FILMS][r]["EHL solve wall time [s]"] for r in ("cup", "cone"))
+            rows[film].append(row)
+            print(f"{film}: " + json.dumps(row), flush=True)
+    best = {film: {k: min(r[k] for r in rs) for k in ("Build time [s]", "Integration wall time [s]",
+                                                      "Run wall time [s]")} for film, rs in rows.items()}
+    ratio = {k: best["grease_ehl"][k] / best["formula"][k] for k in best["formula"]}
+    return {"duration": duration, "runs": rows, "fastest of each": best, "ratio grease_ehl / formula": ratio,
+            "target": "the run with the grease's films within 2x of the default's"}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("what", choices=("runs", "factors"))
-    ap.add_argument("--duration", default="60 ms")
+    ap.add_argument("what", choices=("runs", "factors", "cost"))
+    ap.add_argument("--duration", default=None)
     ap.add_argument("--phi", type=float, nargs="+", default=None)
     a = ap.parse_args(argv)
     path = RESULTS / "trb_raceway_film.json"
     data = json.loads(path.read_text()) if path.exists() else {}
     if a.what == "runs":
-        data["runs"] = {"duration": a.duration, "results": runs(a.duration, a.phi or (2.44, 38.44))}
+        duration = a.duration or "60 ms"
+        data["runs"] = {"duration": duration, "results": runs(duration, a.phi or (2.44, 38.44))}
+    elif a.what == "cost":
+        data["cost"] = cost(a.duration or "180 ms")
     else:
         data["factors"] = factors(a.phi or (8.44,))
     data["machine"] = machine_info()

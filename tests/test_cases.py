@@ -582,7 +582,7 @@ def check_trb_fig5_traction_map(s, case):
     """Fig. 5's point with the raceway traction from the roller EHL maps: as check_trb_fig5_2400rpm (the
     loads are the quasi-static ones whatever the traction law), the fidelity says "map", and RK4's
     automatic step follows the maps' low-slip slope (tests/test_trb_traction_map.py checks that slope
-    against the maps themselves), longer than the strip law's 2.2 us elastic step at this point."""
+    against the maps themselves), longer than the strip law's step at this point (2.86 us taken)."""
     assert case["model"]["traction"] == "map"
     assert s["Fidelity"]["traction"] == "map"
     # the summary names what the traction read: both maps, their build hash and their own lubricant

@@ -910,7 +910,11 @@ class TaperedRunModel:
         scene["Integration wall time [s]"] = timing.integration
         if self.case.integrator.method == "rk4":
             scene["RK4 stable step estimate [s]"] = self.stable
-            scene["RK4 step [s]"] = self.dt
+            scene["RK4 step bound [s]"] = self.dt
+            # the integrator cuts each sample interval into ceil(interval/bound) equal steps
+            # (lubedyn.dynamics.integrators): the step it takes is interval/n, up to the bound
+            interval = self.case.integrator.sample_interval
+            scene["RK4 step [s]"] = interval / max(1, math.ceil(interval / self.dt * (1.0 - 1e-12)))
         return scene
 
     def _frames(self):
