@@ -28,6 +28,9 @@ What the quasi-steady EHL film can and cannot describe there (measured with this
 - at collision loads the steady EHL film is beyond the solver: Moes M = W (2U)^-3/4 ~ 4000-6000 at
   100-250 N with u_e 0.4-1 m/s (L ~ 12-15), while the Newton solvers converge up to M ~ 256 on 33 x 33
   and ~1000 on 129 x 129 nodes; 250 N at u_e = 1, 0.1, 0.01 m/s failed on 33 x 33 (line search stalls);
+- with this kind on the smoke grid: 20 N, u_e 1 m/s, v 1e-3 m/s (M = 310) converges (h_c 0.232 um, K 1.53e7
+  N/m, 40 s; the solver's own resolution check puts h_c 8-9 % above the 65 x 65 grid's), 100 N, u_e 0.4
+  m/s, v 1e-2 m/s (M = 3083) does not (line-search stalls, 19 s);
 - the quasi-steady pure squeeze film has no physical state at collision loads: with the whole film
   thinning at the approach speed, the flux out of the Hertz zone needs |dp/dr| = 6 eta(p) v r/h^3, and
   at 100 N (p ~ 3 GPa, Roelands eta ~ 1e9 Pa s) no film of micrometres carries v = 0.1 m/s; the solver
