@@ -47,7 +47,7 @@ def test_registry_kinds_pickle_and_evaluate_to_closed_form():
     ball_ball kind, pickled and evaluated with an isoviscous oil at its default axes' centre,
     gives the closed-form squeeze force (finite domain, smoke mesh: measured -3.3e-3)."""
     assert set(fp.KINDS) == {"ball_ball", "ehl_ball_inner_race", "ehl_ball_outer_race", "ehl_roller_cone", "ehl_roller_cup",
-                             "ehl_rib"}
+                             "ehl_rib", "ehl_ball_ball"}
     for name, kind in fp.KINDS.items():
         assert kind.name == name
         assert all("[" in a.name and a.name.endswith("]") for a in kind.axes)

@@ -22,6 +22,10 @@ kind                       film
                            of contact, on a line-load axis (per slice:
                            stiffness and damping times the slice length)
 ``ehl_roller_cup``         the same on the cup (outer race)
+``ehl_ball_ball``          two neighbouring balls of paper B through an EHL film
+                           (quasi-steady squeeze and entrainment, Roelands,
+                           Dowson-Higginson; module ``ehl_ball_ball``: what
+                           it reaches and why not the collision states)
 ``ehl_rib``                roller end / cone rib EHL point contact of paper A
                            per flange load and entrainment speed (module
                            ``rib``: where the solver reaches it)
@@ -320,6 +324,10 @@ from lubedyn.film_points.ehl import (  # noqa: F401  (the package's API: names u
     transition_slide_to_roll, saturated_transition, normalised_slip, LIGHTER_LOAD_STEP, ROLLER_LINE_LOADS,
     couette_profile, maxwell_traction, roller_grease_params,
 )
+from lubedyn.film_points.ehl_ball_ball import (  # noqa: F401  (the package's API)
+    EHL_BALL_BALL_AXES, EHL_BALL_BALL_OUTPUTS, EHL_BALL_BALL_RESOLUTIONS, ehl_ball_ball_default_params,
+    evaluate_ehl_ball_ball,
+)
 from lubedyn.film_points.rib import (  # noqa: F401  (the package's API: names used by maps, scenes and tests)
     RIB_AXES, RIB_OUTPUTS, RIB_RESOLUTIONS, ehl_rib_default_params, evaluate_ehl_rib, rib_contact, rib_geometry,
 )
@@ -338,6 +346,16 @@ KINDS: dict = {
         default_params=ball_ball_default_params,
         field=field_ball_ball,
         derived=ball_ball_derived,
+    ),
+    "ehl_ball_ball": PointKind(
+        name="ehl_ball_ball",
+        description=("EHL film between two neighbouring balls of paper B's cage-less 6206 (R = 4.7625 mm each, both "
+                     "elastic, E* 113 GPa; Table 1 oil, Roelands matched to alpha 1.85e-8, Dowson-Higginson): "
+                     "quasi-steady squeeze and entrainment, load balance; K, C by secants, limiting-shear traction"),
+        axes=EHL_BALL_BALL_AXES,
+        outputs=EHL_BALL_BALL_OUTPUTS,
+        evaluate=evaluate_ehl_ball_ball,
+        default_params=ehl_ball_ball_default_params,
     ),
     "ehl_ball_inner_race": PointKind(
         name="ehl_ball_inner_race",

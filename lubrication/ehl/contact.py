@@ -22,6 +22,9 @@ def supg_parameter(um, dx, rho, h, k):
     Peclet number Pe = u_m dx rho h / (2 k), k = rho h^3/(12 eta) (so Pe = 6 u_m dx eta/h^2,
     rho cancels), capped at 1e8; tau = dx/(2 u_m) (coth Pe - 1/Pe) (Pe/3 below 1e-3) and its
     exact derivative d tau/d Pe (0 at the cap).  Returns ``(Pe, tau, dtau_dPe)``."""
+    if um == 0.0:  # pure squeeze: no transport term, no stabilisation (tau u_m = 0)
+        z = np.zeros(np.broadcast(rho, h, k).shape)
+        return z, z, z
     Pe_raw = um * dx * rho * h / (2 * np.maximum(k, 1e-300))
     Pe = np.minimum(Pe_raw, 1e8)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
@@ -123,6 +126,8 @@ class EHLContact:
     ``radius_y=None`` makes a line contact (``load`` then in N/m).  Give
     ``load`` (load balance finds h00) or ``approach`` = h00 [m] (prescribed:
     h00 is the rigid-body separation, -h00 the approach of the bodies).
+    ``mean_speed`` = u_m >= 0; u_m = 0 is a pure squeeze film (no transport term; the film then
+    needs ``squeeze_velocity`` < 0 to carry a load, and has no Moes numbers: M = inf, L = 0).
     ``slide_to_roll`` = (u2 - u1)/u_m; ``squeeze_velocity`` = dh00/dt [m/s]
     (negative: the bodies approach; the Reynolds equation gets the source
     rho dh00/dt).  ``scale_load`` [N or N/m]: with a prescribed approach, the
@@ -147,7 +152,11 @@ class EHLContact:
         if self.radius_y is not None:
             require_positive("radius_y [m]", self.radius_y)
         require_positive("reduced modulus E* [Pa]", self.e_star)
-        require_positive("mean (entrainment) speed [m/s]", self.mean_speed)
+        if not (self.mean_speed >= 0.0 and np.isfinite(self.mean_speed)):
+            raise InputError(f"mean (entrainment) speed [m/s] = {self.mean_speed!r} must be >= 0 (0: pure squeeze)")
+        if self.mean_speed == 0.0 and self.load is not None and not self.squeeze_velocity < 0.0:
+            raise InputError(f"squeeze_velocity = {self.squeeze_velocity!r} m/s with mean_speed = 0 and a load: a pure "
+                             "squeeze film carries a load only while the bodies approach (squeeze_velocity < 0)")
         if (self.load is None) == (self.approach is None):
             raise InputError("an EHL contact needs exactly one of 'load' or 'approach'")
         if self.load is not None:
@@ -187,6 +196,8 @@ class EHLContact:
 
     @property
     def moes_M(self) -> float:
+        if self.U == 0.0:
+            return float("inf")
         return self.W * (2 * self.U) ** (-0.5 if self.is_line else -0.75)
 
     @property

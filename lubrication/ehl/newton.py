@@ -41,6 +41,8 @@ def _film_guess(c: EHLContact) -> float:
     iteration did not recover: measured failures at M = 40, 50, 100 on 33 x 33.)
     """
     U, G, W = c.U, max(c.G, 1e-3), c.W
+    if U == 0.0:
+        return _squeeze_film_guess(c)
     if c.lubricant.herschel_bulkley is not None:
         return hb_apparent_start(c)[1]
     if c.is_line:
@@ -49,6 +51,40 @@ def _film_guess(c: EHLContact) -> float:
     k = (c.radius_y / c.radius_x) ** (2 / np.pi)
     shape = (1 - 0.61 * np.exp(-0.73 * k)) / (1 - 0.61 * np.exp(-0.73))
     return float(nijenbanning_central(c.moes_M, max(c.moes_L, 1e-6)) * np.sqrt(2 * U) * shape) * c.radius_x
+
+
+def _squeeze_film_guess(c: EHLContact) -> float:
+    """Central film start of a pure squeeze contact (u_m = 0, approach speed v = -dh00/dt > 0) [m]: the
+    thicker of the rigid isoviscous film that carries the load (sphere-plane squeeze, F = 6 pi eta0 R_x R_y
+    v/h; line, per length: F = 3 sqrt(2) pi eta0 v (R/h)^1.5) and the film at
+    which the rigid film's central pressure reaches 1/alpha (3 alpha eta0 R v/h^2 = 1, Grubin's reasoning
+    for the inlet of an EHL film)."""
+    visc = c.lubricant.viscosity
+    eta0, alpha = visc.eta0, visc.pressure_viscosity
+    v = max(-c.squeeze_velocity, 0.0)
+    W = c.hertz_load()
+    if c.is_line:
+        R = c.radius_x
+        h_iso = (3 * np.pi * np.sqrt(2.0) * eta0 * R**1.5 * v / W) ** (2 / 3)
+    else:
+        R = np.sqrt(c.radius_x * c.radius_y)
+        h_iso = 6 * np.pi * eta0 * c.radius_x * c.radius_y * v / W
+    h_pole = np.sqrt(3 * alpha * eta0 * R * v)
+    floor = 1e-3 * hertz_film_scale(c)
+    return float(max(h_iso, h_pole, floor))
+
+
+def hertz_film_scale(c: EHLContact) -> float:
+    """b^2/R_x [m] of the contact's Hertz zone (the EHL film scale)."""
+    from ..laws import contact as hertz
+
+    W = c.hertz_load()
+    if c.is_line:
+        b = hertz.line_contact(W, c.radius_x, c.e_star).b
+    else:
+        hp = hertz.point_contact(W, c.radius_x, c.radius_y, c.e_star)
+        b = hp.b if c.radius_y >= c.radius_x else hp.a
+    return b * b / c.radius_x
 
 
 def hb_apparent_start(c: EHLContact):
