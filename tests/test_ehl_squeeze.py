@@ -51,6 +51,25 @@ def test_heavy_isoviscous_squeeze_approach_is_hertz():
     assert s.load == pytest.approx(Q, rel=1e-6)
     assert -s.h00 + s.central_film_thickness == pytest.approx(hp.approach, rel=0.02)
     assert s.minimum_film_thickness < s.central_film_thickness
+    # a squeeze film, not a trapped-oil state: the largest pressure is the Hertz pressure's (measured 1.04 x)
+    assert s.info["checks"]["squeeze_pressure"]["ratio"] == pytest.approx(1.0, abs=0.1) and not s.info["warnings"]
+
+
+def test_trapped_oil_state_of_a_piezoviscous_squeeze_is_flagged():
+    """Roelands (paper B's oil), 0.1 N, 1e-3 m/s, 33 x 33 nodes from the squeeze start: Newton converges to a
+    state peaking at 19.5 GPa, 55 x the Hertz pressure (17 / 25 nodes: 1.65 / 2.1 x: no grid-independent
+    quasi-steady film), which the solver's a-posteriori check names (and raises under EHLOptions.strict)."""
+    from lubedyn.lubrication.errors import ConvergenceError
+    from lubedyn.lubrication.laws.lubricant import Roelands
+
+    oil = lub.Lubricant(Roelands(ETA, alpha=1.85e-8), lub.Incompressible(992.0))
+    c = EHLContact(R, R, 113003603013.43, oil, 0.0, load=0.1, squeeze_velocity=-1e-3)
+    grid = EHLGrid(nx=33, ny=33, x_min=-3, x_max=3, y_max=3)
+    s = solve_ehl(c, grid, EHLOptions())
+    assert s.info["checks"]["squeeze_pressure"]["ratio"] > 3.0
+    assert any("trapped-oil state" in w for w in s.info["warnings"])
+    with pytest.raises(ConvergenceError, match="trapped-oil state"):
+        solve_ehl(c, grid, EHLOptions(strict=True))
 
 
 def test_pure_squeeze_needs_an_approach():

@@ -46,7 +46,11 @@ What the quasi-steady EHL film can and cannot describe there (measured with this
   um against Hertz 5.698 um), and at light loads the piezoviscous film converges where the pressure
   stays low: Roelands, 33 x 33, converged at 0.1 N / 1e-3 m/s (p_max 0.25 GPa, h_c 0.090 um, rigid
   isoviscous 0.053 um), not at 0.1 N / 1e-2, 1 N / 1e-4 and 1e-3 m/s (line-search stalls) and with a
-  spurious trapped state at 0.1 N / 1e-4 m/s (p_max 20 GPa).  With entrainment the film is the steady EHL
+  spurious trapped state at 0.1 N / 1e-4 m/s (p_max 20 GPa); the same 0.1 N / 1e-3 m/s from the solver's
+  own squeeze start converges to a trapped state too (19.5 GPa, 55 x Hertz; 1.65 / 2.1 x on 17 / 25
+  nodes): the quasi-steady piezoviscous squeeze film is not unique and not grid-independent, and the
+  solver's a-posteriori check now names such states (``SQUEEZE_PRESSURE_LIMIT`` of
+  :mod:`lubedyn.lubrication.ehl.checks`).  With entrainment the film is the steady EHL
   film with the squeeze as a perturbation, and light loads converge (:data:`EHL_BALL_BALL_AXES`).
 """
 from __future__ import annotations

@@ -16,6 +16,13 @@ log = logging.getLogger(__name__)
 
 FORMULA_TOLERANCE = 0.10
 COARSE_TOLERANCE = 0.13
+#: a pure squeeze contact (u_m = 0) whose largest pressure exceeds this multiple of the Hertz pressure is
+#: not a quasi-steady squeeze film: measured on two 6206 balls (paper B's oil, Roelands, 33 x 33 nodes), the
+#: steady equations also admit trapped-oil states, 0.1 N at 1e-3 m/s from the squeeze start: p_max 19.5 GPa,
+#: 55 x Hertz; 100 N at 0.1 m/s from an isoviscous continuation: 42 GPa, 12 x Hertz, h_c 72 um against a 5.7
+#: um Hertz approach), while the isoviscous squeeze film at 100 N peaks at 1.04 x Hertz; EHL films' outlet
+#: spikes reach 2-3 x (Venner & Lubrecht 2000)
+SQUEEZE_PRESSURE_LIMIT = 3.0
 # The resolution check for every density, viscosity and flow law (FORMULA_TOLERANCE and
 # COARSE_TOLERANCE: lubrication/ehl/budget.py).  Chosen on Moes line contacts, M = 100 ... 2000,
 # L = 5, 10, 20, with Barus, Dowson-Higginson (DH), Roelands + DH, Reynolds-Eyring (tau0 = 0.3 and 1 MPa)
@@ -228,7 +235,9 @@ def check_solution(sol: EHLSolution) -> list[str]:
     - for line contacts, whether the inlet is long enough: the pressure a tenth of the inlet length
       from the inlet boundary must be below :data:`INLET_TOLERANCE` of the maximum, or the film is
       starved by the domain (too thin: the inlet of a light, fast contact scales with sqrt(2 R h), not
-      with the Hertz half-width).
+      with the Hertz half-width);
+    - for pure squeeze contacts (u_m = 0) with a load, the largest pressure against
+      :data:`SQUEEZE_PRESSURE_LIMIT` times the Hertz pressure (a trapped-oil state otherwise).
 
     Each failed check is one line naming the figures and the grid needed (the closed form and the
     resolution check, when both fail, share one line); they are logged (WARNING) and listed in
@@ -279,6 +288,14 @@ def check_solution(sol: EHLSolution) -> list[str]:
                            f"{ratio:.1e} of the maximum (> {INLET_TOLERANCE:g}), so the film ({hc:.4g} m) is thinner "
                            f"than a flooded contact's (measured: 1.4e-2 gave -13 %); use grid.x_min <= "
                            f"{4.0 * P.g.x_min:g}")
+    if c.U == 0.0 and c.load is not None:
+        ratio = sol.maximum_pressure / P.ph
+        checks["squeeze_pressure"] = dict(ratio=ratio, limit=SQUEEZE_PRESSURE_LIMIT)
+        if ratio > SQUEEZE_PRESSURE_LIMIT:
+            out.append(f"EHL pure squeeze film on {grid}: its largest pressure {sol.maximum_pressure:.4g} Pa is "
+                       f"{ratio:.3g} x the Hertz pressure (> {SQUEEZE_PRESSURE_LIMIT:g}): a trapped-oil state of the "
+                       "quasi-steady equations, not a squeeze film (at such loads the film in the Hertz zone is "
+                       "frozen over an impact: a transient solve, lubedyn.lubrication.ehl.impact, is the reference)")
     info["checks"] = checks
     info["warnings"] = list(out)
     if out and P.o.strict:
