@@ -573,6 +573,9 @@ def _newton(film: _Film, p, h0, c, hist_rho_h, hist_h0, hist_v, p_scale, tol, ma
             raise ConvergenceError(f"singular Newton matrix ({err})") from err
         if not np.all(np.isfinite(dx)):
             raise ConvergenceError("non-finite Newton step")
+        scale = max(float(p.max()), 1e-6 * p_scale)
+        if float(np.max(np.abs(dx[:n]))) <= tol * scale and abs(dx[n]) <= tol * h_scale:
+            return np.maximum(p + dx[:n], 0.0), h0 + dx[n], it  # the Newton correction is below tolerance
         f0 = merit(phi)
         lam = 1.0
         while True:
@@ -592,7 +595,6 @@ def _newton(film: _Film, p, h0, c, hist_rho_h, hist_h0, hist_v, p_scale, tol, ma
         step_p = float(np.max(np.abs(p_try - p))) if n else 0.0
         step_h = abs(h_try - h0)
         p, h0 = p_try, h_try
-        scale = max(float(p.max()), tol * p_scale)
         if step_p <= tol * scale and step_h <= tol * h_scale and lam == 1.0:
             return p, h0, it
         G, E, Jp, Jh0, dE_dp, dE_dh0 = system(p, h0)
