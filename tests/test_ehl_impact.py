@@ -82,7 +82,7 @@ def test_rigid_slow_approach_is_reynolds_squeeze_film():
     """Rigid spheres, isoviscous, incompressible, a heavy body (v stays 1 mm/s): the film force after
     50 steps (h0 = 0.5 um) against F = 6 pi eta R^2 v [1/h0 - 1/h_out - (h_out - h0)/h_out^2] (p = 0 at
     r_out = 0.2 mm): -0.86 % on 40 nodes, -0.22 % on 80 (order 2.0 in dr); with r_out = 1 mm on 400 nodes
-    the force is within 0.7 % of 6 pi eta R^2 v/h0 (the infinite film)."""
+    the force is 0.67 % below 6 pi eta R^2 v/h0 (the infinite film; 0.20 % below its finite-film form)."""
     errs = []
     for n in (40, 80):
         res = _rigid(0.05, 2e-4, n, 1e-5, 50)
@@ -91,7 +91,7 @@ def test_rigid_slow_approach_is_reynolds_squeeze_film():
         assert res.h0[-1] == pytest.approx(0.5e-6, rel=1e-4)
     assert abs(errs[0]) < 0.009 and abs(errs[1]) < 0.0023
     assert math.log2(errs[0] / errs[1]) == pytest.approx(2.0, abs=0.1)
-    res = _rigid(0.05, 1e-3, 400, 1e-5, 50)
+    res = _rigid(0.05, 1e-3, 400, 1e-6, 5, h_start=0.505e-6)
     infinite = 6 * math.pi * 0.05 * R_EFF**2 * (-res.v[-1]) / res.h0[-1]
     assert res.force[-1] / infinite - 1 == pytest.approx(0.0, abs=0.007)
 
@@ -102,7 +102,10 @@ def test_rigid_slow_approach_is_reynolds_squeeze_film():
 
 def test_thin_oil_impact_is_hertz_impact():
     """eta = 1e-4 Pa s (isoviscous): the film force, the largest rigid overlap and the time with h0 < 0
-    against Hertz's impact (Johnson sec. 11.4: F* 14.28 N, delta* 1.555 um, t_c 45.8 us), restitution -> 1."""
+    against Hertz's impact (Johnson sec. 11.4: F* 14.28 N, delta* 1.555 um, t_c 45.8 us), restitution -> 1.
+    Measured (60 nodes, 100 steps per t_c): force -0.67 %, approach +0.22 %, duration -1.0 % (one step),
+    e = 0.9983; the film is a few nm (h_min -15 nm at the contact edge, where the conductance is held at
+    h_floor: the dry limit is a contact through a vanishing film)."""
     pb = _problem(Lubricant(ConstantViscosity(1e-4), Incompressible(992.0)), h_start=2e-7)
     hz = hertz_impact(R_EFF, E_STAR, M_EFF, 0.1)
     res = simulate_impact(pb, ImpactNumerics(nodes=MEASURED["dry_nodes"], steps_per_contact=MEASURED["dry_spc"]))
@@ -115,6 +118,56 @@ def test_thin_oil_impact_is_hertz_impact():
 
 
 MEASURED = dict(dry_nodes=60, dry_spc=100, dry_tol=0.01)
+
+
+# ---------------------------------------------------------------------------------------------------------
+# 3. energy balance, 4. convergence order
+
+ISO = Lubricant(ConstantViscosity(0.05), Incompressible(992.0))
+
+
+@pytest.fixture(scope="module")
+def iso_runs():
+    """Paper B's oil viscosity (0.05 Pa s) isoviscous and incompressible, at 0.1 m/s from 1 um:
+    {(nodes, steps per Hertz duration): result}."""
+    pb = _problem(ISO)
+    return {(n, spc): simulate_impact(pb, ImpactNumerics(nodes=n, steps_per_contact=spc))
+            for n, spc in ((40, 50), (40, 100), (40, 200), (20, 100), (80, 100))}
+
+
+def test_kinetic_energy_lost_is_the_films_viscous_dissipation(iso_runs):
+    """m (v_in^2 - v_out^2)/2 against the time integral of D = 2 pi int h^3/(12 eta) (dp/dr)^2 r dr
+    (the film's Poiseuille dissipation; no energy stays in the bodies after separation): 2.63e-6 J of
+    8.88e-6 J lost (e = 0.839); the film's integral is short by 1.23 %, 0.38 %, 0.14 % at 50, 100, 200
+    steps per Hertz duration (40 nodes), the gap closing with dt (BDF2's own damping and the trapezoidal
+    integral of D)."""
+    rel = [iso_runs[(40, spc)].energy_dissipated_film / iso_runs[(40, spc)].energy_dissipated - 1
+           for spc in (50, 100, 200)]
+    assert all(r < 0 for r in rel)
+    assert abs(rel[1]) < 0.004 and abs(rel[2]) < 0.0015
+    assert abs(rel[0]) / abs(rel[1]) > 2.5 and abs(rel[1]) / abs(rel[2]) > 2.2
+    res = iso_runs[(40, 200)]
+    assert res.energy_dissipated / res.kinetic_energy_in == pytest.approx(1 - res.restitution**2, rel=1e-12)
+    assert 0.25 < res.energy_dissipated / res.kinetic_energy_in < 0.35
+
+
+def _order(a, b, c):
+    return math.log2(abs(a - b) / abs(b - c))
+
+
+def test_measured_convergence_order(iso_runs):
+    """Measured orders (Richardson, three resolutions halving): in dt (40 nodes; 50/100/200 steps per
+    Hertz duration) the largest force converges at order 2.1 (BDF2); in dr (20/40/80 nodes, 100 steps)
+    the restitution at order 2.0 and the largest force at 2.3.  The restitution in dt is not monotone at
+    these steps (differences 1.4e-4, -3.9e-5): its error is below 2e-4."""
+    f = [iso_runs[(40, spc)].force_max for spc in (50, 100, 200)]
+    assert _order(*f) == pytest.approx(2.0, abs=0.3)
+    e = [iso_runs[(n, 100)].restitution for n in (20, 40, 80)]
+    assert _order(*e) == pytest.approx(2.0, abs=0.2)
+    f = [iso_runs[(n, 100)].force_max for n in (20, 40, 80)]
+    assert _order(*f) == pytest.approx(2.0, abs=0.4)
+    e = [iso_runs[(40, spc)].restitution for spc in (50, 100, 200)]
+    assert max(e) - min(e) < 2e-4
 
 
 # ---------------------------------------------------------------------------------------------------------
