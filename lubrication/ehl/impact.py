@@ -489,8 +489,8 @@ def _simulate(problem: ImpactProblem, numerics: ImpactNumerics) -> ImpactResult:
     p_prev = p.copy()
     e_film = 0.0
     d_old = 0.0
-    while t < t_max:
-        dt = min(dt, t_max - t) if t_max - t > 1e-12 * dt_nominal else dt
+    while t < t_max - 1e-9 * dt_nominal:
+        dt = min(dt, t_max - t)
         c = _bdf_coefficients(dt, dt_prev if prev is not None else None)
         if prev is None:
             hist_rho_h = c[1] * rho_h
