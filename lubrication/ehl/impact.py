@@ -89,7 +89,7 @@ at 0.2 m/s: e = 0.904 from 6.5 um, 0.892 from 13 um); compare quasi-steady laws 
 from the same start gap.
 
 Cost (one core, 2-core machine shared with other jobs, load 6-7): 0.5-1.5 s per impact at 40-60 nodes
-and 100-200 steps per Hertz duration; 8-18 s at 160 nodes and 300 steps (benchmarks/impact_ehl.py).
+and 100-200 steps per Hertz duration; 5-29 s at 160 nodes and 300 steps (benchmarks/impact_ehl.py).
 The dense (N+1)^2 solve per Newton iteration dominates; 3-5 iterations per step.
 
 Hertz impact (Johnson 1985, sec. 11.4): :func:`hertz_impact` gives the closed-form maximum approach
