@@ -19,6 +19,9 @@ F >= 0 the film force pushing the bodies apart and F_ext an optional constant fo
 together (gravity for a drop).  eta(p) and rho(p) are any Newtonian laws of
 :mod:`lubedyn.lubrication.laws.lubricant` (Barus, Roelands, Dowson-Higginson).
 
+Where the film would close (h below h_floor = 1e-6 h_start, the dry limit) its conductance is held at
+h_floor: the bodies then touch through a vanishing film and the solids carry the load.
+
 Cavitation is the complementarity (Reynolds-type) condition: where the film would need a negative
 pressure, p = 0 and the residual G = d(rho h)/dt - div(...) >= 0.  It is *not* mass conserving: the
 film that leaves a cavitated region is not tracked (a JFO/Elrod model would carry a fill fraction);
@@ -242,7 +245,7 @@ class ImpactNumerics:
     """Resolution of :func:`simulate_impact`.
 
     ``nodes`` N radial intervals; ``r_out`` [m] (None: the larger of 3 Hertz radii and the radius where
-    the undeformed gap is 16 h_start); ``dt`` [s] (None: the Hertz duration / ``steps_per_contact``;
+    the undeformed gap is 4 h_start); ``dt`` [s] (None: the Hertz duration / ``steps_per_contact``;
     rigid bodies: h_start / speed / ``steps_per_contact``); ``t_max`` [s] (None: 20 times h_start/speed
     plus 10 Hertz durations); ``tol`` relative Newton tolerance; ``max_newton`` iterations per step;
     ``keep_profiles``: store p(r) and h(r) at every step."""
