@@ -90,15 +90,15 @@ def iaaft(x, n=1, seed=0, *, max_iter=IAAFT_MAX_ITER) -> np.ndarray:
     out = np.empty((n, x.size))
     for i in range(n):
         s = rng.permutation(x)
-        ranks = np.argsort(np.argsort(s))
+        order = np.argsort(s, kind="stable")
         for _ in range(int(max_iter)):
             S = np.fft.rfft(s)
-            y = np.fft.irfft(amp * np.exp(1j * np.angle(S)), x.size)
-            new_ranks = np.argsort(np.argsort(y))
-            s = sorted_x[new_ranks]
-            if np.array_equal(new_ranks, ranks):
+            y = np.fft.irfft(amp * (S / np.maximum(np.abs(S), 1e-300)), x.size)
+            new_order = np.argsort(y, kind="stable")
+            s[new_order] = sorted_x  # rank-order the series' values onto y
+            if np.array_equal(new_order, order):
                 break
-            ranks = new_ranks
+            order = new_order
         out[i] = s
     return out
 
