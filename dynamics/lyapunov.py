@@ -1431,13 +1431,15 @@ def assess_largest_lyapunov(x, dt, *, method="wolf", dim=None, delay=None, evolv
              f"{np.std(good, ddof=1) if good.size >= 2 else float('nan'):.2g} over {good.size} {surrogate} surrogates, "
              f"z = {z:.2g}")
     elif not insensitive:
+        refused = [k for k, v in grid.items() if not np.isfinite(v)]
         why = (f"the false-neighbour minimum dimension is {fnn.minimum_dim or f'above {FNN_MAX_DIM}'}, dim = {dim}"
-               if under else f"estimates {np.nanmin(vals):.4g}-{np.nanmax(vals):.4g} 1/s, median {plateau:.4g}, "
+               if under else f"the estimator refused (dim, delay, evolve) = {refused}" if refused else f"estimates {np.nanmin(vals):.4g}-{np.nanmax(vals):.4g} 1/s, median {plateau:.4g}, "
                f"over dim +-1, delay and evolve x 2/3, 3/2: {spread:.0%} > {settings_tolerance:.0%}")
         v = f"depends on the embedding settings ({why})"
     elif not converged:
         v = (f"not converged (the running estimate moved over {SETTLED:.0%} over the second half)" if not settled
-             else f"not converged (standard error {u:.2g} 1/s over {int(ok.sum())} "
+             else f"not converged (fewer than 2 of {win.size} windows long enough for these settings)"
+             if not np.isfinite(u) else f"not converged (standard error {u:.2g} 1/s over {int(ok.sum())} "
                   f"{'members' if members is not None else 'windows'} > {WINDOW_RESOLVED:.0%} of {e_main:.4g})")
     else:
         v = "positive" if e_main > VERDICT_FACTOR * u else "not positive"

@@ -187,3 +187,33 @@ def test_assessment_bad_input():
         L.assess_largest_lyapunov(x, 1.0, n_surrogates=1)
     with pytest.raises(DynamicsInputError, match="constant"):
         L.assess_largest_lyapunov(np.ones(100), 1.0)
+
+
+def test_chaos_on_a_large_periodic_orbit_is_not_resolved():
+    """Lorenz x plus 100 sin(2 pi t / 3.7) (the orbit 5 times the chaotic range), 5,000 samples at 0.01:
+    the record alone at the Lorenz settings (dim 3, delay = evolve = 0.17) says "positive" and resolved
+    at 0.82 1/s (x0 = 1; 0.78, not converged, at x0 = 2), the guarded default settings (delay 0.61, the
+    mutual-information minimum of the sum) give 0.086 and 0.114 1/s (0.1x the Lorenz exponent) and
+    "depends on the embedding settings" (spread 0.75, 0.76); with amplitude 20 "not distinguishable
+    from its surrogates".  Its 1,250-sample windows are too short for these settings."""
+    Y = _flow(lorenz, LORENZ, [1.0, 1.0, 20.0], 0.01, 5000, 20.0)
+    x = Y[:, 0] + 100.0 * np.sin(2.0 * np.pi * np.arange(5000) * 0.01 / 3.7)
+    alone = L.largest_lyapunov_wolf(x, 0.01, dim=3, delay=17, evolve=17)
+    assert alone.verdict == "positive" and alone.resolved
+    a = L.assess_largest_lyapunov(x, 0.01)
+    assert not a.resolved and a.verdict.startswith("depends on the embedding settings")
+    assert a.exponent < 0.2 * LORENZ_L1 and not np.isfinite(a.uncertainty)
+
+
+def test_members_give_the_uncertainty():
+    """With ``members`` (independent records of the same system) the estimate is their mean and the
+    uncertainty std / sqrt(K) over them: here three Lorenz x records (x0 = 1, 2, 3), each member's value
+    the estimator's own on that record with the same settings (1.070, 0.839, 0.710 at 5,000 samples,
+    dim 3, delay = evolve = 17; mean 0.873 +- 0.105, 3.6 % below 0.906: "positive")."""
+    xs = [_flow(lorenz, LORENZ, [1.0 + k, 1.0, 20.0], 0.01, 5000, 20.0)[:, 0] for k in range(3)]
+    a = L.assess_largest_lyapunov(xs[0], 0.01, dim=3, delay=17, evolve=17, members=xs[1:])
+    own = [L.largest_lyapunov_wolf(x, 0.01, dim=3, delay=17, evolve=17,
+                                   theiler=a.settings["theiler"]).exponent for x in xs]
+    assert np.allclose(a.window_exponents, own, rtol=0, atol=0)
+    assert a.exponent == pytest.approx(np.mean(own)) and a.uncertainty == pytest.approx(np.std(own, ddof=1) / math.sqrt(3))
+    assert a.exponent == pytest.approx(LORENZ_L1, rel=0.15) and a.verdict == "positive"
