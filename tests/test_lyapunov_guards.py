@@ -92,8 +92,8 @@ def test_false_nearest_neighbours_find_the_dimension_of_known_attractors():
 def test_wolf_lorenz_is_resolved_positive_near_the_published_value(offset):
     """Lorenz x, 5,000 samples at 0.01 (about 50 orbits), default settings (delay = evolve = the
     mutual-information delay, dim = the false-neighbour minimum, 3).  Measured over initial conditions
-    x0 = 1, 2, 3: 1.070, 1.025, 0.721 1/s (+18, +13, -20 % of 0.906), surrogates 3.6-4.7 1/s (z -13 to
-    -15), settings spread 0.04-0.23, window standard error 0.10-0.16: "positive" and resolved each time.
+    x0 = 1, 2, 3: 1.070, 1.025, 0.721 1/s (+18, +13, -20 % of 0.906), surrogates 3.7-4.6 1/s (z -14 to
+    -22), settings spread 0.04-0.23, window standard error 0.10-0.16: "positive" and resolved each time.
     Tolerance 30 %, and within 3 window uncertainties."""
     Y = _flow(lorenz, LORENZ, [1.0 + offset, 1.0, 20.0], 0.01, 5000, 20.0)
     a = L.assess_largest_lyapunov(Y[:, 0], 0.01)
@@ -106,7 +106,7 @@ def test_wolf_lorenz_is_resolved_positive_near_the_published_value(offset):
 
 def test_wolf_henon_is_resolved_positive():
     """Henon x, 2,000 iterations, dim 2, delay 1, evolve 1: measured over x0 = 0.10, 0.11, 0.12 0.416,
-    0.400, 0.404 per iteration (-0.7, -4.7, -3.7 % of 0.4192), surrogates 1.35-1.37 (z -39 to -47),
+    0.400, 0.404 per iteration (-0.7, -4.7, -3.7 % of 0.4192), surrogates 1.35-1.37 (z -46 to -67),
     settings spread 0.03-0.07: "positive" and resolved; tolerance 8 %."""
     a = L.assess_largest_lyapunov(_henon_x(2000, 0.1), 1.0, dim=2, delay=1, evolve=1)
     assert a.verdict == "positive" and a.resolved
@@ -120,8 +120,8 @@ def test_wolf_henon_is_resolved_positive():
 ])
 def test_wolf_noise_is_not_distinguishable_from_its_surrogates(kind, make, dt):
     """The record alone calls noise chaos (Wolf's batch-means verdict "positive" and resolved: white
-    noise 149-709 1/s, AR(1) 23-32 1/s over seeds 0-2, depending on the delay chosen); its 19 IAAFT
-    surrogates give the same (measured z -1.0 to 1.8, the estimate inside their range): "not
+    noise 149-709 1/s, AR(1) 21-34 1/s over seeds 0-2, depending on the delay chosen); its 19 IAAFT
+    surrogates give the same (measured z -0.9 to 2.0): "not
     distinguishable from its surrogates (linear noise)", not resolved.  The false-neighbour search
     finds no dimension either."""
     x = make()
@@ -132,23 +132,33 @@ def test_wolf_noise_is_not_distinguishable_from_its_surrogates(kind, make, dt):
     assert a.result.verdict == "positive"  # what the unguarded estimate says
 
 
-def test_quasi_periodic_signal_is_not_called_positive():
-    """sin t + 0.7 sin(sqrt 2 t), 5,000 samples at 0.05 (lambda = 0): Wolf gives 0.0002, -0.001, 0.0006
-    1/s over three start times, its surrogates 0.08-0.11 1/s (z -5.6 to -8: not linear noise), but the
-    settings grid moves it to 0.03-0.64 1/s (the delay x 3/2), 300-50,000 % of the estimate: "depends
-    on the embedding settings", never "positive"."""
+def test_quasi_periodic_signal_is_resolved_not_positive():
+    """sin t + 0.7 sin(sqrt 2 t), 5,000 samples at 0.05 (lambda = 0): Wolf gives 0.0002, -0.0012, 0.0006
+    1/s over three start times (window uncertainty 0.004-0.007), its surrogates 0.077-0.106 1/s (z -5.0
+    to -7.3: not linear noise), the settings grid -0.001 to 0.004 1/s, within 35 % of the resolution
+    2 x uncertainty: "not positive", resolved, each time.  (Judged relative to the estimate itself, as
+    a positive one is, the grid's 0.001 1/s scatter around 0.0002 was 700-6,000 %.)"""
     t = np.arange(5000) * 0.05
     a = L.assess_largest_lyapunov(np.sin(t) + 0.7 * np.sin(math.sqrt(2.0) * t), 0.05)
-    assert abs(a.exponent) < 0.01 and not a.resolved
-    assert a.verdict != "positive" and "positive" not in a.verdict.split("(")[0]
-    assert a.verdict.startswith("depends on the embedding settings")
+    assert abs(a.exponent) < 0.01 and abs(a.exponent) < L.VERDICT_FACTOR * a.uncertainty
+    assert a.verdict == "not positive" and a.resolved
+    assert a.distinguishable and a.surrogate_z < -L.SURROGATE_Z
+
+
+def test_a_pure_sine_is_not_distinguishable_from_its_surrogates():
+    """A pure sine (period 17.3 samples, 5,000 samples): its IAAFT surrogates are sines too (a line
+    spectrum with new phases); Wolf -3e-5 per sample against -0.0075 +- 0.0072 (z 1.0): not
+    distinguishable, never "positive"."""
+    a = L.assess_largest_lyapunov(np.sin(2.0 * np.pi * np.arange(5000) / 17.3), 1.0)
+    assert a.verdict.startswith("not distinguishable") and not a.resolved and abs(a.exponent) < 1e-3
 
 
 def test_lorenz96_coordinate_depends_on_the_delay():
     """One coordinate of Lorenz-96 (10 sites, F = 8; lambda_1 = 1.15 1/s by Benettin), 5,000 samples at
     0.05: Wolf gives 1.81, 1.10, 1.74 1/s over three initial conditions, but 2.18-2.94 at delay x 3/2
-    and 3.5-3.7 at evolve x 2/3 (settings spread 0.62-0.98), no false-neighbour dimension up to 10, and
-    the 19 surrogates give the same (z -2.7 to 0.1): not resolved, the settings guard fails."""
+    and 3.5-3.7 at evolve x 2/3 (settings spread 0.62-0.98), no false-neighbour dimension up to 10; the
+    19 surrogates give the same for x0 perturbed at sites 0 and 1 (z -1.4, 0.4), not at site 2 (z -3.2,
+    "depends on the embedding settings"): not resolved, the settings guard fails each time."""
     y0 = np.full(10, 8.0)
     y0[0] += 0.01
     Y = _flow(lorenz96, (8.0,), y0, 0.05, 5000, 50.0)
@@ -161,7 +171,7 @@ def test_lorenz96_coordinate_depends_on_the_delay():
 
 def test_rosenstein_ar1_noise_is_not_distinguishable():
     """Rosenstein's slope on AR(1) noise (phi 0.95, 4,000 samples): 233 1/s, its surrogates 231 +- 6
-    (z 0.28): not distinguishable."""
+    (z 0.32; seed 1: the estimator refuses the record, no divergence rise): not distinguishable."""
     a = L.assess_largest_lyapunov(_ar1(4000, 0.95, 0), 1e-3, method="rosenstein")
     assert a.verdict.startswith("not distinguishable") and not a.resolved
 
@@ -169,7 +179,7 @@ def test_rosenstein_ar1_noise_is_not_distinguishable():
 def test_rosenstein_lorenz_is_resolved_positive():
     """Lorenz x, 5,000 samples, m = 5, delay 0.1, fit 1.0-2.5 (the module's settings): measured 0.955,
     0.803, 0.672 1/s over x0 = 1, 2, 3 (+5, -11, -26 %: the method's low bias and the short record),
-    surrogates about 0 (z 14-33), spread 0.02-0.04; here x0 = 3, the worst; tolerance 35 %."""
+    surrogates about 0 (z 14-32), spread 0.02-0.04; here x0 = 3, the worst; tolerance 35 %."""
     Y = _flow(lorenz, LORENZ, [3.0, 1.0, 20.0], 0.01, 5000, 20.0)
     a = L.assess_largest_lyapunov(Y[:, 0], 0.01, method="rosenstein", dim=5, delay=10, t_follow=3.0,
                                   fit_range=(1.0, 2.5))
