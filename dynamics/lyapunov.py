@@ -1228,8 +1228,8 @@ def mutual_information_delay(x) -> int:
 
 @dataclass(frozen=True)
 class FalseNeighbours:
-    """Result of :func:`false_nearest_neighbours`: ``dims`` (1 .. max_dim) and ``fractions`` of false
-    nearest neighbours in each; ``minimum_dim`` the first dimension with a fraction below
+    """Result of :func:`false_nearest_neighbours`: ``dims`` (1 .. the minimum, or max_dim) and
+    ``fractions`` of false nearest neighbours in each; ``minimum_dim`` the first dimension with a fraction below
     ``FNN_THRESHOLD`` (None when none up to ``max_dim``)."""
 
     dims: np.ndarray
@@ -1247,7 +1247,8 @@ def false_nearest_neighbours(x, delay, *, max_dim=FNN_MAX_DIM, theiler=None, rto
     :func:`mean_period` with dt = 1); the pair is false when adding the (d+1)-th coordinate separates it
     by more than ``rtol`` (15) times its distance R_d (their criterion 1), or when its distance in d + 1
     dimensions exceeds ``atol`` (2) standard deviations of ``x`` (criterion 2, which marks noise).  The
-    first d with a fraction below ``threshold`` is the minimum embedding dimension.  At most
+    first d with a fraction below ``threshold`` is the minimum embedding dimension, where the search
+    stops (``fractions`` end there).  At most
     ``max_points`` evenly spaced reference points are tested (all points are candidate neighbours).
 
     Measured (tests/test_lyapunov_guards.py, 1,000 reference points): Lorenz x (5,000 samples at 0.01,
@@ -1282,8 +1283,9 @@ def false_nearest_neighbours(x, delay, *, max_dim=FNN_MAX_DIM, theiler=None, rto
         false = (extra > rtol * r) | (np.sqrt(r ** 2 + extra ** 2) > atol * sd)
         dims.append(d)
         fractions.append(float(np.mean(false)))
-        if minimum is None and fractions[-1] < threshold:
+        if fractions[-1] < threshold:
             minimum = d
+            break
     return FalseNeighbours(dims=np.asarray(dims), fractions=np.asarray(fractions), minimum_dim=minimum)
 
 

@@ -90,7 +90,7 @@ def iaaft(x, n=1, seed=0, *, max_iter=IAAFT_MAX_ITER, tol=IAAFT_TOLERANCE) -> np
         raise DynamicsInputError(f"max_iter = {max_iter!r} must be >= 1 and tol = {tol!r} >= 0")
     rng = np.random.default_rng(seed)
     amp = np.abs(np.fft.rfft(x))
-    norm = float(np.linalg.norm(amp))
+    tol2 = float(tol) ** 2 * float(np.sum(amp * amp))
     sorted_x = np.sort(x)
     out = np.empty((n, x.size))
     for i in range(n):
@@ -98,7 +98,8 @@ def iaaft(x, n=1, seed=0, *, max_iter=IAAFT_MAX_ITER, tol=IAAFT_TOLERANCE) -> np
         order = np.argsort(s)
         for _ in range(int(max_iter)):
             S = np.fft.rfft(s)
-            if np.linalg.norm(np.abs(S) - amp) <= tol * norm:
+            d = np.abs(S) - amp
+            if np.sum(d * d) <= tol2:  # np.sum, not a BLAS norm (a BLAS dot took 13 ms here under load)
                 break
             y = np.fft.irfft(amp * (S / np.maximum(np.abs(S), 1e-300)), x.size)
             new_order = np.argsort(y)
