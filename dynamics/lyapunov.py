@@ -92,8 +92,8 @@ by +-25 % on Lorenz, which the uncertainty does not include.
 
 Guards of a time-series exponent (:func:`assess_largest_lyapunov`)
 ------------------------------------------------------------------
-Wolf's and Rosenstein's estimators give a number for any series, and their own verdicts (``WolfResult
-.verdict`` / ``.resolved``, ``RosensteinResult.verdict``) judge it by the spread along that one record:
+Wolf's and Rosenstein's estimators give a number for any series, and their own verdicts
+(``WolfResult.verdict`` / ``.resolved``, ``RosensteinResult.verdict``) judge it by the spread along one record:
 white noise gets 961 +- 8 bits/s and AR(1) noise (phi 0.95) 45.8 +- 2.0 bits/s, "positive" and resolved.
 :func:`assess_largest_lyapunov` adds three guards and calls an estimate resolved only when all pass:
 
