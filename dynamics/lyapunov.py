@@ -1417,6 +1417,9 @@ def assess_largest_lyapunov(x, dt, *, method="wolf", dim=None, delay=None, evolv
        settled (moved at most ``SETTLED`` = 20 % over the second half, or 2 uncertainties for an estimate
        that is not positive).
 
+    With ``members`` the surrogates, the false neighbours and the settings grid are those of ``x`` (the
+    first member); the estimate and its uncertainty are the members' mean and std / sqrt(K).
+
     The verdict is "positive" (estimate beyond ``VERDICT_FACTOR`` uncertainties) or "not positive" only
     when all three pass; otherwise it names the first guard that failed, in the order above.
 
@@ -1458,10 +1461,11 @@ def assess_largest_lyapunov(x, dt, *, method="wolf", dim=None, delay=None, evolv
     dim = (fnn.minimum_dim or 3) if dim is None else int(dim)
     evolve = (delay if evolve is None else int(evolve)) if method == "wolf" else None
     res = _estimate(method, x, dt, dim, delay, evolve, theiler, options)
-    if res is None:  # the estimator's own error for the whole record
+    if res is None:  # raise the estimator's own error for the whole record
         if method == "wolf":
             largest_lyapunov_wolf(x, dt, dim=dim, delay=delay, evolve=evolve, theiler=theiler, **options)
-        largest_lyapunov_rosenstein(x, dt, dim=dim, delay=delay, theiler=theiler, **options)
+        else:
+            largest_lyapunov_rosenstein(x, dt, dim=dim, delay=delay, theiler=theiler, **options)
     e0 = float(res.exponent)
     # 3. windows or members
     if members is not None:
