@@ -19,6 +19,8 @@ spin-up and the burst of collisions: at full size (0.1 s, the case's duration, a
 estimated (and not resolved: its uncertainty, 52 of 104 bits/s, is not below half its value), x and y ask for a longer record, as the
 summary's ``"..., note"`` entries say; at smoke size (5 ms) only the whole-system (Benettin) exponents are computed.
 """
+import os
+from pathlib import Path
 import math
 
 import matplotlib
@@ -30,7 +32,8 @@ import numpy as np
 from lubedyn.scenes import dynamics as dynamics_scene
 from lubedyn.config import CASES_DIR, load_case
 
-from _common import SMOKE, png
+SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 
 def main():
@@ -76,7 +79,8 @@ def main():
     d.set_title("largest exponents (grey: not resolved / not positive)", fontsize=9)
     d.tick_params(axis="x", labelsize=8)
     fig.tight_layout()
-    fig.savefig(png("cageless_rotor_drop"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "cageless_rotor_drop.png", dpi=100)
     out = {"rotor speed, largest deviation from the friction law [-]":
            float(np.max(np.abs(rotor[slipping] / law[slipping] - 1))),
            "samples while slipping": int(slipping.sum()),
