@@ -892,14 +892,15 @@ def _phase_portraits(t, centres, j: int):
     psi = np.unwrap(np.arctan2(centres[:, :, 1], centres[:, :, 0]), axis=0)
     lead = psi[:, j] - psi.mean(axis=1)
     arc = r[:, j] * (lead - lead.mean())
-    for i, (x, label) in enumerate(((r[:, j], "r"), (arc, "s"), (centres[:, j, 2], "z"))):
-        axes[1, i].plot(x * 1e3, np.gradient(x, t), lw=0.5, color="C1")
+    r_mean = float(r[:, j].mean())
+    for i, (x, scale, label) in enumerate(((r[:, j] - r_mean, 1e6, "r"), (arc, 1e3, "s"), (centres[:, j, 2], 1e6, "z"))):
+        axes[1, i].plot(x * scale, np.gradient(x, t), lw=0.5, color="C1")
         axes[1, i].set_ylabel(f"d{label}/dt [m/s]")
-    axes[1, 0].set_xlabel("r, radial [mm]")
+    axes[1, 0].set_xlabel(f"r - {r_mean * 1e3:.4g} mm, radial [um]")
     axes[1, 1].set_xlabel("s, along the orbit vs ball train [mm]")
-    axes[1, 2].set_xlabel("z [mm]")
+    axes[1, 2].set_xlabel("z [um]")
     for ax in axes.ravel():
-        ax.ticklabel_format(useOffset=False)
+        ax.locator_params(axis="x", nbins=4)  # long tick labels (an orbit at -23.02 mm) never overlap
     axes[0, 1].set_title("fixed (inertial) frame: the orbit dominates x and y", fontsize=10)
     axes[1, 1].set_title("frame turning with the ball train: orbit removed", fontsize=10)
     fig.suptitle(f"phase portraits, ball {j}")

@@ -111,6 +111,10 @@ def zone_times(t, series, ball: int, t_spinup, scenario: str = "drop") -> dict:
 POINCARE_MIN_POINTS = 10
 
 
+def _duration(seconds: float) -> str:
+    return f"{seconds * 1e3:.3g} ms" if seconds < 1.0 else f"{seconds:.3g} s"
+
+
 def poincare_shortfall(t, azimuth, points: int, minimum: int = POINCARE_MIN_POINTS) -> str | None:
     """None when a section has at least ``minimum`` points, else why not and how long a run would give
     them: one point per orbit of the ball, whose period is taken from its mean orbital speed over the
@@ -124,8 +128,8 @@ def poincare_shortfall(t, azimuth, points: int, minimum: int = POINCARE_MIN_POIN
     why = f"only {points} section point{'s' if points != 1 else ''} (fewer than {minimum}) in {span * 1e3:.3g} ms"
     if rate > 0:
         period = 2 * math.pi / rate
-        why += (f": one per orbit, {period * 1e3:.3g} ms at the ball's mean orbital speed; a record of about "
-                f"{minimum * period * 1e3:.3g} ms would give {minimum}")
+        why += (f": one per orbit, {_duration(period)} at the ball's mean orbital speed; a record of about "
+                f"{_duration(minimum * period)} would give {minimum}")
     return why
 
 
