@@ -1,7 +1,7 @@
 """What a first run shows: every figure the bearing scenes write (smoke runs of the README's main job, the
 cage-less rotor drop, and of the tapered roller bearing of paper A) has each of its titles, labels and
 notes inside the figure (matplotlib's own layout: the window extent of every drawn text artist after
-``fig.canvas.draw()``, against the figure's bounding box), a Poincare section with too few points says
+``fig.canvas.draw()``, against the figure's bounding box) and no two neighbouring tick labels overlap, a Poincare section with too few points says
 so on the figure and in the summary, the phase portraits show the frame turning with the ball train
 beside the fixed frame, and ``lubedyn run`` prints only what was computed."""
 from __future__ import annotations
@@ -27,7 +27,7 @@ def _captured_run(monkeypatch, tmp_path, name):
 
     def check_then_save(path, figure, dpi=120):
         figure.set_dpi(dpi)
-        clipped[path.name] = _clipped_texts(figure)
+        clipped[path.name] = _clipped_texts(figure) + _overlapping_ticks(figure)
         figures[path.name] = _texts(figure)
         return save(path, figure, dpi)
 
@@ -90,6 +90,25 @@ def drop(tmp_path_factory):
         mp.undo()
 
 
+def _overlapping_ticks(figure) -> list[str]:
+    """Neighbouring drawn major tick labels of one axis that overlap (long labels such as -23.0125 on a
+    narrow axis)."""
+    _draw(figure)
+    renderer = figure.canvas.get_renderer()
+    found = []
+    for ax in figure.axes:
+        for axis, lim in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+            lo, hi = sorted(lim)
+            tol = 1e-9 * (hi - lo)
+            shown = [(loc, label) for loc, label in zip(axis.get_majorticklocs(), axis.get_majorticklabels())
+                     if lo - tol <= loc <= hi + tol and label.get_visible() and label.get_text()]
+            boxes = [(label.get_text(), label.get_window_extent(renderer)) for _, label in sorted(shown, key=lambda p: p[0])]
+            for (a, box_a), (b, box_b) in zip(boxes, boxes[1:]):
+                if box_a.overlaps(box_b):
+                    found.append(f"{axis.axis_name} ticks {a!r} and {b!r} of {axis.label.get_text()!r}")
+    return found
+
+
 def test_cageless_figures_not_clipped(drop):
     clipped, figures, result = drop
     assert set(clipped) == {"trajectories.png", "collision_needles.png", "phase_portraits.png", "spectrum.png",
@@ -104,7 +123,8 @@ def test_tapered_figures_not_clipped(monkeypatch, tmp_path):
 
 
 def test_clip_check_finds_a_cut_title():
-    """The check itself: a title wider than its figure is reported, the same title wrapped is not."""
+    """The checks themselves: a title wider than its figure is reported, the same title wrapped is not;
+    overlapping tick labels are reported, fewer ticks are not."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -118,6 +138,11 @@ def test_clip_check_finds_a_cut_title():
 
     ax.set_title(textwrap.fill(long, 40), fontsize=8)
     assert _clipped_texts(fig) == []
+    ax.set_xlim(-23.02, -23.0095)           # a ball's y near -23 mm: nine long tick labels on four inches
+    ax.set_xticks(np.linspace(-23.02, -23.01, 9))
+    assert len(_overlapping_ticks(fig)) >= 1
+    ax.locator_params(axis="x", nbins=3)
+    assert _overlapping_ticks(fig) == []
     plt.close(fig)
 
 
