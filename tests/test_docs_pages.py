@@ -1,6 +1,6 @@
 """The first-hour pages of the documentation run as written: every ``python`` code block of
 docs/python.md ("From Python in 10 minutes") and docs/study_dask.md ("Run a study on many machines") is
-executed, in order, in one namespace per page, and what the page says it shows is checked against a
+executed (and the README's), in order, in one namespace per page, and what the page says it shows is checked against a
 second source: the summary against the time series and the frame files, the study's loads against the
 film's linearity in the runner speed and the slider's closed form (63.55 kN/m at 5 m/s)."""
 from __future__ import annotations
@@ -15,7 +15,7 @@ DOCS = Path(__file__).resolve().parents[1] / "docs"
 
 
 def blocks(page: str) -> list[str]:
-    """The ``python`` fenced code blocks of a Markdown page, in order."""
+    """The ``python`` fenced code blocks of a Markdown page (relative to docs/), in order."""
     return re.findall(r"^```python\n(.*?)^```", (DOCS / page).read_text(), flags=re.S | re.M)
 
 
@@ -42,6 +42,16 @@ def test_from_python_page_runs(monkeypatch, tmp_path):
     assert len(reader.time_values) == len(list((out / "frames").iterdir()))
     assert (out / "cone_y.png").stat().st_size > 10_000
     assert all(note for note in ns["not_computed"].values())
+
+
+def test_readme_python_block_runs(monkeypatch, tmp_path):
+    """The README's four lines (the main job at smoke size, about 20 s): the run folder holds what
+    ``lubedyn run`` writes, and the collision count of the summary is the number of rows of collisions.csv."""
+    ns = run_page("../README.md", monkeypatch, tmp_path)
+    folder = tmp_path / "runs" / "cageless_10krpm"
+    assert {"summary.json", "timeseries.npz", "bearing.pvd", "poincare.png"} <= {p.name for p in folder.iterdir()}
+    rows = (folder / "collisions.csv").read_text().splitlines()[1:]
+    assert ns["result"].summary["Ball-ball collisions [-]"] == len(rows) >= 1
 
 
 def test_study_page_runs_on_a_local_cluster(monkeypatch, tmp_path):
