@@ -16,7 +16,7 @@ from lubedyn import outputs
 from lubedyn.papers.zhang2024 import figures as pb
 
 
-def _captured_run(monkeypatch, tmp_path, name):
+def _captured_run(monkeypatch, tmp_path, name, overrides=()):
     """Run a bundled case at smoke size into ``tmp_path``; ``({file: clipped texts}, {file: figure}, result)``,
     the figures checked as ``save_figure`` receives them (before they are closed)."""
     import matplotlib
@@ -32,7 +32,7 @@ def _captured_run(monkeypatch, tmp_path, name):
         return save(path, figure, dpi)
 
     monkeypatch.setattr(outputs, "save_figure", check_then_save)
-    case = lubedyn.load_case(name, smoke=True)
+    case = lubedyn.load_case(name, smoke=True, overrides=overrides)
     result = lubedyn.run(case, tmp_path / name, smoke=True)
     return clipped, figures, result
 
@@ -196,3 +196,14 @@ def test_terminal_prints_only_what_was_computed(drop):
     for key in dynamics.HEADLINE:
         if outputs.computed(s.get(key)):
             assert any(line.startswith(key) for line in lines), key
+
+
+def test_too_short_a_record_for_a_spectrum_says_so(monkeypatch, tmp_path):
+    """The transient moved to 0.99 ms of the 1 ms smoke record (2 us samples): 6 samples are left, too few for
+    the spectrum; the figure says so where the spectrum would be, and the summary's dominant frequency is None
+    with the same reason."""
+    _, figures, result = _captured_run(monkeypatch, tmp_path, "cageless_6206_10krpm_short",
+                                       ["analysis.transient=0.99 ms"])
+    assert "no spectrum: 6 samples after analysis.transient = 0.00099 s (at least 16 needed)" in figures["spectrum.png"]
+    key = next(k for k in result.summary if k.startswith("Dominant inner ring acceleration frequency") and k.endswith(", note"))
+    assert result.summary[key] == "not computed: fewer than 16 samples after the transient"

@@ -941,7 +941,7 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     fig, ax = plt.subplots(figsize=(8, 4), layout="constrained")
     keep = t >= case.analysis.transient
     acc = np.gradient(Y[keep, 5], t[keep])  # inner ring vertical acceleration
-    if keep.sum() > 16:
+    if keep.sum() >= 16:  # the summary's dominant frequency needs as many (lubedyn.dynamics.analysis.frequency)
         f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
         # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
         # and the vibration band of the summary (shaded)
@@ -955,6 +955,10 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
                 ax.axvline(value / 1e3, color=f"C{k + 1}", lw=0.8, ls="--", label=f"{name.replace(' [Hz]', '')} {value:.0f} Hz")
         ax.set_xlim(0.0, f_max / 1e3)
         ax.legend(fontsize=7)
+    else:  # too short a record after the transient for a spectrum: the figure says so instead of staying blank
+        ax.text(0.5, 0.5, f"no spectrum: {int(keep.sum())} samples after analysis.transient = "
+                f"{case.analysis.transient:.3g} s (at least 16 needed)", transform=ax.transAxes, ha="center",
+                va="center", fontsize=9, color="C3")
     ax.set_xlabel("frequency [kHz]")
     ax.set_ylabel("inner ring y acceleration [m/s^2]")
     ax.set_title("inner-ring acceleration spectrum")
