@@ -19,8 +19,12 @@ a terminal) and writes
   the film carries the load, Hertz ellipse p0 sqrt(1 - r^2/a^2) once the
   solids touch) for ParaView;
 - PNG plots: ball trajectories (x, y, z), collision-force needles by
-  direction (paper B, figure 5), phase portraits, inner-ring acceleration
-  spectrum with the bearing frequencies marked;
+  direction (paper B, figure 5), phase portraits (fixed frame, and the frame
+  turning with the ball train, where the orbit is removed), inner-ring
+  acceleration spectrum with the bearing frequencies marked (a record too
+  short after ``analysis.transient`` says so on the figure); the figures use
+  matplotlib's constrained layout, long titles wrapped
+  (tests/test_figure_layout.py checks that no text leaves a figure);
 - ``summary.json``: Lyapunov exponents: per direction of ball
   ``analysis.ball`` (inertial x, y, z and co-rotating radial, tangential,
   axial) from each coordinate's time series by Wolf et al.'s

@@ -21,7 +21,12 @@ paper's own rule for its zones:
   :mod:`lubedyn.dynamics.analysis.quadrants`);
 - **Poincare sections** (not in the paper, ``poincare.png``): the ball's
   co-rotating (r, dr/dt) and (z, dz/dt) each time it passes the first slot's
-  azimuth (:func:`section_azimuth`, :func:`lubedyn.dynamics.analysis.poincare.poincare_section`);
+  azimuth (:func:`section_azimuth`, :func:`lubedyn.dynamics.analysis.poincare.poincare_section`); with
+  fewer than :data:`POINCARE_MIN_POINTS` (10) points the figure and the summary
+  (``"Poincare points, ball j, note"``) say so and how long a record would give ten
+  (:func:`poincare_shortfall`; measured: the 1 ms smoke run of the main job has none, and
+  ball 0's mean orbital speed over that millisecond, the ball train starting from rest,
+  gives one point per 196 ms);
 - the dominant inner-ring acceleration frequency in a band (Fig. 11's
   950-1000 Hz at 3,000 rpm; :mod:`lubedyn.dynamics.analysis.frequency`);
 - **phase portraits across speeds** (Figs. 6-8): :func:`compare_runs` reads
