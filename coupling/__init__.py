@@ -19,7 +19,8 @@ The main API, loaded on first use (importing ``lubedyn`` imports nothing heavy):
 - runs: :func:`run` (any scene, by ``case.scene``: :mod:`lubedyn.scenes`) and each scene's own ``run``:
   ``run_film``, ``run_ehl``, ``run_map``, ``run_dynamics``, ``run_static``, ``run_tapered``
   (``lubedyn.scenes.<scene>.run``); each returns the scene's result (``summary``, ``files``) and writes
-  its outputs into ``out_dir`` when given;
+  its outputs into ``out_dir`` when given; the bearing scenes' results read their time series by name
+  (:class:`lubedyn.results.BearingResult`: ``res["Cage speed [rad/s]"]``, ``res.to_xarray()``);
 - films: ``Film`` and ``solve`` of :mod:`lubedyn.lubrication`; maps: ``FilmMap`` of :mod:`lubedyn.maps`;
 - the sub-packages :mod:`lubedyn.lubrication`, :mod:`lubedyn.dynamics`, :mod:`lubedyn.scenes`,
   :mod:`lubedyn.papers` and ``lubedyn.cases``.
@@ -53,6 +54,8 @@ module / package       responsibility
                        fitted power law, accuracy report, self-describing file
 ``papers``             each paper's room: its parameter set, its claims or
                        figures (``wu2018``: paper A, ``zhang2024``: paper B)
+``results``            a bearing run's result by name: ``res["Rotor speed [rad/s]"]``,
+                       units, warnings, ``to_xarray()``
 ``bounds``             physical bounds every output is checked against
 ``limits``             size limits: memory and work estimated before anything
                        is allocated

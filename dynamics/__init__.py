@@ -16,7 +16,9 @@ module           responsibility
 ``interp``       map interpolation kernels (multilinear, monotone cubic, log
                  axes; clamp-and-count or NaN outside the axes)
 ``lyapunov``     Lyapunov spectrum (Benettin), largest exponent of a time
-                 series (Wolf et al. in bits/s, Rosenstein)
+                 series (Wolf et al. in bits/s, Rosenstein) and its guards
+                 (surrogates, false neighbours, settings grid, windows)
+``surrogates``   phase-randomised and IAAFT surrogate series (seeded)
 ``spectra``      amplitude spectra, bearing characteristic frequencies
 ``analysis``     collision events and slip from sampled contact forces
 ``errors``       ``DynamicsInputError``, ``IntegrationError``

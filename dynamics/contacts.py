@@ -340,7 +340,8 @@ def _solid(delta, delta_dot, delta_max, p):
 
 
 @njit(**JIT)
-def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter):
+def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax2, map_vals, map_opts, counter,
+                     h_keep=0.0):
     """Normal force between two balls through the film (see the module docstring).
 
     Parameters: ``g`` rigid gap [m] (centre distance - D), ``v = -dg/dt``
@@ -355,7 +356,13 @@ def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax
     of the approach taken by the solids, d(delta_e)/dt = share * v at fixed v
     (from differentiating F_solid(delta_e) = F_film(g + delta_e, v):
     share = -F_film,h/(F_solid' - F_film,h); 1 for a ruptured film, 0 when
-    separated), which drives the plastic memory."""
+    separated), which drives the plastic memory.
+
+    ``h_keep`` [m] (default 0: none): a film thickness the lock keeps at least, the entrapped film of a
+    contact whose lock thickness h_L(v) falls with the approach speed during the compression (the
+    transient reference, :mod:`lubedyn.lubrication.ehl.impact`, keeps its entrapped central film at
+    0.64-0.69 h_L of the impact speed while h_L(v) itself falls to ~17 nm at the turnaround:
+    benchmarks/impact_ehl.py); the lock is then at max(h_L(v), h_keep)."""
     d_solid = -g if g < 0.0 else 0.0
     F_lo, _, ph = _solid(d_solid, v, delta_max, p)
     if film_kind == FILM_NONE:
@@ -363,7 +370,7 @@ def ball_ball_normal(g, v, ue, delta_max, p, film_kind, map_ax0, map_ax1, map_ax
             return F_lo, 0.0, d_solid, ph, 1.0
         return 0.0, g if g > 0.0 else 0.0, d_solid, PHASE_SEPARATED, 0.0
     x_lo = d_solid
-    h_lock = _lock(v, ue, p, film_kind, map_ax1, map_vals, map_opts)
+    h_lock = max(_lock(v, ue, p, film_kind, map_ax1, map_vals, map_opts), h_keep)
     if h_lock > g + d_solid:  # the film at the lower bracket would be thinner than its lock
         x_lo = h_lock - g
         F_lo, k_lock, ph_lock = _solid(x_lo, v, delta_max, p)

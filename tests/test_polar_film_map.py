@@ -154,6 +154,29 @@ def test_a_locked_film_hands_the_load_to_the_solids(polar):
     assert counter[0] == 0
 
 
+def test_a_kept_film_locks_at_its_thickness_at_any_approach_speed(polar):
+    """``h_keep`` (an entrapped film the lock keeps): near the turnaround of an impact (v -> 0, where h_L(v)
+    -> 0) the pair carries the Hertz force of the approach h_keep - g through a film of thickness h_keep;
+    with h_keep below h_L(v) nothing changes (bit for bit)."""
+    from lubedyn.lubrication.laws.contact import reduced_modulus
+
+    fmap, params, bbp, (ax0, ax1, ax2, vals, opts, _) = polar
+    K = 4.0 / 3.0 * reduced_modulus(207e9, 0.29, 207e9, 0.29) * math.sqrt(bbp.r)
+    counter = np.zeros(1, dtype=np.int64)
+    ue, keep = 0.0, C.locked_gap(0.2, 0.0, bbp.sqf, bbp.r, 0.9 * (1 - 1e-9), bbp.vreg)
+    for v in (1e-3, 1e-2):
+        assert C.locked_gap(v, ue, bbp.sqf, bbp.r, 0.9 * (1 - 1e-9), bbp.vreg) < 0.3 * keep
+        for g in (-0.3e-6, -1e-6):  # elastic: below the yield approach (3.4 um here)
+            F, h, x, phase, share = C.ball_ball_normal(g, v, ue, 0.0, bbp, C.FILM_MAP, ax0, ax1, ax2, vals, opts,
+                                                       counter, keep)
+            assert h == pytest.approx(keep, rel=1e-12) and share == 1.0
+            assert F == pytest.approx(K * (keep - g) ** 1.5, rel=1e-9)
+    g, v = -1e-6, 1.0  # h_L(1 m/s) > keep: the kept film plays no part
+    assert (C.ball_ball_normal(g, v, ue, 0.0, bbp, C.FILM_MAP, ax0, ax1, ax2, vals, opts, counter, 0.5 * keep)
+            == C.ball_ball_normal(g, v, ue, 0.0, bbp, C.FILM_MAP, ax0, ax1, ax2, vals, opts, counter))
+    assert counter[0] == 0
+
+
 def test_a_speed_axis_that_differs_from_the_maps_own_is_refused():
     """A polar map names its own speed axis (lubedyn.dynamics.cageless.layout.BallBallMap): the bearing takes
     it when films.map_speed_axis is not given, and refuses a different one by the key, not overriding it."""

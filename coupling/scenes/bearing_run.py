@@ -25,6 +25,7 @@ from typing import Any, Callable, Protocol
 from lubedyn import outputs
 from lubedyn.compilation import report_compilation
 from lubedyn.config import resolved_toml
+from lubedyn.results import TimeSeries
 from lubedyn.dynamics.errors import DynamicsInputError, IntegrationError
 from lubedyn.dynamics.integrators import integrate as run_integrator
 
@@ -115,4 +116,7 @@ def drive(model: BearingRunModel, out_dir=None, *, name: str, source: str = "", 
         else:
             resolved = resolved_toml(model.case, outputs.resolved_header(name, source, smoke))
             written, summary = outputs.write_bearing_run(out_dir, resolved, summary, model.case.output.write, files)
-        return model.result(summary, written)
+        result = model.result(summary, written)
+        if files.columns is not None:
+            result.series = TimeSeries(files.t, files.columns)  # the names timeseries.npz uses, computed on read
+        return result

@@ -69,6 +69,7 @@ from lubedyn.scenes.dynamics_lyapunov import _benettin, _lyapunov_per_direction
 from lubedyn.config import (CASES_DIR, BoundsModel, LimitsModel, LubricantModel, PositiveInt, PositiveLength, Q,
                             CaseTable, refuse_renamed, rule)
 from lubedyn import limits
+from lubedyn.results import BearingResult
 from lubedyn.dynamics.analysis import collision_events, collision_summary
 from lubedyn.dynamics.analysis.frequency import spectrum_limit
 from lubedyn.dynamics.analysis.motion import run_columns
@@ -503,11 +504,10 @@ def describe(case: DynamicsCase, setup: DynamicsSetup) -> str:
 
 # ---------------------------------------------------------------------------- run
 @dataclass
-class DynamicsRun:
-    summary: dict
-    files: list
-    t: np.ndarray = None
-    y: np.ndarray = None
+class DynamicsRun(BearingResult):
+    """A cage-less bearing run (:class:`lubedyn.results.BearingResult`: ``res["Rotor speed [rad/s]"]``,
+    ``res.to_xarray()``) and its ball-ball collision events."""
+
     events: list = None
 
 

@@ -97,6 +97,7 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import BeforeValidator, Field, model_validator
 
+from lubedyn.results import BearingResult
 from lubedyn.dynamics.analysis.windows import window_summary
 from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
@@ -791,11 +792,10 @@ def summarise(case, model, t, Y, D, qs) -> dict:
 
 
 @dataclass
-class TaperedRun:
-    summary: dict = field(default_factory=dict)
-    files: list = field(default_factory=list)
-    t: Any = None
-    y: Any = None
+class TaperedRun(BearingResult):
+    """A tapered roller bearing run (:class:`lubedyn.results.BearingResult`: ``res["Cage speed [rad/s]"]``,
+    ``res.to_xarray()``) and the kernel's per-roller diagnostics over the samples."""
+
     diagnostics: dict = field(default_factory=dict)
 
 
