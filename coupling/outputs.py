@@ -523,6 +523,28 @@ def read_timeseries(path) -> tuple[dict, dict]:
         return {name: data[name] for name in meta["columns"]}, meta
 
 
+def computed(value) -> bool:
+    """Whether a summary value was computed: not None, not NaN, not a string starting "not computed"
+    (the summary keeps those, with a ``", note"`` entry saying why; the terminal leaves them out)."""
+    if value is None:
+        return False
+    if isinstance(value, float):
+        return value == value
+    if isinstance(value, str):
+        return not value.startswith("not computed")
+    return True
+
+
+def not_computed_line(summary: dict, keys) -> list[str]:
+    """One terminal line counting the ``keys`` of ``summary`` that were not computed (:func:`computed`),
+    pointing at summary.json for the reasons; no line when there are none."""
+    missing = {k.rpartition(" [")[0] if k.endswith("]") else k.removesuffix(" verdict")
+               for k in keys if k in summary and not computed(summary[k])}
+    if not missing:
+        return []
+    return [f"{len(missing)} quantities not computed (the reason of each: its ', note' entry in summary.json)"]
+
+
 # the summary values a film-type scene (film, ehl, map) shows on the terminal, by name prefix
 HEADLINE_PREFIXES = ("Load [", "Load per unit width [", "Load per length [", "Maximum pressure", "Hertz pressure",
                      "Central film", "Minimum film", "Attitude angle", "Eccentricity ratio")
@@ -534,7 +556,7 @@ def headline_lines(summary: dict, prefixes=HEADLINE_PREFIXES) -> list[str]:
     degrees of freedom and run time when the summary has them, else the run time."""
     s = summary
     lines = [f"{key:<36} {s[key]:.6g}" for key in s
-             if key.startswith(prefixes) and isinstance(s[key], (int, float))]
+             if key.startswith(prefixes) and isinstance(s[key], (int, float)) and computed(s[key])]
     if "Newton iterations [-]" in s:
         lines.append(f"{'Newton iterations [-]':<36} {s.get('Newton iterations [-]')}, "
                      f"{s.get('Degrees of freedom [-]')} dofs, {s['Run time [s]']:.3g} s")

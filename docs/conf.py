@@ -62,7 +62,7 @@ sphinx_gallery_conf = {
     "examples_dirs": str(ROOT / "examples"),
     "gallery_dirs": "auto_examples",
     "filename_pattern": r"/[a-z][a-z_]*\.py$",   # every example is executed (not only plot_*.py)
-    "ignore_pattern": r"_common\.py$",
+    "ignore_pattern": r"/_[^/]*\.py$",  # none today: every example imports only lubedyn and public packages
     "within_subsection_order": "FileNameSortKey",
     "download_all_examples": False,
     "remove_config_comments": True,

@@ -23,6 +23,8 @@ from its surrogates" (157 bits/s, z 0.36); at smoke size (5 ms) only the whole-s
 computed.  The error bars of the Wolf estimates are the guards' window spread where it exists, else the record's
 own batch means.
 """
+import os
+from pathlib import Path
 import math
 
 import matplotlib
@@ -34,7 +36,8 @@ import numpy as np
 from lubedyn.scenes import dynamics as dynamics_scene
 from lubedyn.config import CASES_DIR, load_case
 
-from _common import SMOKE, png
+SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 
 def main():
@@ -82,7 +85,8 @@ def main():
     d.set_title("largest exponents (grey: not resolved / not positive)", fontsize=9)
     d.tick_params(axis="x", labelsize=8)
     fig.tight_layout()
-    fig.savefig(png("cageless_rotor_drop"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "cageless_rotor_drop.png", dpi=100)
     out = {"rotor speed, largest deviation from the friction law [-]":
            float(np.max(np.abs(rotor[slipping] / law[slipping] - 1))),
            "samples while slipping": int(slipping.sum()),

@@ -12,6 +12,7 @@ adds about 1 %).  The shipped map is cases/maps/ball_ball.npz (cases/map_ball_ba
 Measured: 8 x 8 nodes (13 s), map 0.4195 N against the direct 0.4199 N (-0.09 %), accuracy median
 0.15 %, pure squeeze within 0.53 % of the closed form; 4 x 4 (smoke) -1.2 %, 0.11 %, 0.70 %.
 """
+import os
 import math
 import tempfile
 from pathlib import Path
@@ -26,7 +27,10 @@ from lubedyn import maps
 from lubedyn.film_points.ball_ball import polar_speeds
 from lubedyn.lubrication.laws.collision import barus_squeeze_film
 
-from _common import SMOKE, png
+import os
+
+SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 
 def main():
@@ -55,7 +59,8 @@ def main():
     ax.set_ylabel(f"force at h0 = {h0 * 1e6:g} um [N]")
     ax.legend()
     fig.tight_layout()
-    fig.savefig(png("film_map"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "film_map.png", dpi=100)
     return {"map force [N]": from_map, "direct force [N]": direct["Force [N]"],
             "accuracy, force median [-]": fmap.accuracy["Force [N]"]["median"],
             "squeeze map/closed form, max deviation [-]": float(np.max(np.abs(np.array(squeeze) / closed - 1)))}

@@ -9,6 +9,8 @@ and Ocvirk's in the load frame; their traces and determinants do not depend on t
 compared (the short-bearing theory is exact as L/D -> 0; at 1/10 it is within a few per cent,
 tests/test_film_coefficients.py measures how the difference falls like (L/D)^2).
 """
+import os
+from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
@@ -19,7 +21,8 @@ from lubedyn.lubrication import Cavitation, Film, JournalBearing, Lubricant
 from lubedyn.lubrication import closed_form as cf
 from lubedyn.lubrication import mesh as meshes
 
-from _common import SMOKE, png
+SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 R, C, ETA, OMEGA = 25e-3, 50e-6, 0.05, 300.0
 L = 0.1 * 2 * R
@@ -57,7 +60,8 @@ def main():
     b.legend()
     fig.suptitle(f"journal R {R * 1e3:g} mm, c {C * 1e6:g} um, L/D 0.1, {OMEGA:g} rad/s")
     fig.tight_layout()
-    fig.savefig(png("journal_coefficients"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "journal_coefficients.png", dpi=100)
     return rows
 
 

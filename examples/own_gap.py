@@ -8,6 +8,8 @@ at 0.7183 of the length (Rayleigh's optimum proportions for a step ratio 1.866) 
 a wide pad the load per unit width tends to Rayleigh's closed form (lubedyn.lubrication.closed_form
 .rayleigh_step_load); the 1-D run is compared with it exactly, the 2-D one shows the side leakage.
 """
+import os
+from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
@@ -18,7 +20,8 @@ from lubedyn.lubrication import Film, FunctionGap, Lubricant
 from lubedyn.lubrication import closed_form as cf
 from lubedyn.lubrication import mesh as meshes
 
-from _common import SMOKE, png
+SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 H_OUT, RATIO, LENGTH, ETA, U = 20e-6, 1.866, 0.02, 0.05, 5.0
 L_IN = 0.7183 * LENGTH
@@ -45,7 +48,8 @@ def main():
     two_d.plot_pressure(ax=b)
     b.set_title(f"square pad: {two_d.load / width:.4g} N/m mean (side leakage)")
     fig.tight_layout()
-    fig.savefig(png("own_gap"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "own_gap.png", dpi=100)
     return {"1-D load [N/m]": one_d.load, "Rayleigh [N/m]": exact, "square pad load per width [N/m]": two_d.load / width}
 
 

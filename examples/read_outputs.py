@@ -9,6 +9,7 @@ ParaView: open ``bearing.pvd`` (the time series of the balls and rings), press A
 "Ball-ball normal force [N]" and play; ``File > Save State`` keeps the view.  The static scene's
 ``bearing.vtu`` (paper A, ``lubedyn run cases/trb_static_radial.toml``) opens the same way.
 """
+import os
 import json
 import tempfile
 from pathlib import Path
@@ -24,7 +25,7 @@ from lubedyn import cli
 from lubedyn.config import CASES_DIR
 from lubedyn.outputs import read_timeseries
 
-from _common import png
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 
 def main():
@@ -48,7 +49,8 @@ def main():
     b.set_xlabel("time [ms]")
     b.set_ylabel("ball 0 axial position [um]")
     fig.tight_layout()
-    fig.savefig(png("read_outputs"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "read_outputs.png", dpi=100)
     return {"Simulated time [s]": summary["Simulated time [s]"], "samples": t.size,
             "frames": len(frames.time_values), "blocks in the last frame": last.n_blocks if hasattr(last, "n_blocks") else 1,
             "last sample time [s]": float(t[-1])}

@@ -7,6 +7,8 @@ Slider: plane pad, h_in = 2 h_out (K = 1), runner at 5 m/s, 50 mm long, oil 0.05
 width against W = 12 eta u_m l^2/(K^2 h_out^2) [ln(1 + K) - 2K/(2 + K)].  Journal: L/D = 1/10 at
 eccentricity 0.6, half-Sommerfeld cavitation: load against Ocvirk's short bearing (within (L/D)^2).
 """
+import os
+from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
@@ -17,7 +19,8 @@ from lubedyn.lubrication import Cavitation, Film, InclinedSlider, JournalBearing
 from lubedyn.lubrication import closed_form as cf
 from lubedyn.lubrication import mesh as meshes
 
-from _common import SMOKE, png
+SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 
 def slider():
@@ -50,7 +53,8 @@ def main():
     j.plot_pressure(ax=b)
     b.set_title(f"journal: |F| {j.load:.4g} N (Ocvirk {wj:.4g})")
     fig.tight_layout()
-    fig.savefig(png("slider_and_journal"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "slider_and_journal.png", dpi=100)
     return {"slider load [N/m]": s.load, "slider exact [N/m]": ws, "journal load [N]": j.load, "Ocvirk [N]": wj}
 
 

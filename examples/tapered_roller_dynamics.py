@@ -9,6 +9,8 @@ axial locked) with and without the roller-end/rib friction, to see what skews th
 (:meth:`lubedyn.dynamics.tapered.model.TaperedBearing.diagnostics`: per roller and sample tilt, skew, slip,
 loads, the loaded-zone marker).  Full size: 10 ms; smoke: 1 ms at 5 slices.
 """
+import os
+from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
@@ -18,7 +20,8 @@ import numpy as np
 from lubedyn.scenes import tapered as S
 from lubedyn.config import CASES_DIR, load_case
 
-from _common import SMOKE, png
+SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 CASE = CASES_DIR / "trb_fig5_2400rpm.toml"
 
@@ -49,7 +52,8 @@ def main():
     b.legend(fontsize=8)
     fig.suptitle("paper A, Fig. 5's point: the rib's friction skews the rollers")
     fig.tight_layout()
-    fig.savefig(png("tapered_roller_dynamics"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "tapered_roller_dynamics.png", dpi=100)
     return out
 
 

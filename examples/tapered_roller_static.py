@@ -8,6 +8,8 @@ under a radial load with the axial motion locked, against Stribeck's estimate of
 module's assumed values (common-apex reading, crowned rollers; pass overrides, e.g.
 ``reconciliation="literal"``); ``lubedyn.dynamics.tapered.quasistatic.solve`` finds the equilibrium.
 """
+import os
+from pathlib import Path
 import math
 
 import matplotlib
@@ -19,7 +21,8 @@ import numpy as np
 from lubedyn.papers.wu2018.parameters import tapered_geometry
 from lubedyn.dynamics.tapered.quasistatic import solve
 
-from _common import SMOKE, png
+SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
+OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 
 
 def main():
@@ -46,7 +49,8 @@ def main():
     b.legend()
     fig.suptitle(f"Fr {fr / 1e3:g} kN, 2,400 rpm, axial locked: {res.stop_reason}")
     fig.tight_layout()
-    fig.savefig(png("tapered_roller_static"), dpi=100)
+    OUT.mkdir(parents=True, exist_ok=True)
+    fig.savefig(OUT / "tapered_roller_static.png", dpi=100)
     return {"most loaded roller, cup [N]": float(res.cup_loads.max()), "Stribeck [N]": stribeck,
             "induced thrust [N]": res.axial_load, "ideal cage speed [rpm]": res.kinematics["cage speed [rad/s]"] * 30 / math.pi}
 

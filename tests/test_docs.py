@@ -42,7 +42,7 @@ def test_docs_build_with_warnings_as_errors(tmp_path):
     html = tmp_path / "html"
     for page in ("index", "readme", "case_reference", "api", "theory/reynolds", "theory/ehl", "theory/maps",
                  "theory/cageless", "theory/tapered", "atlas/index", "atlas/reynolds_fem", "atlas/cavitation",
-                 "atlas/ehl", "atlas/maps", "atlas/integrators", "atlas/lyapunov", "auto_examples/index",
+                 "atlas/ehl", "atlas/maps", "atlas/integrators", "atlas/lyapunov", "auto_examples/index", "python", "study_dask",
                  "auto_examples/cavitation_models", "auto_examples/cageless_rotor_drop", "papers", "paper_a"):
         assert (html / f"{page}.html").is_file(), page
     # every benchmark chart an atlas page shows was found and copied

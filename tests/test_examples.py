@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import importlib.util
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,9 +17,6 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 def example(monkeypatch, tmp_path):
     monkeypatch.setenv("LUBEDYN_SMOKE", "1")
     monkeypatch.setenv("LUBEDYN_EXAMPLE_OUT", str(tmp_path))
-    monkeypatch.syspath_prepend(str(EXAMPLES))
-    for name in ("_common",):
-        sys.modules.pop(name, None)
 
     def load(name):
         spec = importlib.util.spec_from_file_location(f"example_{name}", EXAMPLES / f"{name}.py")
@@ -33,9 +29,22 @@ def example(monkeypatch, tmp_path):
     return load
 
 
+def test_examples_import_nothing_private():
+    """A user copies an example out of the gallery: it imports lubedyn and public packages only, no
+    module of examples/ and no ``_name``."""
+    import ast
+
+    for path in EXAMPLES.glob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                     else [node.module or ""] + [a.name for a in node.names] if isinstance(node, ast.ImportFrom) else [])
+            assert not any(part.startswith("_") and part != "__future__" for n in names for part in n.split(".")), \
+                (path.name, names)
+
+
 def test_every_example_is_tested():
     scripts = {p.stem for p in EXAMPLES.glob("*.py") if not p.stem.startswith("_")}
-    tested = {name[len("test_"):] for name in globals() if name.startswith("test_")} - {"every_example_is_tested"}
+    tested = {name[len("test_"):] for name in globals() if name.startswith("test_")} - {"every_example_is_tested", "examples_import_nothing_private"}
     assert scripts == tested
 
 

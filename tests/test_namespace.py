@@ -133,6 +133,8 @@ def test_a_wheel_installed_away_from_the_checkout_runs_a_bundled_case(tmp_path):
     shipped = {p.relative_to(ROOT / "cases").as_posix() for p in (ROOT / "cases").rglob("*")
                if p.is_file() and "__pycache__" not in p.parts}
     assert {n.removeprefix("lubedyn/cases/") for n in names if n.startswith("lubedyn/cases/")} == shipped
+    # PEP 561: type checkers read the installed packages' hints only with their py.typed marker
+    assert {"lubedyn/py.typed", "lubedyn/lubrication/py.typed", "lubedyn/dynamics/py.typed"} <= set(names)
 
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True, timeout=120)

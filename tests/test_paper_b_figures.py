@@ -73,6 +73,9 @@ def test_figures_have_labelled_axes():
         plt.close(fig)
     summary = pb.summary_entries(_Case, t, s, [event], bearing_frequencies(W / math.pi, 9.525e-3, 2 * R0, Z))
     assert summary["Poincare points, ball 0 [-]"] == 1  # 8 rad in 20 ms: one passage of 270 deg after the start
+    # too few for a section: the note gives the orbit's period, 2 pi / (400 rad/s) = 15.7 ms, and ten of them
+    assert "one per orbit, 15.7 ms" in summary["Poincare points, ball 0, note"]
+    assert "about 157 ms would give 10" in summary["Poincare points, ball 0, note"]
     assert summary["Collisions in quadrant IV (x > 0, y < 0) [-]"] == 1  # on the -y axis: counter-clockwise of it
     assert summary["Zone surge from [s]"] is None
 

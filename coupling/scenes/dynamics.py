@@ -19,8 +19,12 @@ a terminal) and writes
   the film carries the load, Hertz ellipse p0 sqrt(1 - r^2/a^2) once the
   solids touch) for ParaView;
 - PNG plots: ball trajectories (x, y, z), collision-force needles by
-  direction (paper B, figure 5), phase portraits, inner-ring acceleration
-  spectrum with the bearing frequencies marked;
+  direction (paper B, figure 5), phase portraits (fixed frame, and the frame
+  turning with the ball train, where the orbit is removed), inner-ring
+  acceleration spectrum with the bearing frequencies marked (a record too
+  short after ``analysis.transient`` says so on the figure); the figures use
+  matplotlib's constrained layout, long titles wrapped
+  (tests/test_figure_layout.py checks that no text leaves a figure);
 - ``summary.json``: Lyapunov exponents: per direction of ball
   ``analysis.ball`` (inertial x, y, z and co-rotating radial, tangential,
   axial) from each coordinate's time series by Wolf et al.'s
@@ -47,6 +51,7 @@ from __future__ import annotations
 import logging
 import math
 import sys
+import textwrap
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -747,15 +752,17 @@ HEADLINE = ("Simulated time [s]", "Inner ring speed at end [rpm]", "Rotor speed 
 
 
 def headline(summary: dict) -> list[str]:
-    """What ``lubedyn run`` prints for a dynamics run."""
+    """What ``lubedyn run`` prints for a dynamics run: the computed values of :data:`HEADLINE` and the
+    chaos estimators, then one line counting those not computed (each keeps its value and its reason,
+    a ``", note"`` entry, in summary.json)."""
     lines = []
     exponents = tuple(k for k in summary if ("Lyapunov exponent" in k and k.endswith("[1/s]"))
                       or (k.startswith("Wolf exponent") and (k.endswith("[bits/s]") or k.endswith(" verdict"))))
     for key in HEADLINE + exponents:
         value = summary.get(key)
-        if value is not None:
+        if outputs.computed(value):
             lines.append(f"{key:<52} {value:.6g}" if isinstance(value, float) else f"{key:<52} {value}")
-    return lines
+    return lines + outputs.not_computed_line(summary, HEADLINE + exponents)
 
 
 def bearing_frequencies(ring_hz: float, model, extra=None) -> dict:
@@ -871,22 +878,55 @@ class _Scene3D:
         return mesh
 
 
+def _phase_portraits(t, centres, j: int):
+    """Ball ``j``'s phase portraits in two frames: the fixed (inertial) frame, x, y, z against their
+    rates, where the orbit (a circle of the pitch radius) dominates x and y; and the frame turning with
+    the ball train, where the orbit is removed: the radial position r (distance from the bearing axis),
+    the position along the orbit relative to the ball train's mean azimuth (r times the ball's lead
+    over the mean of every ball's unwrapped azimuth, its time mean removed) and z, against their rates."""
+    import matplotlib.pyplot as plt
+
+    vel = np.gradient(centres[:, j, :], t, axis=0)
+    fig, axes = plt.subplots(2, 3, figsize=(11, 6.8), layout="constrained")
+    for i, axis in enumerate("xyz"):
+        axes[0, i].plot(centres[:, j, i] * 1e3, vel[:, i], lw=0.5)
+        axes[0, i].set_xlabel(f"{axis} [mm]")
+        axes[0, i].set_ylabel(f"d{axis}/dt [m/s]")
+    r = np.hypot(centres[:, :, 0], centres[:, :, 1])
+    psi = np.unwrap(np.arctan2(centres[:, :, 1], centres[:, :, 0]), axis=0)
+    lead = psi[:, j] - psi.mean(axis=1)
+    arc = r[:, j] * (lead - lead.mean())
+    r_mean = float(r[:, j].mean())
+    for i, (x, scale, label) in enumerate(((r[:, j] - r_mean, 1e6, "r"), (arc, 1e3, "s"), (centres[:, j, 2], 1e6, "z"))):
+        axes[1, i].plot(x * scale, np.gradient(x, t), lw=0.5, color="C1")
+        axes[1, i].set_ylabel(f"d{label}/dt [m/s]")
+    axes[1, 0].set_xlabel(f"r - {r_mean * 1e3:.4g} mm, radial [um]")
+    axes[1, 1].set_xlabel("s, along the orbit vs ball train [mm]")
+    axes[1, 2].set_xlabel("z [um]")
+    for ax in axes.ravel():
+        ax.locator_params(axis="x", nbins=4)  # long tick labels (an orbit at -23.02 mm) never overlap
+    axes[0, 1].set_title("fixed (inertial) frame: the orbit dominates x and y", fontsize=10)
+    axes[1, 1].set_title("frame turning with the ball train: orbit removed", fontsize=10)
+    fig.suptitle(f"phase portraits, ball {j}")
+    return fig
+
+
 def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     import matplotlib.pyplot as plt
 
     figs = {}
     j = case.analysis.ball
     ms = t * 1e3
-    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True, layout="constrained")
     for i, axis in enumerate("xyz"):
         axes[i].plot(ms, centres[:, j, i] * 1e3, lw=0.8)
         axes[i].set_ylabel(f"ball {j} {axis} [mm]")
     axes[-1].set_xlabel("time [ms]")
-    axes[0].set_title(f"{case.description or 'cage-less bearing'}: ball {j} centre")
-    fig.tight_layout()
+    # a case's description can be longer than the figure is wide: wrapped, never cut
+    axes[0].set_title(textwrap.fill(f"{case.description or 'cage-less bearing'}: ball {j} centre", 80), fontsize=10)
     figs["trajectories.png"] = fig
 
-    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True, layout="constrained")
     for i, axis in enumerate("xyz"):
         if events:
             te = np.array([e.t_peak for e in events]) * 1e3
@@ -898,23 +938,14 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
     axes[0].set_title(f"ball-ball collision forces ({len(events)} collisions)")
     axes[-1].set_xlabel("time [ms]")
     axes[-1].set_xlim(ms[0], ms[-1])
-    fig.tight_layout()
     figs["collision_needles.png"] = fig
 
-    vel = np.gradient(centres[:, j, :], t, axis=0)
-    fig, axes = plt.subplots(1, 3, figsize=(11, 3.6))
-    for i, axis in enumerate("xyz"):
-        axes[i].plot(centres[:, j, i] * 1e3, vel[:, i], lw=0.5)
-        axes[i].set_xlabel(f"{axis} [mm]")
-        axes[i].set_ylabel(f"d{axis}/dt [m/s]")
-    fig.suptitle(f"phase portraits, ball {j}")
-    fig.tight_layout()
-    figs["phase_portraits.png"] = fig
+    figs["phase_portraits.png"] = _phase_portraits(t, centres, j)
 
-    fig, ax = plt.subplots(figsize=(8, 4))
+    fig, ax = plt.subplots(figsize=(8, 4), layout="constrained")
     keep = t >= case.analysis.transient
     acc = np.gradient(Y[keep, 5], t[keep])  # inner ring vertical acceleration
-    if keep.sum() > 16:
+    if keep.sum() >= 16:  # the summary's dominant frequency needs as many (lubedyn.dynamics.analysis.frequency)
         f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
         # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
         # and the vibration band of the summary (shaded)
@@ -928,10 +959,13 @@ def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
                 ax.axvline(value / 1e3, color=f"C{k + 1}", lw=0.8, ls="--", label=f"{name.replace(' [Hz]', '')} {value:.0f} Hz")
         ax.set_xlim(0.0, f_max / 1e3)
         ax.legend(fontsize=7)
+    else:  # too short a record after the transient for a spectrum: the figure says so instead of staying blank
+        ax.text(0.5, 0.5, f"no spectrum: {int(keep.sum())} samples after analysis.transient = "
+                f"{case.analysis.transient:.3g} s (at least 16 needed)", transform=ax.transAxes, ha="center",
+                va="center", fontsize=9, color="C3")
     ax.set_xlabel("frequency [kHz]")
     ax.set_ylabel("inner ring y acceleration [m/s^2]")
     ax.set_title("inner-ring acceleration spectrum")
-    fig.tight_layout()
     figs["spectrum.png"] = fig
     figs.update(paper_b_figures.figures(case, t, run_columns(setup.model, Y, diag, ring), events))
     return figs

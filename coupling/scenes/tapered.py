@@ -1070,6 +1070,7 @@ def _figures(model, t, Y, D, qs) -> dict:
     ax.set_xlabel("cage centre from the cone's, y [um]")
     ax.set_ylabel("z [um]")
     ax.set_aspect("equal", "datalim")
+    ax.locator_params(nbins=4)  # a square of 5 inches: more labels of -0.025 overlap
     fig.tight_layout()
     figs["cage_whirl.png"] = fig
     fig = Figure(figsize=(5, 5))
@@ -1078,6 +1079,7 @@ def _figures(model, t, Y, D, qs) -> dict:
     ax.set_xlabel("cone centre from its start, y [um]")
     ax.set_ylabel("z [um]")
     ax.set_aspect("equal", "datalim")
+    ax.locator_params(nbins=4)  # a square of 5 inches: more labels of -0.025 overlap
     fig.tight_layout()
     figs["cone_orbit.png"] = fig
     fig = Figure(figsize=(10, 4))

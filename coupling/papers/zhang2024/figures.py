@@ -21,7 +21,12 @@ paper's own rule for its zones:
   :mod:`lubedyn.dynamics.analysis.quadrants`);
 - **Poincare sections** (not in the paper, ``poincare.png``): the ball's
   co-rotating (r, dr/dt) and (z, dz/dt) each time it passes the first slot's
-  azimuth (:func:`section_azimuth`, :func:`lubedyn.dynamics.analysis.poincare.poincare_section`);
+  azimuth (:func:`section_azimuth`, :func:`lubedyn.dynamics.analysis.poincare.poincare_section`); with
+  fewer than :data:`POINCARE_MIN_POINTS` (10) points the figure and the summary
+  (``"Poincare points, ball j, note"``) say so and how long a record would give ten
+  (:func:`poincare_shortfall`; measured: the 1 ms smoke run of the main job has none, and
+  ball 0's mean orbital speed over that millisecond, the ball train starting from rest,
+  gives one point per 196 ms);
 - the dominant inner-ring acceleration frequency in a band (Fig. 11's
   950-1000 Hz at 3,000 rpm; :mod:`lubedyn.dynamics.analysis.frequency`);
 - **phase portraits across speeds** (Figs. 6-8): :func:`compare_runs` reads
@@ -106,6 +111,33 @@ def zone_times(t, series, ball: int, t_spinup, scenario: str = "drop") -> dict:
 
 
 # ---------------------------------------------------------------------------- Poincare sections
+#: fewer passages than this and ``poincare.png`` says so on the figure, and the summary why (a section of a
+#: few points shows no structure: a periodic orbit, a torus and chaos all look like scattered dots)
+POINCARE_MIN_POINTS = 10
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds * 1e3:.3g} ms" if seconds < 1.0 else f"{seconds:.3g} s"
+
+
+def poincare_shortfall(t, azimuth, points: int, minimum: int = POINCARE_MIN_POINTS) -> str | None:
+    """None when a section has at least ``minimum`` points, else why not and how long a run would give
+    them: one point per orbit of the ball, whose period is taken from its mean orbital speed over the
+    record (unwrapped ``azimuth`` [rad] against ``t`` [s])."""
+    if points >= minimum:
+        return None
+    t = np.asarray(t, dtype=float)
+    u = np.unwrap(np.asarray(azimuth, dtype=float))
+    span = float(t[-1] - t[0]) if t.size > 1 else 0.0
+    rate = abs(float(u[-1] - u[0])) / span if span > 0 else 0.0
+    why = f"only {points} section point{'s' if points != 1 else ''} (fewer than {minimum}) in {span * 1e3:.3g} ms"
+    if rate > 0:
+        period = 2 * math.pi / rate
+        why += (f": one per orbit, {_duration(period)} at the ball's mean orbital speed; a record of about "
+                f"{_duration(minimum * period)} would give {minimum}")
+    return why
+
+
 def section_azimuth(case) -> float:
     """The Poincare section: the first functional slot's azimuth, else 270 deg (the bottom)."""
     return float(case.slots.azimuths[0]) if case.slots.azimuths else 1.5 * math.pi
@@ -126,6 +158,9 @@ def summary_entries(case, t, series, events, freqs) -> dict:
     motion = ball_motion(t, series, j)
     times, _ = poincare_section(t, motion.azimuth, motion.radius, section_azimuth(case))
     out[f"Poincare points, ball {j} [-]"] = int(times.size)
+    short = poincare_shortfall(t, motion.azimuth, int(times.size))
+    if short is not None:
+        out[f"Poincare points, ball {j}, note"] = f"poincare.png is not a section yet: {short}"
     out.update(vibration_entries(t, series, freqs, case.analysis.vibration_band, case.analysis.transient))
     return out
 
@@ -223,15 +258,17 @@ def poincare_figure(t, series, ball: int, section: float, title: str = ""):
     dots: the ball train shares one steady pattern, so they fill a short run's section)."""
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.3))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.3), layout="constrained")
     z = n_balls(series)
     scatter = None
+    own = 0
     for j in [k for k in range(z) if k != ball] + [ball]:
         m = ball_motion(t, series, j)
         times, vals = poincare_section(t, m.azimuth, np.stack([m.radius, m.radial_velocity, m.position[:, 2],
                                                               m.velocity[:, 2]], axis=1), section)
         for ax, (a, b), scale in zip(axes, ((0, 1), (2, 3)), (1e3, 1e6)):
             if j == ball:
+                own = times.size
                 scatter = ax.scatter(vals[:, a] * scale, vals[:, b], c=times * 1e3, s=30, cmap="viridis",
                                      vmin=t[0] * 1e3, vmax=t[-1] * 1e3, edgecolors="k", lw=0.5, zorder=3,
                                      label=f"ball {ball} ({times.size})")
@@ -248,6 +285,12 @@ def poincare_figure(t, series, ball: int, section: float, title: str = ""):
     if scatter is not None:
         fig.colorbar(scatter, ax=axes, label="time [ms]")
     fig.suptitle(title or f"Poincare sections at azimuth {math.degrees(section):.0f} deg, once per revolution")
+    short = poincare_shortfall(t, ball_motion(t, series, ball).azimuth, own)
+    if short is not None:
+        for ax in axes:
+            ax.text(0.5, 0.5, "too few points for a section:\n" + short.replace(": one per", ":\none per")
+                    .replace("; a record", ";\na record"), transform=ax.transAxes, ha="center", va="center",
+                    fontsize=8, color="C3", wrap=True, bbox=dict(facecolor="white", alpha=0.85, edgecolor="C3"))
     return fig
 
 
