@@ -64,6 +64,23 @@ def test_a_signal_still_moving_in_the_final_window_has_not_settled():
     assert half == pytest.approx(0.05, rel=2e-3) and time_ == pytest.approx(t[1200], abs=1e-5)
 
 
+def test_a_decay_still_running_into_the_final_window_is_record_too_short():
+    """x = A exp(-t/tau) up to the final window (from 15 ms of 20), then an oscillation about 0 with the
+    decay's amplitude there, d = A exp(-15 ms/tau) = 0.106 A > 5 % of A: the band is the final window's own
+    largest deviation d, so the rule's last exit falls on the final window's start -- the record's edge, not
+    a settling time: "record too short".  The same decay with tau = 1 ms settles at tau ln 20."""
+    tau, A = 6.7e-3, 3e-6
+    t = np.linspace(0.0, 0.02, 20001)
+    i = an.final_start(t)
+    d = A * math.exp(-t[i] / tau)
+    x = np.where(t < t[i], A * np.exp(-t / tau), d * np.cos(2 * math.pi * (t - t[i]) / 1e-4))
+    time_, half, note = an.settling_time(t, x, i)
+    assert half == pytest.approx(d, rel=1e-3)  # about the final window's sampled mean, 2e-4 off 0
+    assert time_ is None and note.startswith("record too short")
+    time_, _, note = an.settling_time(t, A * np.exp(-t / 1e-3), i)
+    assert note == "" and time_ == pytest.approx(1e-3 * math.log(20.0), rel=1e-5)
+
+
 def test_spinup_time_of_an_exponential_approach():
     """Ring speed Omega (1 - exp(-t/tau)): within 1 % of the rotor's from tau ln(100) on."""
     tau, rotor = 2e-3, 1047.0

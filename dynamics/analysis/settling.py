@@ -25,7 +25,10 @@ pattern once steady; 14 balls cover the ring within a few milliseconds).
 The radial and tangential residuals are turned into x and y at the ball's
 azimuth (e_x = e_r cos psi, e_vx = e_vr cos psi - e_vt sin psi, ...).
 Direction d settles when both its position and its velocity residual have
-settled (the later of the two).  The orbital speed's residual gets its own
+settled (the later of the two).  A settling time within ``SATURATION_MARGIN`` (5 %) of the record before
+the final window's start, with the band set by the final window itself, is the rule's edge, not a
+settling time (a signal still decaying into the final window leaves the band there): ``None`` with the
+note "record too short".  The orbital speed's residual gets its own
 settling time.  The inner ring's spin-up time (:func:`spinup_time`): when its
 speed comes within ``SPINUP_TOLERANCE`` (1 %) of the rotor's for good.
 """
@@ -46,6 +49,10 @@ BAND_FRACTION = 0.05
 FINAL_MARGIN = 1.0
 AZIMUTH_BINS = 72
 SPINUP_TOLERANCE = 0.01
+#: a settling time within this fraction of the record before the final window's start is the rule's own
+#: edge, not a settling time: a signal still decaying into the final window exits the band, which the final
+#: window's largest deviation sets, right at that window's start (exactly there for a monotone decay)
+SATURATION_MARGIN = 0.05
 
 
 def final_start(t, fraction: float = FINAL_FRACTION) -> int:
@@ -77,7 +84,12 @@ def settling_time(t, x, i_final: int, fraction: float = BAND_FRACTION, margin: f
         return None, half, (f"not settled: leaves its band (+-{half:.3g}) at {t[k]:.4g} s, inside the final window "
                             f"(from {t[i_final]:.4g} s); run longer")
     frac = (dev[k] - half) / (dev[k] - dev[k + 1])
-    return float(t[k] + frac * (t[k + 1] - t[k])), half, ""
+    settled = float(t[k] + frac * (t[k + 1] - t[k]))
+    if settled >= t[i_final] - SATURATION_MARGIN * (t[-1] - t[0]) and half == margin * float(dev[i_final:].max()):
+        return None, half, (f"record too short: it leaves its band (+-{half:.3g}, set by the final window's largest "
+                            f"deviation) at {settled:.4g} s, within {SATURATION_MARGIN:.0%} of the record of the final "
+                            f"window's start ({t[i_final]:.4g} s), so the record cannot tell when it settled; run longer")
+    return settled, half, ""
 
 
 def steady_residuals(azimuth, values, i_final: int, bins: int = AZIMUTH_BINS):
