@@ -67,3 +67,51 @@ def pytest_configure(config):
         from roundoff import perturb_residuals
 
         perturb_residuals(setattr, float(ulps), int(os.environ.get("LUBEDYN_ROUNDOFF_SEED", "1")))
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        _share_compilation_between_workers()
+
+
+def _share_compilation_between_workers():
+    """Under pytest-xdist, one worker compiles a cached numba kernel while the others wait for it,
+    then load it from the on-disk cache, instead of compiling the same kernel at the same time.
+
+    On a cold cache both workers reach the same kernels (the tapered and the cage-less models, the
+    integrators, the Benettin kernel) within seconds of each other, and each compiled its own copy
+    (measured: the tapered model 63-75 s of CPU in each worker).  A lock file per cached function
+    (``fcntl.flock``, in the temp dir, named by the cache's index path) is taken around the
+    outermost ``Dispatcher.compile`` of the process; the waiting worker's compile then finds the
+    signature in the cache, as in a warm run.  Functions numba cannot cache are not locked.
+
+    The workers also compile in process (``LUBEDYN_BACKGROUND_COMPILE=0``, unless set): the second
+    core a run would compile on is the other worker's, and two workers would each start a compiler
+    process for the same kernels.  The tests of that mechanism set the variable themselves."""
+    import fcntl
+    import hashlib
+    import tempfile
+    import threading
+    from pathlib import Path
+
+    from numba.core.caching import NullCache
+    from numba.core.dispatcher import Dispatcher
+
+    os.environ.setdefault("LUBEDYN_BACKGROUND_COMPILE", "0")
+    folder = Path(tempfile.gettempdir()) / "lubedyn-numba-compile-locks"
+    folder.mkdir(exist_ok=True)
+    original = Dispatcher.compile
+    state = threading.local()
+
+    def compile_once(self, sig):
+        index = getattr(getattr(getattr(self, "_cache", None), "_cache_file", None), "_index_path", None)
+        if getattr(state, "depth", 0) or index is None or isinstance(self._cache, NullCache):
+            return original(self, sig)
+        lock = folder / (hashlib.sha1(index.encode()).hexdigest() + ".lock")
+        with open(lock, "a") as fh:
+            fcntl.flock(fh, fcntl.LOCK_EX)
+            state.depth = 1
+            try:
+                return original(self, sig)
+            finally:
+                state.depth = 0
+                fcntl.flock(fh, fcntl.LOCK_UN)
+
+    Dispatcher.compile = compile_once
