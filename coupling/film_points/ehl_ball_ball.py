@@ -156,21 +156,6 @@ def _solve(contact, grid, options, initial=None):
         raise ConvergenceError(f"{first}; viscosity continuation: {exc}") from exc
 
 
-def _traction(sol, sliding):
-    """Limiting-shear traction coefficient int tau dA / Q at sliding speed ``sliding`` [m/s]."""
-    P, c = sol.problem, sol.contact
-    b = P.basis
-    pq = np.maximum(np.asarray(b.interpolate(sol.pressure)), 0.0)
-    hq = np.asarray(b.interpolate(np.maximum(sol.film_thickness, P.o.h_floor * P.hscale)))
-    with np.errstate(over="ignore"):
-        eta = c.lubricant.viscosity(pq)
-    tau = c.traction.stress(eta, sliding, hq, pq)
-    from skfem import Functional
-
-    shear = float(Functional(lambda w: w["t"]).assemble(b, t=tau))
-    return shear / float(c.load)
-
-
 def evaluate_ehl_ball_ball(params: dict, point: dict) -> dict:
     """One quasi-steady EHL ball-ball film at "Load [N]", "Approach speed [m/s]" (> 0), "Entrainment speed
     [m/s]" (>= 0); see the module docstring.  Raises ConvergenceError naming the point."""
@@ -198,7 +183,8 @@ def evaluate_ehl_ball_ball(params: dict, point: dict) -> dict:
         "Central film thickness [m]": float(sol.central_film_thickness),
         "Minimum film thickness [m]": float(sol.minimum_film_thickness),
         "Film stiffness [N/m]": float(K), "Film damping [N s/m]": float(C),
-        "Traction coefficient [-]": _traction(sol, float(params.get("sliding_speed", 4.7))),
+        # limiting-shear traction at the collisions' sliding speed (the solution's own Couette integral)
+        "Traction coefficient [-]": sol.friction(float(params.get("sliding_speed", 4.7))) / Q,
         "Approach [m]": float(-sol.h00),
         "Maximum pressure [Pa]": float(sol.maximum_pressure),
     }

@@ -121,8 +121,10 @@ def axis_key(name: str) -> str:
 
 
 def axis_unit(name: str) -> str:
-    """``"Approach speed [m/s]"`` -> ``"m/s"`` ("" without brackets)."""
-    return name[name.index("[") + 1:name.rindex("]")].strip() if "[" in name and "]" in name else ""
+    """``"Approach speed [m/s]"`` -> ``"m/s"`` ("" without brackets): :func:`lubedyn.results.split_unit`'s unit."""
+    from lubedyn.results import split_unit
+
+    return split_unit(name)[1].strip()
 
 
 def resolve_axes(kind, overrides: dict | None = None) -> tuple[MapAxis, ...]:

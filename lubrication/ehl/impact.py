@@ -68,7 +68,8 @@ Validation (tests/test_ehl_impact.py, each against something independent; paper 
 
 - Hertz's pressure deflected by the ring influence matrix against Johnson's eq. 3.42: largest error 9.4e-4
   (200 nodes) and 3.6e-4 (400 nodes) of the central deflection, at the contact edge.
-- Rigid, isoviscous, slow approach: Reynolds' squeeze force (:func:`squeeze_force_rigid`, finite film)
+- Rigid, isoviscous, slow approach: Reynolds' squeeze force
+  (:func:`lubedyn.lubrication.closed_form.sphere_plane_squeeze_force`, finite film)
   within 0.86 % / 0.22 % on 40 / 80 nodes (order 2.0 in dr); 0.67 % below 6 pi eta R^2 v/h0 with
   r_out = 1 mm.
 - Dry limit (isoviscous 1e-4 Pa s): largest force -0.67 %, largest approach +0.22 %, time of overlap
@@ -112,6 +113,7 @@ import scipy.linalg
 from scipy.special import beta, ellipe, ellipk
 
 from ..errors import ConvergenceError, InputError, require_positive
+from ..laws import contact as hertz
 from ..laws.lubricant import Lubricant
 
 log = logging.getLogger(__name__)
@@ -146,23 +148,10 @@ def hertz_impact(radius: float, e_star: float, mass: float, speed: float) -> Her
     m = require_positive("impact mass [kg]", mass)
     v = require_positive("impact speed [m/s]", speed)
     delta = (15.0 * m * v * v / (16.0 * E * math.sqrt(R))) ** 0.4
-    force = 4.0 / 3.0 * E * math.sqrt(R) * delta**1.5
-    a = math.sqrt(R * delta)
+    force = 4.0 / 3.0 * E * math.sqrt(R) * delta**1.5   # the Hertz force at that approach
+    hp = hertz.point_contact(force, R, R, E)            # its contact radius and peak pressure
     return HertzImpact(approach=delta, force=force, duration=0.8 * float(beta(0.4, 0.5)) * delta / v,
-                       radius=a, pressure=1.5 * force / (math.pi * a * a))
-
-
-def squeeze_force_rigid(radius: float, eta: float, speed: float, h0: float, r_out: float | None = None) -> float:
-    """Reynolds' squeeze force [N] of a rigid sphere (paraboloid h = h0 + r^2/(2R)) approaching a plane
-    at ``speed`` through an isoviscous incompressible film, p = 0 at ``r_out`` (None: infinity)::
-
-        F = 6 pi eta R^2 v [1/h0 - 1/h_out - (h_out - h0)/h_out^2],  h_out = h0 + r_out^2/(2R)
-
-    (integrating the Reynolds equation twice; F -> 6 pi eta R^2 v/h0 as r_out -> infinity)."""
-    if r_out is None:
-        return 6.0 * math.pi * eta * radius**2 * speed / h0
-    h_out = h0 + r_out**2 / (2.0 * radius)
-    return 6.0 * math.pi * eta * radius**2 * speed * (1.0 / h0 - 1.0 / h_out - (h_out - h0) / h_out**2)
+                       radius=hp.a, pressure=hp.p0)
 
 
 # ---------------------------------------------------------------------------------------------------------

@@ -64,23 +64,26 @@ class EHLSolution:
     def load(self) -> float:
         return float(self.problem.weights @ self.pressure)
 
-    def _shear_integrals(self):
+    def _shear_integrals(self, sliding=None):
         P, c = self.problem, self.contact
         b = P.basis
         pf = b.interpolate(self.pressure)
         pq = np.maximum(np.asarray(pf), 0.0)
         hq = np.asarray(b.interpolate(np.maximum(self.film_thickness, P.o.h_floor * P.hscale)))
         eta = c.lubricant.viscosity(pq)
-        sliding = c.slide_to_roll * c.mean_speed
+        if sliding is None:
+            sliding = c.slide_to_roll * c.mean_speed
         couette = c.traction.stress(eta, sliding, hq, pq)
         poiseuille = -0.5 * hq * pf.grad[0]
         ones = np.ones(P.N)
         return (float(asm(source_load_form, b, g=couette) @ ones), float(asm(source_load_form, b, g=poiseuille) @ ones))
 
-    def friction(self) -> float:
+    def friction(self, sliding: float | None = None) -> float:
         """Sliding (Couette) friction force [N, or N/m for lines] that the fluid
-        exerts on the slower surface, from the chosen traction law."""
-        return self._shear_integrals()[0]
+        exerts on the slower surface, from the chosen traction law; at the sliding speed
+        ``sliding`` [m/s] when given (post-processing: the isothermal pressure does not depend
+        on it), else the contact's slide_to_roll x mean_speed."""
+        return self._shear_integrals(sliding)[0]
 
     def rolling_resistance(self) -> float:
         """Poiseuille shear force -(h/2) dp/dx integrated [N or N/m] (rolling friction)."""
