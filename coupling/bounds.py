@@ -124,6 +124,12 @@ BOUNDS: tuple[Bound, ...] = (
           "a film thickness is a distance between two surfaces"),
     Bound(r"Raceway films .* / (?:Factor h_EHL/h_formula \[-\]|(?:Reference|Effective) viscosity \[Pa s\])",
           0.0, None, "a viscosity, and the ratio of two films, is positive"),
+    # the Lyapunov estimates' guards (lubedyn.dynamics.lyapunov.assess_largest_lyapunov)
+    Bound(r".*(?:[Ee]xponent|Lyapunov).* (?:window )?uncertainty \[(?:bits/s|1/s|1/rev)\]", 0.0, None,
+          "an uncertainty is a spread (a standard error), never negative"),
+    Bound(r".* settings spread \[-\]", 0.0, None, "a relative spread of estimates, never negative"),
+    Bound(r".* false-neighbour dimension \[-\]", 1.0, None, "an embedding has at least one dimension"),
+    Bound(r"RK4 step(?: bound)? \[s\]", 0.0, None, "a time step is positive"),
     Bound(r"Load \[N\]", 0.99, 1.01, _BALANCE, scale="applied_load"),
     Bound(r"Load per length \[N/m\]", 0.99, 1.01, _BALANCE, scale="applied_load_per_length"),
 )

@@ -123,6 +123,15 @@ def test_violations_of_each_kind():
     found = v({block: films})
     assert len(found) == 2 and found[0].startswith(f"{block} / cup / Effective viscosity [Pa s] = -1 " + BOUND_LINE)
     assert not v({"Line load [N/m]": -1.0})  # a path bound does not reach a top-level key of another name
+    # the Lyapunov guards' figures and the RK4 step
+    assert v({"Wolf exponent, ball 0 z window uncertainty [bits/s]": -3.0})
+    assert v({"Lyapunov exponent 1, whole system (Benettin) uncertainty [1/s]": -1.0})
+    assert v({"Wolf exponent, ball 0 x settings spread [-]": -0.1})
+    assert v({"Wolf exponent, ball 0 x false-neighbour dimension [-]": 0})
+    assert v({"RK4 step [s]": -1e-6}) and v({"RK4 step bound [s]": -1e-6})
+    assert not v({"Wolf exponent, ball 0 z window uncertainty [bits/s]": 49.99, "Wolf exponent, ball 0 x settings "
+                  "spread [-]": 0.75, "Wolf exponent, ball 0 x false-neighbour dimension [-]": 4,
+                  "RK4 step [s]": 2.857e-6, "Wolf exponent, ball 0 z [bits/s]": -717.8})
 
 
 def test_strict_raises_the_first_and_counts_the_rest():

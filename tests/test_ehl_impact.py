@@ -174,6 +174,21 @@ def test_kinetic_energy_lost_is_the_films_viscous_dissipation(iso_runs):
     res = iso_runs[(40, 200)]
     assert res.energy_dissipated / res.kinetic_energy_in == pytest.approx(1 - res.restitution**2, rel=1e-12)
     assert 0.25 < res.energy_dissipated / res.kinetic_energy_in < 0.35
+    # inside its bounds (restitution in [0, 1], balance within 5 %): the runs say nothing
+    assert all(r.warnings == [] for r in iso_runs.values())
+
+
+def test_an_impact_outside_its_bounds_says_so():
+    """The bounds of an impact's results, each named in one line: a restitution above 1, a negative energy
+    loss, a film dissipation more than 5 % off the kinetic energy lost (the resolved runs: 0.14-1.95 %)."""
+    from lubedyn.lubrication.ehl.impact import impact_bound_warnings
+
+    assert impact_bound_warnings(0.839, 2.63e-6, 2.626e-6, 8.88e-6) == []
+    assert impact_bound_warnings(float("nan"), 1e-6, 1e-6, 8.9e-6) == []  # no separation: logged elsewhere
+    assert impact_bound_warnings(1.01, -1.8e-7, 0.0, 8.9e-6)[0].startswith("restitution 1.01 is outside [0, 1]")
+    assert "negative" in impact_bound_warnings(1.01, -1.8e-7, 0.0, 8.9e-6)[1]
+    off = impact_bound_warnings(0.839, 2.63e-6, 2.4e-6, 8.88e-6)
+    assert len(off) == 1 and "differs from the kinetic energy lost" in off[0] and "8.7%" in off[0]
 
 
 def _order(a, b, c):
