@@ -70,7 +70,7 @@ from _common import RESULTS, machine_info, save_figure, write_json  # noqa: E402
 
 SPEEDS = (0.05, 0.2, 0.5, 1.0)
 #: the dynamics' quasi-steady ball-ball laws compared with the transient reference
-QUASI_STEADY = ("map", "map_memory", "closed_form")
+QUASI_STEADY = ("map", "map_damped", "map_memory", "closed_form")
 
 
 def balls():
@@ -101,55 +101,55 @@ def run(speed, law="barus", nodes=160, steps=300, h_factor=1.0):
     return s, history
 
 
-def quasi_steady(speed, h_start, film="map"):
+def quasi_steady(speed, h_start, film="map", beta=None):
     """The dynamics' own ball-ball law (:func:`lubedyn.dynamics.contacts.ball_ball_normal`: the film, from
     the bundled map ``cases/maps/ball_ball.npz`` or the closed form, in series with Hertz; elastic solids,
     no contact damping, the bundled case's rupture thickness 0.1 um), integrated as a free impact of the
-    same bodies from the same start gap (scipy LSODA, rtol 1e-9, at most t_Hertz/200 a step) until the gap
-    is back at h_start: restitution, largest force, energy dissipated, cost."""
-    import time
-
-    from scipy.integrate import solve_ivp
-
+    same bodies from the same start gap (:func:`lubedyn.dynamics.contacts.head_on_impact`): restitution,
+    largest force, energy dissipated, cost.  ``film``: "map" (the lock without damping), "map_damped" (the
+    lock with the entrapped film's damping beta C0 v/h_L, ``beta`` None: the calibrated default
+    ENTRAPPED_DAMPING), "map_memory" (the lock keeping h_L of the impact speed), "closed_form"."""
     from lubedyn.dynamics.cageless import _map_arrays
-    from lubedyn.dynamics.contacts import FILM_CLOSED_FORM, FILM_MAP, _lock, ball_ball_normal, with_map_ends
-    from lubedyn.lubrication.ehl.impact import hertz_impact
-    from lubedyn.lubrication.laws.collision import ball_ball_parameters
+    from lubedyn.dynamics.contacts import FILM_CLOSED_FORM, FILM_MAP, _lock, head_on_impact, with_map_ends
+    from lubedyn.lubrication.laws.collision import ENTRAPPED_DAMPING, ball_ball_parameters
     from lubedyn.maps import FilmMap
 
     b = balls()
+    beta = (ENTRAPPED_DAMPING if beta is None else beta) if film == "map_damped" else 0.0
     p = ball_ball_parameters(ball_radius=2 * b["radius"], e_star=b["e_star"], viscosity=0.05,
-                             rupture_thickness=1e-7, pressure_viscosity=1.85e-8)
-    counter = np.zeros(1, dtype=np.int64)
-    if film in ("map", "map_memory"):
+                             rupture_thickness=1e-7, pressure_viscosity=1.85e-8, entrapped_damping=beta)
+    ma = None
+    if film.startswith("map"):
         ma = _map_arrays(FilmMap.load(HERE.parent / "cases" / "maps" / "ball_ball.npz").dynamics_film_map(), None)
         p = with_map_ends(p, ma.ax0, ma.ax1, ma.opts)
-        args = (FILM_MAP, ma.ax0, ma.ax1, ma.ax2, ma.values, ma.opts, counter)
-    else:
-        args = (FILM_CLOSED_FORM, None, None, None, None, None, counter)
-    m = b["mass"]
-    hz = hertz_impact(b["radius"], b["e_star"], m, speed)
     # "map_memory": the lock keeps the largest h_L of the contact; in a single impact the approach speed
     # only falls from the impact speed, so that is h_L(v0), held throughout
     keep = _lock(speed, 0.0, p, FILM_MAP, ma.ax1, ma.values, ma.opts) if film == "map_memory" else 0.0
-    args = (*args, keep)
+    out = head_on_impact(p, b["mass"], speed, h_start, FILM_MAP if ma is not None else FILM_CLOSED_FORM, ma,
+                         h_keep=keep)
+    return dict(film=film, entrapped_damping=beta, kept_film=keep, **out)
 
-    def rhs(t, y):
-        return [y[1], ball_ball_normal(y[0], -y[1], 0.0, 0.0, p, *args)[0] / m]
 
-    def back(t, y):
-        return y[0] - h_start
+def calibrate(rows, speed=0.2):
+    """beta of the entrapped film's damping that makes the damped lock restitute as the transient at
+    ``speed`` (Brent on the restitution), then the other speeds predicted with it."""
+    from scipy.optimize import brentq
 
-    back.terminal, back.direction = True, 1
-    rhs(0.0, [h_start, -speed])  # compile outside the clock
-    t0 = time.perf_counter()
-    sol = solve_ivp(rhs, (0.0, 50 * h_start / speed + 20 * hz.duration), [h_start, -speed], method="LSODA",
-                    rtol=1e-9, atol=[1e-13, 1e-9], max_step=hz.duration / 200, events=back)
-    seconds = time.perf_counter() - t0
-    out = [ball_ball_normal(g, -v, 0.0, 0.0, p, *args) for g, v in sol.y.T]
-    e = sol.y[1, -1] / speed if sol.status == 1 else float("nan")
-    return dict(film=film, restitution=e, force_max=max(o[0] for o in out), kept_film=keep,
-                energy_dissipated=0.5 * m * speed**2 * (1 - e * e), h_min=min(o[1] for o in out), seconds=seconds)
+    ref = next(r for r in rows if r["law"] == "barus" and r["speed"] == speed)
+    beta = brentq(lambda b: quasi_steady(speed, ref["h_start"], "map_damped", b)["restitution"] - ref["restitution"],
+                  0.5, 2.0, xtol=1e-3)
+    out = dict(speed=speed, beta=beta, rows=[])
+    for r in rows:
+        if r["law"] == "barus":
+            q = quasi_steady(r["speed"], r["h_start"], "map_damped", round(beta, 2))
+            out["rows"].append(dict(speed=r["speed"], transient=r["restitution"], law=q["restitution"],
+                                    energy_ratio=q["energy_dissipated"] / r["energy_dissipated"],
+                                    force_ratio=q["force_max"] / r["force_max"]))
+            print(f"   v {r['speed']:.2f} m/s: e {q['restitution']:.4f} (transient {r['restitution']:.4f})  "
+                  f"E_diss x {out['rows'][-1]['energy_ratio']:.3f}  F_max x {out['rows'][-1]['force_ratio']:.3f}",
+                  flush=True)
+    print(f"beta = {beta:.4f} at {speed} m/s", flush=True)
+    return out
 
 
 def main(argv=None):
@@ -159,7 +159,13 @@ def main(argv=None):
     ap.add_argument("--out", type=Path, default=RESULTS / "impact_ehl.json")
     ap.add_argument("--quasi-only", action="store_true",
                     help="rerun only the quasi-steady laws against the transient rows stored in --out")
+    ap.add_argument("--calibrate", action="store_true",
+                    help="refit the entrapped film's damping on the transient rows stored in --out")
     args = ap.parse_args(argv)
+    if args.calibrate:
+        data = json.loads(args.out.read_text())
+        write_json(args.out, dict(data, calibration=calibrate(data["rows"]), machine_calibration=machine_info()))
+        return
     if args.quasi_only:
         data = json.loads(args.out.read_text())
         for s in data["rows"]:

@@ -126,7 +126,7 @@ def test_locked_gap_is_where_the_pressure_number_reaches_the_lock(polar, v, ue):
 def test_a_locked_film_hands_the_load_to_the_solids(polar):
     """Below h_L the rigid piezoviscous film has left the map (towards Barus' pole): the pair carries the
     Hertz force of the approach h_L - g through a film of thickness h_L (Hertz written here from E* and
-    R_eff, elastic approaches only), continuous with the film branch at the lock, and never a clamped
+    R_eff, elastic approaches only) and the entrapped film's damping, continuous with the film branch at the lock, and never a clamped
     query."""
     from lubedyn.lubrication.laws.collision import PHASE_FILM
     from lubedyn.lubrication.laws.contact import reduced_modulus
@@ -143,7 +143,10 @@ def test_a_locked_film_hands_the_load_to_the_solids(polar):
                                                    counter)
         assert phase == PHASE_FILM and share == 1.0
         assert h == pytest.approx(hL, rel=1e-12) and x == pytest.approx(hL - g, rel=1e-9)
-        assert F == pytest.approx(K * (hL - g) ** 1.5, rel=1e-9)
+        # plus the entrapped film's damping beta C0 v/h_L, weighted by the solids' share beyond the lock
+        Fs = K * (hL - g) ** 1.5
+        assert bbp.bent > 0.0
+        assert F == pytest.approx(Fs + bbp.bent * bbp.c0 * v / hL * (1.0 - f_lock / Fs), rel=1e-9)
     # continuity at the lock: where the solids carry exactly the film's force at h_L, both branches meet
     above = C.ball_ball_normal(g_star * (1 + 1e-7), v, ue, 0.0, bbp, C.FILM_MAP, ax0, ax1, ax2, vals, opts,
                                counter)
@@ -161,6 +164,8 @@ def test_a_kept_film_locks_at_its_thickness_at_any_approach_speed(polar):
     from lubedyn.lubrication.laws.contact import reduced_modulus
 
     fmap, params, bbp, (ax0, ax1, ax2, vals, opts, _) = polar
+    bbp = np.array([bbp]).view(np.recarray)[0]
+    bbp.bent = 0.0  # the lock alone (its damping: test_a_locked_film_hands_the_load_to_the_solids)
     K = 4.0 / 3.0 * reduced_modulus(207e9, 0.29, 207e9, 0.29) * math.sqrt(bbp.r)
     counter = np.zeros(1, dtype=np.int64)
     ue, keep = 0.0, C.locked_gap(0.2, 0.0, bbp.sqf, bbp.r, 0.9 * (1 - 1e-9), bbp.vreg)

@@ -63,6 +63,7 @@ from pydantic import Field, model_validator
 from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 from lubedyn.lubrication.laws import bearing as bearings
+from lubedyn.lubrication.laws.collision import ENTRAPPED_DAMPING
 
 from lubedyn import outputs
 from lubedyn.scenes.dynamics_lyapunov import _benettin, _lyapunov_per_direction
@@ -227,6 +228,9 @@ class FilmsTable(CaseTable):
     # "paper": paper B eqs. 17-21 (Barus shear limited by friction_film, asperity share of eq. 19)
     friction_law: Literal["exponential_share", "paper"] = "exponential_share"
     asperity_slope: Q("dimensionless", gt=0) = 0.02  # sigma_theta of eq. 19 (assumed: not in paper B)
+    # beta of the map film's locked-state damping beta C0 v/h_L (0: the undamped lock), calibrated on the
+    # transient EHL impact (lubedyn.lubrication.laws.collision.ENTRAPPED_DAMPING)
+    entrapped_damping: Q("dimensionless", ge=0, lt=100) = ENTRAPPED_DAMPING
 
     @model_validator(mode="after")
     def _map_given(self):

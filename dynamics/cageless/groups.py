@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from lubedyn.lubrication.laws import contact as laws_contact
-from lubedyn.lubrication.laws.collision import FRICTION_LAWS
+from lubedyn.lubrication.laws.collision import ENTRAPPED_DAMPING, FRICTION_LAWS
 
 from ..contacts import FILM_KINDS
 from ..groups import Group
@@ -231,7 +231,10 @@ class Films(Group):
     carries the load and ``friction_boundary`` once it ruptures, regularised over
     ``slip_regularisation`` [m/s], mixed by ``friction_law`` ("exponential_share": the asperities'
     share exp(-h/rupture_thickness); "paper": paper B eqs. 17-21, Barus shear limited by
-    ``friction_film``, asperity share of eq. 19 with ``asperity_slope`` [-]); ``race`` ("none", "closed_form": Hamrock-Dowson films on the race
+    ``friction_film``, asperity share of eq. 19 with ``asperity_slope`` [-]); ``entrapped_damping`` beta [-]:
+    the map film's locked state damps with beta C0 v/h_L (:func:`lubedyn.dynamics.contacts.ball_ball_normal`;
+    default :data:`lubedyn.lubrication.laws.collision.ENTRAPPED_DAMPING`, calibrated on the transient EHL
+    impact; 0: the lock without damping); ``race`` ("none", "closed_form": Hamrock-Dowson films on the race
     contacts)."""
 
     TABLE: ClassVar[str] = "films"
@@ -249,6 +252,7 @@ class Films(Group):
     slip_regularisation: float = 0.01
     friction_law: str = "exponential_share"
     asperity_slope: float = 0.02
+    entrapped_damping: float = ENTRAPPED_DAMPING
 
     def __post_init__(self):
         self.choice("ball_ball", FILM_KINDS)
@@ -258,7 +262,8 @@ class Films(Group):
         if self.map_speed_axis is not None:
             self.choice("map_speed_axis", MAP_SPEED_AXES)
         self.positive("rupture_thickness", "slip_regularisation")
-        self.non_negative("viscosity", "pressure_viscosity", "friction_film", "friction_boundary")
+        self.non_negative("viscosity", "pressure_viscosity", "friction_film", "friction_boundary",
+                          "entrapped_damping")
         if self.ball_ball == "map" and self.map is None:
             raise self.fail("map", "is needed with films.ball_ball = 'map': (axes, logs, values, logv, method) of a "
                             "ball_ball force map (lubedyn.maps.FilmMap.kernel_arrays('Force [N]'))")

@@ -319,7 +319,7 @@ class CagelessBearing:
             mu_film=self.films.friction_film, mu_boundary=self.films.friction_boundary,
             slip_regularisation=self.films.slip_regularisation, memory_time=self.fidelity.plastic_memory_time,
             pressure_viscosity=self.films.pressure_viscosity, friction_law=self.films.friction_law,
-            asperity_slope=self.films.asperity_slope)
+            asperity_slope=self.films.asperity_slope, entrapped_damping=self.films.entrapped_damping)
         slots = np.zeros((len(self.slots.azimuths), 2))
         for k, az in enumerate(self.slots.azimuths):
             slots[k, 0] = az
