@@ -130,6 +130,21 @@ def quasi_steady(speed, h_start, film="map", beta=None):
     return dict(film=film, entrapped_damping=beta, kept_film=keep, **out)
 
 
+def coarse_transients(rows, resolutions=((40, 100), (80, 150))):
+    """The transient reference at coarser nodes / steps per contact, for the accuracy-cost chart: restitution
+    and cost per impact at each speed (Barus)."""
+    out = []
+    for nodes, steps in resolutions:
+        for r in rows:
+            if r["law"] == "barus":
+                s, _ = run(r["speed"], "barus", nodes, steps)
+                out.append(dict(speed=r["speed"], nodes=nodes, steps_per_contact=steps, restitution=s["restitution"],
+                                seconds=s["seconds"]))
+                print(f"   transient {nodes} nodes, {steps} steps: v {r['speed']} e {s['restitution']:.4f} "
+                      f"{s['seconds']:.2f} s", flush=True)
+    return out
+
+
 def calibrate(rows, speed=0.2):
     """beta of the entrapped film's damping that makes the damped lock restitute as the transient at
     ``speed`` (Brent on the restitution), then the other speeds predicted with it."""
@@ -172,8 +187,9 @@ def main(argv=None):
             if s["law"] == "barus":
                 s["quasi_steady"] = [quasi_steady(s["speed"], s["h_start"], film) for film in QUASI_STEADY]
                 print(s["speed"], [(q["film"], round(q["restitution"], 4)) for q in s["quasi_steady"]], flush=True)
+        data["coarse"] = coarse_transients(data["rows"])
         write_json(args.out, dict(data, machine_quasi_steady=machine_info()))
-        plot(data["rows"], data["histories"], args.out)
+        plot(data["rows"], data["histories"], args.out, data["coarse"])
         return
     rows, histories = [], {}
     for law in ("barus", "roelands"):
@@ -204,13 +220,13 @@ def main(argv=None):
     plot(rows, histories, args.out)
 
 
-def plot(rows, histories, out):
+def plot(rows, histories, out, coarse=None):
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(1, 4, figsize=(19, 4.5))
+    fig, ax = plt.subplots(1, 5 if coarse else 4, figsize=(24 if coarse else 19, 4.5), layout="constrained")
     for s in rows:
         h = histories[f"{s['law']} {s['speed']}"]
         t = (np.asarray(h["t"]) - h["t"][int(np.argmax(h["force"]))]) / s["hertz"]["duration"]
@@ -239,6 +255,22 @@ def plot(rows, histories, out):
     ax[1].set_ylim(bottom=0)
     ax[2].set_ylim(bottom=0)
     ax[0].legend(fontsize=7)
+    if coarse:  # accuracy against cost per impact: mean |e - e_transient(160 nodes)| over the four speeds
+        ref = {s["speed"]: s["restitution"] for s in barus}
+        for k, film in enumerate(QUASI_STEADY):
+            err = np.mean([abs(s["quasi_steady"][k]["restitution"] - ref[s["speed"]]) for s in barus])
+            cost = np.mean([s["quasi_steady"][k]["seconds"] for s in barus])
+            ax[4].plot(cost, err, "^", ms=9, label=f"quasi-steady {film.replace('_', ' ')}")
+        for nodes in sorted({c["nodes"] for c in coarse}):
+            cs = [c for c in coarse if c["nodes"] == nodes]
+            ax[4].plot(np.mean([c["seconds"] for c in cs]), np.mean([abs(c["restitution"] - ref[c["speed"]])
+                                                                     for c in cs]), "o", ms=9,
+                       label=f"transient, {nodes} nodes")
+        ax[4].set_xscale("log")
+        ax[4].set_yscale("log")
+        ax[4].set_xlabel("cost per impact [s]")
+        ax[4].set_ylabel("mean |e - e(transient, 160 nodes)|")
+        ax[4].legend(fontsize=7)
     fig.suptitle("Paper B ball-ball impact through Table 1's oil (transient EHL)")
     save_figure(fig, out.with_suffix(".png"))
 
