@@ -93,7 +93,10 @@ class BearingCoefficients:
         out["Eccentricity y [m]"] = e[:, 1]
         out["Eccentricity ratio [-]"] = np.hypot(e[:, 0], e[:, 1]) / self.clearance
         # between the load the film carries (-F) and the line of centres, as the film scene's summary states it
-        cosang = np.einsum("ki,ki->k", e, -self.force) / (np.linalg.norm(e, axis=1) * np.linalg.norm(self.force, axis=1))
+        # (NaN for a centred journal or no film force)
+        norms = np.linalg.norm(e, axis=1) * np.linalg.norm(self.force, axis=1)
+        dots = np.einsum("ki,ki->k", e, -self.force)
+        cosang = np.divide(dots, norms, out=np.full_like(dots, np.nan), where=norms > 0.0)
         out["Attitude angle [deg]"] = np.degrees(np.arccos(np.clip(cosang, -1.0, 1.0)))
         out["Film force x [N]"] = self.force[:, 0]
         out["Film force y [N]"] = self.force[:, 1]
@@ -146,7 +149,7 @@ def _film_of(source, *, smoke: bool = False):
         raise InputError(f"bearing_coefficients: the film's gap is a {type(film.gap).__name__}; coefficients over speed "
                          "need a JournalBearing gap")
     still = (np.allclose(np.asarray(film.velocity_lower, dtype=float), 0.0) if not callable(film.velocity_lower) else False)
-    if not still or any(v != 0.0 for v in film.mode_velocities.values()) or callable(film.squeeze) or film.squeeze != 0.0:
+    if not still or any(v != 0.0 for v in film.mode_velocities.values()) or callable(film.squeeze) or (film.squeeze or 0.0) != 0.0:
         raise InputError(f"bearing_coefficients: {what} moves the bearing surface (velocity_lower = "
                          f"{film.velocity_lower!r}) or the journal centre (mode_velocities = {dict(film.mode_velocities)!r}, "
                          f"squeeze = {film.squeeze!r}); the coefficients are about a static journal in a fixed bearing: "
