@@ -160,7 +160,7 @@ def _film_of(source, *, smoke: bool = False):
 def _speeds(speeds) -> np.ndarray:
     from lubedyn.units import UnitError, parse_quantity
 
-    values = [speeds] if isinstance(speeds, (str, int, float)) else list(speeds)
+    values = [speeds] if isinstance(speeds, (str, int, float, np.generic)) else list(np.asarray(speeds, dtype=object).ravel())
     out = []
     for k, v in enumerate(values):
         try:

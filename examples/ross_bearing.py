@@ -1,5 +1,5 @@
 """Journal-bearing stiffness and damping over speed, handed to ROSS
-===============================================================
+================================================================
 
 A rotordynamics model wants each fluid-film bearing as 2 x 2 stiffness and damping matrices over the
 rotor speed.  ``lubedyn.bearing_coefficients`` computes them with the finite-element film (the bundled

@@ -112,6 +112,16 @@ def test_bad_input_one_line(kwargs, match):
     assert "\n" not in str(info.value)
 
 
+def test_moving_bearing_or_centre_refused():
+    """The coefficients are about a static journal in a fixed bearing: a film whose bearing surface or
+    centre moves is refused in one line naming what moves."""
+    _, film = short_film(n=16, nz=2)
+    for changes, name in ((dict(velocity_lower=(1.0, 0.0)), "velocity_lower"), (dict(mode_velocities={"x": 1e-3}), "mode_velocities")):
+        with pytest.raises(InputError, match=name) as info:
+            lubedyn.bearing_coefficients(film.with_(**changes), np.array([100.0]))
+        assert "\n" not in str(info.value)
+
+
 def test_load_the_film_cannot_carry():
     """1 MN on the smoke journal at 10 rad/s: the Newton steps creep towards the wall (each at most
     halfway) and stop with one line naming the load, the speed and the eccentricity."""
