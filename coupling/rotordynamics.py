@@ -67,6 +67,10 @@ class BearingCoefficients:
         The static load (W_x, W_y) [N] on the journal that the film carries, or None (centre held fixed).
     iterations : (n,) int array
         Film solves made at each speed (the equilibrium's Newton steps; 1 without a load).
+    warnings : tuple of str
+        The film's own checks at each speed, one line each naming the speed (logged at WARNING): a
+        minimum-gap zone the mesh does not resolve (:meth:`~lubedyn.lubrication.FilmSolution.resolution_warning`,
+        as the film scene reports it) and the solver's warnings; empty when none.
 
     Named access as in a film run's ``summary.json``: ``coef["Stiffness K[x,y] [N/m]"]``,
     ``coef["Damping C[y,y] [N s/m]"]``, ``coef["Eccentricity ratio [-]"]`` ... (``coef.names`` lists them),
@@ -81,6 +85,7 @@ class BearingCoefficients:
     clearance: float
     load: np.ndarray | None = None
     iterations: np.ndarray | None = None
+    warnings: tuple = ()
 
     def _columns(self) -> dict:
         e = self.eccentricity
@@ -261,7 +266,7 @@ def bearing_coefficients(source, speeds, *, load=None, smoke: bool = False, rtol
     n = w.size
     K, C, E, F = np.zeros((n, 2, 2)), np.zeros((n, 2, 2)), np.zeros((n, 2)), np.zeros((n, 2))
     iterations = np.zeros(n, dtype=int)
-    previous = None
+    previous, found = None, []
     for k, speed in enumerate(w):
         for it in range(1, int(max_iter) + 1):
             at = film.with_(gap=JournalBearing(R, c, float(q[0]), float(q[1])), velocity_upper=(speed * R, 0.0))
@@ -283,10 +288,14 @@ def bearing_coefficients(source, speeds, *, load=None, smoke: bool = False, rtol
                 step *= 0.5
             q = q + step
         K[k], C[k], E[k], F[k], iterations[k] = Kk, Ck, q, force, it
+        for text in [previous.resolution_warning(), *previous.warnings]:
+            if text:
+                found.append(f"at {speed:.6g} rad/s: {text}")
+                log.warning("%s", found[-1])
         log.info("bearing coefficients at %.6g rad/s: eccentricity ratio %.4g after %d film solve(s)",
                  speed, np.linalg.norm(q) / c, it)
     return BearingCoefficients(speed=w, K=K, C=C, eccentricity=E, force=F, clearance=float(c), load=W,
-                               iterations=iterations)
+                               iterations=iterations, warnings=tuple(found))
 
 
 # ---------------------------------------------------------------------------

@@ -8,6 +8,7 @@
   S = 0.121 lands at their eccentricity ratio 0.6;
 - with the centre held fixed, K grows like the speed and C does not (the isoviscous, incompressible film
   is linear in the surface speed);
+- a film the mesh does not resolve near the wall is reported (the film's own check), naming the speed;
 - bad input: one line naming the value;
 - with ROSS installed (the optional extra ``ross``; not in ``test``, so this part skips in CI): a rotor
   with the bridge's bearing elements and the same rotor with ``ross.BearingElement`` typed from the arrays
@@ -60,6 +61,7 @@ def test_short_bearing_under_load_against_ocvirk():
     coef = lubedyn.bearing_coefficients(film, speeds, load=W)
     assert coef.K.shape == (2, 2, 2) and coef.C.shape == (2, 2, 2)
     assert np.all(np.abs(coef.force - [0.0, W]) <= 1e-8 * W)            # the film carries the load (-y)
+    assert coef.warnings == ()                                         # resolved, no solver warning
     for k, w in enumerate(speeds):
         eps = brentq(lambda e: cf.short_journal_load(R, C, L, e, ETA, w * R)[0] - W, 1e-6, 1.0 - 1e-9, xtol=1e-14)
         attitude = np.degrees(cf.short_journal_load(R, C, L, eps, ETA, w * R)[1])
@@ -120,6 +122,15 @@ def test_moving_bearing_or_centre_refused():
         with pytest.raises(InputError, match=name) as info:
             lubedyn.bearing_coefficients(film.with_(**changes), np.array([100.0]))
         assert "\n" not in str(info.value)
+
+
+def test_unresolved_film_is_reported():
+    """5165 N at 100 rpm on the smoke mesh (32 x 8 P2): the journal sits at eps = 0.975 and the minimum-gap
+    zone has 1.5 elements across (the film's own check wants 2.2 for P2): one warning naming the speed;
+    at 3000 rpm (eps 0.60) none."""
+    coef = lubedyn.bearing_coefficients("journal_finite", ["3000 rpm", "100 rpm"], load=5165.0, smoke=True)
+    assert coef["Eccentricity ratio [-]"][1] > 0.97
+    assert len(coef.warnings) == 1 and coef.warnings[0].startswith("at 10.472 rad/s: Minimum-gap zone")
 
 
 def test_load_the_film_cannot_carry():
