@@ -22,6 +22,8 @@ The main API, loaded on first use (importing ``lubedyn`` imports nothing heavy):
   its outputs into ``out_dir`` when given; the bearing scenes' results read their time series by name
   (:class:`lubedyn.results.BearingResult`: ``res["Cage speed [rad/s]"]``, ``res.to_xarray()``);
 - films: ``Film`` and ``solve`` of :mod:`lubedyn.lubrication`; maps: ``FilmMap`` of :mod:`lubedyn.maps`;
+- rotordynamics: ``bearing_coefficients`` (a journal's K and C over speed) and ``to_ross`` (a ROSS
+  bearing element of them), of :mod:`lubedyn.rotordynamics`;
 - the sub-packages :mod:`lubedyn.lubrication`, :mod:`lubedyn.dynamics`, :mod:`lubedyn.scenes`,
   :mod:`lubedyn.papers` and ``lubedyn.cases``.
 
@@ -56,6 +58,8 @@ module / package       responsibility
                        figures (``wu2018``: paper A, ``zhang2024``: paper B)
 ``results``            a bearing run's result by name: ``res["Rotor speed [rad/s]"]``,
                        units, warnings, ``to_xarray()``
+``rotordynamics``      journal-bearing K and C over speed (under a load or at a
+                       fixed centre); ``to_ross``: a ROSS bearing element
 ``bounds``             physical bounds every output is checked against
 ``limits``             size limits: memory and work estimated before anything
                        is allocated
@@ -88,6 +92,7 @@ _LAZY = {
     "solve": (".lubrication", "solve"),
     "FilmMap": (".maps", "FilmMap"),
     "run": (".scenes.runner", "run"),
+    **{name: (".rotordynamics", name) for name in ("bearing_coefficients", "to_ross", "BearingCoefficients")},
 }
 _SUBPACKAGES = ("lubrication", "dynamics", "cases", "scenes", "papers")
 

@@ -1,8 +1,9 @@
 """The first-hour pages of the documentation run as written: every ``python`` code block of
 docs/python.md ("From Python in 10 minutes") and docs/study_dask.md ("Run a study on many machines") is
 executed (and the README's), in order, in one namespace per page, and what the page says it shows is checked against a
-second source: the summary against the time series and the frame files, the study's loads against the
-film's linearity in the runner speed and the slider's closed form (63.55 kN/m at 5 m/s)."""
+second source: the summary against the time series and the frame files, the bearing coefficients against
+the load they carry, the study's loads against the film's linearity in the runner speed and the slider's
+closed form (63.55 kN/m at 5 m/s)."""
 from __future__ import annotations
 
 import csv
@@ -10,6 +11,7 @@ import math
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
@@ -44,6 +46,12 @@ def test_from_python_page_runs(monkeypatch, tmp_path):
     assert (out / "cone_y.png").stat().st_size > 10_000
     assert (ns["cone_y"] == columns["Cone y [m]"]).all()               # the result by name = the file
     assert all(note for note in ns["not_computed"].values())
+    coef = ns["coef"]                                                 # the journal under 2 kN along -y
+    assert np.allclose(coef.speed, np.array([1500, 3000, 6000]) * np.pi / 30, rtol=1e-12)
+    assert np.all(np.abs(coef.force - [0.0, 2000.0]) <= 1e-8 * 2000.0)   # the film carries the load
+    assert np.all(np.diff(coef["Eccentricity ratio [-]"]) < 0)         # faster: a thicker film (larger S)
+    if ns["bearing"] is not None:                                     # with ROSS: its matrix at a given speed
+        assert np.allclose(ns["bearing"].K(coef.speed[1])[:2, :2], coef.K[1], rtol=1e-9)
 
 
 def test_readme_python_block_runs(monkeypatch, tmp_path):
