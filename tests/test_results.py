@@ -37,8 +37,14 @@ def test_to_xarray_names_units_and_identity(tapered):
     ds = res.to_xarray()
     assert ds.sizes["time"] == len(res.t)
     var = ds["Cage speed"]
-    assert var.attrs == {"units": "rad/s", "long_name": "Cage speed [rad/s]"}
+    assert var.attrs == {"units": "rad/s", "long_name": "Cage speed", "column": "Cage speed [rad/s]"}
     assert np.array_equal(var.values, res["Cage speed [rad/s]"])
+    # the rollers' columns along a dimension of their own: one variable per quantity, the case's 17 rollers
+    tilt = ds["Roller tilt"]
+    assert tilt.dims == ("time", "roller") and tilt.attrs["units"] == "rad"
+    assert list(ds["roller"].values) == list(range(17))
+    for j in (0, 5, 16):
+        assert np.array_equal(tilt.values[:, j], res[f"Roller {j} tilt [rad]"])
     assert ds["time"].attrs["units"] == "s" and ds.attrs["Scene"] == "tapered"
     assert ds.attrs["lubedyn version"] == lubedyn.__version__
 

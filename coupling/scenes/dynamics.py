@@ -10,8 +10,8 @@ integrates from its quasi-static initial state with
 :func:`lubedyn.dynamics.integrators.integrate` (a progress bar of simulated time on
 a terminal) and writes
 
-- ``timeseries.npz``: every state entry and the contact diagnostics at every
-  sample, names with units (:func:`lubedyn.outputs.read_timeseries`);
+- ``timeseries.nc`` (``output.timeseries_format = "npz"``: ``timeseries.npz``): every state entry and
+  the contact diagnostics at every sample, names with units (:func:`lubedyn.outputs.read_timeseries`);
 - ``collisions.csv``: one line per ball-ball collision (pair, time of the
   force peak, position, force components, duration);
 - ``bearing.pvd`` + ``frames/*.vtp``: balls, rings, slots and the ball-ball
@@ -67,7 +67,7 @@ from lubedyn.lubrication.laws import bearing as bearings
 from lubedyn import outputs
 from lubedyn.scenes.dynamics_lyapunov import _benettin, _lyapunov_per_direction
 from lubedyn.config import (CASES_DIR, BoundsModel, LimitsModel, LubricantModel, PositiveInt, PositiveLength, Q,
-                            CaseTable, refuse_renamed, rule)
+                            CaseTable, TimeSeriesOutput, refuse_renamed, rule)
 from lubedyn import limits
 from lubedyn.results import BearingResult
 from lubedyn.dynamics.analysis import collision_events, collision_summary
@@ -87,7 +87,7 @@ from lubedyn.scenes.bearing_run import Integration, drive
 
 log = logging.getLogger(__name__)
 
-FIELD_FILES = (("timeseries.npz", "timeseries"), ("collisions.csv", "timeseries"), ("bearing.pvd", "pvd"),
+FIELD_FILES = (("timeseries.nc", "timeseries"), ("collisions.csv", "timeseries"), ("bearing.pvd", "pvd"),
                ("trajectories.png", "png"), ("collision_needles.png", "png"), ("phase_portraits.png", "png"),
                ("spectrum.png", "png"), ("angular_displacement.png", "png"), ("collision_map.png", "png"),
                ("poincare.png", "png"))
@@ -276,7 +276,10 @@ class AnalysisTable(CaseTable):
         return self
 
 
-class OutputTable(CaseTable):
+class OutputTable(TimeSeriesOutput):
+    """``[output]``: ``write`` the files (time series, ParaView frames, figures); ``timeseries_format``:
+    :class:`lubedyn.config.TimeSeriesOutput`."""
+
     write: list[Literal["timeseries", "pvd", "png"]] = Field(default_factory=lambda: ["timeseries", "pvd", "png"])
 
 

@@ -35,8 +35,8 @@ cage and rollers at their ideal speeds, integrates :func:`lubedyn.dynamics.taper
 ``summary.json`` (for the paper's window and for the record's last cage revolution: per zone -- loaded,
 unloaded, all -- the mean, amplitude and largest magnitude of tilt, skew, slip and radial displacement;
 cage speed and slip, whirl radius, a periodicity measure; the quasi-static loads beside the largest
-dynamic ones; the assumed values), ``timeseries.npz`` (every state; per roller tilt, skew, speeds,
-slips, displacements (from the start and from the ideal, unloaded position), the loaded-zone marker,
+dynamic ones; the assumed values), ``timeseries.nc`` (or ``.npz``: ``output.timeseries_format``; every
+state; per roller tilt, skew, speeds, slips, displacements (from the start and from the ideal, unloaded position), the loaded-zone marker,
 loads, friction and every slice load; the cage),
 ``bearing.pvd`` with ``frames/*.vtu`` (cup, cone, rollers and cage for ParaView, loads and attitude
 as point data) and the PNGs ``roller_attitude.png`` (loaded zone shaded), ``roller_displacement.png``,
@@ -103,7 +103,7 @@ from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 from lubedyn import outputs
-from lubedyn.config import (BoundsModel, LimitsModel, LubricantModel, PositiveInt, Q, CaseTable, Viscosity,
+from lubedyn.config import (BoundsModel, LimitsModel, LubricantModel, PositiveInt, Q, CaseTable, TimeSeriesOutput, Viscosity,
                             refuse_renamed, root_rule, rule)
 from lubedyn.papers.wu2018.parameters import GREASE_TABLE as GREASES
 from lubedyn.scenes.static import BearingTable
@@ -123,7 +123,7 @@ from lubedyn.scenes.static import body_grid, build as build_geometry, raceway_su
 
 log = logging.getLogger(__name__)
 
-FIELD_FILES = (("timeseries.npz", "timeseries"), ("bearing.pvd", "pvd"), ("roller_attitude.png", "png"),
+FIELD_FILES = (("timeseries.nc", "timeseries"), ("bearing.pvd", "pvd"), ("roller_attitude.png", "png"),
                ("roller_displacement.png", "png"), ("slip.png", "png"), ("cage_whirl.png", "png"),
                ("cone_orbit.png", "png"), ("slice_loads.png", "png"))
 
@@ -356,7 +356,10 @@ class AnalysisTable(CaseTable):
         return self
 
 
-class OutputTable(CaseTable):
+class OutputTable(TimeSeriesOutput):
+    """``[output]``: ``write`` the files (time series, ParaView frames, figures); ``timeseries_format``:
+    :class:`lubedyn.config.TimeSeriesOutput`."""
+
     write: list[Literal["timeseries", "png", "pvd"]] = Field(default_factory=lambda: ["timeseries", "png", "pvd"])
 
 

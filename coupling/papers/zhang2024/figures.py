@@ -3,7 +3,7 @@
 Paper B (Zhang et al., *Symmetry* 16 (2024) 741, sections 3.1-3.3 and 4.2)
 studies a cage-less 6206 ball bearing whose rotor drops onto the inner ring.
 This module turns a run of :mod:`lubedyn.scenes.dynamics` (its time series as
-a name -> array mapping, the names of ``timeseries.npz``) into numbers a user
+a name -> array mapping, the names of the run's time series) into numbers a user
 can compare with the paper, and into the figures.  The analyses themselves are
 the paper-independent ones of :mod:`lubedyn.dynamics.analysis`; this module
 chooses which the paper's figures show, lays the figures out and holds the
@@ -64,7 +64,7 @@ from lubedyn.dynamics.analysis.quadrants import collision_entries, collision_tab
 from lubedyn.dynamics.analysis.rotation import axial_rates, ball_angular_displacement
 from lubedyn.dynamics.analysis.settling import final_start, settling_times, spinup_time, steady_residuals
 from lubedyn.lubrication.errors import InputError
-from lubedyn.outputs import read_timeseries, save_figure
+from lubedyn.outputs import read_timeseries, save_figure, timeseries_path
 
 log = logging.getLogger(__name__)
 
@@ -329,15 +329,20 @@ class RunData:
 
 
 def read_run(folder) -> RunData:
-    """A dynamics run folder: ``timeseries.npz``, ``summary.json`` and ``case.resolved.toml``."""
+    """A dynamics run folder: its time series (``timeseries.nc`` or ``.npz``,
+    :func:`lubedyn.outputs.timeseries_path`), ``summary.json`` and ``case.resolved.toml``."""
     import tomllib
 
     folder = Path(folder)
-    missing = [n for n in ("timeseries.npz", "summary.json", "case.resolved.toml") if not (folder / n).is_file()]
+    missing = [n for n in ("summary.json", "case.resolved.toml") if not (folder / n).is_file()]
+    try:
+        path = timeseries_path(folder)
+    except FileNotFoundError:
+        missing.insert(0, "timeseries.nc (or .npz)")
     if missing:
         raise InputError(f"{folder} is not a dynamics run folder with its time series: {', '.join(missing)} "
                          "missing (output.write must include 'timeseries')")
-    series, _ = read_timeseries(folder / "timeseries.npz")
+    series, _ = read_timeseries(path)
     return RunData(folder, np.asarray(series["Time [s]"]), series, json.loads((folder / "summary.json").read_text()),
                    tomllib.loads((folder / "case.resolved.toml").read_text()))
 
