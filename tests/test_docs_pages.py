@@ -72,3 +72,6 @@ def test_study_page_runs_on_a_local_cluster(monkeypatch, tmp_path):
     ratios = [load / u for u, load in per_speed.items()]
     assert max(ratios) == pytest.approx(min(ratios), rel=1e-9)       # the film is linear in the speed
     assert per_speed[5.0] == pytest.approx(63550, rel=1e-3)           # the slider's closed form
+    load = ns["load"]                                                 # the table as a Dataset = study.csv
+    assert load.attrs["units"] == "N/m" and list(load.dims) == ["motion.velocity_lower"]
+    assert [float(v) for v in load.values] == [per_speed[u] for u in (2.0, 5.0, 8.0)]
