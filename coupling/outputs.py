@@ -134,6 +134,32 @@ def save_figure(path, figure, dpi: int = 120) -> Path:
     return write_bytes(path, buffer.getvalue())
 
 
+def panels(into=None, nrows: int = 1, ncols: int = 1, *, figsize, layout=None, pyplot: bool = True, **subplot_kw):
+    """(figure, axes) for one of a run's figures: with ``into`` None a new figure of ``figsize`` and
+    ``layout`` (pyplot's, or with ``pyplot=False`` a bare :class:`matplotlib.figure.Figure`) and its
+    ``nrows`` x ``ncols`` panels, as ``plt.subplots`` makes them; else the panels made in ``into``, a
+    Figure or SubFigure of the caller's (``res.plot(kind, fig=...)``), or ``into`` itself when it is an
+    Axes and the figure has one panel.  An Axes for a figure of several panels is a one-line ValueError."""
+    from matplotlib.axes import Axes
+
+    if into is None:
+        if pyplot:
+            import matplotlib.pyplot as plt
+
+            fig = plt.figure(figsize=figsize, layout=layout)
+        else:
+            from matplotlib.figure import Figure
+
+            fig = Figure(figsize=figsize, layout=layout)
+        return fig, fig.subplots(nrows, ncols, **subplot_kw)
+    if isinstance(into, Axes):
+        if nrows * ncols != 1:
+            raise ValueError(f"this figure has {nrows * ncols} panels ({nrows} x {ncols}): give fig= (a matplotlib "
+                             "Figure or SubFigure), not ax=")
+        return into.figure, into
+    return into, into.subplots(nrows, ncols, **subplot_kw)
+
+
 def _pid_alive(pid: int) -> bool:
     if pid == os.getpid():
         return True
@@ -619,9 +645,9 @@ def read_timeseries(path) -> tuple[dict, dict]:
 
 
 def _read_timeseries_netcdf(path: Path) -> tuple[dict, dict]:
-    from lubedyn.results import _xarray, columns_of
+    from lubedyn.results import import_xarray, columns_of
 
-    xr = _xarray()
+    xr = import_xarray()
     with xr.open_dataset(path, engine=NETCDF_ENGINE, decode_times=False, decode_timedelta=False) as ds:
         if ds.attrs.get("format") != "lubedyn time series":
             raise ValueError(f"{path}: not a lubedyn time series file")

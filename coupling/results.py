@@ -10,7 +10,8 @@ read.  So from Python::
     res.names                           # every name
     res.units("Rotor speed [rad/s]")    # "rad/s"
     res.warnings                        # the run's warnings (summary "Warnings"), [] when none
-    ds = res.to_xarray()                # an xarray.Dataset over "time" (optional extra: xarray)
+    ds = res.to_xarray()                # an xarray.Dataset over "time" (what timeseries.nc holds)
+    fig = res.plot("trajectories")      # a figure lubedyn run writes (res.kinds lists them)
 
 A name that does not exist is a one-line :class:`KeyError` with the closest names.  ``to_xarray()`` gives
 one variable per column, named as the column without its unit, with the unit and the column's full name
@@ -79,7 +80,8 @@ class TimeSeries(Mapping):
 _BODY = re.compile(r"^(?P<body>[A-Z][a-z]+) (?P<index>\d+(?:-\d+)?) (?P<rest>\S.*)$")
 
 
-def _xarray():
+def import_xarray():
+    """The xarray module, or an ImportError of one line saying how to install it."""
     try:
         import xarray as xr
     except ImportError:  # one line for the user, not a traceback of the optional dependency
@@ -98,7 +100,7 @@ def dataset(t, columns: dict, attrs: dict | None = None):
     with ``{ball}`` (the dimension's name in braces) where the number goes, which :func:`columns_of` reads
     back.  On the README's main job (smoke) the 490 columns are 48 variables; as compressed netCDF 1.25 MB
     against 3.3 MB with one variable per column (HDF5's overhead per variable)."""
-    xr = _xarray()
+    xr = import_xarray()
     t = np.asarray(t)
     bodies: dict = {}  # body kind -> {quantity: {index: column}}
     for column in columns:
@@ -168,6 +170,27 @@ class BearingResult:
     t: Any = None
     y: Any = None
     series: TimeSeries | None = None
+    drawings: dict = field(default_factory=dict, repr=False)  # {figure file name: draw(into=None)}
+
+    @property
+    def kinds(self) -> list[str]:
+        """The figures :meth:`plot` draws: the names of the PNG files ``lubedyn run`` writes, without ``.png``."""
+        return [name.removesuffix(".png") for name in self.drawings]
+
+    def plot(self, kind: str, ax=None, fig=None):
+        """Draw the figure ``kind`` (one of :attr:`kinds`: ``"trajectories"`` for ``trajectories.png`` ...)
+        as ``lubedyn run`` writes it, by the same code, and return its matplotlib figure: a new figure
+        (pyplot's for the cage-less bearing, a bare ``matplotlib.figure.Figure`` for the tapered one),
+        or drawn into ``fig`` (a Figure or SubFigure: its panels are added there) or ``ax`` (an Axes, for a
+        figure of one panel).  An unknown kind, or ``ax`` for a figure of several panels, is a one-line
+        ValueError naming what is allowed."""
+        name = f"{kind}.png" if isinstance(kind, str) else kind
+        if name not in self.drawings:
+            allowed = ", ".join(repr(k) for k in self.kinds) or "none (this result was made without its figures)"
+            raise ValueError(f"plot kind {kind!r} is not one of {allowed}{did_you_mean(str(kind), self.kinds)}")
+        if ax is not None and fig is not None:
+            raise ValueError("plot takes ax= or fig=, not both")
+        return self.drawings[name](ax if ax is not None else fig)
 
     def __getitem__(self, name: str) -> np.ndarray:
         if self.series is None:

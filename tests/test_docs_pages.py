@@ -44,6 +44,8 @@ def test_from_python_page_runs(monkeypatch, tmp_path):
     assert (out / "cone_y.png").stat().st_size > 10_000
     assert (ns["cone_y"] == columns["Cone y [m]"]).all()               # the result by name = the file
     assert all(note for note in ns["not_computed"].values())
+    assert (out / "mine.png").stat().st_size > 10_000                 # the figures drawn from Python
+    assert len(ns["left"].axes) == 2 and "slip" in ns["result"].kinds
 
 
 def test_readme_python_block_runs(monkeypatch, tmp_path):
@@ -57,6 +59,7 @@ def test_readme_python_block_runs(monkeypatch, tmp_path):
     assert rotor.size == res.t.size == ds.sizes["time"]
     assert rotor[-1] * 30 / math.pi == pytest.approx(res.summary["Rotor speed at end [rpm]"], rel=1e-12)
     assert res.files == [] and list(tmp_path.iterdir()) == []       # no out_dir: nothing written
+    assert len(ns["fig"].axes) == 3 and ns["fig"].axes[0].lines[0].get_ydata().size == res.t.size
 
 
 def test_study_page_runs_on_a_local_cluster(monkeypatch, tmp_path):

@@ -976,9 +976,9 @@ def study_dataset(study: StudyFile, plan: Plan, results: list, attrs: dict | Non
     folder".  The study's identity (description, base case, combine, lubedyn version) is in the attributes."""
     import numpy as np
 
-    from lubedyn.results import _xarray, split_unit
+    from lubedyn.results import import_xarray, split_unit
 
-    xr = _xarray()
+    xr = import_xarray()
     keys, names = list(study.axes), study.study.outputs
     members = study.study.members
     grid = study.study.combine == "grid"
