@@ -162,10 +162,24 @@ def rule(key: str, value, text: str) -> PydanticCustomError:
 
 
 class CaseTable(BaseModel):
-    """The base of every case-file table and case model: unknown keys are errors, defaults validated."""
+    """The base of every case-file table and case model: unknown keys are errors, defaults validated.
+
+    Built from Python, a table takes what its case-file table takes -- quantities as numbers in SI or
+    strings with units, ``ValidityModel(min_film="0.1 um")`` -- and a mistake is the case file's one-line
+    :class:`CaseError` naming the table, the key, the value and what is allowed (not pydantic's report)."""
 
     model_config = ConfigDict(extra="forbid", validate_default=True)
     _parameter_set: str | None = PrivateAttr(default=None)  # the set a case named (lubedyn.papers)
+
+    def __init__(self, /, **data):
+        try:
+            super().__init__(**data)
+        except ValidationError as exc:
+            raise CaseError(f"{type(self).__name__}: {format_validation_error(exc, type(self))}") from None
+
+    # only a call from Python comes here: marked as pydantic's own __init__ (as pydantic's RootModel marks
+    # its own), validation of a nested table goes on in pydantic's core, with its context, not through it
+    __init__.__pydantic_base_init__ = True  # type: ignore[attr-defined]
 
 
 # ---------------------------------------------------------------------------

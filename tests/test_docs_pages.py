@@ -46,6 +46,8 @@ def test_from_python_page_runs(monkeypatch, tmp_path):
     assert all(note for note in ns["not_computed"].values())
     assert (out / "mine.png").stat().st_size > 10_000                 # the figures drawn from Python
     assert len(ns["left"].axes) == 2 and "slip" in ns["result"].kinds
+    from lubedyn.lubrication import closed_form as cf                   # the film built with units
+    assert ns["slider_load"] == pytest.approx(cf.inclined_slider_load(40e-6, 20e-6, 0.05, 0.05, 2.5), rel=1e-3)
 
 
 def test_readme_python_block_runs(monkeypatch, tmp_path):
