@@ -610,8 +610,9 @@ def write_timeseries_netcdf(path, time_s, columns: dict, meta: dict | None = Non
     column names in order (JSON), :func:`provenance` (with ``resolved``, the case's parameters) and
     ``meta`` (:func:`netcdf_attrs`).  Read it back with :func:`read_timeseries` or ``xarray.open_dataset``.
 
-    Measured on the README's main job (smoke, 490 columns of 501 samples): 1.25 MB against 2.2 MB as
-    plain ``.npz``, written in 0.15 s."""
+    Measured on the README's main job (smoke, 490 columns of 501 samples): 1.29 MB with its attributes
+    against 2.2 MB as plain ``.npz``, written in 0.25 s; the full 20 ms (10,001 samples) 27.0 MB against
+    39.5 MB, in about 2 s against 0.15 s uncompressed."""
     import numpy as np
 
     from lubedyn.results import dataset
