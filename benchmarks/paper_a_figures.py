@@ -31,7 +31,7 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 
 from lubedyn.papers.wu2018 import claims as C  # noqa: E402
-from lubedyn.outputs import read_timeseries  # noqa: E402
+from lubedyn.outputs import read_timeseries, timeseries_path  # noqa: E402
 
 OUT = ROOT / "benchmarks" / "results" / "paper_a"
 SPEEDS = ("2000 rpm", "3000 rpm", "4000 rpm", "5000 rpm")
@@ -44,7 +44,7 @@ TIME_PANELS = (("Roller 0 tilt [rad]", 1e4, "tilt [1e-4 rad]", "roller tilt"),
 
 
 def _series(folder: Path):
-    cols, _ = read_timeseries(folder / "timeseries.npz")
+    cols, _ = read_timeseries(timeseries_path(folder))
     return cols
 
 

@@ -7,7 +7,7 @@ and spin-up times (:func:`lubedyn.papers.zhang2024.figures.compare_runs`).
     python benchmarks/paper_b_figures.py RUN_DIR [RUN_DIR ...] --out PNG
 
 e.g. after ``lubedyn run cageless_6206_10krpm --out runs/10k`` and the 15, 20 and 25 krpm cases.
-Each folder needs ``timeseries.npz`` (``output.write`` with ``"timeseries"``), ``summary.json`` and
+Each folder needs ``timeseries.nc`` (or ``.npz``) (``output.write`` with ``"timeseries"``), ``summary.json`` and
 ``case.resolved.toml``.  Exit code 0 on success, 2 when a folder is not a dynamics run.
 """
 from __future__ import annotations

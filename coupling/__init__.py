@@ -39,7 +39,10 @@ The rooms of the coupling layer:
 module / package       responsibility
 =====================  ==========================================================
 ``units``              quantities at the input boundary: ``"50 um"`` -> 5e-05 m,
-                       dimension checks ("has units of pressure, expected length")
+                       dimension checks ("has units of pressure, expected length");
+                       the public name of the one parser, which lives on the
+                       ground floor (``lubedyn.lubrication.laws.units``) so that
+                       the films' constructors take the same strings
 ``config``             case files: TOML -> ``[smoke]`` and ``--set`` merged ->
                        pydantic validation (unknown keys with "did you mean",
                        one-line errors naming key, value and what is allowed) ->

@@ -13,7 +13,7 @@
 ``--dry-run`` validates and builds the mesh and film, prints the plan and the
 resolved case, and writes nothing.  ``study`` runs a base case over axes of ``--set`` values
 and ensemble members, each run a normal run folder under ``DIR/runs/``, and writes
-``study.csv``, ``study.json`` and ``study.png`` (:mod:`lubedyn.scenes.study`; ``--out`` defaults
+``study.csv``, ``study.json``, ``study.nc`` and ``study.png`` (:mod:`lubedyn.scenes.study`; ``--out`` defaults
 to ``runs/<study stem>``); a run that fails is recorded and the others go on, and the exit
 code is then 1.
 
@@ -111,7 +111,8 @@ def cmd_run(args) -> int:
             raise (check_smoke(raw, args.set or (), exc) if args.smoke else exc) from None
         _say(f"dry run: {scene.describe(case, built)}")
         _say(f"dry run: would write {out}/summary.json, case.resolved.toml"
-             + "".join(f", {f}" for f, k in scene.FIELD_FILES if k in case.output.write) + ", manifest.json")
+             + "".join(f", {_field_file(case, f)}" for f, k in scene.FIELD_FILES if k in case.output.write)
+             + ", manifest.json")
         _say(resolved_toml(case, f"dry run of {path}"))
         return EXIT_OK
     result = run_loaded(path, raw, case, out, smoke=args.smoke, overrides=args.set or ())
@@ -119,6 +120,16 @@ def cmd_run(args) -> int:
         _say(line)
     _say(f"wrote {out}/: " + ", ".join(p.name for p in result.files))
     return EXIT_OK
+
+
+def _field_file(case, name: str) -> str:
+    """A scene's field file as the case writes it: the time series' name by ``output.timeseries_format``."""
+    fmt = getattr(case.output, "timeseries_format", None)
+    if fmt is not None and name.startswith("timeseries."):
+        from lubedyn.outputs import TIMESERIES_FILES
+
+        return TIMESERIES_FILES[fmt]
+    return name
 
 
 def cmd_study(args) -> int:

@@ -134,6 +134,32 @@ def save_figure(path, figure, dpi: int = 120) -> Path:
     return write_bytes(path, buffer.getvalue())
 
 
+def panels(into=None, nrows: int = 1, ncols: int = 1, *, figsize, layout=None, pyplot: bool = True, **subplot_kw):
+    """(figure, axes) for one of a run's figures: with ``into`` None a new figure of ``figsize`` and
+    ``layout`` (pyplot's, or with ``pyplot=False`` a bare :class:`matplotlib.figure.Figure`) and its
+    ``nrows`` x ``ncols`` panels, as ``plt.subplots`` makes them; else the panels made in ``into``, a
+    Figure or SubFigure of the caller's (``res.plot(kind, fig=...)``), or ``into`` itself when it is an
+    Axes and the figure has one panel.  An Axes for a figure of several panels is a one-line ValueError."""
+    from matplotlib.axes import Axes
+
+    if into is None:
+        if pyplot:
+            import matplotlib.pyplot as plt
+
+            fig = plt.figure(figsize=figsize, layout=layout)
+        else:
+            from matplotlib.figure import Figure
+
+            fig = Figure(figsize=figsize, layout=layout)
+        return fig, fig.subplots(nrows, ncols, **subplot_kw)
+    if isinstance(into, Axes):
+        if nrows * ncols != 1:
+            raise ValueError(f"this figure has {nrows * ncols} panels ({nrows} x {ncols}): give fig= (a matplotlib "
+                             "Figure or SubFigure), not ax=")
+        return into.figure, into
+    return into, into.subplots(nrows, ncols, **subplot_kw)
+
+
 def _pid_alive(pid: int) -> bool:
     if pid == os.getpid():
         return True
@@ -358,12 +384,15 @@ class RunFiles:
     write_time: bool = False
 
 
-def write_bearing_run(out_dir, resolved: str, summary: dict, write, files: RunFiles) -> tuple[list[Path], dict]:
+def write_bearing_run(out_dir, resolved: str, summary: dict, write, files: RunFiles,
+                      timeseries_format: str = "netcdf") -> tuple[list[Path], dict]:
     """Write a time-domain run's outputs into ``out_dir`` through a staging folder (:func:`staged`):
     ``case.resolved.toml`` (``resolved``), with "pvd" in ``write`` the frames (``frames/frame_NNNNN.<ext>``,
     :func:`write_frame`) and ``bearing.pvd`` (:func:`write_pvd`), with "png" the figures (Agg backend), then
-    the summary completed (``files.complete``), with "timeseries" ``timeseries.npz``
-    (:func:`write_timeseries`, its metadata from the completed summary) and the text files, last
+    the summary completed (``files.complete``), with "timeseries" the time series, ``timeseries.nc``
+    (:func:`write_timeseries_netcdf`, the case's parameters in its attributes) or with ``timeseries_format``
+    "npz" ``timeseries.npz`` (:func:`write_timeseries`), its metadata from the completed summary, and the
+    text files, last
     ``summary.json``.  Frames and figures come first: they do not need the summary, so a background
     analysis runs on meanwhile.  Returns (the paths written, the completed summary)."""
     t_write = time.perf_counter()
@@ -393,7 +422,11 @@ def write_bearing_run(out_dir, resolved: str, summary: dict, write, files: RunFi
             summary = files.complete(summary)
         full = dict(summary)
         if files.columns is not None and "timeseries" in write:
-            write_timeseries(stage / "timeseries.npz", files.t, files.columns(), files.meta(full))
+            name = stage / TIMESERIES_FILES[timeseries_format]
+            if timeseries_format == "netcdf":
+                write_timeseries_netcdf(name, files.t, files.columns(), files.meta(full), resolved)
+            else:
+                write_timeseries(name, files.t, files.columns(), files.meta(full))
             for fname, text in files.texts().items():
                 write_text(stage / fname, text)
         if files.write_time:
@@ -512,15 +545,136 @@ def write_timeseries(path, time, columns: dict, meta: dict | None = None, compre
     return write_bytes(path, buffer.getvalue())
 
 
-def read_timeseries(path) -> tuple[dict, dict]:
-    """(columns, meta) of a file written by :func:`write_timeseries`."""
+# the time series' file of each ``output.timeseries_format``
+TIMESERIES_FILES = {"netcdf": "timeseries.nc", "npz": "timeseries.npz"}
+NETCDF_ENGINE = "netcdf4"  # the netCDF library's own Python binding (netCDF4 on PyPI): HDF5 files any netCDF tool reads
+
+
+def netcdf_attrs(meta: dict) -> dict:
+    """``meta`` as netCDF global attributes: strings and numbers as they are, anything else (a summary,
+    a list of warnings, None) as its JSON text (netCDF attributes hold no nested values)."""
+    out = {}
+    for key, value in meta.items():
+        if isinstance(value, (str, int, float)) and not isinstance(value, bool):
+            out[key] = value
+        else:
+            out[key] = json.dumps(value, default=json_default)
+    return out
+
+
+def write_netcdf(path, ds, level: int = 1) -> Path:
+    """An ``xarray.Dataset`` as a netCDF-4 file (engine :data:`NETCDF_ENGINE`), every variable
+    zlib-compressed at ``level`` with the byte shuffle, through a temporary file and a rename.  Level 1:
+    on the README's main job (smoke, 48 variables of 501 samples) 1.25 MB against 1.24 MB at level 4 and
+    2.0 MB uncompressed."""
+    path = Path(path)
+    encoding = {name: {"zlib": True, "complevel": int(level), "shuffle": True} for name in ds.data_vars
+                if ds[name].dtype.kind in "fiub"}
+    tmp = None
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+        os.close(fd)
+        ds.to_netcdf(tmp, engine=NETCDF_ENGINE, format="NETCDF4", encoding=encoding)
+        os.chmod(tmp, 0o666 & ~_umask())
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise OutputError(path, _cause(exc)) from exc
+    except (ValueError, TypeError, RuntimeError) as exc:  # the netCDF library refusing a name or a value
+        raise OutputError(path, " ".join(str(exc).split())) from exc
+    finally:
+        if tmp is not None and os.path.exists(tmp):
+            os.remove(tmp)
+    log.debug("wrote %s", path)
+    return path
+
+
+def provenance(case_name: str, scene: str, resolved: str | None = None) -> dict:
+    """The provenance attributes of a netCDF output: the case's name and scene, the lubedyn version, the
+    time written (UTC, ISO 8601) and the case's parameters (``case.resolved.toml``'s text)."""
+    from lubedyn import __version__  # deferred: importlib.metadata
+
+    out = {"Case": case_name, "Scene": scene, "lubedyn version": __version__,
+           "date_created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+           "source": f"lubedyn {__version__}"}
+    if resolved is not None:
+        out["case parameters (resolved TOML)"] = resolved
+    return out
+
+
+def write_timeseries_netcdf(path, time_s, columns: dict, meta: dict | None = None, resolved: str | None = None,
+                            level: int = 1) -> Path:
+    """A time series as compressed netCDF-4 (:func:`write_netcdf`): the variables of
+    :func:`lubedyn.results.dataset` (one per quantity, numbered bodies along a dimension of their own,
+    units in the ``units`` attribute), the global attributes: ``format`` "lubedyn time series", the
+    column names in order (JSON), :func:`provenance` (with ``resolved``, the case's parameters) and
+    ``meta`` (:func:`netcdf_attrs`).  Read it back with :func:`read_timeseries` or ``xarray.open_dataset``.
+
+    Measured on the README's main job (smoke, 490 columns of 501 samples): 1.29 MB with its attributes
+    against 2.2 MB as plain ``.npz``, written in 0.25 s; the full 20 ms (10,001 samples) 27.0 MB against
+    39.5 MB, in about 2 s against 0.15 s uncompressed."""
     import numpy as np
 
+    from lubedyn.results import dataset
+
+    meta = dict(meta or {})
+    t = np.asarray(time_s, dtype=float)
+    for name, value in columns.items():
+        if np.shape(value)[:1] != t.shape:
+            raise ValueError(f"column {name!r} has {np.shape(value)[:1]} samples, time has {len(t)}")
+    attrs = {"format": "lubedyn time series", "version": 1,
+             **provenance(str(meta.get("Case", "")), str(meta.get("Scene", "")), resolved)}
+    attrs.update(netcdf_attrs({k: v for k, v in meta.items() if k not in attrs}))
+    attrs["columns"] = json.dumps(["Time [s]", *columns])
+    return write_netcdf(path, dataset(t, columns, attrs), level)
+
+
+def read_timeseries(path) -> tuple[dict, dict]:
+    """(columns, meta) of a file written by :func:`write_timeseries` (``.npz``) or
+    :func:`write_timeseries_netcdf` (``.nc``): the columns by their full names, "Time [s]" first, in the
+    order they were written; the metadata (the netCDF file's attributes, JSON texts decoded)."""
+    import numpy as np
+
+    path = Path(path)
+    if path.suffix == ".nc":
+        return _read_timeseries_netcdf(path)
     with np.load(path, allow_pickle=False) as data:
         meta = json.loads(str(data["__meta__"]))
         if meta.get("format") != "lubedyn time series":
             raise ValueError(f"{path}: not a lubedyn time series file")
         return {name: data[name] for name in meta["columns"]}, meta
+
+
+def _read_timeseries_netcdf(path: Path) -> tuple[dict, dict]:
+    from lubedyn.results import import_xarray, columns_of
+
+    xr = import_xarray()
+    with xr.open_dataset(path, engine=NETCDF_ENGINE, decode_times=False, decode_timedelta=False) as ds:
+        if ds.attrs.get("format") != "lubedyn time series":
+            raise ValueError(f"{path}: not a lubedyn time series file")
+        columns = columns_of(ds.load())
+        meta = {}
+        for key, value in ds.attrs.items():
+            if isinstance(value, str) and value[:1] in "[{" or value in ("null", "true", "false"):
+                try:
+                    value = json.loads(value)
+                except ValueError:
+                    pass
+            meta[key] = value
+    order = meta.get("columns") or list(columns)
+    return {name: columns[name] for name in order if name in columns}, meta
+
+
+def timeseries_path(folder) -> Path:
+    """The time series of the run folder ``folder``: ``timeseries.nc`` or, written with
+    ``output.timeseries_format = "npz"``, ``timeseries.npz``; FileNotFoundError naming both when it has
+    neither (the case's ``output.write`` must include "timeseries")."""
+    folder = Path(folder)
+    for name in TIMESERIES_FILES.values():
+        if (folder / name).is_file():
+            return folder / name
+    raise FileNotFoundError(f"{folder}: no {' or '.join(TIMESERIES_FILES.values())} (output.write must include "
+                            "'timeseries')")
 
 
 def computed(value) -> bool:

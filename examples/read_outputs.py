@@ -1,7 +1,7 @@
 """Reading a run's outputs (numpy, pyvista, ParaView)
 ==================================================
 
-Reading a run's outputs: summary.json, the time series (.npz) and the VTK fields, with numpy and
+Reading a run's outputs: summary.json, the time series (netCDF: timeseries.nc) and the VTK fields, with numpy and
 pyvista.  Runs the smoke-size main job (paper B's rotor drop) into a temporary folder first, through
 the same entry point as ``lubedyn run``.
 
@@ -34,7 +34,7 @@ def main():
     if code != 0:
         raise SystemExit(code)
     summary = json.loads((out / "summary.json").read_text())          # every scalar, names with units
-    columns, meta = read_timeseries(out / "timeseries.npz")            # "Time [s]" and one array per column
+    columns, meta = read_timeseries(out / "timeseries.nc")             # "Time [s]" and one array per column
     t = columns["Time [s]"]
     frames = pv.get_reader(str(out / "bearing.pvd"))                   # the ParaView collection
     frames.set_active_time_value(frames.time_values[-1])

@@ -1,6 +1,7 @@
 """Gap geometries h(x, y) of the Reynolds film, with their rigid-body modes.
 
-A gap is a frozen dataclass in SI units, callable on coordinates ``x`` of shape
+A gap is a frozen dataclass in SI units (its lengths also taken as strings with units, ``"50 um"``, through
+the case files' parser :mod:`lubedyn.lubrication.laws.units`), callable on coordinates ``x`` of shape
 ``(dim, ...)`` (the film's own plane; for a journal bearing ``x[0] = R*theta``
 is the unwrapped circumferential length and ``x[1]`` the axial coordinate).
 
@@ -31,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError, require_positive
+from .laws.units import quantity, si_fields
 
 
 class Gap:
@@ -71,6 +73,7 @@ class InclinedSlider(Gap):
     length: float
 
     def __post_init__(self):
+        si_fields(self, h_in="length", h_out="length", length="length")
         for k in ("h_in", "h_out", "length"):
             require_positive(f"gap {k} [m]", getattr(self, k))
 
@@ -87,6 +90,7 @@ class StepSlider(Gap):
     x_step: float
 
     def __post_init__(self):
+        si_fields(self, h_in="length", h_out="length", x_step="length")
         require_positive("gap h_in [m]", self.h_in)
         require_positive("gap h_out [m]", self.h_out)
 
@@ -107,6 +111,8 @@ class PocketedSlider(Gap):
     depth: float
 
     def __post_init__(self):
+        si_fields(self, h_in="length", h_out="length", length="length", pocket_start="length", pocket_end="length",
+                  depth="length")
         for k in ("h_in", "h_out", "length"):
             require_positive(f"gap {k} [m]", getattr(self, k))
         if not 0 <= self.pocket_start < self.pocket_end <= self.length:
@@ -134,6 +140,7 @@ class JournalBearing(Gap):
     eccentricity_y: float = 0.0
 
     def __post_init__(self):
+        si_fields(self, radius="length", clearance="length", eccentricity_x="length", eccentricity_y="length")
         require_positive("journal radius [m]", self.radius)
         require_positive("radial clearance [m]", self.clearance)
         eps = np.hypot(self.eccentricity_x, self.eccentricity_y) / self.clearance
@@ -144,7 +151,11 @@ class JournalBearing(Gap):
 
     @classmethod
     def from_ratio(cls, radius, clearance, eccentricity_ratio, attitude_angle=0.0):
-        """Journal centre at distance eps*c along angle ``attitude_angle`` [rad] from +x."""
+        """Journal centre at distance eps*c along angle ``attitude_angle`` [rad] from +x (numbers in SI, or
+        strings with units: ``from_ratio("25 mm", "50 um", 0.6, "30 deg")``)."""
+        clearance = quantity(clearance, "length", "JournalBearing.from_ratio clearance")
+        eccentricity_ratio = quantity(eccentricity_ratio, "dimensionless", "JournalBearing.from_ratio eccentricity_ratio")
+        attitude_angle = quantity(attitude_angle, "angle", "JournalBearing.from_ratio attitude_angle")
         e = eccentricity_ratio * clearance
         return cls(radius, clearance, e * np.cos(attitude_angle), e * np.sin(attitude_angle))
 
@@ -188,6 +199,7 @@ class SpherePlane(Gap):
     exact: bool = False
 
     def __post_init__(self):
+        si_fields(self, radius="length", h0="length")
         require_positive("sphere radius [m]", self.radius)
         require_positive("central gap h0 [m]", self.h0)
 
@@ -216,6 +228,7 @@ class SphereSphere(Gap):
     exact: bool = False
 
     def __post_init__(self):
+        si_fields(self, radius1="length", radius2="length", h0="length")
         require_positive("sphere radius1 [m]", self.radius1)
         require_positive("sphere radius2 [m]", self.radius2)
         require_positive("central gap h0 [m]", self.h0)
@@ -242,6 +255,7 @@ class CylinderPlane(Gap):
     h0: float
 
     def __post_init__(self):
+        si_fields(self, radius="length", h0="length")
         require_positive("cylinder radius [m]", self.radius)
         require_positive("central gap h0 [m]", self.h0)
 
@@ -259,6 +273,7 @@ class EllipsoidPlane(Gap):
     h0: float
 
     def __post_init__(self):
+        si_fields(self, radius_x="length", radius_y="length", h0="length")
         require_positive("radius_x [m]", self.radius_x)
         require_positive("radius_y [m]", self.radius_y)
         require_positive("central gap h0 [m]", self.h0)

@@ -41,16 +41,18 @@ def _files(calls, **kw):
                             figures=figures, complete=complete, **kw)
 
 
-def test_every_output_asked_for_is_written_and_the_time_series_carries_the_completed_summary(tmp_path):
+@pytest.mark.parametrize("fmt", ["netcdf", "npz"])
+def test_every_output_asked_for_is_written_and_the_time_series_carries_the_completed_summary(tmp_path, fmt):
     calls = []
     written, summary = outputs.write_bearing_run(tmp_path, "# resolved\n", {"Case": "c", "Scene": "s"},
-                                                 ["timeseries", "pvd", "png"], _files(calls, write_time=True))
+                                                 ["timeseries", "pvd", "png"], _files(calls, write_time=True), fmt)
+    series_file = outputs.TIMESERIES_FILES[fmt]
     assert sorted(p.name for p in written) == ["bearing.pvd", "case.resolved.toml", "extra.csv", "frames",
-                                               "summary.json", "timeseries.npz"]
+                                               "summary.json", series_file]
     assert sorted(p.name for p in (tmp_path / "frames").iterdir()) == ["frame_00000.vtp", "frame_00001.vtp"]
     # the frames and figures are made before the summary is completed, the time series after
     assert calls == ["frames", "figures", "complete", "columns"]
-    series, meta = outputs.read_timeseries(tmp_path / "timeseries.npz")
+    series, meta = outputs.read_timeseries(tmp_path / series_file)
     np.testing.assert_array_equal(series["x [m]"], np.linspace(0.0, 2e-3, 5))
     assert meta["Summary"]["Background [-]"] == 7 and "Output write time [s]" not in meta["Summary"]
     on_disk = json.loads((tmp_path / "summary.json").read_text())
@@ -60,7 +62,7 @@ def test_every_output_asked_for_is_written_and_the_time_series_carries_the_compl
     assert 'timestep="0.0"' in pvd and 'timestep="0.001"' in pvd and 'file="frames/frame_00001.vtp"' in pvd
     assert json.loads((tmp_path / "manifest.json").read_text())["files"] == [
         "bearing.pvd", "case.resolved.toml", "extra.csv", "frames/frame_00000.vtp", "frames/frame_00001.vtp",
-        "summary.json", "timeseries.npz"]
+        "summary.json", series_file]
 
 
 def test_outputs_not_asked_for_are_neither_computed_nor_written(tmp_path):

@@ -52,6 +52,10 @@ def test_from_python_page_runs(monkeypatch, tmp_path):
     assert np.all(np.diff(coef["Eccentricity ratio [-]"]) < 0)         # faster: a thicker film (larger S)
     if ns["bearing"] is not None:                                     # with ROSS: its matrix at a given speed
         assert np.allclose(ns["bearing"].K(coef.speed[1])[:2, :2], coef.K[1], rtol=1e-9)
+    assert (out / "mine.png").stat().st_size > 10_000                 # the figures drawn from Python
+    assert len(ns["left"].axes) == 2 and "slip" in ns["result"].kinds
+    from lubedyn.lubrication import closed_form as cf                   # the film built with units
+    assert ns["slider_load"] == pytest.approx(cf.inclined_slider_load(40e-6, 20e-6, 0.05, 0.05, 2.5), rel=1e-3)
 
 
 def test_readme_python_block_runs(monkeypatch, tmp_path):
@@ -65,6 +69,7 @@ def test_readme_python_block_runs(monkeypatch, tmp_path):
     assert rotor.size == res.t.size == ds.sizes["time"]
     assert rotor[-1] * 30 / math.pi == pytest.approx(res.summary["Rotor speed at end [rpm]"], rel=1e-12)
     assert res.files == [] and list(tmp_path.iterdir()) == []       # no out_dir: nothing written
+    assert len(ns["fig"].axes) == 3 and ns["fig"].axes[0].lines[0].get_ydata().size == res.t.size
 
 
 def test_study_page_runs_on_a_local_cluster(monkeypatch, tmp_path):
@@ -80,3 +85,6 @@ def test_study_page_runs_on_a_local_cluster(monkeypatch, tmp_path):
     ratios = [load / u for u, load in per_speed.items()]
     assert max(ratios) == pytest.approx(min(ratios), rel=1e-9)       # the film is linear in the speed
     assert per_speed[5.0] == pytest.approx(63550, rel=1e-3)           # the slider's closed form
+    load = ns["load"]                                                 # the table as a Dataset = study.csv
+    assert load.attrs["units"] == "N/m" and list(load.dims) == ["motion.velocity_lower"]
+    assert [float(v) for v in load.values] == [per_speed[u] for u in (2.0, 5.0, 8.0)]

@@ -158,7 +158,7 @@ def test_short_poincare_section_says_so(drop):
     # the period in the note (from the unwrapped azimuth) against the mean of the ball's orbital speed column
     period_ms = float(note.split("one per orbit, ")[1].split(" ms")[0])
     folder = next(p.parent for p in result.files if p.name == "summary.json")
-    columns, _ = outputs.read_timeseries(folder / "timeseries.npz")
+    columns, _ = outputs.read_timeseries(outputs.timeseries_path(folder))
     omega = float(np.mean(columns["Ball 0 Orbital speed [rad/s]"]))
     assert period_ms == pytest.approx(2e3 * math.pi / omega, rel=0.01)
 

@@ -113,7 +113,7 @@ def test_compare_runs_reads_folders_and_draws_the_ideal_orbit(tmp_path):
     assert pb.settling_row(run)["Settling time, ball 0 x [s]"] == 0.0  # computed: perfect circle
     out = pb.compare_runs(runs, tmp_path / "compare.png")
     assert out.is_file() and out.stat().st_size > 10_000
-    with pytest.raises(Exception, match="timeseries.npz"):
+    with pytest.raises(Exception, match=r"timeseries.nc \(or .npz\)"):
         pb.read_run(tmp_path)
 
 

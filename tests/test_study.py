@@ -161,7 +161,8 @@ def test_study_rows_scale_with_speed_and_equal_a_separate_run(tmp_path, capsys, 
     doc = json.loads((out / "study.json").read_text())
     assert doc["runs"]["total"] == 3 and doc["points"][1]["outputs"][LOAD]["median"] == summary[LOAD]
     assert (out / "study.png").stat().st_size > 0
-    assert sorted(p.name for p in out.iterdir()) == ["manifest.json", "runs", "study.csv", "study.json", "study.png"]
+    assert sorted(p.name for p in out.iterdir()) == ["manifest.json", "runs", "study.csv", "study.json", "study.nc",
+                                                  "study.png"]
 
 
 def test_resume_reruns_only_what_is_missing_or_half_written(tmp_path, capsys):

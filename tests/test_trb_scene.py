@@ -84,7 +84,7 @@ def test_loaded_zone_and_loads_against_the_quasi_static_start(smoke_run):
     names = {p.name for p in out.iterdir()}
     for f, _ in S.FIELD_FILES:
         assert f in names
-    cols, _ = read_timeseries(out / "timeseries.npz")
+    cols, _ = read_timeseries(out / "timeseries.nc")
     assert np.array_equal(cols["Roller 3 loaded zone [-]"], D["Loaded zone [-]"][:, 3].astype(float))
     assert len(list((out / "frames").iterdir())) == case.analysis.frames
 

@@ -115,8 +115,9 @@ def drive(model: BearingRunModel, out_dir=None, *, name: str, source: str = "", 
                 summary = files.complete(summary)
         else:
             resolved = resolved_toml(model.case, outputs.resolved_header(name, source, smoke))
-            written, summary = outputs.write_bearing_run(out_dir, resolved, summary, model.case.output.write, files)
+            written, summary = outputs.write_bearing_run(out_dir, resolved, summary, model.case.output.write, files,
+                                                          model.case.output.timeseries_format)
         result = model.result(summary, written)
         if files.columns is not None:
-            result.series = TimeSeries(files.t, files.columns)  # the names timeseries.npz uses, computed on read
+            result.series = TimeSeries(files.t, files.columns)  # the names the time series file uses, computed on read
         return result

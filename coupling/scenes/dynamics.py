@@ -10,8 +10,8 @@ integrates from its quasi-static initial state with
 :func:`lubedyn.dynamics.integrators.integrate` (a progress bar of simulated time on
 a terminal) and writes
 
-- ``timeseries.npz``: every state entry and the contact diagnostics at every
-  sample, names with units (:func:`lubedyn.outputs.read_timeseries`);
+- ``timeseries.nc`` (``output.timeseries_format = "npz"``: ``timeseries.npz``): every state entry and
+  the contact diagnostics at every sample, names with units (:func:`lubedyn.outputs.read_timeseries`);
 - ``collisions.csv``: one line per ball-ball collision (pair, time of the
   force peak, position, force components, duration);
 - ``bearing.pvd`` + ``frames/*.vtp``: balls, rings, slots and the ball-ball
@@ -68,7 +68,7 @@ from lubedyn.lubrication.laws.collision import ENTRAPPED_DAMPING
 from lubedyn import outputs
 from lubedyn.scenes.dynamics_lyapunov import _benettin, _lyapunov_per_direction
 from lubedyn.config import (CASES_DIR, BoundsModel, LimitsModel, LubricantModel, PositiveInt, PositiveLength, Q,
-                            CaseTable, refuse_renamed, rule)
+                            CaseTable, TimeSeriesOutput, refuse_renamed, rule)
 from lubedyn import limits
 from lubedyn.results import BearingResult
 from lubedyn.dynamics.analysis import collision_events, collision_summary
@@ -88,7 +88,7 @@ from lubedyn.scenes.bearing_run import Integration, drive
 
 log = logging.getLogger(__name__)
 
-FIELD_FILES = (("timeseries.npz", "timeseries"), ("collisions.csv", "timeseries"), ("bearing.pvd", "pvd"),
+FIELD_FILES = (("timeseries.nc", "timeseries"), ("collisions.csv", "timeseries"), ("bearing.pvd", "pvd"),
                ("trajectories.png", "png"), ("collision_needles.png", "png"), ("phase_portraits.png", "png"),
                ("spectrum.png", "png"), ("angular_displacement.png", "png"), ("collision_map.png", "png"),
                ("poincare.png", "png"))
@@ -280,7 +280,10 @@ class AnalysisTable(CaseTable):
         return self
 
 
-class OutputTable(CaseTable):
+class OutputTable(TimeSeriesOutput):
+    """``[output]``: ``write`` the files (time series, ParaView frames, figures); ``timeseries_format``:
+    :class:`lubedyn.config.TimeSeriesOutput`."""
+
     write: list[Literal["timeseries", "pvd", "png"]] = Field(default_factory=lambda: ["timeseries", "pvd", "png"])
 
 
@@ -682,7 +685,7 @@ class CagelessRunModel:
             meta=lambda full: {"Case": full["Case"], "Scene": "dynamics", "Summary": full},
             texts=lambda: {"collisions.csv": _collisions_csv(events)},
             frames=self._frames, frame_ext="vtp",
-            figures=lambda: _figures(case, setup, t, Y, diag, ring, events, self.centres, self.freqs),
+            figures=lambda: {name: draw() for name, draw in self.drawings().items()},
             complete=complete, write_time=True)
 
     def _frames(self):
@@ -698,8 +701,13 @@ class CagelessRunModel:
         for i in picks:
             yield float(t[i]), scene3d.frame(self.Y[i], self.diag[i], D_BBN, D_H)
 
+    def drawings(self) -> dict:
+        return drawings(self.case, self.setup, self.t, self.Y, self.diag, self.ring, self.events, self.centres,
+                        self.freqs)
+
     def result(self, summary: dict, files: list) -> DynamicsRun:
-        return DynamicsRun(summary=summary, files=files, t=self.t, y=self.Y, events=self.events)
+        return DynamicsRun(summary=summary, files=files, t=self.t, y=self.Y, events=self.events,
+                           drawings=self.drawings())
 
 
 class _BackgroundResult:
@@ -882,16 +890,14 @@ class _Scene3D:
         return mesh
 
 
-def _phase_portraits(t, centres, j: int):
+def _phase_portraits(t, centres, j: int, into=None):
     """Ball ``j``'s phase portraits in two frames: the fixed (inertial) frame, x, y, z against their
     rates, where the orbit (a circle of the pitch radius) dominates x and y; and the frame turning with
     the ball train, where the orbit is removed: the radial position r (distance from the bearing axis),
     the position along the orbit relative to the ball train's mean azimuth (r times the ball's lead
     over the mean of every ball's unwrapped azimuth, its time mean removed) and z, against their rates."""
-    import matplotlib.pyplot as plt
-
     vel = np.gradient(centres[:, j, :], t, axis=0)
-    fig, axes = plt.subplots(2, 3, figsize=(11, 6.8), layout="constrained")
+    fig, axes = outputs.panels(into, 2, 3, figsize=(11, 6.8), layout="constrained")
     for i, axis in enumerate("xyz"):
         axes[0, i].plot(centres[:, j, i] * 1e3, vel[:, i], lw=0.5)
         axes[0, i].set_xlabel(f"{axis} [mm]")
@@ -915,61 +921,70 @@ def _phase_portraits(t, centres, j: int):
     return fig
 
 
-def _figures(case, setup, t, Y, diag, ring, events, centres, freqs):
-    import matplotlib.pyplot as plt
-
-    figs = {}
+def drawings(case, setup, t, Y, diag, ring, events, centres, freqs) -> dict:
+    """The run's figures, ``{file name: draw}``, ``draw(into=None)`` making the figure (a new pyplot figure,
+    or in ``into``: a Figure, SubFigure or, for one panel, an Axes; :func:`lubedyn.outputs.panels`) and
+    returning it: what ``lubedyn run`` writes and ``res.plot(kind)`` draws."""
     j = case.analysis.ball
     ms = t * 1e3
-    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True, layout="constrained")
-    for i, axis in enumerate("xyz"):
-        axes[i].plot(ms, centres[:, j, i] * 1e3, lw=0.8)
-        axes[i].set_ylabel(f"ball {j} {axis} [mm]")
-    axes[-1].set_xlabel("time [ms]")
-    # a case's description can be longer than the figure is wide: wrapped, never cut
-    axes[0].set_title(textwrap.fill(f"{case.description or 'cage-less bearing'}: ball {j} centre", 80), fontsize=10)
-    figs["trajectories.png"] = fig
 
-    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True, layout="constrained")
-    for i, axis in enumerate("xyz"):
-        if events:
-            te = np.array([e.t_peak for e in events]) * 1e3
-            fe = np.array([e.force[i] for e in events])
-            axes[i].vlines(te, 0, fe, lw=0.8)
-            axes[i].plot(te, fe, "o", ms=2)
-        axes[i].axhline(0, color="k", lw=0.5)
-        axes[i].set_ylabel(f"F{axis} [N]")
-    axes[0].set_title(f"ball-ball collision forces ({len(events)} collisions)")
-    axes[-1].set_xlabel("time [ms]")
-    axes[-1].set_xlim(ms[0], ms[-1])
-    figs["collision_needles.png"] = fig
+    def trajectories(into=None):
+        fig, axes = outputs.panels(into, 3, 1, figsize=(8, 7), sharex=True, layout="constrained")
+        for i, axis in enumerate("xyz"):
+            axes[i].plot(ms, centres[:, j, i] * 1e3, lw=0.8)
+            axes[i].set_ylabel(f"ball {j} {axis} [mm]")
+        axes[-1].set_xlabel("time [ms]")
+        # a case's description can be longer than the figure is wide: wrapped, never cut
+        axes[0].set_title(textwrap.fill(f"{case.description or 'cage-less bearing'}: ball {j} centre", 80),
+                          fontsize=10)
+        return fig
 
-    figs["phase_portraits.png"] = _phase_portraits(t, centres, j)
+    def collision_needles(into=None):
+        fig, axes = outputs.panels(into, 3, 1, figsize=(8, 7), sharex=True, layout="constrained")
+        for i, axis in enumerate("xyz"):
+            if events:
+                te = np.array([e.t_peak for e in events]) * 1e3
+                fe = np.array([e.force[i] for e in events])
+                axes[i].vlines(te, 0, fe, lw=0.8)
+                axes[i].plot(te, fe, "o", ms=2)
+            axes[i].axhline(0, color="k", lw=0.5)
+            axes[i].set_ylabel(f"F{axis} [N]")
+        axes[0].set_title(f"ball-ball collision forces ({len(events)} collisions)")
+        axes[-1].set_xlabel("time [ms]")
+        axes[-1].set_xlim(ms[0], ms[-1])
+        return fig
 
-    fig, ax = plt.subplots(figsize=(8, 4), layout="constrained")
-    keep = t >= case.analysis.transient
-    acc = np.gradient(Y[keep, 5], t[keep])  # inner ring vertical acceleration
-    if keep.sum() >= 16:  # the summary's dominant frequency needs as many (lubedyn.dynamics.analysis.frequency)
-        f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
-        # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
-        # and the vibration band of the summary (shaded)
-        band = case.analysis.vibration_band
-        f_max = min(f[-1], max(spectrum_limit(freqs) or f[-1], band[1]))
-        ax.axvspan(band[0] / 1e3, min(band[1], f_max) / 1e3, color="0.9", lw=0, label="analysis.vibration_band")
-        shown = f <= f_max
-        ax.semilogy(f[shown] / 1e3, np.maximum(amp[shown], 1e-12), lw=0.7)
-        for k, (name, value) in enumerate(freqs.items()):
-            if 0 < value < f_max:
-                ax.axvline(value / 1e3, color=f"C{k + 1}", lw=0.8, ls="--", label=f"{name.replace(' [Hz]', '')} {value:.0f} Hz")
-        ax.set_xlim(0.0, f_max / 1e3)
-        ax.legend(fontsize=7)
-    else:  # too short a record after the transient for a spectrum: the figure says so instead of staying blank
-        ax.text(0.5, 0.5, f"no spectrum: {int(keep.sum())} samples after analysis.transient = "
-                f"{case.analysis.transient:.3g} s (at least 16 needed)", transform=ax.transAxes, ha="center",
-                va="center", fontsize=9, color="C3")
-    ax.set_xlabel("frequency [kHz]")
-    ax.set_ylabel("inner ring y acceleration [m/s^2]")
-    ax.set_title("inner-ring acceleration spectrum")
-    figs["spectrum.png"] = fig
-    figs.update(paper_b_figures.figures(case, t, run_columns(setup.model, Y, diag, ring), events))
-    return figs
+    def spectrum(into=None):
+        fig, ax = outputs.panels(into, figsize=(8, 4), layout="constrained")
+        keep = t >= case.analysis.transient
+        acc = np.gradient(Y[keep, 5], t[keep])  # inner ring vertical acceleration
+        if keep.sum() >= 16:  # the summary's dominant frequency needs as many (lubedyn.dynamics.analysis.frequency)
+            f, amp = amplitude_spectrum(acc, 1.0 / float(t[1] - t[0]))
+            # up to 1.5 x the highest first harmonic of the bearing lines (not the collision rate, tens of kHz),
+            # and the vibration band of the summary (shaded)
+            band = case.analysis.vibration_band
+            f_max = min(f[-1], max(spectrum_limit(freqs) or f[-1], band[1]))
+            ax.axvspan(band[0] / 1e3, min(band[1], f_max) / 1e3, color="0.9", lw=0, label="analysis.vibration_band")
+            shown = f <= f_max
+            ax.semilogy(f[shown] / 1e3, np.maximum(amp[shown], 1e-12), lw=0.7)
+            for k, (name, value) in enumerate(freqs.items()):
+                if 0 < value < f_max:
+                    ax.axvline(value / 1e3, color=f"C{k + 1}", lw=0.8, ls="--",
+                               label=f"{name.replace(' [Hz]', '')} {value:.0f} Hz")
+            ax.set_xlim(0.0, f_max / 1e3)
+            ax.legend(fontsize=7)
+        else:  # too short a record after the transient for a spectrum: the figure says so instead of staying blank
+            ax.text(0.5, 0.5, f"no spectrum: {int(keep.sum())} samples after analysis.transient = "
+                    f"{case.analysis.transient:.3g} s (at least 16 needed)", transform=ax.transAxes, ha="center",
+                    va="center", fontsize=9, color="C3")
+        ax.set_xlabel("frequency [kHz]")
+        ax.set_ylabel("inner ring y acceleration [m/s^2]")
+        ax.set_title("inner-ring acceleration spectrum")
+        return fig
+
+    draw = {"trajectories.png": trajectories, "collision_needles.png": collision_needles,
+            "phase_portraits.png": lambda into=None: _phase_portraits(t, centres, j, into),
+            "spectrum.png": spectrum}
+    draw.update(paper_b_figures.drawings(case, t, run_columns(setup.model, Y, diag, ring), events))
+    return draw
+

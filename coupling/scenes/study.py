@@ -17,6 +17,7 @@ A study file (TOML; ``lubedyn study STUDY.toml --out DIR``)::
     workers = 0                     # local processes; 0: every usable core
     scheduler = ""                  # a Dask scheduler address: the runs go there instead
     outputs = ["Load per unit width [N/m]"]   # summary.json keys to tabulate and plot
+    tables = ["netcdf"]             # study.nc beside study.csv and study.json ([]: none)
     [paper]                         # published values drawn as markers on study.png
     "Load per unit width [N/m]" = { axis = "motion.velocity_lower", at = ["5 m/s"], values = [63550] }
 
@@ -50,7 +51,10 @@ numeric output and how many members failed or warned, the failed and the warned 
 and timing) and ``study.png`` (per output a panel against the first axis: the median over members,
 the min-max band, one line per combination of the other axes; ``[paper]`` values as markers; points
 with a warned member circled in orange, points with a failed member crossed in red, points with no
-finished member absent), written together through a staging folder (:func:`lubedyn.outputs.staged`).
+finished member absent) and ``study.nc`` (the table as compressed netCDF, :func:`study_dataset`: each
+output over the axes -- or the points of a zip or Morris study -- and the members, units in the
+attributes; ``StudyResult.to_xarray()`` gives the same Dataset in Python), written together through a
+staging folder (:func:`lubedyn.outputs.staged`).
 
 Every run carries its health into the tables, because a study is where results are compared and a
 warning left in one run folder's ``summary.json`` is a warning nobody reads: the ``status`` of a run
@@ -154,6 +158,7 @@ class StudyTable(CaseTable):
     workers: Annotated[int, Field(strict=True, ge=0)] = 0
     scheduler: str = ""
     outputs: Annotated[list[str], Field(min_length=1)]
+    tables: list[Literal["netcdf"]] = ["netcdf"]  # besides study.csv and study.json: study.nc ([]: none)
 
 
 class StudyFile(CaseTable):
@@ -680,6 +685,14 @@ class StudyResult:
     backend: str
     files: list
     warned: list = field(default_factory=list)
+    table: tuple | None = field(default=None, repr=False)  # (study, plan, results) of to_xarray
+
+    def to_xarray(self):
+        """The study's table as an ``xarray.Dataset`` (:func:`study_dataset`): every output over the axes
+        (grid) or the points (zip, morris) and the members, units in the attributes; what ``study.nc`` holds."""
+        if self.table is None:
+            raise ValueError("this study result has no table (it was made without its runs' results)")
+        return study_dataset(*self.table)
 
 
 def run_study(study: StudyFile, study_path, out, *, smoke: bool | None = None, workers: int | None = None,
@@ -743,7 +756,8 @@ def run_study(study: StudyFile, study_path, out, *, smoke: bool | None = None, w
             "failed": len(failed), "ok with warnings": len(warned), "started [UTC]": started,
             "wall time [s]": time.perf_counter() - t0}
     files = write_tables(study, study_path, plan, results, out, info)
-    return StudyResult(out, len(plan.runs), len(reused), len(todo), failed, backend, files, warned)
+    return StudyResult(out, len(plan.runs), len(reused), len(todo), failed, backend, files, warned,
+                       (study, plan, results))
 
 
 # ---------------------------------------------------------------------------
@@ -916,8 +930,128 @@ def figure(study: StudyFile, plan: Plan, stats: list):
     return fig
 
 
+def _axis_unit(values: list) -> str:
+    """The SI unit of an axis whose values are written with units ("5 m/s" -> "m/s"), "" when they are bare
+    numbers or not quantities (the units of lubedyn.units)."""
+    from lubedyn.units import UnitError, dimension_name, parse_units, si_unit
+
+    found = set()
+    for value in values:
+        match = re.match(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*(\S.*?)\s*$", value) \
+            if isinstance(value, str) else None
+        if match is None:
+            return ""
+        try:
+            found.add(parse_units(match.group(1))[1])
+        except UnitError:
+            return ""
+    if len(found) != 1:
+        return ""
+    name = dimension_name(found.pop())
+    try:
+        return si_unit(name)
+    except KeyError:
+        return name  # an unnamed dimension: its SI units ("m^2 s")
+
+
+def _table_array(values: list):
+    """A study output's values as an array: floats (NaN where a run failed or gave none) when every value
+    is a number, else strings ("" where none)."""
+    import numpy as np
+
+    if all(v is None or _number(v) is not None for v in values):
+        return np.array([math.nan if v is None else float(v) for v in values])
+    return np.array(["" if v is None else (v if isinstance(v, str) else json.dumps(v)) for v in values], dtype=str)
+
+
+def study_dataset(study: StudyFile, plan: Plan, results: list, attrs: dict | None = None):
+    """The study's table as an ``xarray.Dataset``, the numbers of ``study.csv``.
+
+    Dimensions: with ``combine = "grid"`` one per axis, named by its key, its coordinate the axis's SI
+    values (numbers) or the values as given (anything else), and the units when the values carry them
+    ("5 m/s": ``units`` "m/s"); with "zip" or "morris" one dimension "point" with each axis a coordinate
+    along it; then "member" when the study has more than one.  Variables: each output, named without its
+    unit (``units`` and ``long_name`` attributes, ``column`` the full name), NaN where a run failed or
+    gave no number; "status" (``ok``, ``ok-with-warnings``, ``failed``), "warnings" (the count) and "run
+    folder".  The study's identity (description, base case, combine, lubedyn version) is in the attributes."""
+    import numpy as np
+
+    from lubedyn.results import import_xarray, split_unit
+
+    xr = import_xarray()
+    keys, names = list(study.axes), study.study.outputs
+    members = study.study.members
+    grid = study.study.combine == "grid"
+
+    def coordinate(key, values, si):
+        numeric = all(_number(x) is not None for x in si)
+        data = np.array([float(x) for x in si]) if numeric else np.array([given(v) for v in values], dtype=str)
+        unit = _axis_unit(values) if numeric else ""
+        return data, {"long_name": key, "given": json.dumps([given(v) for v in values]),
+                      **({"units": unit} if unit else {})}
+
+    if grid:
+        dims = keys
+        shape = [len(study.axes[k]) for k in keys]
+        first_si = {k: {} for k in keys}
+        for values, si in zip(plan.points, plan.si):
+            for k in keys:
+                first_si[k].setdefault(toml_value(values[k]), si[k])
+        coords = {}
+        for k in keys:
+            data, cattrs = coordinate(k, study.axes[k], [first_si[k][toml_value(v)] for v in study.axes[k]])
+            coords[k] = (k, data, cattrs)
+        index = {k: {toml_value(v): i for i, v in enumerate(study.axes[k])} for k in keys}
+
+        def position(p):
+            return tuple(index[k][toml_value(plan.points[p][k])] for k in keys)
+    else:
+        dims, shape = ["point"], [len(plan.points)]
+        coords = {"point": ("point", np.arange(len(plan.points)), {"long_name": "point of the study"})}
+        for k in keys:
+            data, cattrs = coordinate(k, [v[k] for v in plan.points], [s[k] for s in plan.si])
+            coords[k] = ("point", data, cattrs)
+
+        def position(p):
+            return (p,)
+    if members > 1:
+        dims, shape = dims + ["member"], shape + [members]
+        coords["member"] = ("member", np.arange(members), {"long_name": f"ensemble member ({study.study.member_key})"})
+    cells = int(np.prod(shape))
+    flat: dict = {}  # flat index of each run in the table
+    for run in plan.runs:
+        where = position(run.point) + ((run.member,) if members > 1 else ())
+        flat[run.index] = int(np.ravel_multi_index(where, shape))
+
+    def table(value_of):
+        values = [None] * cells
+        for run in plan.runs:
+            values[flat[run.index]] = value_of(run, results[run.index])
+        return values
+
+    data = {}
+    for name in names:
+        label, unit = split_unit(name)
+        values = _table_array(table(lambda run, r: r[1].get(name) if r[0] == "ok" else None))
+        data[label] = (dims, values.reshape(shape), {"units": unit, "long_name": label, "column": name})
+    data["status"] = (dims, np.array(table(lambda run, r: status(r)), dtype=str).reshape(shape),
+                      {"long_name": "run status: ok, ok-with-warnings or failed"})
+    data["warnings"] = (dims, np.array(table(lambda run, r: len(run_warnings(r[1])) if r[0] == "ok" else 0),
+                                       dtype=np.int32).reshape(shape), {"long_name": "warnings of the run", "units": "1"})
+    data["run folder"] = (dims, np.array(table(lambda run, r: run.folder), dtype=str).reshape(shape),
+                          {"long_name": "run folder, relative to the study folder"})
+    from lubedyn import __version__  # deferred: importlib.metadata
+
+    identity = {"format": "lubedyn study", "version": 1, "description": study.description,
+                "base case": str(plan.base), "combine": study.study.combine, "members": members,
+                "lubedyn version": __version__}
+    return xr.Dataset(data, coords=coords, attrs={**identity, **dict(attrs or {})})
+
+
 def write_tables(study: StudyFile, study_path, plan: Plan, results: list, out: Path, info: dict) -> list[Path]:
-    """Write study.csv, study.json and study.png into ``out`` together (staged; ``runs/`` kept)."""
+    """Write study.csv, study.json, study.nc (compressed netCDF: :func:`study_dataset`, the study file and
+    the run information in its attributes; with ``study.tables`` naming "netcdf") and study.png into
+    ``out`` together (staged; ``runs/`` kept)."""
     import matplotlib.pyplot as plt
 
     stats = aggregates(study, plan, results)
@@ -940,7 +1074,13 @@ def write_tables(study: StudyFile, study_path, plan: Plan, results: list, out: P
         with outputs.staged(out, keep=("runs",)) as stage:
             outputs.write_text(stage / "study.csv", table(study, plan, results))
             outputs.write_json(stage / "study.json", doc)
+            if "netcdf" in study.study.tables:
+                attrs = {"study file": doc["study file"], "date_created": doc["finished [UTC]"],
+                         "study (resolved)": json.dumps(doc["study"], default=outputs.json_default),
+                         "runs": json.dumps(info, default=outputs.json_default)}
+                outputs.write_netcdf(stage / "study.nc", study_dataset(study, plan, results, attrs))
             outputs.save_figure(stage / "study.png", fig)
     finally:
         plt.close(fig)
-    return [out / name for name in ("study.csv", "study.json", "study.png")]
+    written = ("study.csv", "study.json") + (("study.nc",) if "netcdf" in study.study.tables else ()) + ("study.png",)
+    return [out / name for name in written]

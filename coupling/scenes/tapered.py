@@ -35,8 +35,8 @@ cage and rollers at their ideal speeds, integrates :func:`lubedyn.dynamics.taper
 ``summary.json`` (for the paper's window and for the record's last cage revolution: per zone -- loaded,
 unloaded, all -- the mean, amplitude and largest magnitude of tilt, skew, slip and radial displacement;
 cage speed and slip, whirl radius, a periodicity measure; the quasi-static loads beside the largest
-dynamic ones; the assumed values), ``timeseries.npz`` (every state; per roller tilt, skew, speeds,
-slips, displacements (from the start and from the ideal, unloaded position), the loaded-zone marker,
+dynamic ones; the assumed values), ``timeseries.nc`` (or ``.npz``: ``output.timeseries_format``; every
+state; per roller tilt, skew, speeds, slips, displacements (from the start and from the ideal, unloaded position), the loaded-zone marker,
 loads, friction and every slice load; the cage),
 ``bearing.pvd`` with ``frames/*.vtu`` (cup, cone, rollers and cage for ParaView, loads and attitude
 as point data) and the PNGs ``roller_attitude.png`` (loaded zone shaded), ``roller_displacement.png``,
@@ -103,7 +103,7 @@ from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 from lubedyn import outputs
-from lubedyn.config import (BoundsModel, LimitsModel, LubricantModel, PositiveInt, Q, CaseTable, Viscosity,
+from lubedyn.config import (BoundsModel, LimitsModel, LubricantModel, PositiveInt, Q, CaseTable, TimeSeriesOutput, Viscosity,
                             refuse_renamed, root_rule, rule)
 from lubedyn.papers.wu2018.parameters import GREASE_TABLE as GREASES
 from lubedyn.scenes.static import BearingTable
@@ -123,7 +123,7 @@ from lubedyn.scenes.static import body_grid, build as build_geometry, raceway_su
 
 log = logging.getLogger(__name__)
 
-FIELD_FILES = (("timeseries.npz", "timeseries"), ("bearing.pvd", "pvd"), ("roller_attitude.png", "png"),
+FIELD_FILES = (("timeseries.nc", "timeseries"), ("bearing.pvd", "pvd"), ("roller_attitude.png", "png"),
                ("roller_displacement.png", "png"), ("slip.png", "png"), ("cage_whirl.png", "png"),
                ("cone_orbit.png", "png"), ("slice_loads.png", "png"))
 
@@ -356,7 +356,10 @@ class AnalysisTable(CaseTable):
         return self
 
 
-class OutputTable(CaseTable):
+class OutputTable(TimeSeriesOutput):
+    """``[output]``: ``write`` the files (time series, ParaView frames, figures); ``timeseries_format``:
+    :class:`lubedyn.config.TimeSeriesOutput`."""
+
     write: list[Literal["timeseries", "png", "pvd"]] = Field(default_factory=lambda: ["timeseries", "png", "pvd"])
 
 
@@ -928,10 +931,14 @@ class TaperedRunModel:
             t=self.t, columns=lambda: _columns(self.model, self.y, self.D),
             meta=lambda full: {"Case": summary["Case"], "Scene": "tapered"},
             frames=self._frames, frame_ext="vtu",
-            figures=lambda: _figures(self.model, self.t, self.y, self.D, self.qs))
+            figures=lambda: {name: draw() for name, draw in self.drawings().items()})
+
+    def drawings(self) -> dict:
+        return drawings(self.model, self.t, self.y, self.D, self.qs)
 
     def result(self, summary: dict, files: list) -> TaperedRun:
-        return TaperedRun(summary=summary, files=files, t=self.t, y=self.y, diagnostics=self.D)
+        return TaperedRun(summary=summary, files=files, t=self.t, y=self.y, diagnostics=self.D,
+                          drawings=self.drawings())
 
 
 PER_ROLLER = ("Tilt [rad]", "Skew [rad]", "Orbital speed [rad/s]", "Spin speed [rad/s]", "Roller slip [-]",
@@ -1014,12 +1021,22 @@ def frame_mesh(model, y, fields: dict, n_around: int = 16, n_along: int = 7):
     return pv.merge(blocks, merge_points=False)
 
 
-def _figures(model, t, Y, D, qs) -> dict:
-    from matplotlib.figure import Figure
+def drawings(model, t, Y, D, qs) -> dict:
+    """The run's figures, ``{file name: draw}``, ``draw(into=None)`` making the figure (a new bare matplotlib
+    Figure, laid out tight, or in ``into``: a Figure, SubFigure or, for one panel, an Axes;
+    :func:`lubedyn.outputs.panels`) and returning it: what ``lubedyn run`` writes and ``res.plot(kind)``
+    draws."""
     from matplotlib.patches import Circle
 
     ms = t * 1e3
-    figs = {}
+
+    def new(into, nrows, ncols, figsize):
+        return outputs.panels(into, nrows, ncols, figsize=figsize, pyplot=False)
+
+    def done(fig, into):
+        if into is None:  # the caller's figure keeps its own layout
+            fig.tight_layout()
+        return fig
 
     def shade(ax, j=0):
         z = D["Loaded zone [-]"][:, j]
@@ -1027,71 +1044,73 @@ def _figures(model, t, Y, D, qs) -> dict:
         for a, b in zip(edges[::2], edges[1::2]):
             ax.axvspan(ms[a], ms[min(b, len(ms) - 1)], color="0.9", lw=0)
 
-    fig = Figure(figsize=(10, 4))
-    axes = fig.subplots(1, 2)
-    for ax, key in zip(axes, ("Tilt [rad]", "Skew [rad]")):
+    def roller_attitude(into=None):
+        fig, axes = new(into, 1, 2, (10, 4))
+        for ax, key in zip(axes, ("Tilt [rad]", "Skew [rad]")):
+            shade(ax)
+            ax.plot(ms, D[key][:, 0], label="roller 0 (grey: in the loaded zone)")
+            ax.plot(ms, np.mean(D[key], axis=1), "k", lw=0.8, label="mean of all rollers")
+            ax.set_xlabel("time [ms]")
+            ax.set_ylabel(key.lower().replace("[", "from the start ["))
+            ax.legend(fontsize=8)
+        return done(fig, into)
+
+    def roller_displacement(into=None):
+        fig, axes = new(into, 1, 2, (10, 4))
+        for ax, key in zip(axes, ("Radial displacement [m]", "Axial displacement [m]")):
+            shade(ax)
+            ax.plot(ms, D[key][:, 0] * 1e6, label="roller 0")
+            ax.set_xlabel("time [ms]")
+            ax.set_ylabel(key.replace("[m]", "[um]").lower())
+            ax.legend(fontsize=8)
+        return done(fig, into)
+
+    def slip(into=None):
+        fig, ax = new(into, 1, 1, (6.4, 4.2))
         shade(ax)
-        ax.plot(ms, D[key][:, 0], label="roller 0 (grey: in the loaded zone)")
-        ax.plot(ms, np.mean(D[key], axis=1), "k", lw=0.8, label="mean of all rollers")
+        ax.plot(ms, 100 * D["Roller slip [-]"][:, 0], label="roller 0")
+        ax.plot(ms, 100 * np.mean(D["Roller slip [-]"], axis=1), "k", lw=0.8, label="mean of all rollers")
+        if "Cage slip [-]" in D:
+            ax.plot(ms, 100 * D["Cage slip [-]"], label="cage")
         ax.set_xlabel("time [ms]")
-        ax.set_ylabel(key.lower().replace("[", "from the start ["))
+        ax.set_ylabel("slip [%] (eq. 52, against the ideal cage speed)")
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    figs["roller_attitude.png"] = fig
-    fig = Figure(figsize=(10, 4))
-    axes = fig.subplots(1, 2)
-    for ax, key in zip(axes, ("Radial displacement [m]", "Axial displacement [m]")):
-        shade(ax)
-        ax.plot(ms, D[key][:, 0] * 1e6, label="roller 0")
-        ax.set_xlabel("time [ms]")
-        ax.set_ylabel(key.replace("[m]", "[um]").lower())
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    figs["roller_displacement.png"] = fig
-    fig = Figure(figsize=(6.4, 4.2))
-    ax = fig.subplots()
-    shade(ax)
-    ax.plot(ms, 100 * D["Roller slip [-]"][:, 0], label="roller 0")
-    ax.plot(ms, 100 * np.mean(D["Roller slip [-]"], axis=1), "k", lw=0.8, label="mean of all rollers")
-    if "Cage slip [-]" in D:
-        ax.plot(ms, 100 * D["Cage slip [-]"], label="cage")
-    ax.set_xlabel("time [ms]")
-    ax.set_ylabel("slip [%] (eq. 52, against the ideal cage speed)")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    figs["slip.png"] = fig
-    fig = Figure(figsize=(5, 5))
-    ax = fig.subplots()
-    if "Cage centre [m]" in D:
-        ax.plot(D["Cage centre [m]"][:, 0] * 1e6, D["Cage centre [m]"][:, 1] * 1e6, lw=0.8)
-        c = 0.5 * model.geometry.guide_land_clearance * 1e6
-        ax.add_patch(Circle((0, 0), c, fill=False, ls="--", label="land clearance"))
-        ax.legend(fontsize=8)
-    ax.set_xlabel("cage centre from the cone's, y [um]")
-    ax.set_ylabel("z [um]")
-    ax.set_aspect("equal", "datalim")
-    ax.locator_params(nbins=4)  # a square of 5 inches: more labels of -0.025 overlap
-    fig.tight_layout()
-    figs["cage_whirl.png"] = fig
-    fig = Figure(figsize=(5, 5))
-    ax = fig.subplots()
-    ax.plot((Y[:, 1] - Y[0, 1]) * 1e6, (Y[:, 2] - Y[0, 2]) * 1e6, lw=0.8)
-    ax.set_xlabel("cone centre from its start, y [um]")
-    ax.set_ylabel("z [um]")
-    ax.set_aspect("equal", "datalim")
-    ax.locator_params(nbins=4)  # a square of 5 inches: more labels of -0.025 overlap
-    fig.tight_layout()
-    figs["cone_orbit.png"] = fig
-    fig = Figure(figsize=(10, 4))
-    axes = fig.subplots(1, 2)
-    j = int(np.argmax(qs.cup_loads))
-    u = np.asarray(model.geometry.slices(model.n_slices)[0]) * 1e3
-    for r, (ax, race) in enumerate(zip(axes, ("cup", "cone"))):
-        ax.plot(u, D["Slice loads [N]"][-1, j, r], "o-", label=f"roller {j}, end of run")
-        ax.plot(u, np.max(D["Slice loads [N]"][:, j, r], axis=0), ":", label="largest over the run")
-        ax.set_xlabel("slice position along the roller [mm]")
-        ax.set_ylabel(f"{race} slice load [N]")
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    figs["slice_loads.png"] = fig
-    return figs
+        return done(fig, into)
+
+    def cage_whirl(into=None):
+        fig, ax = new(into, 1, 1, (5, 5))
+        if "Cage centre [m]" in D:
+            ax.plot(D["Cage centre [m]"][:, 0] * 1e6, D["Cage centre [m]"][:, 1] * 1e6, lw=0.8)
+            c = 0.5 * model.geometry.guide_land_clearance * 1e6
+            ax.add_patch(Circle((0, 0), c, fill=False, ls="--", label="land clearance"))
+            ax.legend(fontsize=8)
+        ax.set_xlabel("cage centre from the cone's, y [um]")
+        ax.set_ylabel("z [um]")
+        ax.set_aspect("equal", "datalim")
+        ax.locator_params(nbins=4)  # a square of 5 inches: more labels of -0.025 overlap
+        return done(fig, into)
+
+    def cone_orbit(into=None):
+        fig, ax = new(into, 1, 1, (5, 5))
+        ax.plot((Y[:, 1] - Y[0, 1]) * 1e6, (Y[:, 2] - Y[0, 2]) * 1e6, lw=0.8)
+        ax.set_xlabel("cone centre from its start, y [um]")
+        ax.set_ylabel("z [um]")
+        ax.set_aspect("equal", "datalim")
+        ax.locator_params(nbins=4)  # a square of 5 inches: more labels of -0.025 overlap
+        return done(fig, into)
+
+    def slice_loads(into=None):
+        fig, axes = new(into, 1, 2, (10, 4))
+        j = int(np.argmax(qs.cup_loads))
+        u = np.asarray(model.geometry.slices(model.n_slices)[0]) * 1e3
+        for r, (ax, race) in enumerate(zip(axes, ("cup", "cone"))):
+            ax.plot(u, D["Slice loads [N]"][-1, j, r], "o-", label=f"roller {j}, end of run")
+            ax.plot(u, np.max(D["Slice loads [N]"][:, j, r], axis=0), ":", label="largest over the run")
+            ax.set_xlabel("slice position along the roller [mm]")
+            ax.set_ylabel(f"{race} slice load [N]")
+            ax.legend(fontsize=8)
+        return done(fig, into)
+
+    return {"roller_attitude.png": roller_attitude, "roller_displacement.png": roller_displacement,
+            "slip.png": slip, "cage_whirl.png": cage_whirl, "cone_orbit.png": cone_orbit,
+            "slice_loads.png": slice_loads}

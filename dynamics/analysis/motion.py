@@ -1,4 +1,4 @@
-"""A ball's motion from a cage-less bearing run's time series (the columns of ``timeseries.npz``).
+"""A ball's motion from a cage-less bearing run's time series (the columns of the run's time series file).
 
 The run's columns are named by :meth:`lubedyn.dynamics.cageless.CagelessBearing.state_names` and the contact
 diagnostics (:data:`lubedyn.dynamics.cageless.DIAG_NAMES`, ``RING_DIAG_NAMES``): ``"Ball j x [m]"``,
@@ -14,7 +14,7 @@ from lubedyn.dynamics.cageless import DIAG_NAMES, RING_DIAG_NAMES
 
 
 def run_columns(model, Y, diag, ring) -> dict:
-    """The columns of ``timeseries.npz`` (views of the arrays, no copies) from a run's state,
+    """The columns of the run's time series (views of the arrays, no copies) from a run's state,
     ball diagnostics (m, Z, k) and ring diagnostics."""
     columns = {n: Y[:, i] for i, n in enumerate(model.state_names())}
     for j in range(model.n_balls):

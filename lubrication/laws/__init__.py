@@ -31,6 +31,9 @@ module         laws
                with the paper's or a continuous switch, side-beam squeeze,
                guide land (short bearing, eq. 44, FEM-map reader; Couette
                torque; boundary state; the guiding ring's reaction)
+``units``      quantities with units, "50 um" -> 5e-05 m: the one parser of
+               the case files (``lubedyn.units``) and of these dataclasses'
+               and the films' Python constructors (``si_fields``)
 ``tapered``    tapered roller bearing geometry (common-apex or literal
                reading of paper A's Table 1), flange, crown, cage land,
                ideal kinematics, end sliding, roller mass

@@ -1,6 +1,7 @@
 """Lubricant laws: viscosity eta(p) and density rho(p), with their derivatives.
 
-All laws are frozen dataclasses in SI units, callable on numpy arrays of the
+All laws are frozen dataclasses in SI units (their constructors also take strings with units, "50 mPa s":
+:func:`lubedyn.lubrication.laws.units.si_fields`), callable on numpy arrays of the
 *gauge* pressure ``p`` [Pa] above ambient (negative values are clipped to zero
 inside the pressure-dependent laws, so a Newton iterate that dips below
 ambient cannot overflow).  Each law has ``__call__(p)`` and ``derivative(p)``
@@ -82,6 +83,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError, require_positive
+from .units import si_fields
 
 ROELANDS_P0 = 1.96e8  # Pa
 
@@ -97,6 +99,7 @@ class ConstantViscosity:
     eta0: float
 
     def __post_init__(self):
+        si_fields(self, eta0="dynamic viscosity")
         require_positive("viscosity eta0 [Pa s]", self.eta0)
 
     is_constant = True
@@ -119,6 +122,7 @@ class Barus:
     is_constant = False
 
     def __post_init__(self):
+        si_fields(self, eta0="dynamic viscosity", alpha="inverse pressure")
         require_positive("viscosity eta0 [Pa s]", self.eta0)
         if self.alpha < 0:
             raise InputError(f"pressure-viscosity alpha [1/Pa] = {self.alpha!r} must be >= 0")
@@ -148,6 +152,7 @@ class Roelands:
     is_constant = False
 
     def __post_init__(self):
+        si_fields(self, eta0="dynamic viscosity", alpha="inverse pressure", p0="pressure")
         require_positive("viscosity eta0 [Pa s]", self.eta0)
         if (self.z is None) == (self.alpha is None):
             raise InputError("Roelands viscosity needs exactly one of 'z' or 'alpha'")
@@ -183,6 +188,7 @@ class Incompressible:
     is_constant = True
 
     def __post_init__(self):
+        si_fields(self, rho0="density")
         require_positive("density rho0 [kg/m^3]", self.rho0)
 
     def __call__(self, p):
@@ -204,6 +210,7 @@ class DowsonHigginson:
     is_constant = False
 
     def __post_init__(self):
+        si_fields(self, rho0="density", a="inverse pressure", b="inverse pressure")
         require_positive("density rho0 [kg/m^3]", self.rho0)
 
     def __call__(self, p):
@@ -333,6 +340,7 @@ class Lubricant:
     herschel_bulkley: HerschelBulkleyFlow | None = None
 
     def __post_init__(self):
+        si_fields(self, eyring_stress="pressure")
         if self.eyring_stress is not None:
             require_positive("lubricant eyring_stress [Pa]", self.eyring_stress)
         if self.herschel_bulkley is not None:
@@ -361,6 +369,6 @@ class Lubricant:
                    herschel_bulkley=HerschelBulkleyFlow(grease.yield_stress, grease.exponent))
 
     @classmethod
-    def newtonian(cls, eta0: float, rho0: float = 1.0) -> "Lubricant":
-        """Isoviscous, incompressible lubricant."""
+    def newtonian(cls, eta0: float | str, rho0: float | str = 1.0) -> "Lubricant":
+        """Isoviscous, incompressible lubricant (numbers in SI or strings with units: ``newtonian("50 mPa s")``)."""
         return cls(ConstantViscosity(eta0), Incompressible(rho0))

@@ -12,6 +12,7 @@ import skfem
 from ..errors import InputError, unknown_choice
 from ..gaps import Gap
 from ..laws.lubricant import Lubricant
+from ..laws.units import quantity, si_fields
 from .options import ELEMENT_ORDERS, Cavitation, SolverOptions
 from .solution import FilmSolution
 from .solve import solve
@@ -23,7 +24,9 @@ Field = float | tuple | Callable
 
 @dataclass(frozen=True)
 class Film:
-    """A lubricant film problem (SI units).
+    """A lubricant film problem (SI units; the velocities, ``squeeze`` and ``ambient_pressure`` also as strings
+    with units, ``velocity_lower=("5 m/s",)``, read by the case files' parser
+    :mod:`lubedyn.lubrication.laws.units`).
 
     Parameters
     ----------
@@ -67,6 +70,12 @@ class Film:
     options: SolverOptions = SolverOptions()
 
     def __post_init__(self):
+        # velocities and pressures as numbers in SI or strings with units ("5 m/s"), as in a case file
+        for name in ("velocity_lower", "velocity_upper"):
+            value = getattr(self, name)
+            if isinstance(value, (tuple, list)) and any(isinstance(v, str) for v in value):
+                object.__setattr__(self, name, tuple(quantity(v, "velocity", f"Film.{name}") for v in value))
+        si_fields(self, ambient_pressure="pressure", **({} if callable(self.squeeze) else {"squeeze": "velocity"}))
         if self.element not in ELEMENT_ORDERS:
             raise unknown_choice("film.element", self.element, ELEMENT_ORDERS)
         if self.lubricant.eyring_stress is not None:

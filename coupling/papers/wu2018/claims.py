@@ -76,7 +76,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from lubedyn.outputs import read_timeseries
+from lubedyn.outputs import read_timeseries, timeseries_path
 
 #: "little effect": a change below this fraction of the mean magnitude
 LITTLE = 0.05
@@ -340,8 +340,11 @@ def _join(verdicts: list[str]) -> str:
 
 
 def _timeseries(folder: Path | None) -> dict | None:
-    f = None if folder is None else Path(folder) / "timeseries.npz"
-    if f is None or not f.is_file():
+    try:
+        f = None if folder is None else timeseries_path(folder)
+    except FileNotFoundError:
+        f = None
+    if f is None:
         return None
     cols, _ = read_timeseries(f)
     return cols

@@ -3,7 +3,7 @@
 Paper B (Zhang et al., *Symmetry* 16 (2024) 741, sections 3.1-3.3 and 4.2)
 studies a cage-less 6206 ball bearing whose rotor drops onto the inner ring.
 This module turns a run of :mod:`lubedyn.scenes.dynamics` (its time series as
-a name -> array mapping, the names of ``timeseries.npz``) into numbers a user
+a name -> array mapping, the names of the run's time series) into numbers a user
 can compare with the paper, and into the figures.  The analyses themselves are
 the paper-independent ones of :mod:`lubedyn.dynamics.analysis`; this module
 chooses which the paper's figures show, lays the figures out and holds the
@@ -49,6 +49,7 @@ is unsteady throughout.
 """
 from __future__ import annotations
 
+import functools
 import json
 import logging
 import math
@@ -64,7 +65,7 @@ from lubedyn.dynamics.analysis.quadrants import collision_entries, collision_tab
 from lubedyn.dynamics.analysis.rotation import axial_rates, ball_angular_displacement
 from lubedyn.dynamics.analysis.settling import final_start, settling_times, spinup_time, steady_residuals
 from lubedyn.lubrication.errors import InputError
-from lubedyn.outputs import read_timeseries, save_figure
+from lubedyn.outputs import panels, read_timeseries, save_figure, timeseries_path
 
 log = logging.getLogger(__name__)
 
@@ -178,15 +179,13 @@ def _shade_zones(ax, t0, t1, zone, label=False):
             ax.axvspan(a * 1e3, b * 1e3, color=ZONE_COLOURS[name], alpha=0.12, lw=0, label=name if label else None)
 
 
-def angular_displacement_figure(t, series, ball: int, zone: dict | None, title: str = ""):
+def angular_displacement_figure(t, series, ball: int, zone: dict | None, title: str = "", into=None):
     """Paper B, Fig. 4: angular displacement of balls ``ball - 1, ball, ball + 1`` about the inertial
     x, y, z axes against time (:func:`lubedyn.dynamics.analysis.rotation.angular_displacement`: R(q) w_body
     integrated), the zones
     shaded."""
-    import matplotlib.pyplot as plt
-
     z = n_balls(series)
-    fig, axes = plt.subplots(3, 1, figsize=(8, 7.5), sharex=True)
+    fig, axes = panels(into, 3, 1, figsize=(8, 7.5), sharex=True)
     ms = np.asarray(t) * 1e3
     for n, (j, role) in enumerate(zip(((ball - 1) % z, ball, (ball + 1) % z), ("front", "middle", "back"))):
         ang = ball_angular_displacement(t, series, j)
@@ -202,11 +201,12 @@ def angular_displacement_figure(t, series, ball: int, zone: dict | None, title: 
     axes[-1].set_xlabel("time [ms]")
     axes[-1].set_xlim(ms[0], ms[-1])
     axes[0].set_title(title or "angular displacement of three consecutive balls (paper B, Fig. 4)")
-    fig.tight_layout()
+    if into is None:  # the caller's figure keeps its own layout
+        fig.tight_layout()
     return fig
 
 
-def collision_map_figure(t, series, events, pitch_radius: float, t_spinup=None, title: str = ""):
+def collision_map_figure(t, series, events, pitch_radius: float, t_spinup=None, title: str = "", into=None):
     """Paper B, Fig. 5: each ball-ball collision a needle at its contact point in the x-y plane around
     the inner ring's centre (quadrants I-IV, load zone at the bottom), pointing outward for a
     positive force (inward for a negative component), length proportional to the force, coloured by
@@ -215,7 +215,7 @@ def collision_map_figure(t, series, events, pitch_radius: float, t_spinup=None, 
     from matplotlib.collections import LineCollection
 
     tp, pos, fn, comp = collision_table(t, series, events)
-    fig, axes = plt.subplots(2, 2, figsize=(10, 9), layout="constrained")
+    fig, axes = panels(into, 2, 2, figsize=(10, 9), layout="constrained")
     norm = plt.Normalize(float(t[0]) * 1e3, float(t[-1]) * 1e3)
     circle = np.linspace(0, 2 * math.pi, 361)
     for ax, (label, force) in zip(axes.ravel(), [("normal force", fn)] + [(f"F{a}", comp[:, i])
@@ -252,13 +252,11 @@ def collision_map_figure(t, series, events, pitch_radius: float, t_spinup=None, 
     return fig
 
 
-def poincare_figure(t, series, ball: int, section: float, title: str = ""):
+def poincare_figure(t, series, ball: int, section: float, title: str = "", into=None):
     """Poincare sections: ball ``ball``'s co-rotating (r, dr/dt) and (z, dz/dt) at each passage of the
     azimuth ``section`` (large dots, coloured by time), and every other ball's passages (small grey
     dots: the ball train shares one steady pattern, so they fill a short run's section)."""
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.3), layout="constrained")
+    fig, axes = panels(into, 1, 2, figsize=(10, 4.3), layout="constrained")
     z = n_balls(series)
     scatter = None
     own = 0
@@ -294,17 +292,30 @@ def poincare_figure(t, series, ball: int, section: float, title: str = ""):
     return fig
 
 
-def figures(case, t, series, events) -> dict:
-    """``{file name: figure}`` of :data:`PNG_FILES` for a dynamics run (Agg backend set by the caller)."""
+def drawings(case, t, series, events) -> dict:
+    """``{file name: draw}`` of :data:`PNG_FILES` for a dynamics run, ``draw(into=None)`` returning the
+    figure (new, or drawn in ``into``: :func:`lubedyn.outputs.panels`); the spin-up time and zones are
+    computed on the first draw that needs them."""
     j = case.analysis.ball
     scenario = case.operating.scenario
-    t_spin = (spinup_time(t, series["Inner ring speed [rad/s]"], series["Rotor speed [rad/s]"])[0]
-              if scenario == "drop" else None)
-    zone = zone_times(t, series, j, t_spin, scenario)
     pitch = 0.5 * case.bearing.pitch_diameter
-    return {"angular_displacement.png": angular_displacement_figure(t, series, j, zone),
-            "collision_map.png": collision_map_figure(t, series, events, pitch, t_spin),
-            "poincare.png": poincare_figure(t, series, j, section_azimuth(case))}
+
+    @functools.cache
+    def spin_and_zone():
+        t_spin = (spinup_time(t, series["Inner ring speed [rad/s]"], series["Rotor speed [rad/s]"])[0]
+                  if scenario == "drop" else None)
+        return t_spin, zone_times(t, series, j, t_spin, scenario)
+
+    return {"angular_displacement.png":
+            lambda into=None: angular_displacement_figure(t, series, j, spin_and_zone()[1], into=into),
+            "collision_map.png":
+            lambda into=None: collision_map_figure(t, series, events, pitch, spin_and_zone()[0], into=into),
+            "poincare.png": lambda into=None: poincare_figure(t, series, j, section_azimuth(case), into=into)}
+
+
+def figures(case, t, series, events) -> dict:
+    """``{file name: figure}`` of :data:`PNG_FILES` for a dynamics run (Agg backend set by the caller)."""
+    return {name: draw() for name, draw in drawings(case, t, series, events).items()}
 
 
 # ---------------------------------------------------------------------------- across speeds (Figs. 6-8)
@@ -329,15 +340,20 @@ class RunData:
 
 
 def read_run(folder) -> RunData:
-    """A dynamics run folder: ``timeseries.npz``, ``summary.json`` and ``case.resolved.toml``."""
+    """A dynamics run folder: its time series (``timeseries.nc`` or ``.npz``,
+    :func:`lubedyn.outputs.timeseries_path`), ``summary.json`` and ``case.resolved.toml``."""
     import tomllib
 
     folder = Path(folder)
-    missing = [n for n in ("timeseries.npz", "summary.json", "case.resolved.toml") if not (folder / n).is_file()]
+    missing = [n for n in ("summary.json", "case.resolved.toml") if not (folder / n).is_file()]
+    try:
+        path = timeseries_path(folder)
+    except FileNotFoundError:
+        missing.insert(0, "timeseries.nc (or .npz)")
     if missing:
         raise InputError(f"{folder} is not a dynamics run folder with its time series: {', '.join(missing)} "
                          "missing (output.write must include 'timeseries')")
-    series, _ = read_timeseries(folder / "timeseries.npz")
+    series, _ = read_timeseries(path)
     return RunData(folder, np.asarray(series["Time [s]"]), series, json.loads((folder / "summary.json").read_text()),
                    tomllib.loads((folder / "case.resolved.toml").read_text()))
 
