@@ -492,7 +492,7 @@ def head_on_impact(p, mass, speed, h_start, film_kind=FILM_MAP, film_map=None, *
     import numpy as np
     from scipy.integrate import solve_ivp
 
-    from lubedyn.lubrication.ehl.impact import hertz_impact
+    from lubedyn.lubrication.laws.contact import hertz_impact
 
     counter = np.zeros(1, dtype=np.int64)
     m = film_map

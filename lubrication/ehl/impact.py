@@ -110,10 +110,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
-from scipy.special import beta, ellipe, ellipk
+from scipy.special import ellipe, ellipk
 
 from ..errors import ConvergenceError, InputError, require_positive
-from ..laws import contact as hertz
+from ..laws.contact import HertzImpact, hertz_impact  # noqa: F401  (re-exported)
 from ..laws.lubricant import Lubricant
 
 log = logging.getLogger(__name__)
@@ -123,35 +123,8 @@ log = logging.getLogger(__name__)
 # closed forms
 
 
-@dataclass(frozen=True)
-class HertzImpact:
-    """The dry elastic impact of a sphere (Johnson 1985, sec. 11.4): ``approach`` delta* [m], ``force``
-    F* [N], ``duration`` t_c [s], ``radius`` a* [m] and ``pressure`` p0* [Pa] (the Hertz maximum at F*)."""
-
-    approach: float
-    force: float
-    duration: float
-    radius: float
-    pressure: float
-
-
-def hertz_impact(radius: float, e_star: float, mass: float, speed: float) -> HertzImpact:
-    """Hertz impact of effective ``radius`` R [m], reduced modulus ``e_star`` E* [Pa], effective ``mass``
-    m [kg] at approach ``speed`` v [m/s] (Johnson 1985, eqs. 11.23-11.25).
-
-    >>> h = hertz_impact(0.01, 1e11, 0.01, 1.0)
-    >>> round(h.duration * 1.0 / h.approach, 4)
-    2.9433
-    """
-    R = require_positive("impact radius [m]", radius)
-    E = require_positive("impact e_star [Pa]", e_star)
-    m = require_positive("impact mass [kg]", mass)
-    v = require_positive("impact speed [m/s]", speed)
-    delta = (15.0 * m * v * v / (16.0 * E * math.sqrt(R))) ** 0.4
-    force = 4.0 / 3.0 * E * math.sqrt(R) * delta**1.5   # the Hertz force at that approach
-    hp = hertz.point_contact(force, R, R, E)            # its contact radius and peak pressure
-    return HertzImpact(approach=delta, force=force, duration=0.8 * float(beta(0.4, 0.5)) * delta / v,
-                       radius=hp.a, pressure=hp.p0)
+# HertzImpact and hertz_impact are laws (lubedyn.lubrication.laws.contact), imported above for the callers of
+# this module
 
 
 # ---------------------------------------------------------------------------------------------------------
