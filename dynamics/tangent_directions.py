@@ -309,8 +309,9 @@ class TangentDirections:
         self._share_sum += (p / p_S) ** 2 if p_S > 0 else np.nan
         self._log_pS = math.log(p_S) if p_S > 0 else -math.inf
 
-    def advance(self, t_total, *, progress=None) -> "TangentDirections":
-        """Run the remaining transient, then ``t_total`` seconds (whole intervals, at least one)."""
+    def advance(self, t_total=None, *, n_intervals=None, progress=None) -> "TangentDirections":
+        """Run the remaining transient, then ``t_total`` seconds (whole intervals, at least one) or
+        ``n_intervals`` intervals."""
         run = self.run
         if run.q < run.n_transient:
             run.advance(run.n_transient - run.q, n_chunks=max(1, (run.n_transient - run.q) // 100))
@@ -318,9 +319,14 @@ class TangentDirections:
             p, p_S = self._project()
             with np.errstate(divide="ignore"):
                 self.log_p0, self.log_pS0 = np.log(p), math.log(p_S)
-        if not (float(t_total) > 0 and math.isfinite(float(t_total))):
+        if n_intervals is not None:
+            n = int(n_intervals)
+            if n < 1:
+                raise DynamicsInputError(f"n_intervals = {n_intervals!r} must be >= 1")
+        elif t_total is None or not (float(t_total) > 0 and math.isfinite(float(t_total))):
             raise DynamicsInputError(f"t_total = {t_total!r} must be a finite number > 0")
-        n = max(1, int(math.ceil(float(t_total) / run.interval - 1e-9)))
+        else:
+            n = max(1, int(math.ceil(float(t_total) / run.interval - 1e-9)))
         run.advance(n, progress=progress, observe=self._observe)
         return self
 
