@@ -25,7 +25,7 @@ import numpy as np
 
 from lubedyn.config import load_case
 from lubedyn.dynamics.cageless import rhs
-from lubedyn.dynamics.tangent_directions import BITS, BallDirections, TangentDirections, run_length
+from lubedyn.dynamics.tangent_directions import BITS, BallDirections, TangentDirections, run_length, window_exponents
 from lubedyn.scenes.dynamics import build
 from lubedyn.scenes.dynamics_lyapunov import bearing_tangent_directions
 from lubedyn.units import parse_quantity
@@ -70,7 +70,7 @@ def run(out: Path, seed: int, case_name: str, transient: float, total: float, ch
               f"cpu {meta['cpu [s]']:.0f} s", flush=True)
 
 
-def report(out: Path, rel: float):
+def report(out: Path, rel: float, window: float = 0.25):
     members = sorted(out.glob("member_*_running.npz"))
     runs = [np.load(p) for p in members]
     metas = [json.loads(p.with_name(p.name.replace("_running.npz", ".json")).read_text()) for p in members]
@@ -89,10 +89,16 @@ def report(out: Path, rel: float):
                "lambda T (mean) [-]": float(lam.mean() * T)}
         if not name.startswith("lambda_1"):
             row["share (mean) [-]"] = float(np.mean([m["share [-]"][name] for m in metas]))
+        ends, local = window_exponents(times, R, window)
+        row["window ends [s]"] = ends.tolist()
+        row["window exponents, members [1/s]"] = local.tolist()
         if lam.size > 1:
-            rule = run_length(times, R, rel=rel)
+            rule = run_length(times, R, rel=rel, window=window)
             row.update({"run length for rel [s]": rule.required, "run length for rel, member mean [s]": rule.required_mean,
                         "run length, a c fit [s]": rule.required_fit, "spread slope [-]": rule.slope,
+                        "run length note": rule.note, "c from windows [1/sqrt(s)]": rule.c_windows,
+                        "run length for rel, from windows [s]": rule.required_windows,
+                        "run length for rel, from windows, member mean [s]": rule.required_windows / rule.members,
                         "a [-]": rule.a, "c [1/sqrt(s)]": rule.c})
         rows[name] = row
     summary = {"averaging time [s]": T, "members": [m["seed"] for m in metas], "rel": rel,
@@ -117,12 +123,13 @@ def main():
     p = sub.add_parser("report")
     p.add_argument("out", type=Path)
     p.add_argument("--rel", type=float, default=0.1)
+    p.add_argument("--window", default="0.25 s")
     a = ap.parse_args()
     if a.cmd == "run":
         run(a.out, a.seed, a.case, parse_quantity(a.transient, "time"), parse_quantity(a.total, "time"),
             parse_quantity(a.chunk, "time"))
     else:
-        report(a.out, a.rel)
+        report(a.out, a.rel, parse_quantity(a.window, "time"))
 
 
 if __name__ == "__main__":

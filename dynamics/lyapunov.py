@@ -15,7 +15,9 @@ algorithms for chaotic systems*, ch. 3).  J v comes from a user ``jvp`` (an
 from the forward difference (f(y + eps v) - f(y)) / eps with eps = sqrt(2.2e-16)
 (1 + |y|) / |v| (one extra rhs call per tangent vector and stage).  The sum
 of all n exponents equals the time mean of trace J, exactly for Lorenz:
--(sigma + 1 + beta).
+-(sigma + 1 + beta).  :class:`BenettinRun` is the same method as an object that is advanced in pieces,
+watched after every interval (``observe``) and saved and resumed bit for bit; per-direction exponents
+from its first tangent vector are :mod:`lubedyn.dynamics.tangent_directions`'.
 
 Spectrum of a map (:func:`lyapunov_spectrum_map`)
 -------------------------------------------------
@@ -154,7 +156,11 @@ along the orbit.  A Hertz force k delta^1.5 has dF/d delta = 1.5 k delta^0.5,
 continuous at contact onset, so it is fine; a force with a jump at contact
 (e.g. a linear spring-dashpot c d(delta)/dt switched on at delta = 0) needs
 saltation matrices, which are not implemented: smooth such laws (or compare
-with the Rosenstein estimate) before trusting the spectrum.
+with the Rosenstein estimate) before trusting the spectrum.  The cage-less bearing's
+laws are continuous in force; measured there, the tangent vector follows the
+secant of two trajectories across contact onsets to first order in the secant's
+step, except after a plastic collision (the frozen memory):
+:mod:`lubedyn.dynamics.tangent_directions`, "Smoothed contact laws need no saltation matrices".
 
 Units: exponents in 1/s (flows) or per iteration (maps);
 :func:`per_shaft_revolution` converts 1/s to 1/rev.

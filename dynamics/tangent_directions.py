@@ -70,25 +70,44 @@ phases switch the force's derivative only, traction is a tanh, slot edges are sm
 f+ = f- on every switching surface and S = I: a kink makes the Jacobian jump by a bounded amount, and the
 variational equation integrates a bounded, piecewise continuous J without a correction.  The one state
 whose *rate* jumps, the pairs' plastic memory (its rate switches from the approach rate to 0), is left
-out of the tangent space (``frozen``, :func:`lubedyn.scenes.dynamics_lyapunov.memory_states`).  Measured
-(``tests/test_tangent_directions.py::test_tangent_follows_the_secant_across_contact_onsets``): on the
-10,000 rpm drop over 0.3 ms, in which ball-ball contacts start, the tangent vector of the Benettin kernel
-(forward differences) and the secant (y(eps v0) - y(0)) / eps of two trajectories agree to a relative
-1.3e-3 at eps = 1e-2 and 1.4e-4 at eps = 1e-3 of the scale (first order in eps, as a linearisation
-without missing jumps must; a missing saltation term would leave an O(1) difference).
+out of the tangent space (``frozen``, :func:`lubedyn.scenes.dynamics_lyapunov.memory_states`).
+
+Measured (``tests/test_tangent_directions.py::test_tangent_follows_the_secant_across_contact_onsets``; the
+project has no analytic jvp of the bearing, so the check is against the nonlinear flow itself, which is
+what a saltation term would correct): from the 10,000 rpm drop's start with ball 0 sent at 0.3 m/s towards
+ball 1 (20 um away), over 0.4 ms in which the pair's film contact starts and ends and inner-race contacts
+start, the kernel's tangent vector (forward differences) and the secant (y(y0 + eps v0) - y(y0)) / eps of
+two trajectories of the same RK4 differ by 0.102, 0.0137 and 0.0022 (relative) at eps = 1e-2, 1e-3, 1e-4
+of the scale: first order in eps, as a linearisation without a missing jump must (a missing saltation term
+leaves an O(1) difference that does not fall with eps).  At 1 m/s (100 um): 0.146, 0.028, 0.0042.
+
+Where the frozen memory shows: sent at 2 m/s the pair goes through the elastic-plastic phase and recovery
+(Thornton), and the difference stops falling with eps: 0.082, 0.079, 0.079 at eps = 1e-3, 1e-4, 1e-5.  It
+stays at 0.0007 through the film phase and the elastic-plastic loading and grows from 0.002 to 0.08 from
+the turn-around into the recovery on, where the reference's and the perturbed pair's plastic memories
+(which the tangent space does not carry) differ.  So after a plastic collision the tangent dynamics are
+those of the frozen-memory system, by 8 % per such collision here, not the secant's; the exponents are the
+mechanical states' with the memory shared (as :func:`lubedyn.scenes.dynamics_lyapunov._benettin` says).
 
 Convergence in T and run length
 -------------------------------
 Records are advanced in chunks (:meth:`TangentDirections.advance`) and can be saved and resumed
-(:meth:`TangentDirections.save`, :meth:`TangentDirections.load`) bit for bit.  The finite-time
-exponent of a mixing system has fluctuations sigma(T) ~ c / sqrt(T) (a time average of the local
-stretching rate); :func:`run_length` estimates c from the spread of the running estimates over
-independent members (different initial states, so that the members' fluctuations are independent: members
-that differ only in their initial tangent vectors align onto the same Lyapunov vector after the transient
-and their spread says nothing) and gives the record T = (c / (r |lambda|))^2 a single member needs for a
-relative standard deviation r (T / M for the mean of M members).  Measured on Lorenz (16 members from
-different points of the attractor, ``tests/test_tangent_directions.py::test_run_length_rule_predicts_the_spread``):
-c = 0.44-0.51 1/sqrt(s) from T = 50 s predicts the spread at T = 400 s within 20 %.
+(:meth:`TangentDirections.save`, :meth:`TangentDirections.load`) bit for bit; ``lambda T`` is reported
+with every exponent (a positive exponent means something only when lambda T is well above the O(1)
+boundary term of (1)).  The spread of a finite-time exponent over independent members (different initial
+states: members that differ only in their initial tangent vectors align onto the same Lyapunov vector
+during the transient and their spread says nothing) is sigma^2(T) = a^2 / T^2 + c^2 / T: a boundary term
+(the log of a tangent vector's norm differs from its trend by a bounded function of the state) and the
+diffusion of a mixing system's time average, which wins at long T.  :func:`run_length` takes the rule
+from the end of a record: all of sigma(T_end)^2 T_end counted as diffusive, the record one member needs for
+a relative standard deviation r is T_r = sigma(T_end)^2 T_end / (r lambda)^2 (T_r / M for the mean of M
+members), an upper bound under the model.  Measured on Lorenz (16 members from different points of the
+attractor, ``tests/test_tangent_directions.py::test_run_length_rule_bounds_the_spread_further_on``): the
+spread falls as T^-0.75 to T^-1 up to 3,000 s (the boundary term still counts); the rule's prediction
+sigma(T_end) sqrt(T_end / T) from T_end = 300 s matches the spread at 2,000 s (0.0026 against 0.0027 1/s,
+16 members), and from 400 s it overestimates it at 3,000 s by 1.4-1.8 (16 and 32 members); Lorenz needs
+T_r = 7-16 s for r = 5 %.
+On the 10,000 rpm drop: docs/atlas/lyapunov.md ("Per-direction exponents from the tangent space").
 """
 from __future__ import annotations
 
@@ -128,9 +147,11 @@ class BallDirections:
     coordinates z = y / ``scale`` of :class:`lubedyn.dynamics.lyapunov.BenettinRun`; a planar ball's angle
     perturbation is converted to the length scale of its radius, r dphi s_phi / s_r): per ball j its radial e_r . dp, tangential e_t . dp (e_r = (x, y, 0) / r from the ball's own
     position, e_t = e_z x e_r) and axial dp_z components, then for each direction the norm over all balls,
-    named by :attr:`names` ("ball 0 radial", ..., "radial (all balls)", ...).  Planar: dr and r dphi."""
+    named by :attr:`names` ("ball 0 radial", ..., "radial (all balls)", ...).  Planar: dr and r dphi.
+    ``inertial``: also the inertial x and y components (paper B's X, Y; its Z is axial), "ball j x", ...,
+    "x (all balls)", "y (all balls)" after those (not part of :attr:`complete`)."""
 
-    def __init__(self, layout, scale=None):
+    def __init__(self, layout, scale=None, *, inertial=False):
         names = [name for name, _ in layout]
         scale = np.ones(len(names)) if scale is None else np.asarray(scale, dtype=float)
         self.balls = sorted({int(n.split()[1]) for n in names if n.startswith("Ball ")})
@@ -147,8 +168,11 @@ class BallDirections:
             self.directions = CO_ROTATING[:2]
             self.angle_factor = scale[self.index[:, 1]] / scale[self.index[:, 0]]
         self.check_scale(scale)
+        self.inertial = bool(inertial) and not self.planar
         self.names = tuple(f"ball {j} {d}" for j in self.balls for d in self.directions) + tuple(
             f"{d} (all balls)" for d in self.directions)
+        if self.inertial:  # paper B's X and Y (its Z is the axial direction)
+            self.names += tuple(f"ball {j} {d}" for j in self.balls for d in "xy") + ("x (all balls)", "y (all balls)")
 
     def components(self, y, v) -> np.ndarray:
         """Signed components (balls, directions) of ``v``'s ball positions along the co-rotating directions."""
@@ -178,7 +202,11 @@ class BallDirections:
 
     def __call__(self, y, v) -> np.ndarray:
         c = self.components(y, v)
-        return np.concatenate([np.abs(c).ravel(), _norm(c, axis=0)])
+        out = [np.abs(c).ravel(), _norm(c, axis=0)]
+        if self.inertial:
+            dp = v[self.index[:, :2]]
+            out += [np.abs(dp).ravel(), _norm(dp, axis=0)]
+        return np.concatenate(out)
 
     @property
     def complete(self) -> np.ndarray:
@@ -380,9 +408,19 @@ class RunLength:
 
     ``required`` [s]: the record one member needs for a standard deviation ``rel`` |mean|, taking all of the
     end's sigma^2 T as diffusive: sigma(T_end)^2 T_end / (rel mean)^2 (``required_mean``: for the mean of the
-    ``members``, divided by their number).  Under the model it is an upper bound (sigma^2 T falls with T);
-    measured on Lorenz it overestimates the spread 7.5 times further on by a factor 1.4-1.8
-    (``tests/test_tangent_directions.py``).  ``required_fit`` [s] solves a^2 / T^2 + c^2 / T = (rel mean)^2
+    ``members``, divided by their number).  ``note``: "" or why no run length follows: a spread that does
+    not fall over the fitted part (``slope`` above ``NOT_FALLING``) is not the statistics of one stationary
+    record, but members that drift apart (a non-stationary record, or members on different attractors), and
+    no record length brings them together -- or, with few members and intermittent stretching, that the
+    spread is itself too uncertain to fit (4 members: a standard deviation uncertain by 40 %).
+    ``c_windows`` [1/sqrt(s)] and ``required_windows`` [s] (with ``window``): the same rule from the
+    exponents of consecutive windows of every member (:func:`window_exponents`, the first window left out:
+    the tangent vector's alignment), c^2 = window var(window exponents), pooled over members and windows (batch
+    means; the windows must be longer than the stretching's correlation time).  Each window carries its own
+    boundary term, so c_windows^2 = c^2 + 2 a^2 / window: an upper bound that falls with the window (Lorenz:
+    0.39, 0.26, 0.21 1/sqrt(s) at 20, 50, 100 s windows against sigma sqrt(T) = 0.12 at 2,000 s).  Under the model it is an upper bound (sigma^2 T falls with T);
+    measured on Lorenz its prediction sigma(T_end) sqrt(T_end / T) matches the spread 7 times further on or
+    overestimates it by up to 1.8 (``tests/test_tangent_directions.py``).  ``required_fit`` [s] solves a^2 / T^2 + c^2 / T = (rel mean)^2
     with the fitted a and c (less safe: the fit of a and c from one record's members scatters by a factor 2)."""
 
     a: float
@@ -395,6 +433,14 @@ class RunLength:
     required_mean: float
     required_fit: float
     members: int
+    note: str = ""
+    c_windows: float = math.nan
+    required_windows: float = math.nan
+
+
+#: a members' spread whose log-log slope over the fitted part is above this does not fall with T (a
+#: stationary mixing record's falls at -0.5 to -1): :class:`RunLength`'s ``note`` says so
+NOT_FALLING = -0.25
 
 
 def _length_for(a2, c2, target2):
@@ -404,7 +450,27 @@ def _length_for(a2, c2, target2):
     return (c2 + math.sqrt(c2 * c2 + 4.0 * target2 * a2)) / (2.0 * target2)
 
 
-def run_length(times, running, rel=0.1, *, fit_from=0.5) -> RunLength:
+def window_exponents(times, running, window):
+    """``(ends, exponents)``: exponents [1/s] over consecutive windows of ``window`` [s] of running estimates
+    ``running`` (M, q) at ``times`` (q,), from the log stretching S = running T differenced at the windows'
+    ends (the last, partial window included): the record's local rate, where a running mean hides
+    intermittency and drift."""
+    times = np.asarray(times, dtype=float)
+    running = np.atleast_2d(np.asarray(running, dtype=float))
+    window = float(window)
+    if not (window > 0 and math.isfinite(window)):
+        raise DynamicsInputError(f"window = {window!r} must be a finite time > 0")
+    stops = np.flatnonzero(np.diff(np.floor(times / window)) > 0)
+    if stops.size == 0 or stops[-1] != times.size - 1:
+        stops = np.concatenate([stops, [times.size - 1]])
+    S = running[:, stops] * times[stops][None, :]
+    t_end = times[stops]
+    dS = np.diff(np.concatenate([np.zeros((running.shape[0], 1)), S], axis=1), axis=1)
+    dT = np.diff(np.concatenate([[0.0], t_end]))
+    return t_end, dS / dT[None, :]
+
+
+def run_length(times, running, rel=0.1, *, fit_from=0.5, window=None) -> RunLength:
     """Run-length rule from independent members' running estimates ``running`` (M, q) at ``times`` (q,):
     sigma(T) = std over members (ddof 1) after ``fit_from`` of the record (the start is dominated by the
     alignment of the tangent vectors); sigma^2 = a^2 / T^2 + c^2 / T fitted there by non-negative least
@@ -431,6 +497,20 @@ def run_length(times, running, rel=0.1, *, fit_from=0.5) -> RunLength:
     mean = float(np.mean(running[:, -1]))
     target2 = (rel * mean) ** 2
     required = float(sigma[-1] ** 2 * times[-1] / target2) if target2 > 0 else math.inf
+    c_w = req_w = math.nan
+    if window is not None:
+        ends, local = window_exponents(times, running, window)
+        full = np.diff(np.concatenate([[0.0], ends])) >= 0.999 * float(window)
+        blocks = local[:, 1:][:, full[1:]]
+        if blocks.size > 1:
+            c_w = math.sqrt(float(window) * float(np.var(blocks, ddof=1)))
+            req_w = c_w * c_w / target2 if target2 > 0 else math.inf
+    note = ""
+    if not slope <= NOT_FALLING:
+        note = (f"the members' spread does not fall with T over {T[0]:.4g}-{T[-1]:.4g} s (log-log slope "
+                f"{slope:.2f}): they drift apart (non-stationary record or different attractors); no run "
+                "length follows from it, or too few members to fit their spread")
     return RunLength(a=math.sqrt(a2), c=math.sqrt(c2), slope=slope, mean=mean, spread=float(sigma[-1]),
                      rel=float(rel), required=required, required_mean=required / M,
-                     required_fit=_length_for(a2, c2, target2), members=M)
+                     required_fit=_length_for(a2, c2, target2), members=M, note=note, c_windows=c_w,
+                     required_windows=req_w)

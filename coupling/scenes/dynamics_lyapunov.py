@@ -346,7 +346,7 @@ def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict
         run = BenettinRun(rhs, Y[i0], model.args(), scale=scale, dt=dt, t_transient=0.1 * window,
                           t_orth=ORTH_STEPS * dt, n_exponents=max(k, 1), omega_max=omega, t0=float(t[i0]),
                           frozen=memory_states(model))
-        td = TangentDirections(run, BallDirections(model.state_layout(), scale))
+        td = TangentDirections(run, BallDirections(model.state_layout(), scale, inertial=True))
         n_orth = max(1, int(math.ceil(0.9 * window / run.interval)))
         td.advance(n_intervals=n_orth, progress=progress)
         res, directions = run.spectrum(), td.result()
@@ -428,7 +428,8 @@ def bearing_tangent_directions(model, y0, t0=0.0, *, t_transient=0.0) -> Tangent
 def tangent_direction_entries(res, ball: int) -> dict:
     """Summary entries of per-direction tangent-space exponents ``res``
     (:class:`lubedyn.dynamics.tangent_directions.DirectionExponents`) for ball ``ball`` and for all balls:
-    ``"Tangent-space exponent, ball j radial [1/s]"`` and ``[bits/s]``, ``lambda T [-]``, ``uncertainty
+    ``"Tangent-space exponent, ball j radial [1/s]"`` and ``[bits/s]`` (radial, tangential, axial, and x, y
+    when the projector gives them), ``lambda T [-]``, ``uncertainty
     [1/s]`` (batch means along the record), ``share [-]`` (the first Lyapunov vector's share in the
     direction); the first vector's own exponent (the whole system's lambda_1 over the same record) and the
     bound the largest per-direction value must lie in (module docstring of
