@@ -128,6 +128,8 @@ BOUNDS: tuple[Bound, ...] = (
     Bound(r".*(?:[Ee]xponent|Lyapunov).* (?:window )?uncertainty \[(?:bits/s|1/s|1/rev)\]", 0.0, None,
           "an uncertainty is a spread (a standard error), never negative"),
     Bound(r".* settings spread \[-\]", 0.0, None, "a relative spread of estimates, never negative"),
+    Bound(r"Tangent-space exponent, .* share \[-\]", 0.0, 1.0,
+          "the time mean of a unit tangent vector's squared share in a subspace (lubedyn.dynamics.tangent_directions)"),
     Bound(r".* false-neighbour dimension \[-\]", 1.0, None, "an embedding has at least one dimension"),
     Bound(r"RK4 step(?: bound)? \[s\]", 0.0, None, "a time step is positive"),
     Bound(r"Load \[N\]", 0.99, 1.01, _BALANCE, scale="applied_load"),

@@ -15,7 +15,9 @@ algorithms for chaotic systems*, ch. 3).  J v comes from a user ``jvp`` (an
 from the forward difference (f(y + eps v) - f(y)) / eps with eps = sqrt(2.2e-16)
 (1 + |y|) / |v| (one extra rhs call per tangent vector and stage).  The sum
 of all n exponents equals the time mean of trace J, exactly for Lorenz:
--(sigma + 1 + beta).
+-(sigma + 1 + beta).  :class:`BenettinRun` is the same method as an object that is advanced in pieces,
+watched after every interval (``observe``) and saved and resumed bit for bit; per-direction exponents
+from its first tangent vector are :mod:`lubedyn.dynamics.tangent_directions`'.
 
 Spectrum of a map (:func:`lyapunov_spectrum_map`)
 -------------------------------------------------
@@ -154,7 +156,11 @@ along the orbit.  A Hertz force k delta^1.5 has dF/d delta = 1.5 k delta^0.5,
 continuous at contact onset, so it is fine; a force with a jump at contact
 (e.g. a linear spring-dashpot c d(delta)/dt switched on at delta = 0) needs
 saltation matrices, which are not implemented: smooth such laws (or compare
-with the Rosenstein estimate) before trusting the spectrum.
+with the Rosenstein estimate) before trusting the spectrum.  The cage-less bearing's
+laws are continuous in force; measured there, the tangent vector follows the
+secant of two trajectories across contact onsets to first order in the secant's
+step, except after a plastic collision (the frozen memory):
+:mod:`lubedyn.dynamics.tangent_directions`, "Smoothed contact laws need no saltation matrices".
 
 Units: exponents in 1/s (flows) or per iteration (maps);
 :func:`per_shaft_revolution` converts 1/s to 1/rev.
@@ -456,6 +462,144 @@ def _positive(key, value):
     return v
 
 
+class BenettinRun:
+    """Benettin's method as an object that can be advanced, stopped, saved and resumed: everything the kernel
+    carries from one orthonormalisation interval to the next (the scaled state z = y / scale, the tangent
+    rows V, the log sums, the time accumulated and the running estimates) lives in its arrays, and the time
+    is computed from the interval's index, so any sequence of :meth:`advance` calls -- and a
+    :meth:`save` / :meth:`load` between them, in another process -- gives the bits of one call
+    (``tests/test_tangent_directions.py``).  :func:`lyapunov_spectrum` is one :meth:`advance` over the whole
+    record; the arguments are its own.
+
+    ``V0`` (k, n), optional: initial tangent rows (orthonormalised here); default ``seed``'s random ones.
+    """
+
+    def __init__(self, rhs, y0, args=(), *, dt, t_orth=None, t_transient=0.0, n_exponents=None, jvp=None, t0=0.0,
+                 seed=0, omega_max=None, frozen=None, scale=None, V0=None):
+        if not hasattr(rhs, "py_func"):
+            raise DynamicsInputError(f"rhs = {rhs!r} must be an @njit function rhs(t, y, args, dydt)")
+        if jvp is not None and not hasattr(jvp, "py_func"):
+            raise DynamicsInputError(f"jvp = {jvp!r} must be an @njit function jvp(t, y, v, args, out) or None")
+        y0 = np.array(y0, dtype=np.float64, ndmin=1)
+        if y0.ndim != 1 or not np.all(np.isfinite(y0)):
+            raise DynamicsInputError(f"y0 (shape {y0.shape}) must be a 1-D array of finite numbers")
+        n = y0.size
+        keep = np.ones(n)
+        if frozen is not None:
+            idx = np.asarray(frozen, dtype=np.int64).ravel()
+            if idx.size and (idx.min() < 0 or idx.max() >= n):
+                raise DynamicsInputError(f"frozen = {list(idx)!r} must hold state indices between 0 and {n - 1}")
+            keep[idx] = 0.0
+        n_free = int(keep.sum())
+        k = n_free if n_exponents is None else int(n_exponents)
+        if not 1 <= k <= n_free:
+            raise DynamicsInputError(f"n_exponents = {n_exponents!r} must be between 1 and the number of "
+                                     f"state entries in the tangent space, {n_free}")
+        dt = _positive("dt", dt)
+        t_orth = 10 * dt if t_orth is None else _positive("t_orth", t_orth)
+        if omega_max is not None:
+            limit = stability_limit("rk4") / _positive("omega_max", omega_max)
+            if dt > limit:
+                raise DynamicsInputError(f"dt = {dt:g} s is beyond the RK4 stability limit {limit:g} s "
+                                         f"for omega_max = {omega_max:g} rad/s")
+        if t_transient < 0:
+            raise DynamicsInputError(f"t_transient = {t_transient!r} must be >= 0")
+        self.steps_per_orth = max(1, int(round(t_orth / dt)))
+        self.n_transient = int(math.ceil(t_transient / (self.steps_per_orth * dt)))
+        if V0 is None:
+            G = np.random.default_rng(seed).standard_normal((n, k)) * keep[:, None]
+        else:
+            G = np.array(V0, dtype=np.float64, ndmin=2)
+            if G.shape != (k, n) or not np.all(np.isfinite(G)):
+                raise DynamicsInputError(f"V0 (shape {G.shape}) must hold {k} finite tangent rows of length {n}")
+            G = G.T * keep[:, None]
+        V = np.linalg.qr(G)[0].T.copy()
+        V[:, keep == 0.0] = 0.0  # exactly zero (QR round-off)
+        if scale is None:
+            scale = np.ones(n)
+        else:
+            scale = np.array(scale, dtype=np.float64, ndmin=1)
+            if scale.shape != (n,) or not np.all(np.isfinite(scale) & (scale > 0.0)):
+                raise DynamicsInputError(f"scale (shape {scale.shape}) must hold {n} finite numbers > 0")
+        self.rhs, self.jvp, self.args = rhs, jvp, args
+        self.dt, self.t0, self.keep, self.scale = dt, float(t0), keep, scale
+        self.kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
+        self.z, self.V = y0 / scale, V
+        self.log_sum, self.accumulated, self.running = np.zeros(k), np.zeros(1), np.full((0, k), np.nan)
+        self.q = 0  # orthonormalisation intervals done
+        self.t = float(t0)
+
+    @property
+    def y(self) -> np.ndarray:
+        """The state now, in the rhs' units."""
+        return self.z * self.scale
+
+    @property
+    def interval(self) -> float:
+        """Re-orthonormalisation interval [s] (whole steps)."""
+        return self.steps_per_orth * self.dt
+
+    def advance(self, n_intervals, *, n_chunks=1, progress=None, observe=None):
+        """Advance by ``n_intervals`` orthonormalisation intervals in at most ``n_chunks`` kernel calls (the
+        bits do not depend on it); ``progress(fraction)`` after each call; ``observe(run)`` after every
+        interval (the run then calls the kernel once an interval: :attr:`V`'s rows are the orthonormalised
+        tangent vectors, :attr:`log_sum` the stretching so far).  A non-finite state or tangent vector raises
+        :class:`IntegrationError`."""
+        n_intervals = int(n_intervals)
+        q_start, q_stop = self.q, self.q + n_intervals
+        if self.running.shape[0] < q_stop:
+            grown = np.full((q_stop, self.V.shape[0]), np.nan)
+            grown[:self.running.shape[0]] = self.running
+            self.running = grown
+        stops = q_start + chunk_bounds(n_intervals, n_intervals if observe is not None else n_chunks)
+        for q_begin, q_end in zip(stops[:-1], stops[1:]):
+            t_end, status = self.kernel(self.z, self.V, self.keep, self.scale, self.args, self.t0, self.dt,
+                                        self.steps_per_orth, int(q_begin), int(q_end), self.n_transient,
+                                        self.jvp is None, self.log_sum, self.accumulated, self.running)
+            self.t = float(t_end)
+            if status != 0:
+                raise IntegrationError(f"lyapunov_spectrum: non-finite state or tangent vector before t = "
+                                       f"{t_end:.6g} s (dt = {self.dt:g} s too large?)", status=status, t_reached=t_end)
+            self.q = int(q_end)
+            if observe is not None:
+                observe(self)
+            if progress is not None:
+                progress(float(q_end - q_start) / max(n_intervals, 1))
+
+    def spectrum(self) -> "LyapunovSpectrum":
+        """The exponents so far, largest first (the running estimates from the end of the transient)."""
+        accumulated = float(self.accumulated[0])
+        lam = self.log_sum / accumulated if accumulated > 0 else np.full(self.log_sum.shape, np.nan)
+        order = np.argsort(lam)[::-1]
+        n_orth = max(self.q - self.n_transient, 0)
+        times = (np.arange(n_orth) + 1) * self.steps_per_orth * self.dt
+        return LyapunovSpectrum(exponents=lam[order], times=times,
+                                running=self.running[self.n_transient:self.q, order], y_final=self.y)
+
+    #: what :meth:`save` keeps: the kernel's carried arrays and the settings that fix its bits
+    _SAVED = ("z", "V", "log_sum", "accumulated", "running", "keep", "scale")
+
+    def save(self, path) -> None:
+        """Write the run's state to ``path`` (.npz) for :meth:`load` (the rhs, jvp and args are not saved:
+        the caller gives them again)."""
+        np.savez(path, q=self.q, t=self.t, t0=self.t0, dt=self.dt, steps_per_orth=self.steps_per_orth,
+                 n_transient=self.n_transient, **{name: getattr(self, name) for name in self._SAVED})
+
+    @classmethod
+    def load(cls, path, rhs, args=(), *, jvp=None) -> "BenettinRun":
+        """A run continued from :meth:`save`'s file, with the same ``rhs``, ``args`` and ``jvp``."""
+        with np.load(path) as f:
+            d = {key: f[key] for key in f.files}
+        run = cls(rhs, d["z"] * d["scale"], args, dt=float(d["dt"]), t_orth=float(d["dt"]) * int(d["steps_per_orth"]),
+                  n_exponents=d["V"].shape[0], jvp=jvp, t0=float(d["t0"]), scale=d["scale"], V0=None,
+                  frozen=np.flatnonzero(d["keep"] == 0.0))
+        run.steps_per_orth, run.n_transient = int(d["steps_per_orth"]), int(d["n_transient"])
+        for name in cls._SAVED:
+            setattr(run, name, np.ascontiguousarray(d[name]))
+        run.q, run.t = int(d["q"]), float(d["t"])
+        return run
+
+
 def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient=0.0, n_exponents=None,
                       jvp=None, t0=0.0, seed=0, omega_max=None, frozen=None, scale=None, n_chunks=1,
                       progress=None):
@@ -509,71 +653,16 @@ def lyapunov_spectrum(rhs, y0, args=(), *, dt, t_total, t_orth=None, t_transient
     Returns
     -------
     LyapunovSpectrum
+
+    A run to be stopped and resumed, or watched after every interval, is a :class:`BenettinRun` (this
+    function is one :meth:`BenettinRun.advance` over the transient and ``t_total``).
     """
-    if not hasattr(rhs, "py_func"):
-        raise DynamicsInputError(f"rhs = {rhs!r} must be an @njit function rhs(t, y, args, dydt)")
-    if jvp is not None and not hasattr(jvp, "py_func"):
-        raise DynamicsInputError(f"jvp = {jvp!r} must be an @njit function jvp(t, y, v, args, out) or None")
-    y0 = np.array(y0, dtype=np.float64, ndmin=1)
-    if y0.ndim != 1 or not np.all(np.isfinite(y0)):
-        raise DynamicsInputError(f"y0 (shape {y0.shape}) must be a 1-D array of finite numbers")
-    n = y0.size
-    keep = np.ones(n)
-    if frozen is not None:
-        idx = np.asarray(frozen, dtype=np.int64).ravel()
-        if idx.size and (idx.min() < 0 or idx.max() >= n):
-            raise DynamicsInputError(f"frozen = {list(idx)!r} must hold state indices between 0 and {n - 1}")
-        keep[idx] = 0.0
-    n_free = int(keep.sum())
-    k = n_free if n_exponents is None else int(n_exponents)
-    if not 1 <= k <= n_free:
-        raise DynamicsInputError(f"n_exponents = {n_exponents!r} must be between 1 and the number of "
-                                 f"state entries in the tangent space, {n_free}")
-    dt = _positive("dt", dt)
+    run = BenettinRun(rhs, y0, args, dt=dt, t_orth=t_orth, t_transient=t_transient, n_exponents=n_exponents,
+                      jvp=jvp, t0=t0, seed=seed, omega_max=omega_max, frozen=frozen, scale=scale)
     t_total = _positive("t_total", t_total)
-    t_orth = 10 * dt if t_orth is None else _positive("t_orth", t_orth)
-    if omega_max is not None:
-        limit = stability_limit("rk4") / _positive("omega_max", omega_max)
-        if dt > limit:
-            raise DynamicsInputError(f"dt = {dt:g} s is beyond the RK4 stability limit {limit:g} s "
-                                     f"for omega_max = {omega_max:g} rad/s")
-    if t_transient < 0:
-        raise DynamicsInputError(f"t_transient = {t_transient!r} must be >= 0")
-    steps_per_orth = max(1, int(round(t_orth / dt)))
-    n_orth = max(1, int(math.ceil(t_total / (steps_per_orth * dt))))
-    n_transient = int(math.ceil(t_transient / (steps_per_orth * dt)))
-    G = np.random.default_rng(seed).standard_normal((n, k)) * keep[:, None]
-    V0 = np.linalg.qr(G)[0].T.copy()
-    V0[:, keep == 0.0] = 0.0  # exactly zero (QR round-off)
-    if scale is None:
-        scale = np.ones(n)
-    else:
-        scale = np.array(scale, dtype=np.float64, ndmin=1)
-        if scale.shape != (n,) or not np.all(np.isfinite(scale) & (scale > 0.0)):
-            raise DynamicsInputError(f"scale (shape {scale.shape}) must hold {n} finite numbers > 0")
-    kernel = specialise(_benettin_impl, rhs=rhs, jvp=no_jvp if jvp is None else jvp)
-    total = n_orth + n_transient
-    z, V = y0 / scale, V0.copy()
-    log_sum, accumulated, running = np.zeros(k), np.zeros(1), np.full((total, k), np.nan)
-    stops = chunk_bounds(total, n_chunks)
-    t_end, status = float(t0), 0
-    for q_begin, q_end in zip(stops[:-1], stops[1:]):
-        t_end, status = kernel(z, V, keep, scale, args, float(t0), dt, steps_per_orth, int(q_begin), int(q_end),
-                               n_transient, jvp is None, log_sum, accumulated, running)
-        if status != 0:
-            break
-        if progress is not None:
-            progress(float(q_end) / total)
-    accumulated = float(accumulated[0])
-    y_final = z * scale
-    if status != 0:
-        raise IntegrationError(f"lyapunov_spectrum: non-finite state or tangent vector before t = {t_end:.6g} s "
-                               f"(dt = {dt:g} s too large?)", status=status, t_reached=t_end)
-    lam = log_sum / accumulated
-    order = np.argsort(lam)[::-1]
-    times = (np.arange(n_orth) + 1) * steps_per_orth * dt
-    return LyapunovSpectrum(exponents=lam[order], times=times, running=running[n_transient:, order],
-                            y_final=y_final)
+    n_orth = max(1, int(math.ceil(t_total / run.interval)))
+    run.advance(n_orth + run.n_transient, n_chunks=n_chunks, progress=progress)
+    return run.spectrum()
 
 
 def spectrum_kernel_example(rhs, args, jvp=None):

@@ -30,7 +30,9 @@ a terminal) and writes
   axial) from each coordinate's time series by Wolf et al.'s
   fixed-evolution-time algorithm in bits/s and 1/s, and for x, y, z by
   Rosenstein's in 1/s and per shaft revolution; the whole system's by
-  Benettin's (Gram-Schmidt) in 1/s; each with its uncertainty and a verdict
+  Benettin's (Gram-Schmidt) in 1/s, and with ``analysis.tangent_directions`` the per-direction
+  exponents of Benettin's first tangent vector projected on the balls' radial, tangential and axial
+  directions (1/s and bits/s, lambda T, the vector's share per direction); each with its uncertainty and a verdict
   ("positive" beyond two uncertainties, "not positive", or for Wolf's "not
   resolved"), after the detected end of the start-up transient; collision
   counts and largest forces by direction, ball and inner-ring slip,
@@ -263,6 +265,9 @@ class IntegratorTable(CaseTable):
 class AnalysisTable(CaseTable):
     lyapunov: bool = True  # largest exponent per direction of ball `ball` (Wolf et al. in bits/s; Rosenstein)
     lyapunov_exponents: Annotated[int, Field(strict=True, ge=0, le=20)] = 3  # whole system, Benettin; 0: off
+    # per-direction exponents from Benettin's first tangent vector, projected on every ball's radial, tangential
+    # and axial directions (lubedyn.dynamics.tangent_directions); runs with the whole-system spectrum
+    tangent_directions: bool = False
     ball: Annotated[int, Field(strict=True, ge=0)] = 0
     spectrum: bool = True
     collision_threshold: Q("force", gt=0) = 1.0
@@ -451,7 +456,7 @@ def kernel_jobs(case: DynamicsCase, model) -> list:
     args = model.args()
     # forces first: the quasi-static start calls it right after the model has compiled
     jobs = [forces_example(args), kernel_example(case.integrator.method, rhs, args), forces_many_example(args)]
-    if case.analysis.lyapunov_exponents:
+    if case.analysis.lyapunov_exponents or case.analysis.tangent_directions:
         jobs.append(spectrum_kernel_example(rhs, args))
     return jobs
 
@@ -641,7 +646,7 @@ class CagelessRunModel:
                 # a position is resolved to about rtol times its size (the error control of the integrator)
                 scale_min=ig.rtol * float(np.max(np.abs(centres[:, case.analysis.ball, :])))))
         benettin = None
-        if case.analysis.lyapunov_exponents:
+        if case.analysis.lyapunov_exponents or case.analysis.tangent_directions:
             # the whole-system spectrum runs in a thread (its compiled kernel releases the GIL) while the rest
             # of the analysis, the frames and the figures are made; its entries join the summary before the
             # time series and summary.json are written (_BackgroundResult)

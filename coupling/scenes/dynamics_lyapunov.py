@@ -12,7 +12,8 @@ import time
 import numpy as np
 from lubedyn.dynamics.cageless import rhs
 from lubedyn.dynamics.errors import DynamicsInputError
-from lubedyn.dynamics.lyapunov import WOLF_SCALE_MIN, assess_largest_lyapunov, autocorrelation_delay, false_nearest_neighbours, largest_lyapunov_rosenstein, mean_period, mutual_information_delay, lyapunov_spectrum, per_shaft_revolution, rosenstein_shortfall, wolf_shortfall
+from lubedyn.dynamics.tangent_directions import BITS, BallDirections, TangentDirections
+from lubedyn.dynamics.lyapunov import BenettinRun, WOLF_SCALE_MIN, assess_largest_lyapunov, autocorrelation_delay, false_nearest_neighbours, largest_lyapunov_rosenstein, mean_period, mutual_information_delay, lyapunov_spectrum, per_shaft_revolution, rosenstein_shortfall, wolf_shortfall
 
 log = logging.getLogger("lubedyn.scenes.dynamics")
 
@@ -324,20 +325,41 @@ def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict
     "not converged (... still spinning up)" for every exponent of a record that ends inside the spin-up
     (:func:`spin_up_end`, the rule by which the per-direction exponents are not computed).
     ``progress(fraction)`` is called as the spectrum advances (100 kernel
-    calls, bit-identical to one: :func:`lubedyn.dynamics.lyapunov.lyapunov_spectrum`'s ``n_chunks``)."""
+    calls, bit-identical to one: :func:`lubedyn.dynamics.lyapunov.lyapunov_spectrum`'s ``n_chunks``).
+
+    With ``analysis.tangent_directions`` the same run's first tangent vector is projected on every ball's
+    radial, tangential and axial position directions after each QR (:mod:`lubedyn.dynamics.tangent_directions`)
+    and :func:`tangent_direction_entries` joins the summary (``lyapunov_exponents = 0`` then runs one vector
+    and writes only those)."""
     k = case.analysis.lyapunov_exponents
     i0 = int(np.searchsorted(t, benettin_start(float(case.analysis.transient), start, float(t[-1]))))
     window = float(t[-1] - t[i0])
     scale = model.state_scales()
     omega = model.omega_max(Y[i0])
-    dt = 0.3 / omega
+    dt = DT_FACTOR / omega
     t_c = time.perf_counter()
     # the first tenth of the window aligns the random initial tangent vectors (its stretching is discarded)
-    res = lyapunov_spectrum(rhs, Y[i0], model.args(), scale=scale, dt=dt, t_total=0.9 * window,
-                            t_transient=0.1 * window, t_orth=50 * dt, n_exponents=k, omega_max=omega, t0=float(t[i0]),
-                            frozen=memory_states(model), n_chunks=100, progress=progress)
+    directions = None
+    if case.analysis.tangent_directions:
+        # the same run, its first tangent vector projected on the balls' directions after every QR: the
+        # whole-system exponents are the bits lyapunov_spectrum gives (chunking does not change them)
+        run = BenettinRun(rhs, Y[i0], model.args(), scale=scale, dt=dt, t_transient=0.1 * window,
+                          t_orth=ORTH_STEPS * dt, n_exponents=max(k, 1), omega_max=omega, t0=float(t[i0]),
+                          frozen=memory_states(model))
+        td = TangentDirections(run, BallDirections(model.state_layout(), scale, inertial=True))
+        n_orth = max(1, int(math.ceil(0.9 * window / run.interval)))
+        td.advance(n_intervals=n_orth, progress=progress)
+        res, directions = run.spectrum(), td.result()
+    else:
+        res = lyapunov_spectrum(rhs, Y[i0], model.args(), scale=scale, dt=dt, t_total=0.9 * window,
+                                t_transient=0.1 * window, t_orth=ORTH_STEPS * dt, n_exponents=k, omega_max=omega,
+                                t0=float(t[i0]), frozen=memory_states(model), n_chunks=100, progress=progress)
     out = {"Benettin window start [s]": float(t[i0]), "Benettin window [s]": window, "Benettin averaging time [s]": 0.9 * window,
            "Benettin time [s]": time.perf_counter() - t_c}
+    if directions is not None:
+        out.update(tangent_direction_entries(directions, case.analysis.ball))
+    if not k:
+        return out
     verdicts = whole_system_verdicts(res, record_spin_up(case, model, t, Y))
     for i, (lam, u, verdict) in enumerate(zip(res.exponents, res.uncertainty, verdicts)):
         out[f"Lyapunov exponent {i + 1}, whole system (Benettin) [1/s]"] = float(lam)
@@ -380,3 +402,54 @@ def _delay(x) -> int:
     """Embedding delay: first zero crossing of the autocorrelation (at least 1,
     :func:`lubedyn.dynamics.lyapunov.autocorrelation_delay`)."""
     return autocorrelation_delay(x)
+
+
+#: Benettin's step and orthonormalisation interval on the bearing (both analyses): dt = DT_FACTOR / omega_max,
+#: t_orth = ORTH_STEPS dt
+DT_FACTOR = 0.3
+ORTH_STEPS = 50
+
+
+def bearing_tangent_directions(model, y0, t0=0.0, *, t_transient=0.0) -> TangentDirections:
+    """Per-direction exponents of the cage-less bearing from ``y0`` at ``t0`` [s]
+    (:class:`lubedyn.dynamics.tangent_directions.TangentDirections`): the first tangent vector of Benettin's
+    method with :func:`_benettin`'s settings (forward differences on the scaled state, dt = 0.3 / omega_max,
+    QR every 50 steps, the plastic memory frozen), projected after each QR on every ball's radial, tangential
+    and axial position directions; ``t_transient`` [s] aligns it first.  Advance it with
+    ``.advance(seconds)``; ``.save``/``.load`` resume it."""
+    scale = model.state_scales()
+    omega = model.omega_max(y0)
+    dt = DT_FACTOR / omega
+    run = BenettinRun(rhs, y0, model.args(), scale=scale, dt=dt, t_orth=ORTH_STEPS * dt, t_transient=t_transient,
+                      n_exponents=1, omega_max=omega, t0=float(t0), frozen=memory_states(model))
+    return TangentDirections(run, BallDirections(model.state_layout(), scale))
+
+
+def tangent_direction_entries(res, ball: int) -> dict:
+    """Summary entries of per-direction tangent-space exponents ``res``
+    (:class:`lubedyn.dynamics.tangent_directions.DirectionExponents`) for ball ``ball`` and for all balls:
+    ``"Tangent-space exponent, ball j radial [1/s]"`` and ``[bits/s]`` (radial, tangential, axial, and x, y
+    when the projector gives them), ``lambda T [-]``, ``uncertainty
+    [1/s]`` (batch means along the record), ``share [-]`` (the first Lyapunov vector's share in the
+    direction); the first vector's own exponent (the whole system's lambda_1 over the same record) and the
+    bound the largest per-direction value must lie in (module docstring of
+    :mod:`lubedyn.dynamics.tangent_directions`)."""
+    T = res.averaging_time
+    out = {"Tangent-space averaging time [s]": T,
+           "Tangent-space largest exponent, first vector [1/s]": res.largest,
+           "Tangent-space largest exponent, first vector [bits/s]": res.largest * BITS}
+    low, high = res.max_bound
+    out["Tangent-space largest direction exponent, bound from the first vector [1/s]"] = [low, high]
+    u = res.uncertainty
+    for i, name in enumerate(res.names):
+        if not (name.startswith(f"ball {ball} ") or name.endswith("(all balls)")):
+            continue
+        key = f"Tangent-space exponent, {name}"
+        lam = float(res.exponents[i])
+        finite = math.isfinite(lam)
+        out[f"{key} [1/s]"] = lam if finite else None
+        out[f"{key} [bits/s]"] = lam * BITS if finite else None
+        out[f"{key} lambda T [-]"] = lam * T if finite else None
+        out[f"{key} uncertainty [1/s]"] = float(u[i]) if np.isfinite(u[i]) else None
+        out[f"{key} share [-]"] = float(res.share[i])
+    return out
