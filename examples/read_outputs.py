@@ -1,8 +1,8 @@
 """Reading a run's outputs (numpy, pyvista, ParaView)
 ==================================================
 
-Reading a run's outputs: summary.json, the time series (netCDF: timeseries.nc) and the VTK fields, with numpy and
-pyvista.  Runs the smoke-size main job (paper B's rotor drop) into a temporary folder first, through
+Reading a run's outputs: summary.json, the time series (netCDF: timeseries.nc, with xarray and with
+lubedyn.outputs.read_timeseries) and the VTK fields, with numpy and pyvista.  Runs the smoke-size main job (paper B's rotor drop) into a temporary folder first, through
 the same entry point as ``lubedyn run``.
 
 ParaView: open ``bearing.pvd`` (the time series of the balls and rings), press Apply, colour by
@@ -20,6 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 import pyvista as pv
+import xarray as xr
 
 from lubedyn import cli
 from lubedyn.config import CASES_DIR
@@ -36,6 +37,9 @@ def main():
     summary = json.loads((out / "summary.json").read_text())          # every scalar, names with units
     columns, meta = read_timeseries(out / "timeseries.nc")             # "Time [s]" and one array per column
     t = columns["Time [s]"]
+    with xr.open_dataset(out / "timeseries.nc") as ds:                # the same file in xarray: units in attrs
+        rotor = ds["Rotor speed"]
+        rotor_units, rotor_xr = rotor.attrs["units"], rotor.values.copy()
     frames = pv.get_reader(str(out / "bearing.pvd"))                   # the ParaView collection
     frames.set_active_time_value(frames.time_values[-1])
     last = frames.read()
@@ -53,7 +57,9 @@ def main():
     fig.savefig(OUT / "read_outputs.png", dpi=100)
     return {"Simulated time [s]": summary["Simulated time [s]"], "samples": t.size,
             "frames": len(frames.time_values), "blocks in the last frame": last.n_blocks if hasattr(last, "n_blocks") else 1,
-            "last sample time [s]": float(t[-1])}
+            "last sample time [s]": float(t[-1]),
+            "rotor speed, xarray = read_timeseries": bool(np.array_equal(rotor_xr, columns["Rotor speed [rad/s]"])),
+            "rotor speed units (xarray)": rotor_units}
 
 
 if __name__ == "__main__":

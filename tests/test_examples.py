@@ -111,6 +111,7 @@ def test_read_outputs(example):
     r = example("read_outputs")
     assert r["last sample time [s]"] == pytest.approx(r["Simulated time [s]"], rel=1e-12)
     assert r["frames"] >= 2 and r["samples"] > 100
+    assert r["rotor speed, xarray = read_timeseries"] and r["rotor speed units (xarray)"] == "rad/s"
 
 
 def test_tapered_roller_dynamics(example):
@@ -151,3 +152,13 @@ def test_cageless_rotor_drop(example):
     assert r["collisions"] == r["collisions (summary)"] > 0
     verdict = r["Lyapunov exponent 1, whole system (Benettin) verdict"]
     assert verdict in ("positive", "not positive") or verdict.startswith("not converged (")
+
+
+def test_study_on_dask(example):
+    """The slider's load is linear in the runner speed (an isoviscous Reynolds film): load / speed equal at the
+    three points of a study run on a local Dask cluster; study.nc holds the Dataset to_xarray() returns."""
+    r = example("study_on_dask")
+    assert r["runs"] == 3 and r["failed"] == 0 and "dask" in r["backend"].lower()
+    ratio = r["load / speed [N s/m^2]"]
+    assert np.allclose(ratio, ratio[0], rtol=1e-9) and ratio[0] > 0
+    assert r["study.nc = to_xarray()"]
