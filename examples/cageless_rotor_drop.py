@@ -5,9 +5,9 @@ The cage-less ball bearing's rotor drop, with its collisions and Lyapunov expone
 
 Paper B's cage-less 6206 (``cases/cageless_6206_3krpm.toml``: the rotor, spinning at 3,000 rpm, drops onto
 the inner ring, Fr 2000 N, Fa 200 N; the ball-ball oil film read from the FEM map ``cases/maps/ball_ball.npz``)
-run from Python: :func:`lubedyn.config.load_case` reads the bundled case with overrides (the keys of
-``lubedyn run --set``) and :func:`lubedyn.scenes.dynamics.run` integrates and analyses it without writing
-files.  Shown: the rotor's spin-down and the inner ring's spin-up, the ball-ball collisions (force peak
+run from Python: :func:`lubedyn.config.load_case` reads the bundled case by name with overrides (the keys of
+``lubedyn run --set``) and :func:`lubedyn.run` integrates and analyses it without writing files; the result
+reads every time series by its name (``r["Rotor speed [rad/s]"]``).  Shown: the rotor's spin-down and the inner ring's spin-up, the ball-ball collisions (force peak
 against time), and the largest Lyapunov exponents with their uncertainties and verdicts (per direction of
 ball 0 by Wolf et al.'s algorithm after the detected end of the spin-up; whole system by Benettin's).
 
@@ -33,8 +33,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lubedyn.scenes import dynamics as dynamics_scene
-from lubedyn.config import CASES_DIR, load_case
+import lubedyn
+from lubedyn.config import load_case
 
 SMOKE = os.environ.get("LUBEDYN_SMOKE", "") not in ("", "0")  # LUBEDYN_SMOKE=1: coarse, seconds
 OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
@@ -43,11 +43,11 @@ OUT = Path(os.environ.get("LUBEDYN_EXAMPLE_OUT", "."))  # where the figure goes
 def main():
     over = ["integrator.duration=5 ms" if SMOKE else "integrator.duration=100 ms", "integrator.sample_interval=5 us",
             "analysis.transient=0 s", "analysis.lyapunov_exponents=2"]
-    case = load_case(CASES_DIR / "cageless_6206_3krpm.toml", overrides=over)
-    r = dynamics_scene.run(case)  # no out_dir: nothing written; r.summary, r.t, r.y, r.events
+    case = load_case("cageless_6206_3krpm", overrides=over)
+    r = lubedyn.run(case)  # no out_dir: nothing written; r.summary, r.t, r.events, r[name]
     op, b, s = case.operating, case.bearing, r.summary
     torque = op.rotor_friction * op.radial_load * op.rotor_contact_radius
-    rotor, ring = r.y[:, 8], r.y[:, 7]  # rotor and inner-ring speeds [rad/s]
+    rotor, ring = r["Rotor speed [rad/s]"], r["Inner ring speed [rad/s]"]
     slipping = rotor - ring > 10.0
     law = op.speed - torque * r.t / b.rotor_inertia
     catch_up = op.speed / (torque * (1 / b.ring_inertia + 1 / b.rotor_inertia))
