@@ -369,7 +369,7 @@ class RunFiles:
     ``t``); ``meta(summary)``: the time series' extra metadata, given the full summary; ``texts()``: further
     text files written with the time series (``{"collisions.csv": text}``); ``frames()``: ``(time [s],
     mesh)`` pairs of the ParaView series, each mesh made when its frame is written, with file extension
-    ``frame_ext`` ("vtp", "vtu"); ``figures()``: ``{file name: matplotlib figure}``; ``complete(summary)``:
+    ``frame_ext`` ("vtp", "vtu"); ``figures()``: ``(file name, matplotlib figure)`` pairs, each drawn when it is saved (and closed before the next: a scene with more than 20 figures never holds them all open); ``complete(summary)``:
     the summary finished by an analysis that ran in the background while the frames and figures were
     made (None: nothing to wait for); ``write_time``: record "Output write time [s]" in ``summary.json``."""
 
@@ -413,7 +413,7 @@ def write_bearing_run(out_dir, resolved: str, summary: dict, write, files: RunFi
             matplotlib.use("Agg")
             import matplotlib.pyplot as plt
 
-            for fname, fig in files.figures().items():
+            for fname, fig in files.figures():  # drawn one at a time, each closed before the next
                 try:
                     save_figure(stage / fname, fig)
                 finally:

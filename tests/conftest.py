@@ -115,3 +115,15 @@ def _share_compilation_between_workers():
                 fcntl.flock(fh, fcntl.LOCK_UN)
 
     Dispatcher.compile = compile_once
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    """Close the figures a test leaves open (pyplot keeps them), so that the figures of later tests in the same
+    worker do not pass matplotlib's 20-open-figures warning, an error under this suite's warning filter."""
+    yield
+    import sys
+
+    plt = sys.modules.get("matplotlib.pyplot")
+    if plt is not None:
+        plt.close("all")

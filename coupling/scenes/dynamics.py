@@ -690,7 +690,7 @@ class CagelessRunModel:
             meta=lambda full: {"Case": full["Case"], "Scene": "dynamics", "Summary": full},
             texts=lambda: {"collisions.csv": _collisions_csv(events)},
             frames=self._frames, frame_ext="vtp",
-            figures=lambda: {name: draw() for name, draw in self.drawings().items()},
+            figures=lambda: ((name, draw()) for name, draw in self.drawings().items()),
             complete=complete, write_time=True)
 
     def _frames(self):

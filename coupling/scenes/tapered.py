@@ -931,7 +931,7 @@ class TaperedRunModel:
             t=self.t, columns=lambda: _columns(self.model, self.y, self.D),
             meta=lambda full: {"Case": summary["Case"], "Scene": "tapered"},
             frames=self._frames, frame_ext="vtu",
-            figures=lambda: {name: draw() for name, draw in self.drawings().items()})
+            figures=lambda: ((name, draw()) for name, draw in self.drawings().items()))
 
     def drawings(self) -> dict:
         return drawings(self.model, self.t, self.y, self.D, self.qs)
