@@ -158,6 +158,8 @@ def test_per_direction_summary_on_a_synthetic_ball():
     out = _lyapunov_per_direction(case, t, centres, 1047.0, ring_speed=np.full(n, 1000.0),
                                   rotor_speed=np.full(n, 1000.0), collision_times=[])
     assert out["Lyapunov window start [s]"] == 0.0
+    # 1.2 s at 1047 rad/s resolves an exponent (needs 0.281 s: test_record_rule_is_the_measured_...): not gated
+    assert out["Lyapunov record needed, per direction [s]"] < 1.2 and "Lyapunov exponents per direction, note" not in out
     for name in ("z", "axial"):
         key = f"Wolf exponent, ball 0 {name}"
         assert out[f"{key} [bits/s]"] > 0.0
@@ -243,3 +245,92 @@ def test_benettin_window_starts_after_the_detected_transient_when_the_record_all
     assert benettin_start(0.02, None, 0.4) == 0.02          # nothing detected (steady runs)
     assert benettin_start(0.05, 0.03, 0.4) == 0.05          # the given start is later
     assert benettin_start(0.0, 0.2, 0.4) == 0.2             # exactly half: still allowed
+
+
+def test_record_rule_is_the_measured_exponent_and_boundary_term():
+    """The record an exponent needs (issue 42, decision 1) from the 10,000 rpm drop's measurement
+    (benchmarks/results/paper_b/tangent_directions_10krpm.json, 4 members over 4 s): lambda_1 the first
+    tangent vector's mean, a the largest boundary term fitted over the directions; lambda T >= 2 a, i.e.
+    2 x 7.6 / 54.1 = 0.281 s at 10,000 rpm, half that at 20,000 rpm; the README's main job (15 ms after
+    its 5 ms transient) has lambda T = 0.81, below 1."""
+    import math
+    from pathlib import Path
+
+    from lubedyn.scenes import dynamics_lyapunov as L
+
+    measured = json.loads((Path(__file__).resolve().parents[1] / "benchmarks" / "results" / "paper_b"
+                           / "tangent_directions_10krpm.json").read_text())["directions"]
+    assert L.REFERENCE_EXPONENT == pytest.approx(measured["lambda_1 (first vector)"]["mean [1/s]"], abs=0.05)
+    assert L.BOUNDARY_TERM == pytest.approx(max(d["a [-]"] for d in measured.values()), abs=0.05)
+    rpm = 2 * math.pi / 60
+    need = L.record_need("x", 0.015, 0.005, 10_000 * rpm)
+    assert need.needed == pytest.approx(2 * 7.6 / 54.1, rel=1e-3) and need.exponent * 0.015 < 1.0
+    assert not need.resolves and "resolves no exponent; needs 0.281 s" in need.note()
+    assert L.record_need("x", 0.2, 0.0, 20_000 * rpm).needed == pytest.approx(0.5 * need.needed)
+    assert L.record_need("x", 0.29, 0.0, 10_000 * rpm).resolves
+
+
+def _synthetic_ball(n, dt=5e-5):
+    """Ball 0 on a circle at 411 rad/s with Lorenz x (time scaled by 100: lambda_1 = 90.6 1/s) as its axial
+    motion, as in :func:`test_per_direction_summary_on_a_synthetic_ball`."""
+    import numpy as np
+
+    from lubedyn.dynamics import integrators as I
+    from test_lyapunov import LORENZ, lorenz
+
+    t = np.arange(n) * dt
+    y0 = I.integrate(lorenz, [1.0, 1.0, 20.0], [0.0, 20.0], LORENZ, rtol=1e-10, atol=1e-10).y[-1]
+    z = I.integrate(lorenz, y0, t * 100.0, LORENZ, rtol=1e-10, atol=1e-10).y[:, 0] * 5e-7
+    centres = np.zeros((n, 2, 3))
+    centres[:, 0, :] = np.stack([0.023 * np.cos(411.0 * t), 0.023 * np.sin(411.0 * t), z], axis=1)
+    return t, centres
+
+
+@pytest.mark.parametrize("force", [False, True])
+def test_a_short_record_says_what_it_needs_unless_forced(force):
+    """A 0.1 s record at 10,000 rpm (lambda T = 5.4 against 15.2 needed): every per-direction entry None
+    with "not computed: the record of ... resolves no exponent; needs 0.281 s"; with analysis.force the
+    estimators run (the Lorenz axial direction gets a Wolf exponent) and the summary says the run was
+    forced.  The 1.2 s record of test_per_direction_summary_on_a_synthetic_ball computes unforced."""
+    import math
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from lubedyn.scenes.dynamics_lyapunov import _lyapunov_per_direction
+
+    t, centres = _synthetic_ball(2000)
+    case = SimpleNamespace(analysis=SimpleNamespace(transient=0.0, ball=0, force=force))
+    out = _lyapunov_per_direction(case, t, centres, 10_000 * 2 * math.pi / 60, ring_speed=np.full(t.size, 1000.0),
+                                  rotor_speed=np.full(t.size, 1000.0), collision_times=[])
+    assert out["Lyapunov record needed, per direction [s]"] == pytest.approx(0.281, abs=1e-3)
+    note = out["Lyapunov exponents per direction, note"]
+    if not force:
+        assert note.startswith("not computed: the record of ball 0's per-direction exponents (0.1 s")
+        assert "resolves no exponent; needs 0.281 s" in note
+        for name in ("x", "y", "z", "radial", "tangential", "axial"):
+            assert out[f"Wolf exponent, ball 0 {name} [bits/s]"] is None
+            assert out[f"Wolf exponent, ball 0 {name}, note"] == note
+        for axis in "xyz":
+            assert out[f"Largest Lyapunov exponent, ball 0 {axis} [1/s]"] is None
+    else:
+        assert note.startswith("forced (analysis.force = true): the record of ball 0's")
+        assert out["Wolf exponent, ball 0 z [bits/s]"] is not None
+        assert out["Wolf exponent, ball 0 z verdict"] != "not computed"
+
+
+def test_main_job_smoke_unforced_writes_why_the_spectrum_is_not_computed(capsys, tmp_path):
+    """The main job's smoke run (1 ms) with analysis.force = false: the whole-system spectrum is not
+    computed (its 0.9 ms window resolves no exponent; needs 0.281 s), in summary.json and on the terminal;
+    the smoke default (force = true) computes it (test_main_job_smoke_states_why_...)."""
+    code, out, err = run(capsys, "run", SHORT, "--smoke", "--set", "analysis.force=false", "--set",
+                         "output.write=[]", "--out", tmp_path)
+    assert code == 0, err
+    s = json.loads((tmp_path / "summary.json").read_text())
+    for i in (1, 2):
+        assert s[f"Lyapunov exponent {i}, whole system (Benettin) [1/s]"] is None
+        assert s[f"Lyapunov exponent {i}, whole system (Benettin) verdict"] == "not computed"
+    note = s["Lyapunov exponents, whole system, note"]
+    assert note.startswith("not computed: the record of the whole-system spectrum") and "needs 0.281 s" in note
+    assert "Benettin time [s]" not in s
+    assert f"Lyapunov exponents, whole system: {note}" in out

@@ -8,6 +8,7 @@ from __future__ import annotations
 import logging
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 from lubedyn.dynamics.cageless import rhs
@@ -114,6 +115,67 @@ def co_rotating(t, xyz) -> tuple[np.ndarray, np.ndarray, str]:
 CO_ROTATING = ("radial", "tangential", "axial")
 
 
+# ---------------------------------------------------------------------------- the record an exponent needs
+#: the 10,000 rpm drop's largest Lyapunov exponent [1/s] and the shaft speed it was measured at [rad/s]:
+#: lambda_1 = 54.1 +- 0.9 1/s over T = 4 s after the 20 ms transient, 4 members (docs/atlas/lyapunov.md,
+#: benchmarks/results/paper_b/tangent_directions_10krpm.json); every direction's tangent-space exponent equals it
+REFERENCE_EXPONENT, REFERENCE_SPEED = 54.1, 10_000 * 2 * math.pi / 60
+#: boundary term a [-] of a finite-time exponent's spread sigma^2(T) = a^2 / T^2 + c^2 / T
+#: (:func:`lubedyn.dynamics.tangent_directions.run_length`), the largest of the 7 directions' fits on the same
+#: 4 members (5.7-7.6; the diffusive c fitted 0: the spread falls as T^-1.4 to T^-1.6 over 2-4 s)
+BOUNDARY_TERM = 7.6
+
+
+@dataclass(frozen=True)
+class RecordNeed:
+    """What a Lyapunov exponent needs of its record, and what the run has.
+
+    A finite-time exponent over a record T differs from the exponent by the boundary term a / T (the log of a
+    tangent vector's norm differs from its trend by a bounded function of the state), so a record resolves an
+    exponent lambda -- can tell it positive beyond two uncertainties, the verdicts' rule -- only when
+    a / T <= lambda / 2, i.e. lambda T >= 2 a: ``needed`` = 2 a / lambda [s].  lambda is the 10,000 rpm drop's
+    measured lambda_1 (:data:`REFERENCE_EXPONENT`) scaled with the shaft speed (assumed: a constant exponent per
+    revolution, 0.33 1/rev; measured at 10,000 rpm only), a the measured :data:`BOUNDARY_TERM`.  The README's
+    main job (20 ms, window from 5 ms): lambda T = 0.8 against 15.2 needed (0.28 s at 10,000 rpm).
+    The per-direction time-series estimates (Wolf, Rosenstein) estimate the same lambda_1 from less
+    information than the tangent space, so they need at least the same record."""
+
+    estimator: str  # what is estimated, e.g. "the whole-system spectrum"
+    record: float  # [s] the record the estimator would average over
+    start: float  # [s] where that record starts
+    exponent: float  # [1/s] the exponent expected (measured, scaled with the speed)
+    needed: float  # [s] the record it needs
+
+    @property
+    def resolves(self) -> bool:
+        return self.record >= self.needed
+
+    def note(self) -> str:
+        """"not computed: the record of X resolves no exponent ...; needs Y" (the summary's ``, note``)."""
+        lam = self.exponent
+        return (f"not computed: the record of {self.estimator} ({self.record:.3g} s from {self.start:.4g} s: "
+                f"lambda T = {lam * self.record:.2g} with lambda ~ {lam:.3g} 1/s) resolves no exponent; needs "
+                f"{self.needed:.3g} s (lambda T >= {lam * self.needed:.3g}: the boundary term {BOUNDARY_TERM:g} / T "
+                "at most half the exponent); run longer, or force it with analysis.force = true")
+
+    def forced(self) -> str:
+        """The note of an estimate computed on a record that does not resolve it (``analysis.force``)."""
+        return ("forced (analysis.force = true): " + self.note().removeprefix("not computed: ")
+                .split("; run longer")[0] + "; the values do not resolve an exponent")
+
+
+def record_need(estimator: str, record: float, start: float, shaft_speed: float) -> RecordNeed:
+    """:class:`RecordNeed` of ``estimator`` over ``record`` [s] from ``start`` [s] at ``shaft_speed`` [rad/s]."""
+    lam = REFERENCE_EXPONENT * abs(float(shaft_speed)) / REFERENCE_SPEED
+    needed = 2.0 * BOUNDARY_TERM / lam if lam > 0 else math.inf
+    return RecordNeed(estimator, float(record), float(start), lam, needed)
+
+
+def forced(case) -> bool:
+    """Whether the case forces the estimators on records that do not resolve them (``analysis.force``)."""
+    return bool(getattr(case.analysis, "force", False))
+
+
 def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, rotor_speed=None,
                             collision_times=(), scale_min=0.0) -> dict:
     """Largest Lyapunov exponent per direction of ball ``analysis.ball``, from each coordinate's time
@@ -154,7 +216,11 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, r
 
     The record starts at the later of ``analysis.transient`` and the detected end of the transient
     (:func:`transient_end`, from ``ring_speed``, ``rotor_speed`` and ``collision_times`` when given);
-    both are in the summary.  A direction whose record is too short or that does not move (its range at
+    both are in the summary.  A record after the window start shorter than the one an exponent needs
+    (:func:`record_need`: lambda T >= 2 a, 0.28 s at 10,000 rpm) computes none of them: every entry is None
+    with the note "not computed: the record of ... resolves no exponent; needs ..." (also in
+    ``"Lyapunov exponents per direction, note"``), unless ``analysis.force``.  A direction whose record is
+    too short or that does not move (its range at
     most 1e-10 of the ball's distance from the axis, or ``scale_min``) gets ``None`` and a
     ``"..., note"`` saying why (an expected outcome of a short run, logged at INFO)."""
     j = case.analysis.ball
@@ -170,15 +236,18 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, r
     if keep.size < 3:
         note = (f"not computed: no record after the window start {given:.4g} s"
                 + (f" ({out['Lyapunov window start, detected, reason']})" if ring_speed is not None else ""))
-        for name in ("x", "y", "z") + CO_ROTATING:
-            out[f"Wolf exponent, ball {j} {name} [bits/s]"] = None
-            out[f"Wolf exponent, ball {j} {name} verdict"] = "not computed"
-            out[f"Wolf exponent, ball {j} {name}, note"] = note
-        for axis in "xyz":
-            out[f"Largest Lyapunov exponent, ball {j} {axis} [1/s]"] = None
-            out[f"Largest Lyapunov exponent, ball {j} {axis}, note"] = note
+        out.update(_per_direction_not_computed(j, note))
         log.info("Lyapunov exponents of ball %d: %s", j, note)
         return out
+    need = record_need(f"ball {j}'s per-direction exponents", float(t[-1] - given), given, shaft_speed)
+    out["Lyapunov record needed, per direction [s]"] = need.needed
+    if not need.resolves:
+        if not forced(case):
+            out.update(_per_direction_not_computed(j, need.note()))
+            out["Lyapunov exponents per direction, note"] = need.note()
+            log.info("Lyapunov exponents of ball %d: %s", j, need.note())
+            return out
+        out["Lyapunov exponents per direction, note"] = need.forced()
     out.update(_rosenstein_directions(j, t, keep, centres, shaft_speed))
     xyz = centres[keep, j, :]
     series = {axis: (t[keep], xyz[:, i]) for i, axis in enumerate("xyz")}
@@ -188,6 +257,19 @@ def _lyapunov_per_direction(case, t, centres, shaft_speed, *, ring_speed=None, r
     size = float(np.max(np.abs(xyz))) if xyz.size else 1.0
     for name, s in series.items():
         out.update(_wolf_direction(f"Wolf exponent, ball {j} {name}", s, size, scale_min, given))
+    return out
+
+
+def _per_direction_not_computed(j: int, note: str) -> dict:
+    """Every Wolf and Rosenstein entry of ball ``j`` None (verdict "not computed") with ``note``."""
+    out = {}
+    for name in ("x", "y", "z") + CO_ROTATING:
+        out[f"Wolf exponent, ball {j} {name} [bits/s]"] = None
+        out[f"Wolf exponent, ball {j} {name} verdict"] = "not computed"
+        out[f"Wolf exponent, ball {j} {name}, note"] = note
+    for axis in "xyz":
+        out[f"Largest Lyapunov exponent, ball {j} {axis} [1/s]"] = None
+        out[f"Largest Lyapunov exponent, ball {j} {axis}, note"] = note
     return out
 
 
@@ -296,6 +378,32 @@ def benettin_start(given: float, detected: float | None, t_end: float) -> float:
     if detected is None or not (detected - given <= 0.5 * (t_end - given)):
         return given
     return max(detected, given)
+
+
+def benettin_need(case, t, start, shaft_speed) -> RecordNeed:
+    """:class:`RecordNeed` of the whole-system spectrum (and the tangent-space directions): its averaging
+    time, 0.9 of the window from :func:`benettin_start` (the first tenth aligns the tangent vectors)."""
+    t0 = float(t[int(np.searchsorted(t, benettin_start(float(case.analysis.transient), start, float(t[-1]))))])
+    what = "the whole-system spectrum" + (" and its tangent-space directions" if case.analysis.tangent_directions
+                                          else "")
+    return record_need(what, 0.9 * (float(t[-1]) - t0), t0, shaft_speed)
+
+
+def benettin_not_computed(case, need: RecordNeed) -> dict:
+    """The summary entries of a whole-system spectrum whose record resolves no exponent: each of the
+    ``analysis.lyapunov_exponents`` exponents None, verdict "not computed", and the note
+    (:meth:`RecordNeed.note`) on the spectrum."""
+    note = need.note()
+    out = {"Lyapunov exponents, whole system, note": note}
+    for i in range(case.analysis.lyapunov_exponents):
+        key = f"Lyapunov exponent {i + 1}, whole system (Benettin)"
+        out[f"{key} [1/s]"] = None
+        out[f"{key} verdict"] = "not computed"
+        out[f"{key}, note"] = note
+    if case.analysis.tangent_directions:
+        out["Tangent-space exponents, note"] = note
+    log.info("whole-system Lyapunov exponents: %s", note)
+    return out
 
 
 def _benettin(case, model, t, Y, shaft_speed, start=None, progress=None) -> dict:
