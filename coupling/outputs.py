@@ -385,55 +385,167 @@ class RunFiles:
 
 
 def write_bearing_run(out_dir, resolved: str, summary: dict, write, files: RunFiles,
-                      timeseries_format: str = "netcdf") -> tuple[list[Path], dict]:
+                      timeseries_format: str = "netcdf", workers: bool | None = None) -> tuple[list[Path], dict]:
     """Write a time-domain run's outputs into ``out_dir`` through a staging folder (:func:`staged`):
     ``case.resolved.toml`` (``resolved``), with "pvd" in ``write`` the frames (``frames/frame_NNNNN.<ext>``,
     :func:`write_frame`) and ``bearing.pvd`` (:func:`write_pvd`), with "png" the figures (Agg backend), then
     the summary completed (``files.complete``), with "timeseries" the time series, ``timeseries.nc``
     (:func:`write_timeseries_netcdf`, the case's parameters in its attributes) or with ``timeseries_format``
     "npz" ``timeseries.npz`` (:func:`write_timeseries`), its metadata from the completed summary, and the
-    text files, last
-    ``summary.json``.  Frames and figures come first: they do not need the summary, so a background
-    analysis runs on meanwhile.  Returns (the paths written, the completed summary)."""
+    text files, last ``summary.json``.  Returns (the paths written, the completed summary).
+
+    Off the critical path (``workers``, default :func:`output_workers`): the frames and the figures are
+    each written by a forked process (:class:`ForkedWriter`) while this one completes the summary and writes
+    the time series; ``summary.json`` comes once both have finished.  The files are those of the serial path
+    byte for byte (the same code on the same arrays; tests/test_output_workers.py).  A process, not a thread:
+    measured on the main job (tests none; benchmarks/main_job.py), drawing a figure (constrained layout,
+    text extents) and VTK's XML writer hold the GIL, a thread beside the time series gained nothing.  A
+    worker's error fails the run with one line (:class:`OutputError`) and nothing is committed; a Ctrl-C
+    ends the workers with the run (they ignore SIGINT and die with their parent), the files already in
+    place stay whole."""
     t_write = time.perf_counter()
     out = Path(out_dir)
+    if workers is None:
+        workers = output_workers()
     with staged(out) as stage:
         write_text(stage / "case.resolved.toml", resolved)
+        jobs = []
         if files.frames is not None and "pvd" in write:
-            (stage / "frames").mkdir()
-            entries = []
-            for k, (when, mesh) in enumerate(files.frames()):
-                fname = f"frames/frame_{k:05d}.{files.frame_ext}"
-                write_frame(stage / fname, mesh)
-                entries.append((float(when), fname))
-            write_pvd(stage / "bearing.pvd", entries)
+            jobs.append(("frames", lambda: _write_frames(stage, files)))
         if files.figures is not None and "png" in write:
-            import matplotlib
-
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
-
-            for fname, fig in files.figures():  # drawn one at a time, each closed before the next
-                try:
-                    save_figure(stage / fname, fig)
-                finally:
-                    plt.close(fig)
-        if files.complete is not None:
-            summary = files.complete(summary)
-        full = dict(summary)
-        if files.columns is not None and "timeseries" in write:
-            name = stage / TIMESERIES_FILES[timeseries_format]
-            if timeseries_format == "netcdf":
-                write_timeseries_netcdf(name, files.t, files.columns(), files.meta(full), resolved)
-            else:
-                write_timeseries(name, files.t, files.columns(), files.meta(full))
-            for fname, text in files.texts().items():
-                write_text(stage / fname, text)
+            jobs.append(("figures", lambda: _write_figures(stage, files)))
+        running = []
+        try:
+            for label, job in jobs:
+                if workers:
+                    running.append(ForkedWriter(label, job, stage))
+                else:
+                    job()
+            if files.complete is not None:
+                summary = files.complete(summary)
+            full = dict(summary)
+            if files.columns is not None and "timeseries" in write:
+                name = stage / TIMESERIES_FILES[timeseries_format]
+                if timeseries_format == "netcdf":
+                    write_timeseries_netcdf(name, files.t, files.columns(), files.meta(full), resolved)
+                else:
+                    write_timeseries(name, files.t, files.columns(), files.meta(full))
+                for fname, text in files.texts().items():
+                    write_text(stage / fname, text)
+            while running:
+                running.pop(0).wait()
+        finally:
+            for writer in running:  # an error or an interrupt here: the other workers end with it
+                writer.stop()
         if files.write_time:
             full["Output write time [s]"] = time.perf_counter() - t_write
         write_json(stage / "summary.json", full)
         names = sorted(p.name for p in stage.iterdir())
     return [out / n for n in names], summary
+
+
+def _write_frames(stage: Path, files: RunFiles) -> None:
+    """The ParaView series of a run: ``frames/frame_NNNNN.<ext>`` and ``bearing.pvd``."""
+    (stage / "frames").mkdir()
+    entries = []
+    for k, (when, mesh) in enumerate(files.frames()):
+        fname = f"frames/frame_{k:05d}.{files.frame_ext}"
+        write_frame(stage / fname, mesh)
+        entries.append((float(when), fname))
+    write_pvd(stage / "bearing.pvd", entries)
+
+
+def _write_figures(stage: Path, files: RunFiles) -> None:
+    """The figures of a run (Agg), drawn one at a time, each closed before the next."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    for fname, fig in files.figures():
+        try:
+            save_figure(stage / fname, fig)
+        finally:
+            plt.close(fig)
+
+
+def output_workers() -> bool:
+    """Whether :func:`write_bearing_run` writes frames and figures in forked processes: where ``os.fork``
+    exists, this process may use two cores or more, and ``LUBEDYN_OUTPUT_WORKERS`` is not "0" (the pool
+    workers of studies and map sweeps set it: they fill the cores already)."""
+    if os.environ.get("LUBEDYN_OUTPUT_WORKERS", "1") == "0" or not hasattr(os, "fork"):
+        return False
+    try:
+        return len(os.sched_getaffinity(0)) >= 2
+    except AttributeError:  # not on Linux
+        return (os.cpu_count() or 1) >= 2
+
+
+class ForkedWriter:
+    """``job()`` (writing files into the staging folder ``stage``) in a forked child process.
+
+    The child shares the parent's arrays (copy on write, nothing pickled), ignores SIGINT (the parent takes
+    the Ctrl-C and ends the run) and dies with its parent (``PR_SET_PDEATHSIG`` on Linux), and leaves by
+    ``os._exit`` (no atexit handler, no flush of the parent's buffers).  Its error comes back through a pipe
+    as one line; :meth:`wait` raises it as :class:`OutputError` naming the ``label`` ("frames", "figures")."""
+
+    def __init__(self, label: str, job: Callable[[], Any], stage: Path):
+        import signal
+
+        self.label, self.stage = label, Path(stage)
+        read, write = os.pipe()
+        parent = os.getpid()
+        pid = os.fork()
+        if pid == 0:  # the child: never returns
+            code = 1
+            try:
+                os.close(read)
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+                from lubedyn.maps.sweep import _die_with_parent
+
+                _die_with_parent(parent)
+                job()
+                code = 0
+            except BaseException as exc:  # noqa: BLE001 - handed to the parent as one line
+                if isinstance(exc, OSError):  # the file that could not be written, and why
+                    exc = output_error(exc, stage)
+                    text = f"{exc.path}\0{exc.cause}"
+                else:
+                    text = f"\0the {label} worker failed: {type(exc).__name__}: {exc}"
+                with contextlib.suppress(OSError):
+                    os.write(write, " ".join(text.split(" ")).encode("utf-8", "replace")[:4000])
+            finally:
+                os._exit(code)
+        os.close(write)
+        self.pid, self._read = pid, read
+
+    def wait(self) -> None:
+        """Wait for the child; its failure as :class:`OutputError`."""
+        with os.fdopen(self._read, "rb") as fh:
+            message = fh.read().decode("utf-8", "replace")
+        _, status = os.waitpid(self.pid, 0)
+        self.pid = None
+        if status != 0:
+            path, _, cause = message.partition("\0")
+            if not cause:
+                cause = f"the {self.label} worker failed: " + (
+                    f"killed by signal {os.WTERMSIG(status)}" if os.WIFSIGNALED(status)
+                    else f"exit status {os.WEXITSTATUS(status)}")
+            raise OutputError(path or self.stage / self.label, " ".join(cause.split()))
+
+    def stop(self) -> None:
+        """End the child (an error or an interrupt in the parent) and reap it."""
+        import signal
+
+        if self.pid is None:
+            return
+        with contextlib.suppress(OSError):
+            os.kill(self.pid, signal.SIGKILL)
+        with contextlib.suppress(OSError):
+            os.waitpid(self.pid, 0)
+        with contextlib.suppress(OSError):
+            os.close(self._read)
+        self.pid = None
 
 
 def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float,

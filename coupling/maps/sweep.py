@@ -108,6 +108,7 @@ def init_worker(parent_pid: int):
     _limit_threads()
     # the workers are the parallelism: no second process compiling kernels beside each (lubedyn.dynamics.specialise)
     os.environ["LUBEDYN_BACKGROUND_COMPILE"] = "0"
+    os.environ["LUBEDYN_OUTPUT_WORKERS"] = "0"  # nor forked writers of frames and figures (lubedyn.outputs)
 
 
 @contextlib.contextmanager
