@@ -32,6 +32,9 @@ def _captured_run(monkeypatch, tmp_path, name, overrides=()):
         return save(path, figure, dpi)
 
     monkeypatch.setattr(outputs, "save_figure", check_then_save)
+    # the figures drawn in this process (a forked worker's would not reach these dicts; the workers write the
+    # same bytes: tests/test_output_workers.py)
+    monkeypatch.setenv("LUBEDYN_OUTPUT_WORKERS", "0")
     case = lubedyn.load_case(name, smoke=True, overrides=overrides)
     result = lubedyn.run(case, tmp_path / name, smoke=True)
     return clipped, figures, result

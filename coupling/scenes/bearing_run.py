@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import logging
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Protocol
@@ -95,6 +96,33 @@ def integrate(spec: Integration):
         raise spec.on_error(exc) from None
 
 
+def import_in_background(names) -> threading.Thread | None:
+    """Import the modules ``names`` in a daemon thread, while the integration runs: its compiled kernels
+    release the GIL (:mod:`lubedyn.dynamics.specialise`), so the second core loads what the analysis and the
+    outputs import later (scipy.signal for the spectra, xarray and pandas for the time series, matplotlib and
+    VTK for figures and frames, which the forked output workers then inherit).  Measured on the README's
+    main job: benchmarks/main_job.py.  An import that fails is left to the code that needs it (it raises
+    there, as without this).  Nothing is started with no names or with ``LUBEDYN_BACKGROUND_IMPORTS=0``."""
+    import os
+
+    names = [n for n in names if n not in sys.modules]
+    if not names or os.environ.get("LUBEDYN_BACKGROUND_IMPORTS", "1") == "0":
+        return None
+
+    def target():
+        import importlib
+
+        for name in names:
+            try:
+                importlib.import_module(name)
+            except Exception as exc:  # noqa: BLE001 - the code that needs it raises, in its own thread
+                log.debug("background import of %s failed: %s", name, exc)
+
+    thread = threading.Thread(target=target, name="lubedyn-imports", daemon=True)
+    thread.start()
+    return thread
+
+
 def drive(model: BearingRunModel, out_dir=None, *, name: str, source: str = "", smoke: bool = False):
     """Build, integrate, analyse and (with ``out_dir``) write a bearing run; kernels compiled on a cold cache
     are reported as they compile (:func:`lubedyn.compilation.report_compilation`).  Returns
@@ -104,9 +132,15 @@ def drive(model: BearingRunModel, out_dir=None, *, name: str, source: str = "", 
         model.build()
         timing.build = time.perf_counter() - timing.t0
         log.info("integrating %s", model.describe())
+        # what the analysis and the outputs will import, imported meanwhile (the kernels release the GIL)
+        imports = import_in_background(model.modules(writing=out_dir is not None)) if hasattr(model, "modules") \
+            else None
         res = integrate(model.integration())
         timing.integration = time.perf_counter() - timing.t0 - timing.build
         scene = model.analyse(res, timing)
+        if imports is not None:  # done before anything forks (a module lock held by a thread the child lacks)
+            while imports.is_alive():
+                imports.join(0.1)  # short joins: a Ctrl-C is taken at once
         summary = outputs.run_summary(model.case, name, smoke, scene, timing.t0, timing.build)
         files = model.files(summary, timing)
         written = []

@@ -52,6 +52,7 @@ from __future__ import annotations
 
 import logging
 import math
+import os
 import sys
 import textwrap
 import time
@@ -588,6 +589,21 @@ class CagelessRunModel:
                            # Ctrl-C in a pipe is taken within one chunk (the 0.1 s drop integrates in 1.4 s
                            # warm: 7 ms a chunk), not at the end of the integration
                            n_chunks=200, on_error=self._error)
+
+    def modules(self, writing: bool = True) -> tuple[str, ...]:
+        """The heavy modules the analysis and (``writing``) the outputs of this case import (imported during
+        the integration: :func:`lubedyn.scenes.bearing_run.import_in_background`)."""
+        case, names = self.case, ["scipy.signal"]  # the spectra (lubedyn.dynamics.spectra)
+        write = case.output.write if writing else ()
+        if case.analysis.lyapunov or case.analysis.lyapunov_exponents:
+            names.append("scipy.spatial")  # neighbours of the time-series estimators
+        if "timeseries" in write and case.output.timeseries_format == "netcdf":
+            names += ["xarray", "netCDF4"]
+        if "png" in write:
+            names.append("matplotlib.pyplot" if os.environ.get("MPLBACKEND", "").lower() == "agg" else "matplotlib")
+        if "pvd" in write:
+            names += ["pyvista", "vtkmodules.vtkIOXML"]
+        return tuple(names)
 
     def _error(self, exc):
         ig = self.case.integrator
