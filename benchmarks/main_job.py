@@ -19,6 +19,9 @@ figures each in a thread beside the time series) and ``workers`` (each in a fork
 :class:`lubedyn.outputs.ForkedWriter`, what ``lubedyn run`` does).  Wall and CPU seconds (this process and
 its reaped children); the ratios against ``serial`` of the same repeat.
 
+(3) GIL (``--gil``): :func:`gil`, whether each output job (VTK frames, figures, the netCDF write) releases
+the GIL, which decides between a thread and a process for it.
+
 Writes ``results/main_job.json`` and ``results/main_job.png``.
 """
 from __future__ import annotations
@@ -158,6 +161,89 @@ def writers(case_path: str, repeats: int) -> dict:
     return {"in-process run before the writes [s]": integration, "writes": out, "against serial (median)": ratios}
 
 
+def _count_while(job) -> tuple[float, float]:
+    """(iterations of a pure-Python loop per CPU second of the loop's thread, wall [s]) while ``job()`` runs
+    in a second thread: near the solo rate when ``job`` releases the GIL, lower when it holds it."""
+    done = threading.Event()
+
+    def target():
+        try:
+            job()
+        finally:
+            done.set()
+
+    worker = threading.Thread(target=target)
+    n, c0, t0 = 0, time.thread_time(), time.perf_counter()
+    worker.start()
+    while not done.is_set():
+        for _ in range(1000):
+            n += 1
+    wall = time.perf_counter() - t0
+    worker.join()
+    return n / max(wall, 1e-9), wall
+
+
+def gil(case_path: str, repeats: int) -> dict:
+    """(3): whether each output job releases the GIL: a pure-Python loop's iterations per wall second while
+    the job runs in another thread, against the same loop beside ``time.sleep`` (GIL free) and beside a
+    pure-Python loop (GIL shared), interleaved.  ``share`` = (rate - shared) / (free - shared): 1 the job
+    leaves the GIL free (a thread would run beside it), 0 it holds it like Python code does."""
+    import io
+
+    from lubedyn import outputs
+    from lubedyn.config import load_case
+    from lubedyn.results import dataset
+    from lubedyn.scenes.bearing_run import Timing, drive
+    from lubedyn.scenes.dynamics import CagelessRunModel
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    case = load_case(ROOT / case_path)
+    model = CagelessRunModel(case)
+    res = drive(model, None, name="main job")
+    files = model.files(dict(res.summary), Timing(t0=0.0))
+    columns = files.columns()
+    tmp = Path(tempfile.mkdtemp(prefix="lubedyn-gil-"))
+    frames = list(files.frames())[:40]
+
+    def write_frames():
+        for k, (_, mesh) in enumerate(frames):
+            outputs.write_frame(tmp / f"f{k}.vtp", mesh)
+
+    def draw_figures():
+        for name, draw in list(model.drawings().items())[:3]:
+            fig = draw()
+            fig.savefig(io.BytesIO(), format="png", dpi=120)
+            plt.close(fig)
+
+    ds = dataset(files.t, columns)
+
+    def write_netcdf():
+        outputs.write_netcdf(tmp / "t.nc", ds)
+
+    def python_loop(seconds=2.0):
+        t_end = time.perf_counter() + seconds
+        while time.perf_counter() < t_end:
+            sum(range(200))
+
+    jobs = {"sleep (GIL free)": lambda: time.sleep(2.0), "Python loop (GIL shared)": python_loop,
+            "VTK frames (40)": write_frames, "figures (3)": draw_figures, "netCDF write": write_netcdf}
+    out = {name: [] for name in jobs}
+    for rep in range(repeats):
+        for name, job in jobs.items():
+            rate, wall = _count_while(job)
+            out[name].append({"loop rate [1/s]": rate, "wall [s]": wall, "load [-]": os.getloadavg()[0]})
+            print(f"gil {rep + 1} {name:>26}: loop {rate:.3g}/s over {wall:.2f} s", flush=True)
+    free = np.median([r["loop rate [1/s]"] for r in out["sleep (GIL free)"]])
+    shared = np.median([r["loop rate [1/s]"] for r in out["Python loop (GIL shared)"]])
+    share = {name: float((np.median([r["loop rate [1/s]"] for r in rs]) - shared) / (free - shared))
+             for name, rs in out.items()}
+    return {"runs": out, "GIL left free (share)": share}
+
+
 def figure(data: dict, path: Path) -> None:
     import matplotlib
 
@@ -214,6 +300,7 @@ def main(argv=None) -> int:
     ap.add_argument("--case", default=CASE)
     ap.add_argument("--skip-runs", action="store_true")
     ap.add_argument("--skip-writers", action="store_true")
+    ap.add_argument("--gil", action="store_true", help="also (3), the GIL probe of each output job")
     args = ap.parse_args(argv)
     data = {"case": args.case, "how": __doc__.split("\n\n")[2].strip() + "\n\n" + __doc__.split("\n\n")[3].strip(),
             "machine": machine_info(("numba", "xarray", "netCDF4", "vtk", "pyvista"))}
@@ -224,6 +311,8 @@ def main(argv=None) -> int:
         data["runs"] = runs(args.before.resolve(), args.before_python or sys.executable, args.rounds, args.case)
     if not args.skip_writers:
         data["writers"] = writers(args.case, args.write_repeats)
+    if args.gil:
+        data["gil"] = gil(args.case, args.write_repeats)
     data["load average at end"] = list(os.getloadavg())
     write_json(RESULTS / "main_job.json", data)
     figure(data, RESULTS / "main_job.png")
@@ -232,6 +321,8 @@ def main(argv=None) -> int:
         summary["after / before"] = {k: round(v["median"], 3) for k, v in data["runs"]["after / before"].items()}
     if "writers" in data:
         summary["writers against serial"] = data["writers"]["against serial (median)"]
+    if "gil" in data:
+        summary["GIL left free"] = data["gil"]["GIL left free (share)"]
     print(json.dumps(summary, indent=1))
     return 0
 

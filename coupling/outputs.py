@@ -398,8 +398,10 @@ def write_bearing_run(out_dir, resolved: str, summary: dict, write, files: RunFi
     each written by a forked process (:class:`ForkedWriter`) while this one completes the summary and writes
     the time series; ``summary.json`` comes once both have finished.  The files are those of the serial path
     byte for byte (the same code on the same arrays; tests/test_output_workers.py).  A process, not a thread:
-    measured on the main job (tests none; benchmarks/main_job.py), drawing a figure (constrained layout,
-    text extents) and VTK's XML writer hold the GIL, a thread beside the time series gained nothing.  A
+    measured on the README's main job (benchmarks/main_job.py ``--gil``: a pure-Python loop's speed beside
+    each job in a thread, 0 = as slow as beside Python code, 1 = as fast as beside a sleep), the figures
+    leave 0.09 of the GIL free, VTK's XML writer 0.17 and the netCDF write 0.02: each holds the GIL, so a
+    thread would run beside none of the others.  A
     worker's error fails the run with one line (:class:`OutputError`) and nothing is committed; a Ctrl-C
     ends the workers with the run (they ignore SIGINT and die with their parent), the files already in
     place stay whole."""
@@ -471,9 +473,13 @@ def _write_figures(stage: Path, files: RunFiles) -> None:
 
 def output_workers() -> bool:
     """Whether :func:`write_bearing_run` writes frames and figures in forked processes: where ``os.fork``
-    exists, this process may use two cores or more, and ``LUBEDYN_OUTPUT_WORKERS`` is not "0" (the pool
-    workers of studies and map sweeps set it: they fill the cores already)."""
-    if os.environ.get("LUBEDYN_OUTPUT_WORKERS", "1") == "0" or not hasattr(os, "fork"):
+    exists, from the main thread (not a Dask worker's task thread), this process may use two cores or more,
+    and ``LUBEDYN_OUTPUT_WORKERS`` is not "0" (the pool workers of studies and map sweeps set it: they fill
+    the cores already)."""
+    import threading
+
+    if (os.environ.get("LUBEDYN_OUTPUT_WORKERS", "1") == "0" or not hasattr(os, "fork")
+            or threading.current_thread() is not threading.main_thread()):
         return False
     try:
         return len(os.sched_getaffinity(0)) >= 2
