@@ -48,6 +48,7 @@ _STAGING, _OLD = ".staging-", ".old-"
 _OWNED = re.compile(r"^\.(?:staging|old)-(\d+)-")  # hidden folders of a commit, with the owning process id
 _LEGACY_AGE = 600.0  # [s] a staging folder without a process id (older lubedyn) is stale after this
 _active: set = set()  # staging folders of this process being written
+_writers: set = set()  # forked writers (ForkedWriter) of this process still running
 
 
 class OutputError(LubedynError, OSError):
@@ -326,7 +327,10 @@ def staged(out_dir, keep=()):
 
 def discard_staging() -> None:
     """Remove the staging folders of the outputs this process is writing (the CLI calls it when it
-    ends at once on Ctrl-C; the files already in place stay whole)."""
+    ends at once on Ctrl-C; the files already in place stay whole), after ending the forked writers
+    (:class:`ForkedWriter`) that write into them."""
+    for writer in list(_writers):
+        writer.stop()
     for stage in list(_active):
         shutil.rmtree(stage, ignore_errors=True)
 
@@ -435,7 +439,8 @@ def write_bearing_run(out_dir, resolved: str, summary: dict, write, files: RunFi
                 for fname, text in files.texts().items():
                     write_text(stage / fname, text)
             while running:
-                running.pop(0).wait()
+                running[0].wait()
+                running.pop(0)
         finally:
             for writer in running:  # an error or an interrupt here: the other workers end with it
                 writer.stop()
@@ -519,18 +524,21 @@ class ForkedWriter:
                 else:
                     text = f"\0the {label} worker failed: {type(exc).__name__}: {exc}"
                 with contextlib.suppress(OSError):
-                    os.write(write, " ".join(text.split(" ")).encode("utf-8", "replace")[:4000])
+                    os.write(write, text.encode("utf-8", "replace")[:4000])
             finally:
                 os._exit(code)
         os.close(write)
         self.pid, self._read = pid, read
+        _writers.add(self)
 
     def wait(self) -> None:
         """Wait for the child; its failure as :class:`OutputError`."""
-        with os.fdopen(self._read, "rb") as fh:
+        fh, self._read = os.fdopen(self._read, "rb"), None  # the file object owns the descriptor now
+        with fh:
             message = fh.read().decode("utf-8", "replace")
         _, status = os.waitpid(self.pid, 0)
         self.pid = None
+        _writers.discard(self)
         if status != 0:
             path, _, cause = message.partition("\0")
             if not cause:
@@ -549,9 +557,11 @@ class ForkedWriter:
             os.kill(self.pid, signal.SIGKILL)
         with contextlib.suppress(OSError):
             os.waitpid(self.pid, 0)
-        with contextlib.suppress(OSError):
-            os.close(self._read)
-        self.pid = None
+        if self._read is not None:
+            with contextlib.suppress(OSError):
+                os.close(self._read)
+        self.pid, self._read = None, None
+        _writers.discard(self)
 
 
 def run_summary(case, name: str, smoke: bool, scene_summary: dict, t0: float, t_build: float,

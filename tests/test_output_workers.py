@@ -119,3 +119,17 @@ def test_workers_off_where_asked(monkeypatch):
     assert not outputs.output_workers()
     monkeypatch.setenv("LUBEDYN_OUTPUT_WORKERS", "1")
     assert outputs.output_workers() == (hasattr(os, "fork") and len(os.sched_getaffinity(0)) >= 2)
+
+
+@forking
+def test_an_interrupt_ends_the_writers_before_the_staging_folder_goes(tmp_path):
+    """On Ctrl-C the CLI calls discard_staging: a writer still running is ended and reaped first, so it
+    cannot write into (and so recreate) the staging folder being removed."""
+    import time
+
+    writer = outputs.ForkedWriter("figures", lambda: time.sleep(60), tmp_path)
+    pid = writer.pid
+    outputs.discard_staging()
+    assert writer.pid is None and writer not in outputs._writers
+    with pytest.raises(ChildProcessError):  # reaped already: no such child
+        os.waitpid(pid, os.WNOHANG)

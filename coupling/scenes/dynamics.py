@@ -267,11 +267,8 @@ class IntegratorTable(CaseTable):
 class AnalysisTable(CaseTable):
     lyapunov: bool = True  # largest exponent per direction of ball `ball` (Wolf et al. in bits/s; Rosenstein)
     lyapunov_exponents: Annotated[int, Field(strict=True, ge=0, le=20)] = 3  # whole system, Benettin; 0: off
-    # compute the Lyapunov estimators (per direction, whole system, tangent directions) also on a record too short
-    # to resolve an exponent: lambda T below 2 a, with lambda the 10,000 rpm drop's measured 54 1/s scaled with the
-    # shaft speed and a = 7.6 the measured boundary term (0.28 s after the window start at 10,000 rpm); false: such
-    # a run writes "not computed: the record of ... resolves no exponent; needs ..." instead of numbers
-    force: bool = False
+    # (the rule: lubedyn.scenes.dynamics_lyapunov.RecordNeed, docs/atlas/lyapunov.md)
+    force: bool = False  # true: compute the Lyapunov estimators (per direction, whole system, tangent directions) also on a record too short to resolve an exponent (lambda T < 15: lambda = 54 1/s measured at 10,000 rpm, scaled with the speed; 0.28 s after the window start at 10,000 rpm); false: such a run writes "not computed: the record of ... resolves no exponent; needs ..." instead of numbers
     # per-direction exponents from Benettin's first tangent vector, projected on every ball's radial, tangential
     # and axial directions (lubedyn.dynamics.tangent_directions); runs with the whole-system spectrum
     tangent_directions: bool = False
