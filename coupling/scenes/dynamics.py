@@ -34,7 +34,9 @@ a terminal) and writes
   exponents of Benettin's first tangent vector projected on the balls' radial, tangential and axial
   directions (1/s and bits/s, lambda T, the vector's share per direction); each with its uncertainty and a verdict
   ("positive" beyond two uncertainties, "not positive", or for Wolf's "not
-  resolved"), after the detected end of the start-up transient; collision
+  resolved"), after the detected end of the start-up transient, and only on a record that resolves an
+  exponent (:class:`lubedyn.scenes.dynamics_lyapunov.RecordNeed`; else "not computed: ... needs ...",
+  unless ``analysis.force``); collision
   counts and largest forces by direction, ball and inner-ring slip,
   integrator statistics, timings.
 
