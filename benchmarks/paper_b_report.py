@@ -254,19 +254,28 @@ def fine_points(study: Path, key: str, window=None) -> tuple[list[float], list[f
             if window and not (window[0] - 1e-9 <= speed <= window[1] + 1e-9):
                 continue
             total += 1
-            summary = json.loads((study / row["run folder"] / "summary.json").read_text())
-            value = summary.get(key)
-            if not isinstance(value, (int, float)):
-                continue
-            name = key.rsplit(" [", 1)[0]
-            if key.startswith("Wolf exponent") and summary.get(name + " verdict") not in ("positive", "not positive"):
-                continue
-            if key.startswith("Settling time") and str(summary.get(name + ", note", "")).startswith("record too short"):
+            value = usable_value(study, row, key)
+            if value is None:
                 continue
             have += 1
             x.append(speed)
-            y.append(float(value))
+            y.append(value)
     return x, y, have, total
+
+
+def usable_value(study: Path, row: dict, key: str) -> float | None:
+    """The output ``key`` of one study row's run (its summary.json), or None where it is missing or not
+    usable: an exponent whose guarded verdict did not resolve it, a settling time at the record's edge."""
+    summary = json.loads((study / row["run folder"] / "summary.json").read_text())
+    value = summary.get(key)
+    if not isinstance(value, (int, float)):
+        return None
+    name = key.rsplit(" [", 1)[0]
+    if key.startswith("Wolf exponent") and summary.get(name + " verdict") not in ("positive", "not positive"):
+        return None
+    if key.startswith("Settling time") and str(summary.get(name + ", note", "")).startswith("record too short"):
+        return None
+    return float(value)
 
 
 def slope_verdict(x: list[float], y: list[float], sign: int, used: int, total: int) -> tuple[str, str, tuple]:
@@ -330,6 +339,67 @@ def _fine_figure(panels, path: Path) -> None:
     plt.close(fig)
 
 
+#: the screen's outputs behind paper B's speed claims, with the claimed sign of d output / d speed
+SCREEN_CLAIMS = (
+    ("Ball-ball collisions [-]", -1, "Conclusions: fewer collisions at higher speed"),
+    ("Inner ring spin-up time [s]", -1, "Fig. 3: the inner ring settles faster at higher speed"),
+    ("Settling time, ball 0 x [s]", -1, "Fig. 3: the ball settles faster in x"),
+    ("Settling time, ball 0 y [s]", -1, "Fig. 3: the ball settles faster in y"),
+    ("Largest collision force z [N]", +1, "Fig. 5: larger axial collision force at higher speed"),
+    ("Wolf exponent, ball 0 z [bits/s]", +1, "Table 3: z rises with speed"),
+)
+
+
+def screen_rows(study: Path, speed_key: str = "operating.speed") -> tuple[list[tuple], list[str]]:
+    """Paper B's speed claims under the Morris screen of the unstated values (studies/
+    cageless_screen_unstated.toml): each trajectory's step in speed is the speed trend at one parameter
+    set; a claim is reproduced by the sets whose step has its sign.  Returns (claim rows, markdown lines
+    of the factors' mu* and sigma per output, from study.json's "Morris screening")."""
+    table = json.loads((study / "study.json").read_text())
+    screen = table["Morris screening"]
+    factors = list(next(iter(screen["outputs"].values())))
+    k = len(factors)
+    with open(study / "study.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    if len(rows) % (k + 1):
+        raise ValueError(f"{study / 'study.csv'}: {len(rows)} rows is not a whole number of Morris trajectories of {k + 1}")
+    out = []
+    for key, sign, claim in SCREEN_CLAIMS:
+        steps = []
+        for t in range(len(rows) // (k + 1)):
+            traj = rows[t * (k + 1):(t + 1) * (k + 1)]
+            for a, b in zip(traj, traj[1:]):
+                if a[speed_key + " [SI]"] == b[speed_key + " [SI]"]:
+                    continue
+                ya, yb = (usable_value(study, r, key) if r.get("status") == "ok" else None for r in (a, b))
+                if ya is None or yb is None:
+                    continue  # a failed run, a value not computed or not usable
+                steps.append((yb - ya) / (float(b[speed_key + " [SI]"]) - float(a[speed_key + " [SI]"])))
+        agree = sum(1 for e in steps if e * sign > 0)
+        n = len(rows) // (k + 1)
+        if not steps:
+            verdict = f"not computed (no trajectory gives both values; {n} trajectories)"
+        elif agree == len(steps):
+            verdict = f"reproduced under every set ({agree} of {len(steps)})"
+        elif agree:
+            verdict = f"reproduced under some sets ({agree} of {len(steps)})"
+        else:
+            verdict = f"reproduced under none ({len(steps)} sets)"
+        stats = screen["outputs"].get(key, {})
+        ranked = sorted(((v["mu*"], name) for name, v in stats.items() if v.get("mu*") is not None), reverse=True)
+        top = ", ".join(f"{name} {m:.3g}" for m, name in ranked[:3])
+        out.append((f"{claim} (Morris screen)", "falls" if sign < 0 else "rises",
+                    f"speed steps with the claim's sign {agree} of {len(steps)}; largest mu*: {top}", verdict))
+    lines = ["| output | " + " | ".join(factors) + " |", "|---|" + "---|" * k]
+    for key, stats in screen["outputs"].items():
+        if all(v.get("mu*") is None for v in stats.values()):
+            continue  # a text output (a verdict) or one no run computed
+        cells = [(f"{v['mu*']:.3g} ({v['sigma']:.2g})" if v.get("mu*") is not None and v.get("sigma") is not None
+                  else "n/a") for v in (stats[f] for f in factors)]
+        lines.append(f"| {key} | " + " | ".join(cells) + " |")
+    return out, lines
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--drop", type=Path, help="output folder of studies/cageless_drop_speeds.toml")
@@ -337,6 +407,7 @@ def main(argv=None) -> int:
     p.add_argument("--fidelity", type=Path, help="output folder of studies/cageless_film_fidelity.toml")
     p.add_argument("--sensitivity", type=Path, help="output folder of studies/cageless_slot_sensitivity.toml")
     p.add_argument("--entrapped", type=Path, help="output folder of studies/cageless_entrapped_film.toml")
+    p.add_argument("--screen", type=Path, help="output folder of studies/cageless_screen_unstated.toml (Morris)")
     p.add_argument("--fine", type=Path, help="output folder of studies/cageless_fine_speeds.toml (regressions)")
     args = p.parse_args(argv)
     if args.slot and not args.drop:
@@ -352,10 +423,17 @@ def main(argv=None) -> int:
         rows += rows_fidelity(args.fidelity)
     if args.sensitivity:
         rows += rows_sensitivity(args.sensitivity)
+    mu_table = []
+    if args.screen:
+        screen, mu_table = screen_rows(args.screen)
+        rows += screen
     print("| claim | paper | lubedyn: median [min, max] over the members | verdict |")
     print("|---|---|---|---|")
     for r in rows:
         print("| " + " | ".join(str(x) for x in r) + " |")
+    if mu_table:
+        print("\nMorris screen: mu* (sigma) per output and factor, output units per full range of the factor\n")
+        print("\n".join(mu_table))
     return 0
 
 
