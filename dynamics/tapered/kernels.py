@@ -378,8 +378,43 @@ def slice_traction(load, race, vs, P, table, maps, counter):
     return elastic_limited(viscous * P.width, elastic_strip_slope(P.gshear, b, P.ue, h0) * P.width, vs)
 
 
+@njit(**INLINE)
+def _traction_slopes(TJ, j, ft, ft2, dv, vs, s0, s1, s2, n0, n1, n2, r0, r1, r2):
+    """Add a slice's linearised traction to roller j's sums TJ[j] (ROSW's W, :func:`rhs_w`): the traction
+    g = -C s against the tangential sliding s, C = (F/v_s) (I - n n^T) + (dF/dv_s - F/v_s) s^ s^T (s^ = s/v_s;
+    dF/dv_s the forward difference (``ft2`` - ``ft``)/``dv``), r the contact point from the mass centre:
+    TJ[j, 0:9] += C, TJ[j, 9:18] += [r]x C, TJ[j, 18:27] += [r]x C [r]x (row-major 3 x 3)."""
+    sec = ft / vs
+    dif = (ft2 - ft) / dv - sec
+    u0, u1, u2 = s0 / vs, s1 / vs, s2 / vs
+    C = ((sec * (1.0 - n0 * n0) + dif * u0 * u0, -sec * n0 * n1 + dif * u0 * u1, -sec * n0 * n2 + dif * u0 * u2),
+         (-sec * n1 * n0 + dif * u1 * u0, sec * (1.0 - n1 * n1) + dif * u1 * u1, -sec * n1 * n2 + dif * u1 * u2),
+         (-sec * n2 * n0 + dif * u2 * u0, -sec * n2 * n1 + dif * u2 * u1, sec * (1.0 - n2 * n2) + dif * u2 * u2))
+    X = ((-r2 * C[1][0] + r1 * C[2][0], -r2 * C[1][1] + r1 * C[2][1], -r2 * C[1][2] + r1 * C[2][2]),
+         (r2 * C[0][0] - r0 * C[2][0], r2 * C[0][1] - r0 * C[2][1], r2 * C[0][2] - r0 * C[2][2]),
+         (-r1 * C[0][0] + r0 * C[1][0], -r1 * C[0][1] + r0 * C[1][1], -r1 * C[0][2] + r0 * C[1][2]))
+    for i in range(3):
+        Ci, Xi = C[i], X[i]
+        TJ[j, 3 * i] += Ci[0]
+        TJ[j, 3 * i + 1] += Ci[1]
+        TJ[j, 3 * i + 2] += Ci[2]
+        TJ[j, 9 + 3 * i] += Xi[0]
+        TJ[j, 9 + 3 * i + 1] += Xi[1]
+        TJ[j, 9 + 3 * i + 2] += Xi[2]
+        # (X [r]x)[i, :] with [r]x = [[0, -r2, r1], [r2, 0, -r0], [-r1, r0, 0]]
+        TJ[j, 18 + 3 * i] += Xi[1] * r2 - Xi[2] * r1
+        TJ[j, 18 + 3 * i + 1] += -Xi[0] * r2 + Xi[2] * r0
+        TJ[j, 18 + 3 * i + 2] += Xi[0] * r1 - Xi[1] * r0
+
+
 @njit(**JIT)
 def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
+    """:func:`contact_forces_w` without the traction's linearisation."""
+    contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, np.empty((0, 27)))
+
+
+@njit(**JIT)
+def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
     """Contact forces and torques: F[j] force on roller j [N], T[j] torque about its mass centre
     (inertial frame) [N m], Fc the force of all rollers (and the cage) on the cone [N], Tc their moment
     about the cone's (displaced) reference point [N m] (computed with the cone's tilt free; zeros when it
@@ -388,7 +423,9 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     torque about its centre [N m] on the cage; SL[j, race, k] the slice loads [N] (race 0 cup, 1 cone);
     FR[j] the friction diagnostics (:data:`lubedyn.dynamics.tapered.layout.FRICTION_NAMES`: friction forces,
     sliding speeds and the terms of the tilt moment, module docstring); CG the cage's
-    (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`).  ``A``: the model's :class:`KernelArgs`."""
+    (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`); TJ (Z, 27) the sums of each roller's linearised
+    raceway traction (:func:`_traction_slopes`, ROSW's W), or an array with no rows: not wanted.
+    ``A``: the model's :class:`KernelArgs`."""
     P, U, RHO = A.P[0], A.U, A.RHO
     Z = int(P.z)
     ns = int(P.ns)
@@ -402,6 +439,9 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
     SL[:, :, :] = 0.0
     FR[:, :] = 0.0
     CG[:] = 0.0
+    wantj = TJ.shape[0] > 0
+    if wantj:
+        TJ[:, :] = 0.0
     if P.contacts == 0.0:
         return
     counter = np.zeros(1, dtype=np.int64)      # queries outside a traction table (lubedyn.dynamics.interp)
@@ -497,6 +537,10 @@ def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
                     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                     if vs > 0.0:
                         ft = slice_traction(f, race, vs, P, A.table, A.maps, counter)
+                        if wantj:
+                            dv = 1e-6 * vs
+                            ft2 = slice_traction(f, race, vs + dv, P, A.table, A.maps, counter)
+                            _traction_slopes(TJ, j, ft, ft2, dv, vs, s0, s1, s2, n0, n1, n2, r0, r1, r2)
                         g0, g1, g2 = -ft * s0 / vs, -ft * s1 / vs, -ft * s2 / vs
                         f0 += g0
                         f1 += g1
@@ -725,7 +769,69 @@ def rhs(t, y, args, dydt):
     SL = np.empty((Z, 2, ns))
     FR = np.empty((Z, N_FRICTION))
     CG = np.empty(N_CAGE_DIAG)
-    contact_forces(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG)
+    contact_forces_w(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, np.empty((0, 27)))
+    _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt)
+
+
+@njit(**JIT)
+def rhs_w(t, y, args, dydt, Jb, idx):
+    """:func:`rhs` and the W blocks of ROSW (:func:`lubedyn.dynamics.integrators.integrate`, method "rosw"): per
+    roller j the 6 x 6 Jacobian of its (v, omega_body)' with respect to (v, omega_body) under the raceway
+    tractions linearised at y (:func:`_traction_slopes`; the gyroscopic and normal-load terms left out:
+    a W-method keeps its order for any W), on the state entries idx[j] = b_j + 7 ... b_j + 12.  With the
+    sums A = sum C, B = sum [r]x C, D = sum [r]x C [r]x and R the roller's attitude:
+    d v'/d v = -A/m, d v'/d omega = -B^T R/m, d omega'/d v = -I^-1 R^T B, d omega'/d omega = I^-1 R^T D R."""
+    P = args.P[0]
+    Z = int(P.z)
+    ns = int(P.ns)
+    F = np.empty((Z, 3))
+    T = np.empty((Z, 3))
+    Fc = np.empty(3)
+    Tc = np.empty(3)
+    loads = np.empty((Z, 4))
+    Fg = np.empty(3)
+    Tg = np.empty(3)
+    SL = np.empty((Z, 2, ns))
+    FR = np.empty((Z, N_FRICTION))
+    CG = np.empty(N_CAGE_DIAG)
+    TJ = np.empty((Z, 27))
+    contact_forces_w(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ)
+    _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt)
+    R = np.empty((3, 3))
+    qn = np.empty(4)
+    inv = (1.0 / P.ix, 1.0 / P.iy, 1.0 / P.iy)
+    m = P.m
+    for j in range(Z):
+        b = N_CONE + j * NB
+        q2 = y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2
+        for i in range(4):
+            qn[i] = y[b + 3 + i] / math.sqrt(q2)
+        quat_to_matrix(qn, R)
+        for i in range(6):
+            idx[j, i] = b + 7 + i
+        for i in range(3):
+            for k in range(3):
+                bt_r = 0.0      # (B^T R)[i, k]
+                rt_b = 0.0      # (R^T B)[i, k]
+                rt_dr = 0.0     # (R^T D R)[i, k]
+                for l in range(3):
+                    bt_r += TJ[j, 9 + 3 * l + i] * R[l, k]
+                    rt_b += R[l, i] * TJ[j, 9 + 3 * l + k]
+                    dr = 0.0
+                    for n in range(3):
+                        dr += TJ[j, 18 + 3 * l + n] * R[n, k]
+                    rt_dr += R[l, i] * dr
+                Jb[j, i, k] = -TJ[j, 3 * i + k] / m
+                Jb[j, i, 3 + k] = -bt_r / m
+                Jb[j, 3 + i, k] = -inv[i] * rt_b
+                Jb[j, 3 + i, 3 + k] = inv[i] * rt_dr
+
+
+@njit(**INLINE)
+def _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt):
+    """dy/dt from the contact forces and torques of :func:`contact_forces` (Newton and Euler, module
+    docstring)."""
+    Z = int(P.z)
     g = P.grav                                      # gravity along -y
     # cone: translation under the rollers' forces, F_r along +y, F_a along -x (closing the bearing)
     mc = P.mc
