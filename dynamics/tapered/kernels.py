@@ -176,6 +176,18 @@ def _load_roller(F, T, j, r0, r1, r2, f0, f1, f2):
 
 
 @njit(**INLINE)
+def _rotate_q(q, v0, v1, v2):
+    """R(q) v of a unit quaternion ``q`` (array) and a vector given by its components, as a tuple:
+    :func:`lubedyn.dynamics.rotations.quat_rotate`'s operations in its order, without an array for v or
+    for the result (no allocation per roller in the right-hand side)."""
+    w, x, y, z = q[0], q[1], q[2], q[3]
+    tx = 2.0 * (y * v2 - z * v1)
+    ty = 2.0 * (z * v0 - x * v2)
+    tz = 2.0 * (x * v1 - y * v0)
+    return v0 + w * tx + (y * tz - z * ty), v1 + w * ty + (z * tx - x * tz), v2 + w * tz + (x * ty - y * tx)
+
+
+@njit(**INLINE)
 def _tilt_about(t1, t2, r0, r1, r2, f0, f1, f2):
     """(r x f).t of a force f at r (from a roller's mass centre) about its tilt axis t = (0, t1, t2)."""
     return t1 * (r2 * f0 - r0 * f2) + t2 * (r0 * f1 - r1 * f0)
@@ -465,8 +477,7 @@ def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
         xl = P.landx
         lx, ly = xl * Rm[1, 0], xl * Rm[2, 0]
         lvx, lvy = xl * y[kt + 3], -xl * y[kt + 2]
-    ex_b = np.array([1.0, 0.0, 0.0])
-    e = np.empty(3)
+    q = np.empty(4)
     wi = np.empty(3)
     # the cage's attitude (unit quaternion) and inertial angular velocity, once for all its contacts
     bc = N_CONE + Z * NB
@@ -480,11 +491,12 @@ def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
     for j in range(Z):
         b = N_CONE + j * NB
         c0, c1, c2 = y[b], y[b + 1], y[b + 2]
-        q = y[b + 3:b + 7] / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
+        qnorm = math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
+        for i in range(4):
+            q[i] = y[b + 3 + i] / qnorm
         v0, v1, v2 = y[b + 7], y[b + 8], y[b + 9]
-        quat_rotate(q, ex_b, e)
-        quat_rotate(q, y[b + 10:b + 13], wi)          # angular velocity, inertial frame
-        e0, e1, e2 = e[0], e[1], e[2]
+        e0, e1, e2 = _rotate_q(q, 1.0, 0.0, 0.0)
+        wi[0], wi[1], wi[2] = _rotate_q(q, y[b + 10], y[b + 11], y[b + 12])   # angular velocity, inertial frame
         # the roller's tilt axis t = e_x x e_r = (0, -c_z, c_y)/|c_yz| (the diagnostics' tilt moments)
         rc = math.sqrt(c1 * c1 + c2 * c2)
         ta1, ta2 = -c2 / rc, c1 / rc
@@ -621,17 +633,16 @@ def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2,
     b = N_CONE + Z * NB
     g0, g1, g2 = y[b], y[b + 1], y[b + 2]
     phi = 2.0 * math.pi * j / Z
-    tb = np.array([0.0, -math.sin(phi), math.cos(phi)])
-    t = np.empty(3)
-    quat_rotate(qc, tb, t)                        # the pocket's circumferential unit vector, inertial
-    s = t[0] * (m0 - g0) + t[1] * (m1 - g1) + t[2] * (m2 - g2)
+    # the pocket's circumferential unit vector, inertial
+    t0, t1, t2 = _rotate_q(qc, 0.0, -math.sin(phi), math.cos(phi))
+    s = t0 * (m0 - g0) + t1 * (m1 - g1) + t2 * (m2 - g2)
     for side in range(2):
         sg = 1.0 if side == 0 else -1.0           # leading beam (+t), trailing beam (-t)
         gap = P.pocket - sg * s
         if P.pocketmode == POCKET_CONTACT and gap >= 0.0:
             continue
         # contact point on the roller's side facing the beam
-        p0, p1, p2 = m0 + sg * P.rhom * t[0], m1 + sg * P.rhom * t[1], m2 + sg * P.rhom * t[2]
+        p0, p1, p2 = m0 + sg * P.rhom * t0, m1 + sg * P.rhom * t1, m2 + sg * P.rhom * t2
         r0, r1, r2 = p0 - c0, p1 - c1, p2 - c2
         a0, a1, a2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
         h0, h1, h2 = p0 - g0, p1 - g1, p2 - g2
@@ -639,8 +650,8 @@ def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2,
         u0 = v0 + a0 - y[b + 7] - k0
         u1 = v1 + a1 - y[b + 8] - k1
         u2 = v2 + a2 - y[b + 9] - k2
-        un = u0 * t[0] + u1 * t[1] + u2 * t[2]
-        s0, s1, s2 = u0 - un * t[0], u1 - un * t[1], u2 - un * t[2]
+        un = u0 * t0 + u1 * t1 + u2 * t2
+        s0, s1, s2 = u0 - un * t0, u1 - un * t1, u2 - un * t2
         vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
         if P.pocketmode == POCKET_FILM:
             q, f = pocket_force(gap, -sg * un, vs, P.rhom, P.len, P.eta, P.hcrit, P.kh, P.ch,
@@ -650,7 +661,7 @@ def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2,
             f = P.mubd * q * math.tanh(vs / P.vreg)
         if q <= 0.0 and f == 0.0:
             continue
-        f0, f1, f2 = -sg * q * t[0], -sg * q * t[1], -sg * q * t[2]
+        f0, f1, f2 = -sg * q * t0, -sg * q * t1, -sg * q * t2
         if vs > 0.0:
             f0 -= f * s0 / vs
             f1 -= f * s1 / vs
@@ -676,11 +687,9 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
     phi = 2.0 * math.pi * j / Z
     cp, sp = math.cos(phi), math.sin(phi)
     cb, sb = math.cos(P.beta0), math.sin(P.beta0)
-    cw = np.empty(3)
-    quat_rotate(qc, np.array([P.pockx, P.pitch * cp, P.pitch * sp]), cw)
-    a = np.empty(3)
-    quat_rotate(qc, np.array([cb, sb * cp, sb * sp]), a)
-    s = a[0] * (m0 - g0 - cw[0]) + a[1] * (m1 - g1 - cw[1]) + a[2] * (m2 - g2 - cw[2])
+    cw0, cw1, cw2 = _rotate_q(qc, P.pockx, P.pitch * cp, P.pitch * sp)
+    a0, a1, a2 = _rotate_q(qc, cb, sb * cp, sb * sp)
+    s = a0 * (m0 - g0 - cw0) + a1 * (m1 - g1 - cw1) + a2 * (m2 - g2 - cw2)
     half = 0.5 * P.len
     for end in range(2):
         sg = 1.0 if end == 0 else -1.0            # large end (+a), small end (-a)
@@ -692,8 +701,8 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
         w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
         h0, h1, h2 = p0 - g0, p1 - g1, p2 - g2
         k0, k1, k2 = _cross(wc[0], wc[1], wc[2], h0, h1, h2)
-        rel = (a[0] * (v0 + w0 - y[b + 7] - k0) + a[1] * (v1 + w1 - y[b + 8] - k1)
-               + a[2] * (v2 + w2 - y[b + 9] - k2))
+        rel = (a0 * (v0 + w0 - y[b + 7] - k0) + a1 * (v1 + w1 - y[b + 8] - k1)
+               + a2 * (v2 + w2 - y[b + 9] - k2))
         rate = -sg * rel                           # d(gap)/dt
         if P.pocketmode == POCKET_FILM:
             d = P.dlarge if end == 0 else P.dsmall
@@ -702,7 +711,7 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
             f = slice_force(-gap, -rate, P.kpocket, P.alpha)
         if f <= 0.0:
             continue
-        f0, f1, f2 = -sg * f * a[0], -sg * f * a[1], -sg * f * a[2]
+        f0, f1, f2 = -sg * f * a0, -sg * f * a1, -sg * f * a2
         _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
         _load_cage(Fg, Tg, h0, h1, h2, f0, f1, f2)
         CG[4] += f
@@ -847,6 +856,7 @@ def _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt):
     dydt[5] = Fc[2] / mc
     inertia = np.array([P.ix, P.iy, P.iy])
     tb = np.empty(3)
+    qn = np.empty(4)
     m = P.m
     for j in range(Z):
         b = N_CONE + j * NB
@@ -858,7 +868,9 @@ def _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt):
         dydt[b + 7] = F[j, 0] / m
         dydt[b + 8] = F[j, 1] / m - g
         dydt[b + 9] = F[j, 2] / m
-        qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
+        qnorm = math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
+        for i in range(4):
+            qn[i] = q[i] / qnorm
         quat_rotate_inverse(qn, T[j], tb)
         euler_rate(inertia, y[b + 10:b + 13], tb, dydt[b + 10:b + 13])
     if P.cage != 0.0:
