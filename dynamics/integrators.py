@@ -1,4 +1,5 @@
-"""Time integrators: classical RK4, Dormand-Prince 5(4) and Rosenbrock ROS2, whole time loop in numba.
+"""Time integrators: classical RK4, Dormand-Prince 5(4), Rosenbrock ROS2 and Rosenbrock-W ROS34PW2 with a
+block W, whole time loop in numba.
 
 Right-hand side contract
 ------------------------
@@ -66,6 +67,24 @@ estimate h (k1 + k2) / 2, step factor 0.9 err^(-1/2) in [0.2, 5], dense
 output by cubic Hermite interpolation (3rd order).  J is a user ``jac(t, y,
 args, J)`` or forward differences (n extra rhs calls per accepted step); one
 inverse of W per step.  Same ``(Y, stats)`` contract as DOPRI5.
+
+Stiff traction, linearly implicit: ``rosw`` (tapered bearing, measured with ``benchmarks/trb_speed.py``)
+------------------------------------------------------------------------------------------------------
+ROS34PW2 (Rang & Angermann, BIT 45, 2005), a 4-stage Rosenbrock-W method of order 3 for any W, at a fixed
+step cut evenly onto the output times as RK4's; W is block-diagonal, given per block by the caller's
+``jac(t, y, args, dydt, Jb, idx)`` (one pass gives f(y) and W), zero elsewhere: the blocks are treated
+linearly implicitly, the rest explicitly with the W = 0 stability polynomial 1 + z + z^2/2 + z^3/6 -
+0.0429 z^4 (stable to |h lambda| = 1.504 on the imaginary axis, 1.992 on the real axis).  On Fig. 5's
+tapered bearing RK4's step is set by the limited raceway traction's elastic slope (a real decay of
+6.7e5 1/s: 4.14 us, against 18.7 us for the contact modes at 1.52e5 rad/s); with the traction's
+per-roller 6 x 6 linearisation as W (:func:`lubedyn.dynamics.tapered.kernels.rhs_w`) J - W keeps only the
+contact modes, and ROSW is stable to 9.9 us (6.67 us taken against RK4's 2.86 us: 3 instead of 7 steps
+per 20 us sample).  It converges at order 2.8-3.0 on the bearing, but its error constant is large where
+the traction is stiff (h lambda 1-3): over 6 ms the mean loaded-zone tilt is off by 1.5e-2, 2.1e-3,
+2.8e-4 at 5, 2.5, 1.25 us (RK4 at 2.86 us: 8.6e-5; ROSW with W = 0 at 2.5 us: 3.2e-4, with the
+finite-difference blocks as W: 2.1e-3, so not W's approximation), and at its automatic step over 10 ms
+the tilt mean is 1.7 % off RK4's (skew 7.5e-4, slip 5.5e-3).  Equal accuracy needs about 1 us, so RK4
+stays the default; ROSW is the option where the traction's transients do not matter.
 
 Stiffness of the ball contacts (measured with ``benchmarks/dynamics_tools.py``)
 -------------------------------------------------------------------------------

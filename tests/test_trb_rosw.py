@@ -196,3 +196,17 @@ def test_rosw_converges_at_third_order_on_the_bearing_and_agrees_with_rk4(limite
     assert order >= 2.5, (order, err)
     rk4 = K.loads_many(integrate(K.rhs, y0, t, args, method="rk4", dt=5e-7).y, args)
     assert np.max(np.abs(loads[5e-7] - rk4)) < 1e-6 * scale
+
+
+def test_the_summary_reports_the_rosw_step_taken():
+    """The summary's "ROSW step [s]" is the step the integrator took (its accepted steps times it make the
+    duration), at most the bound 0.8 x the estimate, which is the contact modes' limit (not the traction's)."""
+    from lubedyn.config import CASES_DIR, load_case
+    from lubedyn.scenes import tapered as S
+
+    c = load_case(CASES_DIR / "trb_fig5_2400rpm.toml", overrides=["integrator.method=rosw", "integrator.duration=0.2 ms",
+                                                                   "model.slices=5", "output.write=[]"])
+    s = S.run(c).summary
+    assert s["Accepted steps [-]"] * s["ROSW step [s]"] == pytest.approx(2e-4, rel=1e-9)
+    assert s["ROSW step [s]"] <= s["ROSW step bound [s]"] == pytest.approx(0.8 * s["ROSW stable step estimate [s]"])
+    assert "RK4 step [s]" not in s
