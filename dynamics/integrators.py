@@ -333,6 +333,22 @@ GUARD_MIN_STEPS = 5
 GUARD_GROWTH = 2.0
 
 
+@njit(cache=True, inline="always")
+def _fixed_resume(work, t_out):
+    """(accepted steps, filled rows, status, time reached) of a fixed-step run's ``work`` (RK4, ROSW)."""
+    t_reached = work[W_T] if work[W_PHASE] != PHASE_NEW else t_out[0]
+    return int(work[W_ACCEPTED]), int(work[W_FILLED]), int(work[W_STATUS]), t_reached
+
+
+@njit(cache=True, inline="always")
+def _fixed_substeps(t_out, i, dt):
+    """(start, count, step) of the equal steps <= ``dt`` that cut the output interval t_out[i-1]..t_out[i]."""
+    t_start = t_out[i - 1]
+    interval = t_out[i] - t_start
+    nsub = max(1, int(math.ceil(interval / dt * (1.0 - 1e-12))))
+    return t_start, nsub, interval / nsub
+
+
 # kernel sources: the callables (rhs, jac) are the leading parameters; see `specialise` ------------
 def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
     n = Y.shape[1]
@@ -350,16 +366,10 @@ def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
     k3 = np.empty(n)
     k4 = np.empty(n)
     tmp = np.empty(n)
-    accepted = int(work[W_ACCEPTED])
-    filled = int(work[W_FILLED])
-    status = int(work[W_STATUS])
-    t_reached = work[W_T] if work[W_PHASE] != PHASE_NEW else t_out[0]
+    accepted, filled, status, t_reached = _fixed_resume(work, t_out)
     if status == STATUS_OK and work[W_PHASE] != PHASE_DONE:
         for i in range(filled, min(i_stop, m)):
-            t_start = t_out[i - 1]
-            interval = t_out[i] - t_start
-            nsub = max(1, int(math.ceil(interval / dt * (1.0 - 1e-12))))
-            h = interval / nsub
+            t_start, nsub, h = _fixed_substeps(t_out, i, dt)
             for s in range(nsub):
                 t = t_start + s * h
                 rhs(t, y, args, k1)
@@ -847,16 +857,10 @@ def _rosw_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
     Jb = np.zeros((nb, bs, bs))
     Winv = np.empty((nb, bs, bs))
     idx = np.zeros((nb, bs), dtype=np.int64)
-    accepted = int(work[W_ACCEPTED])
-    filled = int(work[W_FILLED])
-    status = int(work[W_STATUS])
-    t_reached = work[W_T] if work[W_PHASE] != PHASE_NEW else t_out[0]
+    accepted, filled, status, t_reached = _fixed_resume(work, t_out)
     if status == STATUS_OK and work[W_PHASE] != PHASE_DONE:
         for i in range(filled, min(i_stop, m)):
-            t_start = t_out[i - 1]
-            interval = t_out[i] - t_start
-            nsub = max(1, int(math.ceil(interval / dt * (1.0 - 1e-12))))
-            h = interval / nsub
+            t_start, nsub, h = _fixed_substeps(t_out, i, dt)
             for s in range(nsub):
                 t = t_start + s * h
                 # stage 1 at y: f(y) and the W blocks (the callable fills both in one pass)

@@ -765,6 +765,12 @@ def _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy):
 @njit(**JIT)
 def rhs(t, y, args, dydt):
     """dy/dt of the tapered roller bearing (module docstring); ``args``: the model's :class:`KernelArgs`."""
+    _rhs_into(y, args, dydt, np.empty((0, 27)))
+
+
+@njit(**INLINE)
+def _rhs_into(y, args, dydt, TJ):
+    """dy/dt into ``dydt`` and, when ``TJ`` has rows, the traction's linearisation sums (:func:`rhs_w`)."""
     P = args.P[0]
     Z = int(P.z)
     ns = int(P.ns)
@@ -778,7 +784,7 @@ def rhs(t, y, args, dydt):
     SL = np.empty((Z, 2, ns))
     FR = np.empty((Z, N_FRICTION))
     CG = np.empty(N_CAGE_DIAG)
-    contact_forces_w(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, np.empty((0, 27)))
+    contact_forces_w(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ)
     _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt)
 
 
@@ -792,20 +798,8 @@ def rhs_w(t, y, args, dydt, Jb, idx):
     d v'/d v = -A/m, d v'/d omega = -B^T R/m, d omega'/d v = -I^-1 R^T B, d omega'/d omega = I^-1 R^T D R."""
     P = args.P[0]
     Z = int(P.z)
-    ns = int(P.ns)
-    F = np.empty((Z, 3))
-    T = np.empty((Z, 3))
-    Fc = np.empty(3)
-    Tc = np.empty(3)
-    loads = np.empty((Z, 4))
-    Fg = np.empty(3)
-    Tg = np.empty(3)
-    SL = np.empty((Z, 2, ns))
-    FR = np.empty((Z, N_FRICTION))
-    CG = np.empty(N_CAGE_DIAG)
     TJ = np.empty((Z, 27))
-    contact_forces_w(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ)
-    _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt)
+    _rhs_into(y, args, dydt, TJ)
     R = np.empty((3, 3))
     qn = np.empty(4)
     inv = (1.0 / P.ix, 1.0 / P.iy, 1.0 / P.iy)
