@@ -1,5 +1,4 @@
-"""Time integrators: classical RK4, Dormand-Prince 5(4), Rosenbrock ROS2 and Rosenbrock-W ROS34PW2 with a
-block W, whole time loop in numba.
+"""Time integrators: classical RK4, Dormand-Prince 5(4) and Rosenbrock ROS2, whole time loop in numba.
 
 Right-hand side contract
 ------------------------
@@ -67,24 +66,6 @@ estimate h (k1 + k2) / 2, step factor 0.9 err^(-1/2) in [0.2, 5], dense
 output by cubic Hermite interpolation (3rd order).  J is a user ``jac(t, y,
 args, J)`` or forward differences (n extra rhs calls per accepted step); one
 inverse of W per step.  Same ``(Y, stats)`` contract as DOPRI5.
-
-Stiff traction, linearly implicit: ``rosw`` (tapered bearing, measured with ``benchmarks/trb_speed.py``)
-------------------------------------------------------------------------------------------------------
-ROS34PW2 (Rang & Angermann, BIT 45, 2005), a 4-stage Rosenbrock-W method of order 3 for any W, at a fixed
-step cut evenly onto the output times as RK4's; W is block-diagonal, given per block by the caller's
-``jac(t, y, args, dydt, Jb, idx)`` (one pass gives f(y) and W), zero elsewhere: the blocks are treated
-linearly implicitly, the rest explicitly with the W = 0 stability polynomial 1 + z + z^2/2 + z^3/6 -
-0.0429 z^4 (stable to |h lambda| = 1.504 on the imaginary axis, 1.992 on the real axis).  On Fig. 5's
-tapered bearing RK4's step is set by the limited raceway traction's elastic slope (a real decay of
-6.7e5 1/s: 4.14 us, against 18.7 us for the contact modes at 1.52e5 rad/s); with the traction's
-per-roller 6 x 6 linearisation as W (:func:`lubedyn.dynamics.tapered.kernels.rhs_w`) J - W keeps only the
-contact modes, and ROSW is stable to 9.9 us (6.67 us taken against RK4's 2.86 us: 3 instead of 7 steps
-per 20 us sample).  It converges at order 2.8-3.0 on the bearing, but its error constant is large where
-the traction is stiff (h lambda 1-3): over 6 ms the mean loaded-zone tilt is off by 1.5e-2, 2.1e-3,
-2.8e-4 at 5, 2.5, 1.25 us (RK4 at 2.86 us: 8.6e-5; ROSW with W = 0 at 2.5 us: 3.2e-4, with the
-finite-difference blocks as W: 2.1e-3, so not W's approximation), and at its automatic step over 10 ms
-the tilt mean is 1.7 % off RK4's (skew 7.5e-4, slip 5.5e-3).  Equal accuracy needs about 1 us, so RK4
-stays the default; ROSW is the option where the traction's transients do not matter.
 
 Stiffness of the ball contacts (measured with ``benchmarks/dynamics_tools.py``)
 -------------------------------------------------------------------------------
@@ -244,12 +225,8 @@ MAX_NONFINITE_TRIALS = 20
 STABILITY_POLYNOMIALS = {
     "rk4": (1.0, 1.0, 1.0 / 2.0, 1.0 / 6.0, 1.0 / 24.0),
     "dopri5": (1.0, 1.0, 1.0 / 2.0, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 600.0),
-    # ROS34PW2 on the modes its W leaves out (W = 0): 1 + sum_k z^(k+1) b.alpha^k 1
-    "rosw": (1.0, 1.0, 1.0 / 2.0, 1.0 / 6.0, -0.042931839633217325),
 }
-METHODS = ("dopri5", "rk4", "ros2", "rosw")
-#: the fixed-step methods (a step ``dt``, cut evenly onto the output times)
-FIXED_STEP = ("rk4", "rosw")
+METHODS = ("dopri5", "rk4", "ros2")
 
 
 # small helpers (no rhs: ordinary cached kernels) ------------------------------
@@ -321,8 +298,8 @@ W_T, W_H, W_FACOLD, W_REJECT, W_ACCEPTED, W_REJECTED, W_NFEV, W_STATUS, W_H_NEXT
 N_WORK_SCALARS = 17  # y at [N_WORK_SCALARS, N_WORK_SCALARS + n), the derivative at y after it
 PHASE_NEW, PHASE_RUNNING, PHASE_DONE = 0.0, 1.0, 2.0
 # params (float64 array) of a kernel call
-P_RTOL, P_ATOL, P_H_MAX, P_MAX_STEPS, P_USE_FD, P_DT, P_GUARD, P_NBLOCKS, P_BLOCK = range(9)
-N_PARAMS = 9
+P_RTOL, P_ATOL, P_H_MAX, P_MAX_STEPS, P_USE_FD, P_DT, P_GUARD = range(7)
+N_PARAMS = 7
 
 # RK4 growth guard (see `_rk4_impl`): limits of |h lambda| on the imaginary and the real axis (values of
 # `stability_limit`, pinned in tests/test_integrators.py), the consecutive steps beyond the limit and the
@@ -331,22 +308,6 @@ RK4_LIMIT_IMAGINARY = 2.0 * math.sqrt(2.0)
 RK4_LIMIT_REAL = 2.785293563405282
 GUARD_MIN_STEPS = 5
 GUARD_GROWTH = 2.0
-
-
-@njit(cache=True, inline="always")
-def _fixed_resume(work, t_out):
-    """(accepted steps, filled rows, status, time reached) of a fixed-step run's ``work`` (RK4, ROSW)."""
-    t_reached = work[W_T] if work[W_PHASE] != PHASE_NEW else t_out[0]
-    return int(work[W_ACCEPTED]), int(work[W_FILLED]), int(work[W_STATUS]), t_reached
-
-
-@njit(cache=True, inline="always")
-def _fixed_substeps(t_out, i, dt):
-    """(start, count, step) of the equal steps <= ``dt`` that cut the output interval t_out[i-1]..t_out[i]."""
-    t_start = t_out[i - 1]
-    interval = t_out[i] - t_start
-    nsub = max(1, int(math.ceil(interval / dt * (1.0 - 1e-12))))
-    return t_start, nsub, interval / nsub
 
 
 # kernel sources: the callables (rhs, jac) are the leading parameters; see `specialise` ------------
@@ -366,10 +327,16 @@ def _rk4_impl(rhs, t_out, args, params, Y, work, i_stop):
     k3 = np.empty(n)
     k4 = np.empty(n)
     tmp = np.empty(n)
-    accepted, filled, status, t_reached = _fixed_resume(work, t_out)
+    accepted = int(work[W_ACCEPTED])
+    filled = int(work[W_FILLED])
+    status = int(work[W_STATUS])
+    t_reached = work[W_T] if work[W_PHASE] != PHASE_NEW else t_out[0]
     if status == STATUS_OK and work[W_PHASE] != PHASE_DONE:
         for i in range(filled, min(i_stop, m)):
-            t_start, nsub, h = _fixed_substeps(t_out, i, dt)
+            t_start = t_out[i - 1]
+            interval = t_out[i] - t_start
+            nsub = max(1, int(math.ceil(interval / dt * (1.0 - 1e-12))))
+            h = interval / nsub
             for s in range(nsub):
                 t = t_start + s * h
                 rhs(t, y, args, k1)
@@ -769,144 +736,6 @@ def _ros2_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
         phase = PHASE_DONE
     _store_state(work, y, f0, t, h, accepted, rejected, nfev, status, h_next, filled, n_nonfinite, phase)
 
-# ROS34PW2 (Rang & Angermann, BIT 45, 2005, table 4.1): a Rosenbrock-W method of order 3 for any W
-# (stiffly accurate, L-stable with W = J), gamma = 0.4358665215084590; with W = 0 the explicit RK of tableau
-# ROSW_ALPHA (order 3, stable on the imaginary axis to |h lambda| = 1.504, on the real axis to 1.992:
-# tests/test_integrators_rosw.py)
-ROSW_GAMMA = 0.4358665215084590
-ROSW_ALPHA = np.array([[0.0, 0.0, 0.0], [0.87173304301691801, 0.0, 0.0],
-                       [0.84457060015369423, -0.11299064236484185, 0.0], [0.0, 0.0, 1.0]])
-ROSW_GAMMAS = np.array([[0.0, 0.0, 0.0], [-0.87173304301691801, 0.0, 0.0],
-                        [-0.90338057013044082, 0.054180672388095326, 0.0],
-                        [0.24212380706095346, -1.2232505839045147, 0.54526025533510214]])
-ROSW_B = np.array([0.24212380706095346, -1.2232505839045147, 1.5452602553351020, 0.4358665215084590])
-
-
-@njit(cache=True)
-def _invert_blocks(Jb, factor, Winv):
-    """Winv[b] = (I - factor Jb[b])^-1 for each small block (Gauss-Jordan with partial pivoting, in place);
-    False when a block is singular or not finite."""
-    nb, bs = Jb.shape[0], Jb.shape[1]
-    M = np.empty((bs, 2 * bs))
-    for b in range(nb):
-        for i in range(bs):
-            for j in range(bs):
-                M[i, j] = (1.0 if i == j else 0.0) - factor * Jb[b, i, j]
-                M[i, bs + j] = 1.0 if i == j else 0.0
-        for c in range(bs):
-            p = c
-            big = abs(M[c, c])
-            for i in range(c + 1, bs):
-                if abs(M[i, c]) > big:
-                    big = abs(M[i, c])
-                    p = i
-            if not big > 0.0 or not math.isfinite(big):
-                return False
-            if p != c:
-                for j in range(2 * bs):
-                    M[c, j], M[p, j] = M[p, j], M[c, j]
-            d = 1.0 / M[c, c]
-            for j in range(2 * bs):
-                M[c, j] *= d
-            for i in range(bs):
-                if i != c:
-                    r = M[i, c]
-                    if r != 0.0:
-                        for j in range(2 * bs):
-                            M[i, j] -= r * M[c, j]
-        for i in range(bs):
-            for j in range(bs):
-                Winv[b, i, j] = M[i, bs + j]
-    return True
-
-
-@njit(cache=True)
-def _rosw_solve(rhs_v, Jb, Winv, idx, acc, k, hJ):
-    """One ROS34PW2 stage: k = (I - gamma h W)^-1 (rhs_v + h W acc), W block-diagonal on the state entries
-    ``idx`` (its blocks ``Jb``, zero elsewhere; ``hJ`` = h); ``rhs_v`` is h f(Y_i), ``acc`` the stage's
-    sum gamma_ij k_j."""
-    n = rhs_v.shape[0]
-    for j in range(n):
-        k[j] = rhs_v[j]
-    nb, bs = Jb.shape[0], Jb.shape[1]
-    tmp = np.empty(bs)
-    for b in range(nb):
-        for i in range(bs):
-            s = rhs_v[idx[b, i]]
-            for j in range(bs):
-                s += hJ * Jb[b, i, j] * acc[idx[b, j]]
-            tmp[i] = s
-        for i in range(bs):
-            s = 0.0
-            for j in range(bs):
-                s += Winv[b, i, j] * tmp[j]
-            k[idx[b, i]] = s
-
-
-def _rosw_impl(rhs, jac, t_out, args, params, Y, work, i_stop):
-    n = Y.shape[1]
-    m = t_out.shape[0]
-    dt = params[P_DT]
-    nb = int(params[P_NBLOCKS])
-    bs = int(params[P_BLOCK])
-    y = work[N_WORK_SCALARS:N_WORK_SCALARS + n].copy()
-    K = np.empty((4, n))
-    f = np.empty(n)
-    ys = np.empty(n)
-    acc = np.empty(n)
-    Jb = np.zeros((nb, bs, bs))
-    Winv = np.empty((nb, bs, bs))
-    idx = np.zeros((nb, bs), dtype=np.int64)
-    accepted, filled, status, t_reached = _fixed_resume(work, t_out)
-    if status == STATUS_OK and work[W_PHASE] != PHASE_DONE:
-        for i in range(filled, min(i_stop, m)):
-            t_start, nsub, h = _fixed_substeps(t_out, i, dt)
-            for s in range(nsub):
-                t = t_start + s * h
-                # stage 1 at y: f(y) and the W blocks (the callable fills both in one pass)
-                jac(t, y, args, f, Jb, idx)
-                if not _invert_blocks(Jb, ROSW_GAMMA * h, Winv):
-                    status = STATUS_NONFINITE
-                    break
-                for st in range(4):
-                    if st > 0:
-                        for j in range(n):
-                            v = y[j]
-                            for l in range(st):
-                                v += ROSW_ALPHA[st, l] * K[l, j]
-                            ys[j] = v
-                        rhs(t + h * (ROSW_ALPHA[st, 0] + ROSW_ALPHA[st, 1] + ROSW_ALPHA[st, 2]), ys, args, f)
-                    for j in range(n):
-                        a = 0.0
-                        for l in range(st):
-                            a += ROSW_GAMMAS[st, l] * K[l, j]
-                        acc[j] = a
-                        f[j] *= h
-                    _rosw_solve(f, Jb, Winv, idx, acc, K[st], h)
-                for j in range(n):
-                    ys[j] = y[j] + (ROSW_B[0] * K[0, j] + ROSW_B[1] * K[1, j] + ROSW_B[2] * K[2, j]
-                                    + ROSW_B[3] * K[3, j])
-                if not _all_finite(ys):
-                    status = STATUS_NONFINITE
-                    break
-                put(y, 0, ys)
-                accepted += 1
-                t_reached = t + h
-            if status != STATUS_OK:
-                break
-            t_reached = t_out[i]
-            put(Y[i], 0, y)
-            filled = i + 1
-    put(work, N_WORK_SCALARS, y)
-    work[W_T] = t_reached
-    work[W_ACCEPTED] = accepted
-    work[W_NFEV] = 4 * accepted
-    work[W_STATUS] = status
-    work[W_H_NEXT] = dt
-    work[W_FILLED] = filled
-    work[W_PHASE] = PHASE_DONE if (status != STATUS_OK or filled >= m) else PHASE_RUNNING
-
-
 
 def chunk_bounds(count: int, n_chunks: int) -> np.ndarray:
     """Boundaries 0 = b_0 < b_1 < ... = ``count`` of at most ``n_chunks`` nearly equal runs of ``count``
@@ -943,11 +772,9 @@ def run_stats(work):
     return stats
 
 
-def make_params(rtol=0.0, atol=0.0, h_max=0.0, max_steps=0, use_fd=True, dt=0.0, guard=False, blocks=(0, 0)):
-    """The ``params`` array of a kernel call (``guard``: RK4's growth guard, see :func:`integrate`; ``blocks``:
-    ROSW's (number, size) of the W blocks)."""
+def make_params(rtol=0.0, atol=0.0, h_max=0.0, max_steps=0, use_fd=True, dt=0.0, guard=False):
+    """The ``params`` array of a kernel call (``guard``: RK4's growth guard, see :func:`integrate`)."""
     params = np.zeros(N_PARAMS)
-    params[P_NBLOCKS], params[P_BLOCK] = blocks
     params[P_RTOL], params[P_ATOL], params[P_H_MAX] = rtol, atol, h_max
     params[P_MAX_STEPS], params[P_USE_FD], params[P_DT] = max_steps, 1.0 if use_fd else 0.0, dt
     params[P_GUARD] = 1.0 if guard else 0.0
@@ -1003,7 +830,6 @@ class _PlainKernel:
 _rk4_generic = njit(cache=False)(_rk4_impl)
 _dopri5_generic = njit(cache=False)(_dopri5_impl)
 _ros2_generic = njit(cache=False)(_ros2_impl)
-_rosw_generic = njit(cache=False)(_rosw_impl)
 rk4 = OneShot("rk4", _rk4_generic, 1)
 dopri5 = OneShot("dopri5", _dopri5_generic, 1)
 ros2 = OneShot("ros2", _ros2_generic, 2)
@@ -1021,17 +847,9 @@ def _jac_signature(types):
     return _nt.void(_nt.float64, _nt.float64[::1], types["args"], _nt.float64[:, ::1])
 
 
-def _wblocks_signature(types):
-    """``jac(t, y, args, dydt, Jb, idx)`` of ROSW: dy/dt and the W blocks (nb, bs, bs) on the state entries
-    idx (nb, bs)."""
-    vec = _nt.float64[::1]
-    return _nt.void(_nt.float64, vec, types["args"], vec, _nt.float64[:, :, ::1], _nt.int64[:, ::1])
-
-
 register_kernel(_rk4_impl, rhs=rhs_signature)
 register_kernel(_dopri5_impl, rhs=rhs_signature)
 register_kernel(_ros2_impl, rhs=rhs_signature, jac=_jac_signature)
-register_kernel(_rosw_impl, rhs=rhs_signature, jac=_wblocks_signature)
 
 
 # stability ----------------------------------------------------------------------
@@ -1066,7 +884,7 @@ def stability_limit(method: str, axis: str = "imaginary") -> float:
 
 
 def spectral_step(rhs, y0, args=(), method: str = "rk4", t: float = 0.0, rel_step: float = 1e-7,
-                  floor: float = 1e-3, implicit=None) -> float:
+                  floor: float = 1e-3) -> float:
     """The largest step h [s] of the explicit ``method`` whose amplification |R(h lambda)| <= 1 for every
     eigenvalue lambda of the Jacobian of ``rhs`` at (``t``, ``y0``) that does not grow (Re lambda <= 1e-6
     |lambda|_max, read with Re lambda <= 0: a growing mode has no step limit, as in the RK4 guard of
@@ -1075,9 +893,7 @@ def spectral_step(rhs, y0, args=(), method: str = "rk4", t: float = 0.0, rel_ste
     The Jacobian by forward differences of the compiled ``rhs`` (one call per state, step ``rel_step``
     max(|y_i|, ``floor``)), the eigenvalues by LAPACK (numpy), the step by bisection in log h to 1e-9 on
     the stability polynomial (``STABILITY_POLYNOMIALS``).  A linearisation at one state: where the
-    system stiffens along the run (contact loads, sliding) the guard of :func:`integrate` still stops it.
-    ``implicit``: an (n, n) matrix subtracted from the Jacobian first, the part a linearly implicit method
-    ("rosw": its W) takes out of the explicit stability limit."""
+    system stiffens along the run (contact loads, sliding) the guard of :func:`integrate` still stops it."""
     if method not in STABILITY_POLYNOMIALS:
         raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {sorted(STABILITY_POLYNOMIALS)}")
     y0 = np.array(y0, dtype=np.float64, ndmin=1)
@@ -1092,8 +908,6 @@ def spectral_step(rhs, y0, args=(), method: str = "rk4", t: float = 0.0, rel_ste
         y[i] += e
         rhs(t, y, args, f)
         J[:, i] = (f - f0) / e
-    if implicit is not None:
-        J -= implicit
     if not np.all(np.isfinite(J)):
         raise DynamicsInputError("spectral_step: the right-hand side is not finite near y0")
     ev = np.linalg.eigvals(J)
@@ -1152,11 +966,6 @@ def resumable_kernel(method, rhs, jac=None):
         raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {METHODS}")
     if method == "ros2":
         return specialise(_ros2_impl, rhs=rhs, jac=no_jac if jac is None else jac)
-    if method == "rosw":
-        if jac is None:
-            raise DynamicsInputError("method 'rosw' needs jac: an @njit jac(t, y, args, dydt, Jb, idx) giving dy/dt "
-                                     "and the W blocks")
-        return specialise(_rosw_impl, rhs=rhs, jac=jac)
     impl = _rk4_impl if method == "rk4" else _dopri5_impl
     return specialise(impl, rhs=rhs)
 
@@ -1189,7 +998,7 @@ def _check_positive(key, value):
 
 
 def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt=None, h_max=0.0,
-              max_steps=10_000_000, progress=False, omega_max=None, h0=0.0, n_chunks=None, jac=None, blocks=None):
+              max_steps=10_000_000, progress=False, omega_max=None, h0=0.0, n_chunks=None, jac=None):
     """Integrate ``dy/dt = rhs(t, y, args)`` and sample at ``t_out``.
 
     Parameters
@@ -1202,14 +1011,12 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
         Strictly increasing output times [s]; integration starts at ``t_out[0]``.
     args : tuple
         Passed to ``rhs`` unchanged.
-    method : {"dopri5", "rk4", "ros2", "rosw"}
-        ``"ros2"`` is the L-stable Rosenbrock method for stiff problems; ``"rosw"`` the Rosenbrock-W method
-        ROS34PW2 at a fixed step ``dt`` (as RK4: each output interval cut into equal steps <= dt) with a
-        block-diagonal W from ``jac`` (the stiff part treated linearly implicitly, the rest explicitly).
+    method : {"dopri5", "rk4", "ros2"}
+        ``"ros2"`` is the L-stable Rosenbrock method for stiff problems.
     rtol, atol : float
         DOPRI5 / ROS2 tolerances (scalars).
     dt : float
-        RK4's and ROSW's largest step [s] (required for ``"rk4"`` and ``"rosw"``).
+        RK4 largest step [s] (required for ``"rk4"``).
     h_max : float
         DOPRI5 largest step [s] (0: no limit).
     max_steps : int
@@ -1236,11 +1043,7 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
         Number of kernel calls (default 1, or up to 200 when ``progress``); it
         does not change the result.
     jac : numba dispatcher, optional
-        ``jac(t, y, args, J)`` writing the n x n Jacobian (ROS2; forward differences if None), or for ROSW
-        (required) ``jac(t, y, args, dydt, Jb, idx)`` writing dy/dt, the W blocks Jb (nb, bs, bs) and the
-        state entries idx (nb, bs) each block acts on.
-    blocks : (int, int)
-        ROSW: the number and size of the W blocks.
+        ``jac(t, y, args, J)`` writing the n x n Jacobian (ROS2 only); forward differences if None.
 
     Returns
     -------
@@ -1288,18 +1091,8 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
         raise DynamicsInputError(f"method = {method!r} is not allowed; choose one of {METHODS}")
     if not hasattr(rhs, "py_func"):
         raise DynamicsInputError(f"rhs = {rhs!r} must be an @njit function rhs(t, y, args, dydt)")
-    if jac is not None and (method not in ("ros2", "rosw") or not hasattr(jac, "py_func")):
-        raise DynamicsInputError(f"jac = {jac!r}: only methods 'ros2' (an @njit jac(t, y, args, J)) and 'rosw' "
-                                 "(an @njit jac(t, y, args, dydt, Jb, idx)) take a Jacobian")
-    if method == "rosw":
-        if jac is None:
-            raise DynamicsInputError("jac = None: method 'rosw' needs an @njit jac(t, y, args, dydt, Jb, idx)")
-        try:
-            nb, bs = (int(b) for b in blocks)
-        except (TypeError, ValueError):
-            raise DynamicsInputError(f"blocks = {blocks!r}: method 'rosw' needs (number, size) of its W blocks") from None
-        if nb < 0 or bs < 1:
-            raise DynamicsInputError(f"blocks = {blocks!r}: the number must be >= 0 and the size >= 1")
+    if jac is not None and (method != "ros2" or not hasattr(jac, "py_func")):
+        raise DynamicsInputError(f"jac = {jac!r}: only method 'ros2' takes a Jacobian, an @njit jac(t, y, args, J)")
     if not isinstance(args, tuple):
         raise DynamicsInputError(f"args = {type(args).__name__} must be a tuple")
     y0 = np.array(y0, dtype=np.float64, ndmin=1)
@@ -1311,9 +1104,9 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     if not (t_out[1:] > t_out[:-1]).all():
         raise DynamicsInputError("t_out must be strictly increasing")
     max_steps = int(_check_positive("max_steps", max_steps))
-    if method in FIXED_STEP:
+    if method == "rk4":
         if dt is None:
-            raise DynamicsInputError(f"dt = None: method {method!r} needs a step dt > 0 [s]")
+            raise DynamicsInputError("dt = None: method 'rk4' needs a step dt > 0 [s]")
         dt = _check_positive("dt", dt)
     else:
         rtol = _check_positive("rtol", rtol)
@@ -1329,7 +1122,7 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
         omega_max = omega_of_state(y0)
     if omega_max is not None:
         omega_max = _check_positive("omega_max", omega_max)
-        limit = stability_limit(method, "imaginary") if method in STABILITY_POLYNOMIALS else math.inf
+        limit = stability_limit(method, "imaginary") if method != "ros2" else math.inf
         if method == "rk4" and dt * omega_max > limit:
             raise DynamicsInputError(
                 f"dt = {dt:g} s is beyond the RK4 stability limit {limit / omega_max:g} s "
@@ -1348,12 +1141,10 @@ def integrate(rhs, y0, t_out, args=(), method="dopri5", rtol=1e-6, atol=1e-9, dt
     # bit-identical to a one-chunk run, tests/test_chunking.py)
     # (a one-chunk run skips the chunk arithmetic: on a cheap rhs the Python steps cost more than the kernel)
     stops = [m] if n_chunks == 1 else (chunk_bounds(m - 1, n_chunks)[1:] + 1).tolist()
-    fixed = method in FIXED_STEP
-    params = make_params(rtol=0.0 if fixed else rtol, atol=0.0 if fixed else atol,
-                         h_max=0.0 if fixed else h_max, max_steps=max_steps, use_fd=jac is None,
-                         dt=dt if fixed else 0.0, guard=method == "rk4",
-                         blocks=(nb, bs) if method == "rosw" else (0, 0))
-    Y, work = new_run(y0, t_out, 0.0 if fixed else float(h0))
+    params = make_params(rtol=rtol if method != "rk4" else 0.0, atol=atol if method != "rk4" else 0.0,
+                         h_max=h_max if method != "rk4" else 0.0, max_steps=max_steps, use_fd=jac is None,
+                         dt=dt if method == "rk4" else 0.0, guard=method == "rk4")
+    Y, work = new_run(y0, t_out, float(h0) if method != "rk4" else 0.0)
     wall0 = time.perf_counter()
     bar = None
     if progress:

@@ -25,7 +25,7 @@ maps one to one onto a group of :class:`lubedyn.dynamics.tapered.model.TaperedBe
     oil_nu100 = "8.6 mm^2/s"    #   through the base oil's viscosity at 100 C ("none": eta0 at every temperature)
     raceway_film = "formula"    # or "grease_ehl": the raceway films from the grease's EHL solve (below)
     [integrator]
-    method = "dopri5"           # or "rk4" / "rosw" with dt (refused above the stability limit)
+    method = "dopri5"           # or "rk4" with dt (refused above the contact modes' stability limit)
     duration = "180 ms"
     [analysis]
     window = ["100 ms", "180 ms"]   # paper A's averaging window
@@ -99,7 +99,7 @@ from pydantic import BeforeValidator, Field, model_validator
 
 from lubedyn.results import BearingResult
 from lubedyn.dynamics.analysis.windows import window_summary
-from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, FIXED_STEP, RTOL_MAX, RTOL_WHY
+from lubedyn.dynamics.integrators import ATOL_MAX, ATOL_WHY, RTOL_MAX, RTOL_WHY
 from lubedyn.lubrication.errors import ConvergenceError, InputError
 
 from lubedyn import outputs
@@ -305,15 +305,12 @@ StepOrAuto = Annotated[Any, BeforeValidator(_step_or_auto)]
 
 class IntegratorTable(CaseTable):
     """``method``: "rk4" (fixed step ``dt``; "auto": 0.8 x :meth:`TaperedBearing.stable_step`, the
-    default), "rosw" (ROS34PW2 with the raceway traction linearly implicit, fixed step ``dt``; "auto": 0.8 x
-    its stable step, the contact modes' 9.9 us at Fig. 5's point instead of the traction's 4.1 us; 2.3 x
-    fewer steps but its means are further off than RK4's step error: tilt 1.7 %, skew 7.5e-4 over 10 ms,
-    :mod:`lubedyn.dynamics.integrators`, benchmarks/trb_speed.py) or "dopri5" (adaptive, ``rtol``/``atol``).  benchmarks/trb.py (20 ms): RK4 at the stable-step
+    default) or "dopri5" (adaptive, ``rtol``/``atol``).  benchmarks/trb.py (20 ms): RK4 at the stable-step
     estimate is 4.8 x faster than DOPRI5 at rtol 1e-6, its mean skew and tilt within 2.5e-5 and 9.8e-5 of
     DOPRI5 at rtol 1e-9; at half of it 2.6 x, within 1.5e-6 and 5.9e-6.  ``rtol`` <= 1e-3 and ``atol`` <=
     1e-8: beyond them DOPRI5's error control means nothing (measured: :data:`lubedyn.dynamics.integrators.RTOL_MAX`)."""
 
-    method: Literal["dopri5", "rk4", "rosw"] = "rk4"
+    method: Literal["dopri5", "rk4"] = "rk4"
     dt: StepOrAuto = "auto"
     rtol: Q("dimensionless", gt=0, le=RTOL_MAX, why=RTOL_WHY) = 1e-7
     atol: Q("dimensionless", gt=0, le=ATOL_MAX, why=ATOL_WHY) = 1e-12
@@ -323,9 +320,9 @@ class IntegratorTable(CaseTable):
 
     @model_validator(mode="after")
     def _samples(self):
-        if self.method in FIXED_STEP and self.dt is None:
-            raise rule("dt", None, f"is required with method = {self.method!r}: a fixed step, or 'auto' (0.8 x the "
-                       "model's stable-step estimate)")
+        if self.method == "rk4" and self.dt is None:
+            raise rule("dt", None, "is required with method = 'rk4': a fixed step, or 'auto' (0.8 x the model's "
+                       "stable-step estimate)")
         n = self.duration / self.sample_interval
         if n < 2:
             raise rule("sample_interval", self.sample_interval, f"must be below integrator.duration = "
@@ -627,9 +624,8 @@ def traction_map_summary(model) -> dict:
 
 def describe(case: TaperedCase, model) -> str:
     op, m, ig = case.operating, case.model, case.integrator
-    if ig.method in FIXED_STEP:
-        name = ig.method.upper()
-        step = f"{name} at 0.8 x the stable step" if ig.dt == "auto" else f"{name} at {ig.dt * 1e6:g} us"
+    if ig.method == "rk4":
+        step = "RK4 at 0.8 x the stable step" if ig.dt == "auto" else f"RK4 at {ig.dt * 1e6:g} us"
     else:
         step = f"DOPRI5 rtol {ig.rtol:g}"
     return (f"tapered roller bearing, {model.n_rollers} rollers x {model.n_slices} slices, traction {m.traction}, "
@@ -824,7 +820,7 @@ def main_window(s: dict) -> tuple[str, str, dict]:
 def headline(s: dict) -> list[str]:
     lines = []
     for k in ("Simulated time [s]", "Ideal cage speed [rpm]", "Largest cup load [N]", "RK4 step [s]",
-              "ROSW step [s]", "Accepted steps [-]", "Integration wall time [s]"):
+              "Accepted steps [-]", "Integration wall time [s]"):
         if k in s:
             lines.append(f"{k:<44} {s[k]:.6g}" if isinstance(s[k], float) else f"{k:<44} {s[k]}")
     name, _, w = main_window(s)
@@ -853,8 +849,7 @@ def kernel_jobs(case: TaperedCase) -> list:
     # tests/test_specialise.py checks the jobs' signatures against a run's), and the real arguments cost
     # 35-95 ms (traction tables), which the run builds anyway on its quasi-static state
     args = L.example_args()
-    jac = K.rhs_w if case.integrator.method == "rosw" else None
-    return [kernel_example(case.integrator.method, K.rhs, args, jac), K.forces_many_example(args)]
+    return [kernel_example(case.integrator.method, K.rhs, args), K.forces_many_example(args)]
 
 
 def run(case: TaperedCase, out_dir=None, *, name: str = "tapered", source: str = "", smoke: bool = False) -> TaperedRun:
@@ -889,25 +884,17 @@ class TaperedRunModel:
         t_out = np.arange(0.0, ig.duration * (1 + 1e-12), ig.sample_interval)
         kw = dict(method="dopri5", rtol=ig.rtol, atol=ig.atol)
         self.dt = self.stable = None
-        if ig.method in FIXED_STEP:
-            self.stable = self.model.stable_step(self.qs, self.y0, self.args, ig.method)
+        if ig.method == "rk4":
+            self.stable = self.model.stable_step(self.qs, self.y0, self.args)
             self.dt = 0.8 * self.stable if ig.dt == "auto" else ig.dt
             if ig.duration / self.dt > ig.max_steps:  # fixed steps: the budget is known before the first one
-                raise InputError(f"integrator.dt = {self.dt:g} s: {ig.duration / self.dt:.3g} fixed "
-                                 f"{ig.method.upper()} steps over integrator.duration = {ig.duration:g} s, more than "
-                                 f"integrator.max_steps = {ig.max_steps}; use a larger step or a shorter duration, "
-                                 "or raise integrator.max_steps")
-            if ig.method == "rk4":
-                # the integrator refuses a step beyond the limit on the imaginary axis; the estimate folds the
-                # traction's real-axis decay into an equivalent omega
-                kw = dict(method="rk4", dt=self.dt, omega_max=2.0 * math.sqrt(2.0) / self.stable)
-            else:
-                # ROS34PW2 with the raceway traction in W (kernels.rhs_w): one 6 x 6 block per roller
-                kw = dict(method="rosw", dt=self.dt, jac=K.rhs_w, blocks=(self.model.n_rollers, L.W_BLOCK))
-                if ig.dt != "auto" and self.dt > self.stable:
-                    raise InputError(f"integrator.dt = {self.dt:g} s is beyond ROSW's stable-step estimate "
-                                     f"{self.stable:.4g} s (the contact modes it treats explicitly); use a smaller "
-                                     "step or 'auto'")
+                raise InputError(f"integrator.dt = {self.dt:g} s: {ig.duration / self.dt:.3g} fixed RK4 steps over "
+                                 f"integrator.duration = {ig.duration:g} s, more than integrator.max_steps = "
+                                 f"{ig.max_steps}; use a larger step or a shorter duration, or raise "
+                                 "integrator.max_steps")
+            # the integrator refuses a step beyond the limit on the imaginary axis; the estimate folds the
+            # traction's real-axis decay into an equivalent omega
+            kw = dict(method="rk4", dt=self.dt, omega_max=2.0 * math.sqrt(2.0) / self.stable)
         return Integration(K.rhs, self.y0, t_out, self.args, dict(max_steps=ig.max_steps, **kw), n_chunks=100,
                            on_error=self._error)
 
@@ -915,7 +902,7 @@ class TaperedRunModel:
         if isinstance(exc, DynamicsInputError):
             return InputError(f"integrator.dt = {self.dt:g} s: {exc}")
         ig = self.case.integrator
-        what = f"integrator.dt = {self.dt:g} s" if ig.method in FIXED_STEP else f"integrator.rtol = {ig.rtol:g}"
+        what = f"integrator.dt = {self.dt:g} s" if ig.method == "rk4" else f"integrator.rtol = {ig.rtol:g}"
         return ConvergenceError(f"{exc} ({what})")
 
     def analyse(self, res, timing) -> dict:
@@ -924,15 +911,13 @@ class TaperedRunModel:
         scene = summarise(self.case, self.model, res.t, res.y, self.D, self.qs)
         scene.update(res.stats)
         scene["Integration wall time [s]"] = timing.integration
-        method = self.case.integrator.method
-        if method in FIXED_STEP:
-            name = method.upper()
-            scene[f"{name} stable step estimate [s]"] = self.stable
-            scene[f"{name} step bound [s]"] = self.dt
+        if self.case.integrator.method == "rk4":
+            scene["RK4 stable step estimate [s]"] = self.stable
+            scene["RK4 step bound [s]"] = self.dt
             # the integrator cuts each sample interval into ceil(interval/bound) equal steps
             # (lubedyn.dynamics.integrators): the step it takes is interval/n, up to the bound
             interval = self.case.integrator.sample_interval
-            scene[f"{name} step [s]"] = interval / max(1, math.ceil(interval / self.dt * (1.0 - 1e-12)))
+            scene["RK4 step [s]"] = interval / max(1, math.ceil(interval / self.dt * (1.0 - 1e-12)))
         return scene
 
     def _frames(self):

@@ -14,9 +14,7 @@ module           responsibility
                  prescribed spin, 6-DOF rollers and cage, sliced raceway
                  contacts in 3-D with traction, the flange with friction, the
                  pocket and guide land (contact only or film), eq. 11 damping;
-                 ``rhs``, ``contact_forces``, ``loads_many``, ``forces_many``;
-                 ``rhs_w`` also gives the raceway traction's per-roller
-                 linearisation (the W of the "rosw" integrator)
+                 ``rhs``, ``contact_forces``, ``loads_many``, ``forces_many``
 ``model``        ``TaperedBearing``: parameters of ``rhs``, the start state
                  from the quasi-static equilibrium at ideal speeds, and
                  ``diagnostics`` (slice loads, tilt, skew, slip, speeds)

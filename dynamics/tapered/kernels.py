@@ -176,18 +176,6 @@ def _load_roller(F, T, j, r0, r1, r2, f0, f1, f2):
 
 
 @njit(**INLINE)
-def _rotate_q(q, v0, v1, v2):
-    """R(q) v of a unit quaternion ``q`` (array) and a vector given by its components, as a tuple:
-    :func:`lubedyn.dynamics.rotations.quat_rotate`'s operations in its order, without an array for v or
-    for the result (no allocation per roller in the right-hand side)."""
-    w, x, y, z = q[0], q[1], q[2], q[3]
-    tx = 2.0 * (y * v2 - z * v1)
-    ty = 2.0 * (z * v0 - x * v2)
-    tz = 2.0 * (x * v1 - y * v0)
-    return v0 + w * tx + (y * tz - z * ty), v1 + w * ty + (z * tx - x * tz), v2 + w * tz + (x * ty - y * tx)
-
-
-@njit(**INLINE)
 def _tilt_about(t1, t2, r0, r1, r2, f0, f1, f2):
     """(r x f).t of a force f at r (from a roller's mass centre) about its tilt axis t = (0, t1, t2)."""
     return t1 * (r2 * f0 - r0 * f2) + t2 * (r0 * f1 - r1 * f0)
@@ -390,43 +378,8 @@ def slice_traction(load, race, vs, P, table, maps, counter):
     return elastic_limited(viscous * P.width, elastic_strip_slope(P.gshear, b, P.ue, h0) * P.width, vs)
 
 
-@njit(**INLINE)
-def _traction_slopes(TJ, j, ft, ft2, dv, vs, s0, s1, s2, n0, n1, n2, r0, r1, r2):
-    """Add a slice's linearised traction to roller j's sums TJ[j] (ROSW's W, :func:`rhs_w`): the traction
-    g = -C s against the tangential sliding s, C = (F/v_s) (I - n n^T) + (dF/dv_s - F/v_s) s^ s^T (s^ = s/v_s;
-    dF/dv_s the forward difference (``ft2`` - ``ft``)/``dv``), r the contact point from the mass centre:
-    TJ[j, 0:9] += C, TJ[j, 9:18] += [r]x C, TJ[j, 18:27] += [r]x C [r]x (row-major 3 x 3)."""
-    sec = ft / vs
-    dif = (ft2 - ft) / dv - sec
-    u0, u1, u2 = s0 / vs, s1 / vs, s2 / vs
-    C = ((sec * (1.0 - n0 * n0) + dif * u0 * u0, -sec * n0 * n1 + dif * u0 * u1, -sec * n0 * n2 + dif * u0 * u2),
-         (-sec * n1 * n0 + dif * u1 * u0, sec * (1.0 - n1 * n1) + dif * u1 * u1, -sec * n1 * n2 + dif * u1 * u2),
-         (-sec * n2 * n0 + dif * u2 * u0, -sec * n2 * n1 + dif * u2 * u1, sec * (1.0 - n2 * n2) + dif * u2 * u2))
-    X = ((-r2 * C[1][0] + r1 * C[2][0], -r2 * C[1][1] + r1 * C[2][1], -r2 * C[1][2] + r1 * C[2][2]),
-         (r2 * C[0][0] - r0 * C[2][0], r2 * C[0][1] - r0 * C[2][1], r2 * C[0][2] - r0 * C[2][2]),
-         (-r1 * C[0][0] + r0 * C[1][0], -r1 * C[0][1] + r0 * C[1][1], -r1 * C[0][2] + r0 * C[1][2]))
-    for i in range(3):
-        Ci, Xi = C[i], X[i]
-        TJ[j, 3 * i] += Ci[0]
-        TJ[j, 3 * i + 1] += Ci[1]
-        TJ[j, 3 * i + 2] += Ci[2]
-        TJ[j, 9 + 3 * i] += Xi[0]
-        TJ[j, 9 + 3 * i + 1] += Xi[1]
-        TJ[j, 9 + 3 * i + 2] += Xi[2]
-        # (X [r]x)[i, :] with [r]x = [[0, -r2, r1], [r2, 0, -r0], [-r1, r0, 0]]
-        TJ[j, 18 + 3 * i] += Xi[1] * r2 - Xi[2] * r1
-        TJ[j, 18 + 3 * i + 1] += -Xi[0] * r2 + Xi[2] * r0
-        TJ[j, 18 + 3 * i + 2] += Xi[0] * r1 - Xi[1] * r0
-
-
 @njit(**JIT)
 def contact_forces(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG):
-    """:func:`contact_forces_w` without the traction's linearisation."""
-    contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, np.empty((0, 27)))
-
-
-@njit(**JIT)
-def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
     """Contact forces and torques: F[j] force on roller j [N], T[j] torque about its mass centre
     (inertial frame) [N m], Fc the force of all rollers (and the cage) on the cone [N], Tc their moment
     about the cone's (displaced) reference point [N m] (computed with the cone's tilt free; zeros when it
@@ -435,9 +388,7 @@ def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
     torque about its centre [N m] on the cage; SL[j, race, k] the slice loads [N] (race 0 cup, 1 cone);
     FR[j] the friction diagnostics (:data:`lubedyn.dynamics.tapered.layout.FRICTION_NAMES`: friction forces,
     sliding speeds and the terms of the tilt moment, module docstring); CG the cage's
-    (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`); TJ (Z, 27) the sums of each roller's linearised
-    raceway traction (:func:`_traction_slopes`, ROSW's W), or an array with no rows: not wanted.
-    ``A``: the model's :class:`KernelArgs`."""
+    (:data:`lubedyn.dynamics.tapered.layout.CAGE_NAMES`).  ``A``: the model's :class:`KernelArgs`."""
     P, U, RHO = A.P[0], A.U, A.RHO
     Z = int(P.z)
     ns = int(P.ns)
@@ -451,9 +402,6 @@ def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
     SL[:, :, :] = 0.0
     FR[:, :] = 0.0
     CG[:] = 0.0
-    wantj = TJ.shape[0] > 0
-    if wantj:
-        TJ[:, :] = 0.0
     if P.contacts == 0.0:
         return
     counter = np.zeros(1, dtype=np.int64)      # queries outside a traction table (lubedyn.dynamics.interp)
@@ -477,7 +425,8 @@ def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
         xl = P.landx
         lx, ly = xl * Rm[1, 0], xl * Rm[2, 0]
         lvx, lvy = xl * y[kt + 3], -xl * y[kt + 2]
-    q = np.empty(4)
+    ex_b = np.array([1.0, 0.0, 0.0])
+    e = np.empty(3)
     wi = np.empty(3)
     # the cage's attitude (unit quaternion) and inertial angular velocity, once for all its contacts
     bc = N_CONE + Z * NB
@@ -491,12 +440,11 @@ def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
     for j in range(Z):
         b = N_CONE + j * NB
         c0, c1, c2 = y[b], y[b + 1], y[b + 2]
-        qnorm = math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
-        for i in range(4):
-            q[i] = y[b + 3 + i] / qnorm
+        q = y[b + 3:b + 7] / math.sqrt(y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2)
         v0, v1, v2 = y[b + 7], y[b + 8], y[b + 9]
-        e0, e1, e2 = _rotate_q(q, 1.0, 0.0, 0.0)
-        wi[0], wi[1], wi[2] = _rotate_q(q, y[b + 10], y[b + 11], y[b + 12])   # angular velocity, inertial frame
+        quat_rotate(q, ex_b, e)
+        quat_rotate(q, y[b + 10:b + 13], wi)          # angular velocity, inertial frame
+        e0, e1, e2 = e[0], e[1], e[2]
         # the roller's tilt axis t = e_x x e_r = (0, -c_z, c_y)/|c_yz| (the diagnostics' tilt moments)
         rc = math.sqrt(c1 * c1 + c2 * c2)
         ta1, ta2 = -c2 / rc, c1 / rc
@@ -549,10 +497,6 @@ def contact_forces_w(y, A, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ):
                     vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
                     if vs > 0.0:
                         ft = slice_traction(f, race, vs, P, A.table, A.maps, counter)
-                        if wantj:
-                            dv = 1e-6 * vs
-                            ft2 = slice_traction(f, race, vs + dv, P, A.table, A.maps, counter)
-                            _traction_slopes(TJ, j, ft, ft2, dv, vs, s0, s1, s2, n0, n1, n2, r0, r1, r2)
                         g0, g1, g2 = -ft * s0 / vs, -ft * s1 / vs, -ft * s2 / vs
                         f0 += g0
                         f1 += g1
@@ -633,16 +577,17 @@ def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2,
     b = N_CONE + Z * NB
     g0, g1, g2 = y[b], y[b + 1], y[b + 2]
     phi = 2.0 * math.pi * j / Z
-    # the pocket's circumferential unit vector, inertial
-    t0, t1, t2 = _rotate_q(qc, 0.0, -math.sin(phi), math.cos(phi))
-    s = t0 * (m0 - g0) + t1 * (m1 - g1) + t2 * (m2 - g2)
+    tb = np.array([0.0, -math.sin(phi), math.cos(phi)])
+    t = np.empty(3)
+    quat_rotate(qc, tb, t)                        # the pocket's circumferential unit vector, inertial
+    s = t[0] * (m0 - g0) + t[1] * (m1 - g1) + t[2] * (m2 - g2)
     for side in range(2):
         sg = 1.0 if side == 0 else -1.0           # leading beam (+t), trailing beam (-t)
         gap = P.pocket - sg * s
         if P.pocketmode == POCKET_CONTACT and gap >= 0.0:
             continue
         # contact point on the roller's side facing the beam
-        p0, p1, p2 = m0 + sg * P.rhom * t0, m1 + sg * P.rhom * t1, m2 + sg * P.rhom * t2
+        p0, p1, p2 = m0 + sg * P.rhom * t[0], m1 + sg * P.rhom * t[1], m2 + sg * P.rhom * t[2]
         r0, r1, r2 = p0 - c0, p1 - c1, p2 - c2
         a0, a1, a2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
         h0, h1, h2 = p0 - g0, p1 - g1, p2 - g2
@@ -650,8 +595,8 @@ def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2,
         u0 = v0 + a0 - y[b + 7] - k0
         u1 = v1 + a1 - y[b + 8] - k1
         u2 = v2 + a2 - y[b + 9] - k2
-        un = u0 * t0 + u1 * t1 + u2 * t2
-        s0, s1, s2 = u0 - un * t0, u1 - un * t1, u2 - un * t2
+        un = u0 * t[0] + u1 * t[1] + u2 * t[2]
+        s0, s1, s2 = u0 - un * t[0], u1 - un * t[1], u2 - un * t[2]
         vs = math.sqrt(s0 * s0 + s1 * s1 + s2 * s2)
         if P.pocketmode == POCKET_FILM:
             q, f = pocket_force(gap, -sg * un, vs, P.rhom, P.len, P.eta, P.hcrit, P.kh, P.ch,
@@ -661,7 +606,7 @@ def _pocket(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1, m2,
             f = P.mubd * q * math.tanh(vs / P.vreg)
         if q <= 0.0 and f == 0.0:
             continue
-        f0, f1, f2 = -sg * q * t0, -sg * q * t1, -sg * q * t2
+        f0, f1, f2 = -sg * q * t[0], -sg * q * t[1], -sg * q * t[2]
         if vs > 0.0:
             f0 -= f * s0 / vs
             f1 -= f * s1 / vs
@@ -687,9 +632,11 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
     phi = 2.0 * math.pi * j / Z
     cp, sp = math.cos(phi), math.sin(phi)
     cb, sb = math.cos(P.beta0), math.sin(P.beta0)
-    cw0, cw1, cw2 = _rotate_q(qc, P.pockx, P.pitch * cp, P.pitch * sp)
-    a0, a1, a2 = _rotate_q(qc, cb, sb * cp, sb * sp)
-    s = a0 * (m0 - g0 - cw0) + a1 * (m1 - g1 - cw1) + a2 * (m2 - g2 - cw2)
+    cw = np.empty(3)
+    quat_rotate(qc, np.array([P.pockx, P.pitch * cp, P.pitch * sp]), cw)
+    a = np.empty(3)
+    quat_rotate(qc, np.array([cb, sb * cp, sb * sp]), a)
+    s = a[0] * (m0 - g0 - cw[0]) + a[1] * (m1 - g1 - cw[1]) + a[2] * (m2 - g2 - cw[2])
     half = 0.5 * P.len
     for end in range(2):
         sg = 1.0 if end == 0 else -1.0            # large end (+a), small end (-a)
@@ -701,8 +648,8 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
         w0, w1, w2 = _cross(wi[0], wi[1], wi[2], r0, r1, r2)
         h0, h1, h2 = p0 - g0, p1 - g1, p2 - g2
         k0, k1, k2 = _cross(wc[0], wc[1], wc[2], h0, h1, h2)
-        rel = (a0 * (v0 + w0 - y[b + 7] - k0) + a1 * (v1 + w1 - y[b + 8] - k1)
-               + a2 * (v2 + w2 - y[b + 9] - k2))
+        rel = (a[0] * (v0 + w0 - y[b + 7] - k0) + a[1] * (v1 + w1 - y[b + 8] - k1)
+               + a[2] * (v2 + w2 - y[b + 9] - k2))
         rate = -sg * rel                           # d(gap)/dt
         if P.pocketmode == POCKET_FILM:
             d = P.dlarge if end == 0 else P.dsmall
@@ -711,7 +658,7 @@ def _side_beams(j, y, P, qc, wc, c0, c1, c2, v0, v1, v2, wi, e0, e1, e2, m0, m1,
             f = slice_force(-gap, -rate, P.kpocket, P.alpha)
         if f <= 0.0:
             continue
-        f0, f1, f2 = -sg * f * a0, -sg * f * a1, -sg * f * a2
+        f0, f1, f2 = -sg * f * a[0], -sg * f * a[1], -sg * f * a[2]
         _load_roller(F, T, j, r0, r1, r2, f0, f1, f2)
         _load_cage(Fg, Tg, h0, h1, h2, f0, f1, f2)
         CG[4] += f
@@ -765,12 +712,6 @@ def _guide_land(y, P, wc, Fc, Fg, Tg, CG, lx, ly, lvx, lvy):
 @njit(**JIT)
 def rhs(t, y, args, dydt):
     """dy/dt of the tapered roller bearing (module docstring); ``args``: the model's :class:`KernelArgs`."""
-    _rhs_into(y, args, dydt, np.empty((0, 27)))
-
-
-@njit(**INLINE)
-def _rhs_into(y, args, dydt, TJ):
-    """dy/dt into ``dydt`` and, when ``TJ`` has rows, the traction's linearisation sums (:func:`rhs_w`)."""
     P = args.P[0]
     Z = int(P.z)
     ns = int(P.ns)
@@ -784,57 +725,7 @@ def _rhs_into(y, args, dydt, TJ):
     SL = np.empty((Z, 2, ns))
     FR = np.empty((Z, N_FRICTION))
     CG = np.empty(N_CAGE_DIAG)
-    contact_forces_w(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG, TJ)
-    _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt)
-
-
-@njit(**JIT)
-def rhs_w(t, y, args, dydt, Jb, idx):
-    """:func:`rhs` and the W blocks of ROSW (:func:`lubedyn.dynamics.integrators.integrate`, method "rosw"): per
-    roller j the 6 x 6 Jacobian of its (v, omega_body)' with respect to (v, omega_body) under the raceway
-    tractions linearised at y (:func:`_traction_slopes`; the gyroscopic and normal-load terms left out:
-    a W-method keeps its order for any W), on the state entries idx[j] = b_j + 7 ... b_j + 12.  With the
-    sums A = sum C, B = sum [r]x C, D = sum [r]x C [r]x and R the roller's attitude:
-    d v'/d v = -A/m, d v'/d omega = -B^T R/m, d omega'/d v = -I^-1 R^T B, d omega'/d omega = I^-1 R^T D R."""
-    P = args.P[0]
-    Z = int(P.z)
-    TJ = np.empty((Z, 27))
-    _rhs_into(y, args, dydt, TJ)
-    R = np.empty((3, 3))
-    qn = np.empty(4)
-    inv = (1.0 / P.ix, 1.0 / P.iy, 1.0 / P.iy)
-    m = P.m
-    for j in range(Z):
-        b = N_CONE + j * NB
-        q2 = y[b + 3] ** 2 + y[b + 4] ** 2 + y[b + 5] ** 2 + y[b + 6] ** 2
-        for i in range(4):
-            qn[i] = y[b + 3 + i] / math.sqrt(q2)
-        quat_to_matrix(qn, R)
-        for i in range(6):
-            idx[j, i] = b + 7 + i
-        for i in range(3):
-            for k in range(3):
-                bt_r = 0.0      # (B^T R)[i, k]
-                rt_b = 0.0      # (R^T B)[i, k]
-                rt_dr = 0.0     # (R^T D R)[i, k]
-                for l in range(3):
-                    bt_r += TJ[j, 9 + 3 * l + i] * R[l, k]
-                    rt_b += R[l, i] * TJ[j, 9 + 3 * l + k]
-                    dr = 0.0
-                    for n in range(3):
-                        dr += TJ[j, 18 + 3 * l + n] * R[n, k]
-                    rt_dr += R[l, i] * dr
-                Jb[j, i, k] = -TJ[j, 3 * i + k] / m
-                Jb[j, i, 3 + k] = -bt_r / m
-                Jb[j, 3 + i, k] = -inv[i] * rt_b
-                Jb[j, 3 + i, 3 + k] = inv[i] * rt_dr
-
-
-@njit(**INLINE)
-def _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt):
-    """dy/dt from the contact forces and torques of :func:`contact_forces` (Newton and Euler, module
-    docstring)."""
-    Z = int(P.z)
+    contact_forces(y, args, F, T, Fc, Tc, loads, Fg, Tg, SL, FR, CG)
     g = P.grav                                      # gravity along -y
     # cone: translation under the rollers' forces, F_r along +y, F_a along -x (closing the bearing)
     mc = P.mc
@@ -850,7 +741,6 @@ def _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt):
     dydt[5] = Fc[2] / mc
     inertia = np.array([P.ix, P.iy, P.iy])
     tb = np.empty(3)
-    qn = np.empty(4)
     m = P.m
     for j in range(Z):
         b = N_CONE + j * NB
@@ -862,9 +752,7 @@ def _equations(y, P, F, T, Fc, Tc, Fg, Tg, dydt):
         dydt[b + 7] = F[j, 0] / m
         dydt[b + 8] = F[j, 1] / m - g
         dydt[b + 9] = F[j, 2] / m
-        qnorm = math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
-        for i in range(4):
-            qn[i] = q[i] / qnorm
+        qn = q / math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
         quat_rotate_inverse(qn, T[j], tb)
         euler_rate(inertia, y[b + 10:b + 13], tb, dydt[b + 10:b + 13])
     if P.cage != 0.0:

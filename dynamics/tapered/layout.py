@@ -23,8 +23,6 @@ import numpy as np
 from ..groups import record_row
 
 N_CONE, NB, N_TILT = 6, 13, 4
-#: size of ROSW's W blocks: a roller's velocity and body angular velocity (state entries b + 7 ... b + 12)
-W_BLOCK = 6
 # offsets inside a body block
 B_C, B_Q, B_V, B_W = 0, 3, 7, 10
 

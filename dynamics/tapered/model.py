@@ -601,50 +601,26 @@ class TaperedBearing:
         m, ix, _, _ = g.roller_mass_properties()
         return sliding_decay_rate(k[0], k[1], m, ix, g.mean_roller_radius)
 
-    def stable_step(self, qs: QuasiStaticResult | None = None, y0: np.ndarray | None = None, args=None,
-                    method: str = "rk4") -> float:
-        """An estimate of the largest stable step [s] of ``method``.
-
-        "rk4": the smaller of 2 sqrt(2)/omega_max (the contact modes, imaginary axis), 2.785/lambda (the
-        traction's decay, real axis: :meth:`traction_rate`) and, given the start state ``y0``, the step the
-        right-hand side's own spectrum there allows (:meth:`spectral_step`; ``args`` the kernel arguments
-        when the caller has them): the closed forms know the raceway contacts and traction only, and a mode
+    def stable_step(self, qs: QuasiStaticResult | None = None, y0: np.ndarray | None = None, args=None) -> float:
+        """An estimate of RK4's largest stable step [s]: the smaller of 2 sqrt(2)/omega_max (the contact
+        modes, imaginary axis), 2.785/lambda (the traction's decay, real axis: :meth:`traction_rate`) and,
+        given the start state ``y0``, the step the right-hand side's own spectrum there allows
+        (:meth:`spectral_step`; ``args`` the kernel arguments when the caller has them): the closed forms know the raceway contacts and traction only, and a mode
         they miss -- the pocket films' squeeze damping with phi read as a viscosity (paper A's reading:
-        a decay at 3.4e5 1/s, 8.3 us at phi = 38.44) -- once made the "auto" step unstable.
-
-        "rosw" (ROS34PW2 with the raceway traction in W, :func:`kernels.rhs_w`): the traction's decay no
-        longer limits it; the contact modes do, at ROS34PW2's explicit limit 1.504/omega_max, and given
-        ``y0`` the spectrum of the Jacobian less W (:meth:`spectral_step`)."""
-        if method not in ("rk4", "rosw"):
-            raise DynamicsInputError(f"method = {method!r} has no step estimate; choose 'rk4' or 'rosw'")
-        step = stability_limit(method, "imaginary") / self.omega_max()
-        rate = self.traction_rate(qs, args) if method == "rk4" else 0.0
+        a decay at 3.4e5 1/s, 8.3 us at phi = 38.44) -- once made the "auto" step unstable."""
+        step = stability_limit("rk4", "imaginary") / self.omega_max()
+        rate = self.traction_rate(qs, args)
         if rate > 0.0:
-            step = min(step, stability_limit(method, "real") / rate)
+            step = min(step, stability_limit("rk4", "real") / rate)
         if y0 is not None:
-            step = min(step, self.spectral_step(y0, args, method))
+            step = min(step, self.spectral_step(y0, args))
         return step
 
-    def spectral_step(self, y0: np.ndarray, args=None, method: str = "rk4") -> float:
-        """The largest stable step [s] of ``method`` at the state ``y0`` from the right-hand side's own spectrum
+    def spectral_step(self, y0: np.ndarray, args=None) -> float:
+        """RK4's largest stable step [s] at the state ``y0`` from the right-hand side's own spectrum
         (:func:`lubedyn.dynamics.integrators.spectral_step`: finite-difference Jacobian, about 0.04 s for 240
-        states); "rosw": of the Jacobian less ROSW's W (:meth:`w_matrix`), the modes it treats explicitly."""
-        args = self.args() if args is None else args
-        implicit = self.w_matrix(y0, args) if method == "rosw" else None
-        return spectral_step(K.rhs, y0, args, method, implicit=implicit)
-
-    def w_matrix(self, y, args=None) -> np.ndarray:
-        """ROSW's W at the state ``y`` as an (n, n) matrix (:func:`kernels.rhs_w`'s per-roller blocks placed on
-        their state entries, zero elsewhere)."""
-        args = self.args() if args is None else args
-        y = np.ascontiguousarray(y, dtype=float)
-        Z = self.n_rollers
-        Jb, idx = np.zeros((Z, L.W_BLOCK, L.W_BLOCK)), np.zeros((Z, L.W_BLOCK), dtype=np.int64)
-        K.rhs_w(0.0, y, args, np.empty_like(y), Jb, idx)
-        W = np.zeros((y.size, y.size))
-        for j in range(Z):
-            W[np.ix_(idx[j], idx[j])] = Jb[j]
-        return W
+        states)."""
+        return spectral_step(K.rhs, y0, self.args() if args is None else args, "rk4")
 
     # ---------------------------------------------------------------- diagnostics
     def diagnostics(self, Y, y0=None, args=None) -> dict:
