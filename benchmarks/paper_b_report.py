@@ -282,6 +282,8 @@ def slope_verdict(x: list[float], y: list[float], sign: int, used: int, total: i
     """(numbers, verdict, fit) of the claim d y / d speed has ``sign``: Theil-Sen's slope and its 95 % band."""
     from scipy.stats import theilslopes
 
+    if used == 0:
+        return (f"0 of {total} runs give a value", "not computed (no run gives a value)", None)
     if used < max(3, total / 2) or len(set(x)) < 3:
         return (f"{used} of {total} runs give a value", f"not resolvable ({used} of {total} runs resolved)", None)
     slope, intercept, lo, hi = theilslopes(y, x, alpha=0.95)
