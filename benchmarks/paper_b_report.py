@@ -236,6 +236,9 @@ FINE_CLAIMS = (
     ("Settling time, ball 0 x [s]", -1, None, "Fig. 3: the ball settles faster in x at higher speed"),
     ("Settling time, ball 0 y [s]", -1, None, "Fig. 3: the ball settles faster in y at higher speed"),
     ("Ball-ball collisions [-]", -1, None, "Conclusions: fewer collisions at higher speed"),
+    ("Ball-ball collisions [-]", +1, (20.0, 25.0), "Fig. 5: more collisions at 25,000 than at 20,000 rpm"),
+    ("Zone unsteady until [s]", -1, None, "Fig. 4: the unsteady zone ends sooner at higher speed"),
+    ("Zone surge from [s]", -1, None, "Fig. 4: the surge zone comes sooner at higher speed"),
     ("Largest collision force z [N]", +1, (10.0, 20.0), "Fig. 5: largest axial collision force rises, 10,000-20,000 rpm"),
     ("Largest collision force z [N]", -1, (20.0, 25.0), "Fig. 5: not stronger at 25,000 than at 20,000 rpm"),
 )
@@ -302,8 +305,9 @@ def rows_fine(study: Path, figure: Path | None = None) -> list[tuple]:
         x, y, used, total = fine_points(study, key, window)
         text, verdict, fit = slope_verdict(x, y, sign, used, total)
         span = f"{window[0]:g}-{window[1]:g} krpm" if window else "whole axis"
-        said = "not stronger (a falling or flat force)" if window == (20.0, 25.0) else ("falls" if sign < 0 else "rises")
-        if window == (20.0, 25.0) and verdict.startswith("not resolvable (band"):
+        weaker = window == (20.0, 25.0) and sign < 0  # "not stronger at 25,000 rpm": a flat force agrees
+        said = "not stronger (a falling or flat force)" if weaker else ("falls" if sign < 0 else "rises")
+        if weaker and verdict.startswith("not resolvable (band"):
             verdict = "consistent (band holds 0: not stronger, not resolved weaker)"
         out.append((claim + f" (regression, {span})", said, text, verdict))
         panels.append((key, claim, x, y, fit, window))
