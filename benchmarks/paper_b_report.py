@@ -289,6 +289,8 @@ def slope_verdict(x: list[float], y: list[float], sign: int, used: int, total: i
         return (f"0 of {total} runs give a value", "not computed (no run gives a value)", None)
     if used < max(3, total / 2) or len(set(x)) < 3:
         return (f"{used} of {total} runs give a value", f"not resolvable ({used} of {total} runs resolved)", None)
+    if len(set(y)) == 1:
+        return (f"every one of {used} runs gives {y[0]:.4g}", "not resolvable (no change with speed)", None)
     slope, intercept, lo, hi = theilslopes(y, x, alpha=0.95)
     text = f"slope {slope:.3g} [{lo:.3g}, {hi:.3g}] per 1,000 rpm (95 %), {used} of {total} runs"
     if lo <= 0.0 <= hi:
