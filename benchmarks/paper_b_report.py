@@ -14,6 +14,15 @@ project's numbers (median and min-max over the seeded members of each point) and
     python benchmarks/paper_b_report.py --drop runs/cageless_drop_speeds --slot runs/cageless_slot_effect \\
         --fidelity runs/cageless_film_fidelity --sensitivity runs/cageless_slot_sensitivity > report.md
 
+Speed claims as regressions (``--fine``, the 11-speed study ``studies/cageless_fine_speeds.toml``): each
+output against the speed over every member run, Theil-Sen's slope (the median of the pairwise slopes:
+robust to the few members far off, as the medians above) with its 95 % confidence band
+(``scipy.stats.theilslopes``); *reproduced* / *not reproduced* where the band excludes zero and its sign
+agrees / disagrees with the claim, *not resolvable* where it holds zero.  A claim on a speed range
+(Fig. 5's axial force) is fitted on that range only.  Exponents enter only from runs whose guarded
+verdict resolved them (positive or not positive); with fewer than half resolved the claim is "not
+resolvable" whatever the slope.  ``--fine`` also writes ``fine_speeds.png`` beside the study's table.
+
 Every number is read from the studies' ``summary.json`` files; nothing is typed in except the paper's
 own values (Table 3 and the statements quoted).
 """
@@ -21,6 +30,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import csv
 import statistics
 from pathlib import Path
 
@@ -216,6 +226,188 @@ def rows_sensitivity(study: Path) -> list[tuple]:
     return out
 
 
+#: paper B's speed claims for the regression (output, claimed sign of d output / d speed, speed range
+#: [krpm] or None for the whole axis, the paper's statement)
+FINE_CLAIMS = (
+    ("Wolf exponent, ball 0 x [bits/s]", -1, None, "Table 3: x falls with speed (4.59 -> 3.92)"),
+    ("Wolf exponent, ball 0 y [bits/s]", -1, None, "Table 3: y falls with speed (4.64 -> 3.91)"),
+    ("Wolf exponent, ball 0 z [bits/s]", +1, None, "Table 3: z rises with speed (7.68 -> 8.63)"),
+    ("Inner ring spin-up time [s]", -1, None, "Fig. 3: the inner ring settles faster at higher speed"),
+    ("Settling time, ball 0 x [s]", -1, None, "Fig. 3: the ball settles faster in x at higher speed"),
+    ("Settling time, ball 0 y [s]", -1, None, "Fig. 3: the ball settles faster in y at higher speed"),
+    ("Ball-ball collisions [-]", -1, None, "Conclusions: fewer collisions at higher speed"),
+    ("Ball-ball collisions [-]", +1, (20.0, 25.0), "Fig. 5: more collisions at 25,000 than at 20,000 rpm"),
+    ("Zone unsteady until [s]", -1, None, "Fig. 4: the unsteady zone ends sooner at higher speed"),
+    ("Zone surge from [s]", -1, None, "Fig. 4: the surge zone comes sooner at higher speed"),
+    ("Largest collision force z [N]", +1, (10.0, 20.0), "Fig. 5: largest axial collision force rises, 10,000-20,000 rpm"),
+    ("Largest collision force z [N]", -1, (20.0, 25.0), "Fig. 5: not stronger at 25,000 than at 20,000 rpm"),
+)
+
+
+def fine_points(study: Path, key: str, window=None) -> tuple[list[float], list[float], int, int]:
+    """(speeds [krpm], values, runs used, runs with a value) of one output over a study's member runs
+    (study.csv; notes and verdicts from each run's summary.json).  An exponent counts only where its
+    guarded verdict resolved it; a settling time only where it is not the record's edge."""
+    x, y, have, total = [], [], 0, 0
+    with open(study / "study.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            if row.get("status") != "ok":
+                continue
+            speed = float(row["operating.speed [SI]"]) * 60.0 / (2.0 * 3.141592653589793) / 1e3
+            if window and not (window[0] - 1e-9 <= speed <= window[1] + 1e-9):
+                continue
+            total += 1
+            value = usable_value(study, row, key)
+            if value is None:
+                continue
+            have += 1
+            x.append(speed)
+            y.append(value)
+    return x, y, have, total
+
+
+def usable_value(study: Path, row: dict, key: str) -> float | None:
+    """The output ``key`` of one study row's run (its summary.json), or None where it is missing or not
+    usable: an exponent whose guarded verdict did not resolve it, a settling time at the record's edge."""
+    summary = json.loads((study / row["run folder"] / "summary.json").read_text())
+    value = summary.get(key)
+    if not isinstance(value, (int, float)):
+        return None
+    name = key.rsplit(" [", 1)[0]
+    if key.startswith("Wolf exponent") and summary.get(name + " verdict") not in ("positive", "not positive"):
+        return None
+    if key.startswith("Settling time") and str(summary.get(name + ", note", "")).startswith("record too short"):
+        return None
+    return float(value)
+
+
+def slope_verdict(x: list[float], y: list[float], sign: int, used: int, total: int) -> tuple[str, str, tuple]:
+    """(numbers, verdict, fit) of the claim d y / d speed has ``sign``: Theil-Sen's slope and its 95 % band."""
+    from scipy.stats import theilslopes
+
+    if used == 0:
+        return (f"0 of {total} runs give a value", "not computed (no run gives a value)", None)
+    if used < max(3, total / 2) or len(set(x)) < 3:
+        return (f"{used} of {total} runs give a value", f"not resolvable ({used} of {total} runs resolved)", None)
+    if len(set(y)) == 1:
+        return (f"every one of {used} runs gives {y[0]:.4g}", "not resolvable (no change with speed)", None)
+    slope, intercept, lo, hi = theilslopes(y, x, alpha=0.95)
+    text = f"slope {slope:.3g} [{lo:.3g}, {hi:.3g}] per 1,000 rpm (95 %), {used} of {total} runs"
+    if lo <= 0.0 <= hi:
+        return text, "not resolvable (band holds 0)", (slope, intercept, lo, hi)
+    found = 1 if lo > 0.0 else -1
+    word = "rises" if found > 0 else "falls"
+    return text, "reproduced" if found == sign else f"not reproduced ({word})", (slope, intercept, lo, hi)
+
+
+def rows_fine(study: Path, figure: Path | None = None) -> list[tuple]:
+    """Paper B's speed claims as Theil-Sen regressions over a fine speed axis (see the module's docstring)."""
+    out, panels = [], []
+    for key, sign, window, claim in FINE_CLAIMS:
+        x, y, used, total = fine_points(study, key, window)
+        text, verdict, fit = slope_verdict(x, y, sign, used, total)
+        span = f"{window[0]:g}-{window[1]:g} krpm" if window else "whole axis"
+        weaker = window == (20.0, 25.0) and sign < 0  # "not stronger at 25,000 rpm": a flat force agrees
+        said = "not stronger (a falling or flat force)" if weaker else ("falls" if sign < 0 else "rises")
+        if weaker and verdict.startswith("not resolvable (band"):
+            verdict = "consistent (band holds 0: not stronger, not resolved weaker)"
+        out.append((claim + f" (regression, {span})", said, text, verdict))
+        panels.append((key, claim, x, y, fit, window))
+    if figure is not None:
+        _fine_figure(panels, figure)
+    return out
+
+
+def _fine_figure(panels, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    n = len(panels)
+    cols = 3
+    fig, axes = plt.subplots((n + cols - 1) // cols, cols, figsize=(4.2 * cols, 3.2 * ((n + cols - 1) // cols)),
+                             squeeze=False, layout="constrained")
+    for ax, (key, claim, x, y, fit, window) in zip(axes.flat, panels):
+        ax.plot(x, y, "o", ms=3, alpha=0.6, label="members")
+        if fit is not None:
+            slope, intercept, lo, hi = fit
+            xs = np.linspace(min(x), max(x), 50)
+            xm, ym = float(np.median(x)), float(np.median(y))
+            ax.plot(xs, intercept + slope * xs, "k-", lw=1.2, label="Theil-Sen")
+            ax.fill_between(xs, ym + lo * (xs - xm), ym + hi * (xs - xm), color="0.6", alpha=0.3, label="95 % slope band")
+        ax.set_xlabel("Rotor speed [1,000 rpm]")
+        ax.set_ylabel(key, fontsize=7)
+        ax.set_title(claim, fontsize=7)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    axes.flat[0].legend(fontsize=6)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+#: the screen's outputs behind paper B's speed claims, with the claimed sign of d output / d speed
+SCREEN_CLAIMS = (
+    ("Ball-ball collisions [-]", -1, "Conclusions: fewer collisions at higher speed"),
+    ("Inner ring spin-up time [s]", -1, "Fig. 3: the inner ring settles faster at higher speed"),
+    ("Settling time, ball 0 x [s]", -1, "Fig. 3: the ball settles faster in x"),
+    ("Settling time, ball 0 y [s]", -1, "Fig. 3: the ball settles faster in y"),
+    ("Largest collision force z [N]", +1, "Fig. 5: larger axial collision force at higher speed"),
+    ("Wolf exponent, ball 0 z [bits/s]", +1, "Table 3: z rises with speed"),
+)
+
+
+def screen_rows(study: Path, speed_key: str = "operating.speed") -> tuple[list[tuple], list[str]]:
+    """Paper B's speed claims under the Morris screen of the unstated values (studies/
+    cageless_screen_unstated.toml): each trajectory's step in speed is the speed trend at one parameter
+    set; a claim is reproduced by the sets whose step has its sign.  Returns (claim rows, markdown lines
+    of the factors' mu* and sigma per output, from study.json's "Morris screening")."""
+    table = json.loads((study / "study.json").read_text())
+    screen = table["Morris screening"]
+    factors = list(next(iter(screen["outputs"].values())))
+    k = len(factors)
+    with open(study / "study.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    if len(rows) % (k + 1):
+        raise ValueError(f"{study / 'study.csv'}: {len(rows)} rows is not a whole number of Morris trajectories of {k + 1}")
+    out = []
+    for key, sign, claim in SCREEN_CLAIMS:
+        steps = []
+        for t in range(len(rows) // (k + 1)):
+            traj = rows[t * (k + 1):(t + 1) * (k + 1)]
+            for a, b in zip(traj, traj[1:]):
+                if a[speed_key + " [SI]"] == b[speed_key + " [SI]"]:
+                    continue
+                ya, yb = (usable_value(study, r, key) if r.get("status") == "ok" else None for r in (a, b))
+                if ya is None or yb is None:
+                    continue  # a failed run, a value not computed or not usable
+                steps.append((yb - ya) / (float(b[speed_key + " [SI]"]) - float(a[speed_key + " [SI]"])))
+        agree = sum(1 for e in steps if e * sign > 0)
+        n = len(rows) // (k + 1)
+        if not steps:
+            verdict = f"not computed (no trajectory gives both values; {n} trajectories)"
+        elif agree == len(steps):
+            verdict = f"reproduced under every set ({agree} of {len(steps)})"
+        elif agree:
+            verdict = f"reproduced under some sets ({agree} of {len(steps)})"
+        else:
+            verdict = f"reproduced under none ({len(steps)} sets)"
+        stats = screen["outputs"].get(key, {})
+        ranked = sorted(((v["mu*"], name) for name, v in stats.items() if v.get("mu*") is not None), reverse=True)
+        top = ", ".join(f"{name} {m:.3g}" for m, name in ranked[:3])
+        out.append((f"{claim} (Morris screen)", "falls" if sign < 0 else "rises",
+                    f"speed steps with the claim's sign {agree} of {len(steps)}; largest mu*: {top}", verdict))
+    lines = ["| output | " + " | ".join(factors) + " |", "|---|" + "---|" * k]
+    for key, stats in screen["outputs"].items():
+        if all(v.get("mu*") is None for v in stats.values()):
+            continue  # a text output (a verdict) or one no run computed
+        cells = [(f"{v['mu*']:.3g} ({v['sigma']:.2g})" if v.get("mu*") is not None and v.get("sigma") is not None
+                  else "n/a") for v in (stats[f] for f in factors)]
+        lines.append(f"| {key} | " + " | ".join(cells) + " |")
+    return out, lines
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--drop", type=Path, help="output folder of studies/cageless_drop_speeds.toml")
@@ -223,22 +415,33 @@ def main(argv=None) -> int:
     p.add_argument("--fidelity", type=Path, help="output folder of studies/cageless_film_fidelity.toml")
     p.add_argument("--sensitivity", type=Path, help="output folder of studies/cageless_slot_sensitivity.toml")
     p.add_argument("--entrapped", type=Path, help="output folder of studies/cageless_entrapped_film.toml")
+    p.add_argument("--screen", type=Path, help="output folder of studies/cageless_screen_unstated.toml (Morris)")
+    p.add_argument("--fine", type=Path, help="output folder of studies/cageless_fine_speeds.toml (regressions)")
     args = p.parse_args(argv)
     if args.slot and not args.drop:
         p.error("--slot needs --drop (the slot claim compares the two studies)")
     rows = rows_drop(args.drop) if args.drop else []
     if args.entrapped:
         rows += rows_entrapped(args.entrapped)
+    if args.fine:
+        rows += rows_fine(args.fine, args.fine / "fine_speeds.png")
     if args.slot:
         rows += rows_slot(args.drop, args.slot)
     if args.fidelity:
         rows += rows_fidelity(args.fidelity)
     if args.sensitivity:
         rows += rows_sensitivity(args.sensitivity)
+    mu_table = []
+    if args.screen:
+        screen, mu_table = screen_rows(args.screen)
+        rows += screen
     print("| claim | paper | lubedyn: median [min, max] over the members | verdict |")
     print("|---|---|---|---|")
     for r in rows:
         print("| " + " | ".join(str(x) for x in r) + " |")
+    if mu_table:
+        print("\nMorris screen: mu* (sigma) per output and factor, output units per full range of the factor\n")
+        print("\n".join(mu_table))
     return 0
 
 

@@ -67,3 +67,48 @@ def test_slot_sensitivity_study_plans_and_report_groups_its_pairs(tmp_path):
     rows = {r[0]: r[3] for r in report.rows_sensitivity(tmp_path)}
     assert rows == {"Sensitivity at 10000 rpm, baseline: slot at 270 deg against none": "not reproduced (higher)",
                     "Sensitivity at 10000 rpm, friction law of eqs. 17-21: slot at 270 deg against none": "reproduced"}
+
+
+def test_fine_speed_regressions_on_a_synthetic_study(tmp_path):
+    """The regression verdicts of benchmarks/paper_b_report.py --fine on a synthetic 11-speed study whose
+    answers are known: collisions fall 20 per 1,000 rpm under +-30 of member scatter ("reproduced", the
+    band around -20), the spin-up time rises ("not reproduced (rises)"), the axial force is flat noise
+    ("not resolvable"), and an exponent resolved in 2 runs of 44 is "not resolvable" whatever its values;
+    the study file itself plans 11 speeds x 4 members (<= 1,500 rpm apart, 10,000-25,000 rpm)."""
+    import importlib.util
+    import math
+
+    import numpy as np
+
+    from lubedyn.scenes.study import plan_study, read_study
+
+    path = STUDY.parent / "cageless_fine_speeds.toml"
+    plan = plan_study(read_study(path), path, smoke=True)
+    assert len(plan.runs) == 44
+    spec = importlib.util.spec_from_file_location("paper_b_report", STUDY.parents[1] / "benchmarks" / "paper_b_report.py")
+    report = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(report)
+    rng = np.random.default_rng(7)
+    lines = ["operating.speed [SI],member,run folder,status"]
+    for i, krpm in enumerate(np.arange(10.0, 25.01, 1.5)):
+        for m in range(4):
+            folder = tmp_path / "runs" / f"s{i}" / f"m{m}"
+            folder.mkdir(parents=True)
+            resolved = i == 0 and m < 2
+            summary = {"Ball-ball collisions [-]": 1500.0 - 20.0 * krpm + rng.uniform(-30, 30),
+                       "Inner ring spin-up time [s]": 7e-4 * krpm,
+                       "Largest collision force z [N]": 3.0 + rng.uniform(-1, 1),
+                       "Wolf exponent, ball 0 z [bits/s]": 50.0 * krpm,
+                       "Wolf exponent, ball 0 z verdict": "positive" if resolved else "not distinguishable from its surrogates"}
+            (folder / "summary.json").write_text(json.dumps(summary))
+            lines.append(f"{krpm * 1e3 * 2 * math.pi / 60},{m},runs/s{i}/m{m},ok")
+    (tmp_path / "study.csv").write_text("\n".join(lines) + "\n")
+    rows = {r[0].split(" (regression")[0]: r for r in report.rows_fine(tmp_path, tmp_path / "fine.png")}
+    col = rows["Conclusions: fewer collisions at higher speed"]
+    assert col[3] == "reproduced"
+    slope, lo, hi = (float(v) for v in col[2].replace("slope ", "").translate(str.maketrans("", "", "[],")).split()[:3])
+    assert lo < -20.0 < hi and abs(slope + 20.0) < 3.0
+    assert rows["Fig. 3: the inner ring settles faster at higher speed"][3] == "not reproduced (rises)"
+    assert rows["Fig. 5: largest axial collision force rises, 10,000-20,000 rpm"][3] == "not resolvable (band holds 0)"
+    assert rows["Table 3: z rises with speed (7.68 -> 8.63)"][3] == "not resolvable (2 of 44 runs resolved)"
+    assert (tmp_path / "fine.png").stat().st_size > 10_000

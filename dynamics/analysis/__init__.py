@@ -1,6 +1,8 @@
 """Post-processing of bearing runs: plain numpy on sampled states and contact diagnostics (no numba: these
 run once per run on arrays of a few thousand samples), independent of any paper's figures.
 
+- :mod:`~lubedyn.dynamics.analysis.dimension`: correlation dimension of a sampled set (Grassberger-Procaccia;
+  what "fractal" is measured as);
 - :mod:`~lubedyn.dynamics.analysis.collisions`: ball-ball collision events and their summary; slip ratios;
 - :mod:`~lubedyn.dynamics.analysis.motion`: a ball's motion (inertial and co-rotating) from a cage-less run's
   time-series columns;
@@ -16,6 +18,7 @@ run once per run on arrays of a few thousand samples), independent of any paper'
 Every public name of these modules is importable from ``lubedyn.dynamics.analysis``.
 """
 from lubedyn.dynamics.analysis.collisions import Collision, collision_events, collision_summary, slip_ratio
+from lubedyn.dynamics.analysis.dimension import CorrelationDimension, correlation_dimension
 from lubedyn.dynamics.analysis.frequency import (
     MAX_HARMONIC, SPECTRUM_LINES, dominant_frequency, nearest_line, ring_acceleration, spectrum_limit,
     vibration_entries)
@@ -30,6 +33,7 @@ from lubedyn.dynamics.analysis.windows import periodicity, window_stats, window_
 
 __all__ = [
     "Collision", "collision_events", "collision_summary", "slip_ratio",
+    "CorrelationDimension", "correlation_dimension",
     "MAX_HARMONIC", "SPECTRUM_LINES", "dominant_frequency", "nearest_line", "ring_acceleration", "spectrum_limit",
     "vibration_entries",
     "BallMotion", "ball_motion", "n_balls", "run_columns",

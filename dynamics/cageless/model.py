@@ -525,8 +525,11 @@ class CagelessBearing:
             rr = brentq(lambda r: res(r, 0.0)[0], lo, hi, xtol=1e-16, rtol=1e-15)
             return abs(res(rr, 0.0)[0])
         sc = 1e-6
+        # maxfev: the bundled cases' seats take at most 51 evaluations (3-25 krpm); a seat that takes 200
+        # has no equilibrium at this ring position (the residual reports it), and hybr's default, 600,
+        # tripled the time to refuse a bearing that cannot carry its load
         sol = root(lambda x: np.array(res(guess[0] + sc * x[0], guess[1] + sc * x[1])), np.zeros(2),
-                   method="hybr", options=dict(xtol=1e-13))
+                   method="hybr", options=dict(xtol=1e-13, maxfev=200))
         f = res(guess[0] + sc * sol.x[0], guess[1] + sc * sol.x[1])
         return float(np.hypot(*f))
 

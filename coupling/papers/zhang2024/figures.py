@@ -58,6 +58,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lubedyn.dynamics.analysis.dimension import correlation_dimension
 from lubedyn.dynamics.analysis.frequency import vibration_entries
 from lubedyn.dynamics.analysis.motion import ball_motion, n_balls
 from lubedyn.dynamics.analysis.poincare import poincare_section
@@ -163,6 +164,26 @@ def summary_entries(case, t, series, events, freqs) -> dict:
     if short is not None:
         out[f"Poincare points, ball {j}, note"] = f"poincare.png is not a section yet: {short}"
     out.update(vibration_entries(t, series, freqs, case.analysis.vibration_band, case.analysis.transient))
+    out.update(phase_portrait_dimensions(t, motion, j, case.analysis.transient))
+    return out
+
+
+def phase_portrait_dimensions(t, motion, j: int, transient: float) -> dict:
+    """Figs. 6-8's "fractal", measured: the correlation dimension of ball ``j``'s phase portrait (inertial
+    displacement against velocity) per direction after ``transient``
+    (:func:`lubedyn.dynamics.analysis.dimension.correlation_dimension`): 1 a closed curve, 2 a portrait
+    that fills the plane, in between a fractal; with its verdict, or a note where it has none."""
+    keep = np.asarray(t) >= transient
+    out = {}
+    for i, d in enumerate("xyz"):
+        key = f"Correlation dimension, ball {j} {d} phase portrait [-]"
+        pts = np.c_[motion.position[keep, i], motion.velocity[keep, i]]
+        if pts.shape[0] < 100:
+            out[key], out[key[:-4] + ", note"] = None, f"not computed: {pts.shape[0]} samples after the transient (at least 100)"
+            continue
+        res = correlation_dimension(pts)
+        out[key] = res.value
+        out[key[:-4] + " verdict"] = res.verdict
     return out
 
 
