@@ -22,7 +22,7 @@ from ..contacts import FILM_KINDS, with_map_ends
 from ..errors import DynamicsInputError
 from ..groups import fail
 from .groups import Bearing, Films, Fidelity, Initial, Operating, Slots
-from ..interp import HERMITE
+from ..interp import HERMITE, fixed_options
 from .kernels import forces, rhs
 from .layout import (DOFS, D_AI, D_AO, D_QI, D_QO, MAP_SPEED_AXES, NB_6DOF, NB_PLANAR, N_RING, PARAMETER_DTYPE,
     RACES, SCENARIOS, TRACTIONS, BallBallMap, KernelArgs, MapArrays, TractionMaps, parameter_record)
@@ -77,7 +77,7 @@ def _map_arrays(film_map, speed_axis):
     opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = logs
     opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = int(logv), int(method), 0
     opts[C.MO_AXIS1] = axis1_kind
-    return MapArrays(axes[0], axes[1], axes[2], np.ascontiguousarray(vals), opts)
+    return MapArrays(axes[0], axes[1], axes[2], np.ascontiguousarray(vals), fixed_options(opts))
 
 
 
@@ -106,7 +106,7 @@ def _traction_arrays(maps):
     opts = np.zeros(C.MO_SIZE, dtype=np.int64)
     opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = (int(x) for x in li)
     opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = 0, int(mi), 0
-    return TractionMaps(axes[0], axes[1], axes[2], np.ascontiguousarray(np.stack(vals)), opts)
+    return TractionMaps(axes[0], axes[1], axes[2], np.ascontiguousarray(np.stack(vals)), fixed_options(opts))
 
 
 @dataclass(frozen=True, kw_only=True)
