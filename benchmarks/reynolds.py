@@ -292,7 +292,7 @@ def _phases(film):
     b = -R[idx]
     t["reduction to free dofs [s]"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    prob.solve_linear(A, b, symmetric=True)
+    prob.solve_linear(A, b, symmetric=True, index=idx)
     t["linear solve [s]"] = time.perf_counter() - t0
     return t, getattr(prob, "linear_solver_used", None), A.tocsr(), b
 
