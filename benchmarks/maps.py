@@ -215,15 +215,16 @@ def compile_probe(variant):
     print(json.dumps(record))
 
 
-def fixed_options_cost(rounds=5, repeats=5, n=200_000, compile_rounds=2):
+def fixed_options_cost(alternations=60, n=200_000, compile_rounds=2):
     """Decision 7 of issue 42: the map options (axis scales ...) as compile-time constants.
 
-    Before/after pairs interleaved in one process, ``rounds`` times: (a) the 3-D hermite value + gradient
+    Before/after single timings alternating in one process, ``alternations`` pairs: (a) the 3-D hermite value + gradient
     query consumed in a numba loop (as section 1's "inside numba", runtime int flags against
     :class:`lubedyn.dynamics.interp.Fixed` flags); (b) the bearing's polar film read on the bundled map
     (``contacts._film_map``: conversion to (gap, rho, theta), the query, the chain rule) at 4,096 random
-    states, options as the int64 array against the fixed tuple the model now passes.  Minimum thread CPU
-    time of ``repeats`` runs per round, ns per query, and the ratio after/before per round.  (c) The cold
+    states, options as the int64 array against the fixed tuple the model now passes.  Thread CPU ns per
+    query: minimum, 10th percentile and median of each, and the median of the pairs' ratios after/before
+    (this VM's timings are bimodal under load: the pairs see the same state).  (c) The cold
     compile of the cage-less right-hand side with that map in a child process with an empty numba cache
     (numba's compile events, :func:`lubedyn.compilation.report_compilation`), before and after,
     alternating, ``compile_rounds`` times.  Results equal bit for bit are checked on the way."""
@@ -258,23 +259,37 @@ def fixed_options_cost(rounds=5, repeats=5, n=200_000, compile_rounds=2):
     def polar(kind):
         return lambda: _polar_reads(h, v, ue, p, ma.ax0, ma.ax1, ma.ax2, ma.values, opts[kind], counter)
 
-    out = {"query points": n, "film-read states": m, "rounds": []}
+    out = {"query points": n, "film-read states": m, "alternations": alternations}
     same_query = query("runtime")() == query("fixed")()  # (compiles both)
     same_polar = polar("runtime")() == polar("fixed")()
     out["bit-identical sums (query, film read)"] = [bool(same_query), bool(same_polar)]
     reps = 20  # the film reads are short: 20 passes per timing
-    for r in range(rounds):
-        row = {}
-        order = ("runtime", "fixed") if r % 2 == 0 else ("fixed", "runtime")
-        for kind in order:
-            row[f"query {kind} [ns]"] = _cpu_min(query(kind), repeats) / n * 1e9
-            fn = polar(kind)
-            row[f"film read {kind} [ns]"] = _cpu_min(lambda: [fn() for _ in range(reps)], repeats) / (reps * m) * 1e9
-        row["query fixed/runtime"] = row["query fixed [ns]"] / row["query runtime [ns]"]
-        row["film read fixed/runtime"] = row["film read fixed [ns]"] / row["film read runtime [ns]"]
-        out["rounds"].append(row)
-        print(f"round {r}: query {row['query runtime [ns]']:.1f} -> {row['query fixed [ns]']:.1f} ns, film read "
-              f"{row['film read runtime [ns]']:.1f} -> {row['film read fixed [ns]']:.1f} ns", flush=True)
+    per = {"query": n, "film read": reps * m}
+    runs = {(what, kind): [] for what in per for kind in ("runtime", "fixed")}
+    for r in range(alternations):  # single timings alternating before/after: the pairs share the machine's state
+        for kind in (("runtime", "fixed") if r % 2 == 0 else ("fixed", "runtime")):
+            fq, fp = query(kind), polar(kind)
+            t0 = time.thread_time()
+            fq()
+            t1 = time.thread_time()
+            for _ in range(reps):
+                fp()
+            t2 = time.thread_time()
+            runs[("query", kind)].append((t1 - t0) / n * 1e9)
+            runs[("film read", kind)].append((t2 - t1) / per["film read"] * 1e9)
+    for what in per:
+        rt, fx = np.array(runs[(what, "runtime")]), np.array(runs[(what, "fixed")])
+        row = {"thread CPU ns, runtime options (before)": {"min": rt.min(), "10th percentile": np.percentile(rt, 10),
+                                                            "median": np.median(rt)},
+               "thread CPU ns, fixed options (after)": {"min": fx.min(), "10th percentile": np.percentile(fx, 10),
+                                                        "median": np.median(fx)},
+               "after/before, median of the pairs": float(np.median(fx / rt)),
+               "after/before, 10th-90th percentile of the pairs": [float(np.percentile(fx / rt, 10)),
+                                                                    float(np.percentile(fx / rt, 90))],
+               "runs [ns]": {"runtime": rt.tolist(), "fixed": fx.tolist()}}
+        out[what] = row
+        print(f"{what}: before min {rt.min():.1f} / median {np.median(rt):.1f} ns, after min {fx.min():.1f} / "
+              f"median {np.median(fx):.1f} ns, paired ratio {np.median(fx / rt):.3f}", flush=True)
     out["compile"] = []
     for r in range(compile_rounds):
         for variant in (("array", "fixed") if r % 2 == 0 else ("fixed", "array")):
@@ -295,18 +310,28 @@ def chart_fixed(data, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    rounds = data["fixed options"]["rounds"]
-    fig, axs = plt.subplots(1, 2, figsize=(10, 3.6))
-    x = np.arange(len(rounds))
+    d = data["fixed options"]
+    fig, axs = plt.subplots(1, 3, figsize=(13, 3.6))
     for ax, what in zip(axs, ("query", "film read")):
-        ax.plot(x, [r[f"{what} runtime [ns]"] for r in rounds], "o-", label="options at run time (before)")
-        ax.plot(x, [r[f"{what} fixed [ns]"] for r in rounds], "s-", label="options fixed at compile time (after)")
+        runs = d[what]["runs [ns]"]
+        ax.plot(runs["runtime"], "o", ms=3, label="options at run time (before)")
+        ax.plot(runs["fixed"], "s", ms=3, label="options fixed at compile time (after)")
         if what == "query":
             ax.axhline(80, color="k", ls="--", lw=0.8, label="target 80 ns")
-        ax.set_xlabel("round (interleaved)")
-        ax.set_ylabel("min thread CPU ns")
-        ax.set_title({"query": "3-D hermite value + gradient", "film read": "polar ball-ball film read"}[what])
+        ax.set_xlabel("alternation")
+        ax.set_ylabel("thread CPU ns")
+        ax.set_title({"query": "3-D hermite value + gradient", "film read": "polar ball-ball film read"}[what]
+                     + f"\nafter/before {d[what]['after/before, median of the pairs']:.2f} (median of pairs)",
+                     fontsize=9)
         ax.legend(fontsize=7)
+    comp = d["compile"]
+    for i, variant in enumerate(("array", "fixed")):
+        vals = [c["process CPU [s]"] for c in comp if c["variant"] == variant]
+        axs[2].plot([i] * len(vals), vals, "o")
+    axs[2].set_xticks([0, 1], ["options at run time", "fixed"])
+    axs[2].set_xlim(-0.5, 1.5)
+    axs[2].set_ylabel("process CPU [s]")
+    axs[2].set_title("cold compile of the cage-less rhs\n(empty numba cache, child process)", fontsize=9)
     fig.tight_layout()
     _common.save_figure(fig, path)
     plt.close(fig)
@@ -472,7 +497,7 @@ def main(argv=None):
     if args.fixed_options:
         data = {"machine": _common.machine_info(("numba",)),
                 "started": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
-        data["fixed options"] = fixed_options_cost(repeats=args.repeats or 5)
+        data["fixed options"] = fixed_options_cost()
         data["load_average_at_end"] = list(__import__("os").getloadavg())
         _common.write_json(_common.RESULTS / "maps_fixed_options.json", data)
         chart_fixed(data, _common.RESULTS / "maps_fixed_options.png")

@@ -63,6 +63,21 @@ def test_grid_assembly_equals_scikit_fem():
         assert np.abs(mine - ref).max() <= 1e-13 * np.abs(ref).max()
 
 
+def test_grid_interpolation_and_integral_equal_scikit_fem():
+    """A random dof vector and its gradient at the quadrature points, and the integral of a quadrature-point
+    field, against the basis' interpolation (forms.interpolate, scikit-fem's sum) and asm of the integral."""
+    from lubedyn.lubrication.reynolds.solution import _integral
+
+    m = meshes.rectangle(_graded(9, 3.0), _graded(6, 1.0, 0.9))
+    basis, grid = forms.make_basis(m, "P1"), tensor_grid(m, "P1")
+    u = rng.normal(size=basis.N)
+    ref, got = forms.interpolate(basis, u), grid.interpolate(u)
+    assert np.allclose(np.asarray(got), np.asarray(ref), rtol=0, atol=1e-14)
+    assert np.allclose(got.grad, ref.grad, rtol=0, atol=1e-13)
+    f = rng.normal(size=np.asarray(ref).shape)
+    assert grid.integrate(f) == pytest.approx(float(asm(_integral, basis, f=f)), rel=1e-13)
+
+
 @pytest.fixture
 def multigrid_from_200(monkeypatch):
     monkeypatch.setattr(problem, "DIRECT_SOLVER_MAX_DOFS", 200)  # where the solver looks it up

@@ -150,6 +150,28 @@ class TensorGrid:
         _k.source_load(xs, ys, np.ascontiguousarray(g, dtype=float), W, phi, out)
         return out
 
+    def _corners(self, u):
+        """The values of the dof vector ``u`` at each cell's four corners, (4, nelems)."""
+        nx1, ny1 = self.shape
+        U = np.asarray(u, dtype=float).reshape(nx1, ny1)
+        return np.stack([U[ax:ax + nx1 - 1, ay:ay + ny1 - 1].ravel() for ax, ay in _CORNERS])
+
+    def interpolate(self, u) -> skfem.element.DiscreteField:
+        """``u`` (dofs) and its gradient at the quadrature points: sum over the corners of u phi_a, as
+        :func:`lubedyn.lubrication.reynolds.forms.interpolate` on the basis (equal to rounding)."""
+        _, _, phi, ds, dt = self._rule
+        hx, hy = np.diff(self.xs), np.diff(self.ys)
+        c = self._corners(u)
+        value = c.T @ phi
+        grad = np.stack([(c.T @ ds) / np.repeat(hx, hy.size)[:, None], (c.T @ dt) / np.tile(hy, hx.size)[:, None]])
+        return skfem.element.DiscreteField(value, grad)
+
+    def integrate(self, f) -> float:
+        """Integral over the grid of ``f`` (nelems, nqp) at the quadrature points."""
+        W = self._rule[1]
+        area = np.outer(np.diff(self.xs), np.diff(self.ys)).ravel()
+        return float(np.dot(np.asarray(f) @ W, area))
+
     # ------------------------------------------------------------------ geometric multigrid
     def multigrid(self, A, index, max_coarse: int = 2000):
         """A pyamg ``MultilevelSolver`` for ``A``, the grid's matrix restricted to the dofs ``index`` (sorted).
