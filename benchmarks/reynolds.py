@@ -390,14 +390,18 @@ def _stages(film):
     idx = np.flatnonzero(prob.free)
     t["reduction [s]"], _, A = _cpu(lambda: Jp[idx][:, idx])
     b = -R[idx]
+    res = []
     if prob.grid is not None:
-        t["solver setup [s]"], _, ml = _cpu(lambda: prob.grid.multigrid(A, idx))
+        from pyamg.krylov import cg
+
+        t["solver setup [s]"], _, pre = _cpu(lambda: prob.grid.preconditioner(A, idx))
+        t["CG [s]"], _, _ = _cpu(lambda: cg(A, b, M=pre, tol=film.options.amg_tol, maxiter=200, residuals=res))
     else:
         import pyamg
 
         t["solver setup [s]"], _, ml = _cpu(lambda: pyamg.ruge_stuben_solver(A.tocsr()))
-    res = []
-    t["CG [s]"], _, _ = _cpu(lambda: ml.solve(b, tol=film.options.amg_tol, accel="cg", maxiter=200, residuals=res))
+        t["CG [s]"], _, _ = _cpu(lambda: ml.solve(b, tol=film.options.amg_tol, accel="cg", maxiter=200,
+                                                   residuals=res))
     t["CG iterations"] = len(res) - 1
     return t
 

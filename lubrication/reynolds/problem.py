@@ -251,12 +251,18 @@ class _Problem:
             probe = opts.linear_solver == "auto" and not getattr(self, "amg_checked", False)
             maxiter = amg_probe_iterations(opts.amg_tol) if probe else 200
             geometric = opts.linear_solver == "auto" and self.grid is not None and index is not None
-            ml = self.grid.multigrid(M, index) if geometric else pyamg.ruge_stuben_solver(M.tocsr())
             kind = "geometric multigrid (tensor grid) + CG" if geometric else "amg (pyamg Ruge-Stuben + CG)"
             label = "multigrid-CG" if geometric else "AMG-CG"
             method = "geometric, tensor grid" if geometric else "Ruge-Stuben"
             residuals = []
-            x = ml.solve(rhs, tol=opts.amg_tol, accel="cg", maxiter=maxiter, residuals=residuals)
+            if geometric:  # CG in float64 on M, preconditioned by a float32 V-cycle of the grid's hierarchy
+                from pyamg.krylov import cg
+
+                x, _ = cg(M, rhs, M=self.grid.preconditioner(M, index), tol=opts.amg_tol, maxiter=maxiter,
+                          residuals=residuals)
+            else:
+                ml = pyamg.ruge_stuben_solver(M.tocsr())
+                x = ml.solve(rhs, tol=opts.amg_tol, accel="cg", maxiter=maxiter, residuals=residuals)
             iterations = len(residuals) - 1
             relative = residuals[-1] / max(residuals[0], 1e-300) if residuals else 0.0
             self.amg_checked = True

@@ -16,8 +16,9 @@ time at a million unknowns (issue 42, decision 6; profiled in ``benchmarks/reyno
   are the same for every cell up to 1/h_x, 1/h_y), added into the nodes' 9-point stencils and written as
   CSR directly (no COO -> CSR conversion of 16 entries per cell).  The same integrals as scikit-fem's
   assembly, summed in another order: equal to rounding (``tests/test_reynolds_tensor.py``).
-* **Geometric multigrid** (:meth:`TensorGrid.multigrid`) as the CG preconditioner of the symmetric
-  systems above ``DIRECT_SOLVER_MAX_DOFS``: linear interpolation along each axis between every second
+* **Geometric multigrid** (:meth:`TensorGrid.multigrid`, one V-cycle in float32 per CG iteration:
+  :meth:`TensorGrid.preconditioner`) as the CG preconditioner of the symmetric systems above
+  ``DIRECT_SOLVER_MAX_DOFS``: linear interpolation along each axis between every second
   grid line (by the coordinates, so graded axes are interpolated exactly for linear fields), Galerkin
   coarse operators P^T A P, symmetric Gauss-Seidel, all through pyamg's ``MultilevelSolver`` -- no
   strength-of-connection or C/F splitting to compute, which were most of the Ruge-Stuben setup.  Rows
@@ -173,14 +174,40 @@ class TensorGrid:
         return float(np.dot(np.asarray(f) @ W, area))
 
     # ------------------------------------------------------------------ geometric multigrid
+    def preconditioner(self, A, index):
+        """One V-cycle of :meth:`multigrid` in single precision, as a float64 ``LinearOperator`` for CG on ``A``.
+
+        The hierarchy is built for ``A`` scaled by 1/max|diag A| in float32 (the scaling keeps any film's
+        coefficients inside float32's range; the operator scales back), and each residual is cast to
+        float32 after dividing it by its norm (a linear operator still, to rounding).  CG itself runs in
+        float64 on ``A``, so the solution meets ``amg_tol`` as before.  At 1M DOFs (the benchmark's slider) setup
+        and CG took 2.40 s CPU against 2.71 s with the float64 hierarchy, the same 7 CG iterations and the
+        same final residual (median of 4 interleaved, loaded machine; ``benchmarks/HISTORY.md``, issue 42)."""
+        from scipy.sparse.linalg import LinearOperator
+
+        A = A.tocsr()
+        scale = 1.0 / np.max(np.abs(A.diagonal()))
+        single = sp.csr_matrix(((A.data * scale).astype(np.float32), A.indices, A.indptr), shape=A.shape)
+        cycle = self.multigrid(single, index).aspreconditioner()
+
+        def apply(r):
+            r = np.ravel(r)
+            norm = np.linalg.norm(r)
+            if norm == 0.0:
+                return np.zeros_like(r)
+            return (cycle @ (r / norm).astype(np.float32)).astype(np.float64) * (norm * scale)
+
+        return LinearOperator(A.shape, matvec=apply, dtype=np.float64)
+
     def multigrid(self, A, index, max_coarse: int = 2000):
         """A pyamg ``MultilevelSolver`` for ``A``, the grid's matrix restricted to the dofs ``index`` (sorted).
 
         Levels: every second grid line of each axis with more than 2 cells (the last line always kept),
         linear interpolation between them by the coordinates (a tensor product of the two 1-D
         interpolations), restricted to the kept dofs of each level (a coarse node is kept where its fine
-        node is); Galerkin coarse operators; symmetric Gauss-Seidel before and after; SuperLU on the
-        coarsest level (at most ``max_coarse`` unknowns, or where no axis can be coarsened)."""
+        node is); Galerkin coarse operators (in ``A``'s precision); symmetric Gauss-Seidel before and
+        after; SuperLU on the coarsest level (at most ``max_coarse`` unknowns, or where no axis can be
+        coarsened)."""
         from pyamg.multilevel import MultilevelSolver
         from pyamg.relaxation.smoothing import change_smoothers
 
@@ -189,13 +216,14 @@ class TensorGrid:
         keep[index] = True
         levels = [MultilevelSolver.Level()]
         levels[0].A = A.tocsr()
+        dtype = levels[0].A.dtype
         while levels[-1].A.shape[0] > max_coarse:
             picks = [_coarse_lines(a.size) for a in axes]
             if all(p.size == a.size for p, a in zip(picks, axes)):
                 break
             P_full = sp.kron(_interpolation(axes[0], picks[0]), _interpolation(axes[1], picks[1]), format="csr")
             coarse_keep = keep.reshape(axes[0].size, axes[1].size)[np.ix_(picks[0], picks[1])].ravel()
-            P = P_full[keep][:, coarse_keep].tocsr()
+            P = P_full[keep][:, coarse_keep].tocsr().astype(dtype)
             R = P.T.tocsr()
             levels[-1].P, levels[-1].R = P, R
             levels.append(MultilevelSolver.Level())
