@@ -23,6 +23,7 @@ from ..errors import DynamicsInputError
 from ..groups import fail
 from .groups import Bearing, Films, Fidelity, Initial, Operating, Slots
 from ..interp import HERMITE, fixed_options
+from ..specialise import entry_point
 from .kernels import forces, rhs
 from .layout import (DOFS, D_AI, D_AO, D_QI, D_QO, MAP_SPEED_AXES, NB_6DOF, NB_PLANAR, N_RING, PARAMETER_DTYPE,
     RACES, SCENARIOS, TRACTIONS, BallBallMap, KernelArgs, MapArrays, TractionMaps, parameter_record)
@@ -473,6 +474,7 @@ class CagelessBearing:
         six = self.fidelity.dof == "6dof"
         c, s = math.cos(psi_j), math.sin(psi_j)
         dydt = np.empty_like(y)
+        call = entry_point(rhs, 0.0, y, args, dydt)  # no typing per call (lubedyn.dynamics.specialise.entry_point)
 
         def set_pos(rho, z):
             if six:
@@ -483,7 +485,7 @@ class CagelessBearing:
 
         def res(rho, z):
             set_pos(rho, z)
-            rhs(0.0, y, args, dydt)
+            call(0.0, y, args, dydt)
             if six:
                 return (m * (dydt[b + 7] * c + dydt[b + 8] * s + wc * wc * rho), m * dydt[b + 9])
             return (m * dydt[b + 4], 0.0)
@@ -543,6 +545,7 @@ class CagelessBearing:
         fscale = max(self.operating.radial_load, self.operating.axial_load, 1.0) / Z
         scale = (max(self.operating.radial_load, self.operating.axial_load, 1.0) / (Z * Kn)) ** (2.0 / 3.0)
         dydt = np.empty_like(y)
+        call = entry_point(rhs, 0.0, y, args, dydt)
         worst = [0.0]
 
         def residual(x):
@@ -550,7 +553,7 @@ class CagelessBearing:
             worst[0] = 0.0
             for j in range(Z):
                 worst[0] = max(worst[0], self._ball_seat(args, y, j, psi[j], wc))
-            rhs(0.0, y, args, dydt)
+            call(0.0, y, args, dydt)
             return dydt[4:4 + nr] * self.bearing.ring_mass / fscale
 
         x0 = np.zeros(nr)
