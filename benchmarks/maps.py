@@ -12,7 +12,7 @@
    1b. ``--fixed-options``: the map options (axis scales, method, mode) as compile-time constants
    (issue 42, decision 7) against runtime ones, interleaved: the 3-D hermite value + gradient query,
    the bearing's polar film read on the bundled map, and the cold compile of the cage-less
-   right-hand side in a child process (:func:`fixed_options_cost`).
+   right-hand side in a child process, the README main job's integration (:func:`fixed_options_cost`).
 2. Map resolution against interpolation error against build time:
    - the analytic rigid isoviscous sphere-sphere squeeze film
      F = 6 pi eta R_eff^2 v D^2/(h (h + D)^2) (exact reference, cheap), nodes
@@ -227,7 +227,8 @@ def fixed_options_cost(alternations=60, n=200_000, compile_rounds=2):
     (this VM's timings are bimodal under load: the pairs see the same state).  (c) The cold
     compile of the cage-less right-hand side with that map in a child process with an empty numba cache
     (numba's compile events, :func:`lubedyn.compilation.report_compilation`), before and after,
-    alternating, ``compile_rounds`` times.  Results equal bit for bit are checked on the way."""
+    alternating, ``compile_rounds`` times.  (d) The README main job's integration with both kinds of options
+    (:func:`integration_cost`).  Results equal bit for bit are checked on the way."""
     import json
     import os
     import subprocess
@@ -290,6 +291,7 @@ def fixed_options_cost(alternations=60, n=200_000, compile_rounds=2):
         out[what] = row
         print(f"{what}: before min {rt.min():.1f} / median {np.median(rt):.1f} ns, after min {fx.min():.1f} / "
               f"median {np.median(fx):.1f} ns, paired ratio {np.median(fx / rt):.3f}", flush=True)
+    out["main job integration"] = integration_cost()
     out["compile"] = []
     for r in range(compile_rounds):
         for variant in (("array", "fixed") if r % 2 == 0 else ("fixed", "array")):
@@ -302,6 +304,42 @@ def fixed_options_cost(alternations=60, n=200_000, compile_rounds=2):
             out["compile"].append(rec)
             print(f"cold compile of rhs ({variant}): {rec['Compile time [s]']:.1f} s, "
                   f"{rec['process CPU [s]']:.1f} s CPU", flush=True)
+    return out
+
+
+def integration_cost(rounds=8):
+    """The README main job's integration (``cases/cageless_6206_10krpm_short.toml``: 20 ms, DOPRI5 at its rtol,
+    the bundled film map) by the pointer-bound DOPRI5 kernel, with the model's fixed map options and with the
+    same options as an int64 array, alternating, process CPU; the two trajectories compared bit for bit."""
+    from lubedyn.config import CASES_DIR, load_case
+    from lubedyn.dynamics import integrators
+    from lubedyn.dynamics.cageless.kernels import rhs
+    from lubedyn.scenes.dynamics import build
+
+    case = load_case(CASES_DIR / "cageless_6206_10krpm_short.toml")
+    setup = build(case)
+    ig = case.integrator
+    a = setup.model.args()
+    variants = {"fixed": a,
+                "runtime": a._replace(film_map=a.film_map._replace(opts=np.array(a.film_map.opts, dtype=np.int64)))}
+    kernel = integrators.kernel_for("dopri5", rhs)
+
+    def run(name):
+        return kernel(setup.y0, setup.t_out, variants[name], ig.rtol, ig.atol, 0.0, 0.0, 10**8)
+
+    first = {name: run(name) for name in variants}  # (compiles the runtime-option model)
+    out = {"bit-identical trajectories": bool(np.array_equal(first["fixed"][0], first["runtime"][0])),
+           "steps": int(first["fixed"][1][0]) if np.ndim(first["fixed"][1]) else None,
+           "process CPU [s]": {"runtime": [], "fixed": []}}
+    for r in range(rounds):
+        for name in (("runtime", "fixed") if r % 2 == 0 else ("fixed", "runtime")):
+            c0 = time.process_time()
+            run(name)
+            out["process CPU [s]"][name].append(time.process_time() - c0)
+    rt, fx = (np.array(out["process CPU [s]"][k]) for k in ("runtime", "fixed"))
+    out["after/before, median of the pairs"] = float(np.median(fx / rt))
+    print(f"main job integration: before {np.median(rt):.2f} s, after {np.median(fx):.2f} s CPU (median), paired "
+          f"{np.median(fx / rt):.3f}; bit-identical {out['bit-identical trajectories']}", flush=True)
     return out
 
 
