@@ -135,9 +135,10 @@ class Fixed(int):
     that reads it.  The kernels are the same source for a runtime int64 array of options (the tests'
     and the Python front end's) and for fixed ones: numba compiles one version per argument *types*
     (per combination of values here), cached on disk like any other signature, and the arithmetic is
-    the same, so the results are the same bits (``tests/test_interp.py``).  Measured on the 3-D
-    hermite value + gradient query (``benchmarks/maps.py --query-only``, "fixed" rows): see
-    ``benchmarks/HISTORY.md``, issue 42.
+    the same, so the results are the same bits (``tests/test_interp.py``).  Measured
+    (``benchmarks/maps.py --fixed-options``, before/after interleaved; ``benchmarks/HISTORY.md``, issue 42):
+    the 3-D hermite value + gradient query 0.83 of the runtime-option one, the README main job's
+    integration 0.82-0.93, the cold compile of the cage-less right-hand side unchanged.
 
     A value numba cannot fingerprint: a Python-side call of a kernel with fixed options is typed by
     ``numba.typeof`` each time (tens of microseconds), which is nothing against a right-hand side called
