@@ -80,7 +80,44 @@ def test_grid_interpolation_and_integral_equal_scikit_fem():
 
 @pytest.fixture
 def multigrid_from_200(monkeypatch):
+    from lubedyn.lubrication.reynolds import tensor
+
     monkeypatch.setattr(problem, "DIRECT_SOLVER_MAX_DOFS", 200)  # where the solver looks it up
+    monkeypatch.setattr(tensor, "MULTIGRID_MAX_COARSE", 40)  # several levels at these sizes
+
+
+def test_multigrid_hierarchy_on_a_graded_grid_with_holes():
+    """The grid hierarchy on a graded 64 x 48 grid, with the boundary and a scattered tenth of the nodes
+    removed (as an active set removes cavitated nodes): four or more levels; Galerkin operators (R = P^T);
+    as CG's preconditioner (rough coefficients: independent random values at every quadrature point) it
+    reaches 1e-10 in at most 20 iterations (measured 14-15, float64 and float32 cycles), where plain CG
+    needs more than 100 (measured 133-339)."""
+    from pyamg.krylov import cg
+
+    rng = np.random.default_rng(3)
+    m = meshes.rectangle(_graded(64, 2.0, 1.03), _graded(48, 1.0, 0.97))
+    grid = tensor_grid(m, "P1")
+    basis = forms.make_basis(m, "P1")
+    a = rng.uniform(0.5, 2.0, np.asarray(basis.global_coordinates()).shape[1:])
+    free = np.ones(grid.N, dtype=bool)
+    free[grid.boundary_dofs()] = False
+    free[rng.choice(grid.N, grid.N // 10, replace=False)] = False
+    idx = np.flatnonzero(free)
+    A = grid.diffusion(a)[idx][:, idx].tocsr()
+    ml = grid.multigrid(A, idx, max_coarse=40)
+    assert len(ml.levels) >= 4
+    P = ml.levels[0].P
+    assert abs(ml.levels[0].R - P.T).max() == 0
+    assert abs(ml.levels[1].A - P.T @ A @ P).max() <= 1e-12 * abs(ml.levels[1].A).max()
+    b = rng.normal(size=idx.size)
+    its, plain = [], []
+    cg(A, b, M=ml.aspreconditioner(), tol=1e-10, maxiter=200, residuals=its)
+    cg(A, b, tol=1e-10, maxiter=100, residuals=plain)
+    assert len(its) - 1 <= 20 and len(plain) - 1 >= 100
+    # the preconditioner of the solver (float32 cycle) does as well
+    pre = []
+    cg(A, b, M=grid.preconditioner(A, idx), tol=1e-10, maxiter=200, residuals=pre)
+    assert len(pre) - 1 <= 20
 
 
 def _both_paths(film):
@@ -94,7 +131,7 @@ def test_wide_slider_on_both_paths(multigrid_from_200):
     left/right only), P1 on a graded 48 x 6 grid: the structured path (chosen automatically, with the
     multigrid) and the general path (Ruge-Stuben AMG) agree to 1e-8 of p_max (amg_tol 1e-10); both
     meet the closed-form pressure to 1.5e-3 of p_max (measured 6.1e-4 on both: P1 at 48 cells; the paths
-    agree to 1.5e-12)."""
+    agree to 1.4e-12)."""
     L, h_out = 0.05, 20e-6
     m = meshes.rectangle(_graded(48, L, 1.02), np.linspace(0.0, 0.01, 7))
     film = Film(m, InclinedSlider(2 * h_out, h_out, L), Lubricant.newtonian(ETA), velocity_lower=(5.0, 0.0),
@@ -111,7 +148,7 @@ def test_wide_slider_on_both_paths(multigrid_from_200):
 def test_finite_slider_on_both_paths(multigrid_from_200):
     """Square pad, p = 0 on all edges (the benchmark's 1M-DOF scene at 40 x 40): load against the Fourier
     series (P1 error measured 1.7e-3 at 40 x 40 on both: bound 4e-3), the paths agree to 1e-8 of p_max
-    (measured 2e-13)."""
+    (measured 7e-13)."""
     h_out, h_in, L = 20e-6, 44e-6, 0.05
     ref = cf.finite_slider_load(h_in, h_out, L, L, ETA, 2.5, n_terms=161)
     xs = np.linspace(0.0, L, 41)

@@ -38,6 +38,7 @@ import skfem
 
 from . import _tensor_kernels as _k
 
+MULTIGRID_MAX_COARSE = 2000  # unknowns of the coarsest multigrid level at most (SuperLU there)
 _CORNERS = [(0, 0), (0, 1), (1, 0), (1, 1)]  # corner a = (ax, ay) of a cell: node (i + ax, j + ay)
 
 
@@ -204,18 +205,19 @@ class TensorGrid:
 
         return LinearOperator(A.shape, matvec=apply, dtype=np.float64)
 
-    def multigrid(self, A, index, max_coarse: int = 2000):
+    def multigrid(self, A, index, max_coarse: int | None = None):
         """A pyamg ``MultilevelSolver`` for ``A``, the grid's matrix restricted to the dofs ``index`` (sorted).
 
         Levels: every second grid line of each axis with more than 2 cells (the last line always kept),
         linear interpolation between them by the coordinates (a tensor product of the two 1-D
         interpolations), restricted to the kept dofs of each level (a coarse node is kept where its fine
         node is); Galerkin coarse operators (in ``A``'s precision); symmetric Gauss-Seidel before and
-        after; SuperLU on the coarsest level (at most ``max_coarse`` unknowns, or where no axis can be
+        after; SuperLU on the coarsest level (at most ``max_coarse`` unknowns, default :data:`MULTIGRID_MAX_COARSE`, or where no axis can be
         coarsened)."""
         from pyamg.multilevel import MultilevelSolver
         from pyamg.relaxation.smoothing import change_smoothers
 
+        max_coarse = MULTIGRID_MAX_COARSE if max_coarse is None else max_coarse
         axes = (self.xs, self.ys)
         keep = np.zeros(self.N, dtype=bool)
         keep[index] = True
@@ -228,6 +230,8 @@ class TensorGrid:
                 break
             P_full = sp.kron(_interpolation(axes[0], picks[0]), _interpolation(axes[1], picks[1]), format="csr")
             coarse_keep = keep.reshape(axes[0].size, axes[1].size)[np.ix_(picks[0], picks[1])].ravel()
+            if not np.any(coarse_keep):  # no kept dof on the coarse lines (a scattered active set): stop here
+                break
             P = P_full[keep][:, coarse_keep].tocsr().astype(dtype)
             R = P.T.tocsr()
             levels[-1].P, levels[-1].R = P, R
