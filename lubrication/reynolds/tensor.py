@@ -36,7 +36,9 @@ import numpy as np
 import scipy.sparse as sp
 import skfem
 
-from . import _tensor_kernels as _k
+from ._tensor_kernels import diffusion_csr, stencil_nnz
+from ._tensor_kernels import flux_load as flux_load_kernel
+from ._tensor_kernels import source_load as source_load_kernel
 
 MULTIGRID_MAX_COARSE = 2000  # unknowns of the coarsest multigrid level at most (SuperLU there)
 _CORNERS = [(0, 0), (0, 1), (1, 0), (1, 1)]  # corner a = (ax, ay) of a cell: node (i + ax, j + ay)
@@ -130,10 +132,10 @@ class TensorGrid:
     def diffusion(self, a) -> sp.csr_matrix:
         """The matrix of int a grad u . grad v for ``a`` (nelems, nqp) at the quadrature points."""
         xs, ys, W, _, ds, dt = self._arrays()
-        nnz = _k.stencil_nnz(xs.size, ys.size)
+        nnz = stencil_nnz(xs.size, ys.size)
         index = np.int32 if nnz < np.iinfo(np.int32).max else np.int64
         indptr, indices, data = np.empty(self.N + 1, dtype=index), np.empty(nnz, dtype=index), np.empty(nnz)
-        _k.diffusion_csr(xs, ys, np.ascontiguousarray(a, dtype=float), W, ds, dt, indptr, indices, data)
+        diffusion_csr(xs, ys, np.ascontiguousarray(a, dtype=float), W, ds, dt, indptr, indices, data)
         A = sp.csr_matrix((data, indices, indptr), shape=(self.N, self.N), copy=False)
         A.has_sorted_indices = True  # the kernel writes each row's columns in increasing order
         return A
@@ -142,14 +144,14 @@ class TensorGrid:
         """The vector of int f . grad v, ``f`` (2, nelems, nqp)."""
         xs, ys, W, _, ds, dt = self._arrays()
         out = np.zeros(self.N)
-        _k.flux_load(xs, ys, np.ascontiguousarray(f, dtype=float), W, ds, dt, out)
+        flux_load_kernel(xs, ys, np.ascontiguousarray(f, dtype=float), W, ds, dt, out)
         return out
 
     def source_load(self, g) -> np.ndarray:
         """The vector of int g v, ``g`` (nelems, nqp)."""
         xs, ys, W, phi, _, _ = self._arrays()
         out = np.zeros(self.N)
-        _k.source_load(xs, ys, np.ascontiguousarray(g, dtype=float), W, phi, out)
+        source_load_kernel(xs, ys, np.ascontiguousarray(g, dtype=float), W, phi, out)
         return out
 
     def _corners(self, u):
