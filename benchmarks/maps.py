@@ -9,6 +9,10 @@
    does).  Wall-clock median, and minimum thread CPU time (robust on a shared
    machine), of repeats of 200,000 queries, ns per query.
    ``--query-only`` runs only this section (one core, about a minute).
+   1b. ``--fixed-options``: the map options (axis scales, method, mode) as compile-time constants
+   (issue 42, decision 7) against runtime ones, interleaved: the 3-D hermite value + gradient query,
+   the bearing's polar film read on the bundled map, and the cold compile of the cage-less
+   right-hand side in a child process, the README main job's integration (:func:`fixed_options_cost`).
 2. Map resolution against interpolation error against build time:
    - the analytic rigid isoviscous sphere-sphere squeeze film
      F = 6 pi eta R_eff^2 v D^2/(h (h + D)^2) (exact reference, cheap), nodes
@@ -31,11 +35,12 @@ import time
 from pathlib import Path
 
 import numpy as np
+from numba import njit
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the benchmarks package
 from benchmarks import _common, interp_cells  # noqa: E402
 from lubedyn import maps  # noqa: E402
-from lubedyn.dynamics import interp  # noqa: E402
+from lubedyn.dynamics import contacts, interp  # noqa: E402
 
 GAP, SPEED = "Central gap [m]", "Approach speed [m/s]"
 HERMITE_CELLS = interp_cells.HERMITE_CELLS
@@ -162,6 +167,212 @@ def query_cost(repeats=5, n=200_000):
                       f"{cpu_val / n * 1e9:6.1f} CPU min; value+grad {t_grad / n * 1e9:7.1f} wall median, "
                       f"{cpu_grad / n * 1e9:6.1f} CPU min{inside}", flush=True)
     return out
+
+
+# ---------------------------------------------------------------- 1b. fixed map options (issue 42, decision 7)
+@njit(cache=True)
+def _polar_reads(h, v, ue, p, ax0, ax1, ax2, vals, opts, counter):
+    """The bearing's film read (``lubedyn.dynamics.contacts._film_map``) at every point, summed."""
+    s = 0.0
+    for q in range(h.size):
+        f, d = contacts._film_map(h[q], v[q], ue[q], p, ax0, ax1, ax2, vals, opts, counter)
+        s += f + d
+    return s
+
+
+def _bundled_polar_model():
+    """Paper B's bearing with the bundled polar ball-ball map, as ``tests/test_polar_film_map.py`` builds it."""
+    from lubedyn import film_points as fp
+    from lubedyn.config import CASES_DIR
+    from lubedyn.papers.zhang2024.parameters import cageless_bearing
+
+    fmap = maps.FilmMap.load(CASES_DIR / "maps" / "ball_ball.npz")
+    params = fmap.provenance.get("params") or fp.ball_ball_default_params()
+    return cageless_bearing(films=dict(ball_ball="map", map=fmap.dynamics_film_map(), viscosity=float(params["eta0"]),
+                                       pressure_viscosity=float(params["alpha"])))
+
+
+def compile_probe(variant):
+    """Child process of :func:`fixed_options_cost`: compile the cage-less right-hand side with the bundled map
+    (empty numba cache: what a first CLI run compiles), with the map options as a runtime int64 array
+    (``"array"``, before) or fixed (``"fixed"``, after); print the compile record as JSON."""
+    import json
+
+    from lubedyn.compilation import report_compilation
+    from lubedyn.dynamics.cageless import kernels
+
+    model = _bundled_polar_model()
+    args = model.args()
+    if variant == "array":
+        args = args._replace(film_map=args.film_map._replace(opts=np.array(args.film_map.opts, dtype=np.int64)))
+    y0 = model.initial_state(settle=False)
+    dydt = np.empty_like(y0)
+    c0 = time.process_time()
+    with report_compilation() as record:
+        kernels.rhs(0.0, y0, args, dydt)
+    record["process CPU [s]"] = time.process_time() - c0
+    record["signature"] = str(kernels.rhs.signatures[-1])[:400]
+    print(json.dumps(record))
+
+
+def fixed_options_cost(alternations=60, n=200_000, compile_rounds=2):
+    """Decision 7 of issue 42: the map options (axis scales ...) as compile-time constants.
+
+    Before/after single timings alternating in one process, ``alternations`` pairs: (a) the 3-D hermite value + gradient
+    query consumed in a numba loop (as section 1's "inside numba", runtime int flags against
+    :class:`lubedyn.dynamics.interp.Fixed` flags); (b) the bearing's polar film read on the bundled map
+    (``contacts._film_map``: conversion to (gap, rho, theta), the query, the chain rule) at 4,096 random
+    states, options as the int64 array against the fixed tuple the model now passes.  Thread CPU ns per
+    query: minimum, 10th percentile and median of each, and the median of the pairs' ratios after/before
+    (this VM's timings are bimodal under load: the pairs see the same state).  (c) The cold
+    compile of the cage-less right-hand side with that map in a child process with an empty numba cache
+    (numba's compile events, :func:`lubedyn.compilation.report_compilation`), before and after,
+    alternating, ``compile_rounds`` times.  (d) The README main job's integration with both kinds of options
+    (:func:`integration_cost`).  Results equal bit for bit are checked on the way."""
+    import json
+    import os
+    import subprocess
+    import tempfile
+
+    rng = np.random.default_rng(0)
+    nodes = [np.geomspace(5e-8, 5e-5, 19), np.linspace(-0.2, 0.9, 12), np.linspace(0.0, 0.05, 3)]
+    logs = (1, 0, 0)
+    axes = [interp.prepare_axis(x, l) for x, l in zip(nodes, logs)]
+    deriv = interp.hermite_data(tuple(axes), rng.normal(size=(19, 12, 3)).cumsum(axis=0))
+    pts = np.stack([np.exp(rng.uniform(np.log(5e-8), np.log(5e-5), n)), rng.uniform(-0.2, 0.9, n),
+                    rng.uniform(0, 0.05, n)], axis=1)
+    counter = np.zeros(1, np.int64)
+    flags = {"runtime": (1, 0, 0, 0), "fixed": interp.fixed_options((1, 0, 0, 0))}
+
+    def query(kind):
+        l0, l1, l2, lv = flags[kind]
+        return lambda: interp_cells.hgsum3(axes[0], axes[1], axes[2], l0, l1, l2, deriv, lv, pts, 0, counter)
+
+    model = _bundled_polar_model()
+    args = model.args()
+    ma, p = args.film_map, args.bbp[0]
+    m = 4096
+    h = np.exp(rng.uniform(np.log(math.exp(ma.ax0[0])), np.log(math.exp(ma.ax0[-1])), m))
+    v = rng.uniform(-0.05, 1.0, m)
+    ue = rng.uniform(0.0, 5.0, m)
+    opts = {"runtime": np.array(ma.opts, dtype=np.int64), "fixed": ma.opts}
+
+    def polar(kind):
+        return lambda: _polar_reads(h, v, ue, p, ma.ax0, ma.ax1, ma.ax2, ma.values, opts[kind], counter)
+
+    out = {"query points": n, "film-read states": m, "alternations": alternations}
+    same_query = query("runtime")() == query("fixed")()  # (compiles both)
+    same_polar = polar("runtime")() == polar("fixed")()
+    out["bit-identical sums (query, film read)"] = [bool(same_query), bool(same_polar)]
+    reps = 20  # the film reads are short: 20 passes per timing
+    per = {"query": n, "film read": reps * m}
+    runs = {(what, kind): [] for what in per for kind in ("runtime", "fixed")}
+    for r in range(alternations):  # single timings alternating before/after: the pairs share the machine's state
+        for kind in (("runtime", "fixed") if r % 2 == 0 else ("fixed", "runtime")):
+            fq, fp = query(kind), polar(kind)
+            t0 = time.thread_time()
+            fq()
+            t1 = time.thread_time()
+            for _ in range(reps):
+                fp()
+            t2 = time.thread_time()
+            runs[("query", kind)].append((t1 - t0) / n * 1e9)
+            runs[("film read", kind)].append((t2 - t1) / per["film read"] * 1e9)
+    for what in per:
+        rt, fx = np.array(runs[(what, "runtime")]), np.array(runs[(what, "fixed")])
+        row = {"thread CPU ns, runtime options (before)": {"min": rt.min(), "10th percentile": np.percentile(rt, 10),
+                                                            "median": np.median(rt)},
+               "thread CPU ns, fixed options (after)": {"min": fx.min(), "10th percentile": np.percentile(fx, 10),
+                                                        "median": np.median(fx)},
+               "after/before, median of the pairs": float(np.median(fx / rt)),
+               "after/before, 10th-90th percentile of the pairs": [float(np.percentile(fx / rt, 10)),
+                                                                    float(np.percentile(fx / rt, 90))],
+               "runs [ns]": {"runtime": rt.tolist(), "fixed": fx.tolist()}}
+        out[what] = row
+        print(f"{what}: before min {rt.min():.1f} / median {np.median(rt):.1f} ns, after min {fx.min():.1f} / "
+              f"median {np.median(fx):.1f} ns, paired ratio {np.median(fx / rt):.3f}", flush=True)
+    out["main job integration"] = integration_cost()
+    out["compile"] = []
+    for r in range(compile_rounds):
+        for variant in (("array", "fixed") if r % 2 == 0 else ("fixed", "array")):
+            with tempfile.TemporaryDirectory() as cache:
+                env = dict(os.environ, NUMBA_CACHE_DIR=cache, LUBEDYN_BACKGROUND_COMPILE="0")
+                res = subprocess.run([sys.executable, __file__, "--compile-probe", variant], env=env,
+                                     capture_output=True, text=True, check=True)
+            rec = json.loads(res.stdout.strip().splitlines()[-1])
+            rec["variant"] = variant
+            out["compile"].append(rec)
+            print(f"cold compile of rhs ({variant}): {rec['Compile time [s]']:.1f} s, "
+                  f"{rec['process CPU [s]']:.1f} s CPU", flush=True)
+    return out
+
+
+def integration_cost(rounds=8):
+    """The README main job's integration (``cases/cageless_6206_10krpm_short.toml``: 20 ms, DOPRI5 at its rtol,
+    the bundled film map) by the pointer-bound DOPRI5 kernel, with the model's fixed map options and with the
+    same options as an int64 array, alternating, process CPU; the two trajectories compared bit for bit."""
+    from lubedyn.config import CASES_DIR, load_case
+    from lubedyn.dynamics import integrators
+    from lubedyn.dynamics.cageless.kernels import rhs
+    from lubedyn.scenes.dynamics import build
+
+    case = load_case(CASES_DIR / "cageless_6206_10krpm_short.toml")
+    setup = build(case)
+    ig = case.integrator
+    a = setup.model.args()
+    variants = {"fixed": a,
+                "runtime": a._replace(film_map=a.film_map._replace(opts=np.array(a.film_map.opts, dtype=np.int64)))}
+    kernel = integrators.kernel_for("dopri5", rhs)
+
+    def run(name):
+        return kernel(setup.y0, setup.t_out, variants[name], ig.rtol, ig.atol, 0.0, 0.0, 10**8)
+
+    first = {name: run(name) for name in variants}  # (compiles the runtime-option model)
+    out = {"bit-identical trajectories": bool(np.array_equal(first["fixed"][0], first["runtime"][0])),
+           "steps": int(first["fixed"][1][0]) if np.ndim(first["fixed"][1]) else None,
+           "process CPU [s]": {"runtime": [], "fixed": []}}
+    for r in range(rounds):
+        for name in (("runtime", "fixed") if r % 2 == 0 else ("fixed", "runtime")):
+            c0 = time.process_time()
+            run(name)
+            out["process CPU [s]"][name].append(time.process_time() - c0)
+    rt, fx = (np.array(out["process CPU [s]"][k]) for k in ("runtime", "fixed"))
+    out["after/before, median of the pairs"] = float(np.median(fx / rt))
+    print(f"main job integration: before {np.median(rt):.2f} s, after {np.median(fx):.2f} s CPU (median), paired "
+          f"{np.median(fx / rt):.3f}; bit-identical {out['bit-identical trajectories']}", flush=True)
+    return out
+
+
+def chart_fixed(data, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    d = data["fixed options"]
+    fig, axs = plt.subplots(1, 3, figsize=(13, 3.6))
+    for ax, what in zip(axs, ("query", "film read")):
+        runs = d[what]["runs [ns]"]
+        ax.plot(runs["runtime"], "o", ms=3, label="options at run time (before)")
+        ax.plot(runs["fixed"], "s", ms=3, label="options fixed at compile time (after)")
+        if what == "query":
+            ax.axhline(80, color="k", ls="--", lw=0.8, label="target 80 ns")
+        ax.set_xlabel("alternation")
+        ax.set_ylabel("thread CPU ns")
+        ax.set_title({"query": "3-D hermite value + gradient", "film read": "polar ball-ball film read"}[what]
+                     + f"\nafter/before {d[what]['after/before, median of the pairs']:.2f} (median of pairs)",
+                     fontsize=9)
+        ax.legend(fontsize=7)
+    comp = d["compile"]
+    for i, variant in enumerate(("array", "fixed")):
+        vals = [c["process CPU [s]"] for c in comp if c["variant"] == variant]
+        axs[2].plot([i] * len(vals), vals, "o")
+    axs[2].set_xticks([0, 1], ["options at run time", "fixed"])
+    axs[2].set_xlim(-0.5, 1.5)
+    axs[2].set_ylabel("process CPU [s]")
+    axs[2].set_title("cold compile of the cage-less rhs\n(empty numba cache, child process)", fontsize=9)
+    fig.tight_layout()
+    _common.save_figure(fig, path)
+    plt.close(fig)
 
 
 # ---------------------------------------------------------------- 2. resolution vs error (analytic)
@@ -313,7 +524,23 @@ def main(argv=None):
                     help="only section 1 (query cost, ~1 min on one core) -> results/maps_query.json")
     ap.add_argument("--repeats", type=int, default=None,
                     help="repeats per query-cost timing (default 7 with --query-only, 5, 3 with --quick)")
+    ap.add_argument("--fixed-options", action="store_true",
+                    help="only section 1b (map options fixed at compile time, before/after, ~3 min) "
+                         "-> results/maps_fixed_options.json, .png")
+    ap.add_argument("--compile-probe", choices=("array", "fixed"), help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
+    if args.compile_probe:
+        compile_probe(args.compile_probe)
+        return
+    if args.fixed_options:
+        data = {"machine": _common.machine_info(("numba",)),
+                "started": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+        data["fixed options"] = fixed_options_cost()
+        data["load_average_at_end"] = list(__import__("os").getloadavg())
+        _common.write_json(_common.RESULTS / "maps_fixed_options.json", data)
+        chart_fixed(data, _common.RESULTS / "maps_fixed_options.png")
+        print("wrote results/maps_fixed_options.json, .png")
+        return
     if args.query_only:
         data = {"machine": _common.machine_info(("numba",)),
                 "started": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),

@@ -24,6 +24,11 @@ Scenes
 2. A ~1-million-DOF P1 solve (inclined slider, 1000 x 1000 quads, full film):
    mesh, setup, assembly, reduction and linear-solve times separately, the
    solver used, and a cProfile of the public ``solve``.
+   2b. ``--big-paths``: the same solve on the structured path (tensor grid: grid
+   assembly, geometric multigrid; what ``solve`` picks on this mesh) and on
+   scikit-fem's general path (``SolverOptions(structured=False)``), interleaved,
+   process CPU seconds, stages, cProfiles, and their agreement
+   (``results/reynolds_big_paths.json``, ``.png``).
 
 3. ROSS's finite-difference journal solver (``ross.bearings.fluid_flow``) on
    the same bearing (half-Sommerfeld, which is what it computes): load,
@@ -292,13 +297,13 @@ def _phases(film):
     b = -R[idx]
     t["reduction to free dofs [s]"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    prob.solve_linear(A, b, symmetric=True)
+    prob.solve_linear(A, b, symmetric=True, index=idx)
     t["linear solve [s]"] = time.perf_counter() - t0
     return t, getattr(prob, "linear_solver_used", None), A.tocsr(), b
 
 
-def _profile(fn, top=25):
-    prof = cProfile.Profile()
+def _profile(fn, top=25, timer=None):
+    prof = cProfile.Profile(timer) if timer is not None else cProfile.Profile()
     prof.enable()
     fn()
     prof.disable()
@@ -363,6 +368,120 @@ def bench_big(clock, n, repeats):
         out["phases"] = f"not measured: {type(exc).__name__}: {exc}"
     out["profile of solve()"] = _profile(lambda: solve(film))
     return out
+
+
+# ------------------------------------------------------------------ 2b. structured against general path
+def _cpu(fn):
+    """(process CPU seconds, wall seconds, result) of ``fn()``."""
+    c0, t0 = time.process_time(), time.perf_counter()
+    out = fn()
+    return time.process_time() - c0, time.perf_counter() - t0, out
+
+
+def _stages(film):
+    """CPU seconds of the stages of one solve (as :func:`_phases`), the multigrid or AMG setup and its CG
+    apart."""
+    from lubedyn.lubrication.reynolds import problem as rey
+
+    t = {}
+    t["setup [s]"], _, prob = _cpu(lambda: rey._Problem(film))
+    p = np.where(prob.fixed, prob.p_fixed, film.ambient_pressure)
+    t["assembly [s]"], _, (R, Jp, _) = _cpu(lambda: prob.assemble(p, np.zeros(prob.N), with_void=False))
+    idx = np.flatnonzero(prob.free)
+    t["reduction [s]"], _, A = _cpu(lambda: Jp[idx][:, idx])
+    b = -R[idx]
+    res = []
+    if prob.grid is not None:
+        from pyamg.krylov import cg
+
+        t["solver setup [s]"], _, pre = _cpu(lambda: prob.grid.preconditioner(A, idx))
+        t["CG [s]"], _, _ = _cpu(lambda: cg(A, b, M=pre, tol=film.options.amg_tol, maxiter=200, residuals=res))
+    else:
+        import pyamg
+
+        t["solver setup [s]"], _, ml = _cpu(lambda: pyamg.ruge_stuben_solver(A.tocsr()))
+        t["CG [s]"], _, _ = _cpu(lambda: ml.solve(b, tol=film.options.amg_tol, accel="cg", maxiter=200,
+                                                   residuals=res))
+    t["CG iterations"] = len(res) - 1
+    return t
+
+
+def bench_big_paths(clock, n, rounds):
+    """The 1M-DOF scene on the structured path (P1 tensor grid: grid assembly, geometric multigrid; chosen
+    automatically) and on scikit-fem's general path (``SolverOptions(structured=False)``: what every mesh
+    took before), interleaved in this process ``rounds`` times, process CPU seconds (the machine is
+    shared) and wall seconds, with the reference run's ratio; then the stages of each and a cProfile
+    (CPU time) of each ``solve()``, and the pressures' agreement."""
+    from lubedyn.lubrication.reynolds import SolverOptions
+
+    film = slider_film(n)
+    films = {"structured": film, "general": film.with_(options=SolverOptions(structured=False))}
+    out = {"parameters": {**SLIDER, "cells": f"{n} x {n} quads", "element": "P1", "cavitation": "none"},
+           "target [s]": 2.0, "rounds": []}
+    sols = {}
+    for r in range(rounds):
+        row = {}
+        for name in (("general", "structured") if r % 2 == 0 else ("structured", "general")):
+            cpu, wall, sol = _cpu(lambda: solve(films[name]))
+            row[f"{name} solve CPU [s]"], row[f"{name} solve wall [s]"] = cpu, wall
+            row[f"{name} load CPU [s]"], _, load = _cpu(lambda: sol.load)
+            row[f"{name} load [N]"] = float(load)
+            row[f"{name} linear solver"] = sol.info["linear_solver"]
+            sols[name] = sol
+        ref_cpu, _, _ = _cpu(lambda: solve(journal_film(64, "P1", "none")))
+        row["reference run CPU [s]"] = ref_cpu
+        row["structured/general solve CPU"] = row["structured solve CPU [s]"] / row["general solve CPU [s]"]
+        out["rounds"].append(row)
+        log.info("big paths round %d: general %.2f s CPU, structured %.2f s CPU (ratio %.2f); load %.2f / %.2f s",
+                 r, row["general solve CPU [s]"], row["structured solve CPU [s]"], row["structured/general solve CPU"],
+                 row["general load CPU [s]"], row["structured load CPU [s]"])
+    out["dofs"] = int(sols["structured"].info["dofs"])
+    g, f = sols["general"], sols["structured"]
+    out["max |p_structured - p_general| / p_max"] = float(np.max(np.abs(f.pressure_dofs - g.pressure_dofs)) / g.p_max)
+    out["load relative difference"] = float(f.load / g.load - 1)
+    del sols, g, f
+    out["stages (CPU)"] = {name: _stages(films[name]) for name in ("general", "structured")}
+    for name, st in out["stages (CPU)"].items():
+        log.info("  %s stages: %s", name, ", ".join(f"{k} {v:.2f}" for k, v in st.items()))
+    out["cProfile (CPU) of solve()"] = {name: _profile(lambda: solve(films[name]), timer=time.process_time)
+                                        for name in ("general", "structured")}
+    return out
+
+
+def plot_big_paths(data, path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    big = data["big paths"]
+    fig, axs = plt.subplots(1, 2, figsize=(11, 4), constrained_layout=True)
+    rounds = big["rounds"]
+    x = np.arange(len(rounds))
+    for name, marker in (("general", "o"), ("structured", "s")):
+        axs[0].plot(x, [r[f"{name} solve CPU [s]"] for r in rounds], marker + "-", label=f"{name} path: solve()")
+        axs[0].plot(x, [r[f"{name} solve CPU [s]"] + r[f"{name} load CPU [s]"] for r in rounds], marker + ":",
+                    label=f"{name} path: solve() + load")
+    axs[0].axhline(big["target [s]"], color="k", ls="--", lw=0.8, label="target 2 s (warm, idle machine)")
+    axs[0].set_xlabel("round (interleaved)")
+    axs[0].set_ylabel("process CPU [s]")
+    ratios = [r["structured/general solve CPU"] for r in rounds]
+    load = data["machine"].get("load_average_at_start") or [float("nan")]
+    axs[0].set_title(f"{big['dofs']:,} DOF P1 slider: structured/general {min(ratios):.2f}-{max(ratios):.2f}\n"
+                     f"(load average {load[0]:.1f} at the start: CPU seconds above idle ones)", fontsize=9)
+    axs[0].legend(fontsize=7)
+    names = ["setup [s]", "assembly [s]", "reduction [s]", "solver setup [s]", "CG [s]"]
+    bottom = np.zeros(2)
+    for k in names:
+        vals = np.array([big["stages (CPU)"][p][k] for p in ("general", "structured")])
+        axs[1].bar([0, 1], vals, bottom=bottom, label=k.replace(" [s]", ""))
+        bottom += vals
+    axs[1].set_xticks([0, 1], ["general (scikit-fem, RS AMG)", "structured (grid, GMG)"])
+    axs[1].set_ylabel("process CPU [s]")
+    axs[1].set_title("stages of one solve", fontsize=9)
+    axs[1].legend(fontsize=7)
+    _common.save_figure(fig, path)
+    plt.close(fig)
 
 
 # ------------------------------------------------------------------ 3. ROSS
@@ -520,10 +639,26 @@ def main(argv=None):
     ap.add_argument("--ross-python", default=os.environ.get("LUBEDYN_ROSS_PYTHON"),
                     help="run ROSS in a subprocess with this interpreter (another venv)")
     ap.add_argument("--ross-memory-cap", type=float, default=2.5, help="largest dense ROSS matrix [GiB]")
+    ap.add_argument("--big-paths", action="store_true",
+                    help="only scene 2b: the 1M-DOF solve on the structured and the general path, interleaved "
+                         "(-> results/reynolds_big_paths.json, .png; with --quick at 300 x 300)")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(message)s")
     log.setLevel(logging.INFO)
     logging.getLogger("skfem").setLevel(logging.ERROR)  # "Transforming over 1000 vertices to C_CONTIGUOUS"
+    if args.big_paths:
+        cfg = SIZES["quick" if args.quick else "full"]
+        results = {"benchmark": "reynolds big paths", "started": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+                   "machine": _common.machine_info()}
+        clock = Clock()
+        results["reference run"] = clock.describe()
+        results["big paths"] = bench_big_paths(clock, cfg["big_n"], args.repeats or 3)
+        results["machine"]["load_average_at_end"] = list(os.getloadavg())
+        stem = "reynolds_big_paths_quick" if args.quick else "reynolds_big_paths"
+        _common.write_json(args.out / f"{stem}.json", results)
+        plot_big_paths(results, args.out / f"{stem}.png")
+        log.info("wrote %s.json and .png", args.out / stem)
+        return results
     mode = "quick" if args.quick else "full"
     cfg = SIZES[mode]
     repeats = args.repeats or cfg["repeats"]

@@ -126,7 +126,7 @@ from numba import njit
 from numba import types as _nt
 
 from .errors import DynamicsInputError, IntegrationError
-from .specialise import register_kernel, specialise
+from .specialise import entry_point, register_kernel, specialise
 
 
 # Copies into slices by explicit loops, in compiled kernels: numba compiles an array-to-slice assignment
@@ -899,14 +899,15 @@ def spectral_step(rhs, y0, args=(), method: str = "rk4", t: float = 0.0, rel_ste
     y0 = np.array(y0, dtype=np.float64, ndmin=1)
     n = y0.size
     f0 = np.empty(n)
-    rhs(t, y0, args, f0)
+    call = entry_point(rhs, t, y0, args, f0) if hasattr(rhs, "overloads") else rhs  # no typing per call
+    call(t, y0, args, f0)
     J = np.empty((n, n))
     f = np.empty(n)
     for i in range(n):
         e = rel_step * max(abs(float(y0[i])), floor)
         y = y0.copy()
         y[i] += e
-        rhs(t, y, args, f)
+        call(t, y, args, f)
         J[:, i] = (f - f0) / e
     if not np.all(np.isfinite(J)):
         raise DynamicsInputError("spectral_step: the right-hand side is not finite near y0")

@@ -111,7 +111,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, types
+from numba.extending import typeof_impl
 
 from lubedyn.lubrication.laws.jit import JIT
 
@@ -122,6 +123,45 @@ _FMA = dict(_JIT, fastmath={"contract"})  # a*b + c -> one fused multiply-add (o
 LINEAR, PCHIP, HERMITE = 0, 1, 2
 CLAMP, NAN = 0, 1
 METHODS = {"linear": LINEAR, "pchip": PCHIP, "hermite": HERMITE}
+
+
+class Fixed(int):
+    """An int that numba types as its own value (``Literal[int](v)``), so a kernel receiving it is
+    compiled for that value: a branch on it is decided at compile time.
+
+    A map's options (the axis scales ``log0..2`` and ``logv``, the method, the mode, the kind of an
+    axis) are fixed for the map's life: :func:`fixed_options` hands them to the kernels as a tuple of
+    ``Fixed``, and ``opts[MO_LOG0]`` (a constant index) is then a compile-time constant in every kernel
+    that reads it.  The kernels are the same source for a runtime int64 array of options (the tests'
+    and the Python front end's) and for fixed ones: numba compiles one version per argument *types*
+    (per combination of values here), cached on disk like any other signature, and the arithmetic is
+    the same, so the results are the same bits (``tests/test_interp.py``).  Measured
+    (``benchmarks/maps.py --fixed-options``, before/after interleaved; ``benchmarks/HISTORY.md``, issue 42):
+    the 3-D hermite value + gradient query 0.83 of the runtime-option one, the README main job's
+    integration 0.82-0.93, the cold compile of the cage-less right-hand side unchanged.
+
+    A value numba cannot fingerprint: a Python-side call of a kernel with fixed options is typed by
+    ``numba.typeof`` each time (tens of microseconds), which is nothing against a right-hand side called
+    inside a compiled integrator, and is never mistaken for another combination of values."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        return f"Fixed({int(self)})"
+
+    def __reduce__(self):  # pickled (Dask workers, background compilation) as the same type
+        return (Fixed, (int(self),))
+
+
+@typeof_impl.register(Fixed)
+def _typeof_fixed(value, context):
+    return types.literal(int(value))
+
+
+def fixed_options(opts) -> tuple:
+    """``opts`` (a sequence of ints: a map's ``MO_*`` options) as a tuple of :class:`Fixed`: what the
+    kernels read at compile time."""
+    return tuple(Fixed(int(v)) for v in opts)
 
 
 def prepare_axis(nodes, log) -> np.ndarray:

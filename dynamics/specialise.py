@@ -87,6 +87,7 @@ class Bound:
         self.params = code.co_varnames[len(self._builders):code.co_argcount]
         self._entries = {}  # argument types -> compiled entry point
         self._by_fingerprint = {}  # numba's type fingerprints of the arguments -> the same entry point
+        self._pinned = {}  # fingerprint keys naming unfingerprintable arguments by identity -> those arguments
 
     @property
     def stats(self):
@@ -124,20 +125,50 @@ class Bound:
 
     def __call__(self, *args):
         # numba's own type fingerprints (0.3 us for a bearing's argument tuple) find the compiled entry; its
-        # typeof, which builds the types, costs 80-100 us, too much for a call per integration chunk
-        try:
-            key = tuple(_fingerprint(a) for a in args)
-        except Exception:  # noqa: BLE001 - a value numba cannot fingerprint: type it below
-            key = None
+        # typeof, which builds the types, costs 80-100 us (milliseconds for a bearing's parameter records on a
+        # busy machine), too much for a call per integration chunk.  An argument numba cannot fingerprint (a
+        # model's arguments holding lubedyn.dynamics.interp.Fixed options) is keyed by its identity instead,
+        # kept alive while its key is cached (the last few), so that an identity is never reused under a key
+        key, held = [], []
+        for a in args:
+            try:
+                key.append(_fingerprint(a))
+            except Exception:  # noqa: BLE001 - a value numba cannot fingerprint: by identity
+                key.append(("id", id(a)))
+                held.append(a)
+        key = tuple(key)
         entry = self._by_fingerprint.get(key)
         if entry is None:
             types = tuple(numba.typeof(a) for a in args)
             entry = self._entries.get(types)
             if entry is None:
                 entry = self._entries[types] = self._compile(types)
-            if key is not None:
-                self._by_fingerprint[key] = entry
+            self._by_fingerprint[key] = entry
+            if held:
+                self._pinned[key] = held
+                if len(self._pinned) > _PINNED:
+                    oldest = next(iter(self._pinned))
+                    del self._pinned[oldest]
+                    del self._by_fingerprint[oldest]
         return entry(*self._ordered, *args)
+
+
+_PINNED = 8  # argument tuples keyed by identity per bound kernel
+
+
+def entry_point(dispatcher, *example):
+    """The compiled entry of the numba ``dispatcher`` for the types of ``example`` (compiled or loaded from the
+    cache if need be), to call in a Python loop with arguments of those types.
+
+    Why: a dispatcher types every call's arguments; for arguments numba cannot fingerprint (a model's
+    arguments with :class:`lubedyn.dynamics.interp.Fixed` map options) that is a full ``numba.typeof``,
+    milliseconds for a bearing's parameter records, against a few microseconds for the call itself
+    (measured: the cage-less ``rhs`` 10 ms a call through the dispatcher on a busy machine, 7 us through
+    its entry point).  The entry point does no type dispatch: call it only with arguments of the
+    example's types."""
+    sig = tuple(numba.typeof(a) for a in example)
+    dispatcher.compile(sig)
+    return dispatcher.overloads[sig].entry_point
 
 
 def kernel_label(name: str) -> str:

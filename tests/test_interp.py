@@ -346,3 +346,36 @@ def test_hermite_kernels_have_no_reference_counting(name):
     assert start is not None
     body = asm[start.end():asm.index(".Lfunc_end", start.end())]
     assert body.count("NRT_incref") + body.count("NRT_decref") == 0
+
+
+@pytest.mark.parametrize("name", ["hermite3", "hermite3_grad", "interp3_grad"])
+def test_fixed_options_give_the_same_bits(name):
+    """Options handed as :class:`lubedyn.dynamics.interp.Fixed` (compile-time constants, as the bearing models
+    pass a map's options) give the bits of the same options at run time, inside and outside the axes and
+    for NaN coordinates, with the same clamp counts; and the fixed version is really compiled for the
+    values (its signature holds ``Literal[int]``).  Independent check on the way: v = x^2 y / z^0.5 is
+    linear in log-log-log space, so the multilinear and hermite readers reproduce it exactly."""
+    fn = getattr(interp, name)
+    nodes = [np.geomspace(1.0, 8.0, 5), np.geomspace(0.5, 4.0, 4), np.geomspace(1.0, 9.0, 6)]
+    ax = [prepare_axis(x, True) for x in nodes]
+    u = prepare_values(nodes[0][:, None, None] ** 2 * nodes[1][None, :, None] / np.sqrt(nodes[2][None, None, :]),
+                       True)
+    hermite = name.startswith("hermite")
+    data = interp.hermite_data(tuple(ax), u) if hermite else u
+    runtime = (1, 1, 1, 1)
+    fixed = interp.fixed_options(runtime)
+    pts = np.stack([rng.uniform(0.5, 10.0, 300), rng.uniform(0.3, 5.0, 300), rng.uniform(0.5, 10.0, 300)], axis=1)
+    pts[::37, 1] = np.nan
+    out = []
+    for flags in (runtime, fixed):
+        counter = np.zeros(1, np.int64)
+        method = () if hermite else (interp.LINEAR,)
+        res = [fn(ax[0], ax[1], ax[2], *flags[:3], data, flags[3], *method, x, y, z, 0, counter) for x, y, z in pts]
+        out.append((np.array(res, dtype=float), int(counter[0])))
+    assert out[0][1] == out[1][1] > 0
+    assert np.array_equal(out[0][0], out[1][0], equal_nan=True)
+    assert any("Literal[int](1)" in str(s) for s in fn.signatures)
+    value = out[1][0] if out[1][0].ndim == 1 else out[1][0][:, 0]
+    inside = np.all((pts >= [1.0, 0.5, 1.0]) & (pts <= [8.0, 4.0, 9.0]), axis=1)
+    x, y, z = pts[inside].T
+    assert np.allclose(value[inside], x**2 * y / np.sqrt(z), rtol=1e-12)

@@ -196,3 +196,25 @@ def test_a_speed_axis_that_differs_from_the_maps_own_is_refused():
     with pytest.raises(DynamicsInputError, match="films.map_speed_axis") as err:
         paper_b(films=films | {"map_speed_axis": "squeeze_number"}).args()
     assert "'polar'" in str(err.value)
+
+
+def test_fixed_map_options_change_no_bit(polar):
+    """The model hands the map's options to the kernels as compile-time constants
+    (lubedyn.dynamics.interp.Fixed, issue 42 decision 7): the film read gives the bits of the same options
+    in a runtime int64 array, at 400 random states over gaps, approach and entrainment speeds (and the same
+    clamp counts)."""
+    from lubedyn.dynamics.interp import Fixed
+
+    _, _, p, (ax0, ax1, ax2, vals, opts, _) = polar
+    assert all(isinstance(o, Fixed) for o in opts)
+    r = np.random.default_rng(7)
+    h = np.exp(r.uniform(math.log(math.exp(ax0[0]) * 0.5), math.log(math.exp(ax0[-1]) * 2.0), 400))
+    v, ue = r.uniform(-0.05, 1.0, 400), r.uniform(0.0, 5.0, 400)
+    got = []
+    for o in (opts, np.array(opts, dtype=np.int64)):
+        counter = np.zeros(1, np.int64)
+        got.append((np.array([C._film_map(*s, p, ax0, ax1, ax2, vals, o, counter) for s in zip(h, v, ue)]),
+                    int(counter[0])))
+    assert got[0][1] == got[1][1]
+    assert np.array_equal(got[0][0], got[1][0], equal_nan=True)
+    assert np.count_nonzero(got[0][0][:, 0]) > 100  # most states carry a film force

@@ -264,3 +264,36 @@ def test_the_call_cache_tells_argument_types_apart():
     b = k(y0, t, 0.01, args32)[0]
     assert len(k.kernel.dispatcher.signatures) == n_sigs + 1
     assert np.abs(b - a).max() < 1e-6 and not np.array_equal(a, b)  # float32 coefficients: rounded, same ODE
+
+
+@njit(cache=True)
+def duffing_switch(t, y, args, dydt):
+    """:func:`duffing` with its forcing switched by ``args[2]`` (an int, or a compile-time constant)."""
+    p, s, forced = args
+    dydt[0] = y[1]
+    dydt[1] = -p[0] * y[1] - p[1] * y[0] - p[2] * y[0] ** 3
+    if forced == 1:
+        dydt[1] += p[3] * np.cos(p[4] * t) * s[0]
+
+
+def test_arguments_with_fixed_options_are_told_apart_and_typed_once(monkeypatch):
+    """Arguments holding lubedyn.dynamics.interp.Fixed (map options fixed at compile time) cannot be
+    fingerprinted by numba: the bound kernel keys them by identity, types them once per argument object
+    (counted), compiles one entry per fixed value, and gives the bits of the same switch as a runtime int
+    (three compiled RK4 kernels: Fixed(1), Fixed(0), int64)."""
+    from lubedyn.dynamics.interp import Fixed
+
+    y0, t = np.array([1.0, 0.0]), np.linspace(0.0, 1.0, 11)
+    k = I.kernel_for("rk4", duffing_switch)
+    on, off = (ARGS[0], ARGS[1], Fixed(1)), (ARGS[0], ARGS[1], Fixed(0))
+    calls = []
+    real_typeof = S.numba.typeof
+    monkeypatch.setattr(S.numba, "typeof", lambda v, *a: calls.append(1) or real_typeof(v, *a))
+    a = k(y0, t, 0.01, on)[0]
+    typed = len(calls)
+    assert np.array_equal(a, k(y0, t, 0.01, on)[0]) and len(calls) == typed  # same object: no typing
+    b = k(y0, t, 0.01, off)[0]
+    assert np.array_equal(a, k(y0, t, 0.01, (ARGS[0], ARGS[1], 1))[0])
+    assert np.array_equal(b, k(y0, t, 0.01, (ARGS[0], ARGS[1], 0))[0])
+    assert not np.array_equal(a, b)
+    assert sum("Literal[int]" in str(sig) for sig in k.kernel.dispatcher.signatures) >= 2

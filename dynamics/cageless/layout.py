@@ -60,7 +60,9 @@ def parameter_record(values: dict) -> np.recarray:
 class MapArrays(NamedTuple):
     """A ball-ball force map as the kernels read it (:mod:`lubedyn.dynamics.interp`): three prepared axes
     (a two-axis map gets a constant third), the values ((8, n0, n1, n2) Hermite data or (n0, n1, n2)) and the
-    reader's options (``lubedyn.dynamics.contacts.MO_*``)."""
+    reader's options (``lubedyn.dynamics.contacts.MO_*``) as a tuple of :class:`lubedyn.dynamics.interp.Fixed`:
+    the axis scales, method, mode and speed-axis kind are compile-time constants of the kernels that read
+    this map (one compiled version per combination)."""
 
     ax0: np.ndarray
     ax1: np.ndarray
@@ -71,7 +73,8 @@ class MapArrays(NamedTuple):
 
 class TractionMaps(NamedTuple):
     """The inner and outer race EHL maps' traction coefficient (index 0 inner, 1 outer): axes (2, n_k),
-    values (2, k, n0, n1, n2) and the reader's options."""
+    values (2, k, n0, n1, n2) and the reader's options (a tuple of :class:`lubedyn.dynamics.interp.Fixed`, as
+    :class:`MapArrays`)."""
 
     ax0: np.ndarray
     ax1: np.ndarray

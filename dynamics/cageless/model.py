@@ -22,7 +22,8 @@ from ..contacts import FILM_KINDS, with_map_ends
 from ..errors import DynamicsInputError
 from ..groups import fail
 from .groups import Bearing, Films, Fidelity, Initial, Operating, Slots
-from ..interp import HERMITE
+from ..interp import HERMITE, fixed_options
+from ..specialise import entry_point
 from .kernels import forces, rhs
 from .layout import (DOFS, D_AI, D_AO, D_QI, D_QO, MAP_SPEED_AXES, NB_6DOF, NB_PLANAR, N_RING, PARAMETER_DTYPE,
     RACES, SCENARIOS, TRACTIONS, BallBallMap, KernelArgs, MapArrays, TractionMaps, parameter_record)
@@ -77,7 +78,7 @@ def _map_arrays(film_map, speed_axis):
     opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = logs
     opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = int(logv), int(method), 0
     opts[C.MO_AXIS1] = axis1_kind
-    return MapArrays(axes[0], axes[1], axes[2], np.ascontiguousarray(vals), opts)
+    return MapArrays(axes[0], axes[1], axes[2], np.ascontiguousarray(vals), fixed_options(opts))
 
 
 
@@ -106,7 +107,7 @@ def _traction_arrays(maps):
     opts = np.zeros(C.MO_SIZE, dtype=np.int64)
     opts[C.MO_LOG0], opts[C.MO_LOG1], opts[C.MO_LOG2] = (int(x) for x in li)
     opts[C.MO_LOGV], opts[C.MO_METHOD], opts[C.MO_MODE] = 0, int(mi), 0
-    return TractionMaps(axes[0], axes[1], axes[2], np.ascontiguousarray(np.stack(vals)), opts)
+    return TractionMaps(axes[0], axes[1], axes[2], np.ascontiguousarray(np.stack(vals)), fixed_options(opts))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -473,6 +474,7 @@ class CagelessBearing:
         six = self.fidelity.dof == "6dof"
         c, s = math.cos(psi_j), math.sin(psi_j)
         dydt = np.empty_like(y)
+        call = entry_point(rhs, 0.0, y, args, dydt)  # no typing per call (lubedyn.dynamics.specialise.entry_point)
 
         def set_pos(rho, z):
             if six:
@@ -483,7 +485,7 @@ class CagelessBearing:
 
         def res(rho, z):
             set_pos(rho, z)
-            rhs(0.0, y, args, dydt)
+            call(0.0, y, args, dydt)
             if six:
                 return (m * (dydt[b + 7] * c + dydt[b + 8] * s + wc * wc * rho), m * dydt[b + 9])
             return (m * dydt[b + 4], 0.0)
@@ -546,6 +548,7 @@ class CagelessBearing:
         fscale = max(self.operating.radial_load, self.operating.axial_load, 1.0) / Z
         scale = (max(self.operating.radial_load, self.operating.axial_load, 1.0) / (Z * Kn)) ** (2.0 / 3.0)
         dydt = np.empty_like(y)
+        call = entry_point(rhs, 0.0, y, args, dydt)
         worst = [0.0]
 
         def residual(x):
@@ -553,7 +556,7 @@ class CagelessBearing:
             worst[0] = 0.0
             for j in range(Z):
                 worst[0] = max(worst[0], self._ball_seat(args, y, j, psi[j], wc))
-            rhs(0.0, y, args, dydt)
+            call(0.0, y, args, dydt)
             return dydt[4:4 + nr] * self.bearing.ring_mass / fscale
 
         x0 = np.zeros(nr)

@@ -67,6 +67,11 @@ class SolverOptions:
     with at least :data:`WARM_START_MIN_DOFS` unknowns, falling back to a
     plain solve if a coarse level fails; 0 never; n > 0 always (the mesh must
     be a tensor mesh).
+
+    ``structured``: on a P1 quad mesh of :func:`~lubedyn.lubrication.mesh.rectangle` (not periodic), assemble
+    on the grid and precondition CG with geometric multigrid
+    (:mod:`lubedyn.lubrication.reynolds.tensor`; chosen automatically, by the mesh); ``False`` takes
+    scikit-fem's general path on every mesh.  The two agree to the solver tolerance.
     """
 
     rtol: float = 1e-10
@@ -74,12 +79,15 @@ class SolverOptions:
     linear_solver: str = "auto"
     amg_tol: float = 1e-10
     warm_start_levels: int | None = None
+    structured: bool = True
 
     def __post_init__(self):
         if self.linear_solver not in LINEAR_SOLVERS:
             raise unknown_choice("solver.linear_solver", self.linear_solver, LINEAR_SOLVERS)
         if not 0 < self.rtol < 1:
             raise InputError(f"solver.rtol = {self.rtol!r} must be in (0, 1)")
+        if not isinstance(self.structured, (bool, np.bool_)):
+            raise InputError(f"solver.structured = {self.structured!r} must be true or false")
         if self.max_iter < 1:
             raise InputError(f"solver.max_iter = {self.max_iter!r} must be >= 1")
         if self.warm_start_levels is not None and (

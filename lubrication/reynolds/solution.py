@@ -125,13 +125,17 @@ class FilmSolution:
         return np.asarray(self.film.gap(self.basis.doflocs), dtype=float)
 
     def _field_q(self, dofs):
-        return interpolate(self.basis, dofs)
+        grid = getattr(self.problem, "grid", None)  # the structured path needs no scikit-fem basis here
+        return grid.interpolate(dofs) if grid is not None else interpolate(self.basis, dofs)
 
     def _gauge_q(self):
         return np.asarray(self._field_q(self.pressure_dofs)) - self.film.ambient_pressure
 
     def integrate(self, values_q) -> float:
         """Integral over the film of an array given at quadrature points."""
+        grid = getattr(self.problem, "grid", None)
+        if grid is not None:
+            return grid.integrate(values_q)
         return float(asm(_integral, self.basis, f=values_q))
 
     # ------------------------------------------------------------ loads

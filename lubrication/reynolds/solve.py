@@ -119,7 +119,7 @@ def _solve_single(film, initial=None) -> FilmSolution:
         Mred = M[idx][:, idx]
         z = np.zeros(N)
         if idx.size:
-            z[idx] = prob.solve_linear(Mred, rhs[idx], symmetric)
+            z[idx] = prob.solve_linear(Mred, rhs[idx], symmetric, index=idx)
         if not np.all(np.isfinite(z)):
             why = ("singular Jacobian: check boundary conditions and the gap" if prob.linear and np.all(np.isfinite(p))
                    else _divergence_hint(prob, p))
