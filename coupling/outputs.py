@@ -512,9 +512,7 @@ class ForkedWriter:
             try:
                 os.close(read)
                 signal.signal(signal.SIGINT, signal.SIG_IGN)
-                from lubedyn.maps.sweep import _die_with_parent
-
-                _die_with_parent(parent)
+                die_with_parent(parent)
                 job()
                 code = 0
             except BaseException as exc:  # noqa: BLE001 - handed to the parent as one line
@@ -845,3 +843,33 @@ def headline_lines(summary: dict, prefixes=HEADLINE_PREFIXES) -> list[str]:
     else:
         lines.append(f"{'Run time [s]':<36} {s['Run time [s]']:.3g}")
     return lines
+
+
+def die_with_parent(parent_pid: int) -> str:
+    """Make this (worker) process end when ``parent_pid`` does; returns the means used.
+
+    Linux: ``prctl(PR_SET_PDEATHSIG, SIGKILL)``, then a check that the parent did not die before it
+    took effect.  Elsewhere: a daemon thread that polls ``os.getppid()`` twice a second."""
+    import signal
+    import sys
+
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            if libc.prctl(1, int(signal.SIGKILL), 0, 0, 0) == 0:  # 1 = PR_SET_PDEATHSIG
+                if os.getppid() != parent_pid:  # the parent died before prctl: nobody will signal us
+                    os._exit(1)
+                return "prctl"
+        except (OSError, AttributeError):  # pragma: no cover - no libc prctl
+            pass
+    import threading
+
+    def watch():
+        while os.getppid() == parent_pid:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="lubedyn-parent-watch", daemon=True).start()
+    return "watchdog thread"

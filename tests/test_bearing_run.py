@@ -42,7 +42,11 @@ def _files(calls, **kw):
 
 
 @pytest.mark.parametrize("fmt", ["netcdf", "npz"])
-def test_every_output_asked_for_is_written_and_the_time_series_carries_the_completed_summary(tmp_path, fmt):
+def test_every_output_asked_for_is_written_and_the_time_series_carries_the_completed_summary(tmp_path, fmt,
+                                                                                           monkeypatch):
+    """The serial path's order (the output workers, which draw in forked processes whose calls this list
+    cannot see, are tested against it in tests/test_output_workers.py)."""
+    monkeypatch.setenv("LUBEDYN_OUTPUT_WORKERS", "0")
     calls = []
     written, summary = outputs.write_bearing_run(tmp_path, "# resolved\n", {"Case": "c", "Scene": "s"},
                                                  ["timeseries", "pvd", "png"], _files(calls, write_time=True), fmt)

@@ -14,6 +14,7 @@ from pathlib import Path
 from lubedyn.lubrication.errors import InputError
 
 from lubedyn import outputs
+from lubedyn.outputs import die_with_parent as _die_with_parent
 from lubedyn.maps.filmmap import _json_default
 from lubedyn.maps.provenance import code_fingerprint, point_hash
 
@@ -64,36 +65,6 @@ def _limit_threads():
         threadpool_limits(1)
     except Exception:  # noqa: BLE001 - threadpoolctl is optional
         pass
-
-
-def _die_with_parent(parent_pid: int) -> str:
-    """Make this (worker) process end when ``parent_pid`` does; returns the means used.
-
-    Linux: ``prctl(PR_SET_PDEATHSIG, SIGKILL)``, then a check that the parent did not die before it
-    took effect.  Elsewhere: a daemon thread that polls ``os.getppid()`` twice a second."""
-    import signal
-    import sys
-
-    if sys.platform.startswith("linux"):
-        try:
-            import ctypes
-
-            libc = ctypes.CDLL(None, use_errno=True)
-            if libc.prctl(1, int(signal.SIGKILL), 0, 0, 0) == 0:  # 1 = PR_SET_PDEATHSIG
-                if os.getppid() != parent_pid:  # the parent died before prctl: nobody will signal us
-                    os._exit(1)
-                return "prctl"
-        except (OSError, AttributeError):  # pragma: no cover - no libc prctl
-            pass
-    import threading
-
-    def watch():
-        while os.getppid() == parent_pid:
-            time.sleep(0.5)
-        os._exit(1)
-
-    threading.Thread(target=watch, name="lubedyn-parent-watch", daemon=True).start()
-    return "watchdog thread"
 
 
 def init_worker(parent_pid: int):
