@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import json
 import csv
+import functools
 import statistics
 from pathlib import Path
 
@@ -253,7 +254,7 @@ def fine_points(study: Path, key: str, window=None) -> tuple[list[float], list[f
         for row in csv.DictReader(f):
             if row.get("status") != "ok":
                 continue
-            speed = float(row["operating.speed [SI]"]) * 60.0 / (2.0 * 3.141592653589793) / 1e3
+            speed = float(row["operating.speed [SI]"]) / _krpm()
             if window and not (window[0] - 1e-9 <= speed <= window[1] + 1e-9):
                 continue
             total += 1
@@ -266,10 +267,23 @@ def fine_points(study: Path, key: str, window=None) -> tuple[list[float], list[f
     return x, y, have, total
 
 
+def _krpm() -> float:
+    """1,000 rpm in rad/s, by the project's unit parser."""
+    from lubedyn.units import parse_quantity
+
+    return parse_quantity("1000 rpm", "angular velocity")
+
+
+@functools.lru_cache(maxsize=None)
+def _summary(path: Path) -> dict:
+    """A run's summary.json, read once per report (every claim reads every run)."""
+    return json.loads(path.read_text())
+
+
 def usable_value(study: Path, row: dict, key: str) -> float | None:
     """The output ``key`` of one study row's run (its summary.json), or None where it is missing or not
     usable: an exponent whose guarded verdict did not resolve it, a settling time at the record's edge."""
-    summary = json.loads((study / row["run folder"] / "summary.json").read_text())
+    summary = _summary(study / row["run folder"] / "summary.json")
     value = summary.get(key)
     if not isinstance(value, (int, float)):
         return None
