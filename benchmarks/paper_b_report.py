@@ -21,7 +21,10 @@ robust to the few members far off, as the medians above) with its 95 % confidenc
 agrees / disagrees with the claim, *not resolvable* where it holds zero.  A claim on a speed range
 (Fig. 5's axial force) is fitted on that range only.  Exponents enter only from runs whose guarded
 verdict resolved them (positive or not positive); with fewer than half resolved the claim is "not
-resolvable" whatever the slope.  ``--fine`` also writes ``fine_speeds.png`` beside the study's table.
+resolvable" whatever the slope.  ``--fine`` also writes ``fine_speeds.png`` beside the study's table, and
+answers Figs. 6-8's "fractal" claims on the correlation dimension D2 of ball 0's phase portraits (a trend
+with speed for z; z against x and y per run by a sign test; x and y near 15,000/20,000 rpm against the
+axis' ends by a Mann-Whitney U test).
 
 Every number is read from the studies' ``summary.json`` files; nothing is typed in except the paper's
 own values (Table 3 and the statements quoted).
@@ -242,6 +245,8 @@ FINE_CLAIMS = (
     ("Zone surge from [s]", -1, None, "Fig. 4: the surge zone comes sooner at higher speed"),
     ("Largest collision force z [N]", +1, (10.0, 20.0), "Fig. 5: largest axial collision force rises, 10,000-20,000 rpm"),
     ("Largest collision force z [N]", -1, (20.0, 25.0), "Fig. 5: not stronger at 25,000 than at 20,000 rpm"),
+    ("Correlation dimension, ball 0 z phase portrait [-]", +1, None,
+     "Fig. 8: z is less fractal the slower the rotor turns (D2)"),
 )
 
 
@@ -292,7 +297,64 @@ def usable_value(study: Path, row: dict, key: str) -> float | None:
         return None
     if key.startswith("Settling time") and str(summary.get(name + ", note", "")).startswith("record too short"):
         return None
-    return float(value)
+    if key.startswith("Correlation dimension") and str(summary.get(name + " verdict", "")).startswith("no scaling"):
+        return None
+    return None if value != value else float(value)  # NaN: not computed
+
+
+def _d2_key(direction: str) -> str:
+    return f"Correlation dimension, ball 0 {direction} phase portrait [-]"
+
+
+def rows_dimension(study: Path) -> list[tuple]:
+    """Figs. 6-8's claims that are not trends, on the correlation dimension D2 of ball 0's phase portraits
+    (lubedyn.dynamics.analysis.dimension) over every member run of the fine-speed study:
+
+    * Fig. 8, "z is more chaotic than x and y": per run, is D2 of z above both x's and y's?  A one-sided
+      sign test (``scipy.stats.binomtest``, p = 0.5) over the runs that give all three;
+    * Figs. 6 and 7, "the fractal is smaller at 15,000 and 20,000 rpm" (x and y): the runs within
+      1,000 rpm of 15,000 or 20,000 rpm against those within 500 rpm of 10,000 or 25,000 rpm, one-sided
+      Mann-Whitney U (``scipy.stats.mannwhitneyu``).
+    Both at the 5 % level; otherwise "not resolvable"."""
+    from scipy.stats import binomtest, mannwhitneyu
+
+    runs = []
+    with open(study / "study.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            if row.get("status") == "ok":
+                speed = float(row["operating.speed [SI]"]) / _krpm()
+                runs.append((speed, {d: usable_value(study, row, _d2_key(d)) for d in "xyz"}))
+    out = []
+    trios = [v for _, v in runs if None not in v.values()]
+    above = sum(1 for v in trios if v["z"] > max(v["x"], v["y"]))
+    if not trios:
+        out.append(("Fig. 8: z is more chaotic than x and y (D2 per run)", "z above x and y",
+                    f"0 of {len(runs)} runs give D2 in all three directions", "not computed (no run gives all three)"))
+    else:
+        up = binomtest(above, len(trios), 0.5, alternative="greater").pvalue
+        down = binomtest(above, len(trios), 0.5, alternative="less").pvalue
+        verdict = ("reproduced" if up < 0.05 else "not reproduced (z below x or y in most runs)" if down < 0.05
+                   else "not resolvable (sign test p >= 0.05 both ways)")
+        med = {d: statistics.median(v[d] for v in trios) for d in "xyz"}
+        out.append(("Fig. 8: z is more chaotic than x and y (D2 per run)", "z above x and y",
+                    f"z above both in {above} of {len(trios)} runs (sign test p = {up:.2g}); median D2 x "
+                    f"{med['x']:.3g}, y {med['y']:.3g}, z {med['z']:.3g}", verdict))
+    for d, fig in (("x", "Fig. 6"), ("y", "Fig. 7")):
+        mid = [v[d] for s, v in runs if v[d] is not None and min(abs(s - 15.0), abs(s - 20.0)) <= 1.0 + 1e-9]
+        ends = [v[d] for s, v in runs if v[d] is not None and min(abs(s - 10.0), abs(s - 25.0)) <= 0.5 + 1e-9]
+        claim = f"{fig}: {d} is less fractal at 15,000 and 20,000 rpm than at 10,000 and 25,000 rpm (D2)"
+        if len(mid) < 3 or len(ends) < 3:
+            out.append((claim, "smaller", f"{len(mid)} runs near 15/20 krpm, {len(ends)} near 10/25 krpm",
+                        "not resolvable (fewer than 3 runs on a side)"))
+            continue
+        less = mannwhitneyu(mid, ends, alternative="less").pvalue
+        more = mannwhitneyu(mid, ends, alternative="greater").pvalue
+        verdict = ("reproduced" if less < 0.05 else "not reproduced (larger)" if more < 0.05
+                   else "not resolvable (U test p >= 0.05 both ways)")
+        out.append((claim, "smaller", f"median D2 {statistics.median(mid):.3g} ({len(mid)} runs within 1 krpm of "
+                    f"15/20) against {statistics.median(ends):.3g} ({len(ends)} runs at 10/25); U test p = {less:.2g}",
+                    verdict))
+    return out
 
 
 def slope_verdict(x: list[float], y: list[float], sign: int, used: int, total: int) -> tuple[str, str, tuple]:
@@ -439,6 +501,7 @@ def main(argv=None) -> int:
         rows += rows_entrapped(args.entrapped)
     if args.fine:
         rows += rows_fine(args.fine, args.fine / "fine_speeds.png")
+        rows += rows_dimension(args.fine)
     if args.slot:
         rows += rows_slot(args.drop, args.slot)
     if args.fidelity:

@@ -99,7 +99,16 @@ def test_fine_speed_regressions_on_a_synthetic_study(tmp_path):
                        "Inner ring spin-up time [s]": 7e-4 * krpm,
                        "Largest collision force z [N]": 3.0 + rng.uniform(-1, 1),
                        "Wolf exponent, ball 0 z [bits/s]": 50.0 * krpm,
-                       "Wolf exponent, ball 0 z verdict": "positive" if resolved else "not distinguishable from its surrogates"}
+                       "Wolf exponent, ball 0 z verdict": "positive" if resolved else "not distinguishable from its surrogates",
+                       # D2: x dips near 15 and 20 krpm, y does not, z rises 0.02 per 1,000 rpm and lies above both
+                       "Correlation dimension, ball 0 x phase portrait [-]":
+                           1.3 - (0.2 if min(abs(krpm - 15), abs(krpm - 20)) <= 1 else 0.0) + rng.uniform(-0.05, 0.05),
+                       "Correlation dimension, ball 0 y phase portrait [-]": 1.3 + rng.uniform(-0.1, 0.1),
+                       "Correlation dimension, ball 0 z phase portrait [-]": 1.5 + 0.02 * krpm + rng.uniform(-0.05, 0.05),
+                       "Correlation dimension, ball 0 z phase portrait verdict": "non-integer (fractal)"}
+            if i == 10 and m == 3:  # no scaling range: its (absurd) value must be left out of every claim
+                summary["Correlation dimension, ball 0 z phase portrait [-]"] = 0.1
+                summary["Correlation dimension, ball 0 z phase portrait verdict"] = "no scaling range"
             (folder / "summary.json").write_text(json.dumps(summary))
             lines.append(f"{krpm * 1e3 * 2 * math.pi / 60},{m},runs/s{i}/m{m},ok")
     (tmp_path / "study.csv").write_text("\n".join(lines) + "\n")
@@ -111,4 +120,12 @@ def test_fine_speed_regressions_on_a_synthetic_study(tmp_path):
     assert rows["Fig. 3: the inner ring settles faster at higher speed"][3] == "not reproduced (rises)"
     assert rows["Fig. 5: largest axial collision force rises, 10,000-20,000 rpm"][3] == "not resolvable (band holds 0)"
     assert rows["Table 3: z rises with speed (7.68 -> 8.63)"][3] == "not resolvable (2 of 44 runs resolved)"
+    assert rows["Fig. 8: z is less fractal the slower the rotor turns (D2)"][3] == "reproduced"
+    assert "43 of 44 runs" in rows["Fig. 8: z is less fractal the slower the rotor turns (D2)"][2]
     assert (tmp_path / "fine.png").stat().st_size > 10_000
+    dims = {r[0]: r for r in report.rows_dimension(tmp_path)}
+    z = dims["Fig. 8: z is more chaotic than x and y (D2 per run)"]
+    assert z[3] == "reproduced" and "43 of 43 runs" in z[2]
+    assert dims["Fig. 6: x is less fractal at 15,000 and 20,000 rpm than at 10,000 and 25,000 rpm (D2)"][3] == "reproduced"
+    assert dims["Fig. 7: y is less fractal at 15,000 and 20,000 rpm than at 10,000 and 25,000 rpm (D2)"][3].startswith(
+        "not resolvable")
