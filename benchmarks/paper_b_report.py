@@ -19,8 +19,8 @@ output against the speed over every member run, Theil-Sen's slope (the median of
 robust to the few members far off, as the medians above) with its 95 % confidence band
 (``scipy.stats.theilslopes``); *reproduced* / *not reproduced* where the band excludes zero and its sign
 agrees / disagrees with the claim, *not resolvable* where it holds zero.  A claim on a speed range
-(Fig. 5's axial force) is fitted on that range only.  Exponents enter only from runs whose guarded
-verdict resolved them (positive or not positive); with fewer than half resolved the claim is "not
+(Fig. 5's axial force) is fitted on that range only.  Table 3's exponents (``--fine-exponents``, the
+same axis with the guarded per-direction exponents on) enter only from runs whose guarded verdict resolved them (positive or not positive); with fewer than half resolved the claim is "not
 resolvable" whatever the slope.  ``--fine`` also writes ``fine_speeds.png`` beside the study's table, and
 answers Figs. 6-8's "fractal" claims on the correlation dimension D2 of ball 0's phase portraits (a trend
 with speed for z; z against x and y per run by a sign test; x and y near 15,000/20,000 rpm against the
@@ -233,9 +233,6 @@ def rows_sensitivity(study: Path) -> list[tuple]:
 #: paper B's speed claims for the regression (output, claimed sign of d output / d speed, speed range
 #: [krpm] or None for the whole axis, the paper's statement)
 FINE_CLAIMS = (
-    ("Wolf exponent, ball 0 x [bits/s]", -1, None, "Table 3: x falls with speed (4.59 -> 3.92)"),
-    ("Wolf exponent, ball 0 y [bits/s]", -1, None, "Table 3: y falls with speed (4.64 -> 3.91)"),
-    ("Wolf exponent, ball 0 z [bits/s]", +1, None, "Table 3: z rises with speed (7.68 -> 8.63)"),
     ("Inner ring spin-up time [s]", -1, None, "Fig. 3: the inner ring settles faster at higher speed"),
     ("Settling time, ball 0 x [s]", -1, None, "Fig. 3: the ball settles faster in x at higher speed"),
     ("Settling time, ball 0 y [s]", -1, None, "Fig. 3: the ball settles faster in y at higher speed"),
@@ -247,6 +244,18 @@ FINE_CLAIMS = (
     ("Largest collision force z [N]", -1, (20.0, 25.0), "Fig. 5: not stronger at 25,000 than at 20,000 rpm"),
     ("Correlation dimension, ball 0 z phase portrait [-]", +1, None,
      "Fig. 8: z is less fractal the slower the rotor turns (D2)"),
+)
+
+#: Table 3's claims, from a fine-speed study with the guarded per-direction exponents on
+#: (studies/cageless_fine_speeds_exponents.toml, ``--fine-exponents``): inertial x, y, z as the paper's X, Y,
+#: Z, and the co-rotating radial and tangential directions as the other reading of X and Y (the paper does
+#: not say which coordinates; co-rotating axial is inertial z)
+EXPONENT_CLAIMS = (
+    ("Wolf exponent, ball 0 x [bits/s]", -1, None, "Table 3: x falls with speed (4.59 -> 3.92)"),
+    ("Wolf exponent, ball 0 y [bits/s]", -1, None, "Table 3: y falls with speed (4.64 -> 3.91)"),
+    ("Wolf exponent, ball 0 z [bits/s]", +1, None, "Table 3: z rises with speed (7.68 -> 8.63)"),
+    ("Wolf exponent, ball 0 radial [bits/s]", -1, None, "Table 3 read co-rotating: radial (X) falls with speed"),
+    ("Wolf exponent, ball 0 tangential [bits/s]", -1, None, "Table 3 read co-rotating: tangential (Y) falls with speed"),
 )
 
 
@@ -376,10 +385,11 @@ def slope_verdict(x: list[float], y: list[float], sign: int, used: int, total: i
     return text, "reproduced" if found == sign else f"not reproduced ({word})", (slope, intercept, lo, hi)
 
 
-def rows_fine(study: Path, figure: Path | None = None) -> list[tuple]:
-    """Paper B's speed claims as Theil-Sen regressions over a fine speed axis (see the module's docstring)."""
+def rows_fine(study: Path, figure: Path | None = None, claims=FINE_CLAIMS) -> list[tuple]:
+    """Paper B's speed claims (``claims``: FINE_CLAIMS, or EXPONENT_CLAIMS for Table 3) as Theil-Sen
+    regressions over a fine speed axis (see the module's docstring)."""
     out, panels = [], []
-    for key, sign, window, claim in FINE_CLAIMS:
+    for key, sign, window, claim in claims:
         x, y, used, total = fine_points(study, key, window)
         text, verdict, fit = slope_verdict(x, y, sign, used, total)
         span = f"{window[0]:g}-{window[1]:g} krpm" if window else "whole axis"
@@ -493,6 +503,8 @@ def main(argv=None) -> int:
     p.add_argument("--entrapped", type=Path, help="output folder of studies/cageless_entrapped_film.toml")
     p.add_argument("--screen", type=Path, help="output folder of studies/cageless_screen_unstated.toml (Morris)")
     p.add_argument("--fine", type=Path, help="output folder of studies/cageless_fine_speeds.toml (regressions)")
+    p.add_argument("--fine-exponents", type=Path,
+                   help="output folder of studies/cageless_fine_speeds_exponents.toml (Table 3 as regressions)")
     args = p.parse_args(argv)
     if args.slot and not args.drop:
         p.error("--slot needs --drop (the slot claim compares the two studies)")
@@ -502,6 +514,8 @@ def main(argv=None) -> int:
     if args.fine:
         rows += rows_fine(args.fine, args.fine / "fine_speeds.png")
         rows += rows_dimension(args.fine)
+    if args.fine_exponents:
+        rows += rows_fine(args.fine_exponents, args.fine_exponents / "fine_speeds_exponents.png", EXPONENT_CLAIMS)
     if args.slot:
         rows += rows_slot(args.drop, args.slot)
     if args.fidelity:
