@@ -8,6 +8,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import time
 import logging
 from pathlib import Path
 
@@ -168,8 +169,14 @@ def test_study_rows_scale_with_speed_and_equal_a_separate_run(tmp_path, capsys, 
 def test_resume_reruns_only_what_is_missing_or_half_written(tmp_path, capsys):
     path = study_file(tmp_path, study="skip_outputs = true")
     out = tmp_path / "study"
+    cpu0 = time.process_time()
     assert run(capsys, "study", path, "--smoke", "--workers", 1, "--out", out)[0] == 0
+    cpu_study = time.process_time() - cpu0
     first = (out / "study.csv").read_text()
+    # the runs' CPU time (serial: this process) is positive and within the CPU this process spent on the study
+    info = json.loads((out / "study.json").read_text())["runs"]
+    assert 0.0 < info["CPU time of the runs [s]"] <= cpu_study
+    assert info["CPU time of the runs, runs counted"] == "3 of 3 finished runs"
     folders = [out / r["run folder"] for r in rows(out)]
     assert sorted(p.name for p in folders[0].iterdir()) == [".study-run.json", "case.resolved.toml",
                                                             "manifest.json", "summary.json"]
@@ -184,6 +191,8 @@ def test_resume_reruns_only_what_is_missing_or_half_written(tmp_path, capsys):
     assert "1 reused" in err  # the log says so too
     assert (folders[0] / "summary.json").stat().st_mtime_ns == stamps[folders[0]]
     assert (out / "study.csv").read_text() == first
+    assert json.loads((out / "study.json").read_text())["runs"]["CPU time of the runs, runs counted"] == \
+        "3 of 3 finished runs"  # the reused run's from its marker
     code, stdout, err = run(capsys, "study", path, "--smoke", "--workers", 1, "--out", out)
     assert "3 runs (3 reused, 0 run, 0 failed)" in stdout
     # a changed case (the resolved case differs) reruns everything

@@ -580,13 +580,24 @@ def plan_study(study: StudyFile, study_path, *, smoke: bool = False) -> Plan:
 # running
 
 
-def _mark_complete(folder: Path) -> dict:
-    """After a run: record the digests of its case and summary (:data:`MARKER`); its summary."""
+def _mark_complete(folder: Path, cpu: float) -> dict:
+    """After a run: record the digests of its case and summary (:data:`MARKER`) and the CPU seconds it
+    took (``cpu``: its process's, :func:`run_one`); its summary."""
     resolved, summary = (folder / "case.resolved.toml").read_bytes(), (folder / "summary.json").read_bytes()
     outputs.write_json(folder / MARKER, {"format": MARKER_FORMAT,
                                          "case.resolved.toml": hashlib.sha256(resolved).hexdigest(),
-                                         "summary.json": hashlib.sha256(summary).hexdigest()})
+                                         "summary.json": hashlib.sha256(summary).hexdigest(),
+                                         "CPU time [s]": cpu})
     return json.loads(summary)
+
+
+def run_cpu(folder: Path) -> float | None:
+    """The CPU seconds a finished run took, from its marker (None for a run marked before they were kept)."""
+    try:
+        value = json.loads((folder / MARKER).read_text(encoding="utf-8")).get("CPU time [s]")
+    except (OSError, ValueError, AttributeError):
+        return None
+    return float(value) if isinstance(value, (int, float)) else None
 
 
 def reusable(folder: Path, body: str) -> dict | None:
@@ -611,7 +622,7 @@ def run_one(spec: dict) -> tuple[str, Any, float]:
     run must not stop the others)."""
     from threadpoolctl import threadpool_limits
 
-    t0 = time.perf_counter()
+    t0, cpu0 = time.perf_counter(), time.process_time()
     folder = Path(spec["folder"])
     try:
         with contextlib.suppress(FileNotFoundError):
@@ -619,7 +630,7 @@ def run_one(spec: dict) -> tuple[str, Any, float]:
         with threadpool_limits(1):
             path, raw, case = load_case_file(spec["case"], smoke=spec["smoke"], overrides=spec["overrides"])
             run_loaded(path, raw, case, folder, smoke=spec["smoke"], overrides=spec["overrides"])
-        return "ok", _mark_complete(folder), time.perf_counter() - t0
+        return "ok", _mark_complete(folder, time.process_time() - cpu0), time.perf_counter() - t0
     except Exception as exc:  # noqa: BLE001 - recorded in the table, reported by the caller
         return "failed", _message(exc), time.perf_counter() - t0
 
@@ -755,6 +766,14 @@ def run_study(study: StudyFile, study_path, out, *, smoke: bool | None = None, w
             "smoke": smoke, "total": len(plan.runs), "reused": len(reused), "ran": len(todo),
             "failed": len(failed), "ok with warnings": len(warned), "started [UTC]": started,
             "wall time [s]": time.perf_counter() - t0}
+    # the CPU the study's results cost, reused runs included (each run's own process, from its marker)
+    cpu = [run_cpu(out / r.folder) for r in plan.runs if results[r.index][0] == "ok"]
+    known = [c for c in cpu if c is not None]
+    info["CPU time of the runs [s]"] = sum(known) if known else None
+    info["CPU time of the runs, runs counted"] = f"{len(known)} of {len(cpu)} finished runs"
+    if known:
+        log.info("CPU time of the study's %d finished runs: %s (median %s per run)", len(known),
+                 _duration(sum(known)), _duration(statistics.median(known)))
     files = write_tables(study, study_path, plan, results, out, info)
     return StudyResult(out, len(plan.runs), len(reused), len(todo), failed, backend, files, warned,
                        (study, plan, results))
