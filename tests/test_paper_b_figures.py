@@ -30,8 +30,16 @@ def test_zones_unsteady_smooth_surge():
     z = pb.zones(t, res, level, 2e-3)
     assert z["unsteady until"] == pytest.approx(3e-3, abs=1.01e-6)
     assert z["surge from"] == pytest.approx(8e-3, abs=1.01e-6)
-    assert pb.zones(t, res, level, None) == {"unsteady until": t[-1], "surge from": None}
-    assert pb.zones(t, 0 * res, level, None, scenario="steady") == {"unsteady until": 0.0, "surge from": None}
+    assert z["why"] is None
+    short = pb.zones(t, res, level, None)
+    assert (short["unsteady until"], short["surge from"]) == (t[-1], None)
+    assert short["why"].startswith("record too short")
+    calm = pb.zones(t, 0 * res, level, None, scenario="steady")
+    assert (calm["unsteady until"], calm["surge from"]) == (0.0, None)
+    assert calm["why"].startswith("no surge") and "0.012 s" in calm["why"]
+    # a departure shorter than the minimum duration is no surge
+    brief = pb.zones(t, np.where(t < 3e-3, 300.0, 0.0) + np.where((t >= 8e-3) & (t < 8.05e-3), 100.0, 0.0), level, 2e-3)
+    assert brief["surge from"] is None and brief["why"].startswith("no surge")
 
 
 # ---------------------------------------------------------------------------- figures and compare_runs

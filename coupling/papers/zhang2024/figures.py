@@ -79,27 +79,34 @@ PNG_FILES = ("angular_displacement.png", "collision_map.png", "poincare.png")
 def zones(t, residual, level: float, t_spinup, threshold: float = SURGE_THRESHOLD,
           min_duration: float = SURGE_MIN_DURATION, scenario: str = "drop") -> dict:
     """Ends of the paper's zones (Fig. 4) by the rule of the module docstring:
-    ``{"unsteady until": s, "surge from": s or None}``.  ``residual``: the middle ball's axial
-    angular rate minus the ball train's steady pattern at its azimuth [rad/s]; ``level``: its
-    typical steady rate [rad/s]."""
+    ``{"unsteady until": s, "surge from": s or None, "why": reason}``.  ``residual``: the middle ball's
+    axial angular rate minus the ball train's steady pattern at its azimuth [rad/s]; ``level``: its
+    typical steady rate [rad/s].  ``why`` says why a zone is missing: a record that ends inside the
+    unsteady zone (its end is then the record's: "record too short"), or a smooth zone with no surge;
+    None when both were found."""
     t = np.asarray(t, dtype=float)
     if scenario != "drop":
         start = float(t[0])
     elif t_spinup is None:
-        return {"unsteady until": float(t[-1]), "surge from": None}
+        return {"unsteady until": float(t[-1]), "surge from": None,
+                "why": "record too short: the inner ring is still spinning up at its end"}
     else:
         start = float(t_spinup)
     band = threshold * abs(level)
     inside = np.abs(np.asarray(residual, dtype=float)) <= band
     calm = np.flatnonzero(inside & (t >= start))
     if calm.size == 0:
-        return {"unsteady until": float(t[-1]), "surge from": None}
+        return {"unsteady until": float(t[-1]), "surge from": None,
+                "why": f"record too short: the axial rate never comes within {threshold:.0%} of its steady level"}
     i0 = int(calm[0])
     edges = np.diff(np.concatenate(([0], (~inside[i0:]).astype(np.int8), [0])))
     for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
         if t[i0 + b - 1] - t[i0 + a] >= min_duration:
-            return {"unsteady until": float(t[i0]), "surge from": float(t[i0 + a])}
-    return {"unsteady until": float(t[i0]), "surge from": None}
+            return {"unsteady until": float(t[i0]), "surge from": float(t[i0 + a]), "why": None}
+    return {"unsteady until": float(t[i0]), "surge from": None,
+            "why": (f"no surge: after {t[i0]:.4g} s the axial rate leaves the {threshold:.0%} band around its "
+                    f"steady level for less than {min_duration * 1e3:.3g} ms at a time, to the record's end "
+                    f"({t[-1]:.4g} s)")}
 
 
 def zone_times(t, series, ball: int, t_spinup, scenario: str = "drop") -> dict:
@@ -156,6 +163,8 @@ def summary_entries(case, t, series, events, freqs) -> dict:
     z = zone_times(t, series, j, t_spin, scenario)
     out["Zone unsteady until [s]"] = z["unsteady until"]
     out["Zone surge from [s]"] = z["surge from"]
+    if z["why"]:
+        out["Zones, note"] = z["why"]
     out.update(collision_entries(t, series, events, t_spin))
     motion = ball_motion(t, series, j)
     times, _ = poincare_section(t, motion.azimuth, motion.radius, section_azimuth(case))
