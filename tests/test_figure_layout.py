@@ -84,11 +84,15 @@ def _clipped_texts(figure) -> list[str]:
             if b.x0 < box.x0 - 1 or b.y0 < box.y0 - 1 or b.x1 > box.x1 + 1 or b.y1 > box.y1 + 1]
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def drop(tmp_path_factory):
+    """One smoke drop per test process, its figures checked as they are saved.  Session-scoped, with the
+    patches undone as soon as the run ends: pytest-xdist's worksteal interleaves this module's tests with
+    other modules', and a module-scoped fixture was set up again after each interleaving (3-4 runs of
+    11-13 s each in a full run, where one per worker is needed)."""
     mp = pytest.MonkeyPatch()
     try:
-        yield _captured_run(mp, tmp_path_factory.mktemp("drop"), "cageless_6206_10krpm_short")
+        return _captured_run(mp, tmp_path_factory.mktemp("drop"), "cageless_6206_10krpm_short")
     finally:
         mp.undo()
 

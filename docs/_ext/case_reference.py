@@ -14,6 +14,7 @@ the map scene list each map kind's axes and parameters from the kind registry
 """
 from __future__ import annotations
 
+import functools
 import inspect
 import re
 import types
@@ -45,18 +46,22 @@ class Row:
         return f"{self.table}.{self.key}" if self.table else self.key
 
 
-def _comments(model) -> dict[str, str]:
-    """The comment on each field's line in the class source (``name: T = x  # comment``)."""
+@functools.lru_cache(maxsize=None)
+def _comments(model) -> types.MappingProxyType:
+    """The comment on each field's line in the class source (``name: T = x  # comment``), read-only.
+    Cached per class: ``inspect.getsource`` of a class parses its whole module, and :func:`rows` asks
+    for the same classes once per table of every scene (660 calls, 46 of the 53 s the reference's tests
+    took, before the cache)."""
     try:
         source = inspect.getsource(model)
     except (OSError, TypeError):
-        return {}
+        return types.MappingProxyType({})
     found = {}
     for line in source.splitlines():
         m = re.match(r"\s{4}(\w+)\s*:[^#]*#\s*(.+)$", line)
         if m and m.group(1) in model.model_fields:
             found[m.group(1)] = m.group(2).strip()
-    return found
+    return types.MappingProxyType(found)
 
 
 def _split(annotation):
