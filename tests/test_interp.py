@@ -330,6 +330,7 @@ def test_hermite_kernels_have_no_reference_counting(name):
     non-inlined helpers bring them back (see the kernels' comments)."""
     import re
 
+    import numba
     from numba import njit
 
     kernel = getattr(interp, name)  # a fresh uncached copy with the same options (cached code has no assembly)
@@ -338,8 +339,11 @@ def test_hermite_kernels_have_no_reference_counting(name):
     ax = [np.linspace(0, 1, 4)] * nd
     data = interp.hermite_data(tuple(ax), np.zeros((4,) * nd))
     logs = [np.int64(0)] * nd
-    fn(*ax, *logs, data, np.int64(0), *[0.5] * nd, np.int64(0), np.zeros(1, np.int64))
-    sig = [s for s in fn.signatures if "Literal" not in str(s)][0]
+    # compiled once, for the argument types a model's call has (a call would first type the integers as
+    # literals and compile twice)
+    sig = tuple(numba.typeof(a) for a in (*ax, *logs, data, np.int64(0), *[0.5] * nd, np.int64(0),
+                                         np.zeros(1, np.int64)))
+    fn.compile(sig)
     asm = fn.inspect_asm(sig)
     symbol = re.compile(r"^_ZN\S*?\d+" + name + r"B\S*:$", re.M)
     start = symbol.search(asm)
