@@ -308,8 +308,9 @@ def usable_value(study: Path, row: dict, key: str) -> float | None:
         return None
     if key.startswith("Zone") and str(summary.get("Zones, note", "")).startswith("record too short"):
         return None  # the unsteady zone ends at the record's end: its end was not seen
-    if key.startswith("Correlation dimension") and str(summary.get(name + " verdict", "")).startswith("no scaling"):
-        return None
+    if key.startswith("Correlation dimension") and (str(summary.get(name + " verdict", "")).startswith("no scaling")
+                                                    or str(summary.get(name + ", note", "")).startswith("forced")):
+        return None  # no scaling range, or a record of too few orbits computed anyway
     return None if value != value else float(value)  # NaN: not computed
 
 

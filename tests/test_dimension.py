@@ -89,3 +89,15 @@ def test_the_phase_portrait_entries_of_a_synthetic_ball():
     short = phase_portrait_dimensions(t, SimpleNamespace(position=pos, velocity=vel), 0, 0.4999)
     assert short["Correlation dimension, ball 0 x phase portrait [-]"] is None
     assert short["Correlation dimension, ball 0 x phase portrait, note"].startswith("not computed")
+    # the orbit rule: with the azimuth, 33.5 orbits pass; 3.35 orbits (the last 0.05 s) are an arc of the
+    # orbit, "record too short" and the record that would do (5 orbits: 0.0746 s), unless forced
+    ball = SimpleNamespace(position=pos, velocity=vel, azimuth=w * t)
+    assert phase_portrait_dimensions(t, ball, 0, 0.0)["Correlation dimension, ball 0 x phase portrait [-]"] == \
+        pytest.approx(1.0, abs=0.05)
+    arc = phase_portrait_dimensions(t, ball, 0, 0.45)
+    assert arc["Correlation dimension, ball 0 z phase portrait [-]"] is None
+    note = arc["Correlation dimension, ball 0 z phase portrait, note"]
+    assert note.startswith("not computed: record too short: 3.35 orbits of ball 0") and "74.6 ms" in note
+    forced = phase_portrait_dimensions(t, ball, 0, 0.45, force=True)
+    assert forced["Correlation dimension, ball 0 x phase portrait [-]"] is not None
+    assert forced["Correlation dimension, ball 0 x phase portrait, note"].startswith("forced")
