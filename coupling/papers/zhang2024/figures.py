@@ -202,7 +202,7 @@ def phase_portrait_dimensions(t, motion, j: int, transient: float, force: bool =
             span = float(np.asarray(t)[keep][-1] - np.asarray(t)[keep][0])
             need = D2_MIN_ORBITS * span / orbits if orbits > 0 else float("inf")
             why = (f"record too short: {orbits:.3g} orbits of ball {j} after the transient (at least "
-                   f"{D2_MIN_ORBITS:g}: about {_duration(need)} of record)")
+                   f"{D2_MIN_ORBITS:g}: about {_duration(need)} of record at its mean orbital speed)")
     for i, d in enumerate("xyz"):
         key = f"Correlation dimension, ball {j} {d} phase portrait [-]"
         pts = np.c_[motion.position[keep, i], motion.velocity[keep, i]]
