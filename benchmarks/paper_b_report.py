@@ -264,21 +264,24 @@ def fine_points(study: Path, key: str, window=None) -> tuple[list[float], list[f
     (study.csv; notes and verdicts from each run's summary.json).  An exponent counts only where its
     guarded verdict resolved it; a settling time only where it is not the record's edge."""
     x, y, have, total = [], [], 0, 0
-    with open(study / "study.csv", newline="") as f:
-        for row in csv.DictReader(f):
-            if row.get("status") != "ok":
-                continue
-            speed = float(row["operating.speed [SI]"]) / _krpm()
-            if window and not (window[0] - 1e-9 <= speed <= window[1] + 1e-9):
-                continue
-            total += 1
-            value = usable_value(study, row, key)
-            if value is None:
-                continue
-            have += 1
-            x.append(speed)
-            y.append(value)
+    for speed, row in ok_runs(study):
+        if window and not (window[0] - 1e-9 <= speed <= window[1] + 1e-9):
+            continue
+        total += 1
+        value = usable_value(study, row, key)
+        if value is None:
+            continue
+        have += 1
+        x.append(speed)
+        y.append(value)
     return x, y, have, total
+
+
+def ok_runs(study: Path) -> list[tuple[float, dict]]:
+    """(speed [krpm], study.csv row) of each finished run of a speed study."""
+    with open(study / "study.csv", newline="") as f:
+        return [(float(row["operating.speed [SI]"]) / _krpm(), row) for row in csv.DictReader(f)
+                if row.get("status") == "ok"]
 
 
 def _krpm() -> float:
@@ -330,12 +333,7 @@ def rows_dimension(study: Path) -> list[tuple]:
     Both at the 5 % level; otherwise "not resolvable"."""
     from scipy.stats import binomtest, mannwhitneyu
 
-    runs = []
-    with open(study / "study.csv", newline="") as f:
-        for row in csv.DictReader(f):
-            if row.get("status") == "ok":
-                speed = float(row["operating.speed [SI]"]) / _krpm()
-                runs.append((speed, {d: usable_value(study, row, _d2_key(d)) for d in "xyz"}))
+    runs = [(speed, {d: usable_value(study, row, _d2_key(d)) for d in "xyz"}) for speed, row in ok_runs(study)]
     out = []
     trios = [v for _, v in runs if None not in v.values()]
     above = sum(1 for v in trios if v["z"] > max(v["x"], v["y"]))

@@ -483,13 +483,12 @@ def output_workers() -> bool:
     the cores already)."""
     import threading
 
+    from lubedyn.dynamics.specialise import usable_cores
+
     if (os.environ.get("LUBEDYN_OUTPUT_WORKERS", "1") == "0" or not hasattr(os, "fork")
             or threading.current_thread() is not threading.main_thread()):
         return False
-    try:
-        return len(os.sched_getaffinity(0)) >= 2
-    except AttributeError:  # not on Linux
-        return (os.cpu_count() or 1) >= 2
+    return usable_cores() >= 2
 
 
 class ForkedWriter:

@@ -173,8 +173,9 @@ def summary_entries(case, t, series, events, freqs) -> dict:
     if short is not None:
         out[f"Poincare points, ball {j}, note"] = f"poincare.png is not a section yet: {short}"
     out.update(vibration_entries(t, series, freqs, case.analysis.vibration_band, case.analysis.transient))
-    out.update(phase_portrait_dimensions(t, motion, j, case.analysis.transient,
-                                         force=bool(getattr(case.analysis, "force", False))))
+    from lubedyn.scenes.dynamics_lyapunov import forced  # the record rule's analysis.force
+
+    out.update(phase_portrait_dimensions(t, motion, j, case.analysis.transient, force=forced(case)))
     return out
 
 
