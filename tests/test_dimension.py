@@ -101,3 +101,16 @@ def test_the_phase_portrait_entries_of_a_synthetic_ball():
     forced = phase_portrait_dimensions(t, ball, 0, 0.45, force=True)
     assert forced["Correlation dimension, ball 0 x phase portrait [-]"] is not None
     assert forced["Correlation dimension, ball 0 x phase portrait, note"].startswith("forced")
+
+
+def test_a_slope_above_the_space_is_no_dimension(monkeypatch):
+    """The guard against an impossible value: pair counts made to grow as r^2.5 for a set in the plane (no set
+    in 2 dimensions does) give value None and the verdict "no dimension", not a D2 of 2.5."""
+    from lubedyn.dynamics.analysis import dimension as dm
+
+    monkeypatch.setattr(dm, "pair_counts", lambda y, r, theiler: np.round(1e6 * (r / r[-1]) ** 2.5).astype(np.int64))
+    t = np.linspace(0.0, 200.0, 4000)
+    res = dm.correlation_dimension(np.c_[np.cos(t), np.sin(t)])
+    assert res.value is None and res.verdict.startswith("no dimension: the slope 2.5 exceeds the space's dimension 2")
+    monkeypatch.setattr(dm, "pair_counts", lambda y, r, theiler: np.round(1e6 * (r / r[-1]) ** 1.5).astype(np.int64))
+    assert dm.correlation_dimension(np.c_[np.cos(t), np.sin(t)]).value == pytest.approx(1.5, abs=1e-6)

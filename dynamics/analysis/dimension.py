@@ -49,8 +49,9 @@ MIN_PAIRS = 50
 class CorrelationDimension:
     """:func:`correlation_dimension`'s result: ``value`` (None without a scaling range), its scaling range
     ``r_range`` (in the scaled coordinates), the local slopes' spread over it, the points used, and a
-    ``verdict``: "curve (periodic)", "fills the space (d = n)", "non-integer (fractal)", "integer", or
-    "no scaling range" (with why)."""
+    ``verdict``: "curve (periodic)", "fills the space (d = n)", "non-integer (fractal)", "integer",
+    "no scaling range" (with why), or "no dimension" (a slope above the space's dimension d + 0.1, which no
+    set in d dimensions has: value None)."""
 
     value: float | None
     r_range: tuple[float, float] | None
@@ -130,6 +131,10 @@ def correlation_dimension(points, *, max_points: int = 4000, theiler: int | None
     i, j = best
     value = float(np.polyfit(lr[i:j + 1], lc[i:j + 1], 1)[0])
     spread = float(np.ptp(local[i:j + 1]) / max(abs(value), 1e-300))
+    if value > d + 0.1:  # impossible for a set in d dimensions: the count's slope is not a dimension here
+        return CorrelationDimension(None, (float(math.exp(lr[i])), float(math.exp(lr[j]))), spread, n,
+                                    f"no dimension: the slope {value:.3g} exceeds the space's dimension {d} "
+                                    "(too few close pairs for the counts to scale, or a lattice-like sampling)")
     if abs(value - 1.0) < 0.1:
         verdict = "curve (periodic)"
     elif value > d - 0.1:
