@@ -54,6 +54,7 @@ autodoc_default_options = {"members": True, "show-inheritance": False}
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"          # the NumPy docstrings carry the types and units
 autodoc_preserve_defaults = True
+autodoc_use_type_comments = False  # the package has no "# type:" comments; reading them parsed every member's source
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False
 napoleon_use_rtype = False

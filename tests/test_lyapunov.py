@@ -392,6 +392,71 @@ def test_wolf_lorenz():
     assert r.uncertainty == pytest.approx(r.uncertainty_bits * math.log(2.0))
 
 
+def _wolf_replacement_by_tree(tree, X, n_use, target, old, sep, df, theiler, smin, smax, angle_max):
+    """Wolf et al.'s replacement with a k-d tree's ball query (the rule of ``largest_lyapunov_wolf``'s
+    docstring, written independently of the compiled walk): ``(index, kind)``."""
+    p = X[target]
+    if smin <= df <= smax and old < n_use:
+        return old, 0
+    idx = d = th = None
+    for zmult in range(1, L.WOLF_WIDEN + 1):
+        idx = np.asarray(tree.query_ball_point(p, zmult * smax), dtype=np.int64)
+        idx = idx[np.abs(idx - target) > theiler]
+        diff = p - X[idx]
+        d = np.linalg.norm(diff, axis=1)
+        idx, d, diff = idx[d >= max(smin, 1e-300)], d[d >= max(smin, 1e-300)], diff[d >= max(smin, 1e-300)]
+        if idx.size == 0:
+            continue
+        th = np.arccos(np.minimum(1.0, np.abs(diff @ sep) / (d * df)))
+        best = np.lexsort((idx, d, th))[0]  # smallest angle, then nearest, then earliest
+        if th[best] < angle_max:
+            return int(idx[best]), 1
+    limit = 2.0 * angle_max
+    while idx is not None and idx.size and limit < math.pi:
+        for zmult in range(1, L.WOLF_WIDEN + 1):
+            masked = np.where(d <= zmult * smax, th, np.inf)
+            best = np.lexsort((idx, d, masked))[0]
+            if masked[best] < limit:
+                return int(idx[best]), 2
+        limit *= 2.0
+    if old < n_use:
+        return old, 2
+    return (int(idx[np.lexsort((idx, d))[0]]), 2) if idx is not None and idx.size else (-1, 2)
+
+
+@pytest.mark.parametrize("series, dim, delay, evolve", [("henon", 2, 1, 1), ("lorenz", 3, 10, 5), ("noise", 4, 1, 3)])
+def test_compiled_wolf_walk_is_the_tree_search_rule(series, dim, delay, evolve):
+    """The compiled walk (slab search over sorted coordinates) against the same rule through scipy's
+    k-d tree ball queries: equal replacements, per-step logs within round-off."""
+    from scipy.spatial import cKDTree
+
+    if series == "henon":
+        x = _henon_series(3000)
+    elif series == "lorenz":
+        x = _flow_series(lorenz, WOLF_LORENZ, [1.0, 1.0, 20.0], 0.01, 4000, 20.0)[:, 0]
+    else:
+        x = np.random.default_rng(3).standard_normal(3000)
+    X = L.delay_embedding(x, dim, delay)
+    n_use = X.shape[0] - evolve
+    smax, smin, theiler = 0.1 * np.ptp(x), 1e-4 * np.ptp(x), 10
+    first = L._wolf_first(X, n_use, theiler, smin)
+    logs, kinds = L._wolf_walk(X, n_use, evolve, first, theiler, smin, smax, L.WOLF_ANGLE_MAX, L.WOLF_WIDEN)
+    tree = cKDTree(X[:n_use])
+    ref_logs, ref_kinds, ind, nb = [], [], 0, first
+    while nb >= 0 and ind < n_use:
+        sep = X[ind + evolve] - X[nb + evolve]
+        df = float(np.linalg.norm(sep))
+        ref_logs.append(math.log2(df / float(np.linalg.norm(X[ind] - X[nb]))))
+        ind += evolve
+        if ind >= n_use:
+            break
+        nb, kind = _wolf_replacement_by_tree(tree, X, n_use, ind, nb + evolve, sep, df, theiler, smin, smax,
+                                             L.WOLF_ANGLE_MAX)
+        ref_kinds.append(kind)
+    assert np.array_equal(kinds, ref_kinds) and np.count_nonzero(kinds) > 10  # replacements happen
+    np.testing.assert_allclose(logs, ref_logs, rtol=0.0, atol=1e-12)
+
+
 def test_wolf_rossler():
     """Rossler x, 10,000 samples at 0.1 s (about 160 orbits), m = 3, tau = 1.5 s, evolve 2 s: measured
     0.116-0.148 bits/s over settings and 3 initial conditions; Wolf et al. 0.13 bits/s; 20 %."""
