@@ -301,11 +301,14 @@ def _band_solve_line(S, y, n):
 
 
 @njit(cache=True)
-def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac):
+def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac, eps_ratio=0.0):
     """One sweep of the mixed Gauss-Seidel / Jacobi-distributive line
     relaxation (lines along x, the module docstring's scheme) of
     L(P) = f, in place on ``P``.  ``K[d, e]``: dimensionless influence
     coefficient (dH per unit P) at offsets |dx| = d < 7, |dy| = e < 2.
+    ``eps_ratio`` > 0: a row with some eps_{+-1/2}/h^2 > ``switch`` is
+    Gauss-Seidel only if max/min of eps over its five nodes is below it
+    (else Jacobi-distributive); 0: no such condition.
     Returns the number of Jacobi-distributive rows."""
     nx, ny = P.shape
     n = nx - 2
@@ -329,6 +332,12 @@ def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac)
             xs = 0.5 * (eps[i, j - 1] + e0) * ry2
             sx = xe + xw + xn + xs
             gs = xe > switch or xw > switch or xn > switch or xs > switch
+            if gs and eps_ratio > 0.0:
+                # the Gauss-Seidel row freezes eps, which varies by orders of magnitude over a node where the
+                # viscosity's exponential meets a steep pressure (the outlet spike): Jacobi-distributive there
+                emax = max(e0, eps[i + 1, j], eps[i - 1, j], eps[i, j + 1], eps[i, j - 1])
+                emin = min(e0, eps[i + 1, j], eps[i - 1, j], eps[i, j + 1], eps[i, j - 1])
+                gs = emax < eps_ratio * emin
             gsrow[r] = gs
             if gs:
                 Lv, _ = _row_operator(P, H, rho, eps, i, j, rx2, ry2, rhx, order)
@@ -586,6 +595,8 @@ class MultigridOptions:
     order: int = 2
     coarse_order: int = 2
     xi_switch: float = 0.3
+    gs_eps_ratio: float | None = 100.0
+    gs_ratio_spacing: float = 6.0 / 256
     omega_gs: float = 0.4
     omega_jac: float = 0.2
     coarsest_cells: int = 16
@@ -602,16 +613,24 @@ class MultigridOptions:
     stall_cycles: int = 6
     stall_factor: float = 0.7
     stop: str = "error"
-    error_fraction: float = 0.02
-    error_cap: float = 5e-5
+    error_fraction: float = 0.25
+    error_cap: float | None = None
+    load_limit: float = 1e-4
 
     def __post_init__(self):
         if self.stop not in STOP_RULES:
             raise InputError(f"multigrid.stop = {self.stop!r} is not allowed; choose one of {', '.join(STOP_RULES)}")
-        for key in ("error_fraction", "error_cap"):
+        for key in ("error_fraction", "error_cap", "load_limit"):
             v = getattr(self, key)
+            if v is None and key == "error_cap":
+                continue
             if not 0.0 < v < 1.0:
-                raise InputError(f"multigrid.{key} = {v!r} must be in (0, 1)")
+                raise InputError(f"multigrid.{key} = {v!r} must be in (0, 1)" + (" or None (no cap)" if key ==
+                                                                                  "error_cap" else ""))
+        if self.gs_eps_ratio is not None and not self.gs_eps_ratio > 1.0:
+            raise InputError(f"multigrid.gs_eps_ratio = {self.gs_eps_ratio!r} must be > 1 or None (no condition)")
+        if not self.gs_ratio_spacing > 0.0:
+            raise InputError(f"multigrid.gs_ratio_spacing = {self.gs_ratio_spacing!r} must be > 0")
         for key in ("order", "coarse_order"):
             if getattr(self, key) not in (1, 2):
                 raise InputError(f"multigrid.{key} = {getattr(self, key)!r} is not allowed; choose 1 or 2 "
@@ -787,16 +806,19 @@ class MultigridEHL:
         H = self.film(lv)
         rho, eps = self.coefficients(lv, H)
         o = self.o
+        ratio = o.gs_eps_ratio if (o.gs_eps_ratio is not None and lv.hx <= o.gs_ratio_spacing * (1 + 1e-9)) else 0.0
         if lv.dense is None:
             # the sweep reads the arrays along x (lines i = 1 .. nx - 2 at fixed j): column-major copies make
             # those reads contiguous; the same arithmetic (equal to the bit), a third faster per sweep, the
             # five copies a small fraction of it
             P = np.asfortranarray(lv.P)
             line_relax(P, np.asfortranarray(H), np.asfortranarray(rho), np.asfortranarray(eps),
-                       np.asfortranarray(lv.f), lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)
+                       np.asfortranarray(lv.f), lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac,
+                       ratio)
             lv.P[...] = P
         else:
-            line_relax(lv.P, H, rho, eps, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)
+            line_relax(lv.P, H, rho, eps, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac,
+                       ratio)
         self.work += lv.N / self.levels[-1].N
 
     def load(self, lv):
@@ -895,16 +917,23 @@ class MultigridEHL:
         ic = (int(np.argmin(np.abs(lv.X))), int(np.argmin(np.abs(lv.Y))))
         return float(H[ic]), float(np.min(H))
 
-    def _error_test(self, history, coarse):
+    def _error_test(self, history, coarse, coarse2=None):
         """The error-based stop after the last cycle in ``history``: a dict of
         the relative algebraic-error estimates of H_c, H_min and the load, the
         relative discretisation-error estimates of H_c and H_min, the limits
-        min(error_fraction x discretisation error, error_cap) and ``met``
-        (see "Stopping" in the module docstring)."""
+        ``error_fraction`` x discretisation error (at most ``error_cap`` if set)
+        and ``met`` (see "Stopping" in the module docstring).  ``coarse`` and
+        ``coarse2``: H_c, H_min of the FMG solutions two and four times coarser
+        (None where there is none)."""
         o = self.o
         h = history
         out = dict(met=False)
         p = 2.0**o.order - 1.0
+        # a coarse grid whose film has collapsed (H_min <= 0) is no solution: no discretisation-error estimate
+        if coarse is not None and min(coarse["H_centre"], coarse["H_min"]) <= 0.0:
+            coarse = None
+        if coarse2 is not None and (coarse is None or min(coarse2["H_centre"], coarse2["H_min"]) <= 0.0):
+            coarse2 = None
         worst = None
         for key, name in (("H_centre", "H_c"), ("H_min", "H_min")):
             q = h[-1][key]
@@ -914,14 +943,24 @@ class MultigridEHL:
             # remaining error of a geometric sequence of changes, d1 r/(1 - r), but at least the last
             # change and half the one before (non-monotone histories: a small d1 can be a sign change)
             e_alg = max(d1, 0.5 * d0) * max(1.0, r / (1.0 - r)) / abs(q)
-            e_disc = abs(q - coarse[key]) / p / abs(q) if coarse is not None else None
-            limit = o.error_cap if e_disc is None else min(o.error_fraction * e_disc, o.error_cap)
+            e_disc = None
+            if coarse is not None:
+                e_disc = abs(q - coarse[key]) / p / abs(q)
+                if coarse2 is not None:  # the coarser pair's difference, scaled by 2^order: a cancellation
+                    e_disc = max(e_disc, abs(coarse[key] - coarse2[key]) / (p + 1.0) / p / abs(q))
+            if e_disc is None:
+                limit = o.error_cap if o.error_cap is not None else 0.0
+            else:
+                limit = o.error_fraction * e_disc
+                if o.error_cap is not None:
+                    limit = min(limit, o.error_cap)
             out[name] = dict(algebraic_error=e_alg, discretisation_error=e_disc, limit=limit)
-            ratio = e_alg / limit if limit > 0.0 else np.inf  # limit 0: coarse and fine H equal to the digit
+            ratio = e_alg / limit if limit > 0.0 else np.inf  # limit 0: no estimate, or coarse and fine H equal
             if worst is None or ratio > worst[0]:
                 worst = (ratio, name)
             if name == "H_c":
-                load_limit = limit
+                # the load is imposed, not discretised: at most H_c's limit and at most load_limit
+                load_limit = min(limit, o.load_limit)
         e_load = abs(h[-1]["load_error"] or 0.0)
         out["load"] = dict(algebraic_error=e_load, limit=load_limit)
         ratio = e_load / load_limit if load_limit > 0.0 else np.inf
@@ -934,10 +973,12 @@ class MultigridEHL:
     @staticmethod
     def _describe(test):
         w = test["worst"]
-        e = test[w]
-        return (f"algebraic error of {w} {e['algebraic_error']:.1e} (limit {e['limit']:.1e}"
-                + (f" = min({e['discretisation_error']:.1e} x fraction, cap)" if e.get("discretisation_error")
-                   is not None else "") + ")")
+        e = test[w if w != "load" else "H_c"]
+        if e.get("discretisation_error") is None:
+            how = "; no discretisation-error estimate: no coarser FMG grid, or its film collapsed"
+        else:
+            how = f" = fraction x discretisation error {e['discretisation_error']:.1e}, or the cap"
+        return f"algebraic error of {w} {test[w]['algebraic_error']:.1e} (limit {test[w]['limit']:.1e}{how})"
 
     def solve(self, H00_start):
         """FMG start, then cycles on the target grid; returns ``(P, H00, history)``
@@ -957,10 +998,14 @@ class MultigridEHL:
         c0.P[0, :] = c0.P[-1, :] = c0.P[:, 0] = c0.P[:, -1] = 0.0
         self.cycle(0)
         coarse = None  # H_c, H_min of the next-coarser grid's FMG solution: the discretisation-error estimate
+        coarse2 = None  # the same two levels down (the FMG sequence's guard against a cancellation)
         for k in range(1, nlev):
             if k == nlev - 1 and (nlev == 2 or o.fmg_cycles > 0):
                 hc, hm = self._films(self.levels[k - 1])
                 coarse = dict(H_centre=hc, H_min=hm)
+            if k == nlev - 2 and o.fmg_cycles > 0:
+                hc, hm = self._films(self.levels[k - 1])
+                coarse2 = dict(H_centre=hc, H_min=hm)
             lv = self.levels[k]
             lv.P = _fmg_interpolate(self.levels[k - 1].P)
             lv.f = np.zeros(lv.shape)
@@ -975,14 +1020,14 @@ class MultigridEHL:
         history = []
         res0, load0, H = self.norms(k)
         history.append(dict(cycle=0, residual=res0, load_error=load0, work=self.work, H00=self.H00,
-                            H_centre=float(H[self._ic]), H_min=float(np.min(H)), coarse=coarse))
+                            H_centre=float(H[self._ic]), H_min=float(np.min(H)), coarse=coarse, coarse2=coarse2))
         test = None
         for cyc in range(1, o.max_cycles + 1):
             self.cycle(k)
             res, load_err, H = self.norms(k)
             history.append(dict(cycle=cyc, residual=res, load_error=load_err, work=self.work, H00=self.H00,
                                 H_centre=float(H[self._ic]), H_min=float(np.min(H))))
-            test = self._error_test(history, coarse)
+            test = self._error_test(history, coarse, coarse2)
             history[-1].update(error_Hc=test["H_c"]["algebraic_error"], error_Hmin=test["H_min"]["algebraic_error"])
             log.debug("EHL multigrid cycle %d: res %.3e, load err %.2e, H00 %.7f, H_c %.7f, H_min %.7f, work %.1f, "
                       "%s", cyc, res, load_err, self.H00, history[-1]["H_centre"], history[-1]["H_min"], self.work,
@@ -994,7 +1039,9 @@ class MultigridEHL:
                 history[-1].update(stop="error", stop_detail=(
                     f"algebraic error estimates (relative) H_c {test['H_c']['algebraic_error']:.1e}, H_min "
                     f"{test['H_min']['algebraic_error']:.1e}, load {test['load']['algebraic_error']:.1e} within "
-                    f"min({o.error_fraction:g} x discretisation error, {o.error_cap:.0e}); worst: "
+                    f"{o.error_fraction:g} x discretisation error"
+                    + (f" (at most {o.error_cap:.0e})" if o.error_cap is not None else "")
+                    + f", load at most {o.load_limit:.0e}; worst: "
                     + self._describe(test)))
                 break
             if res <= o.rtol and abs(load_err) <= o.load_rtol:
