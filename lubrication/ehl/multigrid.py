@@ -875,8 +875,11 @@ class MultigridEHL:
         r, wedge, H, _, _ = self.residual(lv)
         a = self._diag[1:-1, 1:-1]
         Pi = lv.P[1:-1, 1:-1]
-        d = np.maximum(Pi + r[1:-1, 1:-1] / np.where(a < 0, a, -1.0), 0.0) - Pi
-        res = float(np.sum(np.abs(d)) / max(np.sum(Pi), 1e-300))
+        # a diverging iterate overflows these sums: no warning here, the non-finite residual stops the solve
+        # with "diverged" (as in coefficients)
+        with np.errstate(over="ignore", invalid="ignore"):
+            d = np.maximum(Pi + r[1:-1, 1:-1] / np.where(a < 0, a, -1.0), 0.0) - Pi
+            res = float(np.sum(np.abs(d)) / max(np.sum(Pi), 1e-300))
         load_err = ((self.load(lv) - self.target) / self.target) if self.target is not None else 0.0
         return res, load_err, H
 
