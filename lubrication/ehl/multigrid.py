@@ -122,8 +122,8 @@ M >= 500 on 129 x 129, M = 1000 on 257 x 257) there is no estimate and the
 residual test below ends the cycles.  The load is imposed, not discretised:
 its relative error must be at most H_c's limit and at most ``load_limit``
 (1e-4).  ``error_cap`` (default None) caps the limits (the former default,
-min(0.02 x discretisation error, 5e-5), ran 4-17 cycles, the more the finer
-the grid).  Residual test (also with the error test: whichever comes first):
+min(0.02 x discretisation error, 5e-5), ran 6-17 cycles at 129 x 129 ...
+513 x 513, the more the finer the grid).  Residual test (also with the error test: whichever comes first):
 the relative projected ("natural") residual res = sum_i |max(P_i + r_i/a_ii,
 0) - P_i| / sum_i P_i (a_ii = dL_i/dP_i, including the elastic
 self-influence; it vanishes exactly at a complementarity solution and is not
