@@ -141,11 +141,11 @@ def test_line_relaxation_keeps_an_exact_solution(compiled):
 
 @pytest.mark.parametrize("compiled", [True, False])
 def test_steep_eps_rows_are_jacobi_distributive(compiled):
-    """``eps_ratio``: a row above the switch is Gauss-Seidel only where eps
-    varies by less than the ratio over its five nodes.  The sweep's count of
-    Jacobi-distributive rows against a numpy count of the two criteria, and
-    the exact solution still a fixed point (the rows' own operator is
-    unchanged, only the update)."""
+    """``eps_ratio``: a row above the switch whose pressure exceeds
+    ``ratio_pressure`` is Gauss-Seidel only where eps varies by less than the
+    ratio over its five nodes.  The sweep's count of Jacobi-distributive rows
+    against a numpy count of the criteria, and the exact solution still a
+    fixed point (the rows' own operator is unchanged, only the update)."""
     P, H_, rho, eps = _fields(12, 11, seed=5)
     eps *= 40.0  # eps/h^2 > 30 almost everywhere: Gauss-Seidel without the ratio condition
     eps[5:8, 4:7] *= np.array([1e-3, 1.0, 1e-4])[:, None]  # a steep band, as across the outlet spike
@@ -158,11 +158,13 @@ def test_steep_eps_rows_are_jacobi_distributive(compiled):
     five = np.stack([eps[inner], eps[2:, 1:-1], eps[:-2, 1:-1], eps[1:-1, 2:], eps[1:-1, :-2]])
     steep = five.max(axis=0) >= 100.0 * five.min(axis=0)
     fn = line_relax if compiled else line_relax.py_func
-    for ratio, expected in ((0.0, np.sum(~above)), (100.0, np.sum(~above | steep))):
+    high = P[inner] > 0.5
+    for ratio, rp, expected in ((0.0, 0.5, np.sum(~above)), (100.0, 0.0, np.sum(~above | steep)),
+                                (100.0, 0.5, np.sum(~above | (steep & high)))):
         P1 = P.copy()
-        assert fn(P1, H_, rho, eps, f, K, 0.1, 0.1, 2, 30.0, 0.4, 0.2, ratio) == expected
+        assert fn(P1, H_, rho, eps, f, K, 0.1, 0.1, 2, 30.0, 0.4, 0.2, ratio, rp) == expected
         np.testing.assert_allclose(P1, P, rtol=0, atol=1e-12)
-    assert np.sum(steep & above) >= 9
+    assert np.sum(steep & above & high) >= 3 and np.sum(steep & above & ~high) >= 3
 
 
 def test_line_relaxation_solves_the_poisson_problem():

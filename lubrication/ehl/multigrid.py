@@ -331,14 +331,15 @@ def _band_solve_line(S, y, n):
 
 
 @njit(cache=True)
-def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac, eps_ratio=0.0):
+def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac, eps_ratio=0.0, ratio_pressure=0.5):
     """One sweep of the mixed Gauss-Seidel / Jacobi-distributive line
     relaxation (lines along x, the module docstring's scheme) of
     L(P) = f, in place on ``P``.  ``K[d, e]``: dimensionless influence
     coefficient (dH per unit P) at offsets |dx| = d < 7, |dy| = e < 2.
-    ``eps_ratio`` > 0: a row with some eps_{+-1/2}/h^2 > ``switch`` is
-    Gauss-Seidel only if max/min of eps over its five nodes is below it
-    (else Jacobi-distributive); 0: no such condition.
+    ``eps_ratio`` > 0: a row with some eps_{+-1/2}/h^2 > ``switch`` and
+    P > ``ratio_pressure`` is Gauss-Seidel only if max/min of eps over its
+    five nodes is below ``eps_ratio`` (else Jacobi-distributive); 0: no such
+    condition.
     Returns the number of Jacobi-distributive rows."""
     nx, ny = P.shape
     n = nx - 2
@@ -362,9 +363,10 @@ def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac,
             xs = 0.5 * (eps[i, j - 1] + e0) * ry2
             sx = xe + xw + xn + xs
             gs = xe > switch or xw > switch or xn > switch or xs > switch
-            if gs and eps_ratio > 0.0:
+            if gs and eps_ratio > 0.0 and P[i, j] > ratio_pressure:
                 # the Gauss-Seidel row freezes eps, which varies by orders of magnitude over a node where the
-                # viscosity's exponential meets a steep pressure (the outlet spike): Jacobi-distributive there
+                # viscosity's exponential meets a steep high pressure (the outlet spike): Jacobi-distributive
+                # there (the inlet rows, P < ratio_pressure, stay Gauss-Seidel: measured slower otherwise)
                 emax = max(e0, eps[i + 1, j], eps[i - 1, j], eps[i, j + 1], eps[i, j - 1])
                 emin = min(e0, eps[i + 1, j], eps[i - 1, j], eps[i, j + 1], eps[i, j - 1])
                 gs = emax < eps_ratio * emin
@@ -632,6 +634,7 @@ class MultigridOptions:
     xi_switch: float = 0.3
     gs_eps_ratio: float | None = 100.0
     gs_ratio_spacing: float = 6.0 / 256
+    gs_ratio_pressure: float = 0.5
     omega_gs: float = 0.4
     omega_jac: float = 0.2
     coarsest_cells: int = 16
@@ -849,11 +852,11 @@ class MultigridEHL:
             P = np.asfortranarray(lv.P)
             line_relax(P, np.asfortranarray(H), np.asfortranarray(rho), np.asfortranarray(eps),
                        np.asfortranarray(lv.f), lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac,
-                       ratio)
+                       ratio, o.gs_ratio_pressure)
             lv.P[...] = P
         else:
             line_relax(lv.P, H, rho, eps, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac,
-                       ratio)
+                       ratio, o.gs_ratio_pressure)
         self.work += lv.N / self.levels[-1].N
 
     def load(self, lv):
