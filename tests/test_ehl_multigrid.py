@@ -528,6 +528,12 @@ def test_stop_options_are_checked():
         MultigridOptions(error_fraction=0.0)
     with pytest.raises(InputError, match=r"multigrid.error_cap = 2.0 must be in \(0, 1\) or None \(no cap\)"):
         MultigridOptions(error_cap=2.0)
+    with pytest.raises(InputError, match=r"multigrid.load_limit = 0.0 must be in \(0, 1\)"):
+        MultigridOptions(load_limit=0.0)
+    with pytest.raises(InputError, match=r"multigrid.gs_eps_ratio = 0.5 must be > 1 or None \(no condition\)"):
+        MultigridOptions(gs_eps_ratio=0.5)
+    with pytest.raises(InputError, match=r"multigrid.gs_ratio_pressure = -1.0 must be >= 0"):
+        MultigridOptions(gs_ratio_pressure=-1.0)
 
 
 def test_scene_summary_names_the_multigrid_stop(tmp_path, capsys):

@@ -43,24 +43,27 @@ sum xi/4 and -xi_w/4 on the first and second upstream columns (likewise
 downstream), and the distributed influence coefficients K_d - (K_{d-1} +
 K_{d+1} + 2 K_{d,1})/4 in the wedge part).  On grids of spacing at most
 ``gs_ratio_spacing`` (6/256 b_x: 257 nodes along x on the standard domain and
-finer) a row is Gauss-Seidel only if, besides, eps varies by less than
-``gs_eps_ratio`` (100) over its five nodes.  Why (issue 42, measured at
-513 x 513, M = 20, L = 10): the cycles converged with an alternating load
-and H_c error (ratio about -0.6 per cycle; the coarse-grid correction left a
-load error of 3e-5, the one post-relaxation moved it to -4e-4), and the
-largest pressure errors, 0.4-0.9 p_H at single nodes, sat on the outlet
-spike's flanks (P = 1.6-2.3 p_H) at Gauss-Seidel rows with eps/h^2 = 0.45-1.7
--- Jacobi rows on 257 x 257, where eps/h^2 is four times smaller.  There the
-viscosity's exponential makes eps vary by orders of magnitude over one node,
-and a Gauss-Seidel row, which freezes eps, overshoots.  With the condition the
-H_c, H_min and load errors after cycle 1 at 513 x 513 are 1e-4 (M = 20, 50),
-7e-5 (100), 6e-4 (200) instead of 4e-3 ... 1e-2.  Tried instead: a switch of
-3 everywhere (cures M = 20 but slows M >= 200 on 129 x 129 and M >= 500 on
-finer grids), the ratio condition on every grid (slows 65 x 65: M = 50 needs
-9 cycles to 1e-3 instead of 4), nu1 = 2, nu0 = 40, omega_gs = 0.25 (no cure).
-Its cost: slower last cycles at heavy loads on fine grids (M = 500 on
-513 x 513: 1e-4 after 7 cycles instead of 5; M = 1000 on 257 x 257, stopped
-by the residual test, 15 cycles instead of 11).  Where one of the line nodes
+finer) a row whose pressure exceeds ``gs_ratio_pressure`` (0.5 p_H) is
+Gauss-Seidel only if, besides, eps varies by less than ``gs_eps_ratio`` (100)
+over its five nodes.  Why (issue 42, measured at 513 x 513, M = 20, L = 10):
+the cycles converged with an alternating load and H_c error (ratio about -0.6
+per cycle; the coarse-grid correction left a load error of 3e-5, the one
+post-relaxation moved it to -4e-4), and the largest pressure errors, 0.4-0.9
+p_H at single nodes, sat on the outlet spike's flanks (P = 1.6-2.3 p_H) at
+Gauss-Seidel rows with eps/h^2 = 0.45-1.7 -- Jacobi rows on 257 x 257, where
+eps/h^2 is four times smaller.  There the viscosity's exponential makes eps
+vary by orders of magnitude over one node, and a Gauss-Seidel row, which
+freezes eps, overshoots.  With the condition the H_c, H_min and load errors
+after cycle 2 at 513 x 513 are 4e-5 (M = 20), 2e-5 (50, 100), 2e-4 (200)
+instead of 2e-3, 1e-3, 3e-4, 1e-3; at 257 x 257 2e-5 (M = 20), 6e-5 (50),
+2e-4 (100) instead of 9e-5, 8e-4, 2e-3.  Without the pressure bound the inlet
+rows of heavy loads turned Jacobi too and their last cycles slowed (M = 1000
+on 257 x 257: 15 instead of 11 cycles to the residual test); with it M = 500
+and 1000 run as before (M = 1000: the same errors cycle by cycle) or faster.
+Tried instead: a switch of 3 everywhere (cures M = 20 but slows M >= 200 on
+129 x 129 and M >= 500 on finer grids), the ratio condition on every grid
+(slows 65 x 65: M = 50 needs 8-9 cycles to 1e-3 instead of 4), nu1 = 2,
+nu0 = 40, omega_gs = 0.25 (no cure).  Where one of the line nodes
 i-2 .. i+2 is cavitated, only the diagonal is kept (point relaxation).
 Cavitation is handled by projection: every updated pressure is max(P, 0)
 (projected Gauss-Seidel/Jacobi: a relaxation of the complementarity
@@ -135,13 +138,14 @@ Measured by replaying the rule on 26 scenes cycled 20-25 times (M = 20 ...
 1000, L = 10, 65^2 ... 513^2, elliptic R_y = 4 R_x, Roelands/Dowson-Higginson;
 the rule reads only the history, so the replay is exact), against each
 scene's last iterate: wherever the error test stopped, the H_c and H_min
-errors were at most 0.15 of their limits (0.04 of the discretisation error),
+errors were at most 0.11 of their limits (0.03 of the discretisation error),
 the load's at most 0.88 of its own (9e-5, 129 x 129); it stopped after cycle 3
-(31.8 work units) at 513 x 513 for M = 20 ... 500, cycle 4 (40.3) for
-M = 1000; cycle 3 (33.9) at 257 x 257 for M = 20 ... 500 (the residual test:
-M = 1000); cycles 3-4 on 65 and 129.  Not adopted: a sign-aware estimate (|d_k| where
-the last two changes alternate), which the replay showed under-estimating the
-error 11-fold (65 x 65 elliptic, cycle 3) and 4-fold (513 x 513, M = 100).
+(31.8 work units) at 513 x 513 for M = 20, 50, 100, 500, 1000, cycle 4 (40.3)
+for M = 200; cycle 3 (33.9) at 257 x 257 for M = 20 ... 500 (the residual
+test: M = 1000); cycles 3-4 on 65 and 129.  Not adopted: a sign-aware
+estimate (|d_k| where the last two changes alternate), which the replay
+showed under-estimating the error 11-fold (65 x 65 elliptic, cycle 3) and
+4-fold (513 x 513, M = 100, former relaxation).
 Divergence (non-finite values, or ``res`` above 1e3 times its value after
 the FMG start), stagnation (``res`` reduced by less than a factor
 ``stall_factor`` over ``stall_cycles`` cycles) or ``max_cycles`` exceeded
@@ -623,10 +627,11 @@ class MultigridOptions:
     at most that of H_c and at most ``load_limit``, or when the residual test
     below is met; ``"residual"`` only when the relative projected residual is
     at most ``rtol`` and the load error at most ``load_rtol`` (the default
-    before the error stop).  ``gs_eps_ratio``, ``gs_ratio_spacing``: on grids
-    of spacing at most ``gs_ratio_spacing`` (in b_x) a row is Gauss-Seidel
-    only where eps varies by less than ``gs_eps_ratio`` over its five nodes
-    (None: no such condition; module docstring, relaxation).
+    before the error stop).  ``gs_eps_ratio``, ``gs_ratio_spacing``,
+    ``gs_ratio_pressure``: on grids of spacing at most ``gs_ratio_spacing``
+    (in b_x) a row with P > ``gs_ratio_pressure`` is Gauss-Seidel only where
+    eps varies by less than ``gs_eps_ratio`` over its five nodes (None: no
+    such condition; module docstring, relaxation).
     """
 
     order: int = 2
@@ -667,8 +672,9 @@ class MultigridOptions:
                                                                                   "error_cap" else ""))
         if self.gs_eps_ratio is not None and not self.gs_eps_ratio > 1.0:
             raise InputError(f"multigrid.gs_eps_ratio = {self.gs_eps_ratio!r} must be > 1 or None (no condition)")
-        if not self.gs_ratio_spacing > 0.0:
-            raise InputError(f"multigrid.gs_ratio_spacing = {self.gs_ratio_spacing!r} must be > 0")
+        for key in ("gs_ratio_spacing", "gs_ratio_pressure"):
+            if not getattr(self, key) >= 0.0:
+                raise InputError(f"multigrid.{key} = {getattr(self, key)!r} must be >= 0")
         for key in ("order", "coarse_order"):
             if getattr(self, key) not in (1, 2):
                 raise InputError(f"multigrid.{key} = {getattr(self, key)!r} is not allowed; choose 1 or 2 "
