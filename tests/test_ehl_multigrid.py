@@ -448,28 +448,31 @@ def _tight(c, n):
 
 @pytest.mark.parametrize("M", [20, 200])
 def test_fmg_stop_is_within_its_fraction_of_the_discretisation_error(M):
-    """The default stop (the FMG principle: algebraic error estimate of H_c,
-    H_min and the load at most ``error_fraction`` = 0.25 of the discretisation
-    error estimated between the FMG levels) against solves to a projected
-    residual of 1e-9 on 129 x 129 and 65 x 65: the independent discretisation
-    error of the tight 129 x 129 solve is |q_129 - q_65|/3 (second order,
-    measured order 1.95, test above), and the default answer's distance from
-    the tight 129 x 129 solve is within 0.25 of it for H_c and H_min (measured
-    on the replayed histories: at most 0.12 of it), the load within 0.25 of
-    H_c's; in at most 4 cycles (measured 3-4) where the former stop needed 6-7."""
+    """The default stop (the FMG principle: algebraic error estimate of H_c
+    and H_min at most ``error_fraction`` = 0.5 of the discretisation error
+    estimated between the FMG levels, the load's at most H_c's limit and
+    1e-4) against solves to a projected residual of 1e-9 on 129 x 129 and
+    65 x 65: the independent discretisation error of the tight 129 x 129
+    solve is |q_129 - q_65|/3 (second order, measured order 1.95, test
+    above), and the default answer's distance from the tight 129 x 129 solve
+    is within 0.5 of it for H_c and H_min (the replayed histories: at most
+    0.03 of it), the load within 0.5 of H_c's; in at most 4 cycles (measured
+    3-4) where the former stop needed 6-7."""
+    F = MultigridOptions().error_fraction
+    assert F == 0.5
     c = EHLContact.from_moes(M, 10)
     tight = _tight(c, 129)
     coarse = _tight(c, 65)
     assert tight.info["residual"] <= 1e-9 and coarse.info["residual"] <= 1e-9
     s = solve_ehl(c, EHLGrid(nx=129), MG)
     last = s.info["history"][-1]
-    assert last["stop"] == "error" and "0.25 x discretisation error" in last["stop_detail"]
+    assert last["stop"] == "error" and "0.5 x discretisation error" in last["stop_detail"]
     disc = {}
     for attr in ("central_film_thickness", "minimum_film_thickness"):
         q, q2 = getattr(tight, attr), getattr(coarse, attr)
         disc[attr] = abs(q - q2) / 3 / q
-        assert abs(getattr(s, attr) / q - 1) <= 0.25 * disc[attr]
-    assert abs(s.load / tight.load - 1) <= 0.25 * disc["central_film_thickness"]
+        assert abs(getattr(s, attr) / q - 1) <= F * disc[attr]
+    assert abs(s.load / tight.load - 1) <= min(F * disc["central_film_thickness"], 1e-4)
     assert s.info["cycles"] <= 4
     former = solve_ehl(c, EHLGrid(nx=129), _mg(**_FORMER))
     assert former.info["cycles"] > s.info["cycles"]
