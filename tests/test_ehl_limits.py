@@ -208,8 +208,9 @@ def test_hint_names_the_test_that_refused_a_converged_step():
 
 
 def test_multigrid_light_load_high_L_stops_with_a_hint_from_the_state():
-    """Where the multigrid stops at light load: M = 10, L = 20 on 257 x 257 (measured: stagnates at
-    cycle 7; 129 x 129 converges).  Before, its iterate overflowed the viscosity with a numpy
+    """Where the multigrid stops at light load: M = 10, L = 20 on 257 x 257 (measured: stagnated at
+    cycle 7; since the steep-eps rows are Jacobi-distributive, issue 42, it diverges at cycle 4; 129 x 129
+    converges).  Before, its iterate overflowed the viscosity with a numpy
     RuntimeWarning (an error in this suite) and the message advised finer grids for heavier loads;
     now the error names the light load and the coarser grid that works."""
     from lubedyn.lubrication.ehl import EHLContact, EHLGrid, EHLOptions, solve_ehl

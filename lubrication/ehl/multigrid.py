@@ -41,7 +41,29 @@ sweep, under-relaxed by ``omega_jac``; the row's coefficients are those of
 the distributed change: Poiseuille -1.25 sum xi on the diagonal, xi_w +
 sum xi/4 and -xi_w/4 on the first and second upstream columns (likewise
 downstream), and the distributed influence coefficients K_d - (K_{d-1} +
-K_{d+1} + 2 K_{d,1})/4 in the wedge part).  Where one of the line nodes
+K_{d+1} + 2 K_{d,1})/4 in the wedge part).  On grids of spacing at most
+``gs_ratio_spacing`` (6/256 b_x: 257 nodes along x on the standard domain and
+finer) a row whose pressure exceeds ``gs_ratio_pressure`` (0.5 p_H) is
+Gauss-Seidel only if, besides, eps varies by less than ``gs_eps_ratio`` (100)
+over its five nodes.  Why (issue 42, measured at 513 x 513, M = 20, L = 10):
+the cycles converged with an alternating load and H_c error (ratio about -0.6
+per cycle; the coarse-grid correction left a load error of 3e-5, the one
+post-relaxation moved it to -4e-4), and the largest pressure errors, 0.4-0.9
+p_H at single nodes, sat on the outlet spike's flanks (P = 1.6-2.3 p_H) at
+Gauss-Seidel rows with eps/h^2 = 0.45-1.7 -- Jacobi rows on 257 x 257, where
+eps/h^2 is four times smaller.  There the viscosity's exponential makes eps
+vary by orders of magnitude over one node, and a Gauss-Seidel row, which
+freezes eps, overshoots.  With the condition the H_c, H_min and load errors
+after cycle 2 at 513 x 513 are 4e-5 (M = 20), 2e-5 (50, 100), 2e-4 (200)
+instead of 2e-3, 1e-3, 3e-4, 1e-3; at 257 x 257 2e-5 (M = 20), 6e-5 (50),
+2e-4 (100) instead of 9e-5, 8e-4, 2e-3.  Without the pressure bound the inlet
+rows of heavy loads turned Jacobi too and their last cycles slowed (M = 1000
+on 257 x 257: 15 instead of 11 cycles to the residual test); with it M = 500
+and 1000 run as before (M = 1000: the same errors cycle by cycle) or faster.
+Tried instead: a switch of 3 everywhere (cures M = 20 but slows M >= 200 on
+129 x 129 and M >= 500 on finer grids), the ratio condition on every grid
+(slows 65 x 65: M = 50 needs 8-9 cycles to 1e-3 instead of 4), nu1 = 2,
+nu0 = 40, omega_gs = 0.25 (no cure).  Where one of the line nodes
 i-2 .. i+2 is cavitated, only the diagonal is kept (point relaxation).
 Cavitation is handled by projection: every updated pressure is max(P, 0)
 (projected Gauss-Seidel/Jacobi: a relaxation of the complementarity
@@ -85,33 +107,49 @@ together several times faster than rfftn on the 540^2 padding at 257 x 257), and
 product on grids of at most 600 nodes (the coarsest, where the FFT call overhead dominates; from
 33 x 33 on the FFT is faster).
 
-Stopping (target grid, after every cycle).  Residual test: the relative
-projected ("natural") residual res = sum_i |max(P_i + r_i/a_ii, 0) - P_i| /
-sum_i P_i (a_ii = dL_i/dP_i, including the elastic self-influence; it
-vanishes exactly at a complementarity solution and is not dominated by
-free-boundary nodes whose pressures flip between 0 and 1e-7, as sum |r| over
-P > 0 was) at most ``rtol`` (1e-5) and the relative load error at most
-``load_rtol`` (1e-5).  Error test (``stop="error"``, the default; the FMG
-principle: iterate until the algebraic error is a small fraction of the
-discretisation error, Brandt 1984, Trottenberg et al. 2001, sec. 2.6): for
-q = H_c (the node at X = Y = 0) and q = H_min, the algebraic error is
-estimated from the changes d_k = |q_k - q_{k-1}| of the last two cycles as
-max(d_k, d_{k-1}/2) max(1, r/(1 - r)), r = min(d_k/d_{k-1}, 0.9) (the rest
-of a geometric series, guarded against a sign change), relative to q; the
-discretisation error as |q - q_2h|/(2^p - 1), q_2h the value on the
-next-coarser grid after its FMG cycles, p = ``order``; the load's algebraic
-error is its relative error.  The cycles stop (from cycle 2 on) when all
-three estimates are at most min(``error_fraction`` (0.02) x the
-discretisation error (of H_c for the load), ``error_cap`` (5e-5)), or when
-the residual test is met first (whichever comes first; the history's last
-entry names it in ``stop`` with the figures in ``stop_detail``).  The cap
-keeps coarse grids, whose discretisation errors are large, at the accuracy
-of fine ones.  Measured against solves to res <= 1e-10 (M = 20 ... 1000,
-L = 10, 33^2 ... 513^2, elliptic R_y = 4 R_x, Roelands/Dowson-Higginson):
-H_c, H_min and the load within 3e-5 wherever the error test stopped (where
-the residual test came first, e.g. M = 1000 on 129^2 and M = 20 on 513^2,
-the result is the residual stop's: there H_min within 2.3e-4); at 257^2,
-M <= 200, 6-8 cycles (61-79 work units) instead of 11-12 (106-115).
+Stopping (target grid, after every cycle, from cycle 2 on).  Error test
+(``stop="error"``, the default): the full-multigrid principle (Brandt 1984;
+Trottenberg et al. 2001, sec. 2.6): the cycles end when the algebraic error is
+at most ``error_fraction`` = 0.5 of the discretisation error, so the answer's
+error is at most 1.5 times the grid's own (measured below: at most 1.03
+times).  For q = H_c (the node at X = Y = 0) and q = H_min the algebraic error is estimated from the changes
+d_k = |q_k - q_{k-1}| of the last two cycles as max(d_k, d_{k-1}/2)
+max(1, r/(1 - r)), r = min(d_k/d_{k-1}, 0.9) (the rest of a geometric series,
+guarded against a sign change), relative to q; the discretisation error as
+max(|q - q_2h|, |q_2h - q_4h|/2^p)/(2^p - 1) relative to q, q_2h and q_4h the
+values on the next two coarser grids after their FMG cycles, p = ``order``
+(the second term keeps a cancellation between q and q_2h from shrinking the
+limit: at 513 x 513, M = 20 it gives 4.1e-4 for H_min where the first gives
+2.7e-4).  Where the 2h grid's film has collapsed (H <= 0: M >= 100 on 65 x 65,
+M >= 500 on 129 x 129, M = 1000 on 257 x 257) there is no estimate and the
+residual test below ends the cycles.  The load is imposed, not discretised:
+its relative error must be at most H_c's limit and at most ``load_limit``
+(1e-4).  ``error_cap`` (default None) caps the limits (the former default,
+min(0.02 x discretisation error, 5e-5), ran 6-17 cycles at 129 x 129 ...
+513 x 513, the more the finer the grid).  Residual test (also with the error
+test: whichever comes first): the relative projected ("natural") residual res = sum_i |max(P_i + r_i/a_ii,
+0) - P_i| / sum_i P_i (a_ii = dL_i/dP_i, including the elastic
+self-influence; it vanishes exactly at a complementarity solution and is not
+dominated by free-boundary nodes whose pressures flip between 0 and 1e-7, as
+sum |r| over P > 0 was) at most ``rtol`` (1e-5) and the relative load error at
+most ``load_rtol`` (1e-5); ``stop="residual"`` uses it alone.  The history's
+last entry names the rule in ``stop`` with the figures in ``stop_detail``.
+Measured by replaying the rule on 26 scenes cycled 20-25 times (M = 20 ...
+1000, L = 10, 65^2 ... 513^2, elliptic R_y = 4 R_x, Roelands/Dowson-Higginson;
+the rule reads only the history, so the replay is exact), against each
+scene's last iterate: wherever the error test stopped, the H_c and H_min
+errors were at most 0.06 of their limits (0.028 of the discretisation error),
+the load's at most 0.88 of its own (9e-5, 129 x 129); it stopped after cycle 3
+(31.8 work units) at 513 x 513 for M = 20 ... 1000; cycle 3 (33.9) at 257 x 257
+for M = 20 ... 500 (the residual test: M = 1000); cycles 3-4 on 65 and 129.
+With the fraction 0.25 the errors were the same at most (0.11 of the limits)
+but M = 200 on 513 x 513 needed cycle 4 (40.3 work units): the estimate's
+d_{k-1}/2 guard was 2.2e-3 for H_min after cycle 3 against a limit of 1.9e-3
+(true error 7.9e-5); so 0.5, which the replay shows leaving the estimate a
+factor 16 of room.  Not adopted: a sign-aware
+estimate (|d_k| where the last two changes alternate), which the replay
+showed under-estimating the error 11-fold (65 x 65 elliptic, cycle 3) and
+4-fold (513 x 513, M = 100, former relaxation).
 Divergence (non-finite values, or ``res`` above 1e3 times its value after
 the FMG start), stagnation (``res`` reduced by less than a factor
 ``stall_factor`` over ``stall_cycles`` cycles) or ``max_cycles`` exceeded
@@ -301,11 +339,15 @@ def _band_solve_line(S, y, n):
 
 
 @njit(cache=True)
-def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac):
+def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac, eps_ratio=0.0, ratio_pressure=0.5):
     """One sweep of the mixed Gauss-Seidel / Jacobi-distributive line
     relaxation (lines along x, the module docstring's scheme) of
     L(P) = f, in place on ``P``.  ``K[d, e]``: dimensionless influence
     coefficient (dH per unit P) at offsets |dx| = d < 7, |dy| = e < 2.
+    ``eps_ratio`` > 0: a row with some eps_{+-1/2}/h^2 > ``switch`` and
+    P > ``ratio_pressure`` is Gauss-Seidel only if max/min of eps over its
+    five nodes is below ``eps_ratio`` (else Jacobi-distributive); 0: no such
+    condition.
     Returns the number of Jacobi-distributive rows."""
     nx, ny = P.shape
     n = nx - 2
@@ -329,6 +371,13 @@ def line_relax(P, H, rho, eps, f, K, hx, hy, order, switch, omega_gs, omega_jac)
             xs = 0.5 * (eps[i, j - 1] + e0) * ry2
             sx = xe + xw + xn + xs
             gs = xe > switch or xw > switch or xn > switch or xs > switch
+            if gs and eps_ratio > 0.0 and P[i, j] > ratio_pressure:
+                # the Gauss-Seidel row freezes eps, which varies by orders of magnitude over a node where the
+                # viscosity's exponential meets a steep high pressure (the outlet spike): Jacobi-distributive
+                # there (the inlet rows, P < ratio_pressure, stay Gauss-Seidel: measured slower otherwise)
+                emax = max(e0, eps[i + 1, j], eps[i - 1, j], eps[i, j + 1], eps[i, j - 1])
+                emin = min(e0, eps[i + 1, j], eps[i - 1, j], eps[i, j + 1], eps[i, j - 1])
+                gs = emax < eps_ratio * emin
             gsrow[r] = gs
             if gs:
                 Lv, _ = _row_operator(P, H, rho, eps, i, j, rx2, ry2, rhx, order)
@@ -576,16 +625,25 @@ class MultigridOptions:
 
     ``stop``: when the cycles on the target grid end (see "Stopping" in the
     module docstring): ``"error"`` (default) when the estimated algebraic
-    error of H_c, H_min and the load is at most ``error_fraction`` times the
-    estimated discretisation error and at most ``error_cap`` (relative), or
-    the residual test below is met; ``"residual"`` only when the relative
-    projected residual is at most ``rtol`` and the load error at most
-    ``load_rtol`` (the former default).
+    error of H_c and H_min is at most ``error_fraction`` (0.5) times the
+    discretisation error estimated between the FMG levels (and at most
+    ``error_cap``, relative, if set; default None: no cap) and the load error
+    at most that of H_c and at most ``load_limit``, or when the residual test
+    below is met; ``"residual"`` only when the relative projected residual is
+    at most ``rtol`` and the load error at most ``load_rtol`` (the default
+    before the error stop).  ``gs_eps_ratio``, ``gs_ratio_spacing``,
+    ``gs_ratio_pressure``: on grids of spacing at most ``gs_ratio_spacing``
+    (in b_x) a row with P > ``gs_ratio_pressure`` is Gauss-Seidel only where
+    eps varies by less than ``gs_eps_ratio`` over its five nodes (None: no
+    such condition; module docstring, relaxation).
     """
 
     order: int = 2
     coarse_order: int = 2
     xi_switch: float = 0.3
+    gs_eps_ratio: float | None = 100.0
+    gs_ratio_spacing: float = 6.0 / 256
+    gs_ratio_pressure: float = 0.5
     omega_gs: float = 0.4
     omega_jac: float = 0.2
     coarsest_cells: int = 16
@@ -602,16 +660,25 @@ class MultigridOptions:
     stall_cycles: int = 6
     stall_factor: float = 0.7
     stop: str = "error"
-    error_fraction: float = 0.02
-    error_cap: float = 5e-5
+    error_fraction: float = 0.5
+    error_cap: float | None = None
+    load_limit: float = 1e-4
 
     def __post_init__(self):
         if self.stop not in STOP_RULES:
             raise InputError(f"multigrid.stop = {self.stop!r} is not allowed; choose one of {', '.join(STOP_RULES)}")
-        for key in ("error_fraction", "error_cap"):
+        for key in ("error_fraction", "error_cap", "load_limit"):
             v = getattr(self, key)
+            if v is None and key == "error_cap":
+                continue
             if not 0.0 < v < 1.0:
-                raise InputError(f"multigrid.{key} = {v!r} must be in (0, 1)")
+                raise InputError(f"multigrid.{key} = {v!r} must be in (0, 1)" + (" or None (no cap)" if key ==
+                                                                                  "error_cap" else ""))
+        if self.gs_eps_ratio is not None and not self.gs_eps_ratio > 1.0:
+            raise InputError(f"multigrid.gs_eps_ratio = {self.gs_eps_ratio!r} must be > 1 or None (no condition)")
+        for key in ("gs_ratio_spacing", "gs_ratio_pressure"):
+            if not getattr(self, key) >= 0.0:
+                raise InputError(f"multigrid.{key} = {getattr(self, key)!r} must be >= 0")
         for key in ("order", "coarse_order"):
             if getattr(self, key) not in (1, 2):
                 raise InputError(f"multigrid.{key} = {getattr(self, key)!r} is not allowed; choose 1 or 2 "
@@ -787,16 +854,19 @@ class MultigridEHL:
         H = self.film(lv)
         rho, eps = self.coefficients(lv, H)
         o = self.o
+        ratio = o.gs_eps_ratio if (o.gs_eps_ratio is not None and lv.hx <= o.gs_ratio_spacing * (1 + 1e-9)) else 0.0
         if lv.dense is None:
             # the sweep reads the arrays along x (lines i = 1 .. nx - 2 at fixed j): column-major copies make
             # those reads contiguous; the same arithmetic (equal to the bit), a third faster per sweep, the
             # five copies a small fraction of it
             P = np.asfortranarray(lv.P)
             line_relax(P, np.asfortranarray(H), np.asfortranarray(rho), np.asfortranarray(eps),
-                       np.asfortranarray(lv.f), lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)
+                       np.asfortranarray(lv.f), lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac,
+                       ratio, o.gs_ratio_pressure)
             lv.P[...] = P
         else:
-            line_relax(lv.P, H, rho, eps, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac)
+            line_relax(lv.P, H, rho, eps, lv.f, lv.K, lv.hx, lv.hy, lv.order, o.xi_switch, o.omega_gs, o.omega_jac,
+                       ratio, o.gs_ratio_pressure)
         self.work += lv.N / self.levels[-1].N
 
     def load(self, lv):
@@ -853,8 +923,11 @@ class MultigridEHL:
         r, wedge, H, _, _ = self.residual(lv)
         a = self._diag[1:-1, 1:-1]
         Pi = lv.P[1:-1, 1:-1]
-        d = np.maximum(Pi + r[1:-1, 1:-1] / np.where(a < 0, a, -1.0), 0.0) - Pi
-        res = float(np.sum(np.abs(d)) / max(np.sum(Pi), 1e-300))
+        # a diverging iterate overflows these sums: no warning here, the non-finite residual stops the solve
+        # with "diverged" (as in coefficients)
+        with np.errstate(over="ignore", invalid="ignore"):
+            d = np.maximum(Pi + r[1:-1, 1:-1] / np.where(a < 0, a, -1.0), 0.0) - Pi
+            res = float(np.sum(np.abs(d)) / max(np.sum(Pi), 1e-300))
         load_err = ((self.load(lv) - self.target) / self.target) if self.target is not None else 0.0
         return res, load_err, H
 
@@ -895,16 +968,23 @@ class MultigridEHL:
         ic = (int(np.argmin(np.abs(lv.X))), int(np.argmin(np.abs(lv.Y))))
         return float(H[ic]), float(np.min(H))
 
-    def _error_test(self, history, coarse):
+    def _error_test(self, history, coarse, coarse2=None):
         """The error-based stop after the last cycle in ``history``: a dict of
         the relative algebraic-error estimates of H_c, H_min and the load, the
         relative discretisation-error estimates of H_c and H_min, the limits
-        min(error_fraction x discretisation error, error_cap) and ``met``
-        (see "Stopping" in the module docstring)."""
+        ``error_fraction`` x discretisation error (at most ``error_cap`` if set)
+        and ``met`` (see "Stopping" in the module docstring).  ``coarse`` and
+        ``coarse2``: H_c, H_min of the FMG solutions two and four times coarser
+        (None where there is none)."""
         o = self.o
         h = history
         out = dict(met=False)
         p = 2.0**o.order - 1.0
+        # a coarse grid whose film has collapsed (H_min <= 0) is no solution: no discretisation-error estimate
+        if coarse is not None and min(coarse["H_centre"], coarse["H_min"]) <= 0.0:
+            coarse = None
+        if coarse2 is not None and (coarse is None or min(coarse2["H_centre"], coarse2["H_min"]) <= 0.0):
+            coarse2 = None
         worst = None
         for key, name in (("H_centre", "H_c"), ("H_min", "H_min")):
             q = h[-1][key]
@@ -914,14 +994,24 @@ class MultigridEHL:
             # remaining error of a geometric sequence of changes, d1 r/(1 - r), but at least the last
             # change and half the one before (non-monotone histories: a small d1 can be a sign change)
             e_alg = max(d1, 0.5 * d0) * max(1.0, r / (1.0 - r)) / abs(q)
-            e_disc = abs(q - coarse[key]) / p / abs(q) if coarse is not None else None
-            limit = o.error_cap if e_disc is None else min(o.error_fraction * e_disc, o.error_cap)
+            e_disc = None
+            if coarse is not None:
+                e_disc = abs(q - coarse[key]) / p / abs(q)
+                if coarse2 is not None:  # the coarser pair's difference, scaled by 2^order: a cancellation
+                    e_disc = max(e_disc, abs(coarse[key] - coarse2[key]) / (p + 1.0) / p / abs(q))
+            if e_disc is None:
+                limit = o.error_cap if o.error_cap is not None else 0.0
+            else:
+                limit = o.error_fraction * e_disc
+                if o.error_cap is not None:
+                    limit = min(limit, o.error_cap)
             out[name] = dict(algebraic_error=e_alg, discretisation_error=e_disc, limit=limit)
-            ratio = e_alg / limit if limit > 0.0 else np.inf  # limit 0: coarse and fine H equal to the digit
+            ratio = e_alg / limit if limit > 0.0 else np.inf  # limit 0: no estimate, or coarse and fine H equal
             if worst is None or ratio > worst[0]:
                 worst = (ratio, name)
             if name == "H_c":
-                load_limit = limit
+                # the load is imposed, not discretised: at most H_c's limit and at most load_limit
+                load_limit = min(limit, o.load_limit)
         e_load = abs(h[-1]["load_error"] or 0.0)
         out["load"] = dict(algebraic_error=e_load, limit=load_limit)
         ratio = e_load / load_limit if load_limit > 0.0 else np.inf
@@ -934,10 +1024,12 @@ class MultigridEHL:
     @staticmethod
     def _describe(test):
         w = test["worst"]
-        e = test[w]
-        return (f"algebraic error of {w} {e['algebraic_error']:.1e} (limit {e['limit']:.1e}"
-                + (f" = min({e['discretisation_error']:.1e} x fraction, cap)" if e.get("discretisation_error")
-                   is not None else "") + ")")
+        e = test[w if w != "load" else "H_c"]
+        if e.get("discretisation_error") is None:
+            how = "; no discretisation-error estimate: no coarser FMG grid, or its film collapsed"
+        else:
+            how = f" = fraction x discretisation error {e['discretisation_error']:.1e}, or the cap"
+        return f"algebraic error of {w} {test[w]['algebraic_error']:.1e} (limit {test[w]['limit']:.1e}{how})"
 
     def solve(self, H00_start):
         """FMG start, then cycles on the target grid; returns ``(P, H00, history)``
@@ -957,10 +1049,14 @@ class MultigridEHL:
         c0.P[0, :] = c0.P[-1, :] = c0.P[:, 0] = c0.P[:, -1] = 0.0
         self.cycle(0)
         coarse = None  # H_c, H_min of the next-coarser grid's FMG solution: the discretisation-error estimate
+        coarse2 = None  # the same two levels down (the FMG sequence's guard against a cancellation)
         for k in range(1, nlev):
             if k == nlev - 1 and (nlev == 2 or o.fmg_cycles > 0):
                 hc, hm = self._films(self.levels[k - 1])
                 coarse = dict(H_centre=hc, H_min=hm)
+            if k == nlev - 2 and o.fmg_cycles > 0:
+                hc, hm = self._films(self.levels[k - 1])
+                coarse2 = dict(H_centre=hc, H_min=hm)
             lv = self.levels[k]
             lv.P = _fmg_interpolate(self.levels[k - 1].P)
             lv.f = np.zeros(lv.shape)
@@ -975,14 +1071,14 @@ class MultigridEHL:
         history = []
         res0, load0, H = self.norms(k)
         history.append(dict(cycle=0, residual=res0, load_error=load0, work=self.work, H00=self.H00,
-                            H_centre=float(H[self._ic]), H_min=float(np.min(H)), coarse=coarse))
+                            H_centre=float(H[self._ic]), H_min=float(np.min(H)), coarse=coarse, coarse2=coarse2))
         test = None
         for cyc in range(1, o.max_cycles + 1):
             self.cycle(k)
             res, load_err, H = self.norms(k)
             history.append(dict(cycle=cyc, residual=res, load_error=load_err, work=self.work, H00=self.H00,
                                 H_centre=float(H[self._ic]), H_min=float(np.min(H))))
-            test = self._error_test(history, coarse)
+            test = self._error_test(history, coarse, coarse2)
             history[-1].update(error_Hc=test["H_c"]["algebraic_error"], error_Hmin=test["H_min"]["algebraic_error"])
             log.debug("EHL multigrid cycle %d: res %.3e, load err %.2e, H00 %.7f, H_c %.7f, H_min %.7f, work %.1f, "
                       "%s", cyc, res, load_err, self.H00, history[-1]["H_centre"], history[-1]["H_min"], self.work,
@@ -994,7 +1090,9 @@ class MultigridEHL:
                 history[-1].update(stop="error", stop_detail=(
                     f"algebraic error estimates (relative) H_c {test['H_c']['algebraic_error']:.1e}, H_min "
                     f"{test['H_min']['algebraic_error']:.1e}, load {test['load']['algebraic_error']:.1e} within "
-                    f"min({o.error_fraction:g} x discretisation error, {o.error_cap:.0e}); worst: "
+                    f"{o.error_fraction:g} x discretisation error"
+                    + (f" (at most {o.error_cap:.0e})" if o.error_cap is not None else "")
+                    + f", load at most {o.load_limit:.0e}; worst: "
                     + self._describe(test)))
                 break
             if res <= o.rtol and abs(load_err) <= o.load_rtol:
