@@ -1585,7 +1585,9 @@ def assess_largest_lyapunov(x, dt, *, method="wolf", dim=None, delay=None, evolv
     that tell chaos from noise and from the settings.
 
     1. Noise: ``n_surrogates`` surrogates of ``x`` (IAAFT, Schreiber & Schmitz 1996, or phase-randomised,
-       Theiler et al. 1992: :mod:`lubedyn.dynamics.surrogates`, seeded by ``seed``) get the same estimate.
+       Theiler et al. 1992: :mod:`lubedyn.dynamics.surrogates`, seeded by ``seed``) get the same estimate;
+       they are made of the series' first ``fast_length(N)`` samples (:func:`~lubedyn.dynamics.surrogates.fast_length`:
+       no prime factor above 31, at most 0.6 % fewer from 2,000 samples up), which keeps their FFTs fast.
        The series is "distinguishable from noise" when its estimate is outside all of theirs (a two-sided
        rank test, p = 2 / (n + 1)) and |z| >= ``SURROGATE_Z`` (3) with z = (e - mean) / std of theirs.
     2. Settings: the minimum embedding dimension by false nearest neighbours
@@ -1622,7 +1624,7 @@ def assess_largest_lyapunov(x, dt, *, method="wolf", dim=None, delay=None, evolv
         Bad method, surrogate kind, counts or tolerance, or the estimator's own refusal of the whole
         record (too short, no divergence rise); refusals of a surrogate, window or grid setting give NaN.
     """
-    from .surrogates import KINDS
+    from .surrogates import KINDS, fast_length
 
     if method not in ("wolf", "rosenstein"):
         raise DynamicsInputError(f"method = {method!r}: must be 'wolf' or 'rosenstein'")
@@ -1689,7 +1691,9 @@ def assess_largest_lyapunov(x, dt, *, method="wolf", dim=None, delay=None, evolv
     else:
         insensitive = bool(np.isfinite(spread) and spread <= settings_tolerance and not under)
     # 1. surrogates
-    surr = KINDS[surrogate](x, int(n_surrogates), seed)
+    # of the first fast_length(N) samples: an N with a large prime factor sends every FFT of the IAAFT
+    # iteration through Bluestein's algorithm (10-15 x slower); fast_length drops at most 0.6 % of them
+    surr = KINDS[surrogate](x[:fast_length(x.size)], int(n_surrogates), seed)
     se = np.array([_value(_estimate(method, s, dt, dim, delay, evolve, theiler, options)) for s in surr])
     good = se[np.isfinite(se)]
     if good.size >= 2:

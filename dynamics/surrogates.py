@@ -42,6 +42,37 @@ IAAFT_MAX_ITER = 200
 IAAFT_TOLERANCE = 0.01
 
 
+#: the largest prime factor a surrogate's length may have: numpy's FFT takes Bluestein's algorithm for a
+#: length with a large prime factor (76,001 samples, a prime: 19-24 ms per real FFT against 1.4 ms for
+#: 76,000 = 2^5 5^3 19 and 2.4-2.7 ms for lengths near it whose factors are at most 31, measured)
+FAST_PRIME = 31
+
+
+def _largest_prime_factor(m: int) -> int:
+    big, p = 1, 2
+    while p * p <= m:
+        while m % p == 0:
+            m //= p
+            big = p
+        p += 1
+    return max(big, m) if m > 1 else big
+
+
+def fast_length(n: int) -> int:
+    """The largest length <= ``n`` without a prime factor above ``FAST_PRIME`` (31): the surrogates of a
+    record are made of its first ``fast_length(N)`` samples, which keeps every FFT of the IAAFT
+    iteration off Bluestein's slow path (10-15 x).  It drops at most 0.6 % of the samples from 2,000
+    samples up (2,339 -> 2,325; at most 207 samples, 0.1 %, from 60,000 to 200,000), 2.3 % at worst
+    below (215 -> 210); lengths whose factors are small are kept (76,001 -> 76,000, 24,000 -> 24,000)."""
+    n = int(n)
+    if n < 1:
+        raise DynamicsInputError(f"n = {n}: must be >= 1")
+    m = n
+    while _largest_prime_factor(m) > FAST_PRIME:
+        m -= 1
+    return m
+
+
 def _series(x):
     x = np.asarray(x, dtype=np.float64)
     if x.ndim != 1 or x.size < 4 or not np.all(np.isfinite(x)):
