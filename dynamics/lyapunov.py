@@ -1265,7 +1265,7 @@ def largest_lyapunov_wolf(x, dt, *, dim, delay, evolve, theiler=None, scale_min=
     Theiler window, at least ``scale_min`` away); follow both for ``evolve`` samples and add
     log2(L'/L) of the separation's growth; then keep the evolved neighbour if its separation L' is
     still within [scale_min, scale_max], else replace it by the point near the evolved fiducial point
-    whose separation is closest in orientation to the evolved one (see :func:`_wolf_replacement`:
+    whose separation is closest in orientation to the evolved one (see :func:`_wolf_walk`:
     angle limit ``angle_max``, search radius widened up to 5 scale_max, then the angle limit doubled);
     repeat along the record.  lambda_1 = sum log2(L'/L) / (steps x evolve x dt) [bits/s]; times ln 2
     it is in 1/s (``WolfResult.exponent``).

@@ -1048,15 +1048,13 @@ class MultigridEHL:
         c0.P = np.sqrt(np.clip(1.0 - r2, 0.0, None))
         c0.P[0, :] = c0.P[-1, :] = c0.P[:, 0] = c0.P[:, -1] = 0.0
         self.cycle(0)
-        coarse = None  # H_c, H_min of the next-coarser grid's FMG solution: the discretisation-error estimate
-        coarse2 = None  # the same two levels down (the FMG sequence's guard against a cancellation)
+        # H_c, H_min of the FMG solutions one and two levels below the target (the discretisation-error
+        # estimate and its guard against a cancellation), recorded when each is final; an intermediate
+        # grid is a solution only after its FMG cycles, the coarsest always
+        fmg_films = {}
         for k in range(1, nlev):
-            if k == nlev - 1 and (nlev == 2 or o.fmg_cycles > 0):
-                hc, hm = self._films(self.levels[k - 1])
-                coarse = dict(H_centre=hc, H_min=hm)
-            if k == nlev - 2 and o.fmg_cycles > 0:
-                hc, hm = self._films(self.levels[k - 1])
-                coarse2 = dict(H_centre=hc, H_min=hm)
+            if k - 1 >= nlev - 3 and (o.fmg_cycles > 0 or nlev == 2):
+                fmg_films[k - 1] = dict(zip(("H_centre", "H_min"), self._films(self.levels[k - 1])))
             lv = self.levels[k]
             lv.P = _fmg_interpolate(self.levels[k - 1].P)
             lv.f = np.zeros(lv.shape)
@@ -1065,6 +1063,7 @@ class MultigridEHL:
             if k < nlev - 1:
                 for _ in range(o.fmg_cycles):
                     self.cycle(k)
+        coarse, coarse2 = fmg_films.get(nlev - 2), fmg_films.get(nlev - 3)
         k = nlev - 1
         top = self.levels[k]
         self._ic = (int(np.argmin(np.abs(top.X))), int(np.argmin(np.abs(top.Y))))
